@@ -1,0 +1,287 @@
+/*
+ * libggx — GGX as the normal distribution of a truncated ellipsoid.
+ *
+ * SPDX-License-Identifier: MIT
+ *
+ * Conventions (stated once, used everywhere)
+ * -----------------------------------------
+ * - Local frame: the macro-surface normal is n = +z. Tangent axes x and y are the axes of alpha_x and alpha_y.
+ * - Every direction (m, u, v, wi, wo) is a unit vector in that frame pointing AWAY from the surface.
+ *   Functions do not normalise their inputs; a non-unit direction gives a result for that vector, which is
+ *   meaningless but never NaN or Inf (see "Hot functions" below).
+ * - The shape matrix is Walter's A (Walter et al. 2014, eq 2): A = S R with S = diag(alpha_x, alpha_y, 1) and
+ *   R = Rx(theta_x) Ry(theta_y) Rz(theta_z) (eq 3). R = I gives anisotropic GGX (GTR2aniso), alpha_x = alpha_y gives
+ *   isotropic GGX. theta_z rotates the anisotropy in the tangent plane; theta_x, theta_y skew the distribution
+ *   (its peak moves away from n).
+ * - The ellipsoid size constant is Ce = 1 (Walter eq 30) wherever an absolute area or curvature is returned.
+ * - Angles are in radians in this API.
+ * - "Unskewed" means that A^T A n is parallel to n (theta_x = theta_y = 0 for ggx_shape_ellipsoid). For unskewed
+ *   shapes the Smith identities of GGX hold; for skewed shapes the ellipsoid forms of Walter are used throughout.
+ *
+ * Two tiers
+ * ---------
+ * - Setup functions (ggx_shape_*, ggx_fresnel_*) validate their input and return a ggx_status; on failure the
+ *   output is left unchanged. ggx_status_str() gives a one-line English message.
+ * - Hot functions (everything taking a const ggx_shape *) do no allocation and no validation beyond what is stated;
+ *   the shape must come from a successful setup call. For finite inputs they return a finite value >= 0. For a
+ *   direction outside the documented domain (below the horizon where that is not allowed, a zero vector) they
+ *   return exactly 0. A NaN in any direction component yields 0 (never NaN).
+ *
+ * Accuracy: all functions work in double precision with a fixed, short sequence of operations; the tests check
+ * them against independent evaluations (closed-form GGX, quadrature of the defining integrals, finite
+ * differences, complex-arithmetic Fresnel) at the tolerances stated in each block.
+ */
+#ifndef GGX_GGX_H
+#define GGX_GGX_H
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+#define GGX_VERSION_MAJOR 0
+#define GGX_VERSION_MINOR 1
+#define GGX_VERSION_PATCH 0
+
+/* Roughness below GGX_ALPHA_MIN is raised to GGX_ALPHA_MIN by the alpha-based constructors (a mirror is a
+ * delta distribution that a density cannot represent). Roughness above GGX_ALPHA_MAX is refused. */
+#define GGX_ALPHA_MIN 1e-4
+#define GGX_ALPHA_MAX 1e4
+/* Largest |theta_x|, |theta_y| accepted by ggx_shape_ellipsoid (radians): pi / 2. */
+#define GGX_SKEW_MAX 1.5707963267948966
+/* ggx_shape_matrix refuses A when |det A| <= GGX_SINGULAR_TOL * ||A||_F^3 (the determinant relative to the
+ * matrix's scale, roughly sigma_min^2 / sigma_max^2 for a matrix with two small singular values). */
+#define GGX_SINGULAR_TOL 1e-12
+
+typedef struct ggx_vec3 {
+    double x, y, z;
+} ggx_vec3;
+
+typedef enum ggx_status {
+    GGX_OK = 0,
+    GGX_ERR_NULL,        /* a required pointer argument is NULL */
+    GGX_ERR_NONFINITE,   /* a parameter is NaN or infinite */
+    GGX_ERR_ALPHA,       /* a roughness is <= 0 or > GGX_ALPHA_MAX */
+    GGX_ERR_ANGLE,       /* |theta_x| or |theta_y| > GGX_SKEW_MAX */
+    GGX_ERR_SINGULAR,    /* the shape matrix is singular or too close to singular */
+    GGX_ERR_ETA,         /* an index of refraction is <= 0 */
+    GGX_ERR_RANGE        /* a parameter is outside its documented range (e.g. Schlick f0 outside [0, 1]) */
+} ggx_status;
+
+/* One-line English description of a status ("ok" for GGX_OK); never NULL, also for unknown values. */
+const char *ggx_status_str(ggx_status status);
+
+/* ------------------------------------------------------------------------------------------------------------
+ * Shapes
+ * ------------------------------------------------------------------------------------------------------------ */
+
+typedef enum ggx_shape_kind {
+    GGX_SHAPE_DIAGONAL = 0, /* A = diag(alpha_x, alpha_y, 1) up to sign: anisotropic GGX in its own frame */
+    GGX_SHAPE_UNSKEWED = 1, /* A^T A n parallel to n (e.g. theta_z only): rotated anisotropic GGX */
+    GGX_SHAPE_SKEWED = 2    /* general ellipsoid: A^T A n not parallel to n */
+} ggx_shape_kind;
+
+/* A shape: the matrix A and what evaluation needs. A complete type so callers keep it by value (it is 200 bytes,
+ * with no pointers; copy it freely). Treat every field as read-only and set it only through ggx_shape_*. */
+typedef struct ggx_shape {
+    double a[3][3];      /* A, row-major; multiplied by -1 when det A < 0 (that changes no distribution) */
+    double ainv_t[3][3]; /* A^{-T} */
+    double det;          /* |det A| > 0 */
+    ggx_vec3 an;         /* A n, the pole of the truncation in sphere space */
+    double an_len;       /* ||A n|| */
+    double ndf_scale;    /* 1 / (pi |A| ||A n||), the constant of Walter eq 1 */
+    double alpha_x;      /* for GGX_SHAPE_DIAGONAL: A[0][0]; otherwise 0 */
+    double alpha_y;      /* for GGX_SHAPE_DIAGONAL: A[1][1]; otherwise 0 */
+    ggx_shape_kind kind;
+} ggx_shape;
+
+/* Isotropic GGX of roughness alpha (A = diag(alpha, alpha, 1)).
+ * alpha in (0, GGX_ALPHA_MAX]; alpha < GGX_ALPHA_MIN is raised to GGX_ALPHA_MIN.
+ * Errors: GGX_ERR_NULL, GGX_ERR_NONFINITE, GGX_ERR_ALPHA. */
+ggx_status ggx_shape_iso(ggx_shape *s, double alpha);
+
+/* Anisotropic GGX (GTR2aniso), R = I: A = diag(alpha_x, alpha_y, 1). Same domain and errors as ggx_shape_iso. */
+ggx_status ggx_shape_aniso(ggx_shape *s, double alpha_x, double alpha_y);
+
+/* Walter's ellipsoid, A = diag(alpha_x, alpha_y, 1) Rx(theta_x) Ry(theta_y) Rz(theta_z) (eq 2-3), angles in
+ * radians. theta_z is any finite angle; |theta_x|, |theta_y| <= GGX_SKEW_MAX. Alphas as in ggx_shape_iso.
+ * Errors: GGX_ERR_NULL, GGX_ERR_NONFINITE, GGX_ERR_ALPHA, GGX_ERR_ANGLE. */
+ggx_status ggx_shape_ellipsoid(ggx_shape *s, double alpha_x, double alpha_y, double theta_x, double theta_y,
+                               double theta_z);
+
+/* Any invertible A, row-major (A[row][col], so A n is the last column). A and c A (c != 0) and Q A (Q orthogonal)
+ * give the same distributions; a negative determinant is handled by using -A. Absolute areas
+ * (ggx_projected_area, ggx_lune_area) and the curvature do depend on the scale of A (Ce = 1).
+ * Errors: GGX_ERR_NULL, GGX_ERR_NONFINITE, GGX_ERR_SINGULAR (|det A| <= GGX_SINGULAR_TOL ||A||_F^3). */
+ggx_status ggx_shape_matrix(ggx_shape *s, const double A[3][3]);
+
+/* ------------------------------------------------------------------------------------------------------------
+ * The distribution of normals
+ * ------------------------------------------------------------------------------------------------------------ */
+
+/* D(m) = X+(m.n) / (pi |A| ||A n|| ||A^{-T} m||^4)   (Walter eq 1).
+ * Domain: unit m. m.z < 0 gives 0 (X+(0) = 1, as in the seed, so the horizon itself is inside).
+ * Normalised: the integral of D(m) (m.n) over the hemisphere is 1 for every A (tested to 1e-9 relative).
+ * For R = I it equals 1 / (pi ax ay (mx^2/ax^2 + my^2/ay^2 + mz^2)^2), anisotropic GGX. */
+double ggx_ndf(const ggx_shape *s, ggx_vec3 m);
+
+/* The NDF as a density over the spherical angles: D(theta, phi) = D(m) sin(theta) with
+ * m = (sin theta cos phi, sin theta sin phi, cos theta) (blog Part 1). theta in [0, pi/2], phi any. */
+double ggx_ndf_spherical(const ggx_shape *s, double theta, double phi);
+
+/* Slope-space distribution P22(x~, y~), with the slopes of a normal m given by x~ = -mx/mz, y~ = -my/mz, so that
+ * D(m) = P22(x~, y~) / cos^4(theta_m) (blog Part 1). Closed form for any A:
+ * P22 = 1 / (pi |A| ||A n|| ||A^{-T} (-x~, -y~, 1)||^4). Integrates to 1 over the plane. Any finite slopes. */
+double ggx_p22(const ggx_shape *s, double slope_x, double slope_y);
+
+/* Gaussian curvature of the ellipsoid x^T A^T A x = 1 (Ce = 1) at the point whose outward normal is m:
+ * Kg(m) = |A|^2 ||A^{-T} m||^4   (Walter eq 20). Defined on the whole sphere (m.z of any sign); zero m gives 0.
+ * D(m) = 1 / (A_perp_e(n) Kg(m)) for m.z >= 0 (eq 9). Tested against finite differences of the Gauss map. */
+double ggx_gaussian_curvature(const ggx_shape *s, ggx_vec3 m);
+
+/* Projected area of the ellipsoid seen from direction u (Ce = 1): pi ||A u|| / |A|   (eq 26). Any unit u. */
+double ggx_projected_area(const ggx_shape *s, ggx_vec3 u);
+
+/* Projected area, seen from u, of the ellipsoidal lune {m.u >= 0 and m.v >= 0} (Ce = 1):
+ * pi (||A u|| ||A v|| + (A u).(A v)) / (2 |A| ||A v||)   (eq 28). ggx_lune_area(s, u, u) = ggx_projected_area(s, u).
+ * Any unit u, v; a zero v gives 0. The truncated microsurface is the lune with v = n, so
+ * the integral of X+(m.u) D(m) (m.u) dm = A_perp_l(u, n) / A_perp_e(n) (tested by quadrature, grazing u included). */
+double ggx_lune_area(const ggx_shape *s, ggx_vec3 u, ggx_vec3 v);
+
+/* ------------------------------------------------------------------------------------------------------------
+ * Masking
+ * ------------------------------------------------------------------------------------------------------------ */
+
+/* Walter's ellipsoid masking term, eq 6 / eq 32:
+ * G1(u, m) = min(1, A_perp_e(n) |u.n| / A_perp_l(u, n)) X+(u.m)
+ *          = min(1, 2 ||A n||^2 |u.n| / (||A u|| ||A n|| + (A u).(A n))) X+(u.m).
+ * Domain: u.z > 0 (u.z <= 0 gives 0; for transmission pass the direction flipped to the upper side, eq 7).
+ * In [0, 1]. For unskewed shapes the min is never active and G1 = 1 / (1 + Lambda(u)) with the GGX Lambda. */
+double ggx_g1(const ggx_shape *s, ggx_vec3 u, ggx_vec3 m);
+
+/* The direction-only part of eq 32 without the min: A_perp_l(u, n) / (A_perp_e(n) u.z) - 1, which for unskewed
+ * shapes is Smith's GGX Lambda(u) = (sqrt(1 + alpha(phi)^2 tan^2 theta) - 1) / 2 (blog Part 1). For skewed shapes
+ * it is the lune-area generalisation and may be negative (where Walter's min clips G1 to 1).
+ * Domain: u.z > 0; u.z <= 0 gives 0. */
+double ggx_lambda(const ggx_shape *s, ggx_vec3 u);
+
+/* Smith form G1 = 1 / (1 + Lambda(u)), without the back-facing test or the min. Equal to ggx_g1 with u.m > 0
+ * for unskewed shapes; may exceed 1 for skewed shapes. Domain u.z > 0; otherwise 0. */
+double ggx_g1_smith(const ggx_shape *s, ggx_vec3 u);
+
+/* Separable shadowing-masking G = G1(wi, m) G1(wo, m)   (eq 5). Both directions above the horizon; else 0. */
+double ggx_g2(const ggx_shape *s, ggx_vec3 wi, ggx_vec3 wo, ggx_vec3 m);
+
+/* Height-correlated Smith shadowing-masking X+(wi.m) X+(wo.m) / (1 + L(wi) + L(wo)) with L = max(Lambda, 0)
+ * (for unskewed shapes Lambda >= 0, so this is the standard form; clamping at 0 is the counterpart of Walter's
+ * min for skewed shapes and keeps the result in [0, 1]). Both directions above the horizon; else 0. */
+double ggx_g2_height_correlated(const ggx_shape *s, ggx_vec3 wi, ggx_vec3 wo, ggx_vec3 m);
+
+/* Density of visible normals for view v (Walter eq 33), a pdf over the solid angle of m:
+ * D_v(m) = A_perp_e(n) / A_perp_l(v, n) X+(m.v) D(m) (m.v).
+ * Integrates to 1 over m for every A and every v above the horizon. For unskewed shapes it equals
+ * G1(v) D(m) (m.v) / (v.n). Domain: v.z > 0; otherwise 0. */
+double ggx_pdf_vndf(const ggx_shape *s, ggx_vec3 v, ggx_vec3 m);
+
+/* ------------------------------------------------------------------------------------------------------------
+ * Fresnel
+ * ------------------------------------------------------------------------------------------------------------ */
+
+/* Exact unpolarised Fresnel reflectance of a dielectric interface, eta = eta_transmitted / eta_incident > 0,
+ * cos_i = |cosine| of the incidence angle (the sign is ignored, values above 1 are clamped). Returns 1 under total
+ * internal reflection. Tested against the complex-amplitude Fresnel equations and textbook values. */
+double ggx_fresnel_dielectric_eval(double cos_i, double eta);
+
+/* Exact unpolarised Fresnel reflectance of a conductor with complex relative index eta + i k (eta > 0, k >= 0),
+ * cos_i as above. k = 0 reduces to ggx_fresnel_dielectric_eval without total internal reflection (eta >= 1). */
+double ggx_fresnel_conductor_eval(double cos_i, double eta, double k);
+
+/* Schlick's approximation f0 + (1 - f0) (1 - cos_i)^5, cos_i as above. */
+double ggx_fresnel_schlick_eval(double cos_i, double f0);
+
+typedef enum ggx_fresnel_kind {
+    GGX_FRESNEL_ONE = 0,  /* F = 1: a perfect reflector (used for energy tests) */
+    GGX_FRESNEL_DIELECTRIC,
+    GGX_FRESNEL_CONDUCTOR,
+    GGX_FRESNEL_SCHLICK
+} ggx_fresnel_kind;
+
+/* A Fresnel term, one wavelength / channel. Zero-initialised it is GGX_FRESNEL_ONE. */
+typedef struct ggx_fresnel {
+    ggx_fresnel_kind kind;
+    double eta; /* DIELECTRIC, CONDUCTOR: relative index (inside / outside) */
+    double k;   /* CONDUCTOR: extinction coefficient */
+    double f0;  /* SCHLICK: reflectance at normal incidence */
+} ggx_fresnel;
+
+ggx_status ggx_fresnel_one(ggx_fresnel *f);
+ggx_status ggx_fresnel_dielectric(ggx_fresnel *f, double eta);        /* eta > 0 finite, else GGX_ERR_ETA */
+ggx_status ggx_fresnel_conductor(ggx_fresnel *f, double eta, double k); /* eta > 0, k >= 0 finite */
+ggx_status ggx_fresnel_schlick(ggx_fresnel *f, double f0);            /* f0 in [0, 1], else GGX_ERR_RANGE */
+
+/* F(cos_i) for the configured term, in [0, 1]. */
+double ggx_fresnel_eval(const ggx_fresnel *f, double cos_i);
+
+/* ------------------------------------------------------------------------------------------------------------
+ * Half vectors and their Jacobians (Walter et al. 2007)
+ * ------------------------------------------------------------------------------------------------------------ */
+
+/* Reflection half vector normalize(wi + wo), flipped to the upper hemisphere (h.z >= 0). (0,0,0) when
+ * wi + wo = 0. */
+ggx_vec3 ggx_half_reflect(ggx_vec3 wi, ggx_vec3 wo);
+
+/* Generalised half vector of refraction -(eta_i wi + eta_o wo) normalised, flipped to h.z >= 0 (Walter 2007
+ * eq 16), where eta_i, eta_o are the indices on the sides of wi and wo. (0,0,0) when it is zero. */
+ggx_vec3 ggx_half_refract(ggx_vec3 wi, ggx_vec3 wo, double eta_i, double eta_o);
+
+/* d omega_h / d omega_o for reflection: 1 / (4 |wo.h|) (Walter 2007 eq 14). 0 when wo.h = 0. */
+double ggx_jacobian_reflect(ggx_vec3 wo, ggx_vec3 h);
+
+/* d omega_h / d omega_o for refraction: eta_o^2 |wo.h| / (eta_i (wi.h) + eta_o (wo.h))^2 (Walter 2007 eq 17).
+ * 0 when the denominator is 0. Both Jacobians are tested against finite differences of the maps. */
+double ggx_jacobian_refract(ggx_vec3 wi, ggx_vec3 wo, ggx_vec3 h, double eta_i, double eta_o);
+
+/* Mirror reflection of w about the unit normal m: 2 (w.m) m - w. Any w, m. */
+ggx_vec3 ggx_reflect(ggx_vec3 w, ggx_vec3 m);
+
+/* Refraction of w through a facet with unit normal m, eta = eta_transmitted / eta_incident (the side of w is the
+ * incident side; m may face either way). Writes the unit refracted direction (on the far side of the facet) to
+ * *out and returns 1, or returns 0 and writes (0,0,0) under total internal reflection, for w.m = 0, eta outside
+ * (0, inf) or NaN input. Snell's law holds to 1e-15 (tested). */
+int ggx_refract(ggx_vec3 w, ggx_vec3 m, double eta, ggx_vec3 *out);
+
+/* ------------------------------------------------------------------------------------------------------------
+ * Scattering functions
+ * ------------------------------------------------------------------------------------------------------------ */
+
+/* Microfacet BRDF (Walter eq 4 with G of eq 5):
+ * f_r(wi, wo) = D(h) G1(wi, h) G1(wo, h) F(wi.h) / (4 |wi.n| |wo.n|),  h = normalize(wi + wo).
+ * Reflection only: wi.z <= 0 or wo.z <= 0 gives 0. Reciprocal: f_r(wi, wo) = f_r(wo, wi) (tested to 1e-12).
+ * With F = 1 the directional albedo is <= 1 for every shape and wi (= G1(wi) for unskewed shapes). */
+double ggx_brdf_eval(const ggx_shape *s, const ggx_fresnel *f, ggx_vec3 wi, ggx_vec3 wo);
+
+/* Which quantity the BSDF transports (Veach 1997, Walter 2007 section 5.2). */
+typedef enum ggx_transport {
+    GGX_RADIANCE = 0, /* f(wi -> wo): radiance arriving along wi (from the light) leaves along wo */
+    GGX_IMPORTANCE = 1 /* the adjoint: f*(wi, wo) = f(wo -> wi), for light tracing / importance */
+} ggx_transport;
+
+/* Rough dielectric BSDF (Walter et al. 2007) on both sides of an interface whose lower side (z < 0) has index eta
+ * relative to the upper side (eta = eta_below / eta_above > 0, eta != 1 for a meaningful transmission; eta = 1 is
+ * allowed and gives reflection only from the Fresnel term, which is then 0).
+ * wi: direction towards the light, wo: direction towards the viewer, either on either side (z != 0).
+ * - Same side: reflection, F(|wi.h|) D(h) G / (4 |wi.n| |wo.n|) with h = ggx_half_reflect.
+ * - Opposite sides: transmission with h = ggx_half_refract (eta_i, eta_o the indices on the sides of wi, wo):
+ *   |wi.h| |wo.h| eta_o^2 (1 - F(|wi.h|)) D(h) G / (|wi.n| |wo.n| (eta_i wi.h + eta_o wo.h)^2)   (Walter 2007 eq 21).
+ * G is eq 7: G1(sgn(wi.n) wi, h) G1(sgn(wo.n) wo, h); F is the exact dielectric Fresnel with the relative index
+ * seen from wi's side. Configurations that no microfacet produces (h below the horizon, wi.h and wo.h on the
+ * wrong sides) give 0.
+ * Radiance convention: f(wi, wo) / eta_o^2 = f(wo, wi) / eta_i^2 (generalised reciprocity), and for fixed wi the
+ * integral of f(wi, wo) |wo.n| over all wo is <= 1. GGX_IMPORTANCE returns f(wo, wi). wi.z = 0 or wo.z = 0, or
+ * eta outside (0, inf), gives 0. */
+double ggx_bsdf_eval(const ggx_shape *s, double eta, ggx_vec3 wi, ggx_vec3 wo, ggx_transport mode);
+
+#ifdef __cplusplus
+}
+#endif
+
+#endif /* GGX_GGX_H */

@@ -1,0 +1,121 @@
+/* Shape setup: validation and the precomputed terms of Walter's ellipsoid NDF. SPDX-License-Identifier: MIT */
+#include <string.h>
+
+#include "internal.h"
+
+static int all_finite(const double *x, int n)
+{
+    for (int i = 0; i < n; i++)
+        if (!isfinite(x[i])) return 0;
+    return 1;
+}
+
+/* Validates alpha and applies the documented clamp to GGX_ALPHA_MIN. */
+static ggx_status check_alpha(double *alpha)
+{
+    if (!isfinite(*alpha)) return GGX_ERR_NONFINITE;
+    if (!(*alpha > 0.0) || *alpha > GGX_ALPHA_MAX) return GGX_ERR_ALPHA;
+    if (*alpha < GGX_ALPHA_MIN) *alpha = GGX_ALPHA_MIN;
+    return GGX_OK;
+}
+
+/* Fills s from a matrix already known to be finite. */
+static ggx_status shape_from_matrix(ggx_shape *s, const double A[3][3])
+{
+    double a[3][3];
+    memcpy(a, A, sizeof a);
+
+    /* Cofactors: A^{-1} = C^T / det, hence A^{-T} = C / det. */
+    double c[3][3];
+    for (int i = 0; i < 3; i++) {
+        for (int j = 0; j < 3; j++) {
+            int i1 = (i + 1) % 3, i2 = (i + 2) % 3, j1 = (j + 1) % 3, j2 = (j + 2) % 3;
+            c[i][j] = a[i1][j1] * a[i2][j2] - a[i1][j2] * a[i2][j1];
+        }
+    }
+    double det = a[0][0] * c[0][0] + a[0][1] * c[0][1] + a[0][2] * c[0][2];
+    double fro2 = 0.0;
+    for (int i = 0; i < 3; i++)
+        for (int j = 0; j < 3; j++) fro2 += a[i][j] * a[i][j];
+    double fro = sqrt(fro2);
+    if (!(fabs(det) > GGX_SINGULAR_TOL * fro2 * fro)) return GGX_ERR_SINGULAR;
+
+    /* -A describes the same distributions (left-multiplication by the orthogonal -I); keeping det > 0 lets the
+     * sampling code use A as an orientation-preserving map. */
+    double sign = det < 0.0 ? -1.0 : 1.0;
+    ggx_shape t;
+    memset(&t, 0, sizeof t);
+    for (int i = 0; i < 3; i++) {
+        for (int j = 0; j < 3; j++) {
+            t.a[i][j] = sign * a[i][j];
+            t.ainv_t[i][j] = sign * c[i][j] / det; /* cofactors of -A equal those of A; (-A)^{-T} = -A^{-T} */
+        }
+    }
+    t.det = fabs(det);
+    t.an = v3(t.a[0][2], t.a[1][2], t.a[2][2]);
+    t.an_len = v3_len(t.an);
+    t.ndf_scale = 1.0 / (GGX_PI * t.det * t.an_len);
+
+    /* Classification, used by fast paths only: every evaluation uses Walter's general forms. */
+    int diagonal = t.a[0][1] == 0.0 && t.a[0][2] == 0.0 && t.a[1][0] == 0.0 && t.a[1][2] == 0.0 &&
+                   t.a[2][0] == 0.0 && t.a[2][1] == 0.0;
+    ggx_vec3 w = v3(t.a[0][0] * t.an.x + t.a[1][0] * t.an.y + t.a[2][0] * t.an.z,
+                    t.a[0][1] * t.an.x + t.a[1][1] * t.an.y + t.a[2][1] * t.an.z,
+                    t.a[0][2] * t.an.x + t.a[1][2] * t.an.y + t.a[2][2] * t.an.z); /* A^T A n */
+    if (diagonal) {
+        t.kind = GGX_SHAPE_DIAGONAL;
+        t.alpha_x = fabs(t.a[0][0] / t.a[2][2]);
+        t.alpha_y = fabs(t.a[1][1] / t.a[2][2]);
+    } else if (hypot(w.x, w.y) <= 1e-14 * fabs(w.z)) {
+        t.kind = GGX_SHAPE_UNSKEWED;
+    } else {
+        t.kind = GGX_SHAPE_SKEWED;
+    }
+    if (!all_finite(&t.ainv_t[0][0], 9) || !isfinite(t.ndf_scale)) return GGX_ERR_SINGULAR;
+    *s = t;
+    return GGX_OK;
+}
+
+ggx_status ggx_shape_matrix(ggx_shape *s, const double A[3][3])
+{
+    if (!s || !A) return GGX_ERR_NULL;
+    if (!all_finite(&A[0][0], 9)) return GGX_ERR_NONFINITE;
+    return shape_from_matrix(s, A);
+}
+
+ggx_status ggx_shape_aniso(ggx_shape *s, double alpha_x, double alpha_y)
+{
+    return ggx_shape_ellipsoid(s, alpha_x, alpha_y, 0.0, 0.0, 0.0);
+}
+
+ggx_status ggx_shape_iso(ggx_shape *s, double alpha) { return ggx_shape_aniso(s, alpha, alpha); }
+
+ggx_status ggx_shape_ellipsoid(ggx_shape *s, double alpha_x, double alpha_y, double theta_x, double theta_y,
+                               double theta_z)
+{
+    if (!s) return GGX_ERR_NULL;
+    if (!isfinite(theta_x) || !isfinite(theta_y) || !isfinite(theta_z)) return GGX_ERR_NONFINITE;
+    ggx_status st = check_alpha(&alpha_x);
+    if (st == GGX_OK) st = check_alpha(&alpha_y);
+    if (st != GGX_OK) return st;
+    if (fabs(theta_x) > GGX_SKEW_MAX || fabs(theta_y) > GGX_SKEW_MAX) return GGX_ERR_ANGLE;
+
+    /* R = Rx Ry Rz (Walter eq 3). Zero angles give exact zeros, so R = I yields a diagonal A. */
+    double cx = cos(theta_x), sx = sin(theta_x), cy = cos(theta_y), sy = sin(theta_y);
+    double cz = cos(theta_z), sz = sin(theta_z);
+    if (theta_x == 0.0) cx = 1.0, sx = 0.0;
+    if (theta_y == 0.0) cy = 1.0, sy = 0.0;
+    if (theta_z == 0.0) cz = 1.0, sz = 0.0;
+    double ry_rz[3][3] = {{cy * cz, -cy * sz, sy}, {sz, cz, 0.0}, {-sy * cz, sy * sz, cy}};
+    double r[3][3];
+    for (int j = 0; j < 3; j++) {
+        r[0][j] = ry_rz[0][j];
+        r[1][j] = cx * ry_rz[1][j] - sx * ry_rz[2][j];
+        r[2][j] = sx * ry_rz[1][j] + cx * ry_rz[2][j];
+    }
+    double A[3][3];
+    double scale[3] = {alpha_x, alpha_y, 1.0};
+    for (int i = 0; i < 3; i++)
+        for (int j = 0; j < 3; j++) A[i][j] = scale[i] * r[i][j];
+    return shape_from_matrix(s, (const double(*)[3])A);
+}

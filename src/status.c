@@ -1,0 +1,17 @@
+/* Status messages. SPDX-License-Identifier: MIT */
+#include "ggx/ggx.h"
+
+const char *ggx_status_str(ggx_status status)
+{
+    switch (status) {
+    case GGX_OK: return "ok";
+    case GGX_ERR_NULL: return "a required pointer argument is NULL";
+    case GGX_ERR_NONFINITE: return "a parameter is NaN or infinite";
+    case GGX_ERR_ALPHA: return "roughness alpha must be in (0, 1e4]";
+    case GGX_ERR_ANGLE: return "skew angles theta_x, theta_y must be within [-pi/2, pi/2]";
+    case GGX_ERR_SINGULAR: return "the shape matrix is singular or too close to singular";
+    case GGX_ERR_ETA: return "an index of refraction must be finite and > 0 (and k >= 0)";
+    case GGX_ERR_RANGE: return "a parameter is outside its documented range";
+    }
+    return "unknown status";
+}
