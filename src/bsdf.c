@@ -71,7 +71,8 @@ static double bsdf_radiance(const ggx_shape *s, double eta, ggx_vec3 wi, ggx_vec
         ggx_vec3 h = ggx_half_reflect(wi, wo);
         double g = ggx_g2(s, ui, uo, h); /* X+ terms reject facets that face away from either direction */
         if (g == 0.0) return 0.0;
-        double F = ggx_fresnel_dielectric_eval(v3_dot(wi, h), eta_rel);
+        /* |wi.h| = |wo.h| in exact arithmetic; their mean makes f exactly reciprocal in floating point too. */
+        double F = ggx_fresnel_dielectric_eval(0.5 * (fabs(v3_dot(wi, h)) + fabs(v3_dot(wo, h))), eta_rel);
         return finite_or_zero(F * ggx_ndf(s, h) * g / (4.0 * cos_i * cos_o));
     }
 
@@ -80,7 +81,10 @@ static double bsdf_radiance(const ggx_shape *s, double eta, ggx_vec3 wi, ggx_vec
     double g = ggx_g2(s, ui, uo, h); /* with h.z >= 0, requires wi and wo on opposite sides of the facet */
     if (g == 0.0) return 0.0;
     double denom = eta_i * hi + eta_o * ho;
-    double T = 1.0 - ggx_fresnel_dielectric_eval(hi, eta_rel);
+    /* Fresnel transmittance is the same from both sides of a Snell pair. Evaluating it from the side of lower
+     * index is better conditioned (no cancellation near the critical angle) and makes f exactly reciprocal. */
+    double T = eta >= 1.0 ? 1.0 - ggx_fresnel_dielectric_eval(wi_up ? hi : ho, eta)
+                          : 1.0 - ggx_fresnel_dielectric_eval(wi_up ? ho : hi, 1.0 / eta);
     return finite_or_zero(fabs(hi * ho) * eta_o * eta_o * T * ggx_ndf(s, h) * g /
                           (cos_i * cos_o * denom * denom)); /* Walter 2007 eq 21 */
 }
