@@ -23,6 +23,8 @@ double ggx_jacobian_reflect(ggx_vec3 wo, ggx_vec3 h)
 
 double ggx_jacobian_refract(ggx_vec3 wi, ggx_vec3 wo, ggx_vec3 h, double eta_i, double eta_o)
 {
+    double li = v3_dot(wi, wi);
+    if (!(li > 0.0 && li < HUGE_VAL)) return 0.0; /* wi enters only through the denominator */
     double d = eta_i * v3_dot(wi, h) + eta_o * v3_dot(wo, h);
     return finite_or_zero(eta_o * eta_o * fabs(v3_dot(wo, h)) / (d * d));
 }

@@ -92,6 +92,8 @@ static double g1_dir(const ggx_shape *s, ggx_vec3 u)
 double ggx_g1(const ggx_shape *s, ggx_vec3 u, ggx_vec3 m)
 {
     if (!(v3_dot(u, m) >= 0.0)) return 0.0; /* X+(u.m) */
+    double mm = v3_dot(m, m);
+    if (!(mm > 0.0 && mm < HUGE_VAL)) return 0.0; /* u.m = 0 for a zero m passes X+; no facet has it */
     return g1_dir(s, u);
 }
 
@@ -103,10 +105,11 @@ double ggx_g2(const ggx_shape *s, ggx_vec3 wi, ggx_vec3 wo, ggx_vec3 m)
 double ggx_g2_height_correlated(const ggx_shape *s, ggx_vec3 wi, ggx_vec3 wo, ggx_vec3 m)
 {
     if (!(wi.z > 0.0 && wo.z > 0.0 && v3_dot(wi, m) >= 0.0 && v3_dot(wo, m) >= 0.0)) return 0.0;
-    double li = ggx_lambda(s, wi), lo = ggx_lambda(s, wo);
+    double li = visible_ratio(s, wi) - 1.0, lo = visible_ratio(s, wo) - 1.0;
+    if (!isfinite(li) || !isfinite(lo)) return 0.0; /* a non-finite direction is outside the domain */
     li = li > 0.0 ? li : 0.0;
     lo = lo > 0.0 ? lo : 0.0;
-    return finite_or_zero(1.0 / (1.0 + li + lo));
+    return 1.0 / (1.0 + li + lo);
 }
 
 double ggx_pdf_vndf(const ggx_shape *s, ggx_vec3 v, ggx_vec3 m)

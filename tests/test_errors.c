@@ -1,1 +1,152 @@
-int main(void){return 0;}
+/* Every status path of the setup functions, the documented clamps, and the hot functions' behaviour outside their
+ * domain: exactly 0, never NaN or Inf. SPDX-License-Identifier: MIT */
+#include <math.h>
+#include <string.h>
+
+#include "testlib.h"
+
+static void shape_statuses(void **state)
+{
+    (void)state;
+    ggx_shape s, before;
+    CHECK(ggx_shape_iso(&s, 0.3) == GGX_OK, "ok");
+    memcpy(&before, &s, sizeof s);
+    /* Each failure leaves the output untouched. */
+    const struct {
+        ggx_status got, want;
+        const char *what;
+    } cases[] = {
+        {ggx_shape_iso(NULL, 0.3), GGX_ERR_NULL, "iso NULL"},
+        {ggx_shape_aniso(NULL, 0.3, 0.3), GGX_ERR_NULL, "aniso NULL"},
+        {ggx_shape_ellipsoid(NULL, 0.3, 0.3, 0, 0, 0), GGX_ERR_NULL, "ellipsoid NULL"},
+        {ggx_shape_matrix(NULL, NULL), GGX_ERR_NULL, "matrix NULL"},
+        {ggx_shape_matrix(&s, NULL), GGX_ERR_NULL, "matrix NULL A"},
+        {ggx_shape_iso(&s, NAN), GGX_ERR_NONFINITE, "alpha NaN"},
+        {ggx_shape_iso(&s, INFINITY), GGX_ERR_NONFINITE, "alpha Inf"},
+        {ggx_shape_aniso(&s, 0.3, -INFINITY), GGX_ERR_NONFINITE, "alpha_y -Inf"},
+        {ggx_shape_iso(&s, 0.0), GGX_ERR_ALPHA, "alpha 0"},
+        {ggx_shape_iso(&s, -0.1), GGX_ERR_ALPHA, "alpha < 0"},
+        {ggx_shape_aniso(&s, 0.3, 2e4), GGX_ERR_ALPHA, "alpha > max"},
+        {ggx_shape_ellipsoid(&s, 0.3, 0.3, NAN, 0, 0), GGX_ERR_NONFINITE, "theta_x NaN"},
+        {ggx_shape_ellipsoid(&s, 0.3, 0.3, 0, 0, INFINITY), GGX_ERR_NONFINITE, "theta_z Inf"},
+        {ggx_shape_ellipsoid(&s, 0.3, 0.3, 1.6, 0, 0), GGX_ERR_ANGLE, "theta_x > pi/2"},
+        {ggx_shape_ellipsoid(&s, 0.3, 0.3, 0, -1.6, 0), GGX_ERR_ANGLE, "theta_y < -pi/2"},
+    };
+    for (unsigned i = 0; i < sizeof cases / sizeof cases[0]; i++) {
+        CHECK(cases[i].got == cases[i].want, "%s: got %d (%s)", cases[i].what, cases[i].got, ggx_status_str(cases[i].got));
+        CHECK(memcmp(&s, &before, sizeof s) == 0, "%s modified the shape", cases[i].what);
+    }
+    const double sing[3][3] = {{1, 2, 3}, {2, 4, 6}, {0, 0, 1}};
+    const double near[3][3] = {{1e-7, 0, 0}, {0, 1e-7, 0}, {0, 0, 1}};
+    const double nanm[3][3] = {{1, 0, 0}, {0, NAN, 0}, {0, 0, 1}};
+    const double zero[3][3] = {{0}};
+    CHECK(ggx_shape_matrix(&s, sing) == GGX_ERR_SINGULAR, "rank 2");
+    CHECK(ggx_shape_matrix(&s, near) == GGX_ERR_SINGULAR, "near singular");
+    CHECK(ggx_shape_matrix(&s, zero) == GGX_ERR_SINGULAR, "zero");
+    CHECK(ggx_shape_matrix(&s, nanm) == GGX_ERR_NONFINITE, "NaN entry");
+    CHECK(memcmp(&s, &before, sizeof s) == 0, "failed matrix setup modified the shape");
+    const double ok[3][3] = {{1e-4, 0, 0}, {0, 1e-4, 0}, {0, 0, 1}};
+    CHECK(ggx_shape_matrix(&s, ok) == GGX_OK && s.kind == GGX_SHAPE_DIAGONAL, "alpha_min as a matrix is accepted");
+    for (int st = GGX_OK; st <= GGX_ERR_RANGE; st++)
+        CHECK(ggx_status_str((ggx_status)st) && strlen(ggx_status_str((ggx_status)st)) > 1, "message %d", st);
+    CHECK(strcmp(ggx_status_str((ggx_status)999), "unknown status") == 0, "unknown");
+}
+
+/* alpha below GGX_ALPHA_MIN is raised to it; a negative-determinant matrix is the same distribution. */
+static void clamps_and_signs(void **state)
+{
+    (void)state;
+    ggx_shape a, b;
+    CHECK(ggx_shape_iso(&a, 1e-9) == GGX_OK && ggx_shape_iso(&b, GGX_ALPHA_MIN) == GGX_OK, "setup");
+    CHECK(memcmp(&a, &b, sizeof a) == 0, "alpha clamped to GGX_ALPHA_MIN");
+    CHECK(a.alpha_x == GGX_ALPHA_MIN, "alpha_x %g", a.alpha_x);
+    const double neg[3][3] = {{-0.3, 0.1, 0.05}, {0.0, 0.6, -0.1}, {0.1, 0.0, 1.0}};
+    double pos[3][3];
+    for (int i = 0; i < 3; i++)
+        for (int j = 0; j < 3; j++) pos[i][j] = -neg[i][j];
+    ggx_shape sn, sp;
+    CHECK(ggx_shape_matrix(&sn, neg) == GGX_OK && ggx_shape_matrix(&sp, (const double(*)[3])pos) == GGX_OK, "setup");
+    CHECK(sn.det > 0 && sp.det > 0, "det > 0");
+    rng r = {51};
+    for (int i = 0; i < 100; i++) {
+        ggx_vec3 m = random_view(&r), v = random_view(&r);
+        CHECK(ggx_ndf(&sn, m) == ggx_ndf(&sp, m), "same D");
+        CHECK(ggx_pdf_vndf(&sn, v, m) == ggx_pdf_vndf(&sp, v, m), "same vndf");
+    }
+    ggx_shape e;
+    CHECK(ggx_shape_ellipsoid(&e, 0.3, 0.5, 0.2, 0, 0) == GGX_OK && e.kind == GGX_SHAPE_SKEWED, "skewed kind");
+    CHECK(ggx_shape_ellipsoid(&e, 0.3, 0.5, 0, 0, 1.0) == GGX_OK && e.kind == GGX_SHAPE_UNSKEWED, "unskewed kind");
+    CHECK(ggx_shape_ellipsoid(&e, 0.3, 0.5, GGX_SKEW_MAX, -GGX_SKEW_MAX, 7.0) == GGX_OK, "skew limit accepted");
+}
+
+/* Outside the domain: exactly 0. NaN directions: 0, never NaN. Zero vectors: 0, never Inf. */
+static void hot_functions_outside_domain(void **state)
+{
+    (void)state;
+    ggx_shape sh[2];
+    CHECK(ggx_shape_aniso(&sh[0], 0.3, 0.6) == GGX_OK && ggx_shape_ellipsoid(&sh[1], 0.3, 0.6, 0.4, -0.3, 1) == GGX_OK,
+          "setup");
+    ggx_fresnel f;
+    ggx_fresnel_conductor(&f, 0.2, 3.9);
+    const ggx_vec3 up = {0.3, 0.2, 0.9327379053}, below = {0.3, 0.2, -0.9327379053}, horizon = {0.6, 0.8, 0};
+    const ggx_vec3 zero = {0, 0, 0}, nanv = {NAN, 0, 1}, nanz = {0, 0, NAN}, infv = {INFINITY, 0, 1};
+    const ggx_vec3 bad[] = {zero, nanv, nanz, infv};
+    for (int k = 0; k < 2; k++) {
+        const ggx_shape *s = &sh[k];
+        CHECK(ggx_ndf(s, below) == 0.0, "D below");
+        CHECK(ggx_ndf(s, horizon) > 0.0, "D on the horizon is inside (X+(0) = 1)");
+        CHECK(ggx_g1(s, below, up) == 0.0 && ggx_g1(s, horizon, up) == 0.0, "G1 below / horizon");
+        CHECK(ggx_lambda(s, below) == 0.0 && ggx_g1_smith(s, below) == 0.0, "Lambda below");
+        CHECK(ggx_pdf_vndf(s, below, up) == 0.0 && ggx_pdf_vndf(s, horizon, up) == 0.0, "vndf below");
+        CHECK(ggx_pdf_vndf(s, up, below) == 0.0, "vndf m below");
+        CHECK(ggx_brdf_eval(s, &f, up, below) == 0.0 && ggx_brdf_eval(s, &f, horizon, up) == 0.0, "brdf below");
+        CHECK(ggx_bsdf_eval(s, 1.5, horizon, up, GGX_RADIANCE) == 0.0, "bsdf horizon");
+        CHECK(ggx_bsdf_eval(s, 0.0, up, up, GGX_RADIANCE) == 0.0 && ggx_bsdf_eval(s, NAN, up, below, GGX_RADIANCE) == 0.0,
+              "bsdf bad eta");
+        CHECK(ggx_ndf_spherical(s, -0.1, 0) == 0.0 && ggx_ndf_spherical(s, 2.0, 0) == 0.0, "spherical range");
+        CHECK(ggx_lune_area(s, up, zero) == 0.0, "lune zero v");
+        for (unsigned i = 0; i < sizeof bad / sizeof bad[0]; i++) {
+            ggx_vec3 b = bad[i];
+            double vals[] = {ggx_ndf(s, b),           ggx_gaussian_curvature(s, b), ggx_projected_area(s, b),
+                             ggx_lune_area(s, b, up), ggx_lune_area(s, up, b),      ggx_g1(s, b, up),
+                             ggx_g1(s, up, b),        ggx_lambda(s, b),             ggx_g1_smith(s, b),
+                             ggx_g2(s, b, up, up),    ggx_g2_height_correlated(s, up, b, up),
+                             ggx_pdf_vndf(s, b, up),  ggx_pdf_vndf(s, up, b),       ggx_brdf_eval(s, &f, b, up),
+                             ggx_brdf_eval(s, &f, up, b),                          ggx_bsdf_eval(s, 1.5, b, up, GGX_RADIANCE),
+                             ggx_bsdf_eval(s, 1.5, up, b, GGX_IMPORTANCE),         ggx_jacobian_reflect(b, up),
+                             ggx_jacobian_refract(b, up, up, 1, 1.5),              ggx_p22(s, NAN, 0)};
+            for (unsigned j = 0; j < sizeof vals / sizeof vals[0]; j++)
+                CHECK(vals[j] == 0.0, "shape %d bad input %u: function %u gave %g", k, i, j, vals[j]);
+        }
+    }
+    CHECK(ggx_fresnel_dielectric_eval(NAN, 1.5) == 0.0 && ggx_fresnel_dielectric_eval(0.5, -1) == 0.0, "F d");
+    CHECK(ggx_fresnel_conductor_eval(NAN, 1, 1) == 0.0 && ggx_fresnel_conductor_eval(0.5, 1, -1) == 0.0, "F c");
+    CHECK(ggx_fresnel_schlick_eval(NAN, 0.5) == 0.0 && ggx_fresnel_schlick_eval(0.5, 2) == 0.0, "F s");
+    ggx_vec3 h = ggx_half_reflect(up, t_scale(up, -1));
+    CHECK(h.x == 0 && h.y == 0 && h.z == 0, "half vector of opposite directions");
+    ggx_vec3 o;
+    CHECK(!ggx_refract(t_vec(0, 0, 1), t_vec(1, 0, 0), 1.5, &o) && !ggx_refract(nanv, up, 1.5, &o) && !ggx_refract(up, up, -1, &o), "refract");
+}
+
+static void fresnel_statuses(void **state)
+{
+    (void)state;
+    ggx_fresnel f;
+    CHECK(ggx_fresnel_one(NULL) == GGX_ERR_NULL && ggx_fresnel_dielectric(NULL, 1.5) == GGX_ERR_NULL, "NULL");
+    CHECK(ggx_fresnel_conductor(NULL, 1, 1) == GGX_ERR_NULL && ggx_fresnel_schlick(NULL, 0.5) == GGX_ERR_NULL, "NULL");
+    CHECK(ggx_fresnel_dielectric(&f, NAN) == GGX_ERR_NONFINITE && ggx_fresnel_dielectric(&f, 0) == GGX_ERR_ETA, "d");
+    CHECK(ggx_fresnel_conductor(&f, 1, INFINITY) == GGX_ERR_NONFINITE, "c inf");
+    CHECK(ggx_fresnel_conductor(&f, -1, 1) == GGX_ERR_ETA && ggx_fresnel_conductor(&f, 1, -1) == GGX_ERR_ETA, "c");
+    CHECK(ggx_fresnel_schlick(&f, NAN) == GGX_ERR_NONFINITE && ggx_fresnel_schlick(&f, 1.5) == GGX_ERR_RANGE, "s");
+}
+
+int main(void)
+{
+    const struct CMUnitTest tests[] = {
+        cmocka_unit_test(shape_statuses),
+        cmocka_unit_test(clamps_and_signs),
+        cmocka_unit_test(hot_functions_outside_domain),
+        cmocka_unit_test(fresnel_statuses),
+    };
+    return cmocka_run_group_tests(tests, NULL, NULL);
+}
