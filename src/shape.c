@@ -43,35 +43,81 @@ static ggx_status shape_from_matrix(ggx_shape *s, const double A[3][3])
     /* -A describes the same distributions (left-multiplication by the orthogonal -I); keeping det > 0 lets the
      * sampling code use A as an orientation-preserving map. */
     double sign = det < 0.0 ? -1.0 : 1.0;
+    double b[3][3], bit[3][3]; /* sign * A and its inverse transpose */
+    for (int i = 0; i < 3; i++) {
+        for (int j = 0; j < 3; j++) {
+            b[i][j] = sign * a[i][j];
+            bit[i][j] = sign * c[i][j] / det; /* cofactors of -A equal those of A; (-A)^{-T} = -A^{-T} */
+        }
+    }
+
+    /* Canonical form A' = Q A with Q the rotation taking A n to +z: Q A describes the same distributions and areas
+     * (Walter section 1), and with A' n = ||A n|| z the truncation m.n >= 0 is the hemisphere z >= 0 of sphere space
+     * for every A, so samplers need no frame. Q = I exactly when A n is already along +z. */
+    ggx_vec3 an = v3(b[0][2], b[1][2], b[2][2]);
+    double an_len = v3_len(an);
+    double q[3][3] = {{1, 0, 0}, {0, 1, 0}, {0, 0, 1}};
+    if (an.x != 0.0 || an.y != 0.0 || an.z < 0.0) {
+        ggx_vec3 p = v3_scale(an, 1.0 / an_len);
+        double flip = 1.0;
+        if (p.z < 0.0) { /* rotate by pi about x first (diag(1, -1, -1)), so that the rotation below is small */
+            flip = -1.0;
+            p = v3(p.x, -p.y, -p.z);
+        }
+        /* Rotation taking p to z about the axis p x z: I + [k]x + [k]x^2 / (1 + c), k = p x z, c = p.z > 0. */
+        double kx = p.y, ky = -p.x, cz = p.z, f = 1.0 / (1.0 + cz);
+        double r[3][3] = {{1.0 - f * ky * ky, f * kx * ky, ky}, {f * kx * ky, 1.0 - f * kx * kx, -kx}, {-ky, kx, cz}};
+        for (int i = 0; i < 3; i++) {
+            q[i][0] = r[i][0];
+            q[i][1] = r[i][1] * flip;
+            q[i][2] = r[i][2] * flip;
+        }
+    }
     ggx_shape t;
     memset(&t, 0, sizeof t);
     for (int i = 0; i < 3; i++) {
         for (int j = 0; j < 3; j++) {
-            t.a[i][j] = sign * a[i][j];
-            t.ainv_t[i][j] = sign * c[i][j] / det; /* cofactors of -A equal those of A; (-A)^{-T} = -A^{-T} */
+            t.a[i][j] = q[i][0] * b[0][j] + q[i][1] * b[1][j] + q[i][2] * b[2][j];
+            t.ainv_t[i][j] = q[i][0] * bit[0][j] + q[i][1] * bit[1][j] + q[i][2] * bit[2][j]; /* (QA)^{-T} = Q A^{-T} */
         }
     }
+    t.a[0][2] = t.a[1][2] = 0.0; /* A' n is along z by construction; remove the rounding */
+    t.a[2][2] = an_len;
     t.det = fabs(det);
-    t.an = v3(t.a[0][2], t.a[1][2], t.a[2][2]);
-    t.an_len = v3_len(t.an);
+    t.an = v3(0.0, 0.0, an_len);
+    t.an_len = an_len;
     t.ndf_scale = 1.0 / (GGX_PI * t.det * t.an_len);
 
-    /* Classification, used by fast paths only: every evaluation uses Walter's general forms. */
-    int diagonal = t.a[0][1] == 0.0 && t.a[0][2] == 0.0 && t.a[1][0] == 0.0 && t.a[1][2] == 0.0 &&
-                   t.a[2][0] == 0.0 && t.a[2][1] == 0.0;
-    ggx_vec3 w = v3(t.a[0][0] * t.an.x + t.a[1][0] * t.an.y + t.a[2][0] * t.an.z,
-                    t.a[0][1] * t.an.x + t.a[1][1] * t.an.y + t.a[2][1] * t.an.z,
-                    t.a[0][2] * t.an.x + t.a[1][2] * t.an.y + t.a[2][2] * t.an.z); /* A^T A n */
-    if (diagonal) {
-        t.kind = GGX_SHAPE_DIAGONAL;
-        t.alpha_x = fabs(t.a[0][0] / t.a[2][2]);
-        t.alpha_y = fabs(t.a[1][1] / t.a[2][2]);
-    } else if (hypot(w.x, w.y) <= 1e-14 * fabs(w.z)) {
-        t.kind = GGX_SHAPE_UNSKEWED;
+    /* Classification, used by fast paths only: every evaluation uses Walter's general forms. A'^T A' n is along n
+     * exactly when the third row of A' is (0, 0, a33): then A' = [B 0; 0 a33] and the distribution is anisotropic GGX
+     * with B^T B / a33^2 = Rz^T diag(ax^2, ay^2) Rz. */
+    double scale = fabs(t.a[0][0]) + fabs(t.a[0][1]) + fabs(t.a[1][0]) + fabs(t.a[1][1]) + an_len;
+    if (hypot(t.a[2][0], t.a[2][1]) <= 1e-14 * scale) {
+        double e = t.a[2][2];
+        double m00 = (t.a[0][0] * t.a[0][0] + t.a[1][0] * t.a[1][0]) / (e * e);
+        double m01 = (t.a[0][0] * t.a[0][1] + t.a[1][0] * t.a[1][1]) / (e * e);
+        double m11 = (t.a[0][1] * t.a[0][1] + t.a[1][1] * t.a[1][1]) / (e * e);
+        int diagonal = t.a[0][1] == 0.0 && t.a[1][0] == 0.0 && t.a[2][0] == 0.0 && t.a[2][1] == 0.0;
+        if (diagonal || m01 == 0.0) {
+            t.alpha_x = sqrt(m00);
+            t.alpha_y = sqrt(m11);
+            t.tangent_cos = 1.0;
+            t.tangent_sin = 0.0;
+        } else {
+            /* Eigenvectors of the 2x2 symmetric M: angle phi0 with tan(2 phi0) = 2 m01 / (m00 - m11). */
+            double phi0 = 0.5 * atan2(2.0 * m01, m00 - m11);
+            double cp = cos(phi0), sp = sin(phi0);
+            t.alpha_x = sqrt(cp * cp * m00 + 2.0 * cp * sp * m01 + sp * sp * m11);
+            t.alpha_y = sqrt(sp * sp * m00 - 2.0 * cp * sp * m01 + cp * cp * m11);
+            t.tangent_cos = cp;
+            t.tangent_sin = sp;
+        }
+        t.kind = diagonal ? GGX_SHAPE_DIAGONAL : GGX_SHAPE_UNSKEWED;
     } else {
         t.kind = GGX_SHAPE_SKEWED;
     }
-    if (!all_finite(&t.ainv_t[0][0], 9) || !isfinite(t.ndf_scale)) return GGX_ERR_SINGULAR;
+    if (!all_finite(&t.ainv_t[0][0], 9) || !all_finite(&t.a[0][0], 9) || !isfinite(t.ndf_scale))
+        return GGX_ERR_SINGULAR;
     *s = t;
     return GGX_OK;
 }

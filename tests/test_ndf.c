@@ -96,6 +96,9 @@ static void closed_forms(void **state)
         double c = cos(p.tz), sn = sin(p.tz);
         ggx_vec3 mr = t_vec(c * m.x - sn * m.y, sn * m.x + c * m.y, m.z);
         CHECK_CLOSE(ggx_ndf(&rot, m), ggx_aniso_closed(p.ax, p.ay, mr), 1e-12, 0.0, "tz=%g", p.tz);
+        /* The stored tangent frame and alphas (from the eigen-decomposition at setup) reproduce D. */
+        ggx_vec3 mt = t_vec(rot.tangent_cos * m.x + rot.tangent_sin * m.y, -rot.tangent_sin * m.x + rot.tangent_cos * m.y, m.z);
+        CHECK_CLOSE(ggx_ndf(&rot, m), ggx_aniso_closed(rot.alpha_x, rot.alpha_y, mt), 1e-11, 0, "tangent frame");
         double a2 = p.ax * p.ax, t2 = tan(th) * tan(th), c4 = pow(cos(th), 4);
         CHECK_CLOSE(ggx_ndf(&iso, m), a2 / (T_PI * c4 * (a2 + t2) * (a2 + t2)), 1e-12, 0.0, "iso alpha %g", p.ax);
     }
@@ -221,6 +224,9 @@ static void projected_areas(void **state)
         CHECK(ggx_shape_matrix(&s2, (const double(*)[3])A2) == GGX_OK, "2A");
         CHECK(ggx_shape_matrix(&sq, (const double(*)[3])QA) == GGX_OK, "QA");
         CHECK_CLOSE(ggx_projected_area(&s2, u), 0.25 * ae, 1e-14, 0, "scale");
+        /* Canonical form: A' n = ||A n|| z exactly, for the shape and for the re-rotated matrix. */
+        CHECK(s.a[0][2] == 0 && s.a[1][2] == 0 && sq.a[0][2] == 0 && sq.a[1][2] == 0 && sq.a[2][2] > 0, "A' n along z");
+        CHECK(s.kind == GGX_SHAPE_SKEWED || fabs(p.tx) + fabs(p.ty) == 0, "kind");
         CHECK_CLOSE(ggx_projected_area(&sq, u), ae, 1e-13, 0, "Q A");
         CHECK_CLOSE(ggx_lune_area(&sq, u, v), ggx_lune_area(&s, u, v), 1e-12, 1e-14 * ae, "Q A lune");
         ggx_vec3 m = t_dir(acos(rng_range(&r, 0, 1)), rng_range(&r, -T_PI, T_PI));

@@ -75,22 +75,27 @@ const char *ggx_status_str(ggx_status status);
  * ------------------------------------------------------------------------------------------------------------ */
 
 typedef enum ggx_shape_kind {
-    GGX_SHAPE_DIAGONAL = 0, /* A = diag(alpha_x, alpha_y, 1) up to sign: anisotropic GGX in its own frame */
+    GGX_SHAPE_DIAGONAL = 0, /* A = diag(alpha_x, alpha_y, 1) up to scale and sign: anisotropic GGX, axes x and y */
     GGX_SHAPE_UNSKEWED = 1, /* A^T A n parallel to n (e.g. theta_z only): rotated anisotropic GGX */
     GGX_SHAPE_SKEWED = 2    /* general ellipsoid: A^T A n not parallel to n */
 } ggx_shape_kind;
 
-/* A shape: the matrix A and what evaluation needs. A complete type so callers keep it by value (it is 200 bytes,
- * with no pointers; copy it freely). Treat every field as read-only and set it only through ggx_shape_*. */
+/* A shape: the matrix A and what evaluation needs. A complete type so callers keep it by value (no pointers; copy it
+ * freely). Treat every field as read-only and set it only through ggx_shape_*.
+ * The stored matrix is a canonical A' = Q A, with Q the rotation that takes A n to +z (and A' = -A' when det A < 0):
+ * it gives exactly the same distributions and areas as the A you passed (Walter section 1), and A' n = ||A n|| z,
+ * so the truncation m.n >= 0 is the hemisphere z >= 0 of sphere space for every shape. */
 typedef struct ggx_shape {
-    double a[3][3];      /* A, row-major; multiplied by -1 when det A < 0 (that changes no distribution) */
-    double ainv_t[3][3]; /* A^{-T} */
+    double a[3][3];      /* A', row-major */
+    double ainv_t[3][3]; /* A'^{-T} */
     double det;          /* |det A| > 0 */
-    ggx_vec3 an;         /* A n, the pole of the truncation in sphere space */
+    ggx_vec3 an;         /* A' n = (0, 0, ||A n||) */
     double an_len;       /* ||A n|| */
     double ndf_scale;    /* 1 / (pi |A| ||A n||), the constant of Walter eq 1 */
-    double alpha_x;      /* for GGX_SHAPE_DIAGONAL: A[0][0]; otherwise 0 */
-    double alpha_y;      /* for GGX_SHAPE_DIAGONAL: A[1][1]; otherwise 0 */
+    /* For GGX_SHAPE_DIAGONAL and GGX_SHAPE_UNSKEWED: the shape is anisotropic GGX with roughness (alpha_x, alpha_y)
+     * along the tangent axes rotated by phi0 from x, y: x' = c x + s y, y' = -s x + c y with c = tangent_cos,
+     * s = tangent_sin (1 and 0 for DIAGONAL). For GGX_SHAPE_SKEWED all four are 0. */
+    double alpha_x, alpha_y, tangent_cos, tangent_sin;
     ggx_shape_kind kind;
 } ggx_shape;
 
