@@ -285,6 +285,126 @@ typedef enum ggx_transport {
  * eta outside (0, inf), gives 0. */
 double ggx_bsdf_eval(const ggx_shape *s, double eta, ggx_vec3 wi, ggx_vec3 wo, ggx_transport mode);
 
+/* ------------------------------------------------------------------------------------------------------------
+ * Sampling
+ *
+ * Every sampler maps (u1, u2) in [0, 1)^2 (values outside are clamped into [0, 1]) to a unit vector whose density
+ * (per solid angle) is the pdf named in its block; the tests check each one by a chi-square goodness-of-fit test
+ * against that pdf and by finite-difference Jacobians |dm / d(u1, u2)| = 1 / pdf. A sampler that cannot produce a
+ * sample (view below the horizon, shape outside its domain) returns the zero vector, whose pdf is 0.
+ * The inverse maps return the (u1, u2) that produce a given m (round trip to 1e-9 away from the map's seams).
+ * ------------------------------------------------------------------------------------------------------------ */
+
+typedef struct ggx_vec2 {
+    double x, y;
+} ggx_vec2;
+
+/* Uniform maps from the unit square to the unit disk (area-preserving up to the factor pi):
+ * polar r = sqrt(u1), phi = 2 pi u2; concentric (Shirley-Chiu 1997, Walter eq 34-37), lower distortion. */
+ggx_vec2 ggx_disk_polar(double u1, double u2);
+ggx_vec2 ggx_disk_concentric(double u1, double u2);
+/* Inverses: a point of the closed unit disk to (u1, u2) in [0, 1]^2. */
+ggx_vec2 ggx_disk_polar_inv(ggx_vec2 d);
+ggx_vec2 ggx_disk_concentric_inv(ggx_vec2 d);
+
+/* --- Normals with pdf D(m) (m.n) (ggx_pdf_ndf) --- */
+
+/* D(m) m.z for m.z >= 0, else 0. */
+double ggx_pdf_ndf(const ggx_shape *s, ggx_vec3 m);
+
+/* The library's default NDF sampler (ggx_sample_ndf_stretch). Any shape. */
+ggx_vec3 ggx_sample_ndf(const ggx_shape *s, double u1, double u2);
+
+/* Engstad's elliptic stretch: a cosine-weighted direction c about the pole of sphere space, m = normalize(A^T c).
+ * For diagonal A this is m = normalize(ax cx, ay cy, cz). Any shape (the canonical A makes the pole +z). */
+ggx_vec3 ggx_sample_ndf_stretch(const ggx_shape *s, double u1, double u2);
+ggx_vec2 ggx_sample_ndf_stretch_inv(const ggx_shape *s, ggx_vec3 m);
+
+/* Blog Part 2: a uniform point of the ellipsoid's silhouette seen from n (an ellipse in the tangent plane, polar
+ * map), lifted onto the upper surface of the ellipsoid, and the surface normal there. Any shape. */
+ggx_vec3 ggx_sample_ndf_ellipse(const ggx_shape *s, double u1, double u2);
+
+/* Blog Part 2 closed form: phi = atan2(ay sin 2 pi u2, ax cos 2 pi u2),
+ * tan theta = sqrt(u1 / (1 - u1)) sqrt(ax^2 cos^2 2 pi u2 + ay^2 sin^2 2 pi u2), in the shape's tangent frame.
+ * Unskewed shapes only (GGX_SHAPE_DIAGONAL, GGX_SHAPE_UNSKEWED); a skewed shape gives the zero vector. */
+ggx_vec3 ggx_sample_ndf_inversion(const ggx_shape *s, double u1, double u2);
+
+/* The general method: visible-normal sampling from v = n (eq 33 with v = n is D(m) m.z). Any shape. */
+ggx_vec3 ggx_sample_ndf_visible(const ggx_shape *s, double u1, double u2);
+
+/* --- Visible normals with pdf ggx_pdf_vndf(s, v, m) (Walter eq 33) ---
+ * Domain: v.z > 0 (v.z <= 0 gives the zero vector); v = n exactly and grazing v are handled. */
+
+/* The library's default VNDF sampler (ggx_sample_vndf_caps). Any shape. */
+ggx_vec3 ggx_sample_vndf(const ggx_shape *s, ggx_vec3 v, double u1, double u2);
+
+/* Spherical caps (Dupuy & Benyoub 2023) extended to any A: with v' = normalize(A v), c uniform on the cap
+ * {c.z >= -v'.z} (phi = 2 pi u1, c.z = (1 - u2)(1 + v'.z) - v'.z), m = normalize(A^T (v' + c)). No frame. */
+ggx_vec3 ggx_sample_vndf_caps(const ggx_shape *s, ggx_vec3 v, double u1, double u2);
+ggx_vec2 ggx_sample_vndf_caps_inv(const ggx_shape *s, ggx_vec3 v, ggx_vec3 m);
+
+/* Walter's version 3, the crescent (eq 34-46): disk point, compress-and-skew by s = (1 + A v.A n / (|A v| |A n|)) / 2
+ * (eq 38), frame e3 = A v, e1 towards A n, lift, m = normalize(A^T p). Concentric disk map (as Walter recommends),
+ * or polar. Any shape. */
+ggx_vec3 ggx_sample_vndf_crescent(const ggx_shape *s, ggx_vec3 v, double u1, double u2);
+ggx_vec3 ggx_sample_vndf_crescent_polar(const ggx_shape *s, ggx_vec3 v, double u1, double u2);
+ggx_vec2 ggx_sample_vndf_crescent_inv(const ggx_shape *s, ggx_vec3 v, ggx_vec3 m);
+ggx_vec2 ggx_sample_vndf_crescent_polar_inv(const ggx_shape *s, ggx_vec3 v, ggx_vec3 m);
+
+/* Heitz 2018 / Engstad's five steps: stretch v, frame T1 = z x v', polar disk, squish by (1 + v'.z) / 2, lift,
+ * unstretch. Derived for diagonal A; valid for every shape here because the canonical A puts the truncation at
+ * z = 0 of sphere space (the seed audit checks it on skewed shapes). */
+ggx_vec3 ggx_sample_vndf_heitz(const ggx_shape *s, ggx_vec3 v, double u1, double u2);
+ggx_vec2 ggx_sample_vndf_heitz_inv(const ggx_shape *s, ggx_vec3 v, ggx_vec3 m);
+
+/* A source of uniform numbers in [0, 1) for the rejection samplers. */
+typedef double (*ggx_uniform_fn)(void *state);
+
+/* Walter's versions 1 and 2 (rejection). Version 1 shoots rays along -v from uniform points of the disk of the
+ * ellipsoid's bounding sphere (radius 1 / sigma_min(A)) and keeps the first hit if m.n >= 0; version 2 draws uniform
+ * points of the silhouette in sphere space, lifts them onto the sphere and keeps those with m.n >= 0. Each
+ * candidate uses two numbers from next(state). *trials (if not NULL) receives the number of candidates drawn;
+ * the acceptance rate is 1 / mean(trials). After 100000 rejected candidates the zero vector is returned. */
+ggx_vec3 ggx_sample_vndf_walter_v1(const ggx_shape *s, ggx_vec3 v, ggx_uniform_fn next, void *state,
+                                   unsigned *trials);
+ggx_vec3 ggx_sample_vndf_walter_v2(const ggx_shape *s, ggx_vec3 v, ggx_uniform_fn next, void *state,
+                                   unsigned *trials);
+
+/* --- Directions --- */
+
+typedef enum ggx_event {
+    GGX_EVENT_INVALID = 0, /* no direction: below the horizon, total internal reflection chosen away, bad input */
+    GGX_EVENT_REFLECT = 1,
+    GGX_EVENT_TRANSMIT = 2
+} ggx_event;
+
+/* A sampled direction w with its pdf (per solid angle of w) and weight f |w.n| / pdf. Invalid samples have
+ * event GGX_EVENT_INVALID, w = 0, pdf = 0 and weight = 0. */
+typedef struct ggx_sample {
+    ggx_vec3 w;
+    double pdf;
+    double weight;
+    ggx_event event;
+} ggx_sample;
+
+/* Reflection sampling (Walter eq 47-50): m from ggx_sample_vndf(s, wi), wo = reflect(wi, m),
+ * pdf = D_v(m) / (4 |wi.m|) (eq 48), weight = f_r(wi, wo) wo.z / pdf = G1(wi) G1(wo) F A_l(wi, n) / (wi.z A_e(n))
+ * (eq 50), which is <= 1 (eq 52, checked by the tests). wo below the horizon: invalid. wi.z <= 0: invalid. */
+ggx_sample ggx_sample_brdf(const ggx_shape *s, const ggx_fresnel *f, ggx_vec3 wi, double u1, double u2);
+/* The pdf of ggx_sample_brdf for a given pair; 0 unless wi.z > 0 and wo.z > 0. */
+double ggx_pdf_brdf(const ggx_shape *s, ggx_vec3 wi, ggx_vec3 wo);
+
+/* Rough-dielectric sampling (Walter 2007 section 5.3): from the known direction v (either side), m from the VNDF
+ * of sgn(v.z) v, then reflection with probability F(|v.m|) (u3 < F) or refraction otherwise (total internal
+ * reflection always reflects). pdf = D_v(m) (F / (4 |v.m|) or (1 - F) eta_w^2 |w.m| / (eta_v v.m + eta_w w.m)^2).
+ * weight = ggx_bsdf_eval(s, eta, w, v, mode) |w.z| / pdf: for a camera path (GGX_RADIANCE) v is towards the camera
+ * and w towards the light; for a light path (GGX_IMPORTANCE) v is towards the light. A direction that ends on the
+ * wrong side of the surface is invalid. v.z = 0 or eta outside (0, inf): invalid. */
+ggx_sample ggx_sample_bsdf(const ggx_shape *s, double eta, ggx_vec3 v, double u1, double u2, double u3,
+                           ggx_transport mode);
+/* The pdf of ggx_sample_bsdf producing w from v. */
+double ggx_pdf_bsdf(const ggx_shape *s, double eta, ggx_vec3 v, ggx_vec3 w);
+
 #ifdef __cplusplus
 }
 #endif
