@@ -1,0 +1,182 @@
+/* SPDX-License-Identifier: MIT */
+#include "chi2.h"
+
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+
+/* Regularised lower incomplete gamma P(a, x) by its series, for x < a + 1. */
+static double gamma_p_series(double a, double x)
+{
+    double term = 1.0 / a, sum = term;
+    for (int n = 1; n < 100000; n++) {
+        term *= x / (a + n);
+        sum += term;
+        if (fabs(term) < 1e-16 * fabs(sum)) break;
+    }
+    return sum * exp(-x + a * log(x) - lgamma(a));
+}
+
+/* Regularised upper incomplete gamma Q(a, x) by its continued fraction (modified Lentz), for x >= a + 1. */
+static double gamma_q_cf(double a, double x)
+{
+    const double tiny = 1e-300;
+    double b = x + 1.0 - a, c = 1.0 / tiny, d = 1.0 / b, h = d;
+    for (int i = 1; i < 100000; i++) {
+        double an = -i * (i - a);
+        b += 2.0;
+        d = an * d + b;
+        if (fabs(d) < tiny) d = tiny;
+        c = b + an / c;
+        if (fabs(c) < tiny) c = tiny;
+        d = 1.0 / d;
+        double del = d * c;
+        h *= del;
+        if (fabs(del - 1.0) < 1e-16) break;
+    }
+    return exp(-x + a * log(x) - lgamma(a)) * h;
+}
+
+double chi2_pvalue(double x, int dof)
+{
+    if (!(x > 0.0)) return 1.0;
+    double a = 0.5 * dof, y = 0.5 * x;
+    return y < a + 1.0 ? 1.0 - gamma_p_series(a, y) : gamma_q_cf(a, y);
+}
+
+double chi2_sidak(int runs) { return 1.0 - pow(1.0 - 0.01, 1.0 / runs); }
+
+static const double g4x[4] = {-0.8611363115940526, -0.3399810435848563, 0.3399810435848563, 0.8611363115940526};
+static const double g4w[4] = {0.3478548451374538, 0.6521451548625461, 0.6521451548625461, 0.3478548451374538};
+
+static ggx_vec3 key_dir(double ct, double phi)
+{
+    double st = sqrt(fmax(0.0, 1.0 - ct * ct));
+    return t_vec(st * cos(phi), st * sin(phi), ct);
+}
+
+/* Integral of the density over [c0, c1] x [p0, p1] in (cos theta, phi) with sub x sub panels of 4 x 4 nodes;
+ * *mixed is set when some nodes are zero and others not. */
+static double cell_integral(const chi2_problem *p, int region, double c0, double c1, double p0, double p1, int sub,
+                            int *mixed)
+{
+    double sum = 0.0;
+    int zeros = 0, nonzeros = 0;
+    double dc = (c1 - c0) / sub, dp = (p1 - p0) / sub;
+    for (int i = 0; i < sub; i++) {
+        for (int j = 0; j < sub; j++) {
+            double cc = c0 + (i + 0.5) * dc, pc = p0 + (j + 0.5) * dp;
+            for (int a = 0; a < 4; a++) {
+                for (int b = 0; b < 4; b++) {
+                    double f = p->density(p->ctx, region, key_dir(cc + 0.5 * dc * g4x[a], pc + 0.5 * dp * g4x[b]));
+                    if (f > 0.0) nonzeros++;
+                    else zeros++;
+                    sum += g4w[a] * g4w[b] * f;
+                }
+            }
+        }
+    }
+    if (mixed) *mixed = zeros > 0 && nonzeros > 0;
+    return sum * 0.25 * dc * dp;
+}
+
+chi2_result chi2_run(const chi2_problem *p, long n, int ntheta, int nphi, uint64_t seed, double alpha)
+{
+    chi2_result res = {0};
+    long ncells = (long)p->nregions * ntheta * nphi;
+    long *obs = calloc((size_t)ncells, sizeof *obs);
+    double *expd = calloc((size_t)ncells, sizeof *expd);
+    rng r = {seed};
+    for (long i = 0; i < n; i++) {
+        ggx_vec3 w, k;
+        int region = 0;
+        if (!p->draw(p->ctx, &r, &w) || !p->key(p->ctx, w, &region, &k) || region < 0 || region >= p->nregions) {
+            res.invalid++;
+            continue;
+        }
+        int it = (int)floor((k.z + 1.0) * 0.5 * ntheta);
+        double phi = atan2(k.y, k.x);
+        if (phi < 0) phi += 2.0 * T_PI;
+        int ip = (int)floor(phi / (2.0 * T_PI) * nphi);
+        if (!(p->density(p->ctx, region, k) > 0.0)) res.zero_cell_hits++; /* a sample the pdf says is impossible */
+        it = it < 0 ? 0 : (it >= ntheta ? ntheta - 1 : it);
+        ip = ip < 0 ? 0 : (ip >= nphi ? nphi - 1 : ip);
+        obs[((long)region * ntheta + it) * nphi + ip]++;
+    }
+    double mass = 0.0;
+    for (int reg = 0; reg < p->nregions; reg++) {
+        for (int it = 0; it < ntheta; it++) {
+            double c0 = -1.0 + 2.0 * it / ntheta, c1 = -1.0 + 2.0 * (it + 1) / ntheta;
+            for (int ip = 0; ip < nphi; ip++) {
+                double p0 = 2.0 * T_PI * ip / nphi, p1 = 2.0 * T_PI * (ip + 1) / nphi;
+                long idx = ((long)reg * ntheta + it) * nphi + ip;
+                int mixed;
+                double v = cell_integral(p, reg, c0, c1, p0, p1, 1, &mixed);
+                if (mixed) v = cell_integral(p, reg, c0, c1, p0, p1, 4, NULL);
+                if (v == 0.0 && obs[idx] > 0) v = cell_integral(p, reg, c0, c1, p0, p1, 8, NULL); /* a sliver */
+                expd[idx] = v * (double)n;
+                mass += v;
+            }
+        }
+    }
+    res.mass = mass;
+    res.expected_invalid = (double)n * (1.0 - mass);
+    if (res.expected_invalid < 0.0) res.expected_invalid = 0.0;
+    /* Pool cells with expected count < 5 (the invalid category is one more cell). If the pool itself expects
+     * fewer than 5, it is merged into the smallest regular bin so that every bin expects at least 5. */
+    double *bo = malloc(sizeof(double) * (size_t)(ncells + 2)), *be = malloc(sizeof(double) * (size_t)(ncells + 2));
+    double pool_o = 0.0, pool_e = 0.0;
+    int bins = 0;
+    for (long i = 0; i <= ncells; i++) {
+        double o = i < ncells ? (double)obs[i] : (double)res.invalid;
+        double e = i < ncells ? expd[i] : res.expected_invalid;
+        if (e < 5.0) {
+            pool_o += o;
+            pool_e += e;
+        } else {
+            bo[bins] = o;
+            be[bins++] = e;
+        }
+    }
+    if (pool_e == 0.0 && res.expected_invalid == 0.0 && res.invalid > 0) {
+        res.zero_cell_hits += res.invalid; /* invalid samples where the pdf integrates to 1 */
+    } else if (pool_e >= 5.0 || bins == 0) {
+        bo[bins] = pool_o;
+        be[bins++] = pool_e;
+    } else {
+        int smallest = 0;
+        for (int i = 1; i < bins; i++)
+            if (be[i] < be[smallest]) smallest = i;
+        bo[smallest] += pool_o;
+        be[smallest] += pool_e;
+    }
+    double stat = 0.0;
+    for (int i = 0; i < bins; i++) stat += (bo[i] - be[i]) * (bo[i] - be[i]) / be[i];
+    free(bo);
+    free(be);
+    res.stat = stat;
+    res.bins = bins;
+    res.dof = bins - 1;
+    res.pvalue = res.dof > 0 ? chi2_pvalue(stat, res.dof) : 1.0;
+    if (res.pvalue < alpha || res.zero_cell_hits > 0) {
+        char path[256];
+        snprintf(path, sizeof path, "chi2_%s.csv", p->name);
+        for (char *c = path; *c; c++)
+            if (*c == ' ' || *c == '/' || *c == '(' || *c == ')' || *c == ',') *c = '_';
+        FILE *f = fopen(path, "w");
+        if (f) {
+            fprintf(f, "region,itheta,iphi,observed,expected\n");
+            for (int reg = 0; reg < p->nregions; reg++)
+                for (int it = 0; it < ntheta; it++)
+                    for (int ip = 0; ip < nphi; ip++) {
+                        long idx = ((long)reg * ntheta + it) * nphi + ip;
+                        fprintf(f, "%d,%d,%d,%ld,%.6f\n", reg, it, ip, obs[idx], expd[idx]);
+                    }
+            fprintf(f, "-1,-1,-1,%ld,%.6f\n", res.invalid, res.expected_invalid);
+            fclose(f);
+        }
+    }
+    free(obs);
+    free(expd);
+    return res;
+}

@@ -1,0 +1,51 @@
+/* Chi-square goodness-of-fit harness for samplers of directions. SPDX-License-Identifier: MIT
+ *
+ * A sampler's outputs are mapped to keys: a region index and a unit vector k. The key space is binned into equal-
+ * area cells, ntheta slices of cos(theta) in [-1, 1] times nphi slices of phi, per region. Keys are chosen by each
+ * test so that the lobe is wide in key space (the sphere space of the shape, normalize(A^{-T} m)), which keeps the
+ * cells informative for sharp lobes; a bijective change of the sample space does not change what the test checks.
+ * Expected counts integrate the key density over each cell (4 x 4 Gauss-Legendre, refined 16-fold in cells where
+ * the density is zero at some nodes and not at others). Cells with expected count < 5 are pooled, as is the
+ * "invalid sample" category when its expected count is < 5. Any sample whose key has zero density (a value the pdf
+ * says is impossible) fails the run outright, as do invalid samples where the pdf integrates to 1. */
+#ifndef GGX_CHI2_H
+#define GGX_CHI2_H
+
+#include "testlib.h"
+
+typedef struct chi2_problem {
+    const char *name;
+    int nregions;
+    /* Draws one sample; returns 0 for an invalid sample (counted in the "invalid" category). */
+    int (*draw)(void *ctx, rng *r, ggx_vec3 *w);
+    /* Key of a valid sample; returns 0 if the sample has no key (it then counts as invalid). */
+    int (*key)(void *ctx, ggx_vec3 w, int *region, ggx_vec3 *k);
+    /* Density of keys per unit solid angle of k in region. */
+    double (*density)(void *ctx, int region, ggx_vec3 k);
+    void *ctx;
+} chi2_problem;
+
+typedef struct chi2_result {
+    double stat, pvalue;
+    int dof, bins;
+    long invalid;
+    double expected_invalid; /* N times (1 - integral of the density) */
+    long zero_cell_hits;      /* samples at keys of zero density */
+    double mass;              /* integral of the density over all cells */
+} chi2_result;
+
+/* Runs the test with n samples. On failure (pvalue < alpha or any zero-cell hit) writes chi2_<name>.csv with
+ * region, itheta, iphi, observed, expected into the working directory. */
+chi2_result chi2_run(const chi2_problem *p, long n, int ntheta, int nphi, uint64_t seed, double alpha);
+
+/* Upper tail of the chi-square distribution, Q(dof / 2, x / 2) (regularised incomplete gamma). */
+double chi2_pvalue(double x, int dof);
+
+/* Per-run significance for an overall level of 0.01 over `runs` runs (Sidak correction). */
+double chi2_sidak(int runs);
+
+/* The number of chi-square runs in the whole suite (all sampling test programs), used for the Sidak correction;
+ * each program checks that it does not run more than its share. */
+#define CHI2_SUITE_RUNS 700
+
+#endif

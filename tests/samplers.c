@@ -1,0 +1,86 @@
+/* SPDX-License-Identifier: MIT */
+#include "samplers.h"
+
+#include <math.h>
+#include <stdio.h>
+
+const sweep_shape SWEEP_SHAPES[] = {
+    {"iso 0.05", {0.05, 0.05, 0, 0, 0}},          {"iso 0.3", {0.3, 0.3, 0, 0, 0}},
+    {"iso 1", {1.0, 1.0, 0, 0, 0}},               {"iso 2", {2.0, 2.0, 0, 0, 0}},
+    {"aniso 0.05:0.5", {0.05, 0.5, 0, 0, 0}},     {"aniso 1:0.1 rot", {1.0, 0.1, 0, 0, 0.7}},
+    {"skew 0.3:1", {0.3, 1.0, 0.5, -0.3, 0.4}},   {"skew 0.05:0.3", {0.05, 0.3, -0.5, 0.5, 1.2}},
+    {"skew 2:0.2", {2.0, 0.2, 0.3, 0.5, -0.8}},
+};
+const int SWEEP_NSHAPES = sizeof SWEEP_SHAPES / sizeof SWEEP_SHAPES[0];
+const double SWEEP_VIEWS_DEG[] = {0.0, 30.0, 80.0, 89.5};
+const int SWEEP_NVIEWS = sizeof SWEEP_VIEWS_DEG / sizeof SWEEP_VIEWS_DEG[0];
+int chi2_runs_done = 0;
+
+ggx_vec3 sweep_view(double theta_deg)
+{
+    if (theta_deg == 0.0) return t_vec(0, 0, 1);
+    return t_dir(theta_deg * T_PI / 180.0, 0.7);
+}
+
+double pdf_ndf_any_v(const ggx_shape *s, ggx_vec3 v, ggx_vec3 m)
+{
+    (void)v;
+    return ggx_pdf_ndf(s, m);
+}
+
+static double uniform_cb(void *state) { return rng_uniform((rng *)state); }
+
+int normal_draw(void *vc, rng *r, ggx_vec3 *m)
+{
+    normal_ctx *c = vc;
+    double u1 = rng_uniform(r), u2 = rng_uniform(r);
+    c->draws++;
+    if (c->vndf) *m = c->vndf(c->s, c->v, u1, u2);
+    else if (c->ndf) *m = c->ndf(c->s, u1, u2);
+    else {
+        unsigned t;
+        *m = c->reject(c->s, c->v, uniform_cb, r, &t);
+        c->trials += t;
+    }
+    return t_dot(*m, *m) > 0.5;
+}
+
+ggx_vec3 key_of_normal(const ggx_shape *s, ggx_vec3 m) { return t_normalize(t_matvec(s->ainv_t, m)); }
+
+ggx_vec3 normal_of_key(const ggx_shape *s, ggx_vec3 k, double *jacobian)
+{
+    ggx_vec3 at = t_mattvec(s->a, k);
+    double l = sqrt(t_dot(at, at));
+    if (jacobian) *jacobian = s->det / (l * l * l);
+    return t_scale(at, 1.0 / l);
+}
+
+int normal_key(void *vc, ggx_vec3 m, int *region, ggx_vec3 *k)
+{
+    normal_ctx *c = vc;
+    *region = 0;
+    *k = key_of_normal(c->s, m);
+    return 1;
+}
+
+double normal_density(void *vc, int region, ggx_vec3 k)
+{
+    (void)region;
+    normal_ctx *c = vc;
+    double j;
+    ggx_vec3 m = normal_of_key(c->s, k, &j);
+    return c->pdf(c->s, c->v, m) * j;
+}
+
+chi2_result run_normal_chi2(normal_ctx *c, const char *name, uint64_t seed, double *min_p)
+{
+    chi2_problem p = {name, 1, normal_draw, normal_key, normal_density, c};
+    double alpha = chi2_sidak(CHI2_SUITE_RUNS);
+    chi2_result r = chi2_run(&p, 1000000, 100, 200, seed, alpha);
+    chi2_runs_done++;
+    CHECK(r.zero_cell_hits == 0, "%s: %ld samples where the pdf is zero", name, r.zero_cell_hits);
+    CHECK(r.pvalue >= alpha, "%s: chi2 %.1f, dof %d, p = %.3g < %.3g (histogram in chi2_*.csv)", name, r.stat, r.dof,
+          r.pvalue, alpha);
+    if (min_p && r.pvalue < *min_p) *min_p = r.pvalue;
+    return r;
+}

@@ -1,0 +1,54 @@
+/* Shared pieces of the sampling tests: the sweep of shapes and views, the samplers under test, and chi-square
+ * problems for normals keyed in the sphere space of the shape. SPDX-License-Identifier: MIT */
+#ifndef GGX_SAMPLERS_H
+#define GGX_SAMPLERS_H
+
+#include "chi2.h"
+
+typedef struct sweep_shape {
+    const char *name;
+    shape_params p;
+} sweep_shape;
+
+/* alpha in {0.05, 0.3, 1, 2}, ratios up to 1:10, theta_z, and skews up to 0.5 rad. */
+extern const sweep_shape SWEEP_SHAPES[];
+extern const int SWEEP_NSHAPES;
+/* Views at 0 (exactly n), 30, 80 and 89.5 degrees from n (phi = 0.7 rad). */
+extern const double SWEEP_VIEWS_DEG[];
+extern const int SWEEP_NVIEWS;
+ggx_vec3 sweep_view(double theta_deg);
+
+typedef ggx_vec3 (*vndf_fn)(const ggx_shape *, ggx_vec3, double, double);
+typedef ggx_vec3 (*ndf_fn)(const ggx_shape *, double, double);
+typedef ggx_vec3 (*reject_fn)(const ggx_shape *, ggx_vec3, ggx_uniform_fn, void *, unsigned *);
+typedef double (*pdf_fn)(const ggx_shape *, ggx_vec3 v, ggx_vec3 m);
+
+/* Sampler of normals under test: exactly one of vndf, ndf, reject is set. */
+typedef struct normal_ctx {
+    const ggx_shape *s;
+    ggx_vec3 v;
+    vndf_fn vndf;
+    ndf_fn ndf;
+    reject_fn reject;
+    pdf_fn pdf; /* density of m the sampler is claimed to have */
+    long trials, draws;
+} normal_ctx;
+
+/* The pdf of ggx_sample_ndf_* in the pdf_fn signature (v ignored). */
+double pdf_ndf_any_v(const ggx_shape *s, ggx_vec3 v, ggx_vec3 m);
+
+/* Sphere-space key k = normalize(A^{-T} m) and the key density pdf(m(k)) |A| / ||A^T k||^3. */
+int normal_draw(void *ctx, rng *r, ggx_vec3 *m);
+int normal_key(void *ctx, ggx_vec3 m, int *region, ggx_vec3 *k);
+double normal_density(void *ctx, int region, ggx_vec3 k);
+ggx_vec3 key_of_normal(const ggx_shape *s, ggx_vec3 m);
+ggx_vec3 normal_of_key(const ggx_shape *s, ggx_vec3 k, double *jacobian);
+
+/* Runs one chi-square test of a normal sampler with 10^6 samples on 100 x 200 cells, checks it against the Sidak
+ * level and records the smallest p-value in *min_p. Returns the result. */
+chi2_result run_normal_chi2(normal_ctx *c, const char *name, uint64_t seed, double *min_p);
+
+/* Number of chi-square runs made so far by this program. */
+extern int chi2_runs_done;
+
+#endif
