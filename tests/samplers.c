@@ -45,16 +45,6 @@ int normal_draw(void *vc, rng *r, ggx_vec3 *m)
     return t_dot(*m, *m) > 0.5;
 }
 
-ggx_vec3 key_of_normal(const ggx_shape *s, ggx_vec3 m) { return t_normalize(t_matvec(s->ainv_t, m)); }
-
-ggx_vec3 normal_of_key(const ggx_shape *s, ggx_vec3 k, double *jacobian)
-{
-    ggx_vec3 at = t_mattvec(s->a, k);
-    double l = sqrt(t_dot(at, at));
-    if (jacobian) *jacobian = s->det / (l * l * l);
-    return t_scale(at, 1.0 / l);
-}
-
 int normal_key(void *vc, ggx_vec3 m, int *region, ggx_vec3 *k)
 {
     normal_ctx *c = vc;

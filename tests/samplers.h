@@ -4,6 +4,7 @@
 #define GGX_SAMPLERS_H
 
 #include "chi2.h"
+#include "testlib.h"
 
 typedef struct sweep_shape {
     const char *name;
@@ -41,8 +42,6 @@ double pdf_ndf_any_v(const ggx_shape *s, ggx_vec3 v, ggx_vec3 m);
 int normal_draw(void *ctx, rng *r, ggx_vec3 *m);
 int normal_key(void *ctx, ggx_vec3 m, int *region, ggx_vec3 *k);
 double normal_density(void *ctx, int region, ggx_vec3 k);
-ggx_vec3 key_of_normal(const ggx_shape *s, ggx_vec3 m);
-ggx_vec3 normal_of_key(const ggx_shape *s, ggx_vec3 k, double *jacobian);
 
 /* Runs one chi-square test of a normal sampler with 10^6 samples on 100 x 200 cells, checks it against the Sidak
  * level and records the smallest p-value in *min_p. Returns the result. */

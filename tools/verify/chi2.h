@@ -11,7 +11,7 @@
 #ifndef GGX_CHI2_H
 #define GGX_CHI2_H
 
-#include "testlib.h"
+#include "verify.h"
 
 typedef struct chi2_problem {
     const char *name;
