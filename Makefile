@@ -4,7 +4,7 @@ PREFIX ?= /usr/local
 JOBS ?= 2
 MAKEFLAGS += --no-print-directory
 
-.PHONY: all deps configure build run test install clean
+.PHONY: all deps configure build run example test install clean
 
 all: build
 
@@ -17,8 +17,12 @@ configure: deps
 build: configure
 	@cmake --build $(BUILD) -j $(JOBS)
 
-# The main job on built-in defaults.
+# The main job on built-in defaults: the seeds' figures into out/ and a check of every sampler.
 run: build
+	@./$(BUILD)/ggx demo
+
+# The small C example of the library (D, G1 and the BRDF for a skewed shape).
+example: build
 	@./$(BUILD)/ggx_example
 
 test: build

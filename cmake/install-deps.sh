@@ -3,7 +3,7 @@
 # Run as root (CI and the project's machines are root); otherwise it uses sudo when available.
 set -eu
 need=""
-for pkg in cmake make gcc g++ pkg-config libcmocka-dev; do
+for pkg in cmake make gcc g++ pkg-config libcmocka-dev libpng-dev libxml2-utils; do
   dpkg-query -W -f='${Status}' "$pkg" 2>/dev/null | grep -q "install ok installed" || need="$need $pkg"
 done
 [ -z "$need" ] && exit 0

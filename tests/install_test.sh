@@ -11,6 +11,7 @@ libdir=$(ls -d "$tmp"/prefix/lib*/pkgconfig | head -n 1)
 libdir=${libdir%/pkgconfig}
 test -f "$tmp/prefix/include/ggx/ggx.h"
 test -f "$libdir/cmake/ggx/ggxConfig.cmake"
+"$tmp/prefix/bin/ggx" --version | grep -q '^ggx [0-9]'
 # The pkg-config file is generated for the configured prefix; point it at the scratch prefix.
 sed "s|^prefix=.*|prefix=$tmp/prefix|" "$libdir/pkgconfig/ggx.pc" > "$tmp/ggx.pc"
 cat > "$tmp/prog.c" <<'C'

@@ -1,0 +1,91 @@
+#!/bin/sh
+# CLI tests: every subcommand on defaults, outputs parsed back (CSV columns, PNG decoded by libpng with the expected
+# size, SVG well-formed), `ggx check` failing on a deliberately wrong sampler, and every bad-input case: exit status
+# 2, one line on stderr naming the problem, no partial file. Usage: cli_test.sh GGX PNG_INFO
+set -u
+GGX=$1
+PNG_INFO=$2
+tmp=$(mktemp -d)
+trap 'rm -rf "$tmp"' EXIT
+cd "$tmp" || exit 1
+pass=0
+fail=0
+ok() { pass=$((pass + 1)); }
+bad() { fail=$((fail + 1)); echo "FAIL: $*"; }
+
+# --- every subcommand on defaults
+"$GGX" --help > help.txt && grep -q "commands:" help.txt && ok || bad "ggx --help"
+for c in demo eval sample plot check audit; do
+    "$GGX" $c --help > h.txt 2>&1 && grep -q "usage: ggx $c" h.txt && ok || bad "ggx $c --help"
+done
+"$GGX" demo > demo.txt 2>&1 && ok || bad "ggx demo: $(tail -3 demo.txt)"
+grep -q "all checks pass" demo.txt && ok || bad "demo summary"
+for f in grid-top.svg grid-side.svg skewed-grid-top.svg skewed-grid-side.svg; do
+    xmllint --noout "out/$f" && ok || bad "demo $f is not well-formed XML"
+done
+for f in ndf-top ndf-side vndf-75-0 vndf-75-90 skewed-ndf-top skewed-ndf-side skewed-vndf-75-0 skewed-vndf-75-90; do
+    [ "$("$PNG_INFO" "out/$f.png")" = "534 432" ] && ok || bad "demo $f.png size $("$PNG_INFO" "out/$f.png")"
+done
+
+"$GGX" eval > eval.csv && ok || bad "ggx eval"
+[ "$(wc -l < eval.csv)" -eq 5 ] && [ "$(awk -F, 'NR > 1 && NF != 19 { n++ } END { print n + 0 }' eval.csv)" -eq 0 ] &&
+    head -1 eval.csv | grep -q '^wi_x,wi_y,wi_z,wo_x,wo_y,wo_z,h_x,h_y,h_z,D,' && ok || bad "eval CSV shape"
+"$GGX" eval --wi 30,0 --wo 0.1,0.2,0.97 --eta 1.5 --fresnel conductor:0.2,3.9 --format json > eval.json &&
+    grep -q '"bsdf"' eval.json && ok || bad "eval JSON"
+"$GGX" sample > s.csv && [ "$(wc -l < s.csv)" -eq 1001 ] &&
+    awk -F, 'NR > 1 { if (NF != 5 || $4 <= 0) e++; l = $1*$1 + $2*$2 + $3*$3; if (l < 0.999999 || l > 1.000001) e++ } END { exit e > 0 }' s.csv &&
+    ok || bad "sample CSV (5 columns, unit vectors, pdf > 0)"
+"$GGX" sample --sampler bsdf --view 30,0,-1 -n 500 --format f32 --out s.f32 && [ "$(wc -c < s.f32)" -eq 10000 ] && ok || bad "sample f32"
+"$GGX" sample --sampler brdf --alpha 0.3 --skew 10,5 -n 200 --seed 7 --out b.csv && [ "$(wc -l < b.csv)" -eq 201 ] && ok || bad "sample brdf"
+"$GGX" plot 2> plot.err && [ "$("$PNG_INFO" ndf.png)" = "662 560" ] && ok || bad "plot defaults"
+"$GGX" plot --figure vndf-side --view 60,45 --log --size 256 --out v.png && [ "$("$PNG_INFO" v.png)" = "406 304" ] && ok || bad "plot vndf-side"
+"$GGX" plot --figure grid --sampler caps --view 70,0 --skew 15,0 --out g.svg && xmllint --noout g.svg && ok || bad "plot grid"
+"$GGX" check -n 200000 > check.txt && grep -q "all pass" check.txt && ok || bad "check defaults: $(cat check.txt)"
+"$GGX" audit > audit.md && [ "$(grep -c '^| [0-9]' audit.md)" -eq 16 ] && grep -q 'fails' audit.md && ok || bad "audit"
+
+# --- ggx check rejects a deliberately wrong sampler on a skewed shape (exit 1), accepts it when unskewed
+"$GGX" check --sampler wrong-s --skew 20,-15 -n 200000 > wrong.txt; [ $? -eq 1 ] && grep -q FAILED wrong.txt && ok || bad "check wrong-s must fail"
+"$GGX" check --sampler wrong-s -n 200000 > wrong0.txt; [ $? -eq 0 ] && ok || bad "wrong-s is right when unskewed"
+
+# --- bad input: exit 2, exactly one line on stderr starting with "ggx: ", no output file left behind
+expect2() { # description, expected-substring, command...
+    desc=$1; want=$2; shift 2
+    rm -f err.txt
+    "$@" > /dev/null 2> err.txt
+    rc=$?
+    if [ $rc -eq 2 ] && [ "$(wc -l < err.txt)" -eq 1 ] && grep -q "^ggx: .*$want" err.txt; then ok; else bad "$desc: rc $rc, stderr: $(cat err.txt)"; fi
+}
+expect2 "unknown command" "unknown command" "$GGX" frobnicate
+expect2 "unknown option" "unknown option '--bogus'" "$GGX" eval --bogus 1
+expect2 "option of another command" "unknown option '--figure'" "$GGX" sample --figure ndf
+expect2 "malformed number" "not a list of numbers" "$GGX" eval --alpha 0.1x
+expect2 "NaN" "not a finite number" "$GGX" eval --alpha nan
+expect2 "infinity" "not a finite number" "$GGX" sample --view inf,0
+expect2 "alpha <= 0" "invalid shape" "$GGX" eval --alpha -0.2
+expect2 "skew too large" "invalid shape" "$GGX" eval --skew 100,0
+expect2 "singular matrix" "singular" "$GGX" eval --matrix 1,2,3,2,4,6,0,0,1
+expect2 "short matrix" "needs 9 values" "$GGX" eval --matrix 1,0,0,0,1,0
+expect2 "zero direction" "zero vector" "$GGX" eval --wi 0,0,0
+expect2 "view below the horizon" "above the horizon" "$GGX" sample --view 100,0
+expect2 "vndf figure below" "above the horizon" "$GGX" plot --figure vndf --view 95,0
+expect2 "unknown sampler" "unknown sampler" "$GGX" sample --sampler magic
+expect2 "unknown figure" "unknown figure" "$GGX" plot --figure pie
+expect2 "bad count" "not a count" "$GGX" sample -n 0
+expect2 "missing value" "needs a value" "$GGX" sample --seed
+expect2 "bad fresnel" "fresnel" "$GGX" eval --fresnel gold
+expect2 "bad format" "format" "$GGX" eval --format xml
+expect2 "wrong extension" "written as .png" "$GGX" plot --out x.svg
+expect2 "unwritable folder (demo)" "cannot create output folder" "$GGX" demo --out /proc/ggx-test-out
+expect2 "unwritable file (plot)" "cannot write" "$GGX" plot --out /proc/ggx-no/x.png
+expect2 "unwritable file (sample)" "cannot write" "$GGX" sample --out /nonexistent-dir/s.csv
+mkdir ro && touch ro/keep
+expect2 "out is a file (demo)" "not a folder" "$GGX" demo --out ro/keep
+# no partial or temporary files anywhere in the work folder after the failures
+[ -z "$(find . -name '*.tmp*')" ] && [ ! -e x.svg ] && [ ! -e x.png ] && ok || bad "temporary files left: $(find . -name '*.tmp*')"
+# a failed write leaves an existing file untouched
+echo previous > keep.csv
+"$GGX" sample --sampler magic --out keep.csv 2>/dev/null
+[ "$(cat keep.csv)" = "previous" ] && ok || bad "existing file was modified by a failing command"
+
+echo "cli: $pass passed, $fail failed"
+[ "$fail" -eq 0 ]

@@ -1,0 +1,183 @@
+/* Option parsing for the ggx command: one syntax for every subcommand. SPDX-License-Identifier: MIT */
+#include <errno.h>
+#include <math.h>
+#include <stdarg.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "cli.h"
+
+void die(const char *fmt, ...)
+{
+    va_list ap;
+    va_start(ap, fmt);
+    fputs("ggx: ", stderr);
+    vfprintf(stderr, fmt, ap);
+    fputc('\n', stderr);
+    va_end(ap);
+    exit(2);
+}
+
+static const double DEG = 3.14159265358979323846 / 180.0;
+
+/* Parses exactly `count` comma-separated finite numbers (count < 0: 1 to -count numbers); returns how many. */
+static int parse_list(const char *opt, const char *text, double *out, int count)
+{
+    int max = count < 0 ? -count : count, n = 0;
+    const char *p = text;
+    if (!text || !*text) die("%s needs a value", opt);
+    for (;;) {
+        char *end;
+        errno = 0;
+        double v = strtod(p, &end);
+        if (end == p || (*end != ',' && *end != '\0')) die("%s: '%s' is not a list of numbers", opt, text);
+        if (!isfinite(v) || errno == ERANGE) die("%s: '%s' contains a value that is not a finite number", opt, text);
+        if (n == max) die("%s: '%s' has more than %d value%s", opt, text, max, max > 1 ? "s" : "");
+        out[n++] = v;
+        if (*end == '\0') break;
+        p = end + 1;
+    }
+    if (count > 0 && n != count) die("%s: '%s' needs %d values", opt, text, count);
+    return n;
+}
+
+int parse_direction(const char *text, ggx_vec3 *v)
+{
+    double x[3];
+    int n = parse_list("direction", text, x, -3);
+    if (n == 2) {
+        double t = x[0] * DEG, p = x[1] * DEG;
+        v->x = sin(t) * cos(p), v->y = sin(t) * sin(p), v->z = cos(t);
+        return 1;
+    }
+    if (n != 3) die("direction '%s': give theta,phi in degrees or x,y,z", text);
+    double l = sqrt(x[0] * x[0] + x[1] * x[1] + x[2] * x[2]);
+    if (!(l > 0.0) || !isfinite(l)) die("direction '%s' is the zero vector", text);
+    v->x = x[0] / l, v->y = x[1] / l, v->z = x[2] / l;
+    return 1;
+}
+
+static int allowed_has(const char *allowed, const char *name)
+{
+    size_t n = strlen(name);
+    for (const char *p = allowed; (p = strstr(p, name)) != NULL; p += n)
+        if ((p == allowed || p[-1] == ',') && (p[n] == ',' || p[n] == '\0')) return 1;
+    return 0;
+}
+
+void parse_options(int argc, char **argv, int first, options *o, const char *allowed)
+{
+    memset(o, 0, sizeof *o);
+    o->alpha[0] = 0.15, o->alpha[1] = 0.5;
+    o->n = -1;
+    o->seed = 1;
+    o->size = 512;
+    o->eta = 1.5;
+    o->progress = -1;
+    for (int i = first; i < argc; i++) {
+        const char *a = argv[i];
+        const char *val = i + 1 < argc ? argv[i + 1] : NULL;
+        char key[32] = "";
+        if (strcmp(a, "--help") == 0 || strcmp(a, "-h") == 0) {
+            o->help = 1;
+            continue;
+        }
+        if (strcmp(a, "-n") == 0) snprintf(key, sizeof key, "n");
+        else if (strncmp(a, "--", 2) == 0 && strlen(a) < sizeof key + 2) snprintf(key, sizeof key, "%s", a + 2);
+        if (!key[0] || !allowed_has(allowed, key) || strcmp(key, "help") == 0)
+            die("unknown option '%s' (see --help)", a);
+        /* flags */
+        if (strcmp(key, "log") == 0) { o->log_scale = 1; continue; }
+        if (strcmp(key, "progress") == 0) { o->progress = 1; continue; }
+        if (strcmp(key, "no-progress") == 0) { o->progress = 0; continue; }
+        if (!val) die("option '%s' needs a value", a);
+        i++;
+        if (strcmp(key, "alpha") == 0) {
+            int k = parse_list(a, val, o->alpha, -2);
+            if (k == 1) o->alpha[1] = o->alpha[0];
+        } else if (strcmp(key, "skew") == 0) {
+            parse_list(a, val, o->skew, 2);
+        } else if (strcmp(key, "rotate") == 0) {
+            parse_list(a, val, &o->rotate, 1);
+        } else if (strcmp(key, "matrix") == 0) {
+            parse_list(a, val, &o->matrix[0][0], 9);
+            o->have_matrix = 1;
+        } else if (strcmp(key, "view") == 0) {
+            parse_direction(val, &o->view);
+            o->have_view = 1;
+        } else if (strcmp(key, "wi") == 0) {
+            parse_direction(val, &o->wi);
+            o->have_wi = 1;
+        } else if (strcmp(key, "wo") == 0) {
+            if (o->nwo == 64) die("at most 64 --wo directions");
+            parse_direction(val, &o->wo[o->nwo++]);
+        } else if (strcmp(key, "n") == 0) {
+            double v;
+            parse_list(a, val, &v, 1);
+            if (!(v >= 1 && v <= 1e10) || v != floor(v)) die("%s: '%s' is not a count between 1 and 1e10", a, val);
+            o->n = (long)v;
+        } else if (strcmp(key, "seed") == 0) {
+            double v;
+            parse_list(a, val, &v, 1);
+            if (!(v >= 0 && v < 9e15) || v != floor(v)) die("%s: '%s' is not a non-negative integer", a, val);
+            o->seed = (unsigned long long)v;
+        } else if (strcmp(key, "size") == 0) {
+            double v;
+            parse_list(a, val, &v, 1);
+            if (!(v >= 64 && v <= 4096) || v != floor(v)) die("%s: '%s' is not a size between 64 and 4096", a, val);
+            o->size = (int)v;
+        } else if (strcmp(key, "eta") == 0) {
+            parse_list(a, val, &o->eta, 1);
+            if (!(o->eta > 0)) die("%s: the relative index of refraction must be > 0", a);
+            o->have_eta = 1;
+        } else if (strcmp(key, "out") == 0) {
+            o->out = val;
+        } else if (strcmp(key, "format") == 0) {
+            o->format = val;
+        } else if (strcmp(key, "sampler") == 0) {
+            o->sampler = val;
+        } else if (strcmp(key, "figure") == 0) {
+            o->figure = val;
+        } else if (strcmp(key, "fresnel") == 0) {
+            o->fresnel = val;
+        } else if (strcmp(key, "claim") == 0) {
+            o->claim = val;
+        } else {
+            die("unknown option '%s' (see --help)", a);
+        }
+    }
+}
+
+void shape_from_options(const options *o, ggx_shape *s)
+{
+    ggx_status st;
+    if (o->have_matrix) st = ggx_shape_matrix(s, (const double(*)[3])o->matrix);
+    else st = ggx_shape_ellipsoid(s, o->alpha[0], o->alpha[1], o->skew[0] * DEG, o->skew[1] * DEG, o->rotate * DEG);
+    if (st != GGX_OK) die("invalid shape: %s", ggx_status_str(st));
+}
+
+ggx_fresnel fresnel_from_options(const options *o)
+{
+    ggx_fresnel f;
+    ggx_fresnel_one(&f);
+    if (!o->fresnel || strcmp(o->fresnel, "one") == 0) return f;
+    const char *colon = strchr(o->fresnel, ':');
+    if (!colon) die("--fresnel: '%s' is not one, dielectric:ETA, conductor:ETA,K or schlick:F0", o->fresnel);
+    double v[2] = {0, 0};
+    ggx_status st;
+    size_t len = (size_t)(colon - o->fresnel);
+    if (len == 10 && strncmp(o->fresnel, "dielectric", len) == 0) {
+        parse_list("--fresnel", colon + 1, v, 1);
+        st = ggx_fresnel_dielectric(&f, v[0]);
+    } else if (len == 9 && strncmp(o->fresnel, "conductor", len) == 0) {
+        parse_list("--fresnel", colon + 1, v, 2);
+        st = ggx_fresnel_conductor(&f, v[0], v[1]);
+    } else if (len == 7 && strncmp(o->fresnel, "schlick", len) == 0) {
+        parse_list("--fresnel", colon + 1, v, 1);
+        st = ggx_fresnel_schlick(&f, v[0]);
+    } else {
+        die("--fresnel: unknown kind in '%s' (one, dielectric, conductor, schlick)", o->fresnel);
+    }
+    if (st != GGX_OK) die("--fresnel '%s': %s", o->fresnel, ggx_status_str(st));
+    return f;
+}

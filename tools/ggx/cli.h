@@ -1,0 +1,99 @@
+/* The ggx command: shared declarations. SPDX-License-Identifier: MIT */
+#ifndef GGX_CLI_H
+#define GGX_CLI_H
+
+#include <stddef.h>
+#include <stdio.h>
+
+#include "ggx/ggx.h"
+
+/* Prints "ggx: <message>" on stderr and exits with status 2 (bad input, unwritable output). */
+void die(const char *fmt, ...) __attribute__((format(printf, 1, 2), noreturn));
+
+/* ---- options ---- */
+typedef struct options {
+    /* shape */
+    double alpha[2], skew[2], rotate; /* degrees */
+    double matrix[3][3];
+    int have_matrix;
+    /* directions and counts */
+    ggx_vec3 view;
+    int have_view;
+    ggx_vec3 wi, wo[64];
+    int have_wi, nwo;
+    long n;
+    unsigned long long seed;
+    const char *out, *format, *sampler, *figure, *fresnel, *claim;
+    double eta;
+    int have_eta, log_scale, size, help, progress;
+} options;
+
+/* Parses argv[first..] into o (defaults first); unknown options and malformed values die(). */
+void parse_options(int argc, char **argv, int first, options *o, const char *allowed);
+/* The shape of the options; a bad shape dies with the library's message. */
+void shape_from_options(const options *o, ggx_shape *s);
+/* Parses "theta,phi" (degrees) or "x,y,z" (normalised) into a direction. */
+int parse_direction(const char *text, ggx_vec3 *v);
+ggx_fresnel fresnel_from_options(const options *o);
+
+/* ---- samplers by name ---- */
+typedef struct sampler_info {
+    const char *name;
+    int kind; /* 0: NDF sampler, 1: VNDF sampler, 2: VNDF rejection, 3: BRDF, 4: BSDF */
+    ggx_vec3 (*ndf)(const ggx_shape *, double, double);
+    ggx_vec3 (*vndf)(const ggx_shape *, ggx_vec3, double, double);
+    ggx_vec3 (*reject)(const ggx_shape *, ggx_vec3, ggx_uniform_fn, void *, unsigned *);
+    const char *help;
+} sampler_info;
+extern const sampler_info SAMPLERS[];
+extern const int NSAMPLERS;
+const sampler_info *find_sampler(const char *name); /* dies on an unknown name */
+
+/* ---- output files: written to a temporary name and renamed, so no partial file is ever left ---- */
+typedef struct out_file {
+    FILE *f;
+    char *path, *tmp;
+} out_file;
+void out_open(out_file *o, const char *path); /* path NULL or "-": stdout */
+void out_close(out_file *o);                  /* flush, check, rename; dies on error */
+void ensure_dir(const char *dir);             /* mkdir -p of one level; dies if unwritable */
+
+/* ---- images ---- */
+typedef struct image {
+    int w, h;
+    unsigned char *rgb;
+} image;
+image image_new(int w, int h, unsigned char r, unsigned char g, unsigned char b);
+void image_free(image *im);
+void image_set(image *im, int x, int y, const unsigned char c[3]);
+void image_text(image *im, int x, int y, const char *text, int scale, const unsigned char c[3]);
+void colormap(double t, unsigned char out[3]); /* t in [0, 1] -> a perceptually ordered dark-to-bright colour */
+void write_png(const image *im, const char *path);
+
+/* ---- figures ---- */
+typedef enum figure_kind { FIG_NDF, FIG_NDF_SIDE, FIG_VNDF, FIG_VNDF_SIDE, FIG_GRID, FIG_GRID_SIDE } figure_kind;
+figure_kind figure_from_name(const char *name);
+/* Writes the figure to path (PNG for densities, SVG for grids). */
+void draw_figure(figure_kind k, const ggx_shape *s, ggx_vec3 view, const sampler_info *sampler, int size,
+                 int log_scale, const char *title, const char *path);
+
+/* ---- subcommands ---- */
+int cmd_demo(int argc, char **argv);
+int cmd_eval(int argc, char **argv);
+int cmd_sample(int argc, char **argv);
+int cmd_plot(int argc, char **argv);
+int cmd_check(int argc, char **argv);
+int cmd_audit(int argc, char **argv);
+
+/* ---- checks (also used by demo) ---- */
+typedef struct check_result {
+    double norm_error; /* |integral of the sampler's pdf - 1| */
+    double pvalue;     /* chi-square */
+    double jac_error;  /* largest |J pdf - 1| at random u (NaN for rejection samplers) */
+    long zero_hits;
+    int pass;
+} check_result;
+check_result run_check(const ggx_shape *s, ggx_vec3 view, const sampler_info *smp, long n, unsigned long long seed,
+                       double alpha, int progress);
+
+#endif
