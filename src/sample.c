@@ -33,6 +33,24 @@ static ggx_vec3 unstretch(const ggx_shape *s, ggx_vec3 p)
     return normalize(mat_tmul(s->a, p));
 }
 
+/* Keeps a sphere-space point strictly inside the lune {p.z > 0, p.vs > 0}: a point on its rim (u at the edge of the
+ * square, the rim of the disk) would give a normal on the horizon or edge-on to the view, where the pdf is 0. Moving
+ * it by 2^-30 along vs + z raises both dot products by at least 2^-30; it touches a set of probability ~1e-9. */
+static ggx_vec3 inside_lune(ggx_vec3 p, ggx_vec3 vs)
+{
+    const double d = 0x1p-30;
+    if (!(p.z >= d && v3_dot(p, vs) >= d)) p = v3_add(p, v3_scale(v3(vs.x, vs.y, vs.z + 1.0), d));
+    return p;
+}
+
+/* The same for a normal m in ellipsoid space (samplers that do not pass through sphere space). */
+static ggx_vec3 above_horizon(ggx_vec3 m)
+{
+    const double d = 0x1p-30;
+    if (!(m.z >= d)) m = normalize(v3(m.x, m.y, d));
+    return m;
+}
+
 /* The sphere-space normal of an ellipsoid normal m: normalize(A^{-T} m). */
 static ggx_vec3 stretch_normal(const ggx_shape *s, ggx_vec3 m) { return normalize(mat_mul(s->ainv_t, m)); }
 
@@ -109,7 +127,7 @@ ggx_vec3 ggx_sample_ndf_stretch(const ggx_shape *s, double u1, double u2)
 {
     u1 = clamp01(u1);
     double r = sqrt(u1), phi = 2.0 * GGX_PI * clamp01(u2);
-    return unstretch(s, v3(r * cos(phi), r * sin(phi), sqrt(1.0 - u1)));
+    return unstretch(s, inside_lune(v3(r * cos(phi), r * sin(phi), sqrt(1.0 - u1)), v3(0.0, 0.0, 1.0)));
 }
 
 ggx_vec2 ggx_sample_ndf_stretch_inv(const ggx_shape *s, ggx_vec3 m)
@@ -141,9 +159,7 @@ ggx_vec3 ggx_sample_ndf_ellipse(const ggx_shape *s, double u1, double u2)
     double disc = M[2][2] * (1.0 - (d.x * d.x + d.y * d.y));
     double z = (-b + sqrt(disc > 0.0 ? disc : 0.0)) / M[2][2];
     ggx_vec3 x = v3(q0, q1, z);
-    ggx_vec3 m = normalize(mat_mul((const double(*)[3])M, x));
-    if (m.z < 0.0) m.z = 0.0; /* rounding on the rim of the silhouette */
-    return normalize(m);
+    return above_horizon(normalize(mat_mul((const double(*)[3])M, x))); /* the rim of the silhouette */
 }
 
 ggx_vec3 ggx_sample_ndf_inversion(const ggx_shape *s, double u1, double u2)
@@ -158,7 +174,7 @@ ggx_vec3 ggx_sample_ndf_inversion(const ggx_shape *s, double u1, double u2)
     double phi_m = atan2(ay * sn, ax * c);
     double xt = sin_t * cos(phi_m), yt = sin_t * sin(phi_m); /* tangent frame of the shape */
     double tc = s->tangent_cos, ts = s->tangent_sin;
-    return v3(tc * xt - ts * yt, ts * xt + tc * yt, cos_t);
+    return above_horizon(v3(tc * xt - ts * yt, ts * xt + tc * yt, cos_t));
 }
 
 ggx_vec3 ggx_sample_ndf_visible(const ggx_shape *s, double u1, double u2)
@@ -181,8 +197,7 @@ ggx_vec3 ggx_sample_vndf_caps(const ggx_shape *s, ggx_vec3 v, double u1, double 
     double z = (1.0 - clamp01(u2)) * (1.0 + vs.z) - vs.z;
     double r = sqrt(fmax(0.0, 1.0 - z * z));
     ggx_vec3 h = v3(vs.x + r * cos(phi), vs.y + r * sin(phi), vs.z + z); /* unnormalised sphere-space normal */
-    if (!(v3_dot(h, h) > 1e-300)) h = vs; /* c = -v': the single point where the half vector vanishes */
-    return unstretch(s, h);
+    return unstretch(s, inside_lune(h, vs)); /* also covers c = -v', where h vanishes */
 }
 
 ggx_vec2 ggx_sample_vndf_caps_inv(const ggx_shape *s, ggx_vec3 v, ggx_vec3 m)
@@ -212,7 +227,7 @@ static ggx_vec3 crescent(const ggx_shape *s, ggx_vec3 v, ggx_vec2 d)
     double xb = sc * d.x + (1.0 - sc) * sqrt(fmax(0.0, 1.0 - d.y * d.y)); /* eq 39 */
     double zb = sqrt(fmax(0.0, 1.0 - xb * xb - d.y * d.y));             /* eq 41 */
     ggx_vec3 p = v3_add(v3_add(v3_scale(e1, xb), v3_scale(e2, d.y)), v3_scale(vs, zb)); /* eq 45 */
-    return unstretch(s, p);
+    return unstretch(s, inside_lune(p, vs));
 }
 
 /* Disk coordinates of m under the crescent map: the inverse of eq 39-45. */
@@ -264,7 +279,7 @@ ggx_vec3 ggx_sample_vndf_heitz(const ggx_shape *s, ggx_vec3 v, double u1, double
     double sq = 0.5 * (1.0 + vs.z);
     double y = (1.0 - sq) * sqrt(fmax(0.0, 1.0 - d.x * d.x)) + sq * d.y; /* the squish (Engstad's zeta) */
     double z = sqrt(fmax(0.0, 1.0 - d.x * d.x - y * y));
-    return unstretch(s, v3_add(v3_add(v3_scale(t1, d.x), v3_scale(t2, y)), v3_scale(vs, z)));
+    return unstretch(s, inside_lune(v3_add(v3_add(v3_scale(t1, d.x), v3_scale(t2, y)), v3_scale(vs, z)), vs));
 }
 
 ggx_vec2 ggx_sample_vndf_heitz_inv(const ggx_shape *s, ggx_vec3 v, ggx_vec3 m)
@@ -337,7 +352,7 @@ ggx_vec3 ggx_sample_vndf_walter_v1(const ggx_shape *s, ggx_vec3 v, ggx_uniform_f
         double tt = (-b + sqrt(disc)) / aa;
         ggx_vec3 ax = v3_add(ao, v3_scale(av, tt)); /* A x, a point of the unit sphere */
         if (ax.z < 0.0) continue;                   /* m.n < 0: outside the truncated ellipsoid */
-        return unstretch(s, ax);
+        return unstretch(s, inside_lune(ax, normalize(av)));
     }
     return zero3;
 }
@@ -358,7 +373,7 @@ ggx_vec3 ggx_sample_vndf_walter_v2(const ggx_shape *s, ggx_vec3 v, ggx_uniform_f
         double h = sqrt(fmax(0.0, 1.0 - d.x * d.x - d.y * d.y));
         ggx_vec3 p = v3_add(v3_add(v3_scale(f1, d.x), v3_scale(f2, d.y)), v3_scale(vs, h));
         if (p.z < 0.0) continue; /* outside the lune */
-        return unstretch(s, p);
+        return unstretch(s, inside_lune(p, vs));
     }
     return zero3;
 }
@@ -387,9 +402,12 @@ ggx_sample ggx_sample_brdf(const ggx_shape *s, const ggx_fresnel *f, ggx_vec3 wi
     ggx_vec3 wo = ggx_reflect(wi, m); /* eq 47 */
     if (!(wo.z > 0.0)) return invalid_sample();
     double pdf = ggx_pdf_vndf(s, wi, m) / (4.0 * wm);
-    double fr = ggx_brdf_eval(s, f, wi, wo);
     if (!(pdf > 0.0 && pdf < HUGE_VAL)) return invalid_sample();
-    ggx_sample r = {wo, pdf, finite_or_zero(fr * wo.z / pdf), GGX_EVENT_REFLECT};
+    /* eq 50-51 in closed form: with r = A_l(wi, n) / (A_e(n) wi.n) = 1 / G1_smith(wi), the weight is
+     * G1(wi) r G1(wo) F = min(1, r) G1(wo, m) F, a product of factors <= 1, so eq 52 holds in floating point too. */
+    double g1s = ggx_g1_smith(s, wi);
+    double weight = (g1s > 1.0 ? 1.0 / g1s : 1.0) * ggx_g1(s, wo, m) * ggx_fresnel_eval(f, wm);
+    ggx_sample r = {wo, pdf, finite_or_zero(weight), GGX_EVENT_REFLECT};
     return r;
 }
 
