@@ -4,12 +4,16 @@ PREFIX ?= /usr/local
 JOBS ?= 2
 MAKEFLAGS += --no-print-directory
 
-.PHONY: all deps configure build run example test install clean
+.PHONY: all deps deps-dev configure build run example test test-long sanitize valgrind fuzz fuzz-ci install clean
 
 all: build
 
 deps:
 	@sh cmake/install-deps.sh
+
+# Tools for the robustness targets: clang with libFuzzer, valgrind.
+deps-dev: deps
+	@sh cmake/install-deps.sh clang libclang-rt-14-dev valgrind
 
 configure: deps
 	@cmake -S . -B $(BUILD) -DCMAKE_BUILD_TYPE=Release -DGGX_WERROR=ON -DCMAKE_INSTALL_PREFIX=$(PREFIX) >/dev/null
@@ -28,7 +32,38 @@ example: build
 test: build
 	@cd $(BUILD) && ctest --output-on-failure -j $(JOBS)
 
-install: build
+# The property tests at ten times their size (about 5 minutes).
+test-long: build
+	@cd $(BUILD) && GGX_TEST_SCALE=10 ctest --output-on-failure -R robust
+
+# The whole unit and property suite under AddressSanitizer + UndefinedBehaviorSanitizer (gcc), at a tenth of the
+# sample counts (the install test is left out: its consumer program is not built with the sanitizer runtime).
+SAN_FLAGS = -fsanitize=address,undefined -fno-sanitize-recover=all -fno-omit-frame-pointer -g
+sanitize: deps
+	@cmake -S . -B build-san -DCMAKE_BUILD_TYPE=RelWithDebInfo -DGGX_WERROR=ON -DCMAKE_C_FLAGS="$(SAN_FLAGS)" \
+	  -DCMAKE_CXX_FLAGS="$(SAN_FLAGS)" -DCMAKE_EXE_LINKER_FLAGS="$(SAN_FLAGS)" -DCMAKE_SHARED_LINKER_FLAGS="$(SAN_FLAGS)" >/dev/null
+	@cmake --build build-san -j $(JOBS)
+	@cd build-san && GGX_TEST_SCALE=0.1 GGX_CLI_QUICK=1 ASAN_OPTIONS=detect_leaks=1:abort_on_error=1 \
+	  UBSAN_OPTIONS=print_stacktrace=1 ctest --output-on-failure -j $(JOBS) -E install
+
+# The CLI tests with every ggx run under valgrind (memcheck, leak check); any error fails the test.
+valgrind: deps-dev build
+	@cd $(BUILD)/tests && GGX_CLI_QUICK=1 \
+	  GGX_WRAP="valgrind -q --error-exitcode=99 --leak-check=full --errors-for-leak-kinds=definite,indirect" \
+	  sh ../../tests/cli_test.sh $(CURDIR)/$(BUILD)/ggx $(CURDIR)/$(BUILD)/tests/png_info
+
+# libFuzzer: each target for FUZZ_SECONDS (default 60) from the committed corpus; new inputs go to build-fuzz/.
+FUZZ_SECONDS ?= 60
+fuzz: deps-dev
+	@CC=clang cmake -S . -B build-fuzz -DCMAKE_BUILD_TYPE=RelWithDebInfo -DGGX_FUZZ=ON -DGGX_BUILD_TESTS=OFF \
+	  -DGGX_BUILD_TOOL=OFF -DGGX_BUILD_EXAMPLES=OFF >/dev/null
+	@cmake --build build-fuzz -j $(JOBS) --target fuzz_api fuzz_cli
+	@sh tests/fuzz/run.sh build-fuzz $(FUZZ_SECONDS)
+
+# CI: each target briefly.
+fuzz-ci:
+	@$(MAKE) fuzz FUZZ_SECONDS=10
+
 	@cmake --install $(BUILD)
 
 clean:

@@ -3,7 +3,9 @@
 # Run as root (CI and the project's machines are root); otherwise it uses sudo when available.
 set -eu
 need=""
-for pkg in cmake make gcc g++ pkg-config libcmocka-dev libpng-dev libxml2-utils; do
+pkgs="cmake make gcc g++ pkg-config libcmocka-dev libpng-dev libxml2-utils"
+[ $# -gt 0 ] && pkgs="$*" # extra packages for the robustness targets (make deps-dev)
+for pkg in $pkgs; do
   dpkg-query -W -f='${Status}' "$pkg" 2>/dev/null | grep -q "install ok installed" || need="$need $pkg"
 done
 [ -z "$need" ] && exit 0

@@ -40,10 +40,14 @@ int ggx_refract(ggx_vec3 w, ggx_vec3 m, double eta, ggx_vec3 *out)
         m = v3_neg(m);
         c = -c;
     }
-    double sin2_t = (1.0 - c * c) / (eta * eta);
+    double sin2_t = (1.0 - c * c) / eta / eta; /* eta^2 may underflow */
     if (sin2_t >= 1.0) return 0; /* total internal reflection */
     double ct = sqrt(1.0 - sin2_t);
-    *out = v3_sub(v3_scale(m, c / eta - ct), v3_scale(w, 1.0 / eta));
+    ggx_vec3 t = v3_sub(v3_scale(m, c / eta - ct), v3_scale(w, 1.0 / eta));
+    /* Unit in exact arithmetic; for a large index ratio the terms cancel and lose eta times the rounding. */
+    double l = v3_len(t);
+    if (!(l > 0.0 && l < HUGE_VAL)) return 0;
+    *out = v3_scale(t, 1.0 / l);
     return 1;
 }
 

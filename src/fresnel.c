@@ -11,7 +11,7 @@ double ggx_fresnel_dielectric_eval(double cos_i, double eta)
 {
     if (!(eta > 0.0 && eta < HUGE_VAL) || isnan(cos_i)) return 0.0;
     double ci = clamp_cos(cos_i);
-    double sin2_t = (1.0 - ci * ci) / (eta * eta); /* Snell */
+    double sin2_t = (1.0 - ci * ci) / eta / eta; /* Snell; two divisions: eta^2 may underflow where eta does not */
     if (sin2_t >= 1.0) return 1.0;                 /* total internal reflection */
     double ct = sqrt(1.0 - sin2_t);
     double rs = (ci - eta * ct) / (ci + eta * ct);

@@ -1,5 +1,7 @@
 /* The ellipsoid NDF, its areas, masking and the visible-normal density (Walter et al. 2014).
  * SPDX-License-Identifier: MIT */
+#include <float.h>
+
 #include "internal.h"
 
 /* ||A^{-T} m||^2: the quadric whose square is in the denominator of D (eq 1) and in Kg (eq 20). */
@@ -71,7 +73,9 @@ double ggx_lambda(const ggx_shape *s, ggx_vec3 u)
 {
     if (!(u.z > 0.0)) return 0.0;
     double r = visible_ratio(s, u) - 1.0;
-    /* Negative Lambda is legitimate for skewed shapes; only non-finite values are filtered. */
+    /* Negative Lambda is legitimate for skewed shapes. It overflows only for u.z a denormal above the horizon,
+     * where the true value is beyond any double: the largest finite one is returned. */
+    if (r == HUGE_VAL) return DBL_MAX;
     return isfinite(r) ? r : 0.0;
 }
 
@@ -116,6 +120,10 @@ double ggx_pdf_vndf(const ggx_shape *s, ggx_vec3 v, ggx_vec3 m)
 {
     if (!(v.z > 0.0)) return 0.0;
     double mv = v3_dot(m, v);
-    if (!(mv >= 0.0)) return 0.0;                                /* X+(m.v) */
-    return finite_or_zero(ggx_ndf(s, m) * mv / (visible_ratio(s, v) * v.z)); /* eq 33 */
+    if (!(mv >= 0.0)) return 0.0; /* X+(m.v) */
+    /* eq 33 with eq 26 and 28: A_e(n) / A_l(v, n) = 2 ||An||^2 / (||Av|| ||An|| + Av.An). No division by v.z, so a
+     * view a denormal above the horizon still gets its (finite) pdf. */
+    double lv;
+    double num = lune_numerator(mat_mul(s->a, v), s->an, &lv);
+    return finite_or_zero(ggx_ndf(s, m) * mv * 2.0 * s->an_len * s->an_len / num);
 }

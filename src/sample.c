@@ -5,12 +5,24 @@
 
 static const ggx_vec3 zero3 = {0.0, 0.0, 0.0};
 
+static int is_zero(ggx_vec3 v) { return v.x == 0.0 && v.y == 0.0 && v.z == 0.0; }
+
 static double clamp01(double u) { return u > 0.0 ? (u < 1.0 ? u : 1.0) : 0.0; } /* NaN -> 0 */
 
 static ggx_vec3 normalize(ggx_vec3 v)
 {
     double l = v3_len(v);
     return (l > 0.0 && l < HUGE_VAL) ? v3_scale(v, 1.0 / l) : zero3;
+}
+
+/* The direction of a caller's vector, robust to huge and denormal components (scaled by the largest one first);
+ * the zero vector for a zero, infinite or NaN input. */
+static ggx_vec3 safe_unit(ggx_vec3 v)
+{
+    double m = fmax(fabs(v.x), fmax(fabs(v.y), fabs(v.z)));
+    if (!(m > 0.0 && m < HUGE_VAL)) return zero3;
+    v = v3(v.x / m, v.y / m, v.z / m);
+    return v3_scale(v, 1.0 / v3_len(v));
 }
 
 static ggx_vec3 cross(ggx_vec3 a, ggx_vec3 b)
@@ -25,22 +37,26 @@ static ggx_vec3 mat_tmul(const double M[3][3], ggx_vec3 p)
               M[0][2] * p.x + M[1][2] * p.y + M[2][2] * p.z);
 }
 
-/* Ellipsoid normal of the sphere-space point p (m proportional to A^T p, Walter eq 46). p.z is clamped at 0 so
- * that rounding cannot put m below the horizon: A' n is along z, so m.z = ||A n|| p.z / ||A^T p||. */
-static ggx_vec3 unstretch(const ggx_shape *s, ggx_vec3 p)
+/* The ellipsoid normal of a sphere-space point p of the lune {p.z >= 0, p.vs >= 0}, kept strictly inside so that
+ * its pdf is > 0: a point on the rim (u at the edge of the square, the rim of the disk) would give a normal on the
+ * horizon or edge-on to the view. p is moved by 2^-30 along vs + z (raising both dot products by >= 2^-30, a set of
+ * probability ~1e-9); then m.z >= 0 and m.v >= 2^-48 are verified in ellipsoid space, where rounding in A^T p can
+ * still flip a sign for ill-conditioned A (alpha 1e-4 with a skew), doubling the step until they hold. v is the
+ * unit view (z for NDF sampling). */
+static ggx_vec3 finish_normal(const ggx_shape *s, ggx_vec3 p, ggx_vec3 vs, ggx_vec3 v)
 {
-    if (p.z < 0.0) p.z = 0.0;
-    return normalize(mat_tmul(s->a, p));
-}
-
-/* Keeps a sphere-space point strictly inside the lune {p.z > 0, p.vs > 0}: a point on its rim (u at the edge of the
- * square, the rim of the disk) would give a normal on the horizon or edge-on to the view, where the pdf is 0. Moving
- * it by 2^-30 along vs + z raises both dot products by at least 2^-30; it touches a set of probability ~1e-9. */
-static ggx_vec3 inside_lune(ggx_vec3 p, ggx_vec3 vs)
-{
-    const double d = 0x1p-30;
-    if (!(p.z >= d && v3_dot(p, vs) >= d)) p = v3_add(p, v3_scale(v3(vs.x, vs.y, vs.z + 1.0), d));
-    return p;
+    const double margin = 0x1p-48; /* far above the rounding of a dot product of unit vectors (~1e-16) */
+    ggx_vec3 d = v3(vs.x, vs.y, vs.z + 1.0);
+    double step = 0x1p-30;
+    if (!(p.z >= step && v3_dot(p, vs) >= step)) p = v3_add(p, v3_scale(d, step));
+    for (int k = 0; k < 64; k++, step *= 2.0) {
+        ggx_vec3 m = normalize(mat_tmul(s->a, p));
+        if (m.z >= 0.0 && v3_dot(m, v) >= margin) return m;
+        p = v3_add(p, v3_scale(d, step));
+    }
+    /* The lune is too thin for any normal to clear the margin: a view within ~1e-9 of grazing the truncated
+     * ellipsoid, which takes an ill-conditioned A. The documented invalid sample. */
+    return zero3;
 }
 
 /* The same for a normal m in ellipsoid space (samplers that do not pass through sphere space). */
@@ -54,11 +70,12 @@ static ggx_vec3 above_horizon(ggx_vec3 m)
 /* The sphere-space normal of an ellipsoid normal m: normalize(A^{-T} m). */
 static ggx_vec3 stretch_normal(const ggx_shape *s, ggx_vec3 m) { return normalize(mat_mul(s->ainv_t, m)); }
 
-/* The sphere-space view normalize(A v); zero vector when v.z <= 0 or v is not finite. */
-static ggx_vec3 stretch_view(const ggx_shape *s, ggx_vec3 v)
+/* The sphere-space view normalize(A v) and the unit view *vn; zero vector when v.z <= 0 or v is not finite. */
+static ggx_vec3 stretch_view(const ggx_shape *s, ggx_vec3 v, ggx_vec3 *vn)
 {
-    if (!(v.z > 0.0)) return zero3;
-    return normalize(mat_mul(s->a, v));
+    *vn = safe_unit(v);
+    if (!(vn->z > 0.0)) return zero3;
+    return normalize(mat_mul(s->a, *vn));
 }
 
 static double angle01(double y, double x) /* atan2 mapped to [0, 1) */
@@ -127,7 +144,8 @@ ggx_vec3 ggx_sample_ndf_stretch(const ggx_shape *s, double u1, double u2)
 {
     u1 = clamp01(u1);
     double r = sqrt(u1), phi = 2.0 * GGX_PI * clamp01(u2);
-    return unstretch(s, inside_lune(v3(r * cos(phi), r * sin(phi), sqrt(1.0 - u1)), v3(0.0, 0.0, 1.0)));
+    ggx_vec3 z = v3(0.0, 0.0, 1.0);
+    return finish_normal(s, v3(r * cos(phi), r * sin(phi), sqrt(1.0 - u1)), z, z);
 }
 
 ggx_vec2 ggx_sample_ndf_stretch_inv(const ggx_shape *s, ggx_vec3 m)
@@ -191,18 +209,18 @@ ggx_vec3 ggx_sample_vndf(const ggx_shape *s, ggx_vec3 v, double u1, double u2)
 
 ggx_vec3 ggx_sample_vndf_caps(const ggx_shape *s, ggx_vec3 v, double u1, double u2)
 {
-    ggx_vec3 vs = stretch_view(s, v);
-    if (vs.z == 0.0) return zero3;
+    ggx_vec3 vn, vs = stretch_view(s, v, &vn);
+    if (is_zero(vs)) return zero3; /* no view; note vs.z = 0 is a valid view (skewed A, grazing v) */
     double phi = 2.0 * GGX_PI * clamp01(u1);
     double z = (1.0 - clamp01(u2)) * (1.0 + vs.z) - vs.z;
     double r = sqrt(fmax(0.0, 1.0 - z * z));
     ggx_vec3 h = v3(vs.x + r * cos(phi), vs.y + r * sin(phi), vs.z + z); /* unnormalised sphere-space normal */
-    return unstretch(s, inside_lune(h, vs)); /* also covers c = -v', where h vanishes */
+    return finish_normal(s, h, vs, vn); /* also covers c = -v', where h vanishes */
 }
 
 ggx_vec2 ggx_sample_vndf_caps_inv(const ggx_shape *s, ggx_vec3 v, ggx_vec3 m)
 {
-    ggx_vec3 vs = stretch_view(s, v), ms = stretch_normal(s, m);
+    ggx_vec3 vn, vs = stretch_view(s, v, &vn), ms = stretch_normal(s, m);
     ggx_vec3 c = v3_sub(v3_scale(ms, 2.0 * v3_dot(vs, ms)), vs); /* reflect v' about m' */
     ggx_vec2 u = {angle01(c.y, c.x), clamp01(1.0 - (c.z + vs.z) / (1.0 + vs.z))};
     return u;
@@ -219,21 +237,21 @@ static void crescent_frame(ggx_vec3 vs, ggx_vec3 *e1, ggx_vec3 *e2)
 
 static ggx_vec3 crescent(const ggx_shape *s, ggx_vec3 v, ggx_vec2 d)
 {
-    ggx_vec3 vs = stretch_view(s, v);
-    if (vs.z == 0.0) return zero3;
+    ggx_vec3 vn, vs = stretch_view(s, v, &vn);
+    if (is_zero(vs)) return zero3; /* no view; note vs.z = 0 is a valid view (skewed A, grazing v) */
     ggx_vec3 e1, e2;
     crescent_frame(vs, &e1, &e2);
     double sc = 0.5 * (1.0 + vs.z); /* eq 38 with A n / ||A n|| = z */
     double xb = sc * d.x + (1.0 - sc) * sqrt(fmax(0.0, 1.0 - d.y * d.y)); /* eq 39 */
     double zb = sqrt(fmax(0.0, 1.0 - xb * xb - d.y * d.y));             /* eq 41 */
     ggx_vec3 p = v3_add(v3_add(v3_scale(e1, xb), v3_scale(e2, d.y)), v3_scale(vs, zb)); /* eq 45 */
-    return unstretch(s, inside_lune(p, vs));
+    return finish_normal(s, p, vs, vn);
 }
 
 /* Disk coordinates of m under the crescent map: the inverse of eq 39-45. */
 static ggx_vec2 crescent_disk(const ggx_shape *s, ggx_vec3 v, ggx_vec3 m)
 {
-    ggx_vec3 vs = stretch_view(s, v), p = stretch_normal(s, m), e1, e2;
+    ggx_vec3 vn, vs = stretch_view(s, v, &vn), p = stretch_normal(s, m), e1, e2;
     crescent_frame(vs, &e1, &e2);
     double sc = 0.5 * (1.0 + vs.z);
     double xb = v3_dot(p, e1), yb = v3_dot(p, e2);
@@ -271,20 +289,20 @@ static void heitz_frame(ggx_vec3 vs, ggx_vec3 *t1, ggx_vec3 *t2)
 
 ggx_vec3 ggx_sample_vndf_heitz(const ggx_shape *s, ggx_vec3 v, double u1, double u2)
 {
-    ggx_vec3 vs = stretch_view(s, v);
-    if (vs.z == 0.0) return zero3;
+    ggx_vec3 vn, vs = stretch_view(s, v, &vn);
+    if (is_zero(vs)) return zero3; /* no view; note vs.z = 0 is a valid view (skewed A, grazing v) */
     ggx_vec3 t1, t2;
     heitz_frame(vs, &t1, &t2);
     ggx_vec2 d = ggx_disk_polar(u1, u2);
     double sq = 0.5 * (1.0 + vs.z);
     double y = (1.0 - sq) * sqrt(fmax(0.0, 1.0 - d.x * d.x)) + sq * d.y; /* the squish (Engstad's zeta) */
     double z = sqrt(fmax(0.0, 1.0 - d.x * d.x - y * y));
-    return unstretch(s, inside_lune(v3_add(v3_add(v3_scale(t1, d.x), v3_scale(t2, y)), v3_scale(vs, z)), vs));
+    return finish_normal(s, v3_add(v3_add(v3_scale(t1, d.x), v3_scale(t2, y)), v3_scale(vs, z)), vs, vn);
 }
 
 ggx_vec2 ggx_sample_vndf_heitz_inv(const ggx_shape *s, ggx_vec3 v, ggx_vec3 m)
 {
-    ggx_vec3 vs = stretch_view(s, v), p = stretch_normal(s, m), t1, t2;
+    ggx_vec3 vn, vs = stretch_view(s, v, &vn), p = stretch_normal(s, m), t1, t2;
     heitz_frame(vs, &t1, &t2);
     double sq = 0.5 * (1.0 + vs.z);
     double x = v3_dot(p, t1), y = v3_dot(p, t2);
@@ -333,8 +351,8 @@ ggx_vec3 ggx_sample_vndf_walter_v1(const ggx_shape *s, ggx_vec3 v, ggx_uniform_f
                                    unsigned *trials)
 {
     if (trials) *trials = 0;
+    v = safe_unit(v);
     if (!(v.z > 0.0) || !next) return zero3;
-    v = normalize(v);
     double R = (1.0 + 1e-9) / sigma_min(s); /* bounding sphere of {x : ||A x|| = 1}, with a rounding margin */
     ggx_vec3 f1, f2;
     perp_frame(v, &f1, &f2);
@@ -352,7 +370,7 @@ ggx_vec3 ggx_sample_vndf_walter_v1(const ggx_shape *s, ggx_vec3 v, ggx_uniform_f
         double tt = (-b + sqrt(disc)) / aa;
         ggx_vec3 ax = v3_add(ao, v3_scale(av, tt)); /* A x, a point of the unit sphere */
         if (ax.z < 0.0) continue;                   /* m.n < 0: outside the truncated ellipsoid */
-        return unstretch(s, inside_lune(ax, normalize(av)));
+        return finish_normal(s, ax, normalize(av), v);
     }
     return zero3;
 }
@@ -361,8 +379,8 @@ ggx_vec3 ggx_sample_vndf_walter_v2(const ggx_shape *s, ggx_vec3 v, ggx_uniform_f
                                    unsigned *trials)
 {
     if (trials) *trials = 0;
-    ggx_vec3 vs = stretch_view(s, v);
-    if (vs.z == 0.0 || !next) return zero3;
+    ggx_vec3 vn, vs = stretch_view(s, v, &vn);
+    if (is_zero(vs) || !next) return zero3;
     ggx_vec3 f1, f2;
     perp_frame(vs, &f1, &f2);
     for (unsigned t = 1; t <= MAX_TRIALS; t++) {
@@ -373,7 +391,7 @@ ggx_vec3 ggx_sample_vndf_walter_v2(const ggx_shape *s, ggx_vec3 v, ggx_uniform_f
         double h = sqrt(fmax(0.0, 1.0 - d.x * d.x - d.y * d.y));
         ggx_vec3 p = v3_add(v3_add(v3_scale(f1, d.x), v3_scale(f2, d.y)), v3_scale(vs, h));
         if (p.z < 0.0) continue; /* outside the lune */
-        return unstretch(s, inside_lune(p, vs));
+        return finish_normal(s, p, vs, vn);
     }
     return zero3;
 }
@@ -395,6 +413,7 @@ double ggx_pdf_brdf(const ggx_shape *s, ggx_vec3 wi, ggx_vec3 wo)
 
 ggx_sample ggx_sample_brdf(const ggx_shape *s, const ggx_fresnel *f, ggx_vec3 wi, double u1, double u2)
 {
+    wi = safe_unit(wi); /* the samplers depend on the direction of the view only */
     if (!(wi.z > 0.0)) return invalid_sample();
     ggx_vec3 m = ggx_sample_vndf(s, wi, u1, u2);
     double wm = v3_dot(wi, m);
@@ -421,7 +440,8 @@ static void sides(double eta, ggx_vec3 v, double *eta_v, double *eta_t)
 ggx_sample ggx_sample_bsdf(const ggx_shape *s, double eta, ggx_vec3 v, double u1, double u2, double u3,
                            ggx_transport mode)
 {
-    if (!(eta > 0.0 && eta < HUGE_VAL) || !(v.z != 0.0) || !isfinite(v.x + v.y)) return invalid_sample();
+    v = safe_unit(v); /* the samplers depend on the direction of the view only */
+    if (!(eta > 0.0 && eta < HUGE_VAL) || !(v.z != 0.0)) return invalid_sample();
     ggx_vec3 vu = v.z > 0.0 ? v : v3_neg(v);
     ggx_vec3 m = ggx_sample_vndf(s, vu, u1, u2);
     double vm = v3_dot(vu, m);

@@ -38,6 +38,7 @@ static ggx_status shape_from_matrix(ggx_shape *s, const double A[3][3])
     for (int i = 0; i < 3; i++)
         for (int j = 0; j < 3; j++) fro2 += a[i][j] * a[i][j];
     double fro = sqrt(fro2);
+    if (fro > 0.0 && (fro > GGX_MATRIX_SCALE_MAX || fro < 1.0 / GGX_MATRIX_SCALE_MAX)) return GGX_ERR_RANGE;
     if (!(fabs(det) > GGX_SINGULAR_TOL * fro2 * fro)) return GGX_ERR_SINGULAR;
 
     /* -A describes the same distributions (left-multiplication by the orthogonal -I); keeping det > 0 lets the

@@ -40,6 +40,8 @@ static void shape_statuses(void **state)
     const double near[3][3] = {{1e-7, 0, 0}, {0, 1e-7, 0}, {0, 0, 1}};
     const double nanm[3][3] = {{1, 0, 0}, {0, NAN, 0}, {0, 0, 1}};
     const double zero[3][3] = {{0}};
+    const double huge[3][3] = {{1e60, 0, 0}, {0, 1e60, 0}, {0, 0, 1e60}}, tiny[3][3] = {{1e-60, 0, 0}, {0, 1e-60, 0}, {0, 0, 1e-60}};
+    CHECK(ggx_shape_matrix(&s, huge) == GGX_ERR_RANGE && ggx_shape_matrix(&s, tiny) == GGX_ERR_RANGE, "matrix scale");
     CHECK(ggx_shape_matrix(&s, sing) == GGX_ERR_SINGULAR, "rank 2");
     CHECK(ggx_shape_matrix(&s, near) == GGX_ERR_SINGULAR, "near singular");
     CHECK(ggx_shape_matrix(&s, zero) == GGX_ERR_SINGULAR, "zero");

@@ -23,9 +23,30 @@
  * - Setup functions (ggx_shape_*, ggx_fresnel_*) validate their input and return a ggx_status; on failure the
  *   output is left unchanged. ggx_status_str() gives a one-line English message.
  * - Hot functions (everything taking a const ggx_shape *) do no allocation and no validation beyond what is stated;
- *   the shape must come from a successful setup call. For finite inputs they return a finite value >= 0. For a
- *   direction outside the documented domain (below the horizon where that is not allowed, a zero vector) they
- *   return exactly 0. A NaN in any direction component yields 0 (never NaN).
+ *   the shape must come from a successful setup call.
+ *
+ * The numerical contract (tests/test_robust.c proves it on an adversarial table and 10^7 random inputs per
+ * function; tests/fuzz/ feeds raw bytes to every function under AddressSanitizer and UndefinedBehaviorSanitizer)
+ * ---------------------------------------------------------------------------------------------------------------
+ * - Evaluations: for any input they return a finite value >= 0 (ggx_lambda: finite, and negative only for skewed
+ *   shapes). Outside the documented domain (a direction below the horizon where that is not allowed, a zero vector)
+ *   the result is exactly 0.
+ * - NaN: a NaN or infinite component in a direction, or a NaN parameter of a hot function, gives 0 (evaluations),
+ *   the zero vector (samplers) or an invalid sample. NaN random numbers u are treated as 0; u outside [0, 1] is
+ *   clamped.
+ * - Non-unit directions: directions are not normalised (a precondition, not checked, to keep hot paths lean); a
+ *   non-unit vector still gives a finite value >= 0, but it is the formula evaluated at that vector. The samplers'
+ *   view v is the exception: they depend on its direction only.
+ * - Samplers of normals return a unit vector (| ||m|| - 1 | <= 1e-12) with a finite pdf > 0 under the matching pdf
+ *   function, or the zero vector when no sample exists (view at or below the horizon, a skewed shape for
+ *   ggx_sample_ndf_inversion, an exhausted rejection budget, or a visible part of the truncated ellipsoid below
+ *   1e-9 of its silhouette, A_l(v, n) < 1e-9 A_e(v): a view within ~1e-9 of grazing it, which only an
+ *   ill-conditioned A produces). Points on the rim of the lune, which would give a normal on the horizon or edge-on
+ *   to the view (pdf 0), are moved inside (by 2^-30 in sphere space, a set of probability about 1e-9).
+ * - Direction samples are either valid (unit w, finite pdf > 0, finite weight >= 0; the reflection weight is <= 1
+ *   exactly, eq 52) or marked GGX_EVENT_INVALID with w = 0, pdf = 0, weight = 0.
+ * - Shapes: alpha in [GGX_ALPHA_MIN, GGX_ALPHA_MAX] (tested from 1e-4 to 10 with ratios to 1:1000), skews up to
+ *   GGX_SKEW_MAX; matrices must be well-conditioned (GGX_SINGULAR_TOL) and of moderate scale (GGX_MATRIX_SCALE_MAX).
  *
  * Accuracy: all functions work in double precision with a fixed, short sequence of operations; the tests check
  * them against independent evaluations (closed-form GGX, quadrature of the defining integrals, finite
@@ -51,6 +72,9 @@ extern "C" {
 /* ggx_shape_matrix refuses A when |det A| <= GGX_SINGULAR_TOL * ||A||_F^3 (the determinant relative to the
  * matrix's scale, roughly sigma_min^2 / sigma_max^2 for a matrix with two small singular values). */
 #define GGX_SINGULAR_TOL 1e-12
+/* ggx_shape_matrix refuses A when ||A||_F is outside [1 / GGX_MATRIX_SCALE_MAX, GGX_MATRIX_SCALE_MAX]: D and the
+ * areas are computed from |A| ~ ||A||^3 and would underflow or overflow. (c A describes the same distribution.) */
+#define GGX_MATRIX_SCALE_MAX 1e50
 
 typedef struct ggx_vec3 {
     double x, y, z;
@@ -116,7 +140,8 @@ ggx_status ggx_shape_ellipsoid(ggx_shape *s, double alpha_x, double alpha_y, dou
 /* Any invertible A, row-major (A[row][col], so A n is the last column). A and c A (c != 0) and Q A (Q orthogonal)
  * give the same distributions; a negative determinant is handled by using -A. Absolute areas
  * (ggx_projected_area, ggx_lune_area) and the curvature do depend on the scale of A (Ce = 1).
- * Errors: GGX_ERR_NULL, GGX_ERR_NONFINITE, GGX_ERR_SINGULAR (|det A| <= GGX_SINGULAR_TOL ||A||_F^3). */
+ * Errors: GGX_ERR_NULL, GGX_ERR_NONFINITE, GGX_ERR_SINGULAR (|det A| <= GGX_SINGULAR_TOL ||A||_F^3), GGX_ERR_RANGE
+ * (||A||_F outside [1 / GGX_MATRIX_SCALE_MAX, GGX_MATRIX_SCALE_MAX]). */
 ggx_status ggx_shape_matrix(ggx_shape *s, const double A[3][3]);
 
 /* ------------------------------------------------------------------------------------------------------------

@@ -7,8 +7,11 @@
 
 #include "cli.h"
 
+jmp_buf *cli_die_jump;
+
 void die(const char *fmt, ...)
 {
+    if (cli_die_jump) longjmp(*cli_die_jump, 1);
     va_list ap;
     va_start(ap, fmt);
     fputs("ggx: ", stderr);

@@ -2,13 +2,16 @@
 #ifndef GGX_CLI_H
 #define GGX_CLI_H
 
+#include <setjmp.h>
 #include <stddef.h>
 #include <stdio.h>
 
 #include "ggx/ggx.h"
 
-/* Prints "ggx: <message>" on stderr and exits with status 2 (bad input, unwritable output). */
+/* Prints "ggx: <message>" on stderr and exits with status 2 (bad input, unwritable output). When cli_die_jump is
+ * set (by the fuzz target of the parsers) it jumps there silently instead. */
 void die(const char *fmt, ...) __attribute__((format(printf, 1, 2), noreturn));
+extern jmp_buf *cli_die_jump;
 
 /* ---- options ---- */
 typedef struct options {
