@@ -62,11 +62,19 @@ double normal_density(void *vc, int region, ggx_vec3 k)
     return c->pdf(c->s, c->v, m) * j;
 }
 
+chi2_result chi2_run_scaled(const chi2_problem *p, uint64_t seed, double alpha)
+{
+    long n = chi2_samples();
+    int nt, np;
+    chi2_grid(n, &nt, &np);
+    return chi2_run(p, n, nt, np, seed, alpha);
+}
+
 chi2_result run_normal_chi2(normal_ctx *c, const char *name, uint64_t seed, double *min_p)
 {
     chi2_problem p = {name, 1, normal_draw, normal_key, normal_density, c};
     double alpha = chi2_sidak(CHI2_SUITE_RUNS);
-    chi2_result r = chi2_run(&p, 1000000, 100, 200, seed, alpha);
+    chi2_result r = chi2_run_scaled(&p, seed, alpha);
     chi2_runs_done++;
     CHECK(r.zero_cell_hits == 0, "%s: %ld samples where the pdf is zero", name, r.zero_cell_hits);
     CHECK(r.pvalue >= alpha, "%s: chi2 %.1f, dof %d, p = %.3g < %.3g (histogram in chi2_*.csv)", name, r.stat, r.dof,

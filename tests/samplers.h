@@ -47,6 +47,9 @@ double normal_density(void *ctx, int region, ggx_vec3 k);
  * level and records the smallest p-value in *min_p. Returns the result. */
 chi2_result run_normal_chi2(normal_ctx *c, const char *name, uint64_t seed, double *min_p);
 
+/* chi2_run with chi2_samples() samples on the chi2_grid() for them. */
+chi2_result chi2_run_scaled(const chi2_problem *p, uint64_t seed, double alpha);
+
 /* Number of chi-square runs made so far by this program. */
 extern int chi2_runs_done;
 

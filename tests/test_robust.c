@@ -9,12 +9,7 @@
 
 #include "testlib.h"
 
-static double scale(void)
-{
-    const char *e = getenv("GGX_TEST_SCALE");
-    double s = e ? atof(e) : 1.0;
-    return s > 0 ? s : 1.0;
-}
+static double scale(void) { return test_scale(); }
 
 typedef ggx_vec3 (*vndf_fn)(const ggx_shape *, ggx_vec3, double, double);
 typedef ggx_vec3 (*ndf_fn)(const ggx_shape *, double, double);
@@ -194,8 +189,54 @@ static void properties(void **state)
     printf("properties: %ld evaluations and %ld samples checked (GGX_TEST_SCALE %g)\n", evals, n_checked, scale());
 }
 
+
+/* The inputs the fuzzers found, each once a contract violation (see tests/fuzz/), kept as regressions. */
+static void fuzz_regressions(void **state)
+{
+    (void)state;
+    ggx_shape s;
+    /* 1. A view a denormal above the horizon: eq 33 computed via 1/v.z overflowed to pdf 0. */
+    make_shape(&s, (shape_params){0.3, 0.6, 0.4, -0.3, 0.5});
+    ggx_vec3 v = t_vec(1.0, 3.4e-317, 3.4e-317);
+    ggx_vec3 m = ggx_sample_vndf_caps(&s, v, 0.0, 0.796875);
+    check_normal(m, ggx_pdf_vndf(&s, v, m), 0, "denormal view", v, 0, 0.796875);
+    /* 2. eta = 3.8e-311: eta^2 underflowed and Fresnel became 0/0. */
+    double F = ggx_fresnel_dielectric_eval(-5.5e303, 3.80261645741e-311);
+    CHECK(isfinite(F) && F >= 0 && F <= 1, "Fresnel with a denormal eta: %g", F);
+    /* 3. A huge, non-unit view: the direction samplers reflected the raw vector. */
+    make_shape(&s, (shape_params){0.3, 0.6, 0.4, 0.0, 0.0});
+    check_dir_sample(ggx_sample_bsdf(&s, 0.5, t_vec(-2.68e154, 3.06e-57, -2.35e-185), 0.3, 0.4, 0.5, GGX_RADIANCE), "huge view", v);
+    /* 4. A grazing view whose sphere-space z rounds to 0 was taken for "no view". */
+    make_shape(&s, (shape_params){GGX_ALPHA_MIN, 10, 0, 0, 0});
+    v = t_normalize(t_vec(-0.30018382352934053, 0.5, 5e-324));
+    m = ggx_sample_vndf_caps(&s, v, 1.5e-47, 0.0);
+    check_normal(m, ggx_pdf_vndf(&s, v, m), 0, "sphere-space z = 0", v, 0, 0);
+    /* 5. alpha 1e-4 with a skew: rounding in A^T p flipped the sign of m.v. */
+    make_shape(&s, (shape_params){6.98e-11, 0.6, 0.4, -0.30018310546875, 0.0});
+    v = t_normalize(t_vec(-1.1248561337499643e+60 / 1e60, 0.0, 0.15 / 1e60));
+    m = ggx_sample_vndf_caps(&s, v, 0.3, 1.0);
+    check_normal(m, ggx_pdf_vndf(&s, v, m), 0, "ill-conditioned skew", v, 0.3, 1.0);
+    /* 6. Refraction out of eta = 3584: the refracted vector missed unit length by more than 1e-12. */
+    make_shape(&s, (shape_params){GGX_ALPHA_MIN, GGX_ALPHA_MIN, 0, 0, 0});
+    for (int i = 0; i < 1000; i++) {
+        ggx_sample x = ggx_sample_bsdf(&s, 3584.0, t_vec(0, 1e-9, -1), i / 1000.0, 0.5, 0.99, GGX_RADIANCE);
+        check_dir_sample(x, "eta 3584", v);
+    }
+    /* 7. A near-rank-2 matrix viewed 2e-97 above the horizon: the visible lune is ~4e-10 rad wide; the sampler
+     * returns the zero vector, which the contract allows only where A_l(v, n) < 1e-9 A_e(v). */
+    const double c = -1.3476555094338099e+28;
+    const double A[3][3] = {{-1.3476555065836185e+28, c, c}, {c, -4.152681998449859e+28, c}, {c, c, c}};
+    CHECK(ggx_shape_matrix(&s, A) == GGX_OK, "matrix");
+    v = t_vec(-1.0, 0.0859375 / 4.27211095142165e+96, 0.99609375 / 4.27211095142165e+96);
+    m = ggx_sample_vndf_caps(&s, v, 0.99609375, 0.99609375);
+    if (m.x == 0 && m.y == 0 && m.z == 0)
+        CHECK(ggx_lune_area(&s, v, t_vec(0, 0, 1)) < 1e-9 * ggx_projected_area(&s, v), "zero vector outside the sliver case");
+    else
+        check_normal(m, ggx_pdf_vndf(&s, v, m), 0, "near-rank-2", v, 0.99609375, 0.99609375);
+}
+
 int main(void)
 {
-    const struct CMUnitTest tests[] = {cmocka_unit_test(adversarial), cmocka_unit_test(properties)};
+    const struct CMUnitTest tests[] = {cmocka_unit_test(adversarial), cmocka_unit_test(properties), cmocka_unit_test(fuzz_regressions)};
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

@@ -85,7 +85,7 @@ static chi2_result run_dir(dir_ctx *c, const char *name, uint64_t seed, double *
 {
     chi2_problem p = {name, c->eta == 0.0 ? 1 : 2, dir_draw, dir_key, dir_density, c};
     double alpha = chi2_sidak(CHI2_SUITE_RUNS);
-    chi2_result r = chi2_run(&p, 1000000, 100, 200, seed, alpha);
+    chi2_result r = chi2_run_scaled(&p, seed, alpha);
     chi2_runs_done++;
     CHECK(r.zero_cell_hits == 0, "%s: %ld samples where the pdf is zero", name, r.zero_cell_hits);
     CHECK(r.pvalue >= alpha, "%s: chi2 %.1f, dof %d, p = %.3g", name, r.stat, r.dof, r.pvalue);

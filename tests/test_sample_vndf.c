@@ -80,7 +80,7 @@ static void negative_controls(void **state)
     make_shape(&s, SWEEP_SHAPES[1].p);
     normal_ctx c = {&s, sweep_view(80.0), ggx_sample_vndf_caps, NULL, NULL, pdf_no_g1, 0, 0};
     chi2_problem p = {"negative control G1 dropped", 1, normal_draw, normal_key, normal_density, &c};
-    chi2_result r = chi2_run(&p, 1000000, 100, 200, 77, 0.0);
+    chi2_result r = chi2_run_scaled(&p, 77, 0.0);
     chi2_runs_done++;
     CHECK(r.pvalue < alpha, "the VNDF pdf without G1 was not rejected: p = %.3g", r.pvalue);
     printf("negative control, pdf with G1 dropped (iso 0.3, view 80): chi2 %.4g, dof %d, p = %.3g\n", r.stat, r.dof,
@@ -89,14 +89,14 @@ static void negative_controls(void **state)
     make_shape(&k, SWEEP_SHAPES[6].p);
     normal_ctx c2 = {&k, sweep_view(30.0), crescent_wrong_s, NULL, NULL, ggx_pdf_vndf, 0, 0};
     chi2_problem p2 = {"negative control s from A^-T n", 1, normal_draw, normal_key, normal_density, &c2};
-    r = chi2_run(&p2, 1000000, 100, 200, 78, 0.0);
+    r = chi2_run_scaled(&p2, 78, 0.0);
     chi2_runs_done++;
     CHECK(r.pvalue < alpha, "the crescent with s from A^-T n was not rejected: p = %.3g", r.pvalue);
     printf("negative control, crescent s from A^-T n (skew 0.3:1, view 30): chi2 %.4g, dof %d, p = %.3g\n", r.stat,
            r.dof, r.pvalue);
     /* The same wrong sampler is indistinguishable on an unskewed shape (A n and A^{-T} n are both along n). */
     make_shape(&k, SWEEP_SHAPES[4].p);
-    r = chi2_run(&p2, 1000000, 100, 200, 79, 0.0);
+    r = chi2_run_scaled(&p2, 79, 0.0);
     chi2_runs_done++;
     CHECK(r.pvalue >= alpha, "unskewed: p = %.3g", r.pvalue);
 }

@@ -5,6 +5,22 @@
 #include <stdio.h>
 #include <stdlib.h>
 
+double test_scale(void)
+{
+    const char *e = getenv("GGX_TEST_SCALE");
+    double v = e ? atof(e) : 1.0;
+    return v > 0 ? v : 1.0;
+}
+
+long chi2_samples(void) { return (long)(1e6 * test_scale()); }
+
+void chi2_grid(long n, int *ntheta, int *nphi)
+{
+    int nt = (int)floor(sqrt((double)n / 100.0));
+    *ntheta = nt < 4 ? 4 : (nt > 100 ? 100 : nt);
+    *nphi = 2 * *ntheta;
+}
+
 shape_params random_shape(rng *r, double max_skew)
 {
     shape_params p;

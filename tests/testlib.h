@@ -25,6 +25,13 @@ void make_shape(ggx_shape *s, shape_params p); /* fails the test if setup fails 
 /* Random direction above the horizon; with probability 1/4 a grazing one (cos theta in [1e-6, 1e-2]). */
 ggx_vec3 random_view(rng *r);
 
+/* ---- scale of the statistical tests ---- */
+/* GGX_TEST_SCALE from the environment (default 1; the sanitizer build uses 0.1). */
+double test_scale(void);
+/* Samples for a chi-square run (10^6 at scale 1) and its grid (100 x 200 at scale 1, so that cells expect ~50). */
+long chi2_samples(void);
+void chi2_grid(long n, int *ntheta, int *nphi);
+
 /* ---- checks ---- */
 /* |got - want| <= abs_tol + rel_tol |want|; on failure prints what and fails the test. */
 #define CHECK_CLOSE(got, want, rel_tol, abs_tol, ...)                                                       \
