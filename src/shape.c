@@ -105,13 +105,17 @@ static ggx_status shape_from_matrix(ggx_shape *s, const double A[3][3])
             t.tangent_cos = 1.0;
             t.tangent_sin = 0.0;
         } else {
-            /* Eigenvectors of the 2x2 symmetric M: angle phi0 with tan(2 phi0) = 2 m01 / (m00 - m11). */
+            /* Eigen-decomposition of the 2x2 symmetric M = B^T B / e^2. The major axis is at phi0 with
+             * tan(2 phi0) = 2 m01 / (m00 - m11); its eigenvalue is computed without cancellation, and the minor one
+             * from the determinant, det M = (det B / e^2)^2, which stays accurate when B is nearly singular. */
             double phi0 = 0.5 * atan2(2.0 * m01, m00 - m11);
-            double cp = cos(phi0), sp = sin(phi0);
-            t.alpha_x = sqrt(cp * cp * m00 + 2.0 * cp * sp * m01 + sp * sp * m11);
-            t.alpha_y = sqrt(sp * sp * m00 - 2.0 * cp * sp * m01 + cp * cp * m11);
-            t.tangent_cos = cp;
-            t.tangent_sin = sp;
+            double half = 0.5 * (m00 - m11);
+            double lmax = 0.5 * (m00 + m11) + sqrt(half * half + m01 * m01);
+            double detb = fabs(t.a[0][0] * t.a[1][1] - t.a[0][1] * t.a[1][0]) / (e * e);
+            t.alpha_x = sqrt(lmax);
+            t.alpha_y = detb / t.alpha_x;
+            t.tangent_cos = cos(phi0);
+            t.tangent_sin = sin(phi0);
         }
         t.kind = diagonal ? GGX_SHAPE_DIAGONAL : GGX_SHAPE_UNSKEWED;
     } else {

@@ -233,6 +233,14 @@ static void fuzz_regressions(void **state)
         CHECK(ggx_lune_area(&s, v, t_vec(0, 0, 1)) < 1e-9 * ggx_projected_area(&s, v), "zero vector outside the sliver case");
     else
         check_normal(m, ggx_pdf_vndf(&s, v, m), 0, "near-rank-2", v, 0.99609375, 0.99609375);
+    /* 8. An unskewed matrix with a nearly singular tangent block: the small eigenvalue came out as sqrt(< 0). */
+    const double B[3][3] = {{-5.872759415309048e-21, -5.872761767629815e-21, 1.39855083927075e-310},
+                            {-5.8727593981205925e-21, -5.872761767629815e-21, 3.2544e-320},
+                            {3.983693430645e-312, 0.0, -5.872759398102019e-21}};
+    CHECK(ggx_shape_matrix(&s, B) == GGX_OK && s.kind != GGX_SHAPE_SKEWED, "near-singular tangent block");
+    CHECK(isfinite(s.alpha_x) && isfinite(s.alpha_y) && s.alpha_y >= 0, "alphas %g %g", s.alpha_x, s.alpha_y);
+    m = ggx_sample_ndf_inversion(&s, 3.9e-305, 0.99609375);
+    check_normal(m, ggx_pdf_ndf(&s, m), 0, "inversion, near-singular tangent block", t_vec(0, 0, 1), 0, 0.99609375);
 }
 
 int main(void)
