@@ -4,7 +4,7 @@ PREFIX ?= /usr/local
 JOBS ?= 2
 MAKEFLAGS += --no-print-directory
 
-.PHONY: all deps deps-dev configure build run example test test-long sanitize valgrind fuzz fuzz-ci install clean
+.PHONY: all deps deps-dev configure build run example bench test test-long sanitize valgrind fuzz fuzz-ci install clean
 
 all: build
 
@@ -24,6 +24,10 @@ build: configure
 # The main job on built-in defaults: the seeds' figures into out/ and a check of every sampler.
 run: build
 	@./$(BUILD)/ggx demo
+
+# Benchmarks: ns per call of every scalar function and batch kernel, ratios, and the machine's floors.
+bench: build
+	@./$(BUILD)/ggx_bench
 
 # The small C example of the library (D, G1 and the BRDF for a skewed shape).
 example: build

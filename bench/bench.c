@@ -1,0 +1,304 @@
+/* libggx benchmarks: ns per call (median of 9 runs after a warm-up) for the scalar double API and for every batch
+ * kernel on every instruction-set path, at an n that fits in L1 and at 64 MiB of data, with 1 and 2 threads; ratios
+ * within the same run; instructions per sample where perf counters are available; and the two floors of the batch
+ * VNDF sampler: arithmetic (its operations at the measured peak) and memory (its bytes at the measured copy
+ * bandwidth). Never part of the test suite. SPDX-License-Identifier: MIT */
+#define _GNU_SOURCE
+#include <immintrin.h>
+#include <linux/perf_event.h>
+#include <math.h>
+#include <stdint.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <sys/ioctl.h>
+#include <sys/syscall.h>
+#include <time.h>
+#include <unistd.h>
+
+#include "ggx/ggx.h"
+#include "ggx/ggx_batch.h"
+
+static double now(void)
+{
+    struct timespec t;
+    clock_gettime(CLOCK_MONOTONIC, &t);
+    return t.tv_sec + 1e-9 * t.tv_nsec;
+}
+
+static int cmp(const void *a, const void *b)
+{
+    double x = *(const double *)a, y = *(const double *)b;
+    return (x > y) - (x < y);
+}
+
+/* Instructions retired, or -1 when the machine has no counters (virtual machines often don't). */
+static int perf_fd = -2;
+static long long instr_begin(void)
+{
+    if (perf_fd == -2) {
+        struct perf_event_attr a;
+        memset(&a, 0, sizeof a);
+        a.size = sizeof a;
+        a.type = PERF_TYPE_HARDWARE;
+        a.config = PERF_COUNT_HW_INSTRUCTIONS;
+        a.exclude_kernel = 1;
+        a.exclude_hv = 1;
+        perf_fd = (int)syscall(SYS_perf_event_open, &a, 0, -1, -1, 0);
+    }
+    if (perf_fd < 0) return -1;
+    long long v;
+    if (read(perf_fd, &v, sizeof v) != sizeof v) return -1;
+    return v;
+}
+
+static volatile double sink;
+
+typedef void (*bench_fn)(void *ctx, long n);
+
+/* Median ns per call of fn over 9 runs of n calls after one warm-up run; *ipc_out instructions per call or -1. */
+static double time_it(bench_fn fn, void *ctx, long n, double *instr)
+{
+    double t[9];
+    fn(ctx, n);
+    long long i0 = instr_begin();
+    for (int r = 0; r < 9; r++) {
+        double a = now();
+        fn(ctx, n);
+        t[r] = (now() - a) / n * 1e9;
+    }
+    long long i1 = instr_begin();
+    if (instr) *instr = (i0 >= 0 && i1 >= 0) ? (double)(i1 - i0) / (9.0 * n) : -1;
+    qsort(t, 9, sizeof t[0], cmp);
+    return t[4];
+}
+
+/* ---------------------------------------------------------------- scalar double */
+
+enum { NS = 4096 };
+typedef struct sctx {
+    ggx_shape *s;
+    ggx_fresnel f;
+    ggx_vec3 v[NS], m[NS];
+    double u1[NS], u2[NS];
+} sctx;
+
+#define SCALAR_BENCH(name, expr)                                                                                  \
+    static void name(void *vc, long n)                                                                            \
+    {                                                                                                             \
+        sctx *c = vc;                                                                                             \
+        double acc = 0;                                                                                           \
+        for (long i = 0; i < n; i++) {                                                                            \
+            long k = i & (NS - 1);                                                                                \
+            (void)k;                                                                                              \
+            acc += expr;                                                                                          \
+        }                                                                                                         \
+        sink = acc;                                                                                               \
+    }
+SCALAR_BENCH(b_ndf, ggx_ndf(c->s, c->m[k]))
+SCALAR_BENCH(b_g1, ggx_g1(c->s, c->v[k], c->m[k]))
+SCALAR_BENCH(b_pdf, ggx_pdf_vndf(c->s, c->v[k], c->m[k]))
+SCALAR_BENCH(b_brdf, ggx_brdf_eval(c->s, &c->f, c->v[k], c->m[k]))
+SCALAR_BENCH(b_caps, ggx_sample_vndf_caps(c->s, c->v[k], c->u1[k], c->u2[k]).z)
+SCALAR_BENCH(b_crescent, ggx_sample_vndf_crescent(c->s, c->v[k], c->u1[k], c->u2[k]).z)
+SCALAR_BENCH(b_heitz, ggx_sample_vndf_heitz(c->s, c->v[k], c->u1[k], c->u2[k]).z)
+SCALAR_BENCH(b_stretch, ggx_sample_ndf_stretch(c->s, c->u1[k], c->u2[k]).z)
+SCALAR_BENCH(b_sbrdf, ggx_sample_brdf(c->s, &c->f, c->v[k], c->u1[k], c->u2[k]).weight)
+
+/* ---------------------------------------------------------------- batch */
+
+typedef struct bctx {
+    const ggx_shape *s;
+    ggx_fresnel f;
+    size_t n;
+    float *in[7], *out[5];
+    int op;
+} bctx;
+
+static void b_batch(void *vc, long reps)
+{
+    bctx *c = vc;
+    for (long r = 0; r < reps; r += (long)c->n) {
+        switch (c->op) {
+        case 0: ggx_batch_sample_vndf(c->out[0], c->out[1], c->out[2], c->n, c->s, c->in[0], c->in[1], c->in[2], c->in[3], c->in[4]); break;
+        case 1: ggx_batch_pdf_vndf(c->out[0], c->n, c->s, c->in[0], c->in[1], c->in[2], c->in[5], c->in[6], c->in[2]); break;
+        case 2: ggx_batch_ndf(c->out[0], c->n, c->s, c->in[5], c->in[6], c->in[2]); break;
+        case 3: ggx_batch_g1(c->out[0], c->n, c->s, c->in[0], c->in[1], c->in[2], c->in[5], c->in[6], c->in[2]); break;
+        case 4: ggx_batch_sample_ndf(c->out[0], c->out[1], c->out[2], c->n, c->s, c->in[3], c->in[4]); break;
+        case 5: ggx_batch_brdf(c->out[0], c->n, c->s, &c->f, c->in[0], c->in[1], c->in[2], c->in[5], c->in[6], c->in[2]); break;
+        case 6: ggx_batch_sample_brdf(c->out[0], c->out[1], c->out[2], c->out[3], c->out[4], c->n, c->s, &c->f, c->in[0], c->in[1], c->in[2], c->in[3], c->in[4]); break;
+        }
+    }
+}
+static const char *BATCH_NAMES[] = {"sample_vndf", "pdf_vndf", "ndf", "g1", "sample_ndf", "brdf", "sample_brdf"};
+static const int BATCH_BYTES[] = {32, 28, 16, 28, 20, 28, 40}; /* floats read + written per element, x 4 */
+
+/* ---------------------------------------------------------------- machine limits */
+
+/* Peak FMA throughput of this core in flops per ns (8 independent AVX2 FMA chains; each FMA is 16 flops). */
+__attribute__((target("avx2,fma"))) static double peak_flops(void)
+{
+    __m256 a[8], b = _mm256_set1_ps(0.999999f), c = _mm256_set1_ps(1e-7f);
+    for (int i = 0; i < 8; i++) a[i] = _mm256_set1_ps((float)i);
+    long n = 20000000;
+    double t0 = now();
+    for (long i = 0; i < n; i++)
+        for (int k = 0; k < 8; k++) a[k] = _mm256_fmadd_ps(a[k], b, c);
+    double t = now() - t0;
+    float out[8];
+    __m256 s = a[0];
+    for (int k = 1; k < 8; k++) s = _mm256_add_ps(s, a[k]);
+    _mm256_storeu_ps(out, s);
+    sink = out[0];
+    return (double)n * 8 * 16 / (t * 1e9);
+}
+
+/* ns per 8-wide sqrt and per 8-wide division, independent (throughput). */
+__attribute__((target("avx2,fma"))) static void sqrt_div_cost(double *ns_sqrt, double *ns_div)
+{
+    __m256 a[4], b[4], x = _mm256_set1_ps(1.0001f);
+    for (int i = 0; i < 4; i++) a[i] = b[i] = _mm256_set1_ps(2.0f + (float)i);
+    long n = 10000000;
+    double t0 = now();
+    for (long i = 0; i < n; i++)
+        for (int k = 0; k < 4; k++) a[k] = _mm256_sqrt_ps(_mm256_add_ps(a[k], x));
+    double t1 = now();
+    for (long i = 0; i < n; i++)
+        for (int k = 0; k < 4; k++) b[k] = _mm256_div_ps(x, _mm256_add_ps(b[k], x));
+    double t2 = now();
+    float o[8];
+    _mm256_storeu_ps(o, _mm256_add_ps(a[0], b[0]));
+    sink = o[0];
+    *ns_sqrt = (t1 - t0) * 1e9 / (n * 4.0);
+    *ns_div = (t2 - t1) * 1e9 / (n * 4.0);
+}
+
+/* Copy bandwidth in bytes per ns (read + write counted), from memcpy of 256 MiB. */
+static double copy_bandwidth(void)
+{
+    size_t n = 256u << 20;
+    char *a = malloc(n), *b = malloc(n);
+    memset(a, 1, n);
+    memset(b, 2, n);
+    double best = 0;
+    for (int r = 0; r < 5; r++) {
+        double t0 = now();
+        memcpy(b, a, n);
+        double t = now() - t0;
+        double bw = 2.0 * (double)n / (t * 1e9);
+        if (bw > best) best = bw;
+    }
+    sink = b[12345];
+    free(a);
+    free(b);
+    return best;
+}
+
+static double rnd(uint64_t *s)
+{
+    *s = *s * 6364136223846793005ull + 1442695040888963407ull;
+    return (double)(*s >> 11) * 0x1.0p-53;
+}
+
+int main(int argc, char **argv)
+{
+    int quick = argc > 1 && strcmp(argv[1], "--quick") == 0;
+    uint64_t seed = 1;
+    ggx_shape diag, skew;
+    ggx_shape_aniso(&diag, 0.15, 0.5);
+    ggx_shape_ellipsoid(&skew, 0.15, 0.5, 0.3, -0.2, 0.5);
+    static sctx sc;
+    ggx_fresnel_conductor(&sc.f, 0.2, 3.9);
+    for (int i = 0; i < NS; i++) {
+        double ct = 0.05 + 0.95 * rnd(&seed), ph = 6.283185307 * rnd(&seed), st = sqrt(1 - ct * ct);
+        sc.v[i] = (ggx_vec3){st * cos(ph), st * sin(ph), ct};
+        ct = 0.3 + 0.7 * rnd(&seed), ph = 6.283185307 * rnd(&seed), st = sqrt(1 - ct * ct);
+        sc.m[i] = (ggx_vec3){st * cos(ph), st * sin(ph), ct};
+        sc.u1[i] = rnd(&seed), sc.u2[i] = rnd(&seed);
+    }
+    long ns = quick ? 200000 : 2000000;
+    printf("libggx benchmark (%s); ns per call, median of 9 runs\n\n", quick ? "quick" : "full");
+    printf("scalar double API              diagonal A    skewed A   skewed/diag\n");
+    struct {
+        const char *name;
+        bench_fn f;
+    } sb[] = {{"ggx_ndf", b_ndf},         {"ggx_g1", b_g1},
+              {"ggx_pdf_vndf", b_pdf},    {"ggx_brdf_eval", b_brdf},
+              {"ggx_sample_vndf_caps", b_caps}, {"ggx_sample_vndf_crescent", b_crescent},
+              {"ggx_sample_vndf_heitz", b_heitz}, {"ggx_sample_ndf_stretch", b_stretch},
+              {"ggx_sample_brdf", b_sbrdf}};
+    double caps_diag = 0, caps_skew = 0, res[9][2];
+    for (unsigned k = 0; k < sizeof sb / sizeof sb[0]; k++) {
+        sc.s = &diag;
+        res[k][0] = time_it(sb[k].f, &sc, ns, NULL);
+        sc.s = &skew;
+        res[k][1] = time_it(sb[k].f, &sc, ns, NULL);
+        printf("%-28s %10.2f %11.2f %11.2f\n", sb[k].name, res[k][0], res[k][1], res[k][1] / res[k][0]);
+    }
+    caps_diag = res[4][0], caps_skew = res[4][1];
+    printf("\nsamplers relative to caps      diagonal A    skewed A\n");
+    for (int k = 5; k <= 6; k++) printf("%-28s %10.2f %11.2f\n", sb[k].name, res[k][0] / res[4][0], res[k][1] / res[4][1]);
+    printf("skewed caps / diagonal caps: %.2f (target <= 1.2)\n", caps_skew / caps_diag);
+
+    /* batch */
+    double peak = peak_flops(), ns_sqrt, ns_div;
+    sqrt_div_cost(&ns_sqrt, &ns_div);
+    double bw = copy_bandwidth();
+    printf("\nmachine: FMA peak %.1f GFLOP/s per core; 8-wide sqrt %.2f ns, 8-wide div %.2f ns (throughput); "
+           "copy bandwidth %.1f GB/s\n", peak, ns_sqrt, ns_div, bw);
+    size_t big = (64u << 20) / 32; /* 64 MiB of sample_vndf data (5 inputs + 3 outputs) */
+    size_t sizes[2] = {512, big};
+    float *in[7], *out[5];
+    for (int k = 0; k < 7; k++) in[k] = malloc(sizeof(float) * big);
+    for (int k = 0; k < 5; k++) out[k] = malloc(sizeof(float) * big);
+    for (size_t i = 0; i < big; i++) {
+        double ct = 0.05 + 0.95 * rnd(&seed), ph = 6.283185307 * rnd(&seed), st = sqrt(1 - ct * ct);
+        in[0][i] = (float)(st * cos(ph)), in[1][i] = (float)(st * sin(ph)), in[2][i] = (float)ct;
+        in[3][i] = (float)rnd(&seed), in[4][i] = (float)rnd(&seed);
+        in[5][i] = (float)(0.3 * st * cos(ph)), in[6][i] = (float)(0.3 * st * sin(ph));
+    }
+    const ggx_batch_isa isas[3] = {GGX_ISA_SCALAR, GGX_ISA_AVX2, GGX_ISA_AVX512};
+    double vndf_best = 1e9, vndf_scalar_isa = 0;
+    printf("\nbatch float API, ns per element      n = 512 (L1)        n = %zu (64 MiB)\n", big);
+    printf("%-14s %-8s %18s %12s %12s   instr/elem\n", "kernel", "isa", "1 thread", "1 thread", "2 threads");
+    for (int op = 0; op < 7; op++) {
+        for (int k = 0; k < 3; k++) {
+            if (ggx_batch_set_isa(isas[k]) != GGX_OK) continue;
+            bctx c = {op == 0 || op == 1 ? &skew : &skew, sc.f, 0, {0}, {0}, op};
+            memcpy(c.in, in, sizeof in);
+            memcpy(c.out, out, sizeof out);
+            double t[3], instr = -1;
+            c.n = sizes[0];
+            ggx_batch_set_threads(1);
+            t[0] = time_it(b_batch, &c, quick ? 200000 : 2000000, &instr);
+            c.n = sizes[1];
+            t[1] = time_it(b_batch, &c, (long)big * (quick ? 1 : 2), NULL);
+            ggx_batch_set_threads(2);
+            t[2] = time_it(b_batch, &c, (long)big * (quick ? 1 : 2), NULL);
+            ggx_batch_set_threads(1);
+            char ins[32];
+            if (instr >= 0) snprintf(ins, sizeof ins, "%.1f", instr);
+            else snprintf(ins, sizeof ins, "n/a");
+            printf("%-14s %-8s %18.3f %12.3f %12.3f   %s\n", BATCH_NAMES[op], ggx_batch_isa_name(isas[k]), t[0], t[1], t[2], ins);
+            if (op == 0 && t[0] < vndf_best) vndf_best = t[0];
+            if (op == 0 && isas[k] == GGX_ISA_SCALAR) vndf_scalar_isa = t[0];
+        }
+    }
+    ggx_batch_set_isa(GGX_ISA_AUTO);
+    /* Floors of batch sample_vndf (general A), lower bounds: its ~75 flops (two 3x3 products, two normalisations,
+     * the sincos polynomials, the cap and the rim test) at the FMA peak, and its 3 sqrt + 2 div per element on the
+     * divider (8 elements per vector) -- separate units, so the arithmetic floor is the larger of the two -- and the
+     * 32 bytes it moves at the copy bandwidth. */
+    double flop_t = 75.0 / peak, div_t = (3.0 * ns_sqrt + 2.0 * ns_div) / 8.0;
+    double arith = fmax(flop_t, div_t);
+    double mem = 32.0 / bw;
+    printf("\nbatch sample_vndf floors per element: arithmetic %.3f ns (FMA %.3f, sqrt/div %.3f), memory %.3f ns "
+           "(larger: %.3f ns)\n", arith, flop_t, div_t, mem, fmax(arith, mem));
+    printf("best batch sample_vndf (L1, 1 thread) %.3f ns = %.2f x the larger floor\n", vndf_best,
+           vndf_best / fmax(arith, mem));
+    printf("speed-up over scalar double ggx_sample_vndf_caps (skewed): %.1f x (baseline-ISA batch: %.1f x)\n",
+           caps_skew / vndf_best, caps_skew / vndf_scalar_isa);
+    for (int k = 0; k < 7; k++) free(in[k]);
+    for (int k = 0; k < 5; k++) free(out[k]);
+    return 0;
+}
