@@ -3,6 +3,7 @@
 #include <math.h>
 #include <stdio.h>
 
+#include "audit.h"
 #include "samplers.h"
 
 typedef struct named_vndf {
@@ -59,19 +60,6 @@ static double pdf_no_g1(const ggx_shape *s, ggx_vec3 v, ggx_vec3 m)
     double mv = t_dot(m, v);
     return mv > 0 ? ggx_ndf(s, m) * mv / v.z : 0.0;
 }
-static ggx_vec3 crescent_wrong_s(const ggx_shape *s, ggx_vec3 v, double u1, double u2)
-{
-    ggx_vec3 vs = t_normalize(t_matvec(s->a, v));
-    ggx_vec3 nt = t_normalize(t_matvec(s->ainv_t, t_vec(0, 0, 1))); /* A^{-T} n, the wrong pole */
-    double sc = 0.5 * (1.0 + t_dot(vs, nt));
-    double l = hypot(vs.x, vs.y);
-    ggx_vec3 e2 = l > 0 ? t_vec(vs.y / l, -vs.x / l, 0) : t_vec(0, 1, 0), e1 = t_cross(e2, vs);
-    ggx_vec2 d = ggx_disk_concentric(u1, u2);
-    double xb = sc * d.x + (1 - sc) * sqrt(fmax(0, 1 - d.y * d.y)), zb = sqrt(fmax(0, 1 - xb * xb - d.y * d.y));
-    ggx_vec3 p = t_add(t_add(t_scale(e1, xb), t_scale(e2, d.y)), t_scale(vs, zb));
-    if (p.z < 0) p.z = 0;
-    return t_normalize(t_mattvec(s->a, p));
-}
 static void negative_controls(void **state)
 {
     (void)state;
@@ -87,7 +75,7 @@ static void negative_controls(void **state)
            r.pvalue);
     ggx_shape k;
     make_shape(&k, SWEEP_SHAPES[6].p);
-    normal_ctx c2 = {&k, sweep_view(30.0), crescent_wrong_s, NULL, NULL, ggx_pdf_vndf, 0, 0};
+    normal_ctx c2 = {&k, sweep_view(30.0), verify_crescent_blog_s, NULL, NULL, ggx_pdf_vndf, 0, 0};
     chi2_problem p2 = {"negative control s from A^-T n", 1, normal_draw, normal_key, normal_density, &c2};
     r = chi2_run_scaled(&p2, 78, 0.0);
     chi2_runs_done++;

@@ -5,25 +5,11 @@
 #include <time.h>
 #include <unistd.h>
 
+#include "audit.h"
 #include "chi2.h"
 #include "cli.h"
 
 static const double DEG = 3.14159265358979323846 / 180.0;
-
-/* The blog's crescent factor s from A^-T n instead of A n: deliberately wrong for skewed shapes, so that `ggx check`
- * can be shown to fail. */
-static ggx_vec3 wrong_s(const ggx_shape *s, ggx_vec3 v, double u1, double u2)
-{
-    if (!(v.z > 0)) return t_vec(0, 0, 0);
-    ggx_vec3 vs = t_normalize(t_matvec(s->a, v)), nt = t_normalize(t_matvec(s->ainv_t, t_vec(0, 0, 1)));
-    double sc = 0.5 * (1.0 + t_dot(vs, nt)), l = hypot(vs.x, vs.y);
-    ggx_vec3 e2 = l > 0 ? t_vec(vs.y / l, -vs.x / l, 0) : t_vec(0, 1, 0), e1 = t_cross(e2, vs);
-    ggx_vec2 d = ggx_disk_concentric(u1, u2);
-    double xb = sc * d.x + (1 - sc) * sqrt(fmax(0, 1 - d.y * d.y)), zb = sqrt(fmax(0, 1 - xb * xb - d.y * d.y));
-    ggx_vec3 p = t_add(t_add(t_scale(e1, xb), t_scale(e2, d.y)), t_scale(vs, zb));
-    if (p.z < 0) p.z = 0;
-    return t_normalize(t_mattvec(s->a, p));
-}
 
 const sampler_info SAMPLERS[] = {
     {"stretch", 0, ggx_sample_ndf_stretch, NULL, NULL, "NDF: cosine hemisphere + elliptic stretch (Engstad)"},
@@ -38,7 +24,7 @@ const sampler_info SAMPLERS[] = {
     {"walter-v2", 2, NULL, NULL, ggx_sample_vndf_walter_v2, "VNDF: Walter version 2 (rejection, sphere space)"},
     {"brdf", 3, NULL, NULL, NULL, "directions: reflection sampling (eq 47-50), view = wi"},
     {"bsdf", 4, NULL, NULL, NULL, "directions: rough dielectric (Walter 2007), view = known direction, --eta"},
-    {"wrong-s", 1, NULL, wrong_s, NULL, "deliberately WRONG VNDF sampler (blog's s from A^-T n), to test ggx check"},
+    {"wrong-s", 1, NULL, verify_crescent_blog_s, NULL, "deliberately WRONG VNDF sampler (blog's s from A^-T n), to test ggx check"},
 };
 const int NSAMPLERS = sizeof SAMPLERS / sizeof SAMPLERS[0];
 

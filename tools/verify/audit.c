@@ -61,8 +61,9 @@ static ggx_vec3 ndf_inversion(const ggx_shape *s, ggx_vec3 v, double u1, double 
     (void)v;
     return ggx_sample_ndf_inversion(s, u1, u2);
 }
-static ggx_vec3 crescent_blog_s(const ggx_shape *s, ggx_vec3 v, double u1, double u2)
+ggx_vec3 verify_crescent_blog_s(const ggx_shape *s, ggx_vec3 v, double u1, double u2)
 {
+    if (!(v.z > 0)) return t_vec(0, 0, 0);
     ggx_vec3 vs = t_normalize(t_matvec(s->a, v)), nt = t_normalize(t_matvec(s->ainv_t, t_vec(0, 0, 1)));
     double sc = 0.5 * (1.0 + t_dot(vs, nt)), l = hypot(vs.x, vs.y);
     ggx_vec3 e2 = l > 0 ? t_vec(vs.y / l, -vs.x / l, 0) : t_vec(0, 1, 0), e1 = t_cross(e2, vs);
@@ -238,7 +239,7 @@ int audit_run(const double A[2][3][3], audit_row *rows, int progress)
     for (int k = 0; k < 2; k++) verdict_p(r, k, chi2_p(&sh[k], v, ggx_sample_vndf_crescent, pdf_vndf_v, 88 + (uint64_t)k));
 
     r = add(rows, &nr, "crescent-blog", "crescent factor with A^-T n: s = (1 + Av.A^-T n / (|Av| |A^-T n|)) / 2", "blog Part 2");
-    for (int k = 0; k < 2; k++) verdict_p(r, k, chi2_p(&sh[k], v, crescent_blog_s, pdf_vndf_v, 90 + (uint64_t)k));
+    for (int k = 0; k < 2; k++) verdict_p(r, k, chi2_p(&sh[k], v, verify_crescent_blog_s, pdf_vndf_v, 90 + (uint64_t)k));
 
     r = add(rows, &nr, "heitz", "Heitz / Engstad five steps (frame, disk, squish by (1 + z)/2, lift, unstretch) give the VNDF",
             "Engstad VNDF proof");

@@ -20,6 +20,10 @@ typedef struct audit_row {
 int audit_run(const double A[2][3][3], audit_row *rows, int progress);
 /* Writes the rows as a Markdown table. */
 void audit_markdown(FILE *f, const audit_row *rows, int n, const char *label_diag, const char *label_skew);
+/* The crescent sampler with the blog's factor s = (1 + Av.A^-T n / (|Av| |A^-T n|)) / 2 instead of Walter's A n: wrong
+ * for skewed shapes, right for unskewed ones. The negative control of the chi-square tests and `ggx check`'s
+ * deliberately wrong sampler. */
+ggx_vec3 verify_crescent_blog_s(const ggx_shape *s, ggx_vec3 v, double u1, double u2);
 /* Walter's A = diag(ax, ay, 1) Rx(tx) Ry(ty) Rz(tz), angles in radians. */
 void audit_walter_matrix(double A[3][3], double ax, double ay, double tx, double ty, double tz);
 
