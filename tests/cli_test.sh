@@ -55,6 +55,7 @@ fi
 # --- ggx check rejects a deliberately wrong sampler on a skewed shape (exit 1), accepts it when unskewed
 "$GGX" check --sampler wrong-s --skew 20,-15 ${N:--n 200000} > wrong.txt; [ $? -eq 1 ] && grep -q FAILED wrong.txt && ok || bad "check wrong-s must fail"
 "$GGX" check --sampler wrong-s ${N:--n 200000} > wrong0.txt; [ $? -eq 0 ] && ok || bad "wrong-s is right when unskewed"
+[ -z "$(ls chi2_*.csv 2>/dev/null)" ] && ok || bad "ggx check left files in the working folder"
 
 # --- bad input: exit 2, exactly one line on stderr starting with "ggx: ", no output file left behind
 expect2() { # description, expected-substring, command...

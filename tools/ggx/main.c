@@ -3,6 +3,7 @@
 #include <string.h>
 
 #include "audit.h"
+#include "chi2.h"
 #include "cli.h"
 
 static const double DEG = 3.14159265358979323846 / 180.0;
@@ -67,6 +68,7 @@ static void usage(FILE *f)
 
 int main(int argc, char **argv)
 {
+    chi2_write_failures = 0; /* ggx check reports in its table; it writes no file of its own */
     if (argc < 2) {
         usage(stderr);
         return 2;

@@ -156,6 +156,8 @@ int audit_run(const double A[2][3][3], audit_row *rows, int progress)
     for (int k = 0; k < 2; k++)
         if (ggx_shape_matrix(&sh[k], A[k]) != GGX_OK) return 0;
     g_progress = progress;
+    int dump = chi2_write_failures;
+    chi2_write_failures = 0; /* the claims that fail are answers, not test failures */
     const ggx_vec3 v = t_dir(1.2, -0.6), v_clip = t_dir(1.2, 2.5), n = t_vec(0, 0, 1);
     int nr = 0;
     audit_row *r;
@@ -330,6 +332,7 @@ int audit_run(const double A[2][3][3], audit_row *rows, int progress)
                  r->holds[k] ? "holds" : "**fails**", N / t1, got2, match ? "matches" : "differs from", want2);
     }
     if (progress) fputc('\n', stderr);
+    chi2_write_failures = dump;
     return nr;
 }
 

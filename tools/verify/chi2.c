@@ -44,6 +44,8 @@ double chi2_pvalue(double x, int dof)
     return y < a + 1.0 ? 1.0 - gamma_p_series(a, y) : gamma_q_cf(a, y);
 }
 
+int chi2_write_failures = 1;
+
 double chi2_sidak(int runs) { return 1.0 - pow(1.0 - 0.01, 1.0 / runs); }
 
 static const double g4x[4] = {-0.8611363115940526, -0.3399810435848563, 0.3399810435848563, 0.8611363115940526};
@@ -158,7 +160,7 @@ chi2_result chi2_run(const chi2_problem *p, long n, int ntheta, int nphi, uint64
     res.bins = bins;
     res.dof = bins - 1;
     res.pvalue = res.dof > 0 ? chi2_pvalue(stat, res.dof) : 1.0;
-    if (res.pvalue < alpha || res.zero_cell_hits > 0) {
+    if (chi2_write_failures && (res.pvalue < alpha || res.zero_cell_hits > 0)) {
         char path[256];
         snprintf(path, sizeof path, "chi2_%s.csv", p->name);
         for (char *c = path; *c; c++)

@@ -35,7 +35,9 @@ typedef struct chi2_result {
 } chi2_result;
 
 /* Runs the test with n samples. On failure (pvalue < alpha or any zero-cell hit) writes chi2_<name>.csv with
- * region, itheta, iphi, observed, expected into the working directory. */
+ * region, itheta, iphi, observed, expected into the working directory, unless chi2_write_failures is 0 (the ggx
+ * tool and the seed audit, whose failures are expected answers, turn it off). */
+extern int chi2_write_failures;
 chi2_result chi2_run(const chi2_problem *p, long n, int ntheta, int nphi, uint64_t seed, double alpha);
 
 /* Upper tail of the chi-square distribution, Q(dof / 2, x / 2) (regularised incomplete gamma). */
