@@ -22,12 +22,6 @@ ggx_vec3 sweep_view(double theta_deg)
     return t_dir(theta_deg * T_PI / 180.0, 0.7);
 }
 
-double pdf_ndf_any_v(const ggx_shape *s, ggx_vec3 v, ggx_vec3 m)
-{
-    (void)v;
-    return ggx_pdf_ndf(s, m);
-}
-
 static double uniform_cb(void *state) { return rng_uniform((rng *)state); }
 
 int normal_draw(void *vc, rng *r, ggx_vec3 *m)
@@ -35,31 +29,14 @@ int normal_draw(void *vc, rng *r, ggx_vec3 *m)
     normal_ctx *c = vc;
     double u1 = rng_uniform(r), u2 = rng_uniform(r);
     c->draws++;
-    if (c->vndf) *m = c->vndf(c->s, c->v, u1, u2);
-    else if (c->ndf) *m = c->ndf(c->s, u1, u2);
+    if (c->vndf) *m = c->vndf(c->keys.s, c->keys.v, u1, u2);
+    else if (c->ndf) *m = c->ndf(c->keys.s, u1, u2);
     else {
         unsigned t;
-        *m = c->reject(c->s, c->v, uniform_cb, r, &t);
+        *m = c->reject(c->keys.s, c->keys.v, uniform_cb, r, &t);
         c->trials += t;
     }
     return t_dot(*m, *m) > 0.5;
-}
-
-int normal_key(void *vc, ggx_vec3 m, int *region, ggx_vec3 *k)
-{
-    normal_ctx *c = vc;
-    *region = 0;
-    *k = key_of_normal(c->s, m);
-    return 1;
-}
-
-double normal_density(void *vc, int region, ggx_vec3 k)
-{
-    (void)region;
-    normal_ctx *c = vc;
-    double j;
-    ggx_vec3 m = normal_of_key(c->s, k, &j);
-    return c->pdf(c->s, c->v, m) * j;
 }
 
 chi2_result chi2_run_scaled(const chi2_problem *p, uint64_t seed, double alpha)
@@ -72,7 +49,7 @@ chi2_result chi2_run_scaled(const chi2_problem *p, uint64_t seed, double alpha)
 
 chi2_result run_normal_chi2(normal_ctx *c, const char *name, uint64_t seed, double *min_p)
 {
-    chi2_problem p = {name, 1, normal_draw, normal_key, normal_density, c};
+    chi2_problem p = {name, 1, normal_draw, normal_keys_key, normal_keys_density, c};
     double alpha = chi2_sidak(CHI2_SUITE_RUNS);
     chi2_result r = chi2_run_scaled(&p, seed, alpha);
     chi2_runs_done++;

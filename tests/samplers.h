@@ -22,26 +22,17 @@ ggx_vec3 sweep_view(double theta_deg);
 typedef ggx_vec3 (*vndf_fn)(const ggx_shape *, ggx_vec3, double, double);
 typedef ggx_vec3 (*ndf_fn)(const ggx_shape *, double, double);
 typedef ggx_vec3 (*reject_fn)(const ggx_shape *, ggx_vec3, ggx_uniform_fn, void *, unsigned *);
-typedef double (*pdf_fn)(const ggx_shape *, ggx_vec3 v, ggx_vec3 m);
 
 /* Sampler of normals under test: exactly one of vndf, ndf, reject is set. */
 typedef struct normal_ctx {
-    const ggx_shape *s;
-    ggx_vec3 v;
+    normal_keys keys; /* shape, view and the pdf the sampler is claimed to have; first, for normal_keys_* */
     vndf_fn vndf;
     ndf_fn ndf;
     reject_fn reject;
-    pdf_fn pdf; /* density of m the sampler is claimed to have */
     long trials, draws;
 } normal_ctx;
 
-/* The pdf of ggx_sample_ndf_* in the pdf_fn signature (v ignored). */
-double pdf_ndf_any_v(const ggx_shape *s, ggx_vec3 v, ggx_vec3 m);
-
-/* Sphere-space key k = normalize(A^{-T} m) and the key density pdf(m(k)) |A| / ||A^T k||^3. */
 int normal_draw(void *ctx, rng *r, ggx_vec3 *m);
-int normal_key(void *ctx, ggx_vec3 m, int *region, ggx_vec3 *k);
-double normal_density(void *ctx, int region, ggx_vec3 k);
 
 /* Runs one chi-square test of a normal sampler with 10^6 samples on 100 x 200 cells, checks it against the Sidak
  * level and records the smallest p-value in *min_p. Returns the result. */

@@ -9,8 +9,6 @@
 
 #include "testlib.h"
 
-static double scale(void) { return test_scale(); }
-
 typedef ggx_vec3 (*vndf_fn)(const ggx_shape *, ggx_vec3, double, double);
 typedef ggx_vec3 (*ndf_fn)(const ggx_shape *, double, double);
 static const struct {
@@ -167,7 +165,7 @@ static void properties(void **state)
 {
     (void)state;
     rng r = {91};
-    long n_eval = (long)(1e7 * scale()), n_samp = (long)(1e7 * scale());
+    long n_eval = (long)(1e7 * test_scale()), n_samp = (long)(1e7 * test_scale());
     n_checked = 0;
     ggx_shape s;
     for (long i = 0; i < n_eval; i++) {
@@ -186,7 +184,7 @@ static void properties(void **state)
         ggx_vec3 v = any_dir(&r);
         check_samplers(&s, v, rng_uniform(&r), rng_uniform(&r), rng_uniform(&r), "random");
     }
-    printf("properties: %ld evaluations and %ld samples checked (GGX_TEST_SCALE %g)\n", evals, n_checked, scale());
+    printf("properties: %ld evaluations and %ld samples checked (GGX_TEST_SCALE %g)\n", evals, n_checked, test_scale());
 }
 
 

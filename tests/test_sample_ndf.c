@@ -33,7 +33,7 @@ static void ndf_sweep(void **state)
                 CHECK(m.x == 0 && m.y == 0 && m.z == 0, "%s on a skewed shape must return 0", SAMPLERS[k].name);
                 continue;
             }
-            normal_ctx c = {&s, t_vec(0, 0, 1), NULL, SAMPLERS[k].f, NULL, pdf_ndf_any_v, 0, 0};
+            normal_ctx c = {{&s, t_vec(0, 0, 1), verify_pdf_ndf}, NULL, SAMPLERS[k].f, NULL, 0, 0};
             char name[128];
             snprintf(name, sizeof name, "ndf %s, %s", SAMPLERS[k].name, SWEEP_SHAPES[i].name);
             run_normal_chi2(&c, name, 5000 + 100 * k + i, &min_p);
@@ -49,8 +49,8 @@ static void ndf_negative_control(void **state)
     (void)state;
     ggx_shape s;
     make_shape(&s, SWEEP_SHAPES[1].p);
-    normal_ctx c = {&s, sweep_view(80.0), NULL, ggx_sample_ndf_stretch, NULL, ggx_pdf_vndf, 0, 0};
-    chi2_problem p = {"ndf negative control", 1, normal_draw, normal_key, normal_density, &c};
+    normal_ctx c = {{&s, sweep_view(80.0), ggx_pdf_vndf}, NULL, ggx_sample_ndf_stretch, NULL, 0, 0};
+    chi2_problem p = {"ndf negative control", 1, normal_draw, normal_keys_key, normal_keys_density, &c};
     chi2_result r = chi2_run_scaled(&p, 99, 0.0);
     chi2_runs_done++;
     CHECK(r.pvalue < chi2_sidak(CHI2_SUITE_RUNS) || r.zero_cell_hits > 0, "not rejected: p = %.3g", r.pvalue);

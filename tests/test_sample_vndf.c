@@ -33,8 +33,7 @@ static void vndf_sweep(void **state)
             ggx_shape s;
             make_shape(&s, SWEEP_SHAPES[i].p);
             for (int j = 0; j < SWEEP_NVIEWS; j++) {
-                normal_ctx c = {&s, sweep_view(SWEEP_VIEWS_DEG[j]), SAMPLERS[k].f, NULL, SAMPLERS[k].rej,
-                                ggx_pdf_vndf, 0, 0};
+                normal_ctx c = {{&s, sweep_view(SWEEP_VIEWS_DEG[j]), ggx_pdf_vndf}, SAMPLERS[k].f, NULL, SAMPLERS[k].rej, 0, 0};
                 char name[128];
                 snprintf(name, sizeof name, "vndf %s, %s, view %g", SAMPLERS[k].name, SWEEP_SHAPES[i].name,
                          SWEEP_VIEWS_DEG[j]);
@@ -66,8 +65,8 @@ static void negative_controls(void **state)
     double alpha = chi2_sidak(CHI2_SUITE_RUNS);
     ggx_shape s;
     make_shape(&s, SWEEP_SHAPES[1].p);
-    normal_ctx c = {&s, sweep_view(80.0), ggx_sample_vndf_caps, NULL, NULL, pdf_no_g1, 0, 0};
-    chi2_problem p = {"negative control G1 dropped", 1, normal_draw, normal_key, normal_density, &c};
+    normal_ctx c = {{&s, sweep_view(80.0), pdf_no_g1}, ggx_sample_vndf_caps, NULL, NULL, 0, 0};
+    chi2_problem p = {"negative control G1 dropped", 1, normal_draw, normal_keys_key, normal_keys_density, &c};
     chi2_result r = chi2_run_scaled(&p, 77, 0.0);
     chi2_runs_done++;
     CHECK(r.pvalue < alpha, "the VNDF pdf without G1 was not rejected: p = %.3g", r.pvalue);
@@ -75,8 +74,8 @@ static void negative_controls(void **state)
            r.pvalue);
     ggx_shape k;
     make_shape(&k, SWEEP_SHAPES[6].p);
-    normal_ctx c2 = {&k, sweep_view(30.0), verify_crescent_blog_s, NULL, NULL, ggx_pdf_vndf, 0, 0};
-    chi2_problem p2 = {"negative control s from A^-T n", 1, normal_draw, normal_key, normal_density, &c2};
+    normal_ctx c2 = {{&k, sweep_view(30.0), ggx_pdf_vndf}, verify_crescent_blog_s, NULL, NULL, 0, 0};
+    chi2_problem p2 = {"negative control s from A^-T n", 1, normal_draw, normal_keys_key, normal_keys_density, &c2};
     r = chi2_run_scaled(&p2, 78, 0.0);
     chi2_runs_done++;
     CHECK(r.pvalue < alpha, "the crescent with s from A^-T n was not rejected: p = %.3g", r.pvalue);

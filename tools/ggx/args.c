@@ -21,7 +21,6 @@ void die(const char *fmt, ...)
     exit(2);
 }
 
-static const double DEG = 3.14159265358979323846 / 180.0;
 
 /* Parses exactly `count` comma-separated finite numbers (count < 0: 1 to -count numbers); returns how many. */
 static int parse_list(const char *opt, const char *text, double *out, int count)

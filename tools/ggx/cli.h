@@ -8,6 +8,9 @@
 
 #include "ggx/ggx.h"
 
+/* Degrees to radians: the command's angles are in degrees. */
+#define DEG (3.14159265358979323846 / 180.0)
+
 /* Prints "ggx: <message>" on stderr and exits with status 2 (bad input, unwritable output). When cli_die_jump is
  * set (by the fuzz target of the parsers) it jumps there silently instead. */
 void die(const char *fmt, ...) __attribute__((format(printf, 1, 2), noreturn));

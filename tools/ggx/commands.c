@@ -9,7 +9,6 @@
 #include "chi2.h"
 #include "cli.h"
 
-static const double DEG = 3.14159265358979323846 / 180.0;
 
 const sampler_info SAMPLERS[] = {
     {"stretch", 0, ggx_sample_ndf_stretch, NULL, NULL, "NDF: cosine hemisphere + elliptic stretch (Engstad)"},
@@ -219,12 +218,10 @@ int cmd_plot(int argc, char **argv)
 /* ---------------------------------------------------------------- check */
 
 typedef struct check_ctx {
-    const ggx_shape *s;
-    ggx_vec3 v;
+    normal_keys keys; /* first: the chi-square key and density come from normal_keys_* */
     const sampler_info *smp;
     long drawn, total;
     int progress;
-    time_t t0;
 } check_ctx;
 
 static void progress_bar(check_ctx *c)
@@ -236,48 +233,32 @@ static void progress_bar(check_ctx *c)
     fflush(stderr);
 }
 
-static double check_pdf(const check_ctx *c, ggx_vec3 m)
-{
-    return c->smp->kind == 0 ? ggx_pdf_ndf(c->s, m) : ggx_pdf_vndf(c->s, c->v, m);
-}
 
 static int check_draw(void *vc, rng *r, ggx_vec3 *m)
 {
     check_ctx *c = vc;
     double pdf, w;
-    int ok = draw_one(c->smp, c->s, c->v, NULL, 0, r, m, &pdf, &w);
+    int ok = draw_one(c->smp, c->keys.s, c->keys.v, NULL, 0, r, m, &pdf, &w);
     if (c->progress && (++c->drawn & 0xFFFF) == 0) progress_bar(c);
     return ok || t_dot(*m, *m) > 0.5; /* a normal with pdf 0 is still a sample: the harness flags it */
 }
 
-static int check_key(void *vc, ggx_vec3 m, int *region, ggx_vec3 *k)
+static double check_integrand(ggx_vec3 m, void *vc)
 {
-    check_ctx *c = vc;
-    *region = 0;
-    *k = key_of_normal(c->s, m);
-    return 1;
+    const normal_keys *k = vc;
+    return k->pdf(k->s, k->v, m);
 }
-
-static double check_density(void *vc, int region, ggx_vec3 k)
-{
-    (void)region;
-    check_ctx *c = vc;
-    double j;
-    return check_pdf(c, normal_of_key(c->s, k, &j)) * j;
-}
-
-static double check_integrand(ggx_vec3 m, void *vc) { return check_pdf(vc, m); }
 
 check_result run_check(const ggx_shape *s, ggx_vec3 view, const sampler_info *smp, long n, unsigned long long seed,
                        double alpha, int progress)
 {
     check_result res = {0, 1, NAN, 0, 0};
-    check_ctx c = {s, view, smp, 0, n, progress, time(NULL)};
+    check_ctx c = {{s, view, smp->kind == 0 ? verify_pdf_ndf : ggx_pdf_vndf}, smp, 0, n, progress};
     /* normalisation of the pdf the sampler claims */
     res.norm_error = fabs(quad_hemisphere(s, check_integrand, &c, smp->kind == 0 ? NULL : &view, smp->kind == 0 ? 0 : 1,
                                           1e-10, NULL) - 1.0);
     /* chi-square */
-    chi2_problem p = {smp->name, 1, check_draw, check_key, check_density, &c};
+    chi2_problem p = {smp->name, 1, check_draw, normal_keys_key, normal_keys_density, &c};
     /* 100 x 200 cells for 10^6 samples; fewer for smaller n, so that cells expect about 50 samples */
     int nt = (int)fmin(100.0, fmax(4.0, floor(sqrt((double)n / 100.0))));
     chi2_result r = chi2_run(&p, n, nt, 2 * nt, seed, alpha);
@@ -297,7 +278,7 @@ check_result run_check(const ggx_shape *s, ggx_vec3 view, const sampler_info *sm
             if (fabs(fabs(2 * u1 - 1) - fabs(2 * u2 - 1)) < 0.02 || fabs(2 * u1 - 1) < 0.02 || fabs(2 * u2 - 1) < 0.02) continue;
 #define MAP(a, b) (smp->kind == 0 ? smp->ndf(s, a, b) : smp->vndf(s, view, a, b))
             ggx_vec3 m = MAP(u1, u2);
-            double pdf = check_pdf(&c, m);
+            double pdf = c.keys.pdf(s, view, m);
             if (m.z < 0.035 || (smp->kind == 1 && t_dot(m, view) < 0.035) || !(pdf > 0)) continue;
             ggx_vec3 da = t_add(MAP(u1 + h, u2), t_scale(MAP(u1 - h, u2), -1));
             ggx_vec3 db = t_add(MAP(u1, u2 + h), t_scale(MAP(u1, u2 - h), -1));

@@ -6,7 +6,6 @@
 #include "chi2.h"
 #include "cli.h"
 
-static const double DEG = 3.14159265358979323846 / 180.0;
 
 int cmd_audit(int argc, char **argv)
 {

@@ -17,22 +17,12 @@ void audit_walter_matrix(double A[3][3], double ax, double ay, double tx, double
 }
 
 typedef ggx_vec3 (*vndf_fn)(const ggx_shape *, ggx_vec3, double, double);
-typedef double (*pdf_fn)(const ggx_shape *, ggx_vec3, ggx_vec3);
 
 typedef struct actx {
-    const ggx_shape *s;
-    ggx_vec3 v;
-    vndf_fn f;      /* sampler (for NDF samplers v is n) */
-    pdf_fn pdf;
-    const double (*literal)[3]; /* for the literal stretch: Walter's A as given */
+    normal_keys keys; /* first: the chi-square key and density come from normal_keys_* */
+    vndf_fn f;        /* sampler (for NDF samplers v is n) */
 } actx;
 
-static double pdf_ndf_v(const ggx_shape *s, ggx_vec3 v, ggx_vec3 m)
-{
-    (void)v;
-    return ggx_pdf_ndf(s, m);
-}
-static double pdf_vndf_v(const ggx_shape *s, ggx_vec3 v, ggx_vec3 m) { return ggx_pdf_vndf(s, v, m); }
 static double pdf_g1_form(const ggx_shape *s, ggx_vec3 v, ggx_vec3 m) /* G1(v) D (m.v)+ / v.n, Walter's G1 */
 {
     double mv = t_dot(m, v);
@@ -78,30 +68,16 @@ static int a_draw(void *vc, rng *r, ggx_vec3 *m)
 {
     actx *c = vc;
     double u1 = rng_uniform(r), u2 = rng_uniform(r);
-    *m = c->f(c->s, c->v, u1, u2);
+    *m = c->f(c->keys.s, c->keys.v, u1, u2);
     return t_dot(*m, *m) > 0.5;
 }
-static int a_key(void *vc, ggx_vec3 m, int *region, ggx_vec3 *k)
-{
-    *region = 0;
-    *k = key_of_normal(((actx *)vc)->s, m);
-    return 1;
-}
-static double a_density(void *vc, int region, ggx_vec3 k)
-{
-    (void)region;
-    actx *c = vc;
-    double j;
-    return c->pdf(c->s, c->v, normal_of_key(c->s, k, &j)) * j;
-}
-
 static int g_progress;
 
 /* chi-square p-value of sampler f against pdf (0 when a sample has zero pdf). */
-static double chi2_p(const ggx_shape *s, ggx_vec3 v, vndf_fn f, pdf_fn pdf, uint64_t seed)
+static double chi2_p(const ggx_shape *s, ggx_vec3 v, vndf_fn f, verify_pdf_fn pdf, uint64_t seed)
 {
-    actx c = {s, v, f, pdf, NULL};
-    chi2_problem p = {"audit", 1, a_draw, a_key, a_density, &c};
+    actx c = {{s, v, pdf}, f};
+    chi2_problem p = {"audit", 1, a_draw, normal_keys_key, normal_keys_density, &c};
     chi2_result r = chi2_run(&p, 1000000, 100, 200, seed, 0.0);
     if (g_progress) fputc('.', stderr);
     return r.zero_cell_hits ? 0.0 : r.pvalue;
@@ -209,23 +185,23 @@ int audit_run(const double A[2][3][3], audit_row *rows, int progress)
             "Engstad, Elliptic Stretch");
     for (int k = 0; k < 2; k++) {
         literal_A = A[k];
-        verdict_p(r, k, chi2_p(&sh[k], n, literal_stretch, pdf_ndf_v, 81 + (uint64_t)k));
+        verdict_p(r, k, chi2_p(&sh[k], n, literal_stretch, verify_pdf_ndf, 81 + (uint64_t)k));
     }
     if (!r->holds[1]) {
-        double p = chi2_p(&sh[1], n, ndf_stretch, pdf_ndf_v, 83);
+        double p = chi2_p(&sh[1], n, ndf_stretch, verify_pdf_ndf, 83);
         char t[AUDIT_TEXT];
         snprintf(t, sizeof t, "; holds as m = normalize(A^T c), c cosine-weighted about A n (p = %.2g)", p);
         append(r, 1, t);
     }
 
     r = add(rows, &nr, "ellipse", "uniform point of the projected ellipse lifted to the ellipsoid has pdf D(m)(m.n)", "blog Part 2");
-    for (int k = 0; k < 2; k++) verdict_p(r, k, chi2_p(&sh[k], n, ndf_ellipse, pdf_ndf_v, 84 + (uint64_t)k));
+    for (int k = 0; k < 2; k++) verdict_p(r, k, chi2_p(&sh[k], n, ndf_ellipse, verify_pdf_ndf, 84 + (uint64_t)k));
     append(r, 1, " with the silhouette ellipse of the general A (Schur complement)");
 
     r = add(rows, &nr, "inversion", "closed-form theta_m, phi_m by inversion has pdf D(m)(m.n)", "blog Part 2");
-    verdict_p(r, 0, chi2_p(&sh[0], n, ndf_inversion, pdf_ndf_v, 86));
+    verdict_p(r, 0, chi2_p(&sh[0], n, ndf_inversion, verify_pdf_ndf, 86));
     if (sh[1].kind == GGX_SHAPE_SKEWED) snprintf(r->text[1], AUDIT_TEXT, "not applicable (no skew parameters in the formula)");
-    else verdict_p(r, 1, chi2_p(&sh[1], n, ndf_inversion, pdf_ndf_v, 87));
+    else verdict_p(r, 1, chi2_p(&sh[1], n, ndf_inversion, verify_pdf_ndf, 87));
 
     r = add(rows, &nr, "vndf-g1", "VNDF pdf = G1(v) D(m) (m.v)+ / (v.n)", "blog Part 2; Engstad VNDF proof; Heitz 2018");
     verdict_p(r, 0, chi2_p(&sh[0], v, ggx_sample_vndf_caps, pdf_g1_form, 87));
@@ -238,19 +214,19 @@ int audit_run(const double A[2][3][3], audit_row *rows, int progress)
     }
 
     r = add(rows, &nr, "crescent", "crescent factor s = (1 + Av.An / (|Av| |An|)) / 2 gives the VNDF (version 3)", "Walter eq 34-46");
-    for (int k = 0; k < 2; k++) verdict_p(r, k, chi2_p(&sh[k], v, ggx_sample_vndf_crescent, pdf_vndf_v, 88 + (uint64_t)k));
+    for (int k = 0; k < 2; k++) verdict_p(r, k, chi2_p(&sh[k], v, ggx_sample_vndf_crescent, ggx_pdf_vndf, 88 + (uint64_t)k));
 
     r = add(rows, &nr, "crescent-blog", "crescent factor with A^-T n: s = (1 + Av.A^-T n / (|Av| |A^-T n|)) / 2", "blog Part 2");
-    for (int k = 0; k < 2; k++) verdict_p(r, k, chi2_p(&sh[k], v, verify_crescent_blog_s, pdf_vndf_v, 90 + (uint64_t)k));
+    for (int k = 0; k < 2; k++) verdict_p(r, k, chi2_p(&sh[k], v, verify_crescent_blog_s, ggx_pdf_vndf, 90 + (uint64_t)k));
 
     r = add(rows, &nr, "heitz", "Heitz / Engstad five steps (frame, disk, squish by (1 + z)/2, lift, unstretch) give the VNDF",
             "Engstad VNDF proof");
-    for (int k = 0; k < 2; k++) verdict_p(r, k, chi2_p(&sh[k], v, ggx_sample_vndf_heitz, pdf_vndf_v, 92 + (uint64_t)k));
+    for (int k = 0; k < 2; k++) verdict_p(r, k, chi2_p(&sh[k], v, ggx_sample_vndf_heitz, ggx_pdf_vndf, 92 + (uint64_t)k));
     append(r, 1, " in the canonical frame where A n is along n");
 
     r = add(rows, &nr, "caps", "spherical caps with pole normalize(A n) and m = normalize(A^T m_s) give the VNDF",
             "SPEC (Dupuy & Benyoub 2023)");
-    for (int k = 0; k < 2; k++) verdict_p(r, k, chi2_p(&sh[k], v, ggx_sample_vndf_caps, pdf_vndf_v, 94 + (uint64_t)k));
+    for (int k = 0; k < 2; k++) verdict_p(r, k, chi2_p(&sh[k], v, ggx_sample_vndf_caps, ggx_pdf_vndf, 94 + (uint64_t)k));
 
     r = add(rows, &nr, "jacobian-blog", "solid-angle Jacobian |d omega' / d omega| = |A| ||A^-T m|| for m' = normalize(A^-T m)",
             "blog Part 2");

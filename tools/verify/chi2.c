@@ -46,6 +46,28 @@ double chi2_pvalue(double x, int dof)
 
 int chi2_write_failures = 1;
 
+int normal_keys_key(void *ctx, ggx_vec3 m, int *region, ggx_vec3 *k)
+{
+    *region = 0;
+    *k = key_of_normal(((const normal_keys *)ctx)->s, m);
+    return 1;
+}
+
+double normal_keys_density(void *ctx, int region, ggx_vec3 k)
+{
+    (void)region;
+    const normal_keys *c = ctx;
+    double j;
+    ggx_vec3 m = normal_of_key(c->s, k, &j);
+    return c->pdf(c->s, c->v, m) * j;
+}
+
+double verify_pdf_ndf(const ggx_shape *s, ggx_vec3 v, ggx_vec3 m)
+{
+    (void)v;
+    return ggx_pdf_ndf(s, m);
+}
+
 double chi2_sidak(int runs) { return 1.0 - pow(1.0 - 0.01, 1.0 / runs); }
 
 static const double g4x[4] = {-0.8611363115940526, -0.3399810435848563, 0.3399810435848563, 0.8611363115940526};

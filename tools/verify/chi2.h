@@ -40,6 +40,20 @@ typedef struct chi2_result {
 extern int chi2_write_failures;
 chi2_result chi2_run(const chi2_problem *p, long n, int ntheta, int nphi, uint64_t seed, double alpha);
 
+/* Keys for samplers of normals: k = normalize(A^{-T} m), the sphere space of the shape, where every lobe is wide;
+ * the key density is pdf(s, v, m(k)) |A| / ||A^T k||^3. The ctx of a chi2_problem for such a sampler starts with a
+ * normal_keys, so that normal_keys_key and normal_keys_density serve as its key and density. */
+typedef double (*verify_pdf_fn)(const ggx_shape *s, ggx_vec3 v, ggx_vec3 m);
+typedef struct normal_keys {
+    const ggx_shape *s;
+    ggx_vec3 v;
+    verify_pdf_fn pdf; /* the density of m the sampler claims (ggx_pdf_vndf, verify_pdf_ndf, ...) */
+} normal_keys;
+int normal_keys_key(void *ctx, ggx_vec3 m, int *region, ggx_vec3 *k);
+double normal_keys_density(void *ctx, int region, ggx_vec3 k);
+/* ggx_pdf_ndf in the verify_pdf_fn signature (v ignored). */
+double verify_pdf_ndf(const ggx_shape *s, ggx_vec3 v, ggx_vec3 m);
+
 /* Upper tail of the chi-square distribution, Q(dof / 2, x / 2) (regularised incomplete gamma). */
 double chi2_pvalue(double x, int dof);
 
