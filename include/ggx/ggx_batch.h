@@ -17,8 +17,9 @@
  * within 1e-4 per component of the double sampler's for the same (u1, u2) (measured 3.9e-5: the caps construction
  * loses float accuracy where v' + c nearly cancels, at low-pdf rim samples); sample pdfs within 1e-4 relative
  * (measured 4.3e-5) and weights within 2e-4 absolute (measured 9.8e-5) of ggx_sample_brdf's.
- * Kernels are written once (src/batch_kernels.inc) and compiled for a scalar baseline and for AVX2 +
- * FMA (and AVX-512 where the compiler can), chosen at run time by a CPU check.
+ * Every function is a loop over the float kernels of ggx_inline.h (the same source as the double API), compiled for a
+ * scalar baseline and for AVX2 + FMA (and AVX-512 where the compiler can), chosen at run time by a CPU check. The
+ * shape is converted by ggx_shapef_from (normalised), so every shape the double API accepts works, at any scale.
  */
 #ifndef GGX_GGX_BATCH_H
 #define GGX_GGX_BATCH_H
@@ -26,6 +27,7 @@
 #include <stddef.h>
 
 #include "ggx/ggx.h"
+#include "ggx/ggx_samplers.h"
 
 #ifdef __cplusplus
 extern "C" {
@@ -38,8 +40,12 @@ typedef enum ggx_batch_isa {
     GGX_ISA_AVX512 = 3  /* AVX-512 F + VL */
 } ggx_batch_isa;
 
-/* Forces an instruction-set path for all later batch calls (process-wide; not thread-safe against concurrent batch
- * calls). GGX_ERR_RANGE when the CPU or the build does not support it (the current path is kept). */
+/* Forces an instruction-set path for all later batch calls (process-wide). GGX_ERR_RANGE when the CPU or the build
+ * does not support it (the current path is kept).
+ * Threads: every function of this header may be called from any number of threads at once. The path is chosen once
+ * (on the first batch call or query, whichever thread makes it); ggx_batch_set_isa and ggx_batch_set_threads may run
+ * beside batch calls, and each batch call uses the path and thread count it reads when it starts. All paths give
+ * results within the bounds above, so a change of path mid-program changes results only within them. */
 ggx_status ggx_batch_set_isa(ggx_batch_isa isa);
 /* The path in use (never GGX_ISA_AUTO). */
 ggx_batch_isa ggx_batch_get_isa(void);
@@ -75,6 +81,14 @@ void ggx_batch_sample_vndf_aniso(float *mx, float *my, float *mz, size_t n, cons
 /* Normals with pdf D(m) m.z by the elliptic stretch (ggx_sample_ndf_stretch). */
 void ggx_batch_sample_ndf(float *mx, float *my, float *mz, size_t n, const ggx_shape *s, const float *u1,
                           const float *u2);
+
+/* Normals from any sampler of the registry (ggx_samplers.h) with batch = 1 and family NDF or VNDF, in float: the
+ * loop of that sampler's kernel (ggx_<stem>_f of ggx_inline.h). NDF samplers ignore the view (vx, vy, vz may be
+ * NULL). GGX_ERR_RANGE for another sampler, GGX_ERR_NULL for a NULL array when n > 0; nothing is written then.
+ * The accuracy bound above for sampled directions is tested for every batch sampler. */
+ggx_status ggx_batch_sample_normals(ggx_sampler_id sampler, float *mx, float *my, float *mz, size_t n,
+                                    const ggx_shape *s, const float *vx, const float *vy, const float *vz,
+                                    const float *u1, const float *u2);
 
 /* The BRDF f_r(wi, wo) (ggx_brdf_eval) with the Fresnel term f (any kind). */
 void ggx_batch_brdf(float *f_r, size_t n, const ggx_shape *s, const ggx_fresnel *f, const float *wix,

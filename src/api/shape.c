@@ -55,15 +55,15 @@ static ggx_status shape_from_matrix(ggx_shape *s, const double A[3][3])
     /* Canonical form A' = Q A with Q the rotation taking A n to +z: Q A describes the same distributions and areas
      * (Walter section 1), and with A' n = ||A n|| z the truncation m.n >= 0 is the hemisphere z >= 0 of sphere space
      * for every A, so samplers need no frame. Q = I exactly when A n is already along +z. */
-    ggx_vec3 an = v3(b[0][2], b[1][2], b[2][2]);
-    double an_len = v3_len(an);
+    ggx_vec3 an = ggx_k_v3_d(b[0][2], b[1][2], b[2][2]);
+    double an_len = ggx_k_len_d(an);
     double q[3][3] = {{1, 0, 0}, {0, 1, 0}, {0, 0, 1}};
     if (an.x != 0.0 || an.y != 0.0 || an.z < 0.0) {
-        ggx_vec3 p = v3_scale(an, 1.0 / an_len);
+        ggx_vec3 p = ggx_k_scale_d(an, 1.0 / an_len);
         double flip = 1.0;
         if (p.z < 0.0) { /* rotate by pi about x first (diag(1, -1, -1)), so that the rotation below is small */
             flip = -1.0;
-            p = v3(p.x, -p.y, -p.z);
+            p = ggx_k_v3_d(p.x, -p.y, -p.z);
         }
         /* Rotation taking p to z about the axis p x z: I + [k]x + [k]x^2 / (1 + c), k = p x z, c = p.z > 0. */
         double kx = p.y, ky = -p.x, cz = p.z, f = 1.0 / (1.0 + cz);
@@ -85,7 +85,7 @@ static ggx_status shape_from_matrix(ggx_shape *s, const double A[3][3])
     t.a[0][2] = t.a[1][2] = 0.0; /* A' n is along z by construction; remove the rounding */
     t.a[2][2] = an_len;
     t.det = fabs(det);
-    t.an = v3(0.0, 0.0, an_len);
+    t.an = ggx_k_v3_d(0.0, 0.0, an_len);
     t.an_len = an_len;
     t.ndf_scale = 1.0 / (GGX_PI * t.det * t.an_len);
 
@@ -127,21 +127,21 @@ static ggx_status shape_from_matrix(ggx_shape *s, const double A[3][3])
     return GGX_OK;
 }
 
-ggx_status ggx_shape_matrix(ggx_shape *s, const double A[3][3])
+GGX_API ggx_status ggx_shape_matrix(ggx_shape *s, const double A[3][3])
 {
     if (!s || !A) return GGX_ERR_NULL;
     if (!all_finite(&A[0][0], 9)) return GGX_ERR_NONFINITE;
     return shape_from_matrix(s, A);
 }
 
-ggx_status ggx_shape_aniso(ggx_shape *s, double alpha_x, double alpha_y)
+GGX_API ggx_status ggx_shape_aniso(ggx_shape *s, double alpha_x, double alpha_y)
 {
     return ggx_shape_ellipsoid(s, alpha_x, alpha_y, 0.0, 0.0, 0.0);
 }
 
-ggx_status ggx_shape_iso(ggx_shape *s, double alpha) { return ggx_shape_aniso(s, alpha, alpha); }
+GGX_API ggx_status ggx_shape_iso(ggx_shape *s, double alpha) { return ggx_shape_aniso(s, alpha, alpha); }
 
-ggx_status ggx_shape_ellipsoid(ggx_shape *s, double alpha_x, double alpha_y, double theta_x, double theta_y,
+GGX_API ggx_status ggx_shape_ellipsoid(ggx_shape *s, double alpha_x, double alpha_y, double theta_x, double theta_y,
                                double theta_z)
 {
     if (!s) return GGX_ERR_NULL;

@@ -1,7 +1,7 @@
 /* Status messages. SPDX-License-Identifier: MIT */
-#include "ggx/ggx.h"
+#include "internal.h"
 
-const char *ggx_status_str(ggx_status status)
+GGX_API const char *ggx_status_str(ggx_status status)
 {
     switch (status) {
     case GGX_OK: return "ok";

@@ -1,0 +1,127 @@
+/*
+ * libggx inline API: the library's per-element kernels, for renderers that inline their microfacet code into the
+ * integrator, and for GPU code. SPDX-License-Identifier: MIT
+ *
+ * Every formula of the library is written once, in include/ggx/kernel/, over a precision type, and instantiated
+ * here twice: for float (names ending in _f, on ggx_shapef, ggx_vec3f) and for double (names ending in _d, on
+ * ggx_shape, ggx_vec3). The exported double API of ggx.h calls the _d kernels and the batch API of ggx_batch.h loops
+ * over the _f kernels, so the three give the same results up to the precision of the type. The inline functions need
+ * no link to libggx; they use only <math.h> (sqrt, floor, fabs; trigonometric functions only in the setup-like
+ * ggx_ndf_spherical_* and the inverse maps). Under a CUDA compiler every kernel is __host__ __device__.
+ *
+ * Names: ggx_<function>_f / ggx_<function>_d for each function of ggx.h taking a shape (ggx_ndf_f, ggx_g1_f,
+ * ggx_pdf_vndf_f, ggx_sample_vndf_f, ggx_brdf_eval_f, ...) and for the shape-free ones (ggx_reflect_f,
+ * ggx_fresnel_dielectric_eval_f, ggx_disk_concentric_f, ...). Their domains, edge cases and contract are those of
+ * the function of the same stem in ggx.h, with these differences for float:
+ * - ggx_shapef is normalised (A' divided by ||A n||), so that every shape the double API accepts converts without
+ *   overflow or underflow; absolute areas and the curvature (ggx_projected_area_f, ggx_lune_area_f,
+ *   ggx_gaussian_curvature_f) are those of the normalised matrix. Everything else is scale-free and equal to the
+ *   double API's result.
+ * - Accuracy against the double API with the same (float) inputs, for alpha >= 0.05, skews to 0.5 rad and
+ *   directions with z >= 0.02 (tests/test_variants.c): the bounds of ggx_batch.h.
+ * - Rim steps, margins and view-length ranges are those of kernel/traits.h for float.
+ * Names beginning ggx_k_ are internal steps of the kernels, not API.
+ * All functions are reentrant and thread-safe (they only read their arguments).
+ */
+#ifndef GGX_GGX_INLINE_H
+#define GGX_GGX_INLINE_H
+
+#include <float.h>
+#include <math.h>
+
+#include "ggx/ggx.h"
+#include "ggx/ggx_samplers.h"
+
+#if defined(__CUDACC__)
+#define GGX_HD static inline __host__ __device__
+#define GGX_COLD static inline __host__ __device__ __noinline__
+#elif defined(__GNUC__)
+#define GGX_HD static inline
+/* The rare slow paths stay out of line, so that the hot path of every sampler inlines small. */
+#define GGX_COLD static __attribute__((noinline, cold, unused))
+#else
+#define GGX_HD static inline
+#define GGX_COLD static inline
+#endif
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+typedef struct ggx_vec3f {
+    float x, y, z;
+} ggx_vec3f;
+
+typedef struct ggx_vec2f {
+    float x, y;
+} ggx_vec2f;
+
+/* A shape in float: ggx_shape's canonical A' divided by ||A n|| (so a = [B 0; r 1] with A' n = z) and what the
+ * kernels need. Same field names as ggx_shape, read-only; made by ggx_shapef_from. */
+typedef struct ggx_shapef {
+    float a[3][3];      /* A' / ||A n||, row-major */
+    float ainv_t[3][3]; /* its inverse transpose */
+    float det;          /* its |det| */
+    float an_len;       /* its ||A n|| = 1 */
+    float ndf_scale;    /* 1 / (pi det an_len), the constant of Walter eq 1 (scale-free) */
+    float alpha_x, alpha_y, tangent_cos, tangent_sin; /* as in ggx_shape */
+    ggx_shape_kind kind;
+} ggx_shapef;
+
+/* A Fresnel term in float: same fields as ggx_fresnel. */
+typedef struct ggx_fresnelf {
+    ggx_fresnel_kind kind;
+    float eta, k, f0;
+} ggx_fresnelf;
+
+/* A direction sample in float: same fields as ggx_sample. */
+typedef struct ggx_samplef {
+    ggx_vec3f w;
+    float pdf;
+    float weight;
+    ggx_event event;
+} ggx_samplef;
+
+/* The float shape of s (from a successful ggx_shape_* call). Normalised in double before rounding to float: for
+ * every shape the double API accepts, every field is finite and nonzero where the double one is. */
+static inline void ggx_shapef_from(ggx_shapef *out, const ggx_shape *s)
+{
+    double k = 1.0 / s->an_len, det = s->det * k * k * k;
+    for (int i = 0; i < 3; i++) {
+        for (int j = 0; j < 3; j++) {
+            out->a[i][j] = (float)(s->a[i][j] * k);
+            out->ainv_t[i][j] = (float)(s->ainv_t[i][j] * s->an_len);
+        }
+    }
+    out->a[0][2] = out->a[1][2] = 0.0f;
+    out->a[2][2] = 1.0f;
+    out->det = (float)det;
+    out->an_len = 1.0f;
+    out->ndf_scale = (float)(1.0 / (3.14159265358979323846 * det));
+    out->alpha_x = (float)s->alpha_x, out->alpha_y = (float)s->alpha_y;
+    out->tangent_cos = (float)s->tangent_cos, out->tangent_sin = (float)s->tangent_sin;
+    out->kind = s->kind;
+}
+
+/* The float Fresnel term of f. */
+static inline void ggx_fresnelf_from(ggx_fresnelf *out, const ggx_fresnel *f)
+{
+    out->kind = f->kind;
+    out->eta = (float)f->eta, out->k = (float)f->k, out->f0 = (float)f->f0;
+}
+
+#define GGX_K_PRECISION 32
+#include "ggx/kernel/traits.h"
+#include "ggx/kernel/all.inc"
+#include "ggx/kernel/untraits.h"
+
+#define GGX_K_PRECISION 64
+#include "ggx/kernel/traits.h"
+#include "ggx/kernel/all.inc"
+#include "ggx/kernel/untraits.h"
+
+#ifdef __cplusplus
+}
+#endif
+
+#endif /* GGX_GGX_INLINE_H */

@@ -1,0 +1,82 @@
+/* libggx kernels: the precision traits. Included by ggx_inline.h before each instantiation of the kernels, with
+ * GGX_K_PRECISION set to 32 or 64; kernel/untraits.h undoes it. Every precision-dependent choice of the kernels is
+ * here, each with its reason. SPDX-License-Identifier: MIT */
+#if GGX_K_PRECISION == 32
+#define ggx_r float
+#define ggx_v3 ggx_vec3f
+#define ggx_v2 ggx_vec2f
+#define GGX_SH ggx_shapef
+#define GGX_FR ggx_fresnelf
+#define GGX_SMP ggx_samplef
+#define GGX_FN(name) ggx_##name##_f
+#define GGX_C(x) x##f
+#define GGX_SQRT sqrtf
+#define GGX_FLOOR floorf
+#define GGX_FABS fabsf
+#define GGX_SIN sinf
+#define GGX_COS cosf
+#define GGX_ACOS acosf
+#define GGX_ATAN atanf
+#define GGX_ATAN2 atan2f
+/* The largest finite value: results above it are overflow and become 0 by the contract. */
+#define GGX_HUGE FLT_MAX
+/* Rim step in sphere space: samples on the rim of the lune (pdf 0) are moved inside by this much. It must be far
+ * above the rounding of a float dot product of unit vectors (6e-8) so that the moved point is inside after
+ * rounding; the moved set has probability ~1e-6. */
+#define GGX_RIM_STEP GGX_C(9.5367431640625e-07) /* 2^-20 */
+/* A sampled normal must face the view by this much (m.v >= margin |v|) to have a float pdf > 0. */
+#define GGX_MARGIN GGX_C(9.5367431640625e-07) /* 2^-20 */
+/* Doublings of the rim step before giving up: 2^-20 * 2^24 covers the whole lune. */
+#define GGX_RIM_TRIES 24
+/* Squared view lengths the fast path takes as they are: with the float shape's entries below ~1e12 (ggx_shapef),
+ * ||A v||^2 stays below FLT_MAX; anything else is rescaled first. */
+#define GGX_L2_MIN GGX_C(1e-20)
+#define GGX_L2_MAX GGX_C(1e4)
+/* sin and cos of x in [-pi/4, pi/4] by Taylor series to x^9 and x^10: remainders below 2e-9, under float rounding. */
+#define GGX_SIN_POLY(x, x2)                                                                                       \
+    ((x) * (1.0f + (x2) * (-1.0f / 6 + (x2) * (1.0f / 120 + (x2) * (-1.0f / 5040 + (x2) * (1.0f / 362880))))))
+#define GGX_COS_POLY(x2)                                                                                          \
+    (1.0f + (x2) * (-0.5f + (x2) * (1.0f / 24 + (x2) * (-1.0f / 720 + (x2) * (1.0f / 40320 +                      \
+                                                                               (x2) * (-1.0f / 3628800))))))
+/* The wide type: the one place where float is not enough. Near the critical angle the dielectric Fresnel term has a
+ * square-root singularity in 1 - sin^2 / eta^2, so sin^2 of the incident angle is formed in double from the float
+ * inputs (differences and products of floats are exact in double). */
+#define ggx_rw double
+#elif GGX_K_PRECISION == 64
+#define ggx_r double
+#define ggx_v3 ggx_vec3
+#define ggx_v2 ggx_vec2
+#define GGX_SH ggx_shape
+#define GGX_FR ggx_fresnel
+#define GGX_SMP ggx_sample
+#define GGX_FN(name) ggx_##name##_d
+#define GGX_C(x) x
+#define GGX_SQRT sqrt
+#define GGX_FLOOR floor
+#define GGX_FABS fabs
+#define GGX_SIN sin
+#define GGX_COS cos
+#define GGX_ACOS acos
+#define GGX_ATAN atan
+#define GGX_ATAN2 atan2
+#define GGX_HUGE DBL_MAX
+/* 2^-30: far above the rounding of a double dot product (1e-16); the moved set has probability ~1e-9. */
+#define GGX_RIM_STEP 9.313225746154785e-10
+/* 2^-48: far above the rounding of a dot product of unit vectors (~1e-16). */
+#define GGX_MARGIN 3.552713678800501e-15
+#define GGX_RIM_TRIES 64
+/* Views whose squared length is in this range are used as they are (A v cannot overflow for the accepted shapes,
+ * ||A|| <= 1e50); others are rescaled by their largest component first. */
+#define GGX_L2_MIN 1e-200
+#define GGX_L2_MAX 1e200
+/* Taylor series to x^15 and x^16 on [-pi/4, pi/4]: remainders below 7e-17, under double rounding. */
+#define GGX_SIN_POLY(x, x2)                                                                                       \
+    ((x) * (1.0 + (x2) * (-1.0 / 6 + (x2) * (1.0 / 120 + (x2) * (-1.0 / 5040 + (x2) * (1.0 / 362880 +            \
+           (x2) * (-1.0 / 39916800 + (x2) * (1.0 / 6227020800.0 + (x2) * (-1.0 / 1307674368000.0)))))))))
+#define GGX_COS_POLY(x2)                                                                                          \
+    (1.0 + (x2) * (-0.5 + (x2) * (1.0 / 24 + (x2) * (-1.0 / 720 + (x2) * (1.0 / 40320 + (x2) * (-1.0 / 3628800 +  \
+           (x2) * (1.0 / 479001600.0 + (x2) * (-1.0 / 87178291200.0 + (x2) * (1.0 / 20922789888000.0)))))))))
+#define ggx_rw double
+#else
+#error "GGX_K_PRECISION must be 32 or 64"
+#endif

@@ -1,0 +1,27 @@
+/* Undoes kernel/traits.h after one instantiation of the kernels. SPDX-License-Identifier: MIT */
+#undef ggx_r
+#undef ggx_v3
+#undef ggx_v2
+#undef GGX_SH
+#undef GGX_FR
+#undef GGX_SMP
+#undef GGX_FN
+#undef GGX_C
+#undef GGX_SQRT
+#undef GGX_FLOOR
+#undef GGX_FABS
+#undef GGX_SIN
+#undef GGX_COS
+#undef GGX_ACOS
+#undef GGX_ATAN
+#undef GGX_ATAN2
+#undef GGX_HUGE
+#undef GGX_RIM_STEP
+#undef GGX_MARGIN
+#undef GGX_RIM_TRIES
+#undef GGX_L2_MIN
+#undef GGX_L2_MAX
+#undef GGX_SIN_POLY
+#undef GGX_COS_POLY
+#undef ggx_rw
+#undef GGX_K_PRECISION
