@@ -4,7 +4,7 @@ PREFIX ?= /usr/local
 JOBS ?= 2
 MAKEFLAGS += --no-print-directory
 
-.PHONY: all deps deps-dev configure build run example bench test test-long sanitize valgrind fuzz fuzz-ci install clean
+.PHONY: all deps deps-dev configure build run example bench test test-long sanitize tsan valgrind fuzz fuzz-ci install clean
 
 all: build
 
@@ -49,6 +49,17 @@ sanitize: deps
 	@cmake --build build-san -j $(JOBS)
 	@cd build-san && GGX_TEST_SCALE=0.1 GGX_CLI_QUICK=1 ASAN_OPTIONS=detect_leaks=1:abort_on_error=1 \
 	  UBSAN_OPTIONS=print_stacktrace=1 ctest --output-on-failure -j $(JOBS) -E install
+
+# The batch tests under ThreadSanitizer (gcc; TSAN_CC=clang works too where its runtime is installed): batch calls
+# from many threads, the first calls of a process included (tests/test_batch_threads.c), must be free of data races.
+TSAN_CC ?= gcc
+TSAN_FLAGS = -fsanitize=thread -fno-omit-frame-pointer -g
+tsan: deps
+	@CC=$(TSAN_CC) cmake -S . -B build-tsan -DCMAKE_BUILD_TYPE=RelWithDebInfo -DGGX_WERROR=ON -DGGX_BUILD_TOOL=OFF \
+	  -DGGX_BUILD_EXAMPLES=OFF -DCMAKE_C_FLAGS="$(TSAN_FLAGS)" -DCMAKE_EXE_LINKER_FLAGS="$(TSAN_FLAGS)" \
+	  -DCMAKE_SHARED_LINKER_FLAGS="$(TSAN_FLAGS)" >/dev/null
+	@cmake --build build-tsan -j $(JOBS) --target test_batch test_batch_threads
+	@cd build-tsan && GGX_TEST_SCALE=0.1 TSAN_OPTIONS=halt_on_error=1 ctest --output-on-failure -R 'batch'
 
 # The CLI tests with every ggx run under valgrind (memcheck, leak check); any error fails the test.
 valgrind: deps-dev build
