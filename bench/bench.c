@@ -2,7 +2,8 @@
  * kernel on every instruction-set path, at an n that fits in L1 and at 64 MiB of data, with 1 and 2 threads; ratios
  * within the same run; instructions per sample where perf counters are available; and the two floors of the batch
  * VNDF sampler: arithmetic (its operations at the measured peak) and memory (its bytes at the measured copy
- * bandwidth). Never part of the test suite. SPDX-License-Identifier: MIT */
+ * bandwidth); and plain transcriptions of the same formulas (bench/reference.c) timed beside the library on the same
+ * inputs, with checks that they compute the same values. Never part of the test suite. SPDX-License-Identifier: MIT */
 #define _GNU_SOURCE
 #include <immintrin.h>
 #include <linux/perf_event.h>
@@ -18,6 +19,7 @@
 
 #include "ggx/ggx.h"
 #include "ggx/ggx_batch.h"
+#include "reference.h"
 
 static double now(void)
 {
@@ -77,10 +79,11 @@ static double time_it(bench_fn fn, void *ctx, long n, double *instr)
 
 enum { NS = 4096 };
 typedef struct sctx {
-    ggx_shape *s;
+    const ggx_shape *s;
     ggx_fresnel f;
     ggx_vec3 v[NS], m[NS];
     double u1[NS], u2[NS];
+    float ax, ay, fv[NS][3], fu1[NS], fu2[NS]; /* the same inputs in float, for the float reference */
 } sctx;
 
 #define SCALAR_BENCH(name, expr)                                                                                  \
@@ -104,6 +107,54 @@ SCALAR_BENCH(b_crescent, ggx_sample_vndf_crescent(c->s, c->v[k], c->u1[k], c->u2
 SCALAR_BENCH(b_heitz, ggx_sample_vndf_heitz(c->s, c->v[k], c->u1[k], c->u2[k]).z)
 SCALAR_BENCH(b_stretch, ggx_sample_ndf_stretch(c->s, c->u1[k], c->u2[k]).z)
 SCALAR_BENCH(b_sbrdf, ggx_sample_brdf(c->s, &c->f, c->v[k], c->u1[k], c->u2[k]).weight)
+SCALAR_BENCH(b_vndf, ggx_sample_vndf(c->s, c->v[k], c->u1[k], c->u2[k]).z)
+
+/* The plain transcriptions, through the same loop. They live in another translation unit, as the library does, so
+ * neither side is inlined into the loop and both pay one call. */
+static float ref_caps_f_z(const sctx *c, long k)
+{
+    float m[3];
+    ref_caps_vndf_f_diag(c->ax, c->ay, c->fv[k][0], c->fv[k][1], c->fv[k][2], c->fu1[k], c->fu2[k], m);
+    return m[2];
+}
+SCALAR_BENCH(r_caps, ref_caps_vndf_d(c->s->a, c->v[k], c->u1[k], c->u2[k]).z)
+SCALAR_BENCH(r_caps_f, ref_caps_f_z(c, k))
+SCALAR_BENCH(r_g1, ref_g1_eq6(c->s->a, c->v[k], c->m[k]))
+SCALAR_BENCH(r_pdf, ref_pdf_vndf_eq33(c->s->a, c->s->ainv_t, c->s->det, c->v[k], c->m[k]))
+SCALAR_BENCH(r_floor, ref_sqrt_sincos_f(c->fu1[k], c->fu2[k]))
+
+static double rel_diff(double a, double b)
+{
+    double d = fabs(a - b), l = fmax(fabs(a), fabs(b));
+    return d > 0.0 ? d / l : 0.0;
+}
+
+/* Max difference over the NS inputs between each reference and the library function it transcribes: the proof that
+ * the timed pairs compute the same thing. Printed, never fatal. */
+static void reference_checks(const sctx *c, const ggx_shape *diag, const ggx_shape *skew)
+{
+    double caps = 0, caps_f = 0, g1 = 0, pdf = 0;
+    for (int k = 0; k < NS; k++) {
+        ggx_vec3 a = ref_caps_vndf_d(skew->a, c->v[k], c->u1[k], c->u2[k]);
+        ggx_vec3 b = ggx_sample_vndf_caps(skew, c->v[k], c->u1[k], c->u2[k]);
+        caps = fmax(caps, fmax(fabs(a.x - b.x), fmax(fabs(a.y - b.y), fabs(a.z - b.z))));
+        float f[3];
+        ref_caps_vndf_f_diag(c->ax, c->ay, c->fv[k][0], c->fv[k][1], c->fv[k][2], c->fu1[k], c->fu2[k], f);
+        b = ggx_sample_vndf_caps(diag, c->v[k], c->u1[k], c->u2[k]);
+        caps_f = fmax(caps_f, fmax(fabs(f[0] - b.x), fmax(fabs(f[1] - b.y), fabs(f[2] - b.z))));
+        g1 = fmax(g1, rel_diff(ref_g1_eq6(skew->a, c->v[k], c->m[k]), ggx_g1(skew, c->v[k], c->m[k])));
+        pdf = fmax(pdf, rel_diff(ref_pdf_vndf_eq33(skew->a, skew->ainv_t, skew->det, c->v[k], c->m[k]),
+                                 ggx_pdf_vndf(skew, c->v[k], c->m[k])));
+    }
+    printf("agreement over the same %d inputs:\n", NS);
+    printf("  caps plain double vs ggx_sample_vndf_caps (skewed):   max abs diff %.2e (%s 1e-6)\n", caps,
+           caps <= 1e-6 ? "within" : "NOT within");
+    printf("  Dupuy-Benyoub float vs ggx_sample_vndf_caps (diag):   max abs diff %.2e (float rounding)\n", caps_f);
+    printf("  eq 6 plain vs ggx_g1 (skewed):                        max rel diff %.2e (%s 1e-12)\n", g1,
+           g1 <= 1e-12 ? "within" : "NOT within");
+    printf("  eq 33 plain vs ggx_pdf_vndf (skewed):                 max rel diff %.2e (%s 1e-12)\n", pdf,
+           pdf <= 1e-12 ? "within" : "NOT within");
+}
 
 /* ---------------------------------------------------------------- batch */
 
@@ -215,7 +266,10 @@ int main(int argc, char **argv)
         ct = 0.3 + 0.7 * rnd(&seed), ph = 6.283185307 * rnd(&seed), st = sqrt(1 - ct * ct);
         sc.m[i] = (ggx_vec3){st * cos(ph), st * sin(ph), ct};
         sc.u1[i] = rnd(&seed), sc.u2[i] = rnd(&seed);
+        sc.fv[i][0] = (float)sc.v[i].x, sc.fv[i][1] = (float)sc.v[i].y, sc.fv[i][2] = (float)sc.v[i].z;
+        sc.fu1[i] = (float)sc.u1[i], sc.fu2[i] = (float)sc.u2[i];
     }
+    sc.ax = 0.15f, sc.ay = 0.5f; /* diag's alphas */
     long ns = quick ? 200000 : 2000000;
     printf("libggx benchmark (%s); ns per call, median of 9 runs\n\n", quick ? "quick" : "full");
     printf("scalar double API              diagonal A    skewed A   skewed/diag\n");
@@ -239,6 +293,30 @@ int main(int argc, char **argv)
     printf("\nsamplers relative to caps      diagonal A    skewed A\n");
     for (int k = 5; k <= 6; k++) printf("%-28s %10.2f %11.2f\n", sb[k].name, res[k][0] / res[4][0], res[k][1] / res[4][1]);
     printf("skewed caps / diagonal caps: %.2f (target <= 1.2)\n", caps_skew / caps_diag);
+
+    /* Each reference is timed right after the library function it transcribes, on the same shape and inputs. */
+    printf("\nreference transcriptions (same run; bench/reference.c), ns per call\n");
+    printf("%-32s %8s   %-28s %8s   %s\n", "reference", "ns/call", "library", "ns/call", "library/reference");
+    struct {
+        const char *name, *lib_name;
+        bench_fn ref, lib;
+        const ggx_shape *s;
+    } rb[] = {{"caps plain double (skewed)", "ggx_sample_vndf", r_caps, b_vndf, &skew},
+              {"Dupuy-Benyoub float (diagonal)", "ggx_sample_vndf", r_caps_f, b_vndf, &diag},
+              {"eq 6 plain (skewed)", "ggx_g1", r_g1, b_g1, &skew},
+              {"eq 33 plain (skewed)", "ggx_pdf_vndf", r_pdf, b_pdf, &skew},
+              {"sqrtf + sinf/cosf", NULL, r_floor, NULL, &diag}};
+    for (unsigned k = 0; k < sizeof rb / sizeof rb[0]; k++) {
+        sc.s = rb[k].s;
+        double tr = time_it(rb[k].ref, &sc, ns, NULL);
+        if (!rb[k].lib) {
+            printf("%-32s %8.2f   %-28s %8s   %s\n", rb[k].name, tr, "-", "-", "-");
+            continue;
+        }
+        double tl = time_it(rb[k].lib, &sc, ns, NULL);
+        printf("%-32s %8.2f   %-28s %8.2f   %.2f\n", rb[k].name, tr, rb[k].lib_name, tl, tl / tr);
+    }
+    reference_checks(&sc, &diag, &skew);
 
     /* batch */
     double peak = peak_flops(), ns_sqrt, ns_div;
