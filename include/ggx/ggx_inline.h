@@ -72,6 +72,8 @@ typedef struct ggx_shapef {
 typedef struct ggx_fresnelf {
     ggx_fresnel_kind kind;
     float eta, k, f0;
+    double eta_wide; /* eta in double: near the critical angle the dielectric term has a square-root singularity in
+                      * 1 - sin^2 / eta^2, where the float rounding of eta alone would cost 1e-3 */
 } ggx_fresnelf;
 
 /* A direction sample in float: same fields as ggx_sample. */
@@ -108,14 +110,16 @@ static inline void ggx_fresnelf_from(ggx_fresnelf *out, const ggx_fresnel *f)
 {
     out->kind = f->kind;
     out->eta = (float)f->eta, out->k = (float)f->k, out->f0 = (float)f->f0;
+    out->eta_wide = f->eta;
 }
 
-#define GGX_K_PRECISION 32
+/* Double first: the float kernels' rare slow paths call the double ones. */
+#define GGX_K_PRECISION 64
 #include "ggx/kernel/traits.h"
 #include "ggx/kernel/all.inc"
 #include "ggx/kernel/untraits.h"
 
-#define GGX_K_PRECISION 64
+#define GGX_K_PRECISION 32
 #include "ggx/kernel/traits.h"
 #include "ggx/kernel/all.inc"
 #include "ggx/kernel/untraits.h"

@@ -20,14 +20,16 @@
 #define GGX_ATAN2 atan2f
 /* The largest finite value: results above it are overflow and become 0 by the contract. */
 #define GGX_HUGE FLT_MAX
-/* Rim step in sphere space: samples on the rim of the lune (pdf 0) are moved inside by this much. It must be far
- * above the rounding of a float dot product of unit vectors (6e-8) so that the moved point is inside after
- * rounding; the moved set has probability ~1e-6. */
-#define GGX_RIM_STEP GGX_C(9.5367431640625e-07) /* 2^-20 */
-/* A sampled normal must face the view by this much (m.v >= margin |v|) to have a float pdf > 0. */
+/* Rim step in sphere space: samples on the rim of the lune (pdf 0) are moved inside by this much, as in double, so
+ * that the float sampler follows the double one to the rim. It need not exceed float rounding: (A^T p).z = p.z
+ * exactly for the normalised float shape (third column (0, 0, 1)), and m.v is verified after the move (a failure
+ * takes the slow path). */
+#define GGX_RIM_STEP GGX_C(9.313225746154785e-10) /* 2^-30 */
+/* A sampled normal must face the view by this much (m.v >= margin) to have a pdf > 0 in float and in double: far
+ * above the rounding of a float dot product of unit vectors (~2e-7). */
 #define GGX_MARGIN GGX_C(9.5367431640625e-07) /* 2^-20 */
-/* Doublings of the rim step before giving up: 2^-20 * 2^24 covers the whole lune. */
-#define GGX_RIM_TRIES 24
+/* Doublings of the rim step before giving up: 2^-30 * 2^34 covers the whole lune. */
+#define GGX_RIM_TRIES 34
 /* Squared view lengths the fast path takes as they are: with the float shape's entries below ~1e12 (ggx_shapef),
  * ||A v||^2 stays below FLT_MAX; anything else is rescaled first. */
 #define GGX_L2_MIN GGX_C(1e-20)
@@ -38,6 +40,13 @@
 #define GGX_COS_POLY(x2)                                                                                          \
     (1.0f + (x2) * (-0.5f + (x2) * (1.0f / 24 + (x2) * (-1.0f / 720 + (x2) * (1.0f / 40320 +                      \
                                                                                (x2) * (-1.0f / 3628800))))))
+/* The caps' sphere-space normal h = vs + c is formed by cancellation near the rim of the lune (c near -vs): where
+ * ||h||^2 < 2^-12 its float direction is off by more than ~1e-5 (rounding 1e-7 of vs and c over ||h|| ~ 1e-2), so
+ * those elements (a fraction ~1e-5 of the samples) take the slow path, which the float kernels run in double. */
+#define GGX_H2_MIN GGX_C(2.44140625e-4) /* 2^-12 */
+#define GGX_SLOW_WIDE 1
+/* The dielectric's index as the wide type (ggx_fresnelf keeps it in double too). */
+#define GGX_ETA_WIDE(f) ((f)->eta_wide)
 /* The wide type: the one place where float is not enough. Near the critical angle the dielectric Fresnel term has a
  * square-root singularity in 1 - sin^2 / eta^2, so sin^2 of the incident angle is formed in double from the float
  * inputs (differences and products of floats are exact in double). */
@@ -76,6 +85,9 @@
 #define GGX_COS_POLY(x2)                                                                                          \
     (1.0 + (x2) * (-0.5 + (x2) * (1.0 / 24 + (x2) * (-1.0 / 720 + (x2) * (1.0 / 40320 + (x2) * (-1.0 / 3628800 +  \
            (x2) * (1.0 / 479001600.0 + (x2) * (-1.0 / 87178291200.0 + (x2) * (1.0 / 20922789888000.0)))))))))
+#define GGX_H2_MIN 0.0 /* double resolves h down to the rim step */
+#define GGX_SLOW_WIDE 0
+#define GGX_ETA_WIDE(f) ((f)->eta)
 #define ggx_rw double
 #else
 #error "GGX_K_PRECISION must be 32 or 64"
