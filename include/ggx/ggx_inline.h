@@ -32,15 +32,23 @@
 #include "ggx/ggx.h"
 #include "ggx/ggx_samplers.h"
 
+/* GGX_HD qualifies every kernel. A program may define it before including this header (the library defines it to
+ * force inlining in its own loops, so that they vectorise). */
 #if defined(__CUDACC__)
+#ifndef GGX_HD
 #define GGX_HD static inline __host__ __device__
+#endif
 #define GGX_COLD static inline __host__ __device__ __noinline__
 #elif defined(__GNUC__)
+#ifndef GGX_HD
 #define GGX_HD static inline
+#endif
 /* The rare slow paths stay out of line, so that the hot path of every sampler inlines small. */
 #define GGX_COLD static __attribute__((noinline, cold, unused))
 #else
+#ifndef GGX_HD
 #define GGX_HD static inline
+#endif
 #define GGX_COLD static inline
 #endif
 

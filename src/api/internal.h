@@ -2,6 +2,11 @@
 #ifndef GGX_API_INTERNAL_H
 #define GGX_API_INTERNAL_H
 
+/* The library inlines every kernel into its exported functions and batch loops (no call overhead, and loops the
+ * compiler can vectorise). */
+#if defined(__GNUC__)
+#define GGX_HD static inline __attribute__((always_inline, unused))
+#endif
 #include "ggx/ggx_inline.h"
 
 #define GGX_PI 3.14159265358979323846

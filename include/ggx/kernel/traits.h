@@ -20,6 +20,9 @@
 #define GGX_ATAN2 atan2f
 /* The largest finite value: results above it are overflow and become 0 by the contract. */
 #define GGX_HUGE FLT_MAX
+/* The fast paths' "not final" marker. */
+#define GGX_NAN ((float)NAN)
+#define GGX_ROUND_MAGIC 12582912.0f /* 1.5 2^23: x + it - it rounds x to an integer for |x| < 2^22 */
 /* Rim step in sphere space: samples on the rim of the lune (pdf 0) are moved inside by this much, as in double, so
  * that the float sampler follows the double one to the rim. It need not exceed float rounding: (A^T p).z = p.z
  * exactly for the normalised float shape (third column (0, 0, 1)), and m.v is verified after the move (a failure
@@ -69,6 +72,8 @@
 #define GGX_ATAN atan
 #define GGX_ATAN2 atan2
 #define GGX_HUGE DBL_MAX
+#define GGX_NAN ((double)NAN)
+#define GGX_ROUND_MAGIC 6755399441055744.0 /* 1.5 2^52 */
 /* 2^-30: far above the rounding of a double dot product (1e-16); the moved set has probability ~1e-9. */
 #define GGX_RIM_STEP 9.313225746154785e-10
 /* 2^-48: far above the rounding of a dot product of unit vectors (~1e-16). */
