@@ -79,6 +79,8 @@ fuzz: deps-dev
 fuzz-ci:
 	@$(MAKE) fuzz FUZZ_SECONDS=10
 
+# Installs the library, headers, pkg-config and CMake files and the ggx command under PREFIX.
+install: build
 	@cmake --install $(BUILD)
 
 clean:
