@@ -1,4 +1,4 @@
-/* Seed audit: runs tools/verify/audit.c for a diagonal and a skewed A and asserts every verdict, so that the table in
+/* Seed audit: runs verify/audit.c for a diagonal and a skewed A and asserts every verdict, so that the table in
  * docs/audit.md stays true: a claim recorded as failing must keep failing. `test_audit --markdown FILE` writes the
  * table (docs/audit.md is generated this way). SPDX-License-Identifier: MIT */
 #include <stdio.h>
