@@ -19,6 +19,7 @@
 
 #include "ggx/ggx.h"
 #include "ggx/ggx_batch.h"
+#include "ggx/ggx_inline.h"
 #include "reference.h"
 
 static double now(void)
@@ -84,6 +85,7 @@ typedef struct sctx {
     ggx_vec3 v[NS], m[NS];
     double u1[NS], u2[NS];
     float ax, ay, fv[NS][3], fu1[NS], fu2[NS]; /* the same inputs in float, for the float reference */
+    ggx_shapef sf;                             /* s in float, for the inline float kernels */
 } sctx;
 
 #define SCALAR_BENCH(name, expr)                                                                                  \
@@ -108,6 +110,15 @@ SCALAR_BENCH(b_heitz, ggx_sample_vndf_heitz(c->s, c->v[k], c->u1[k], c->u2[k]).z
 SCALAR_BENCH(b_stretch, ggx_sample_ndf_stretch(c->s, c->u1[k], c->u2[k]).z)
 SCALAR_BENCH(b_sbrdf, ggx_sample_brdf(c->s, &c->f, c->v[k], c->u1[k], c->u2[k]).weight)
 SCALAR_BENCH(b_vndf, ggx_sample_vndf(c->s, c->v[k], c->u1[k], c->u2[k]).z)
+
+/* The inline float sampler of ggx_inline.h behind one call, as the float reference is (a renderer would inline
+ * both). */
+__attribute__((noinline)) static float vndf_f_z(const sctx *c, long k)
+{
+    ggx_vec3f v = {c->fv[k][0], c->fv[k][1], c->fv[k][2]};
+    return ggx_sample_vndf_f(&c->sf, v, c->fu1[k], c->fu2[k]).z;
+}
+SCALAR_BENCH(b_vndf_f, vndf_f_z(c, k))
 
 /* The plain transcriptions, through the same loop. They live in another translation unit, as the library does, so
  * neither side is inlined into the loop and both pay one call. */
@@ -300,12 +311,14 @@ int main(int argc, char **argv)
     struct {
         const char *name, *lib_name;
         bench_fn ref, lib;
-        const ggx_shape *s;
-    } rb[] = {{"caps plain double (skewed)", "ggx_sample_vndf", r_caps, b_vndf, &skew},
-              {"Dupuy-Benyoub float (diagonal)", "ggx_sample_vndf", r_caps_f, b_vndf, &diag},
-              {"eq 6 plain (skewed)", "ggx_g1", r_g1, b_g1, &skew},
-              {"eq 33 plain (skewed)", "ggx_pdf_vndf", r_pdf, b_pdf, &skew},
-              {"sqrtf + sinf/cosf", NULL, r_floor, NULL, &diag}};
+        const ggx_shape *s, *lib_s; /* the reference's shape and the library's */
+    } rb[] = {{"caps plain double (skewed)", "ggx_sample_vndf", r_caps, b_vndf, &skew, &skew},
+              {"Dupuy-Benyoub float (diagonal)", "ggx_sample_vndf", r_caps_f, b_vndf, &diag, &diag},
+              {"Dupuy-Benyoub float (diagonal)", "ggx_sample_vndf_f (diagonal)", r_caps_f, b_vndf_f, &diag, &diag},
+              {"Dupuy-Benyoub float (diagonal)", "ggx_sample_vndf_f (skewed)", r_caps_f, b_vndf_f, &diag, &skew},
+              {"eq 6 plain (skewed)", "ggx_g1", r_g1, b_g1, &skew, &skew},
+              {"eq 33 plain (skewed)", "ggx_pdf_vndf", r_pdf, b_pdf, &skew, &skew},
+              {"sqrtf + sinf/cosf", NULL, r_floor, NULL, &diag, &diag}};
     for (unsigned k = 0; k < sizeof rb / sizeof rb[0]; k++) {
         sc.s = rb[k].s;
         double tr = time_it(rb[k].ref, &sc, ns, NULL);
@@ -313,6 +326,8 @@ int main(int argc, char **argv)
             printf("%-32s %8.2f   %-28s %8s   %s\n", rb[k].name, tr, "-", "-", "-");
             continue;
         }
+        sc.s = rb[k].lib_s;
+        ggx_shapef_from(&sc.sf, sc.s);
         double tl = time_it(rb[k].lib, &sc, ns, NULL);
         printf("%-32s %8.2f   %-28s %8.2f   %.2f\n", rb[k].name, tr, rb[k].lib_name, tl, tl / tr);
     }
