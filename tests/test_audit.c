@@ -16,7 +16,7 @@ static const struct {
 } EXPECT[] = {
     {"norm", {1, 1}},        {"ggx", {1, -1}},          {"g1-blog", {1, 0}},       {"g1-walter", {1, 1}},
     {"stretch", {1, 0}},     {"ellipse", {1, 1}},       {"inversion", {1, -1}},    {"vndf-g1", {1, 0}},
-    {"crescent", {1, 1}},    {"crescent-blog", {1, 0}}, {"heitz", {1, 1}},         {"caps", {1, 1}},
+    {"caps", {1, 1}},        {"crescent", {1, 1}},      {"heitz", {1, 1}},         {"crescent-blog", {1, 0}},
     {"jacobian-blog", {0, 0}}, {"weight", {1, 1}},      {"below", {1, 1}},         {"rejection", {1, 1}},
 };
 
