@@ -6,6 +6,7 @@
 set -u
 GGX_BIN=$1
 PNG_INFO=$2
+ROOT=$(cd "$(dirname "$0")/.." && pwd) # for include/ggx/ggx_samplers.h, the sampler registry
 GGX="ggx_run"
 ggx_run() { ${GGX_WRAP:-} "$GGX_BIN" "$@"; }
 N=""
@@ -51,6 +52,51 @@ if [ "${GGX_CLI_QUICK:-0}" = 1 ]; then # 16 chi-square runs of 10^6 samples: min
 else
     "$GGX" audit > audit.md && [ "$(grep -c '^| [0-9]' audit.md)" -eq 16 ] && grep -q 'fails' audit.md && ok || bad "audit"
 fi
+
+# --- the samplers of the command are the registry's (in its order) and wrong-s, nothing else. The registry's list
+# comes from a program built on include/ggx/ggx_samplers.h alone (its X-macro), the command's from its help.
+cat > registry.c <<'EOF_C'
+#include <stdio.h>
+#include "ggx/ggx_samplers.h"
+#define ROW(ID, name, stem, family, domain, inverse, batch, help) printf("%s %s %s\n", name, #family, #domain);
+int main(void)
+{
+    printf("count %d\n", GGX_SAMPLER_COUNT);
+    GGX_SAMPLER_LIST(ROW)
+    return 0;
+}
+EOF_C
+if ${CC:-cc} -std=c11 -I"$ROOT/include" registry.c -o registry 2> cc.txt && ./registry > registry.txt; then ok; else
+    bad "cannot build the registry lister: $(cat cc.txt)"; fi
+count=$(awk '$1 == "count" { print $2 }' registry.txt)
+awk 'NF == 3 { print $1 }' registry.txt > reg-names.txt
+"$GGX" sample --help | awk '/^samplers:/ { on = 1; next } on && NF == 0 { exit } on { print $1 }' > help-names.txt
+[ "$(wc -l < help-names.txt)" -eq $((count + 1)) ] && ok ||
+    bad "ggx sample --help lists $(wc -l < help-names.txt) samplers, the registry has $count (+ wrong-s)"
+{ cat reg-names.txt; echo wrong-s; } | cmp -s - help-names.txt && ok ||
+    bad "ggx sample --help samplers $(tr '\n' ' ' < help-names.txt)differ from the registry's $(tr '\n' ' ' < reg-names.txt)+ wrong-s"
+"$GGX" check --help | awk '/^samplers:/ { on = 1; next } on && NF == 0 { exit } on { print $1 }' | cmp -s - help-names.txt &&
+    ok || bad "ggx check --help lists other samplers than ggx sample --help"
+while read -r name; do
+    "$GGX" sample --sampler "$name" -n 20 > one.csv 2> err.txt && [ "$(wc -l < one.csv)" -eq 21 ] && [ ! -s err.txt ] &&
+        ok || bad "ggx sample --sampler $name -n 20: $(cat err.txt)"
+done < help-names.txt
+# every sampler of normals of the registry is checked by ggx check (unskewed defaults) and by ggx demo, by name
+awk 'NF == 3 && $2 != "DIRECTION" { print $1 }' registry.txt | while read -r name; do
+    grep -q "^$name " check.txt || echo "ggx check does not check $name"
+    [ "$(grep -c "^$name " demo.txt)" -ge 1 ] || echo "ggx demo does not check $name"
+done > missing.txt
+[ ! -s missing.txt ] && ok || bad "$(cat missing.txt)"
+# a sampler for unskewed shapes given a skewed one: a usage error (exit 2, one line on stderr, nothing on stdout)
+awk 'NF == 3 && $3 == "UNSKEWED" { print $1 }' registry.txt | while read -r name; do
+    for c in sample check; do
+        "$GGX" $c --sampler "$name" --skew 20,0 -n 20 > out.txt 2> err.txt
+        rc=$?
+        [ $rc -eq 2 ] && [ "$(wc -l < err.txt)" -eq 1 ] && grep -q "^ggx: .*unskewed" err.txt && [ ! -s out.txt ] ||
+            echo "ggx $c --sampler $name --skew 20,0: rc $rc, stderr: $(cat err.txt), stdout: $(head -c 80 out.txt)"
+    done
+done > domain.txt
+[ ! -s domain.txt ] && ok || bad "$(cat domain.txt)"
 
 # --- ggx check rejects a deliberately wrong sampler on a skewed shape (exit 1), accepts it when unskewed
 "$GGX" check --sampler wrong-s --skew 20,-15 ${N:--n 200000} > wrong.txt; [ $? -eq 1 ] && grep -q FAILED wrong.txt && ok || bad "check wrong-s must fail"

@@ -16,7 +16,7 @@ static const struct {
 } EXPECT[] = {
     {"norm", {1, 1}},        {"ggx", {1, -1}},          {"g1-blog", {1, 0}},       {"g1-walter", {1, 1}},
     {"stretch", {1, 0}},     {"ellipse", {1, 1}},       {"inversion", {1, -1}},    {"vndf-g1", {1, 0}},
-    {"crescent", {1, 1}},    {"crescent-blog", {1, 0}}, {"heitz", {1, 1}},         {"caps", {1, 1}},
+    {"caps", {1, 1}},        {"crescent", {1, 1}},      {"heitz", {1, 1}},         {"crescent-blog", {1, 0}},
     {"jacobian-blog", {0, 0}}, {"weight", {1, 1}},      {"below", {1, 1}},         {"rejection", {1, 1}},
 };
 
@@ -27,7 +27,12 @@ static void audit(void **state)
     audit_walter_matrix(A[0], 0.15, 0.5, 0, 0, 0);
     audit_walter_matrix(A[1], 0.3, 0.6, 0.4, -0.3, 0.5);
     audit_row rows[AUDIT_MAX_ROWS];
+    remove("chi2_audit.csv");
     int n = audit_run((const double(*)[3][3])A, rows, 0);
+    /* claims that fail are answers: the audit's chi-square runs are quiet and leave no histogram behind */
+    FILE *dump = fopen("chi2_audit.csv", "r");
+    CHECK(dump == NULL, "the audit wrote chi2_audit.csv");
+    if (dump) fclose(dump);
     CHECK(n == (int)(sizeof EXPECT / sizeof EXPECT[0]), "%d rows", n);
     for (int i = 0; i < n; i++) {
         CHECK(strcmp(rows[i].id, EXPECT[i].id) == 0, "row %d is %s", i, rows[i].id);

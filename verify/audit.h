@@ -16,7 +16,9 @@ typedef struct audit_row {
 } audit_row;
 
 /* Runs every claim. A[0] is a diagonal shape matrix, A[1] a skewed one, both in Walter's form A = S R (the literal
- * forms of the seeds are applied to these matrices as given). Returns the number of rows. progress: dots on stderr. */
+ * forms of the seeds are applied to these matrices as given). Returns the number of rows. progress: dots on stderr.
+ * The claims about samplers are found by walking the sampler registry (ggx_samplers.h). No global state: threads
+ * may run audits at once. */
 int audit_run(const double A[2][3][3], audit_row *rows, int progress);
 /* Writes the rows as a Markdown table. */
 void audit_markdown(FILE *f, const audit_row *rows, int n, const char *label_diag, const char *label_skew);

@@ -44,8 +44,6 @@ double chi2_pvalue(double x, int dof)
     return y < a + 1.0 ? 1.0 - gamma_p_series(a, y) : gamma_q_cf(a, y);
 }
 
-int chi2_write_failures = 1;
-
 int normal_keys_key(void *ctx, ggx_vec3 m, int *region, ggx_vec3 *k)
 {
     *region = 0;
@@ -104,7 +102,29 @@ static double cell_integral(const chi2_problem *p, int region, double c0, double
     return sum * 0.25 * dc * dp;
 }
 
-chi2_result chi2_run(const chi2_problem *p, long n, int ntheta, int nphi, uint64_t seed, double alpha)
+/* The histogram of observed and expected counts, for a failing run. */
+static void write_failure(const chi2_problem *p, int ntheta, int nphi, const long *obs, const double *expd,
+                          const chi2_result *res)
+{
+    char path[256];
+    snprintf(path, sizeof path, "chi2_%s.csv", p->name);
+    for (char *c = path; *c; c++)
+        if (*c == ' ' || *c == '/' || *c == '(' || *c == ')' || *c == ',') *c = '_';
+    FILE *f = fopen(path, "w");
+    if (!f) return;
+    fprintf(f, "region,itheta,iphi,observed,expected\n");
+    for (int reg = 0; reg < p->nregions; reg++)
+        for (int it = 0; it < ntheta; it++)
+            for (int ip = 0; ip < nphi; ip++) {
+                long idx = ((long)reg * ntheta + it) * nphi + ip;
+                fprintf(f, "%d,%d,%d,%ld,%.6f\n", reg, it, ip, obs[idx], expd[idx]);
+            }
+    fprintf(f, "-1,-1,-1,%ld,%.6f\n", res->invalid, res->expected_invalid);
+    fclose(f);
+}
+
+static chi2_result run(const chi2_problem *p, long n, int ntheta, int nphi, uint64_t seed, double alpha,
+                       int write_failures)
 {
     chi2_result res = {0};
     long ncells = (long)p->nregions * ntheta * nphi;
@@ -182,25 +202,19 @@ chi2_result chi2_run(const chi2_problem *p, long n, int ntheta, int nphi, uint64
     res.bins = bins;
     res.dof = bins - 1;
     res.pvalue = res.dof > 0 ? chi2_pvalue(stat, res.dof) : 1.0;
-    if (chi2_write_failures && (res.pvalue < alpha || res.zero_cell_hits > 0)) {
-        char path[256];
-        snprintf(path, sizeof path, "chi2_%s.csv", p->name);
-        for (char *c = path; *c; c++)
-            if (*c == ' ' || *c == '/' || *c == '(' || *c == ')' || *c == ',') *c = '_';
-        FILE *f = fopen(path, "w");
-        if (f) {
-            fprintf(f, "region,itheta,iphi,observed,expected\n");
-            for (int reg = 0; reg < p->nregions; reg++)
-                for (int it = 0; it < ntheta; it++)
-                    for (int ip = 0; ip < nphi; ip++) {
-                        long idx = ((long)reg * ntheta + it) * nphi + ip;
-                        fprintf(f, "%d,%d,%d,%ld,%.6f\n", reg, it, ip, obs[idx], expd[idx]);
-                    }
-            fprintf(f, "-1,-1,-1,%ld,%.6f\n", res.invalid, res.expected_invalid);
-            fclose(f);
-        }
-    }
+    if (write_failures && (res.pvalue < alpha || res.zero_cell_hits > 0))
+        write_failure(p, ntheta, nphi, obs, expd, &res);
     free(obs);
     free(expd);
     return res;
+}
+
+chi2_result chi2_run(const chi2_problem *p, long n, int ntheta, int nphi, uint64_t seed, double alpha)
+{
+    return run(p, n, ntheta, nphi, seed, alpha, 1);
+}
+
+chi2_result chi2_run_quiet(const chi2_problem *p, long n, int ntheta, int nphi, uint64_t seed, double alpha)
+{
+    return run(p, n, ntheta, nphi, seed, alpha, 0);
 }

@@ -2,6 +2,7 @@
 #include "verify.h"
 
 #include <math.h>
+#include <pthread.h>
 #include <stdlib.h>
 
 double rng_uniform(rng *r)
@@ -53,7 +54,9 @@ void t_frame(ggx_vec3 n, ggx_vec3 *e1, ggx_vec3 *e2)
 
 enum { GL_N = 12, GL_M = 6 };
 static double gl_x[GL_N], gl_w[GL_N], gl_xm[GL_M], gl_wm[GL_M];
-static int gl_ready;
+/* The nodes are computed once per process; pthread_once makes the first quadratures of concurrent threads wait for
+ * them instead of racing on the tables. */
+static pthread_once_t gl_once = PTHREAD_ONCE_INIT;
 
 /* Gauss-Legendre nodes and weights of order n by Newton's method on P_n (no tabulated constants). */
 static void gl_nodes(int n, double *xs, double *ws)
@@ -77,13 +80,13 @@ static void gl_nodes(int n, double *xs, double *ws)
     }
 }
 
-static void gl_init(void)
+static void gl_compute(void)
 {
-    if (gl_ready) return;
     gl_nodes(GL_N, gl_x, gl_w);
     gl_nodes(GL_M, gl_xm, gl_wm);
-    gl_ready = 1;
 }
+
+static void gl_init(void) { pthread_once(&gl_once, gl_compute); }
 
 int quad_gl_order(void) { return GL_N; }
 

@@ -1,6 +1,6 @@
 /* libFuzzer target: the ggx command's parsers (options, numbers, shape syntax, directions, Fresnel, figure and
- * sampler names) fed from raw bytes split into arguments at NUL bytes. die() jumps back instead of exiting.
- * SPDX-License-Identifier: MIT */
+ * sampler names, with the sampler's domain and view checks) fed from raw bytes split into arguments at NUL bytes.
+ * die() jumps back instead of exiting. SPDX-License-Identifier: MIT */
 #include <math.h>
 #include <stdint.h>
 #include <stdlib.h>
@@ -34,7 +34,11 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
         ggx_fresnel f = fresnel_from_options(&o);
         if (!(ggx_fresnel_eval(&f, 0.5) >= 0 && ggx_fresnel_eval(&f, 0.5) <= 1)) abort();
         if (o.figure) figure_from_name(o.figure);
-        if (o.sampler) find_sampler(o.sampler);
+        if (o.sampler) { /* the name, then the shape and view against the sampler's registry entry */
+            const ggx_sampler_info *smp = find_sampler(o.sampler);
+            require_domain(smp, &s);
+            if (o.have_view) require_view(smp, o.view);
+        }
         if (o.have_view && !(fabs(o.view.x * o.view.x + o.view.y * o.view.y + o.view.z * o.view.z - 1) < 1e-12)) abort();
     }
     /* every argument on its own as a direction */

@@ -9,6 +9,14 @@
 
 jmp_buf *cli_die_jump;
 
+const char SHAPE_HELP[] =
+    "shape (one syntax for every subcommand):\n"
+    "  --alpha AX[,AY]       roughness (default 0.15,0.5); one value for isotropic\n"
+    "  --skew TX,TY          skew angles theta_x, theta_y in degrees (default 0,0)\n"
+    "  --rotate TZ           rotation of the anisotropy in the tangent plane, degrees (default 0)\n"
+    "  --matrix a,b,c,d,e,f,g,h,i   any invertible A, row-major (replaces the three above)\n"
+    "directions are THETA,PHI in degrees or X,Y,Z (normalised); n = +z, pointing away from the surface\n";
+
 void die(const char *fmt, ...)
 {
     if (cli_die_jump) longjmp(*cli_die_jump, 1);

@@ -7,6 +7,8 @@
 #include <stdio.h>
 
 #include "ggx/ggx.h"
+#include "ggx/ggx_samplers.h"
+#include "verify.h"
 
 /* Degrees to radians: the command's angles are in degrees. */
 #define DEG (3.14159265358979323846 / 180.0)
@@ -42,18 +44,26 @@ void shape_from_options(const options *o, ggx_shape *s);
 int parse_direction(const char *text, ggx_vec3 *v);
 ggx_fresnel fresnel_from_options(const options *o);
 
-/* ---- samplers by name ---- */
-typedef struct sampler_info {
-    const char *name;
-    int kind; /* 0: NDF sampler, 1: VNDF sampler, 2: VNDF rejection, 3: BRDF, 4: BSDF */
-    ggx_vec3 (*ndf)(const ggx_shape *, double, double);
-    ggx_vec3 (*vndf)(const ggx_shape *, ggx_vec3, double, double);
-    ggx_vec3 (*reject)(const ggx_shape *, ggx_vec3, ggx_uniform_fn, void *, unsigned *);
-    const char *help;
-} sampler_info;
-extern const sampler_info SAMPLERS[];
-extern const int NSAMPLERS;
-const sampler_info *find_sampler(const char *name); /* dies on an unknown name */
+/* ---- shape options, shared by the subcommands that take a shape ---- */
+#define SHAPE_OPTS "alpha,skew,rotate,matrix"
+extern const char SHAPE_HELP[]; /* the help text of the shape syntax */
+
+/* ---- samplers: the library's registry (ggx/ggx_samplers.h) in its order, then the command's one sampler of its
+ * own, wrong-s, a deliberately wrong VNDF sampler that `ggx check` must reject on a skewed shape ---- */
+int cli_sampler_count(void);                             /* GGX_SAMPLER_COUNT + 1 */
+const ggx_sampler_info *cli_sampler(int i);              /* 0 <= i < cli_sampler_count() */
+const ggx_sampler_info *find_sampler(const char *name); /* dies on an unknown name */
+void print_samplers(FILE *f);                            /* "samplers:" and one line per sampler, for --help */
+/* 1 when the shape is in the sampler's domain (an UNSKEWED sampler given a skewed shape: 0). */
+int sampler_applies(const ggx_sampler_info *smp, const ggx_shape *s);
+/* Dies, as a usage error, when the shape is outside the sampler's domain. */
+void require_domain(const ggx_sampler_info *smp, const ggx_shape *s);
+/* Dies when the sampler can take no sample from the view (or known direction) at all. */
+void require_view(const ggx_sampler_info *smp, ggx_vec3 view);
+/* One sample of any sampler: the direction, its pdf and weight (1 for samplers of normals). Returns 0 when invalid.
+ * f and eta are used by direction samplers only. */
+int draw_sample(const ggx_sampler_info *smp, const ggx_shape *s, ggx_vec3 view, const ggx_fresnel *f, double eta,
+                rng *r, ggx_vec3 *w, double *pdf, double *weight);
 
 /* ---- output files: written to a temporary name and renamed, so no partial file is ever left ---- */
 typedef struct out_file {
@@ -80,7 +90,7 @@ void write_png(const image *im, const char *path);
 typedef enum figure_kind { FIG_NDF, FIG_NDF_SIDE, FIG_VNDF, FIG_VNDF_SIDE, FIG_GRID, FIG_GRID_SIDE } figure_kind;
 figure_kind figure_from_name(const char *name);
 /* Writes the figure to path (PNG for densities, SVG for grids). */
-void draw_figure(figure_kind k, const ggx_shape *s, ggx_vec3 view, const sampler_info *sampler, int size,
+void draw_figure(figure_kind k, const ggx_shape *s, ggx_vec3 view, const ggx_sampler_info *sampler, int size,
                  int log_scale, const char *title, const char *path);
 
 /* ---- subcommands ---- */
@@ -99,7 +109,9 @@ typedef struct check_result {
     long zero_hits;
     int pass;
 } check_result;
-check_result run_check(const ggx_shape *s, ggx_vec3 view, const sampler_info *smp, long n, unsigned long long seed,
-                       double alpha, int progress);
+check_result run_check(const ggx_shape *s, ggx_vec3 view, const ggx_sampler_info *smp, long n,
+                       unsigned long long seed, double alpha, int progress);
+void print_check_header(FILE *f);
+void print_check_row(FILE *f, const char *name, check_result r);
 
 #endif

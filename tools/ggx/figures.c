@@ -99,15 +99,10 @@ static void density_png(figure_kind k, const ggx_shape *s, ggx_vec3 view, int si
     free(val);
 }
 
-static ggx_vec3 map_point(const sampler_info *smp, const ggx_shape *s, ggx_vec3 view, double u1, double u2)
-{
-    return smp->kind == 0 ? smp->ndf(s, u1, u2) : smp->vndf(s, view, u1, u2);
-}
-
-static void grid_svg(figure_kind k, const ggx_shape *s, ggx_vec3 view, const sampler_info *smp, int size,
+static void grid_svg(figure_kind k, const ggx_shape *s, ggx_vec3 view, const ggx_sampler_info *smp, int size,
                      const char *title, const char *path)
 {
-    if (smp->kind != 0 && smp->kind != 1) die("sampler '%s' is not a map of the unit square; grids need one", smp->name);
+    if (!smp->sample) die("sampler '%s' is not a map of the unit square; grids need one", smp->name);
     int side = k == FIG_GRID_SIDE;
     double R = 0.5 * size - 10, cx = 0.5 * size, cy = side ? size - 20.0 : 0.5 * size + 20;
     int H = side ? size / 2 + 40 : size + 40;
@@ -138,7 +133,7 @@ static void grid_svg(figure_kind k, const ggx_shape *s, ggx_vec3 view, const sam
                     else u1 = (double)i / cells, u2 = (j + 1.0 - f0) / cells;
                     if (u1 > 1.0 - 1e-9) u1 = 1.0 - 1e-9;
                     if (u2 > 1.0 - 1e-9) u2 = 1.0 - 1e-9;
-                    ggx_vec3 m = map_point(smp, s, view, u1, u2);
+                    ggx_vec3 m = smp->sample(s, view, u1, u2);
                     double X = cx + R * m.x, Y = side ? cy - R * m.z : cy - R * m.y;
                     fprintf(f, "%.2f,%.2f ", X, Y);
                 }
@@ -150,7 +145,7 @@ static void grid_svg(figure_kind k, const ggx_shape *s, ggx_vec3 view, const sam
     out_close(&o);
 }
 
-void draw_figure(figure_kind k, const ggx_shape *s, ggx_vec3 view, const sampler_info *sampler, int size,
+void draw_figure(figure_kind k, const ggx_shape *s, ggx_vec3 view, const ggx_sampler_info *sampler, int size,
                  int log_scale, const char *title, const char *path)
 {
     if (k == FIG_GRID || k == FIG_GRID_SIDE) grid_svg(k, s, view, sampler, size, title, path);

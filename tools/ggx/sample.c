@@ -1,0 +1,48 @@
+/* ggx sample: N samples of any sampler, with pdf and weight, as CSV or float32. SPDX-License-Identifier: MIT */
+#include <string.h>
+
+#include "cli.h"
+
+int cmd_sample(int argc, char **argv)
+{
+    options o;
+    parse_options(argc, argv, 2, &o, SHAPE_OPTS ",sampler,view,n,seed,format,out,fresnel,eta");
+    if (o.help) {
+        printf("usage: ggx sample [shape] [--sampler NAME] [--view DIR] [-n N] [--seed S] [--format csv|f32] [--out FILE]\n\n"
+               "Draws N samples (default 1000) with columns x,y,z,pdf,weight. For normal samplers the weight is 1;\n"
+               "for samplers of directions it is f |w.n| / pdf. Invalid samples are written as 0,0,0,0,0. --format f32\n"
+               "writes 5 little-endian float32 per sample. --view is the view / known direction (default 40,0).\n\n");
+        print_samplers(stdout);
+        printf("\n%s", SHAPE_HELP);
+        return 0;
+    }
+    ggx_shape s;
+    shape_from_options(&o, &s);
+    const ggx_sampler_info *smp = o.sampler ? find_sampler(o.sampler) : ggx_sampler_get(GGX_SAMPLER_CAPS);
+    require_domain(smp, &s);
+    if (!o.have_view) parse_direction("40,0", &o.view);
+    require_view(smp, o.view);
+    ggx_fresnel f = fresnel_from_options(&o);
+    int f32 = 0;
+    if (o.format && strcmp(o.format, "f32") == 0) f32 = 1;
+    else if (o.format && strcmp(o.format, "csv") != 0) die("--format: '%s' is not csv or f32", o.format);
+    if (f32 && !o.out) die("--format f32 needs --out FILE");
+    long n = o.n > 0 ? o.n : 1000;
+    rng r = {o.seed};
+    out_file out;
+    out_open(&out, o.out);
+    if (!f32) fprintf(out.f, "x,y,z,pdf,weight\n");
+    for (long i = 0; i < n; i++) {
+        ggx_vec3 w;
+        double pdf, weight;
+        if (!draw_sample(smp, &s, o.view, &f, o.eta, &r, &w, &pdf, &weight)) w = t_vec(0, 0, 0), pdf = 0, weight = 0;
+        if (f32) {
+            float v[5] = {(float)w.x, (float)w.y, (float)w.z, (float)pdf, (float)weight};
+            fwrite(v, sizeof v, 1, out.f);
+        } else {
+            fprintf(out.f, "%.17g,%.17g,%.17g,%.17g,%.17g\n", w.x, w.y, w.z, pdf, weight);
+        }
+    }
+    out_close(&out);
+    return 0;
+}
