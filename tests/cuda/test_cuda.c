@@ -22,7 +22,9 @@
  * normals unit or zero, above the horizon and facing the view, direction samples unit on the side their event
  * says or invalid and zero, disk points in the disk, (u1, u2) in [0, 1].
  * Prints one line per kernel (name, elements, largest difference from the host) and the inputs of the first
- * failures. Exits 77 (ctest SKIP_RETURN_CODE) when there is no CUDA device or driver. SPDX-License-Identifier: MIT */
+ * failures. Exits 77 (ctest SKIP_RETURN_CODE) when there is no CUDA device or driver, or 1 then if the environment
+ * sets GGX_REQUIRE_GPU (for a run on a GPU machine, where a skip would hide a missing driver).
+ * SPDX-License-Identifier: MIT */
 #include <float.h>
 #include <math.h>
 #include <stdio.h>
@@ -602,7 +604,13 @@ static int check_kernel(const ggx_cuda_kernel *k, const ggx_shape *ds, const uns
 int main(void)
 {
     char why[512];
+    setvbuf(stdout, NULL, _IOLBF, 0); /* the per-kernel lines and the notes on stderr stay in order */
     int dev = ggx_cuda_device_check(why, sizeof why);
+    const char *require = getenv("GGX_REQUIRE_GPU");
+    if (dev == 0 && require && *require) {
+        fprintf(stderr, "test_cuda: FAIL: GGX_REQUIRE_GPU is set but %s\n", why);
+        return 1;
+    }
     if (dev == 0) {
         printf("test_cuda: skipped: %s\n", why);
         return SKIP;
