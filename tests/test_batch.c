@@ -122,8 +122,8 @@ static void compare(ggx_batch_isa isa, worst *w)
                 ggx_vec3 m = info->sample(&s, t_vec(V[i][0], V[i][1], V[i][2]), u1[i], u2[i]);
                 double e = fmax(fabs(o1[i] - m.x), fmax(fabs(o2[i] - m.y), fabs(o3[i] - m.z)));
                 w->normals[id] = fmax(w->normals[id], e);
-                CHECK(e <= 1e-4, "%s %s n %d i %d: u (%.9g, %.9g), v (%.9g, %.9g, %.9g): err %g", ggx_batch_isa_name(isa),
-                      info->name, n, i, u1[i], u2[i], vx[i], vy[i], vz[i], e);
+                CHECK(e <= 1e-4, "%s %s n %d i %d: u (%.9g, %.9g), v (%.9g, %.9g, %.9g): err %g",
+                      ggx_batch_isa_name(isa), info->name, n, i, u1[i], u2[i], vx[i], vy[i], vz[i], e);
             }
             CHECK(o1[n] == -7.0f && o2[n] == -7.0f && o3[n] == -7.0f, "%s wrote past n = %d", info->name, n);
         }

@@ -57,9 +57,12 @@ typedef enum op {
 } op;
 static const char *const op_names[OP_SAMPLER] = {"ndf", "pdf_vndf", "brdf", "sample_vndf", "sample_vndf_aniso",
                                                  "sample_ndf", "sample_brdf"};
-static const char *op_name(op o) { return o < OP_SAMPLER ? op_names[o] : ggx_sampler_get((ggx_sampler_id)(o - OP_SAMPLER))->name; }
 /* The registry's entry of a sampler op (NULL for the other ops). */
-static const ggx_sampler_info *sampler_of(op o) { return o >= OP_SAMPLER ? ggx_sampler_get((ggx_sampler_id)(o - OP_SAMPLER)) : NULL; }
+static const ggx_sampler_info *sampler_of(op o)
+{
+    return o >= OP_SAMPLER ? ggx_sampler_get((ggx_sampler_id)(o - OP_SAMPLER)) : NULL;
+}
+static const char *op_name(op o) { return o < OP_SAMPLER ? op_names[o] : sampler_of(o)->name; }
 
 enum { Q_VALUE, Q_DIR, Q_PDF, Q_WEIGHT, Q_VALID, Q_NONFINITE, Q_CONTRACT, NQ };
 static const char *const q_names[NQ] = {"value, rel err", "direction, abs err", "sample pdf, rel err",
@@ -491,7 +494,7 @@ static void scale_invariance(void **state)
     every_variant("scale", body_scale);
 }
 
-/* ---- 2. a NaN or infinite u gives the zero vector / an invalid sample (batch), or reads as clamped (the others) ---- */
+/* ---- 2. a NaN or infinite u: the zero vector / an invalid sample (batch), or read as clamped (the others) ---- */
 
 static void body_nonfinite_u(report *r)
 {

@@ -120,7 +120,8 @@ static void reflection_sweep(void **state)
             ggx_shape s;
             make_shape(&s, SWEEP_SHAPES[i].p);
             for (int j = 0; j < SWEEP_NVIEWS; j++) {
-                dir_ctx c = {info, &s, {GGX_FRESNEL_ONE, 0, 0, 0}, sweep_view(SWEEP_VIEWS_DEG[j]), 1.5, transmits, 0.0, 0};
+                ggx_vec3 v = sweep_view(SWEEP_VIEWS_DEG[j]);
+                dir_ctx c = {info, &s, {GGX_FRESNEL_ONE, 0, 0, 0}, v, 1.5, transmits, 0.0, 0};
                 if (j % 2) ggx_fresnel_conductor(&c.f, 0.2, 3.9);
                 char name[128];
                 snprintf(name, sizeof name, "%s %s, view %g", info->name, SWEEP_SHAPES[i].name, SWEEP_VIEWS_DEG[j]);

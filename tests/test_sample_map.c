@@ -137,7 +137,8 @@ static void edge_cases(void **state)
 {
     (void)state;
     const double us[] = {0.0, 1e-300, 0.5, 1.0 - DBL_EPSILON / 2, 1.0};
-    const ggx_vec3 views[] = {t_vec(0, 0, 1), t_dir(T_PI / 2 - 1e-8, 0.3), t_vec(0.6, 0.8, 0), t_dir(T_PI / 2 + 0.1, 0.2)};
+    const ggx_vec3 views[] = {t_vec(0, 0, 1), t_dir(T_PI / 2 - 1e-8, 0.3), t_vec(0.6, 0.8, 0),
+                              t_dir(T_PI / 2 + 0.1, 0.2)};
     long n = 0;
     for (int i = 0; i < SWEEP_NSHAPES; i++) {
         ggx_shape s;
@@ -196,7 +197,8 @@ static void defaults(void **state)
         ggx_vec3 a = ggx_sample_ndf(&s, u1, u2), b = ndf->sample(&s, v, u1, u2);
         ggx_vec3 c = ggx_sample_vndf(&s, v, u1, u2), d = vndf->sample(&s, v, u1, u2);
         CHECK(a.x == b.x && a.y == b.y && a.z == b.z && c.x == d.x && c.y == d.y && c.z == d.z,
-              "defaults differ from stretch / caps at u (%.17g, %.17g), v (%.17g, %.17g, %.17g)", u1, u2, v.x, v.y, v.z);
+              "defaults differ from stretch / caps at u (%.17g, %.17g), v (%.17g, %.17g, %.17g)", u1, u2, v.x, v.y,
+              v.z);
     }
 }
 

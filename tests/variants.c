@@ -166,7 +166,8 @@ static void inline_sample(const variant *vr, ggx_sampler_id id, const ggx_shape 
     CHECK(inline_has(vr, id) == 1, "%s has no sampler of normals %d", vr->name, (int)id);
     ggx_shapef sf;
     ggx_shapef_from(&sf, s);
-    for (size_t i = 0; i < n; i++) m[i] = is_f(vr) ? NORMAL_F[id](&sf, v[i], u1[i], u2[i]) : NORMAL_D[id](s, v[i], u1[i], u2[i]);
+    for (size_t i = 0; i < n; i++)
+        m[i] = is_f(vr) ? NORMAL_F[id](&sf, v[i], u1[i], u2[i]) : NORMAL_D[id](s, v[i], u1[i], u2[i]);
 }
 static ggx_vec3 inline_reject(const variant *vr, ggx_sampler_id id, const ggx_shape *s, ggx_vec3 v,
                               ggx_uniform_fn next, void *state, unsigned *trials)
@@ -251,33 +252,79 @@ static void inline_sample_brdf(const variant *vr, const ggx_shape *s, const ggx_
 
 /* ---- batch: ggx_batch.h on the variant's instruction set, in chunks of float arrays ---- */
 
+/* One call of a batch function over n elements: double inputs (NULL where unused) converted chunk by chunk to the
+ * float arrays of ggx_batch.h, float outputs widened into value (one per element), m (normals and directions) and
+ * smp (direction samples). */
+typedef enum batch_fn {
+    B_NDF,
+    B_G1,
+    B_PDF_VNDF,
+    B_BRDF,
+    B_NORMALS,
+    B_SAMPLE_VNDF,
+    B_SAMPLE_NDF,
+    B_SAMPLE_BRDF,
+    B_ANISO
+} batch_fn;
+typedef struct batch_call {
+    batch_fn fn;
+    ggx_sampler_id id; /* B_NORMALS */
+    const ggx_shape *s;
+    const ggx_fresnel *f;
+    const ggx_vec3 *a, *b; /* the first and second direction of the function */
+    const double *u1, *u2, *ax, *ay;
+    double *value;
+    ggx_vec3 *m;
+    ggx_sample *smp;
+} batch_call;
 enum { CHUNK = 256 };
-typedef struct soa {
-    float x[CHUNK], y[CHUNK], z[CHUNK];
-} soa;
 
-static void soa_from(soa *a, const ggx_vec3 *v, size_t k)
+static void floats_of_vecs(float x[3][CHUNK], const ggx_vec3 *v, size_t k)
 {
-    for (size_t i = 0; i < k; i++) a->x[i] = (float)v[i].x, a->y[i] = (float)v[i].y, a->z[i] = (float)v[i].z;
+    for (size_t i = 0; v && i < k; i++) x[0][i] = (float)v[i].x, x[1][i] = (float)v[i].y, x[2][i] = (float)v[i].z;
 }
-static void floats_from(float *f, const double *d, size_t k)
+static void floats_of(float *f, const double *d, size_t k)
 {
-    for (size_t i = 0; i < k; i++) f[i] = (float)d[i];
+    for (size_t i = 0; d && i < k; i++) f[i] = (float)d[i];
 }
-static void vecs_from(ggx_vec3 *v, const soa *a, size_t k)
-{
-    for (size_t i = 0; i < k; i++) v[i] = t_vec(a->x[i], a->y[i], a->z[i]);
-}
-static void doubles_from(double *d, const float *f, size_t k)
-{
-    for (size_t i = 0; i < k; i++) d[i] = f[i];
-}
-static size_t chunk_at(size_t n, size_t i0) { return n - i0 < CHUNK ? n - i0 : CHUNK; }
 
 /* The path is process-wide: set it on every call, so that variants can be interleaved. */
-static void use_isa(const variant *vr)
+static void batch_run(const variant *vr, const batch_call *c, size_t n)
 {
     CHECK(ggx_batch_set_isa(vr->isa) == GGX_OK, "%s: ggx_batch_set_isa refused", vr->name);
+    for (size_t i0 = 0; i0 < n; i0 += CHUNK) {
+        size_t k = n - i0 < CHUNK ? n - i0 : CHUNK;
+        float a[3][CHUNK], b[3][CHUNK], u1[CHUNK], u2[CHUNK], ax[CHUNK], ay[CHUNK], o[5][CHUNK];
+        floats_of_vecs(a, c->a ? c->a + i0 : NULL, k), floats_of_vecs(b, c->b ? c->b + i0 : NULL, k);
+        floats_of(u1, c->u1 ? c->u1 + i0 : NULL, k), floats_of(u2, c->u2 ? c->u2 + i0 : NULL, k);
+        floats_of(ax, c->ax ? c->ax + i0 : NULL, k), floats_of(ay, c->ay ? c->ay + i0 : NULL, k);
+        ggx_status st = GGX_OK;
+        switch (c->fn) {
+        case B_NDF: ggx_batch_ndf(o[0], k, c->s, a[0], a[1], a[2]); break;
+        case B_G1: ggx_batch_g1(o[0], k, c->s, a[0], a[1], a[2], b[0], b[1], b[2]); break;
+        case B_PDF_VNDF: ggx_batch_pdf_vndf(o[0], k, c->s, a[0], a[1], a[2], b[0], b[1], b[2]); break;
+        case B_BRDF: ggx_batch_brdf(o[0], k, c->s, c->f, a[0], a[1], a[2], b[0], b[1], b[2]); break;
+        case B_NORMALS:
+            st = ggx_batch_sample_normals(c->id, o[0], o[1], o[2], k, c->s, a[0], a[1], a[2], u1, u2);
+            break;
+        case B_SAMPLE_VNDF: ggx_batch_sample_vndf(o[0], o[1], o[2], k, c->s, a[0], a[1], a[2], u1, u2); break;
+        case B_SAMPLE_NDF: ggx_batch_sample_ndf(o[0], o[1], o[2], k, c->s, u1, u2); break;
+        case B_SAMPLE_BRDF:
+            ggx_batch_sample_brdf(o[0], o[1], o[2], o[3], o[4], k, c->s, c->f, a[0], a[1], a[2], u1, u2);
+            break;
+        case B_ANISO: ggx_batch_sample_vndf_aniso(o[0], o[1], o[2], k, ax, ay, a[0], a[1], a[2], u1, u2); break;
+        }
+        CHECK(st == GGX_OK, "%s: batch function %d: %s", vr->name, (int)c->fn, ggx_status_str(st));
+        for (size_t i = 0; i < k; i++) {
+            if (c->value) c->value[i0 + i] = o[0][i];
+            if (c->m) c->m[i0 + i] = t_vec(o[0][i], o[1][i], o[2][i]);
+            if (c->smp) { /* invalid samples are written as w = 0, pdf 0, weight 0; valid ones are reflections */
+                ggx_sample *x = &c->smp[i0 + i];
+                x->w = t_vec(o[0][i], o[1][i], o[2][i]), x->pdf = o[3][i], x->weight = o[4][i];
+                x->event = o[3][i] > 0 ? GGX_EVENT_REFLECT : GGX_EVENT_INVALID;
+            }
+        }
+    }
 }
 
 static int batch_has(const variant *vr, ggx_sampler_id id)
@@ -289,53 +336,24 @@ static int batch_has(const variant *vr, ggx_sampler_id id)
 static void batch_sample(const variant *vr, ggx_sampler_id id, const ggx_shape *s, size_t n, const ggx_vec3 *v,
                          const double *u1, const double *u2, ggx_vec3 *m)
 {
-    use_isa(vr);
-    for (size_t i0 = 0; i0 < n; i0 += CHUNK) {
-        size_t k = chunk_at(n, i0);
-        soa a, o;
-        float f1[CHUNK], f2[CHUNK];
-        soa_from(&a, v + i0, k), floats_from(f1, u1 + i0, k), floats_from(f2, u2 + i0, k);
-        ggx_status st = ggx_batch_sample_normals(id, o.x, o.y, o.z, k, s, a.x, a.y, a.z, f1, f2);
-        CHECK(st == GGX_OK, "%s: ggx_batch_sample_normals(%s): %s", vr->name, info_of(id)->name, ggx_status_str(st));
-        vecs_from(m + i0, &o, k);
-    }
+    batch_call c = {B_NORMALS, id, s, NULL, v, NULL, u1, u2, NULL, NULL, NULL, m, NULL};
+    batch_run(vr, &c, n);
 }
 static void batch_ndf(const variant *vr, const ggx_shape *s, size_t n, const ggx_vec3 *m, double *d)
 {
-    use_isa(vr);
-    for (size_t i0 = 0; i0 < n; i0 += CHUNK) {
-        size_t k = chunk_at(n, i0);
-        soa a;
-        float o[CHUNK];
-        soa_from(&a, m + i0, k);
-        ggx_batch_ndf(o, k, s, a.x, a.y, a.z);
-        doubles_from(d + i0, o, k);
-    }
+    batch_call c = {B_NDF, 0, s, NULL, m, NULL, NULL, NULL, NULL, NULL, d, NULL, NULL};
+    batch_run(vr, &c, n);
 }
 static void batch_g1(const variant *vr, const ggx_shape *s, size_t n, const ggx_vec3 *u, const ggx_vec3 *m, double *g)
 {
-    use_isa(vr);
-    for (size_t i0 = 0; i0 < n; i0 += CHUNK) {
-        size_t k = chunk_at(n, i0);
-        soa a, b;
-        float o[CHUNK];
-        soa_from(&a, u + i0, k), soa_from(&b, m + i0, k);
-        ggx_batch_g1(o, k, s, a.x, a.y, a.z, b.x, b.y, b.z);
-        doubles_from(g + i0, o, k);
-    }
+    batch_call c = {B_G1, 0, s, NULL, u, m, NULL, NULL, NULL, NULL, g, NULL, NULL};
+    batch_run(vr, &c, n);
 }
 static void batch_pdf_vndf(const variant *vr, const ggx_shape *s, size_t n, const ggx_vec3 *v, const ggx_vec3 *m,
                            double *pdf)
 {
-    use_isa(vr);
-    for (size_t i0 = 0; i0 < n; i0 += CHUNK) {
-        size_t k = chunk_at(n, i0);
-        soa a, b;
-        float o[CHUNK];
-        soa_from(&a, v + i0, k), soa_from(&b, m + i0, k);
-        ggx_batch_pdf_vndf(o, k, s, a.x, a.y, a.z, b.x, b.y, b.z);
-        doubles_from(pdf + i0, o, k);
-    }
+    batch_call c = {B_PDF_VNDF, 0, s, NULL, v, m, NULL, NULL, NULL, NULL, pdf, NULL, NULL};
+    batch_run(vr, &c, n);
 }
 /* The batch API has no pdf_ndf: D(m) from ggx_batch_ndf times m.z. */
 static void batch_sampler_pdf(const variant *vr, ggx_sampler_id id, const ggx_shape *s, size_t n, const ggx_vec3 *v,
@@ -351,73 +369,32 @@ static void batch_sampler_pdf(const variant *vr, ggx_sampler_id id, const ggx_sh
 static void batch_brdf(const variant *vr, const ggx_shape *s, const ggx_fresnel *f, size_t n, const ggx_vec3 *wi,
                        const ggx_vec3 *wo, double *fr)
 {
-    use_isa(vr);
-    for (size_t i0 = 0; i0 < n; i0 += CHUNK) {
-        size_t k = chunk_at(n, i0);
-        soa a, b;
-        float o[CHUNK];
-        soa_from(&a, wi + i0, k), soa_from(&b, wo + i0, k);
-        ggx_batch_brdf(o, k, s, f, a.x, a.y, a.z, b.x, b.y, b.z);
-        doubles_from(fr + i0, o, k);
-    }
+    batch_call c = {B_BRDF, 0, s, f, wi, wo, NULL, NULL, NULL, NULL, fr, NULL, NULL};
+    batch_run(vr, &c, n);
 }
 static void batch_sample_vndf(const variant *vr, const ggx_shape *s, size_t n, const ggx_vec3 *v, const double *u1,
                               const double *u2, ggx_vec3 *m)
 {
-    use_isa(vr);
-    for (size_t i0 = 0; i0 < n; i0 += CHUNK) {
-        size_t k = chunk_at(n, i0);
-        soa a, o;
-        float f1[CHUNK], f2[CHUNK];
-        soa_from(&a, v + i0, k), floats_from(f1, u1 + i0, k), floats_from(f2, u2 + i0, k);
-        ggx_batch_sample_vndf(o.x, o.y, o.z, k, s, a.x, a.y, a.z, f1, f2);
-        vecs_from(m + i0, &o, k);
-    }
+    batch_call c = {B_SAMPLE_VNDF, 0, s, NULL, v, NULL, u1, u2, NULL, NULL, NULL, m, NULL};
+    batch_run(vr, &c, n);
 }
 static void batch_sample_ndf(const variant *vr, const ggx_shape *s, size_t n, const double *u1, const double *u2,
                              ggx_vec3 *m)
 {
-    use_isa(vr);
-    for (size_t i0 = 0; i0 < n; i0 += CHUNK) {
-        size_t k = chunk_at(n, i0);
-        soa o;
-        float f1[CHUNK], f2[CHUNK];
-        floats_from(f1, u1 + i0, k), floats_from(f2, u2 + i0, k);
-        ggx_batch_sample_ndf(o.x, o.y, o.z, k, s, f1, f2);
-        vecs_from(m + i0, &o, k);
-    }
+    batch_call c = {B_SAMPLE_NDF, 0, s, NULL, NULL, NULL, u1, u2, NULL, NULL, NULL, m, NULL};
+    batch_run(vr, &c, n);
 }
-/* Invalid samples are written as w = 0, pdf 0, weight 0; valid ones are reflections. */
 static void batch_sample_brdf(const variant *vr, const ggx_shape *s, const ggx_fresnel *f, size_t n,
                               const ggx_vec3 *wi, const double *u1, const double *u2, ggx_sample *out)
 {
-    use_isa(vr);
-    for (size_t i0 = 0; i0 < n; i0 += CHUNK) {
-        size_t k = chunk_at(n, i0);
-        soa a, o;
-        float f1[CHUNK], f2[CHUNK], pdf[CHUNK], weight[CHUNK];
-        soa_from(&a, wi + i0, k), floats_from(f1, u1 + i0, k), floats_from(f2, u2 + i0, k);
-        ggx_batch_sample_brdf(o.x, o.y, o.z, pdf, weight, k, s, f, a.x, a.y, a.z, f1, f2);
-        for (size_t i = 0; i < k; i++) {
-            ggx_sample *x = &out[i0 + i];
-            x->w = t_vec(o.x[i], o.y[i], o.z[i]), x->pdf = pdf[i], x->weight = weight[i];
-            x->event = pdf[i] > 0 ? GGX_EVENT_REFLECT : GGX_EVENT_INVALID;
-        }
-    }
+    batch_call c = {B_SAMPLE_BRDF, 0, s, f, wi, NULL, u1, u2, NULL, NULL, NULL, NULL, out};
+    batch_run(vr, &c, n);
 }
 static void batch_sample_vndf_aniso(const variant *vr, size_t n, const double *alpha_x, const double *alpha_y,
                                     const ggx_vec3 *v, const double *u1, const double *u2, ggx_vec3 *m)
 {
-    use_isa(vr);
-    for (size_t i0 = 0; i0 < n; i0 += CHUNK) {
-        size_t k = chunk_at(n, i0);
-        soa a, o;
-        float f1[CHUNK], f2[CHUNK], ax[CHUNK], ay[CHUNK];
-        soa_from(&a, v + i0, k), floats_from(f1, u1 + i0, k), floats_from(f2, u2 + i0, k);
-        floats_from(ax, alpha_x + i0, k), floats_from(ay, alpha_y + i0, k);
-        ggx_batch_sample_vndf_aniso(o.x, o.y, o.z, k, ax, ay, a.x, a.y, a.z, f1, f2);
-        vecs_from(m + i0, &o, k);
-    }
+    batch_call c = {B_ANISO, 0, NULL, NULL, v, NULL, u1, u2, alpha_x, alpha_y, NULL, m, NULL};
+    batch_run(vr, &c, n);
 }
 
 #define EXPORTED_FNS                                                                                              \
