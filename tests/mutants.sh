@@ -1,47 +1,89 @@
 #!/bin/sh
 # Mutation check: applies one deliberate error at a time to the library (each a plausible mistake, several of them
-# the forms the seeds disagree on), rebuilds in a scratch tree and requires the test suite to fail.
-# Usage: sh tests/mutants.sh   (from the repository root; about two minutes per mutant on 2 cores)
+# the forms the seeds disagree on, some reaching only one variant: the float kernels, the batch loops, the
+# registry), rebuilds in a scratch tree and requires the test suite (at GGX_TEST_SCALE 0.2, without the install and
+# command tests) to fail. A mutant whose text is no longer in the source counts as survived.
+# Usage: sh tests/mutants.sh   (from the repository root; about a minute per mutant on 2 cores)
 set -u
 root=$(pwd)
 work=$(mktemp -d)
 trap 'rm -rf "$work"' EXIT
 survived=0
-mutate() { # file, python-style literal old, new, description
-    rm -rf "$work/src" && cp -r "$root" "$work/src" && rm -rf "$work/src/build"*
-    if ! grep -qF "$2" "$work/src/$1"; then echo "MUTANT NOT APPLIED: $4"; survived=$((survived + 1)); return; fi
-    python3 -c "import sys; p, o, n = sys.argv[1:4]; s = open(p).read(); open(p, 'w').write(s.replace(o, n, 1))" \
-        "$work/src/$1" "$2" "$3"
-    cmake -S "$work/src" -B "$work/b" -DGGX_WERROR=ON >/dev/null 2>&1 && cmake --build "$work/b" -j 2 >/dev/null 2>&1
-    if (cd "$work/b" && GGX_TEST_SCALE=0.2 ctest -j 2 -E "install|cli" >/dev/null 2>&1); then
-        echo "SURVIVED: $4"; survived=$((survived + 1))
+killed=0
+# The sources, copied once (later edits of the tree do not reach a running check).
+mkdir "$work/tree" && cp -r "$root/CMakeLists.txt" "$root/cmake" "$root/include" "$root/src" "$root/verify" \
+    "$root/tests" "$root/tools" "$root/examples" "$root/bench" "$work/tree/"
+# Builds the scratch tree and prints the names of the test programs that fail, or BUILD FAILED.
+build_and_test() {
+    if ! { cmake -S "$work/src" -B "$work/b" -DGGX_WERROR=ON -DGGX_BUILD_TOOL=OFF -DGGX_BUILD_EXAMPLES=OFF \
+               >/dev/null 2>&1 && cmake --build "$work/b" -j 2 >/dev/null 2>&1; }; then
+        echo "BUILD FAILED"
     else
-        echo "killed:   $4 ($(cd "$work/b" && GGX_TEST_SCALE=0.2 ctest -j 2 -E "install|cli" 2>/dev/null | grep -c '\*\*\*Failed') test programs failed)"
+        (cd "$work/b" && GGX_TEST_SCALE=0.2 ctest -j 2 -E "install|cli" 2>/dev/null |
+            sed -n 's/.*Test *#[0-9]*: \([a-z_0-9]*\) .*\*\*\*Failed.*/\1/p' | tr '\n' ' ')
     fi
     rm -rf "$work/b"
 }
-mutate src/shape.c "t.ndf_scale = 1.0 / (GGX_PI * t.det * t.an_len);" "t.ndf_scale = 1.0 / (GGX_PI * t.det);" \
+# The control: the unmutated tree passes, or a kill below would mean nothing.
+rm -rf "$work/src" && cp -r "$work/tree" "$work/src"
+control=$(build_and_test)
+if [ -n "$control" ]; then echo "the unmutated tree fails: $control"; exit 1; fi
+mutate() { # file, old text, new text, description
+    rm -rf "$work/src" && cp -r "$work/tree" "$work/src"
+    if ! grep -qF "$2" "$work/src/$1"; then echo "MUTANT NOT APPLIED: $4"; survived=$((survived + 1)); return; fi
+    python3 -c "import sys; p, o, n = sys.argv[1:4]; s = open(p).read(); open(p, 'w').write(s.replace(o, n, 1))" \
+        "$work/src/$1" "$2" "$3"
+    failed=$(build_and_test)
+    if [ "$failed" = "BUILD FAILED" ]; then
+        echo "MUTANT DOES NOT BUILD: $4"; survived=$((survived + 1))
+    elif [ -z "$failed" ]; then
+        echo "SURVIVED: $4"; survived=$((survived + 1))
+    else
+        echo "killed:   $4 (failed: $failed)"; killed=$((killed + 1))
+    fi
+}
+K=include/ggx/kernel
+mutate src/api/shape.c "t.ndf_scale = 1.0 / (GGX_PI * t.det * t.an_len);" "t.ndf_scale = 1.0 / (GGX_PI * t.det);" \
     "D without ||A n|| (eq 1 normalisation)"
-mutate src/ndf.c "double num = lune_numerator(mat_mul(s->a, u), s->an, &lv);" \
-    "double num = lune_numerator(mat_mul(s->a, u), v3(s->ainv_t[0][2], s->ainv_t[1][2], s->ainv_t[2][2]), &lv);" \
+mutate $K/ndf.inc "    ggx_r lu = GGX_FN(k_len)(au), t = au.z + lu;
+    *w = au.x * au.x + au.y * au.y + t * t;" \
+    "    ggx_r lu = GGX_FN(k_len)(au);
+    ggx_v3 g = GGX_FN(k_normalize)(GGX_FN(k_v3)(s->ainv_t[0][2], s->ainv_t[1][2], s->ainv_t[2][2]));
+    ggx_v3 h = GGX_FN(k_add)(au, GGX_FN(k_scale)(g, lu));
+    *w = GGX_FN(k_dot)(h, h);" \
     "masking lune built from A^-T n (blog Part 2 form) instead of A n"
-mutate src/ndf.c "return g < 1.0 ? g : 1.0;" "return g;" "G1 without the min of eq 32"
-mutate src/ndf.c "return finite_or_zero(s->det * s->det * q * q);" "return finite_or_zero(s->det * q * q);" \
+mutate $K/ndf.inc "return GGX_FN(k_min1)(GGX_FN(g1_smith)(s, u));" "return GGX_FN(g1_smith)(s, u);" \
+    "G1 without the min of eq 32"
+mutate $K/ndf.inc "return GGX_FN(k_finite0)(s->det * s->det * q * q);" "return GGX_FN(k_finite0)(s->det * q * q);" \
     "Kg with |A| instead of |A|^2"
-mutate src/bsdf.c "eta_o * eta_o * T" "T" "BTDF without eta_o^2 (importance form as radiance)"
-mutate src/bsdf.c "/ (4.0 * wi.z * wo.z)" "/ (2.0 * wi.z * wo.z)" "BRDF with 2 instead of 4"
-mutate src/bsdf.c "return finite_or_zero(eta_o * eta_o * fabs(v3_dot(wo, h)) / (d * d));" \
-    "return finite_or_zero(eta_i * eta_i * fabs(v3_dot(wo, h)) / (d * d));" "refraction Jacobian with eta_i^2"
-mutate src/fresnel.c "(t1 - t2 + t3) / (t1 + t2 + t3)" "(t1 + t2 + t3) / (t1 + t2 + t3)" "conductor R_p sign"
-mutate src/fresnel.c "double rp = (eta * ci - ct) / (eta * ci + ct);" "double rp = (ci - eta * ct) / (ci + eta * ct);" \
+mutate $K/scatter.inc "GGX_FABS(hi * ho) * eta_o * eta_o * T" "GGX_FABS(hi * ho) * T" \
+    "BTDF without eta_o^2 (importance form as radiance)"
+mutate $K/scatter.inc "g * fr / (4 * wi.z * wo.z)" "g * fr / (2 * wi.z * wo.z)" "BRDF with 2 instead of 4"
+mutate $K/scatter.inc "k_finite0)(eta_o * eta_o * GGX_FABS(GGX_FN(k_dot)(wo, h)) / (d * d))" \
+    "k_finite0)(eta_i * eta_i * GGX_FABS(GGX_FN(k_dot)(wo, h)) / (d * d))" "refraction Jacobian with eta_i^2"
+mutate $K/fresnel.inc "rs * (t1 - t2 + t3) / (t1 + t2 + t3)" "rs * (t1 + t2 + t3) / (t1 + t2 + t3)" \
+    "conductor R_p sign"
+mutate $K/fresnel.inc "ggx_r rp = (eta * ci - ct) / (eta * ci + ct);" "ggx_r rp = (ci - eta * ct) / (ci + eta * ct);" \
     "dielectric R_p = R_s"
-mutate src/ndf.c "return finite_or_zero(ggx_ndf(s, m) * mv * 2.0 * s->an_len * s->an_len / num);" \
-    "return finite_or_zero(ggx_ndf(s, m) * mv / v.z);" "VNDF pdf with G1 dropped"
-mutate src/sample.c "double z = (1.0 - clamp01(u2)) * (1.0 + vs.z) - vs.z;" "double z = (1.0 - clamp01(u2)) * (1.0 + vs.z) - 0.9 * vs.z;" \
+mutate $K/ndf.inc "GGX_FN(k_finite0)(GGX_FN(ndf)(s, m) * mv * d / w)" \
+    "GGX_FN(k_finite0)(GGX_FN(ndf)(s, m) * mv / v.z)" \
+    "VNDF pdf with G1 dropped"
+mutate $K/sample.inc "ggx_r pz = (1 - u2) * opz;" "ggx_r pz = (1 - u2) * opz + GGX_C(0.1) * vs.z;" \
     "spherical cap with the wrong lower bound"
-mutate src/sample.c "    double sc = 0.5 * (1.0 + vs.z); /* eq 38 with A n / ||A n|| = z */" "    double sc = 0.5 * (1.0 + vs.z * vs.z);" \
+mutate $K/sample.inc "ggx_r sc = GGX_C(0.5) * (1 + vs.z);" "ggx_r sc = GGX_C(0.5) * (1 + vs.z * vs.z);" \
     "crescent factor s squared"
-mutate src/batch_kernels.inc "float p = 0.25f * ndf1(s, mx, my, mz) * vf;" "float p = 0.5f * ndf1(s, mx, my, mz) * vf;" \
-    "batch reflection pdf off by 2"
-echo "$survived mutant(s) survived"
+mutate $K/sample.inc "ggx_r h = GGX_SQRT(GGX_FN(k_max0)(1 - d.x * d.x - d.y * d.y));" \
+    "ggx_r h = GGX_C(0.5) * GGX_SQRT(GGX_FN(k_max0)(1 - d.x * d.x - d.y * d.y));" \
+    "rejection (Walter version 2) lifting the silhouette to half height"
+mutate src/batch/loops.inc "pdf[i] = uok ? r.pdf : 0.0f;" "pdf[i] = uok ? 0.5f * r.pdf : 0.0f;" \
+    "batch reflection pdf off by 2 (fast path)"
+mutate src/batch/loops.inc "#define NORMALS_CASE_VNDF_1(ID) NORMALS_CASE_ANY(ID, 1)" \
+    "#define NORMALS_CASE_VNDF_1(ID) NORMALS_CASE_ANY(ID, 0)" "batch VNDF samplers of the registry ignoring the view"
+mutate $K/traits.h "(x2) * (1.0f / 120 +" "(x2) * (1.0f / 100 +" \
+    "float sincos polynomial with a wrong coefficient (float variants only)"
+mutate include/ggx/ggx_inline.h "double k = 1.0 / s->an_len, det = s->det * k * k * k;" \
+    "double k = 1.0, det = s->det * k * k * k;" "float shape not normalised by ||A n|| (ggx_shapef_from)"
+mutate src/api/registry.c "#define REST_NDF(ID, stem) pdf_ndf, NULL, NULL, NULL" \
+    "#define REST_NDF(ID, stem) ggx_pdf_vndf, NULL, NULL, NULL" "registry claiming the VNDF pdf for the NDF samplers"
+echo "$killed mutant(s) killed, $survived survived"
 [ "$survived" -eq 0 ]

@@ -3,6 +3,7 @@
 
 #include <math.h>
 #include <stdio.h>
+#include <string.h>
 
 const sweep_shape SWEEP_SHAPES[] = {
     {"iso 0.05", {0.05, 0.05, 0, 0, 0}},          {"iso 0.3", {0.3, 0.3, 0, 0, 0}},
@@ -15,6 +16,9 @@ const int SWEEP_NSHAPES = sizeof SWEEP_SHAPES / sizeof SWEEP_SHAPES[0];
 const double SWEEP_VIEWS_DEG[] = {0.0, 30.0, 80.0, 89.5};
 const int SWEEP_NVIEWS = sizeof SWEEP_VIEWS_DEG / sizeof SWEEP_VIEWS_DEG[0];
 int chi2_runs_done = 0;
+int chi2_runs_by[VARIANT_COUNT][GGX_SAMPLER_COUNT];
+
+double test_chi2_level(void) { return chi2_sidak(TEST_CHI2_RUNS); }
 
 ggx_vec3 sweep_view(double theta_deg)
 {
@@ -22,21 +26,60 @@ ggx_vec3 sweep_view(double theta_deg)
     return t_dir(theta_deg * T_PI / 180.0, 0.7);
 }
 
+normal_ctx normal_ctx_of(const variant *var, ggx_sampler_id id, const ggx_shape *s, ggx_vec3 v)
+{
+    normal_ctx c;
+    memset(&c, 0, sizeof c);
+    c.s = s, c.v = v, c.var = var, c.id = id;
+    return c;
+}
+
 static double uniform_cb(void *state) { return rng_uniform((rng *)state); }
 
-int normal_draw(void *vc, rng *r, ggx_vec3 *m)
+/* Samplers of normals run in blocks of NORMAL_BLOCK with the random numbers drawn in the same order as one at a
+ * time (u1, u2 of sample 0, then of sample 1, ...), so blocks change no result; rejection samplers and custom
+ * samplers run one at a time. */
+static int normal_draw(void *vc, rng *r, ggx_vec3 *m)
 {
     normal_ctx *c = vc;
-    double u1 = rng_uniform(r), u2 = rng_uniform(r);
     c->draws++;
-    if (c->vndf) *m = c->vndf(c->keys.s, c->keys.v, u1, u2);
-    else if (c->ndf) *m = c->ndf(c->keys.s, u1, u2);
-    else {
+    if (c->custom) {
+        double u1 = rng_uniform(r), u2 = rng_uniform(r);
+        *m = c->custom(c->s, c->v, u1, u2);
+    } else if (c->var->has(c->var, c->id) == 2) {
         unsigned t;
-        *m = c->reject(c->keys.s, c->keys.v, uniform_cb, r, &t);
+        *m = c->var->sample_reject(c->var, c->id, c->s, c->v, uniform_cb, r, &t);
         c->trials += t;
+    } else {
+        if (c->next == c->filled) {
+            double u1[NORMAL_BLOCK], u2[NORMAL_BLOCK];
+            ggx_vec3 v[NORMAL_BLOCK];
+            for (int i = 0; i < NORMAL_BLOCK; i++) u1[i] = rng_uniform(r), u2[i] = rng_uniform(r), v[i] = c->v;
+            c->var->sample(c->var, c->id, c->s, NORMAL_BLOCK, v, u1, u2, c->block);
+            c->next = 0, c->filled = NORMAL_BLOCK;
+        }
+        *m = c->block[c->next++];
     }
     return t_dot(*m, *m) > 0.5;
+}
+
+static int normal_key(void *vc, ggx_vec3 m, int *region, ggx_vec3 *k)
+{
+    *region = 0;
+    *k = key_of_normal(((const normal_ctx *)vc)->s, m);
+    return 1;
+}
+
+/* The density of keys k = normalize(A^{-T} m): pdf(m(k)) d omega_m / d omega_k. */
+static double normal_density(void *vc, int region, ggx_vec3 k)
+{
+    (void)region;
+    const normal_ctx *c = vc;
+    double j, pdf;
+    ggx_vec3 m = normal_of_key(c->s, k, &j);
+    if (c->pdf) pdf = c->pdf(c, m);
+    else c->var->sampler_pdf(c->var, c->id, c->s, 1, &c->v, &m, &pdf);
+    return pdf * j;
 }
 
 chi2_result chi2_run_scaled(const chi2_problem *p, uint64_t seed, double alpha)
@@ -47,15 +90,113 @@ chi2_result chi2_run_scaled(const chi2_problem *p, uint64_t seed, double alpha)
     return chi2_run(p, n, nt, np, seed, alpha);
 }
 
-chi2_result run_normal_chi2(normal_ctx *c, const char *name, uint64_t seed, double *min_p)
+static chi2_result run_normal(normal_ctx *c, const char *name, uint64_t seed, double alpha)
 {
-    chi2_problem p = {name, 1, normal_draw, normal_keys_key, normal_keys_density, c};
-    double alpha = chi2_sidak(CHI2_SUITE_RUNS);
+    chi2_problem p = {name, 1, normal_draw, normal_key, normal_density, c};
     chi2_result r = chi2_run_scaled(&p, seed, alpha);
     chi2_runs_done++;
+    if (!c->custom) chi2_runs_by[variant_index(c->var)][c->id]++;
+    return r;
+}
+
+/* alpha 0: a rejection, the expected answer of a negative control, writes no table. */
+chi2_result run_normal_chi2_unchecked(normal_ctx *c, const char *name, uint64_t seed)
+{
+    return run_normal(c, name, seed, 0.0);
+}
+
+chi2_result run_normal_chi2(normal_ctx *c, const char *name, uint64_t seed, double *min_p)
+{
+    double alpha = test_chi2_level();
+    chi2_result r = run_normal(c, name, seed, alpha);
     CHECK(r.zero_cell_hits == 0, "%s: %ld samples where the pdf is zero", name, r.zero_cell_hits);
     CHECK(r.pvalue >= alpha, "%s: chi2 %.1f, dof %d, p = %.3g < %.3g (histogram in chi2_*.csv)", name, r.stat, r.dof,
           r.pvalue, alpha);
     if (min_p && r.pvalue < *min_p) *min_p = r.pvalue;
     return r;
+}
+
+/* One sample of sampler id of var at (u1, u2) (a rejection sampler: from a fixed stream). */
+static ggx_vec3 sample_once(const variant *var, ggx_sampler_id id, const ggx_shape *s, ggx_vec3 v, double u1,
+                            double u2)
+{
+    ggx_vec3 m;
+    if (var->has(var, id) == 2) {
+        rng r = {1};
+        unsigned t;
+        return var->sample_reject(var, id, s, v, uniform_cb, &r, &t);
+    }
+    var->sample(var, id, s, 1, &v, &u1, &u2, &m);
+    return m;
+}
+
+int chi2_sweep(const variant *var, unsigned families, const int *shapes, int nshapes, const int *views, int nviews,
+               uint64_t seed_base, double *min_p)
+{
+    int runs = 0, k = -1;
+    for (int id = 0; id < GGX_SAMPLER_COUNT; id++) {
+        const ggx_sampler_info *info = ggx_sampler_get((ggx_sampler_id)id);
+        if (!(families & FAMILY_BIT(info->family))) continue;
+        k++;
+        if (!var->has(var, (ggx_sampler_id)id)) continue;
+        int ndf = info->family == GGX_FAMILY_NDF;
+        double acc_sum = 0.0;
+        int acc_n = 0;
+        for (int a = 0; a < nshapes; a++) {
+            const int i = shapes[a];
+            ggx_shape s;
+            make_shape(&s, SWEEP_SHAPES[i].p);
+            if (info->domain == GGX_DOMAIN_UNSKEWED && s.kind == GGX_SHAPE_SKEWED) {
+                /* Outside its domain the sampler returns the zero vector (pdf 0). */
+                ggx_vec3 m = sample_once(var, (ggx_sampler_id)id, &s, sweep_view(30.0), 0.3, 0.6);
+                CHECK(m.x == 0 && m.y == 0 && m.z == 0, "%s %s on the skewed shape %s must return 0", var->name,
+                      info->name, SWEEP_SHAPES[i].name);
+                continue;
+            }
+            for (int b = 0; b < (ndf ? 1 : nviews); b++) {
+                const int j = ndf ? 0 : views[b];
+                normal_ctx c = normal_ctx_of(var, (ggx_sampler_id)id, &s, sweep_view(SWEEP_VIEWS_DEG[j]));
+                char name[160];
+                if (ndf) snprintf(name, sizeof name, "%s ndf %s, %s", var->name, info->name, SWEEP_SHAPES[i].name);
+                else
+                    snprintf(name, sizeof name, "%s vndf %s, %s, view %g", var->name, info->name,
+                             SWEEP_SHAPES[i].name, SWEEP_VIEWS_DEG[j]);
+                uint64_t seed = seed_base + 100 * (uint64_t)k + (uint64_t)(ndf ? i : 10 * i + j);
+                run_normal_chi2(&c, name, seed, min_p);
+                runs++;
+                if (c.trials) acc_sum += (double)c.draws / (double)c.trials, acc_n++;
+            }
+        }
+        if (acc_n)
+            printf("%s %s: mean acceptance rate %.3f over %d shape/view pairs\n", var->name, info->name,
+                   acc_sum / acc_n, acc_n);
+    }
+    return runs;
+}
+
+int sampler_transmits(const ggx_sampler_info *info)
+{
+    ggx_shape s;
+    make_shape(&s, SWEEP_SHAPES[1].p);
+    ggx_vec3 v = sweep_view(30.0), w;
+    CHECK(ggx_refract(v, t_vec(0, 0, 1), 1.5, &w), "refraction through n");
+    return info->pdf_direction(&s, 1.5, v, w) > 0;
+}
+
+void check_chi2_coverage(const variant *var, unsigned families)
+{
+    int vi = variant_index(var), covered = 0;
+    for (int id = 0; id < GGX_SAMPLER_COUNT; id++) {
+        const ggx_sampler_info *info = ggx_sampler_get((ggx_sampler_id)id);
+        if (!(families & FAMILY_BIT(info->family))) continue;
+        /* the exported API has every registered sampler: the registry gives its functions */
+        if (var == VARIANT_EXPORTED)
+            CHECK(var->has(var, (ggx_sampler_id)id), "registry sampler %s has no function in the exported table",
+                  info->name);
+        if (!var->has(var, (ggx_sampler_id)id)) continue;
+        CHECK(chi2_runs_by[vi][id] > 0, "%s: registry sampler %s (family %d) got no chi-square run", var->name,
+              info->name, (int)info->family);
+        covered++;
+    }
+    printf("%s: %d registry samplers covered by chi-square runs\n", var->name, covered);
 }

@@ -1,10 +1,13 @@
-/* Shared pieces of the sampling tests: the sweep of shapes and views, the samplers under test, and chi-square
- * problems for normals keyed in the sphere space of the shape. SPDX-License-Identifier: MIT */
+/* Shared pieces of the sampling tests: the sweep of shapes and views, chi-square problems for normals keyed in the
+ * sphere space of the shape, and the chi-square sweep of the registry's samplers of normals over any variant
+ * (variants.h), with per-sampler counts of runs so that each program can prove that every registered sampler of the
+ * families it sweeps was tested. SPDX-License-Identifier: MIT */
 #ifndef GGX_SAMPLERS_H
 #define GGX_SAMPLERS_H
 
 #include "chi2.h"
 #include "testlib.h"
+#include "variants.h"
 
 typedef struct sweep_shape {
     const char *name;
@@ -19,29 +22,66 @@ extern const double SWEEP_VIEWS_DEG[];
 extern const int SWEEP_NVIEWS;
 ggx_vec3 sweep_view(double theta_deg);
 
+/* The suite's bound on its chi-square runs, for the Sidak level of each run (family-wise 0.01). It counts every
+ * run of every test program (each prints its count) and the seed audit's 14 runs, which verify/audit.c makes at
+ * the level of CHI2_SUITE_RUNS (400, looser per run): 576 runs at present, so that the sum of the per-run levels,
+ * an upper bound on the family-wise level, is 562 x 1.26e-5 + 14 x 2.5e-5 < 0.01. */
+#define TEST_CHI2_RUNS 800
+double test_chi2_level(void);
+
 typedef ggx_vec3 (*vndf_fn)(const ggx_shape *, ggx_vec3, double, double);
-typedef ggx_vec3 (*ndf_fn)(const ggx_shape *, double, double);
-typedef ggx_vec3 (*reject_fn)(const ggx_shape *, ggx_vec3, ggx_uniform_fn, void *, unsigned *);
 
-/* Sampler of normals under test: exactly one of vndf, ndf, reject is set. */
-typedef struct normal_ctx {
-    normal_keys keys; /* shape, view and the pdf the sampler is claimed to have; first, for normal_keys_* */
-    vndf_fn vndf;
-    ndf_fn ndf;
-    reject_fn reject;
-    long trials, draws;
-} normal_ctx;
+/* A chi-square problem for a sampler of normals: the sampler is sampler id of variant var (drawn in blocks, so that
+ * batch variants run whole vectors), or custom (a sampler outside the registry, for the negative controls); the
+ * density is pdf, or the pdf that the sampler claims in that variant when pdf is NULL. */
+typedef struct normal_ctx normal_ctx;
+typedef double (*normal_pdf_fn)(const normal_ctx *c, ggx_vec3 m);
+enum { NORMAL_BLOCK = 512 };
+struct normal_ctx {
+    const ggx_shape *s;
+    ggx_vec3 v;
+    const variant *var;
+    ggx_sampler_id id;
+    vndf_fn custom;
+    normal_pdf_fn pdf;
+    long trials, draws; /* rejection samplers: the acceptance rate is draws / trials */
+    ggx_vec3 block[NORMAL_BLOCK];
+    int next, filled;
+};
+/* A context for sampler id of var on shape s and view v (pdf NULL, custom NULL). */
+normal_ctx normal_ctx_of(const variant *var, ggx_sampler_id id, const ggx_shape *s, ggx_vec3 v);
 
-int normal_draw(void *ctx, rng *r, ggx_vec3 *m);
-
-/* Runs one chi-square test of a normal sampler with 10^6 samples on 100 x 200 cells, checks it against the Sidak
- * level and records the smallest p-value in *min_p. Returns the result. */
+/* Runs one chi-square test of a sampler of normals with 10^6 samples on 100 x 200 cells, checks it against the
+ * Sidak level (a failure prints name and writes chi2_<name>.csv) and records the smallest p-value in *min_p. */
 chi2_result run_normal_chi2(normal_ctx *c, const char *name, uint64_t seed, double *min_p);
+/* The same run, not checked and writing no table: for the negative controls, which must be rejected. */
+chi2_result run_normal_chi2_unchecked(normal_ctx *c, const char *name, uint64_t seed);
 
 /* chi2_run with chi2_samples() samples on the chi2_grid() for them. */
 chi2_result chi2_run_scaled(const chi2_problem *p, uint64_t seed, double alpha);
 
-/* Number of chi-square runs made so far by this program. */
+/* Bit sets of sampler families (1u << GGX_FAMILY_...). */
+#define FAMILY_BIT(f) (1u << (f))
+
+/* The chi-square sweep of variant var over every registry sampler of the given families that var has: each over
+ * the shapes SWEEP_SHAPES[shapes[i]] (skewed ones left out for samplers of the UNSKEWED domain, where they must give
+ * the zero vector) and the views SWEEP_VIEWS_DEG[views[j]] (NDF samplers, which ignore the view: n only). Seed of
+ * a run: seed_base + 100 k + 10 shapes[i] + views[j] (NDF: seed_base + 100 k + shapes[i]), k the sampler's rank
+ * among the registry's samplers of these families, so that a run of any variant uses the same random numbers as
+ * the exported double run of the same sampler, shape and view. Returns the number of runs. */
+int chi2_sweep(const variant *var, unsigned families, const int *shapes, int nshapes, const int *views, int nviews,
+               uint64_t seed_base, double *min_p);
+
+/* Whether a DIRECTION sampler transmits: its own pdf is nonzero for the direction refracted through n from a view at
+ * 30 degrees with eta 1.5 (reflection sampling gives 0 there). The registry does not say; the sweeps of the rough
+ * dielectric and the weight bound of reflection sampling (Walter eq 52) are chosen by this. */
+int sampler_transmits(const ggx_sampler_info *info);
+
+/* Chi-square runs made so far by this program: in all, and per variant and sampler. */
 extern int chi2_runs_done;
+extern int chi2_runs_by[VARIANT_COUNT][GGX_SAMPLER_COUNT];
+/* Fails unless every registry sampler of the given families that var has got at least one chi-square run: a
+ * registered sampler that no sweep reaches (a domain that excludes every swept shape, a family left out) fails. */
+void check_chi2_coverage(const variant *var, unsigned families);
 
 #endif

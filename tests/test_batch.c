@@ -7,6 +7,7 @@
 #include <string.h>
 
 #include "ggx/ggx_batch.h"
+#include "ggx/ggx_samplers.h"
 #include "testlib.h"
 
 enum { NMAX = 300, OFF = 1 }; /* OFF: every array starts one float past an aligned address */
@@ -23,7 +24,13 @@ static float *arr(arrays *a, int i)
 
 typedef struct worst {
     double ndf, g1, pdf, brdf, m, mndf, w, spdf, weight, aniso;
+    double normals[GGX_SAMPLER_COUNT]; /* ggx_batch_sample_normals, per registry sampler */
 } worst;
+
+static int batch_normals(const ggx_sampler_info *info)
+{
+    return info->batch && (info->family == GGX_FAMILY_NDF || info->family == GGX_FAMILY_VNDF);
+}
 
 static double rel(double got, double want) { return fabs(got - want) / fmax(fabs(want), 1e-30); }
 
@@ -103,6 +110,23 @@ static void compare(ggx_batch_isa isa, worst *w)
             w->mndf = fmax(w->mndf, e);
             CHECK(e <= 1e-4, "%s ndf n %d i %d: err %g", ggx_batch_isa_name(isa), n, i, e);
         }
+        /* every batch sampler of normals of the registry, against its double sampler for the same u */
+        for (int id = 0; id < GGX_SAMPLER_COUNT; id++) {
+            const ggx_sampler_info *info = ggx_sampler_get((ggx_sampler_id)id);
+            if (!batch_normals(info)) continue;
+            o1[n] = o2[n] = o3[n] = -7.0f;
+            ggx_status st = ggx_batch_sample_normals((ggx_sampler_id)id, o1, o2, o3, (size_t)n, &s, vx, vy, vz, u1, u2);
+            CHECK(st == GGX_OK, "%s: ggx_batch_sample_normals(%s): %s", ggx_batch_isa_name(isa), info->name,
+                  ggx_status_str(st));
+            for (int i = 0; i < n; i++) {
+                ggx_vec3 m = info->sample(&s, t_vec(V[i][0], V[i][1], V[i][2]), u1[i], u2[i]);
+                double e = fmax(fabs(o1[i] - m.x), fmax(fabs(o2[i] - m.y), fabs(o3[i] - m.z)));
+                w->normals[id] = fmax(w->normals[id], e);
+                CHECK(e <= 1e-4, "%s %s n %d i %d: u (%.9g, %.9g), v (%.9g, %.9g, %.9g): err %g",
+                      ggx_batch_isa_name(isa), info->name, n, i, u1[i], u2[i], vx[i], vy[i], vz[i], e);
+            }
+            CHECK(o1[n] == -7.0f && o2[n] == -7.0f && o3[n] == -7.0f, "%s wrote past n = %d", info->name, n);
+        }
         ggx_batch_sample_brdf(o1, o2, o3, o4, o5, (size_t)n, &s, &f, vx, vy, vz, u1, u2);
         for (int i = 0; i < n; i++) {
             ggx_sample x = ggx_sample_brdf(&s, &f, t_vec(V[i][0], V[i][1], V[i][2]), u1[i], u2[i]);
@@ -138,9 +162,47 @@ static void every_isa(void **state)
         printf("batch %-6s: rel err D %.1e G1 %.1e pdf %.1e brdf %.1e; abs err vndf %.1e aniso %.1e ndf %.1e brdf-w %.1e; "
                "sample pdf rel %.1e weight abs %.1e\n",
                ggx_batch_isa_name(isas[k]), w.ndf, w.g1, w.pdf, w.brdf, w.m, w.aniso, w.mndf, w.w, w.spdf, w.weight);
+        for (int id = 0; id < GGX_SAMPLER_COUNT; id++)
+            if (batch_normals(ggx_sampler_get((ggx_sampler_id)id)))
+                printf("batch %-6s: ggx_batch_sample_normals %-15s abs err %.1e\n", ggx_batch_isa_name(isas[k]),
+                       ggx_sampler_get((ggx_sampler_id)id)->name, w.normals[id]);
     }
     CHECK(tested >= 1, "no ISA tested");
     ggx_batch_set_isa(GGX_ISA_AUTO);
+}
+
+/* The registry's batch flag is the batch API's: ggx_batch_sample_normals takes exactly the samplers of normals
+ * marked batch (GGX_ERR_RANGE for the others and for ids outside the registry, writing nothing), NULL arrays give
+ * GGX_ERR_NULL when n > 0, and a direction sampler marked batch must be reflection sampling, the one direction
+ * sampler the batch API has (ggx_batch_sample_brdf, compared above). */
+static void registry_entry_points(void **state)
+{
+    (void)state;
+    float v[3] = {0.2f, 0.1f, 0.97f}, u[2] = {0.3f, 0.6f}, m[3] = {-7.0f, -7.0f, -7.0f};
+    ggx_shape s;
+    make_shape(&s, (shape_params){0.2, 0.6, 0.3, -0.2, 1.0});
+    int batched = 0;
+    for (int id = -1; id <= GGX_SAMPLER_COUNT; id++) {
+        const ggx_sampler_info *info = ggx_sampler_get((ggx_sampler_id)id);
+        ggx_status st = ggx_batch_sample_normals((ggx_sampler_id)id, &m[0], &m[1], &m[2], 1, &s, &v[0], &v[1], &v[2],
+                                                 &u[0], &u[1]);
+        if (info && batch_normals(info)) {
+            batched++;
+            CHECK(st == GGX_OK && fabsf(m[0] * m[0] + m[1] * m[1] + m[2] * m[2] - 1) < 1e-5f, "%s: %s", info->name,
+                  ggx_status_str(st));
+            CHECK(ggx_batch_sample_normals((ggx_sampler_id)id, NULL, &m[1], &m[2], 1, &s, &v[0], &v[1], &v[2], &u[0],
+                                           &u[1]) == GGX_ERR_NULL, "%s: NULL output accepted", info->name);
+            m[0] = m[1] = m[2] = -7.0f;
+            continue;
+        }
+        CHECK(st == GGX_ERR_RANGE && m[0] == -7.0f && m[1] == -7.0f && m[2] == -7.0f,
+              "sampler id %d (%s), not a batch sampler of normals: status %s", id, info ? info->name : "none",
+              ggx_status_str(st));
+        if (info && info->batch && info->family == GGX_FAMILY_DIRECTION)
+            CHECK(id == GGX_SAMPLER_BRDF, "direction sampler %s is marked batch, but the batch API has no entry for it",
+                  info->name);
+    }
+    CHECK(batched > 0, "no batch sampler of normals in the registry");
 }
 
 /* Threads: a large batch split over threads gives bit-identical results to one thread. */
@@ -197,7 +259,8 @@ static void float_contract(void **state)
 
 int main(void)
 {
-    const struct CMUnitTest tests[] = {cmocka_unit_test(every_isa), cmocka_unit_test(threads_identical),
+    const struct CMUnitTest tests[] = {cmocka_unit_test(every_isa), cmocka_unit_test(registry_entry_points),
+                                       cmocka_unit_test(threads_identical),
                                        cmocka_unit_test(float_contract)};
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

@@ -1,6 +1,6 @@
 /* libFuzzer target: the shape constructors and every hot function fed from raw bytes (any double, NaN and
- * infinities included), checking the numerical contract of include/ggx/ggx.h; a violation aborts.
- * SPDX-License-Identifier: MIT */
+ * infinities included), checking the numerical contract of include/ggx/ggx.h; a violation aborts. The samplers are
+ * every entry of the registry (ggx_samplers.h), so a new registry line is fuzzed too. SPDX-License-Identifier: MIT */
 #include <math.h>
 #include <stdint.h>
 #include <stdio.h>
@@ -8,6 +8,7 @@
 #include <string.h>
 
 #include "ggx/ggx.h"
+#include "ggx/ggx_samplers.h"
 
 typedef struct bytes {
     const uint8_t *p;
@@ -62,6 +63,45 @@ static ggx_vec3 unit_or_raw(bytes *b, int unit)
 static int is_zero(ggx_vec3 v) { return v.x == 0 && v.y == 0 && v.z == 0; }
 static int is_unit(ggx_vec3 v) { return fabs(sqrt(v.x * v.x + v.y * v.y + v.z * v.z) - 1) <= 1e-12; }
 
+/* Random numbers of a rejection sampler: the input's remaining doubles (any value: NaN reads as 0, others clamp),
+ * then splitmix64, so that a sampler that rejects them still ends well within its budget. */
+typedef struct stream {
+    bytes b;
+    uint64_t state;
+} stream;
+static double stream_next(void *vs)
+{
+    stream *st = vs;
+    if (st->b.n >= 8) return next_double(&st->b);
+    uint64_t z = (st->state += 0x9e3779b97f4a7c15u);
+    z = (z ^ (z >> 30)) * 0xbf58476d1ce4e5b9u;
+    z = (z ^ (z >> 27)) * 0x94d049bb133111ebu;
+    return (double)((z ^ (z >> 31)) >> 11) * 0x1p-53;
+}
+
+/* A direction sampler, in both transport modes: a valid sample or an invalid one zeroed. Reflection sampling (a
+ * sampler whose pdf is 0 for transmitted directions: here, for alpha 0.3, the one refracted through n from 30
+ * degrees with eta 1.5) has weight <= 1 exactly (eq 52). */
+static void check_directions(const ggx_sampler_info *e, const ggx_shape *s, const ggx_fresnel *f, double eta,
+                             ggx_vec3 vu, double u1, double u2, double u3)
+{
+    const ggx_vec3 probe_v = {0.5, 0.0, 0.8660254037844386}, probe_w = {-0.3333333333333333, 0.0, -0.9428090415820634};
+    ggx_shape probe_s;
+    REQUIRE(ggx_shape_iso(&probe_s, 0.3) == GGX_OK, "probe shape");
+    int reflects_only = e->pdf_direction(&probe_s, 1.5, probe_v, probe_w) == 0;
+    const ggx_transport modes[2] = {GGX_RADIANCE, GGX_IMPORTANCE};
+    for (int k = 0; k < 2; k++) {
+        ggx_sample x = e->sample_direction(s, f, eta, vu, u1, u2, u3, modes[k]);
+        if (x.event == GGX_EVENT_INVALID) {
+            REQUIRE(x.pdf == 0 && x.weight == 0 && is_zero(x.w), "%s: invalid sample not zeroed", e->name);
+            continue;
+        }
+        REQUIRE(is_unit(x.w) && isfinite(x.pdf) && x.pdf > 0 && isfinite(x.weight) && x.weight >= 0,
+                "%s: pdf %g weight %g", e->name, x.pdf, x.weight);
+        if (reflects_only) REQUIRE(x.weight <= 1.0, "%s: weight %.17g > 1", e->name, x.weight);
+    }
+}
+
 int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
 {
     bytes b = {data, size};
@@ -108,45 +148,45 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
     ggx_vec3 vu = unit_or_raw(&b, 1);
     double u1 = next_double(&b), u2 = next_double(&b), u3 = next_double(&b);
     int in_domain = vu.z > 0 && is_unit(vu);
-    ggx_vec3 (*vndf[])(const ggx_shape *, ggx_vec3, double, double) = {
-        ggx_sample_vndf_caps, ggx_sample_vndf_crescent, ggx_sample_vndf_crescent_polar, ggx_sample_vndf_heitz};
-    for (unsigned k = 0; k < 4; k++) {
-        ggx_vec3 x = vndf[k](&s, vu, u1, u2);
-        if (!in_domain) {
-            REQUIRE(is_zero(x) || vu.z > 0, "vndf %u: outside the domain", k);
+    /* rejection samplers read the rest of the input as their random numbers, then a fixed generator */
+    stream rs = {b, 0x9e3779b97f4a7c15u};
+    for (int id = 0; id < GGX_SAMPLER_COUNT; id++) {
+        const ggx_sampler_info *e = ggx_sampler_get((ggx_sampler_id)id);
+        if (e->family == GGX_FAMILY_DIRECTION) {
+            check_directions(e, &s, &f, eta, vu, u1, u2, u3);
             continue;
         }
-        if (is_zero(x)) { /* allowed only where the visible part is a sliver below 1e-9 of the silhouette */
+        int ndf = e->family == GGX_FAMILY_NDF;
+        ggx_vec3 x;
+        if (e->family == GGX_FAMILY_REJECTION) {
+            unsigned trials;
+            x = e->sample_reject(&s, vu, stream_next, &rs, &trials);
+        } else {
+            x = e->sample(&s, vu, u1, u2);
+        }
+        if (e->domain == GGX_DOMAIN_UNSKEWED && s.kind == GGX_SHAPE_SKEWED) {
+            REQUIRE(is_zero(x), "%s on a skewed shape", e->name);
+            continue;
+        }
+        if (!ndf && !in_domain) {
+            REQUIRE(is_zero(x) || vu.z > 0, "%s: outside the domain", e->name);
+            continue;
+        }
+        if (is_zero(x)) { /* a rejection budget exhausted, or a visible part below 1e-9 of the silhouette */
             ggx_vec3 n = {0, 0, 1};
-            REQUIRE(ggx_lune_area(&s, vu, n) < 1e-9 * ggx_projected_area(&s, vu), "vndf %u: no sample for a view"
-                    " with visible fraction %g", k, ggx_lune_area(&s, vu, n) / ggx_projected_area(&s, vu));
+            REQUIRE(e->family == GGX_FAMILY_REJECTION ||
+                        (!ndf && ggx_lune_area(&s, vu, n) < 1e-9 * ggx_projected_area(&s, vu)),
+                    "%s: no sample (visible fraction %g)", e->name,
+                    ndf ? 1.0 : ggx_lune_area(&s, vu, n) / ggx_projected_area(&s, vu));
             continue;
         }
-        double pdf = ggx_pdf_vndf(&s, vu, x);
-        REQUIRE(is_unit(x) && isfinite(pdf) && pdf > 0, "vndf %u: m (%g,%g,%g) pdf %g", k, x.x, x.y, x.z, pdf);
-        ggx_vec2 inv = k == 0 ? ggx_sample_vndf_caps_inv(&s, vu, x) : ggx_sample_vndf_heitz_inv(&s, vu, x);
-        REQUIRE(inv.x >= 0 && inv.x <= 1 && inv.y >= 0 && inv.y <= 1, "inverse map in [0, 1]");
-    }
-    ggx_vec3 (*ndf[])(const ggx_shape *, double, double) = {ggx_sample_ndf_stretch, ggx_sample_ndf_ellipse,
-                                                            ggx_sample_ndf_inversion, ggx_sample_ndf_visible};
-    for (unsigned k = 0; k < 4; k++) {
-        ggx_vec3 x = ndf[k](&s, u1, u2);
-        if (k == 2 && s.kind == GGX_SHAPE_SKEWED) {
-            REQUIRE(is_zero(x), "inversion on a skewed shape");
-            continue;
+        double pdf = e->pdf(&s, vu, x);
+        REQUIRE(is_unit(x) && isfinite(pdf) && pdf > 0, "%s: m (%g,%g,%g) pdf %g", e->name, x.x, x.y, x.z, pdf);
+        if (e->inverse) {
+            ggx_vec2 inv = e->inverse(&s, vu, x);
+            REQUIRE(inv.x >= 0 && inv.x <= 1 && inv.y >= 0 && inv.y <= 1, "%s: inverse map (%g, %g) outside [0, 1]",
+                    e->name, inv.x, inv.y);
         }
-        double pdf = ggx_pdf_ndf(&s, x);
-        REQUIRE(is_unit(x) && isfinite(pdf) && pdf > 0, "ndf %u: m (%g,%g,%g) pdf %g", k, x.x, x.y, x.z, pdf);
     }
-    ggx_sample smp[3] = {ggx_sample_brdf(&s, &f, vu, u1, u2), ggx_sample_bsdf(&s, eta, vu, u1, u2, u3, GGX_RADIANCE),
-                         ggx_sample_bsdf(&s, eta, vu, u1, u2, u3, GGX_IMPORTANCE)};
-    for (int k = 0; k < 3; k++) {
-        if (smp[k].event == GGX_EVENT_INVALID)
-            REQUIRE(smp[k].pdf == 0 && smp[k].weight == 0 && is_zero(smp[k].w), "invalid sample %d not zeroed", k);
-        else
-            REQUIRE(is_unit(smp[k].w) && isfinite(smp[k].pdf) && smp[k].pdf > 0 && isfinite(smp[k].weight) && smp[k].weight >= 0,
-                    "sample %d: pdf %g weight %g", k, smp[k].pdf, smp[k].weight);
-    }
-    if (smp[0].event != GGX_EVENT_INVALID) REQUIRE(smp[0].weight <= 1.0, "brdf weight %.17g > 1", smp[0].weight);
     return 0;
 }
