@@ -70,7 +70,7 @@ mutate $K/fresnel.inc "ggx_r rp = (eta * ci - ct) / (eta * ci + ct);" "ggx_r rp 
 mutate $K/ndf.inc "GGX_FN(k_finite0)(GGX_FN(ndf)(s, m) * mv * d / w)" \
     "GGX_FN(k_finite0)(GGX_FN(ndf)(s, m) * mv / v.z)" \
     "VNDF pdf with G1 dropped"
-mutate $K/sample.inc "ggx_r pz = (1 - u2) * opz;" "ggx_r pz = (1 - u2) * opz + GGX_C(0.1) * vs.z;" \
+mutate $K/sample.inc "ggx_r pz = (1 - u2) * opz;" "ggx_r pz = (1 - u2) * opz + GGX_C(0.1) * av.z;" \
     "spherical cap with the wrong lower bound"
 mutate $K/sample.inc "ggx_r sc = GGX_C(0.5) * (1 + vs.z);" "ggx_r sc = GGX_C(0.5) * (1 + vs.z * vs.z);" \
     "crescent factor s squared"
@@ -85,7 +85,7 @@ mutate $K/traits.h "(x2) * (1.0f / 120 +" "(x2) * (1.0f / 100 +" \
     "float sincos polynomial with a wrong coefficient (float variants only)"
 mutate include/ggx/ggx_inline.h "double k = 1.0 / s->an_len, det = s->det * k * k * k;" \
     "double k = 1.0, det = s->det * k * k * k;" "float shape not normalised by ||A n|| (ggx_shapef_from)"
-mutate src/api/registry.c "#define REST_NDF(ID, stem) pdf_ndf, NULL, NULL, NULL" \
-    "#define REST_NDF(ID, stem) ggx_pdf_vndf, NULL, NULL, NULL" "registry claiming the VNDF pdf for the NDF samplers"
+mutate src/api/registry.c "return ggx_pdf_ndf(s, m);" "return ggx_pdf_vndf(s, v, m);" \
+    "registry claiming the VNDF pdf for the NDF samplers (equal at v = n, where the NDF sweep runs)"
 echo "$killed mutant(s) killed, $survived survived"
 [ "$survived" -eq 0 ]
