@@ -182,6 +182,27 @@ static void edge_cases(void **state)
     printf("edge cases: %ld samples checked\n", n);
 }
 
+/* The registry's pdf of each sampler of normals is its family's: ggx_pdf_ndf (whatever the view) for NDF samplers,
+ * ggx_pdf_vndf for VNDF and rejection samplers; bit for bit, at random shapes, views away from n (where the two
+ * agree) and normals. */
+static void registry_pdfs(void **state)
+{
+    (void)state;
+    rng r = {65};
+    for (int t = 0; t < 2000; t++) {
+        ggx_shape s;
+        make_shape(&s, random_shape(&r, 0.5));
+        ggx_vec3 v = random_view(&r), m = random_view(&r);
+        for (int id = 0; id < GGX_SAMPLER_COUNT; id++) {
+            const ggx_sampler_info *e = ggx_sampler_get((ggx_sampler_id)id);
+            if (e->family == GGX_FAMILY_DIRECTION) continue;
+            double want = e->family == GGX_FAMILY_NDF ? ggx_pdf_ndf(&s, m) : ggx_pdf_vndf(&s, v, m);
+            CHECK(e->pdf(&s, v, m) == want, "%s: registry pdf %.17g, family pdf %.17g at v (%.17g, %.17g, %.17g), "
+                  "m (%.17g, %.17g, %.17g)", e->name, e->pdf(&s, v, m), want, v.x, v.y, v.z, m.x, m.y, m.z);
+        }
+    }
+}
+
 /* The defaults are the registry's samplers they name: ggx_sample_ndf is stretch, ggx_sample_vndf is caps (bit for
  * bit, so the sweeps of those samplers cover them). */
 static void defaults(void **state)
@@ -205,6 +226,7 @@ static void defaults(void **state)
 int main(void)
 {
     const struct CMUnitTest tests[] = {cmocka_unit_test(jacobians), cmocka_unit_test(inverses),
-                                       cmocka_unit_test(edge_cases), cmocka_unit_test(defaults)};
+                                       cmocka_unit_test(edge_cases), cmocka_unit_test(defaults),
+                                       cmocka_unit_test(registry_pdfs)};
     return cmocka_run_group_tests(tests, NULL, NULL);
 }
