@@ -361,14 +361,13 @@ static void compare(op o, batch *b, report *r)
     }
 }
 
-/* Every sampling op: the default samplers (caps and stretch), the per-element anisotropic one and reflection
- * sampling (compare skips what the variant lacks). The registry's other samplers of normals (OP_SAMPLER + id) miss
- * the bounds near the ends of u in float (crescent, crescent-polar, heitz, ellipse: up to 7e-3 at alpha 0.05):
- * they are compared here once the library meets the bounds there. */
+/* Every sampling op: the default samplers, the per-element anisotropic one, reflection sampling, and every sampler
+ * of normals of the registry (compare skips what the variant lacks). */
 static void compare_samplers(batch *b, report *r)
 {
     static const op fixed[] = {OP_SAMPLE_VNDF, OP_SAMPLE_VNDF_ANISO, OP_SAMPLE_NDF, OP_SAMPLE_BRDF};
     for (unsigned q = 0; q < sizeof fixed / sizeof fixed[0]; q++) compare(fixed[q], b, r);
+    for (int id = 0; id < GGX_SAMPLER_COUNT; id++) compare((op)(OP_SAMPLER + id), b, r);
 }
 
 /* Prints the report of one variant; returns its failures and keeps the first failure's details. */

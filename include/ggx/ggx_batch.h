@@ -14,9 +14,10 @@
  * pointers, alpha >= 0.05, skews to 0.5 rad, inputs with m.z, v.z >= 0.02): relative error <= 2e-5 for
  * ggx_batch_ndf, _g1, _brdf and _pdf_vndf (the last where m.v >= 0.01: the pdf is proportional to m.v, which a
  * float dot product resolves to ~1e-7 absolute); measured maxima 1.7e-6, 3.3e-7, 3.6e-6, 6.2e-6. Sampled directions
- * within 1e-4 per component of the double sampler's for the same (u1, u2) (measured 3.9e-5: the caps construction
- * loses float accuracy where v' + c nearly cancels, at low-pdf rim samples); sample pdfs within 1e-4 relative
- * (measured 4.3e-5) and weights within 2e-4 absolute (measured 9.8e-5) of ggx_sample_brdf's.
+ * within 1e-4 per component of the double sampler's for the same (u1, u2), for every sampler of the registry, u at
+ * the ends of [0, 1) and views at n (tests/test_float_regress.c; measured 4.7e-5: the caps construction loses float
+ * accuracy where v' + c nearly cancels, at low-pdf rim samples); sample pdfs within 1e-4 relative (measured 3.4e-5)
+ * and weights within 2e-4 absolute (measured 2.6e-5) of ggx_sample_brdf's.
  * Every function is a loop over the float kernels of ggx_inline.h (the same source as the double API), compiled for a
  * scalar baseline and for AVX2 + FMA (and AVX-512 where the compiler can), chosen at run time by a CPU check. The
  * shape is converted by ggx_shapef_from (normalised), so every shape the double API accepts works, at any scale.

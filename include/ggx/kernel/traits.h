@@ -47,11 +47,6 @@
  * ||h||^2 < 2^-12 its float direction is off by more than ~1e-5 (rounding 1e-7 of vs and c over ||h|| ~ 1e-2), so
  * those elements (a fraction ~1e-5 of the samples) take the slow path, which the float kernels run in double. */
 #define GGX_H2_MIN GGX_C(2.44140625e-4) /* 2^-12 */
-/* The crescent and Heitz maps lift a disk point to the sphere by sqrt(1 - x^2 - y^2), which float resolves to about
- * 6e-8 / (2 z): near the rim of the lune (the unit-sphere point's p.vs < 2^-6) that exceeds the bound of
- * ggx_batch.h, so those elements (a fraction ~2^-12 of the samples: the VNDF density vanishes there) take the slow
- * path in double too. */
-#define GGX_LIFT_MIN GGX_C(0.015625) /* 2^-6 */
 #define GGX_SLOW_WIDE 1
 /* The dielectric's index as the wide type (ggx_fresnelf keeps it in double too). */
 #define GGX_ETA_WIDE(f) ((f)->eta_wide)
@@ -96,7 +91,6 @@
     (1.0 + (x2) * (-0.5 + (x2) * (1.0 / 24 + (x2) * (-1.0 / 720 + (x2) * (1.0 / 40320 + (x2) * (-1.0 / 3628800 +  \
            (x2) * (1.0 / 479001600.0 + (x2) * (-1.0 / 87178291200.0 + (x2) * (1.0 / 20922789888000.0)))))))))
 #define GGX_H2_MIN 0.0 /* double resolves h down to the rim step */
-#define GGX_LIFT_MIN 0.0 /* and the lift of the crescent and Heitz maps */
 #define GGX_SLOW_WIDE 0
 #define GGX_ETA_WIDE(f) ((f)->eta)
 #define ggx_rw double

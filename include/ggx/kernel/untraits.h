@@ -27,7 +27,6 @@
 #undef GGX_COS_POLY
 #undef ggx_rw
 #undef GGX_H2_MIN
-#undef GGX_LIFT_MIN
 #undef GGX_SLOW_WIDE
 #undef GGX_ETA_WIDE
 #undef GGX_K_PRECISION
