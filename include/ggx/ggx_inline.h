@@ -106,6 +106,8 @@ static inline void ggx_shapef_from(ggx_shapef *out, const ggx_shape *s)
     }
     out->a[0][2] = out->a[1][2] = 0.0f;
     out->a[2][2] = 1.0f;
+    out->ainv_t[2][0] = out->ainv_t[2][1] = 0.0f;
+    out->ainv_t[2][2] = 1.0f;
     out->det = (float)det;
     out->an_len = 1.0f;
     out->ndf_scale = (float)(1.0 / (3.14159265358979323846 * det));

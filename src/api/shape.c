@@ -84,6 +84,8 @@ static ggx_status shape_from_matrix(ggx_shape *s, const double A[3][3])
     }
     t.a[0][2] = t.a[1][2] = 0.0; /* A' n is along z by construction; remove the rounding */
     t.a[2][2] = an_len;
+    t.ainv_t[2][0] = t.ainv_t[2][1] = 0.0; /* so A'^{-T} has the third row (0, 0, 1 / ||A n||) */
+    t.ainv_t[2][2] = 1.0 / an_len;
     t.det = fabs(det);
     t.an = ggx_k_v3_d(0.0, 0.0, an_len);
     t.an_len = an_len;
