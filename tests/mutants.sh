@@ -47,12 +47,12 @@ mutate() { # file, old text, new text, description
 K=include/ggx/kernel
 mutate src/api/shape.c "t.ndf_scale = 1.0 / (GGX_PI * t.det * t.an_len);" "t.ndf_scale = 1.0 / (GGX_PI * t.det);" \
     "D without ||A n|| (eq 1 normalisation)"
-mutate $K/ndf.inc "    ggx_r lu = GGX_FN(k_len)(au), t = au.z + lu;
-    *w = au.x * au.x + au.y * au.y + t * t;" \
-    "    ggx_r lu = GGX_FN(k_len)(au);
-    ggx_v3 g = GGX_FN(k_normalize)(GGX_FN(k_v3)(s->ainv_t[0][2], s->ainv_t[1][2], s->ainv_t[2][2]));
-    ggx_v3 h = GGX_FN(k_add)(au, GGX_FN(k_scale)(g, lu));
-    *w = GGX_FN(k_dot)(h, h);" \
+mutate $K/ndf.inc "    int up = au.z >= 0;
+    *w = up ? lu + au.z : xy;
+    *d = 2 * s->an_len * (up ? 1 : lu - au.z);" \
+    "    ggx_v3 g = GGX_FN(k_normalize)(GGX_FN(k_v3)(s->ainv_t[0][2], s->ainv_t[1][2], s->ainv_t[2][2]));
+    *w = lu + GGX_FN(k_dot)(au, g);
+    *d = 2 * s->an_len;" \
     "masking lune built from A^-T n (blog Part 2 form) instead of A n"
 mutate $K/ndf.inc "return GGX_FN(k_min1)(GGX_FN(g1_smith)(s, u));" "return GGX_FN(g1_smith)(s, u);" \
     "G1 without the min of eq 32"
@@ -72,7 +72,7 @@ mutate $K/ndf.inc "GGX_FN(k_finite0)(GGX_FN(ndf)(s, m) * mv * d / w)" \
     "VNDF pdf with G1 dropped"
 mutate $K/sample.inc "ggx_r pz = (1 - u2) * opz;" "ggx_r pz = (1 - u2) * opz + GGX_C(0.1) * av.z;" \
     "spherical cap with the wrong lower bound"
-mutate $K/sample.inc "ggx_r sc = GGX_C(0.5) * (1 + vs.z);" "ggx_r sc = GGX_C(0.5) * (1 + vs.z * vs.z);" \
+mutate $K/sample.inc "sc = GGX_C(0.5) * opz," "sc = GGX_C(0.5) * (1 + vs.z * vs.z)," \
     "crescent factor s squared"
 mutate $K/sample.inc "ggx_r h = GGX_SQRT(GGX_FN(k_max0)(1 - d.x * d.x - d.y * d.y));" \
     "ggx_r h = GGX_C(0.5) * GGX_SQRT(GGX_FN(k_max0)(1 - d.x * d.x - d.y * d.y));" \
@@ -87,5 +87,9 @@ mutate include/ggx/ggx_inline.h "double k = 1.0 / s->an_len, det = s->det * k * 
     "double k = 1.0, det = s->det * k * k * k;" "float shape not normalised by ||A n|| (ggx_shapef_from)"
 mutate src/api/registry.c "return ggx_pdf_ndf(s, m);" "return ggx_pdf_vndf(s, v, m);" \
     "registry claiming the VNDF pdf for the NDF samplers (equal at v = n, where the NDF sweep runs)"
+mutate $K/sample.inc "(p.z >= GGX_PROOF_T * k)" "(p.z >= 0)" \
+    "scalar caps sampler's proof without the rim bound (returns unchecked normals at the rim)"
+mutate $K/sample.inc "*q = 1 - u1; /* exact for u1 >= 1/2 */" "*q = 1 - r * r * (c * c + sn * sn);" \
+    "polar disk's 1 - |d|^2 by cancellation (float crescent-polar, Heitz and ellipse samplers off near the rim)"
 echo "$killed mutant(s) killed, $survived survived"
 [ "$survived" -eq 0 ]

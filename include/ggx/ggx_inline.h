@@ -40,17 +40,22 @@
 #define GGX_HD static inline __host__ __device__
 #endif
 #define GGX_COLD static inline __host__ __device__ __noinline__
+#define GGX_HDI static __host__ __device__ __forceinline__
 #elif defined(__GNUC__)
 #ifndef GGX_HD
 #define GGX_HD static inline
 #endif
 /* The rare slow paths stay out of line, so that the hot path of every sampler inlines small. */
 #define GGX_COLD static __attribute__((noinline, cold, unused))
+/* The steps with out-parameters inline always: out of line (GCC's choice where a program calls a sampler from several
+ * places) their results would pass through memory. */
+#define GGX_HDI static inline __attribute__((always_inline, unused))
 #else
 #ifndef GGX_HD
 #define GGX_HD static inline
 #endif
 #define GGX_COLD static inline
+#define GGX_HDI static inline
 #endif
 
 #ifdef __cplusplus

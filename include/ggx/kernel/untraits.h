@@ -27,6 +27,8 @@
 #undef GGX_COS_POLY
 #undef ggx_rw
 #undef GGX_H2_MIN
+#undef GGX_PROOF_T
+#undef GGX_PROOF_C
 #undef GGX_SLOW_WIDE
 #undef GGX_ETA_WIDE
 #undef GGX_K_PRECISION
