@@ -47,7 +47,7 @@
  * ||h||^2 < 2^-12 its float direction is off by more than ~1e-5 (rounding 1e-7 of vs and c over ||h|| ~ 1e-2), so
  * those elements (a fraction ~1e-5 of the samples) take the slow path, which the float kernels run in double. */
 #define GGX_H2_MIN GGX_C(2.44140625e-4) /* 2^-12 */
-/* The scalar caps sampler's proof that a normal meets the contract without the ellipsoid-space check (k_lune_core,
+/* The scalar caps sampler's proof that a normal meets the contract without the ellipsoid-space check (k_lune_core_p,
  * where the bound is derived): p.z >= GGX_PROOF_T ||A v|| and p.z^2 >= GGX_PROOF_C ||A||_F^2 for a view of length
  * in [1/2, 2]. T = 2^-6 also keeps the float sphere-space normal out of the GGX_H2_MIN cancellation; C = (K / T)^2
  * with K = 2^-14, 3.7 times the float bound 1.63e-5. */
@@ -97,7 +97,7 @@
     (1.0 + (x2) * (-0.5 + (x2) * (1.0 / 24 + (x2) * (-1.0 / 720 + (x2) * (1.0 / 40320 + (x2) * (-1.0 / 3628800 +  \
            (x2) * (1.0 / 479001600.0 + (x2) * (-1.0 / 87178291200.0 + (x2) * (1.0 / 20922789888000.0)))))))))
 #define GGX_H2_MIN 0.0 /* double resolves h down to the rim step */
-/* T = 2^-14 (the rim: see k_lune_core); C = (K / T)^2 with K = 2^-41, 10 times the double bound 4.4e-14. */
+/* T = 2^-14 (the rim: see k_lune_core_p); C = (K / T)^2 with K = 2^-41, 10 times the double bound 4.4e-14. */
 #define GGX_PROOF_T 6.103515625e-05
 #define GGX_PROOF_C 5.551115123125783e-17 /* 2^-54 */
 #define GGX_SLOW_WIDE 0
