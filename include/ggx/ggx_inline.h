@@ -80,6 +80,7 @@ typedef struct ggx_shapef {
     float ndf_scale;    /* 1 / (pi det an_len), the constant of Walter eq 1 (scale-free) */
     float alpha_x, alpha_y, tangent_cos, tangent_sin; /* as in ggx_shape */
     ggx_shape_kind kind;
+    float a_frob2; /* ||a||_F^2, the sum of the squares of a's entries (the caps sampler's proof reads it) */
 } ggx_shapef;
 
 /* A Fresnel term in float: same fields as ggx_fresnel. */
@@ -119,6 +120,10 @@ static inline void ggx_shapef_from(ggx_shapef *out, const ggx_shape *s)
     out->alpha_x = (float)s->alpha_x, out->alpha_y = (float)s->alpha_y;
     out->tangent_cos = (float)s->tangent_cos, out->tangent_sin = (float)s->tangent_sin;
     out->kind = s->kind;
+    double f2 = 0;
+    for (int i = 0; i < 3; i++)
+        for (int j = 0; j < 3; j++) f2 += (double)out->a[i][j] * out->a[i][j];
+    out->a_frob2 = (float)f2;
 }
 
 /* The float Fresnel term of f. */

@@ -29,6 +29,9 @@
 #undef GGX_H2_MIN
 #undef GGX_PROOF_T
 #undef GGX_PROOF_C
+#undef GGX_FROB2
+#undef GGX_A33
+#undef GGX_B33
 #undef GGX_SLOW_WIDE
 #undef GGX_ETA_WIDE
 #undef GGX_K_PRECISION
