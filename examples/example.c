@@ -1,4 +1,5 @@
-/* make run: evaluate the ellipsoid NDF model for a skewed shape at a few directions. SPDX-License-Identifier: MIT */
+/* The README's example: evaluate the ellipsoid NDF model for a skewed shape at a few directions.
+ * SPDX-License-Identifier: MIT */
 #include <math.h>
 #include <stdio.h>
 

@@ -4,8 +4,9 @@
 # 2, one line on stderr naming the problem, no partial file. Usage: cli_test.sh GGX PNG_INFO
 # GGX_WRAP runs every ggx under a wrapper (make valgrind); GGX_CLI_QUICK=1 uses small sample counts there.
 set -u
-GGX_BIN=$1
-PNG_INFO=$2
+GGX_BIN=$(command -v "$1") || GGX_BIN=$1
+case $GGX_BIN in /*) ;; *) GGX_BIN=$(pwd)/$GGX_BIN ;; esac
+PNG_INFO=$(cd "$(dirname "$2")" && pwd)/$(basename "$2")
 ROOT=$(cd "$(dirname "$0")/.." && pwd) # for include/ggx/ggx_samplers.h, the sampler registry
 GGX="ggx_run"
 ggx_run() { ${GGX_WRAP:-} "$GGX_BIN" "$@"; }
@@ -142,6 +143,81 @@ expect2 "out is a file (demo)" "not a folder" "$GGX" demo --out ro/keep
 echo previous > keep.csv
 "$GGX" sample --sampler magic --out keep.csv 2>/dev/null
 [ "$(cat keep.csv)" = "previous" ] && ok || bad "existing file was modified by a failing command"
+
+# --- output the way users break it (issue 10): every write checked, devices and FIFOs in place, links kept,
+# permissions kept, temporaries removed on errors and signals, figures all or none
+one_line() { # description, expected-substring, expected-status, command...
+    desc=$1; want=$2; st=$3; shift 3
+    rm -f err.txt
+    "$@" > /dev/null 2> err.txt
+    rc=$?
+    if [ $rc -eq "$st" ] && [ "$(wc -l < err.txt)" -eq 1 ] && grep -q "^ggx: .*$want" err.txt; then ok; else bad "$desc: rc $rc, stderr: $(cat err.txt)"; fi
+}
+if [ -w /dev/full ]; then
+    "$GGX" sample -n 100 > /dev/full 2> err.txt; [ $? -eq 2 ] && grep -q "cannot write to standard output" err.txt && ok || bad "sample >/dev/full: $(cat err.txt)"
+    "$GGX" audit --help > /dev/full 2> err.txt; [ $? -eq 2 ] && [ "$(wc -l < err.txt)" -eq 1 ] && ok || bad "help >/dev/full"
+    "$GGX" check --sampler caps -n 20000 > /dev/full 2> err.txt; [ $? -eq 2 ] && ok || bad "check >/dev/full"
+    one_line "--out /dev/full (sample)" "cannot write '/dev/full'" 2 "$GGX" sample -n 100000 --out /dev/full
+    one_line "--out /dev/full (png, one line: not libpng's too)" "cannot write '/dev/full'" 2 "$GGX" plot --out /dev/full
+fi
+# a dead pipe ends the run at once (status 141), also with SIGPIPE ignored (as Python's subprocess does)
+sh -c 'trap "" PIPE; "$1" sample -n 1000000000 2>/dev/null | head -1 > /dev/null' sh "$GGX_BIN" && ok || bad "sample into a closed pipe (SIGPIPE ignored)"
+rc=$(sh -c 'trap "" PIPE; { "$1" sample -n 1000000000 2>/dev/null; echo $? > rc.txt; } | head -1 > /dev/null; cat rc.txt' sh "$GGX_BIN")
+[ "$rc" = 141 ] && ok || bad "closed pipe with SIGPIPE ignored: status $rc, not 141"
+# a FIFO is written in place (its reader gets everything) and stays a FIFO; a device is not replaced
+mkfifo fifo && { timeout 20 cat fifo > fifo.out & } && timeout 20 "$GGX_BIN" sample -n 50 --out fifo && wait && [ "$(wc -l < fifo.out)" -eq 51 ] && [ -p fifo ] && ok || bad "--out FIFO"
+"$GGX" sample -n 10 --out /dev/null && [ -c /dev/null ] && ok || bad "--out /dev/null"
+"$GGX" plot --out /dev/null 2>/dev/null && [ -c /dev/null ] && ok || bad "plot --out /dev/null"
+# a link to a file: the target is replaced, the link kept; a dangling link: its target created
+echo old > target.csv && ln -s target.csv link.csv && "$GGX" sample -n 3 --out link.csv && [ -L link.csv ] &&
+    [ "$(wc -l < target.csv)" -eq 4 ] && ok || bad "--out symlink"
+ln -s made.csv dangling.csv && "$GGX" sample -n 3 --out dangling.csv && [ -L dangling.csv ] && [ "$(wc -l < made.csv)" -eq 4 ] && ok || bad "--out dangling symlink"
+echo old > private.csv && chmod 600 private.csv && "$GGX" sample -n 2 --out private.csv && [ "$(stat -c %a private.csv)" = 600 ] && ok || bad "--out keeps permissions: $(stat -c %a private.csv)"
+(umask 027 && "$GGX" sample -n 2 --out fresh.csv) && [ "$(stat -c %a fresh.csv)" = 640 ] && ok || bad "new file mode follows umask: $(stat -c %a fresh.csv)"
+# signals: the temporary goes, the signal's status comes back (SIGINT through perl: a background job ignores it)
+for sig in TERM HUP INT; do
+    rm -f big.csv*
+    if [ $sig = INT ]; then perl -e '$SIG{INT} = "DEFAULT"; exec @ARGV' "$GGX_BIN" sample -n 1000000000 --out big.csv &
+    else "$GGX_BIN" sample -n 1000000000 --out big.csv & fi
+    pid=$!
+    i=0; while [ $i -lt 100 ] && [ -z "$(ls big.csv.tmp* 2>/dev/null)" ]; do sleep 0.05; i=$((i + 1)); done
+    kill -$sig $pid; wait $pid; rc=$?
+    [ -z "$(ls big.csv* 2>/dev/null)" ] && [ $rc -gt 128 ] && ok || bad "SIG$sig during sample --out: status $rc, left $(ls big.csv* 2>/dev/null)"
+done
+# demo: all figures or none (a folder in the way of one figure fails the demo and leaves nothing)
+mkdir -p allnone/skewed-ndf-top.png
+one_line "demo with a figure path taken" "it is a folder" 2 "$GGX" demo --out allnone -n 20000
+[ "$(find allnone -type f | wc -l)" -eq 0 ] && ok || bad "demo left figures: $(find allnone -type f)"
+"$GGX" demo --out sized --size 256 -n 20000 > /dev/null && [ "$("$PNG_INFO" sized/ndf-top.png)" = "406 304" ] && ok || bad "demo --size 256: $("$PNG_INFO" sized/ndf-top.png)"
+# plot: --out - streams the figure; a long path is written as given (no truncation)
+"$GGX" plot --out - > stdout.png && [ "$("$PNG_INFO" stdout.png)" = "662 560" ] && ok || bad "plot --out -"
+long=$(printf 'd%.0s' $(seq 1 120)); deep="$long/$long/$long/$long/$long"
+mkdir -p "$deep" && "$GGX" plot --figure grid --out "$deep/grid.svg" 2>/dev/null && [ -f "$deep/grid.svg" ] && ok || bad "plot --out with a 600-byte path"
+# arguments: GNU --name=value, -V, degrees in messages, a note where the command adjusts, counts that mean something
+"$GGX" sample --alpha=0.3 --view=40,0 -n 2 > eq.csv && [ "$(wc -l < eq.csv)" -eq 3 ] && ok || bad "--name=value"
+"$GGX" -V | grep -q "^ggx [0-9]" && ok || bad "ggx -V"
+one_line "skew out of range, in degrees" "within \[-90, 90\] degrees" 2 "$GGX" eval --skew 95,0
+one_line "flag with a value" "takes no value" 2 "$GGX" plot --log=1
+"$GGX" eval --alpha 0.00001 > /dev/null 2> err.txt && grep -q "raised to the smallest" err.txt && ok || bad "alpha below the minimum: no note"
+one_line "sampler outside its domain" "unskewed shapes only" 2 "$GGX" sample --sampler inversion --skew 20,0 -n 2
+one_line "too few samples for chi-square" "needs at least 10000 samples" 2 "$GGX" check -n 10
+one_line "too few samples (demo)" "needs at least 10000 samples" 2 "$GGX" demo -n 100 --out few
+[ ! -e few ] || [ -z "$(ls few)" ] && ok || bad "demo -n 100 wrote figures before refusing"
+"$GGX" check --alpha 1e4 --sampler caps -n 20000 > nojac.txt && grep -q "(no point)" nojac.txt && ! grep -q "0.00e+00" nojac.txt && ok || bad "check without Jacobian points: $(cat nojac.txt)"
+one_line "ill-conditioned matrix" "ill-conditioned" 2 "$GGX" eval --matrix 1e9,0,0,0,1,0,0,0,1
+if [ "${GGX_CLI_QUICK:-0}" != 1 ]; then
+    "$GGX" audit --alpha 0.15,0.5 > a2.md && grep -q "diagonal A (0.15, 0.5) | shape (0.15, 0.5; 22.92, -17.19, 28.65 deg)" a2.md && ok || bad "audit --alpha: $(sed -n 1p a2.md)"
+    # the README's command lines, run as written (from the ```sh block of "The ggx command")
+    sed -n '/^## The `ggx` command/,/^## /p' "$ROOT/README.md" | sed -n '/^```sh/,/^```/p' | grep '^ggx ' |
+        sed 's/ *#.*//' > readme_cmds.txt
+    [ "$(wc -l < readme_cmds.txt)" -ge 6 ] && ok || bad "README command lines not found"
+    while read -r line; do
+        # shellcheck disable=SC2086
+        set -- $line
+        shift
+        "$GGX" "$@" > readme_out.txt 2>&1 && ok || bad "README line '$line': $(tail -2 readme_out.txt)"
+    done < readme_cmds.txt
+fi
 
 echo "cli: $pass passed, $fail failed"
 [ "$fail" -eq 0 ]

@@ -125,15 +125,18 @@ typedef struct ggx_shape {
 
 /* Isotropic GGX of roughness alpha (A = diag(alpha, alpha, 1)).
  * alpha in (0, GGX_ALPHA_MAX]; alpha < GGX_ALPHA_MIN is raised to GGX_ALPHA_MIN.
- * Errors: GGX_ERR_NULL, GGX_ERR_NONFINITE, GGX_ERR_ALPHA. */
+ * Errors: GGX_ERR_NULL, GGX_ERR_NONFINITE, GGX_ERR_ALPHA; GGX_ERR_SINGULAR as for ggx_shape_matrix (the resulting
+ * A too ill-conditioned: for ggx_shape_aniso and ggx_shape_ellipsoid, alphas far apart, such as 1e-4 with 1e4;
+ * never for ggx_shape_iso). */
 ggx_status ggx_shape_iso(ggx_shape *s, double alpha);
 
-/* Anisotropic GGX (GTR2aniso), R = I: A = diag(alpha_x, alpha_y, 1). Same domain and errors as ggx_shape_iso. */
+/* Anisotropic GGX (GTR2aniso), R = I: A = diag(alpha_x, alpha_y, 1). Same domain and errors as ggx_shape_iso;
+ * GGX_ERR_SINGULAR when alpha_x alpha_y <= GGX_SINGULAR_TOL (alpha_x^2 + alpha_y^2 + 1)^(3/2). */
 ggx_status ggx_shape_aniso(ggx_shape *s, double alpha_x, double alpha_y);
 
 /* Walter's ellipsoid, A = diag(alpha_x, alpha_y, 1) Rx(theta_x) Ry(theta_y) Rz(theta_z) (eq 2-3), angles in
  * radians. theta_z is any finite angle; |theta_x|, |theta_y| <= GGX_SKEW_MAX. Alphas as in ggx_shape_iso.
- * Errors: GGX_ERR_NULL, GGX_ERR_NONFINITE, GGX_ERR_ALPHA, GGX_ERR_ANGLE. */
+ * Errors: GGX_ERR_NULL, GGX_ERR_NONFINITE, GGX_ERR_ALPHA, GGX_ERR_ANGLE, GGX_ERR_SINGULAR (as ggx_shape_aniso). */
 ggx_status ggx_shape_ellipsoid(ggx_shape *s, double alpha_x, double alpha_y, double theta_x, double theta_y,
                                double theta_z);
 

@@ -9,7 +9,9 @@ GGX_API const char *ggx_status_str(ggx_status status)
     case GGX_ERR_NONFINITE: return "a parameter is NaN or infinite";
     case GGX_ERR_ALPHA: return "roughness alpha must be in (0, 1e4]";
     case GGX_ERR_ANGLE: return "skew angles theta_x, theta_y must be within [-pi/2, pi/2]";
-    case GGX_ERR_SINGULAR: return "the shape matrix is singular or too close to singular";
+    case GGX_ERR_SINGULAR:
+        return "the shape matrix is singular or too ill-conditioned (|det A| <= 1e-12 ||A||_F^3, e.g. roughnesses "
+               "1e-4 and 1e4 together)";
     case GGX_ERR_ETA: return "an index of refraction must be finite and > 0 (and k >= 0)";
     case GGX_ERR_RANGE: return "a parameter is outside its documented range";
     }

@@ -81,13 +81,22 @@ void parse_options(int argc, char **argv, int first, options *o, const char *all
     o->alpha[0] = 0.15, o->alpha[1] = 0.5;
     o->n = -1;
     o->seed = 1;
-    o->size = 512;
+    o->size = 0; /* not given: each command has its default */
     o->eta = 1.5;
     o->progress = -1;
     for (int i = first; i < argc; i++) {
         const char *a = argv[i];
         const char *val = i + 1 < argc ? argv[i + 1] : NULL;
-        char key[32] = "";
+        char key[32] = "", opt[40];
+        /* --name=value (GNU syntax) is --name value */
+        const char *eq = strncmp(a, "--", 2) == 0 ? strchr(a, '=') : NULL;
+        int inline_val = 0;
+        if (eq && (size_t)(eq - a) < sizeof opt) {
+            snprintf(opt, sizeof opt, "%.*s", (int)(eq - a), a);
+            val = eq + 1;
+            a = opt;
+            inline_val = 1;
+        }
         if (strcmp(a, "--help") == 0 || strcmp(a, "-h") == 0) {
             o->help = 1;
             continue;
@@ -97,18 +106,23 @@ void parse_options(int argc, char **argv, int first, options *o, const char *all
         if (!key[0] || !allowed_has(allowed, key) || strcmp(key, "help") == 0)
             die("unknown option '%s' (see --help)", a);
         /* flags */
+        int flag = strcmp(key, "log") == 0 || strcmp(key, "progress") == 0 || strcmp(key, "no-progress") == 0;
+        if (flag && inline_val) die("option '%s' takes no value", a);
         if (strcmp(key, "log") == 0) { o->log_scale = 1; continue; }
         if (strcmp(key, "progress") == 0) { o->progress = 1; continue; }
         if (strcmp(key, "no-progress") == 0) { o->progress = 0; continue; }
         if (!val) die("option '%s' needs a value", a);
-        i++;
+        if (!inline_val) i++;
         if (strcmp(key, "alpha") == 0) {
             int k = parse_list(a, val, o->alpha, -2);
             if (k == 1) o->alpha[1] = o->alpha[0];
+            o->have_alpha = 1;
         } else if (strcmp(key, "skew") == 0) {
             parse_list(a, val, o->skew, 2);
+            o->have_skew = 1;
         } else if (strcmp(key, "rotate") == 0) {
             parse_list(a, val, &o->rotate, 1);
+            o->have_rotate = 1;
         } else if (strcmp(key, "matrix") == 0) {
             parse_list(a, val, &o->matrix[0][0], 9);
             o->have_matrix = 1;
@@ -161,9 +175,19 @@ void parse_options(int argc, char **argv, int first, options *o, const char *all
 void shape_from_options(const options *o, ggx_shape *s)
 {
     ggx_status st;
+    /* the command's own words for what the library would refuse in radians, and a note where it adjusts */
+    if (!o->have_matrix) {
+        for (int i = 0; i < 2; i++)
+            if (!(fabs(o->skew[i]) <= GGX_SKEW_MAX / DEG + 1e-9))
+                die("invalid shape: --skew angles must be within [-90, 90] degrees (%g given)", o->skew[i]);
+    }
     if (o->have_matrix) st = ggx_shape_matrix(s, (const double(*)[3])o->matrix);
     else st = ggx_shape_ellipsoid(s, o->alpha[0], o->alpha[1], o->skew[0] * DEG, o->skew[1] * DEG, o->rotate * DEG);
     if (st != GGX_OK) die("invalid shape: %s", ggx_status_str(st));
+    for (int i = 0; i < 2 && !o->have_matrix; i++)
+        if (o->alpha[i] < GGX_ALPHA_MIN && (i == 0 || o->alpha[1] != o->alpha[0]))
+            fprintf(stderr, "ggx: note: alpha %g raised to the smallest accepted roughness, %g\n", o->alpha[i],
+                    GGX_ALPHA_MIN);
 }
 
 ggx_fresnel fresnel_from_options(const options *o)

@@ -23,7 +23,7 @@ typedef struct options {
     /* shape */
     double alpha[2], skew[2], rotate; /* degrees */
     double matrix[3][3];
-    int have_matrix;
+    int have_matrix, have_alpha, have_skew, have_rotate; /* given on the command line */
     /* directions and counts */
     ggx_vec3 view;
     int have_view;
@@ -65,13 +65,27 @@ void require_view(const ggx_sampler_info *smp, ggx_vec3 view);
 int draw_sample(const ggx_sampler_info *smp, const ggx_shape *s, ggx_vec3 view, const ggx_fresnel *f, double eta,
                 rng *r, ggx_vec3 *w, double *pdf, double *weight);
 
-/* ---- output files: written to a temporary name and renamed, so no partial file is ever left ---- */
+/* ---- output files ----
+ * A regular file (new, existing, or the target of a symbolic link, which is kept) is written to a temporary name in
+ * its folder and renamed over it when complete, keeping an existing file's permissions: no partial file is ever
+ * left, and the temporary is removed on every error and on SIGINT, SIGTERM, SIGHUP and SIGPIPE. Anything else (a
+ * device such as /dev/null, a FIFO) is written in place. "-" or no path: standard output. Every write is checked:
+ * a failure is one "ggx: cannot write" line and exit status 2; a reader that has gone (EPIPE) ends the command
+ * quietly with status 141, as SIGPIPE would. */
 typedef struct out_file {
     FILE *f;
-    char *path, *tmp;
+    char *path;  /* the file finally written (a link's target) */
+    int slot;    /* its temporary's entry in the pending list, or -1 (in place, stdout) */
+    unsigned mode;
 } out_file;
-void out_open(out_file *o, const char *path); /* path NULL or "-": stdout */
-void out_close(out_file *o);                  /* flush, check, rename; dies on error */
+void out_open(out_file *o, const char *path);
+void out_close(out_file *o); /* flush, check, rename; dies on error */
+void out_check(out_file *o); /* dies (or ends quietly on EPIPE) if a write has failed: for long outputs */
+void out_stdout_failed(void); /* a failed write to stdout: exit 141 on EPIPE, else die */
+/* A set of files written all or none: after out_begin_set, out_close keeps each finished file under its temporary
+ * name; out_commit_set renames them all. An error before the commit removes every one. */
+void out_begin_set(void);
+void out_commit_set(void);
 void ensure_dir(const char *dir);             /* mkdir -p of one level; dies if unwritable */
 
 /* ---- images ---- */
@@ -105,10 +119,13 @@ int cmd_audit(int argc, char **argv);
 typedef struct check_result {
     double norm_error; /* |integral of the sampler's pdf - 1| */
     double pvalue;     /* chi-square */
-    double jac_error;  /* largest |J pdf - 1| at random u (NaN for rejection samplers) */
+    double jac_error;  /* largest |J pdf - 1| at random u (NaN for rejection samplers, INFINITY if no point
+                        * was away from the edges) */
     long zero_hits;
     int pass;
 } check_result;
+/* The fewest samples for which the chi-square test means something (cells of the smallest grid then expect 50). */
+#define CHECK_MIN_N 10000
 check_result run_check(const ggx_shape *s, ggx_vec3 view, const ggx_sampler_info *smp, long n,
                        unsigned long long seed, double alpha, int progress);
 void print_check_header(FILE *f);

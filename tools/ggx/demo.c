@@ -20,13 +20,15 @@ int cmd_demo(int argc, char **argv)
                "Draws the seeds' figures for alpha = (0.15, 0.5) and for the same shape skewed by theta_x = 15,\n"
                "theta_y = -10 degrees into DIR (default out/): the equal-area grid mapped by NDF sampling (top and\n"
                "side), the NDF pdf (top and side), the VNDF pdf for theta_v = 75 with phi_v = 0 and 90. Then checks\n"
-               "every sampler for these shapes (N samples each, default 10^6) and prints the table.\n");
+               "every sampler for these shapes (N samples each, default 10^6) and prints the table. --size is the\n"
+               "figures' size in pixels (default 384). The figures are written all or none.\n");
         return 0;
     }
+    if (o.n > 0 && o.n < CHECK_MIN_N) die("-n: the chi-square test needs at least %d samples (%ld given)", CHECK_MIN_N, o.n);
     clock_t c0 = clock();
     const char *dir = o.out ? o.out : "out";
     ensure_dir(dir);
-    int size = o.size == 512 ? 384 : o.size;
+    int size = o.size ? o.size : 384;
     struct {
         const char *prefix, *label;
         double tx, ty;
@@ -47,6 +49,7 @@ int cmd_demo(int argc, char **argv)
                 {FIG_NDF, "ndf-top.png", 0},          {FIG_NDF_SIDE, "ndf-side.png", 0},
                 {FIG_VNDF, "vndf-75-0.png", 0},       {FIG_VNDF, "vndf-75-90.png", 90}};
     printf("ggx demo: figures in %s/\n", dir);
+    out_begin_set(); /* all figures or none */
     for (int k = 0; k < 2; k++) {
         for (unsigned f = 0; f < sizeof figs / sizeof figs[0]; f++) {
             snprintf(path, sizeof path, "%s/%s%s", dir, shapes[k].prefix, figs[f].name);
@@ -56,6 +59,7 @@ int cmd_demo(int argc, char **argv)
             printf("  %s\n", path);
         }
     }
+    out_commit_set();
     long n = o.n > 0 ? o.n : 1000000;
     /* every sampler of normals of the library, on each shape in its domain */
     int runs = 0;
@@ -72,7 +76,7 @@ int cmd_demo(int argc, char **argv)
             if (!checked(smp, &sh[k])) continue;
             check_result r = run_check(&sh[k], v0, smp, n, 100 + (unsigned long long)i, alpha, 0);
             print_check_row(stdout, smp->name, r);
-            fflush(stdout);
+            if (fflush(stdout) != 0 || ferror(stdout)) out_stdout_failed();
             all &= r.pass;
         }
     }

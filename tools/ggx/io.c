@@ -1,6 +1,7 @@
 /* Output files written atomically, and PNG images with a small bitmap font. SPDX-License-Identifier: MIT */
 #include <errno.h>
 #include <png.h>
+#include <signal.h>
 #include <stdlib.h>
 #include <string.h>
 #include <sys/stat.h>
@@ -19,42 +20,190 @@ void ensure_dir(const char *dir)
     if (access(dir, W_OK) != 0) die("output folder '%s' is not writable", dir);
 }
 
+/* ---- pending temporaries ----
+ * The temporary files being written, and those of a set (out_begin_set) finished but not yet renamed. They are
+ * removed on every way out that does not rename them: exit (atexit: die() exits), and the signals that end a
+ * command (SIGINT, SIGTERM, SIGHUP, SIGPIPE: the handler unlinks them, then ends the process by the same signal).
+ * The handler reads only this array; an entry is published after its string is complete and cleared before it is
+ * freed. */
+enum { MAX_PENDING = 64 };
+static char *volatile pending[MAX_PENDING];
+static char *set_path[MAX_PENDING]; /* the final names of a set's finished temporaries, by pending slot */
+static int set_open;
+
+static void unlink_pending(void)
+{
+    for (int i = 0; i < MAX_PENDING; i++) {
+        char *t = pending[i];
+        if (t) unlink(t);
+    }
+}
+
+static void on_signal(int sig)
+{
+    unlink_pending();
+    signal(sig, SIG_DFL);
+    raise(sig);
+}
+
+static void install_cleanup(void)
+{
+    static int done;
+    if (done) return;
+    done = 1;
+    atexit(unlink_pending);
+    static const int sigs[] = {SIGINT, SIGTERM, SIGHUP, SIGPIPE};
+    for (unsigned i = 0; i < sizeof sigs / sizeof sigs[0]; i++) {
+        struct sigaction old, sa;
+        memset(&sa, 0, sizeof sa);
+        sa.sa_handler = on_signal;
+        sigemptyset(&sa.sa_mask);
+        /* a signal the caller ignores (nohup, a runner that ignores SIGPIPE) stays ignored */
+        if (sigaction(sigs[i], NULL, &old) == 0 && old.sa_handler != SIG_IGN) sigaction(sigs[i], &sa, NULL);
+    }
+}
+
+static int add_pending(char *tmp)
+{
+    for (int i = 0; i < MAX_PENDING; i++)
+        if (!pending[i]) {
+            pending[i] = tmp;
+            return i;
+        }
+    die("too many output files at once");
+}
+
+static void drop_pending(int slot)
+{
+    char *t = pending[slot];
+    pending[slot] = NULL;
+    free(t);
+    free(set_path[slot]);
+    set_path[slot] = NULL;
+}
+
+static char *dup_or_die(const char *s)
+{
+    char *d = strdup(s);
+    if (!d) die("out of memory");
+    return d;
+}
+
+void out_stdout_failed(void)
+{
+    /* the error of the failed write is gone by now; flushing again repeats it and sets errno */
+    clearerr(stdout);
+    if (fputc('\n', stdout) != EOF && fflush(stdout) == 0) errno = EIO;
+    if (errno == EPIPE) exit(141); /* the reader has gone: end quietly, as SIGPIPE would */
+    die("cannot write to standard output: %s", strerror(errno));
+}
+
+void out_check(out_file *o)
+{
+    if (!ferror(o->f)) return;
+    if (o->f == stdout) out_stdout_failed();
+    die("cannot write '%s': %s", o->path, strerror(errno ? errno : EIO));
+}
+
 void out_open(out_file *o, const char *path)
 {
     memset(o, 0, sizeof *o);
+    o->slot = -1;
+    install_cleanup();
     if (!path || strcmp(path, "-") == 0) {
         o->f = stdout;
         return;
     }
-    size_t n = strlen(path) + 16;
-    o->path = malloc(n);
-    o->tmp = malloc(n);
-    if (!o->path || !o->tmp) die("out of memory");
-    snprintf(o->path, n, "%s", path);
-    snprintf(o->tmp, n, "%s.tmpXXXXXX", path);
-    int fd = mkstemp(o->tmp);
-    if (fd < 0) die("cannot write '%s': %s", path, strerror(errno));
+    struct stat st, lst;
+    const char *target = path;
+    char *resolved = NULL;
+    mode_t mode;
+    if (stat(path, &st) == 0) {
+        if (S_ISDIR(st.st_mode)) die("cannot write '%s': it is a folder", path);
+        if (!S_ISREG(st.st_mode)) {
+            /* a device, a FIFO, a socket (or a link to one): written in place, never replaced */
+            o->f = fopen(path, "wb");
+            if (!o->f) die("cannot write '%s': %s", path, strerror(errno));
+            o->path = dup_or_die(path);
+            return;
+        }
+        mode = st.st_mode & 07777;
+        if (lstat(path, &lst) == 0 && S_ISLNK(lst.st_mode)) {
+            /* a link to a regular file: its target is replaced, the link kept */
+            resolved = realpath(path, NULL);
+            if (!resolved) die("cannot write '%s': %s", path, strerror(errno));
+            target = resolved;
+        }
+    } else if (errno == ENOENT && lstat(path, &lst) == 0 && S_ISLNK(lst.st_mode)) {
+        /* a dangling link: the file it names is created through it */
+        o->f = fopen(path, "wb");
+        if (!o->f) die("cannot write '%s': %s", path, strerror(errno));
+        o->path = dup_or_die(path);
+        return;
+    } else if (errno != ENOENT) {
+        die("cannot write '%s': %s", path, strerror(errno));
+    } else {
+        mode_t mask = umask(0);
+        umask(mask);
+        mode = 0666 & ~mask;
+    }
+    size_t n = strlen(target) + 16;
+    char *tmp = malloc(n);
+    if (!tmp) die("out of memory");
+    snprintf(tmp, n, "%s.tmpXXXXXX", target);
+    o->path = dup_or_die(target);
+    o->mode = mode;
+    free(resolved);
+    sigset_t all, old;
+    sigfillset(&all);
+    sigprocmask(SIG_BLOCK, &all, &old); /* no signal between creating the file and recording it */
+    int fd = mkstemp(tmp);
+    int e = errno;
+    if (fd >= 0) o->slot = add_pending(tmp);
+    sigprocmask(SIG_SETMASK, &old, NULL);
+    if (fd < 0) {
+        free(tmp);
+        die("cannot write '%s': %s", path, strerror(e));
+    }
     o->f = fdopen(fd, "wb");
     if (!o->f) die("cannot write '%s': %s", path, strerror(errno));
 }
 
 void out_close(out_file *o)
 {
-    if (!o->path) {
-        if (fflush(o->f) != 0) die("cannot write to standard output: %s", strerror(errno));
+    if (o->f == stdout) {
+        if (fflush(stdout) != 0 || ferror(stdout)) out_stdout_failed();
         return;
     }
-    int bad = ferror(o->f) || fflush(o->f) != 0;
-    if (fclose(o->f) != 0) bad = 1;
-    if (bad || rename(o->tmp, o->path) != 0) {
-        int e = errno;
-        unlink(o->tmp);
-        die("cannot write '%s': %s", o->path, strerror(e));
+    int bad = ferror(o->f), e = bad ? (errno ? errno : EIO) : 0;
+    if (fflush(o->f) != 0 && !bad) bad = 1, e = errno;
+    if (fclose(o->f) != 0 && !bad) bad = 1, e = errno;
+    o->f = NULL;
+    if (bad) die("cannot write '%s': %s", o->path, strerror(e)); /* the temporary goes at exit */
+    if (o->slot >= 0) {
+        chmod(pending[o->slot], o->mode);
+        if (set_open) {
+            set_path[o->slot] = o->path; /* renamed by out_commit_set */
+            o->path = NULL;
+        } else {
+            if (rename(pending[o->slot], o->path) != 0) die("cannot write '%s': %s", o->path, strerror(errno));
+            drop_pending(o->slot);
+        }
     }
-    chmod(o->path, 0644);
     free(o->path);
-    free(o->tmp);
     memset(o, 0, sizeof *o);
+}
+
+void out_begin_set(void) { set_open = 1; }
+
+void out_commit_set(void)
+{
+    set_open = 0;
+    for (int i = 0; i < MAX_PENDING; i++) {
+        if (!set_path[i]) continue;
+        if (rename(pending[i], set_path[i]) != 0) die("cannot write '%s': %s", set_path[i], strerror(errno));
+        drop_pending(i);
+    }
 }
 
 image image_new(int w, int h, unsigned char r, unsigned char g, unsigned char b)
@@ -133,14 +282,27 @@ void colormap(double t, unsigned char out[3])
     for (int k = 0; k < 3; k++) out[k] = (unsigned char)(255.0 * ((1 - f) * ctrl[i][k] + f * ctrl[i + 1][k]) + 0.5);
 }
 
+/* libpng's errors come back here, silently (the command prints one line of its own); its warnings are dropped. */
+static char png_message[128];
+static void png_fail(png_structp png, png_const_charp msg)
+{
+    snprintf(png_message, sizeof png_message, "%s", msg);
+    png_longjmp(png, 1);
+}
+static void png_quiet(png_structp png, png_const_charp msg) { (void)png, (void)msg; }
+
 void write_png(const image *im, const char *path)
 {
     out_file o;
     out_open(&o, path);
-    png_structp png = png_create_write_struct(PNG_LIBPNG_VER_STRING, NULL, NULL, NULL);
+    png_structp png = png_create_write_struct(PNG_LIBPNG_VER_STRING, NULL, png_fail, png_quiet);
     png_infop info = png ? png_create_info_struct(png) : NULL;
     if (!png || !info) die("cannot write '%s': libpng failed to start", path);
-    if (setjmp(png_jmpbuf(png))) die("cannot write '%s': libpng error", path);
+    if (setjmp(png_jmpbuf(png))) {
+        /* a failed write (full disk) shows as the stream's error; anything else is libpng's message */
+        if (ferror(o.f)) out_check(&o);
+        die("cannot write '%s': %s", path, png_message);
+    }
     png_init_io(png, o.f);
     png_set_IHDR(png, info, (png_uint_32)im->w, (png_uint_32)im->h, 8, PNG_COLOR_TYPE_RGB, PNG_INTERLACE_NONE,
                  PNG_COMPRESSION_TYPE_DEFAULT, PNG_FILTER_TYPE_DEFAULT);

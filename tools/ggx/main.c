@@ -27,6 +27,13 @@ static void usage(FILE *f)
     fprintf(f, "\nlibggx %d.%d.%d, MIT licence\n", GGX_VERSION_MAJOR, GGX_VERSION_MINOR, GGX_VERSION_PATCH);
 }
 
+/* Every write to stdout is checked: a full disk or a closed pipe is an error, not a silent success. */
+static int finish(int rc)
+{
+    if (fflush(stdout) != 0 || ferror(stdout)) out_stdout_failed();
+    return rc;
+}
+
 int main(int argc, char **argv)
 {
     if (argc < 2) {
@@ -36,13 +43,13 @@ int main(int argc, char **argv)
     const char *c = argv[1];
     if (strcmp(c, "--help") == 0 || strcmp(c, "-h") == 0 || strcmp(c, "help") == 0) {
         usage(stdout);
-        return 0;
+        return finish(0);
     }
-    if (strcmp(c, "--version") == 0) {
+    if (strcmp(c, "--version") == 0 || strcmp(c, "-V") == 0) {
         printf("ggx %d.%d.%d\n", GGX_VERSION_MAJOR, GGX_VERSION_MINOR, GGX_VERSION_PATCH);
-        return 0;
+        return finish(0);
     }
     for (int i = 0; i < NCOMMANDS; i++)
-        if (strcmp(c, COMMANDS[i].name) == 0) return COMMANDS[i].run(argc, argv);
+        if (strcmp(c, COMMANDS[i].name) == 0) return finish(COMMANDS[i].run(argc, argv));
     die("unknown command '%s' (see ggx --help)", c);
 }

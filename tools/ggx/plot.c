@@ -1,5 +1,6 @@
 /* ggx plot: one figure (PNG density or SVG grid) for any shape, view and sampler. SPDX-License-Identifier: MIT */
 #include <string.h>
+#include <sys/stat.h>
 
 #include "cli.h"
 
@@ -27,14 +28,19 @@ int cmd_plot(int argc, char **argv)
     require_domain(smp, &s);
     if (smp->family == GGX_FAMILY_VNDF && !(o.view.z > 0))
         die("--view must be above the horizon for sampler '%s'", smp->name);
-    char path[512], title[128];
-    if (o.out) snprintf(path, sizeof path, "%s", o.out);
-    else snprintf(path, sizeof path, "%s.%s", o.figure ? o.figure : "ndf", default_ext(k));
+    char fallback[64], title[128];
+    snprintf(fallback, sizeof fallback, "%s.%s", o.figure ? o.figure : "ndf", default_ext(k));
+    const char *path = o.out ? o.out : fallback;
+    /* a file name says its format: a PNG figure is not written to x.svg. Standard output ("-") and what is not a
+     * regular file (a device, a FIFO) take the figure's own format. */
     const char *want = (k == FIG_GRID || k == FIG_GRID_SIDE) ? ".svg" : ".png";
     size_t pl = strlen(path);
-    if (pl < 4 || strcmp(path + pl - 4, want) != 0) die("--out: figure '%s' is written as %s", o.figure ? o.figure : "ndf", want);
+    struct stat st;
+    int stream = strcmp(path, "-") == 0 || (stat(path, &st) == 0 && !S_ISREG(st.st_mode) && !S_ISDIR(st.st_mode));
+    if (!stream && (pl < 4 || strcmp(path + pl - 4, want) != 0))
+        die("--out: figure '%s' is written as %s (or give - for standard output)", o.figure ? o.figure : "ndf", want);
     snprintf(title, sizeof title, "%s  alpha %.3g,%.3g", o.figure ? o.figure : "ndf", o.alpha[0], o.alpha[1]);
-    draw_figure(k, &s, o.view, smp, o.size, o.log_scale, title, path);
-    fprintf(stderr, "ggx: wrote %s\n", path);
+    draw_figure(k, &s, o.view, smp, o.size ? o.size : 512, o.log_scale, title, path);
+    if (strcmp(path, "-") != 0) fprintf(stderr, "ggx: wrote %s\n", path);
     return 0;
 }

@@ -42,6 +42,7 @@ int cmd_sample(int argc, char **argv)
         } else {
             fprintf(out.f, "%.17g,%.17g,%.17g,%.17g,%.17g\n", w.x, w.y, w.z, pdf, weight);
         }
+        if ((i & 1023) == 1023) out_check(&out); /* a full disk or a dead pipe stops the run */
     }
     out_close(&out);
     return 0;
