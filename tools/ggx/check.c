@@ -36,6 +36,11 @@ static double check_integrand(ggx_vec3 m, void *vc)
     return k->pdf(k->s, k->v, m);
 }
 
+void require_check_n(long n)
+{
+    if (n < CHECK_MIN_N) die("-n: the chi-square test needs at least %d samples (%ld given)", CHECK_MIN_N, n);
+}
+
 check_result run_check(const ggx_shape *s, ggx_vec3 view, const ggx_sampler_info *smp, long n,
                        unsigned long long seed, double alpha, int progress)
 {
@@ -131,14 +136,14 @@ int cmd_check(int argc, char **argv)
     for (int i = 0; i < nl; i++) require_view(list[i], o.view);
     int progress = o.progress >= 0 ? o.progress : isatty(2);
     long n = o.n > 0 ? o.n : 1000000;
-    if (n < CHECK_MIN_N) die("-n: the chi-square test needs at least %d samples (%ld given)", CHECK_MIN_N, n);
+    require_check_n(n);
     double alpha = chi2_sidak(nl);
     print_check_header(stdout);
     int all = 1, no_jac = 0;
     for (int i = 0; i < nl; i++) {
         check_result r = run_check(&s, o.view, list[i], n, o.seed + (unsigned long long)i, alpha, progress);
         print_check_row(stdout, list[i]->name, r);
-        if (fflush(stdout) != 0 || ferror(stdout)) out_stdout_failed(); /* a reader that has gone stops the run */
+        out_flush_stdout(); /* a reader that has gone stops the run */
         all &= r.pass;
         no_jac |= isinf(r.jac_error);
     }

@@ -82,6 +82,7 @@ void out_open(out_file *o, const char *path);
 void out_close(out_file *o); /* flush, check, rename; dies on error */
 void out_check(out_file *o); /* dies (or ends quietly on EPIPE) if a write has failed: for long outputs */
 void out_stdout_failed(void); /* a failed write to stdout: exit 141 on EPIPE, else die */
+void out_flush_stdout(void);  /* flushes stdout, out_stdout_failed() on any error so far */
 /* A set of files written all or none: after out_begin_set, out_close keeps each finished file under its temporary
  * name; out_commit_set renames them all. An error before the commit removes every one. */
 void out_begin_set(void);
@@ -126,6 +127,7 @@ typedef struct check_result {
 } check_result;
 /* The fewest samples for which the chi-square test means something (cells of the smallest grid then expect 50). */
 #define CHECK_MIN_N 10000
+void require_check_n(long n); /* dies (usage error) below CHECK_MIN_N */
 check_result run_check(const ggx_shape *s, ggx_vec3 view, const ggx_sampler_info *smp, long n,
                        unsigned long long seed, double alpha, int progress);
 void print_check_header(FILE *f);

@@ -24,7 +24,7 @@ int cmd_demo(int argc, char **argv)
                "figures' size in pixels (default 384). The figures are written all or none.\n");
         return 0;
     }
-    if (o.n > 0 && o.n < CHECK_MIN_N) die("-n: the chi-square test needs at least %d samples (%ld given)", CHECK_MIN_N, o.n);
+    if (o.n > 0) require_check_n(o.n); /* before any figure is drawn */
     clock_t c0 = clock();
     const char *dir = o.out ? o.out : "out";
     ensure_dir(dir);
@@ -76,7 +76,7 @@ int cmd_demo(int argc, char **argv)
             if (!checked(smp, &sh[k])) continue;
             check_result r = run_check(&sh[k], v0, smp, n, 100 + (unsigned long long)i, alpha, 0);
             print_check_row(stdout, smp->name, r);
-            if (fflush(stdout) != 0 || ferror(stdout)) out_stdout_failed();
+            out_flush_stdout();
             all &= r.pass;
         }
     }

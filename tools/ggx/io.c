@@ -98,11 +98,23 @@ void out_stdout_failed(void)
     die("cannot write to standard output: %s", strerror(errno));
 }
 
+void out_flush_stdout(void)
+{
+    if (fflush(stdout) != 0 || ferror(stdout)) out_stdout_failed();
+}
+
 void out_check(out_file *o)
 {
     if (!ferror(o->f)) return;
     if (o->f == stdout) out_stdout_failed();
     die("cannot write '%s': %s", o->path, strerror(errno ? errno : EIO));
+}
+
+static void open_in_place(out_file *o, const char *path)
+{
+    o->f = fopen(path, "wb");
+    if (!o->f) die("cannot write '%s': %s", path, strerror(errno));
+    o->path = dup_or_die(path);
 }
 
 void out_open(out_file *o, const char *path)
@@ -121,10 +133,7 @@ void out_open(out_file *o, const char *path)
     if (stat(path, &st) == 0) {
         if (S_ISDIR(st.st_mode)) die("cannot write '%s': it is a folder", path);
         if (!S_ISREG(st.st_mode)) {
-            /* a device, a FIFO, a socket (or a link to one): written in place, never replaced */
-            o->f = fopen(path, "wb");
-            if (!o->f) die("cannot write '%s': %s", path, strerror(errno));
-            o->path = dup_or_die(path);
+            open_in_place(o, path); /* a device, a FIFO, a socket (or a link to one): never replaced */
             return;
         }
         mode = st.st_mode & 07777;
@@ -135,10 +144,7 @@ void out_open(out_file *o, const char *path)
             target = resolved;
         }
     } else if (errno == ENOENT && lstat(path, &lst) == 0 && S_ISLNK(lst.st_mode)) {
-        /* a dangling link: the file it names is created through it */
-        o->f = fopen(path, "wb");
-        if (!o->f) die("cannot write '%s': %s", path, strerror(errno));
-        o->path = dup_or_die(path);
+        open_in_place(o, path); /* a dangling link: the file it names is created through it */
         return;
     } else if (errno != ENOENT) {
         die("cannot write '%s': %s", path, strerror(errno));
@@ -172,7 +178,7 @@ void out_open(out_file *o, const char *path)
 void out_close(out_file *o)
 {
     if (o->f == stdout) {
-        if (fflush(stdout) != 0 || ferror(stdout)) out_stdout_failed();
+        out_flush_stdout();
         return;
     }
     int bad = ferror(o->f), e = bad ? (errno ? errno : EIO) : 0;

@@ -30,7 +30,7 @@ static void usage(FILE *f)
 /* Every write to stdout is checked: a full disk or a closed pipe is an error, not a silent success. */
 static int finish(int rc)
 {
-    if (fflush(stdout) != 0 || ferror(stdout)) out_stdout_failed();
+    out_flush_stdout();
     return rc;
 }
 
