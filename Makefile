@@ -4,34 +4,50 @@ PREFIX ?= /usr/local
 JOBS ?= 2
 MAKEFLAGS += --no-print-directory
 
-.PHONY: all deps deps-dev configure build run example bench test test-long sanitize tsan valgrind fuzz fuzz-ci install clean
+.PHONY: all deps deps-run deps-dev configure configure-run build run example bench test test-long sanitize tsan \
+        valgrind fuzz fuzz-ci install clean
 
 all: build
 
+# Debian packages: what `make run` needs (compiler, CMake, libpng), and what the test suite adds (cmocka, g++ for the
+# header's C++ test, pkg-config and make for the install test, xmllint for the SVG figures, groff for the man page).
+RUN_PKGS = cmake make gcc libc6-dev libpng-dev
+TEST_PKGS = $(RUN_PKGS) g++ pkg-config libcmocka-dev libxml2-utils groff-base
+
 deps:
-	@sh cmake/install-deps.sh
+	@sh cmake/install-deps.sh $(TEST_PKGS)
+
+deps-run:
+	@sh cmake/install-deps.sh $(RUN_PKGS)
 
 # Tools for the robustness targets: clang with libFuzzer, valgrind.
 deps-dev: deps
 	@sh cmake/install-deps.sh clang libclang-rt-14-dev valgrind
 
+CMAKE_CONFIG = -DCMAKE_BUILD_TYPE=Release -DGGX_WERROR=ON
+
 configure: deps
-	@cmake -S . -B $(BUILD) -DCMAKE_BUILD_TYPE=Release -DGGX_WERROR=ON -DCMAKE_INSTALL_PREFIX=$(PREFIX) >/dev/null
+	@cmake -S . -B $(BUILD) $(CMAKE_CONFIG) -DGGX_BUILD_TESTS=ON >/dev/null
 
 build: configure
 	@cmake --build $(BUILD) -j $(JOBS)
 
-# The main job on built-in defaults: the seeds' figures into out/ and a check of every sampler.
-run: build
-	@./$(BUILD)/ggx demo
+# The main job on built-in defaults: the seeds' figures into out/ and a check of every sampler. It needs only the
+# command: a first configure leaves the tests out (no cmocka needed); a build that has them keeps them.
+configure-run: deps-run
+	@cmake -S . -B $(BUILD) $(CMAKE_CONFIG) $(if $(wildcard $(BUILD)/CMakeCache.txt),,-DGGX_BUILD_TESTS=OFF) >/dev/null
+
+run: configure-run
+	@cmake --build $(BUILD) -j $(JOBS) --target ggx_tool
+	@$(BUILD)/ggx demo
 
 # Benchmarks: ns per call of every scalar function and batch kernel, ratios, and the machine's floors.
 bench: build
-	@./$(BUILD)/ggx_bench
+	@$(BUILD)/ggx_bench
 
 # The small C example of the library (D, G1 and the BRDF for a skewed shape).
 example: build
-	@./$(BUILD)/ggx_example
+	@$(BUILD)/ggx_example
 
 test: build
 	@cd $(BUILD) && ctest --output-on-failure -j $(JOBS)
@@ -79,9 +95,12 @@ fuzz: deps-dev
 fuzz-ci:
 	@$(MAKE) fuzz FUZZ_SECONDS=10
 
-# Installs the library, headers, pkg-config and CMake files and the ggx command under PREFIX.
-install: build
-	@cmake --install $(BUILD)
+# Installs the ggx command and its man page, the library (shared and static), headers, pkg-config and CMake files
+# under PREFIX; runs ldconfig where the loader searches the libdir (as root), or gives ggx.pc an rpath where it does
+# not (cmake/install_loader.cmake). A configured build is only brought up to date (its options kept).
+install:
+	@if [ -f $(BUILD)/CMakeCache.txt ]; then cmake --build $(BUILD) -j $(JOBS); else $(MAKE) build; fi
+	@cmake --install $(BUILD) --prefix $(PREFIX)
 
 clean:
 	rm -rf $(BUILD)

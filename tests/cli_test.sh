@@ -43,6 +43,20 @@ done
     awk -F, 'NR > 1 { if (NF != 5 || $4 <= 0) e++; l = $1*$1 + $2*$2 + $3*$3; if (l < 0.999999 || l > 1.000001) e++ } END { exit e > 0 }' s.csv &&
     ok || bad "sample CSV (5 columns, unit vectors, pdf > 0)"
 "$GGX" sample --sampler bsdf --view 30,0,-1 -n 500 --format f32 --out s.f32 && [ "$(wc -c < s.f32)" -eq 10000 ] && ok || bad "sample f32"
+# f32 to stdout (a pipe, or --out -) streams; to a terminal it is refused (script(1) gives the command a terminal)
+[ "$("$GGX" sample -n 7 --format f32 | wc -c)" -eq 140 ] && [ "$("$GGX" sample -n 7 --format f32 --out - | wc -c)" -eq 140 ] &&
+    ok || bad "sample f32 to stdout"
+script -qec "$GGX_BIN sample -n 3 --format f32" /dev/null > tty.txt; rc=$?
+[ $rc = 2 ] && grep -q "^ggx: --format f32 is binary" tty.txt && ok || bad "f32 to a terminal: rc $rc, $(cat tty.txt)"
+# progress: a bar on a terminal for long runs, nothing when stderr is not a terminal or with --no-progress
+PN=1048576
+script -qec "$GGX_BIN sample -n $PN --out /dev/null" /dev/null > tty.txt &&
+    [ "$(tr '\r' '\n' < tty.txt | grep -c '^  caps  .*%')" -ge 10 ] && tr '\r' '\n' < tty.txt | grep -q '\] 100%' &&
+    ok || bad "sample progress on a terminal: $(tail -c 200 tty.txt)"
+script -qec "$GGX_BIN sample -n $PN --no-progress --out /dev/null" /dev/null > tty.txt && [ ! -s tty.txt ] &&
+    ok || bad "sample --no-progress: $(tail -c 200 tty.txt)"
+"$GGX" sample -n $PN --out /dev/null 2> err.txt && [ ! -s err.txt ] && ok || bad "sample progress without a terminal"
+"$GGX" sample -n 1000 --progress --out /dev/null 2> err.txt && [ ! -s err.txt ] && ok || bad "progress on a short run"
 "$GGX" sample --sampler brdf --alpha 0.3 --skew 10,5 -n 200 --seed 7 --out b.csv && [ "$(wc -l < b.csv)" -eq 201 ] && ok || bad "sample brdf"
 "$GGX" plot 2> plot.err && [ "$("$PNG_INFO" ndf.png)" = "662 560" ] && ok || bad "plot defaults"
 "$GGX" plot --figure vndf-side --view 60,45 --log --size 256 --out v.png && [ "$("$PNG_INFO" v.png)" = "406 304" ] && ok || bad "plot vndf-side"

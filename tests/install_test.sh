@@ -1,43 +1,59 @@
 #!/bin/sh
-# make install works: installs into a scratch prefix, then builds a user's program with
-# `cc prog.c $(pkg-config --cflags --libs ggx)` and a CMake project with find_package(ggx), and runs both.
+# make install works as the README says: `make install PREFIX=...` into a scratch prefix, then the README's example
+# (its C block, built with the README's exact command) and a CMake project with find_package(ggx) are built and run
+# with no LD_LIBRARY_PATH: a prefix outside the loader's folders gets an rpath through ggx.pc, and CMake's targets
+# carry their own. Also checks the installed files, the man page and the version. Usage: install_test.sh BUILD SRC
 set -eu
 build=$1
 src=$2
 tmp=$(mktemp -d)
 trap 'rm -rf "$tmp"' EXIT
-cmake --install "$build" --prefix "$tmp/prefix" >/dev/null
-libdir=$(ls -d "$tmp"/prefix/lib*/pkgconfig | head -n 1)
+prefix="$tmp/prefix"
+make -s -C "$src" install BUILD="$build" PREFIX="$prefix" >"$tmp/install.log" 2>&1 || { cat "$tmp/install.log"; exit 1; }
+# It says how to reach the pkg-config file of a prefix outside pkg-config's path, and that it used an rpath.
+grep -q "export PKG_CONFIG_PATH=$prefix/lib.*/pkgconfig" "$tmp/install.log" ||
+  { cat "$tmp/install.log"; echo "install: no PKG_CONFIG_PATH note" >&2; exit 1; }
+grep -q "rpath" "$tmp/install.log" || { cat "$tmp/install.log"; echo "install: no rpath note" >&2; exit 1; }
+libdir=$(ls -d "$prefix"/lib*/pkgconfig | head -n 1)
 libdir=${libdir%/pkgconfig}
-test -f "$tmp/prefix/include/ggx/ggx.h"
-test -f "$libdir/cmake/ggx/ggxConfig.cmake"
-"$tmp/prefix/bin/ggx" --version | grep -q '^ggx [0-9]'
-# The pkg-config file is generated for the configured prefix; point it at the scratch prefix.
-sed "s|^prefix=.*|prefix=$tmp/prefix|" "$libdir/pkgconfig/ggx.pc" > "$tmp/ggx.pc"
-cat > "$tmp/prog.c" <<'C'
-#include <ggx/ggx.h>
-#include <stdio.h>
-int main(void)
-{
-    ggx_shape s;
-    ggx_vec3 m = {0.0, 0.0, 1.0};
-    if (ggx_shape_aniso(&s, 0.2, 0.4) != GGX_OK) return 1;
-    double d = ggx_ndf(&s, m); /* 1 / (pi 0.2 0.4) */
-    printf("%.6f\n", d);
-    return d > 3.978 && d < 3.979 ? 0 : 1;
-}
-C
-PKG_CONFIG_PATH="$tmp" cc "$tmp/prog.c" -o "$tmp/prog" $(PKG_CONFIG_PATH="$tmp" pkg-config --cflags --libs ggx)
-LD_LIBRARY_PATH="$libdir" "$tmp/prog"
+for f in include/ggx/ggx.h include/ggx/ggx_inline.h include/ggx/ggx_batch.h include/ggx/ggx_samplers.h \
+         bin/ggx share/man/man1/ggx.1; do
+  test -f "$prefix/$f" || { echo "install: $f missing" >&2; exit 1; }
+done
+for f in libggx.so.0 libggx.a cmake/ggx/ggxConfig.cmake pkgconfig/ggx.pc; do
+  test -e "$libdir/$f" || { echo "install: $libdir/$f missing" >&2; exit 1; }
+done
+"$prefix/bin/ggx" --version | grep -q '^ggx [0-9]'
+grep -q '^prefix='"$prefix"'$' "$libdir/pkgconfig/ggx.pc" || { echo "install: ggx.pc names another prefix" >&2; exit 1; }
+
+# The README's example, with the README's build command, run as is.
+readme="$src/README.md"
+awk '/^## Example/ {on = 1} on && /^```c$/ {code = 1; next} code && /^```$/ {exit} code {print}' "$readme" \
+  > "$tmp/prog.c"
+grep -q 'ggx_ndf' "$tmp/prog.c" || { echo "install: no C example found in README.md" >&2; exit 1; }
+cmd=$(sed -n 's/^Build it with `\([^`]*\)`.*/\1/p' "$readme" | head -n 1)
+[ -n "$cmd" ] || { echo "install: no 'Build it with' command in README.md" >&2; exit 1; }
+(cd "$tmp" && PKG_CONFIG_PATH="$libdir/pkgconfig" sh -c "$cmd") ||
+  { echo "install: README command failed: $cmd" >&2; exit 1; }
+out=$(cd "$tmp" && env -u LD_LIBRARY_PATH ./a.out) || { echo "install: the README example did not run" >&2; exit 1; }
+echo "README example: $out"
+# Its line gives D, G1, pdf and f_r: each a positive number.
+echo "$out" | awk '{ok = NF == 12; for (i = 3; i <= 12; i += 3) ok = ok && $i + 0 > 0} END {exit !ok}' ||
+  { echo "install: unexpected example output" >&2; exit 1; }
+ldd "$tmp/a.out" | grep -q "libggx.so.0 => $libdir/" || { ldd "$tmp/a.out"; echo "install: not linked to the installed libggx" >&2; exit 1; }
+
+# A CMake project with find_package(ggx).
 mkdir "$tmp/consumer"
+cp "$tmp/prog.c" "$tmp/consumer/prog.c"
 cat > "$tmp/consumer/CMakeLists.txt" <<'C'
 cmake_minimum_required(VERSION 3.16)
 project(consumer C)
 find_package(ggx 0.1 REQUIRED)
-add_executable(prog ../prog.c)
+add_executable(prog prog.c)
 target_link_libraries(prog PRIVATE ggx::ggx)
 C
-cmake -S "$tmp/consumer" -B "$tmp/consumer/build" -DCMAKE_PREFIX_PATH="$tmp/prefix" >/dev/null
+cmake -S "$tmp/consumer" -B "$tmp/consumer/build" -DCMAKE_PREFIX_PATH="$prefix" >/dev/null
 cmake --build "$tmp/consumer/build" >/dev/null
-LD_LIBRARY_PATH="$libdir" "$tmp/consumer/build/prog"
-echo "install test: pkg-config and find_package consumers built and ran"
+[ "$(env -u LD_LIBRARY_PATH "$tmp/consumer/build/prog")" = "$out" ] ||
+  { echo "install: the find_package consumer printed another line" >&2; exit 1; }
+echo "install test: make install PREFIX=..., the README example and a find_package consumer built and ran"

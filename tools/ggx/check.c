@@ -1,6 +1,5 @@
 /* ggx check: normalisation, chi-square and Jacobian checks of samplers of normals. SPDX-License-Identifier: MIT */
 #include <math.h>
-#include <unistd.h>
 
 #include "chi2.h"
 #include "cli.h"
@@ -12,21 +11,12 @@ typedef struct check_ctx {
     int progress;
 } check_ctx;
 
-static void progress_bar(check_ctx *c)
-{
-    int width = 40, filled = (int)(width * c->drawn / c->total);
-    fprintf(stderr, "\r  %-14s [", c->smp->name);
-    for (int i = 0; i < width; i++) fputc(i < filled ? '#' : '.', stderr);
-    fprintf(stderr, "] %3d%%", (int)(100 * c->drawn / c->total));
-    fflush(stderr);
-}
-
 static int check_draw(void *vc, rng *r, ggx_vec3 *m)
 {
     check_ctx *c = vc;
     double pdf, w;
     int ok = draw_sample(c->smp, c->keys.s, c->keys.v, NULL, 0, r, m, &pdf, &w);
-    if (c->progress && (++c->drawn & 0xFFFF) == 0) progress_bar(c);
+    if (c->progress && (++c->drawn & 0xFFFF) == 0) progress_show(c->smp->name, c->drawn, c->total);
     return ok || t_dot(*m, *m) > 0.5; /* a normal with pdf 0 is still a sample: the harness flags it */
 }
 
@@ -54,11 +44,7 @@ check_result run_check(const ggx_shape *s, ggx_vec3 view, const ggx_sampler_info
     /* 100 x 200 cells for 10^6 samples; fewer for smaller n, so that cells expect about 50 samples */
     int nt = (int)fmin(100.0, fmax(4.0, floor(sqrt((double)n / 100.0))));
     chi2_result r = chi2_run_quiet(&p, n, nt, 2 * nt, seed, alpha); /* ggx check reports in its table */
-    if (progress) {
-        c.drawn = n;
-        progress_bar(&c);
-        fputc('\n', stderr);
-    }
+    if (progress) progress_end(smp->name, n);
     res.pvalue = r.pvalue;
     res.zero_hits = r.zero_cell_hits;
     /* Jacobian |dm/du| = 1 / pdf by central differences at 200 points away from the edges and seams, for the
@@ -134,7 +120,7 @@ int cmd_check(int argc, char **argv)
         }
     }
     for (int i = 0; i < nl; i++) require_view(list[i], o.view);
-    int progress = o.progress >= 0 ? o.progress : isatty(2);
+    int progress = progress_wanted(o.progress);
     long n = o.n > 0 ? o.n : 1000000;
     require_check_n(n);
     double alpha = chi2_sidak(nl);

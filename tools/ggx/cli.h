@@ -89,6 +89,13 @@ void out_begin_set(void);
 void out_commit_set(void);
 void ensure_dir(const char *dir);             /* mkdir -p of one level; dies if unwritable */
 
+/* ---- progress on a terminal ----
+ * A bar on stderr, redrawn in place: "  LABEL [#####.....]  42%". progress_end draws 100% and ends the line.
+ * progress_wanted: the --progress / --no-progress choice (1, 0), or by default (-1) whether stderr is a terminal. */
+int progress_wanted(int option);
+void progress_show(const char *label, long done, long total);
+void progress_end(const char *label, long total);
+
 /* ---- images ---- */
 typedef struct image {
     int w, h;

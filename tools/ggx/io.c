@@ -103,6 +103,23 @@ void out_flush_stdout(void)
     if (fflush(stdout) != 0 || ferror(stdout)) out_stdout_failed();
 }
 
+int progress_wanted(int option) { return option >= 0 ? option : isatty(2); }
+
+void progress_show(const char *label, long done, long total)
+{
+    int width = 40, filled = (int)(width * (double)done / (double)total);
+    fprintf(stderr, "\r  %-14s [", label);
+    for (int i = 0; i < width; i++) fputc(i < filled ? '#' : '.', stderr);
+    fprintf(stderr, "] %3d%%", (int)(100.0 * (double)done / (double)total));
+    fflush(stderr);
+}
+
+void progress_end(const char *label, long total)
+{
+    progress_show(label, total, total);
+    fputc('\n', stderr);
+}
+
 void out_check(out_file *o)
 {
     if (!ferror(o->f)) return;

@@ -24,6 +24,17 @@ static void usage(FILE *f)
 {
     fprintf(f, "usage: ggx <command> [options]   (ggx <command> --help for each)\n\ncommands:\n");
     for (int i = 0; i < NCOMMANDS; i++) fprintf(f, "  %-8s %s\n", COMMANDS[i].name, COMMANDS[i].summary);
+    fputs("\n"
+          "options: --name VALUE or --name=VALUE; -n N counts; --out PATH (- or absent: stdout); --seed S;\n"
+          "--help on every command; -V (--version) prints the version.\n"
+          "\n"
+          "output: a regular --out file (or the target of a link to one) is written under a temporary name in\n"
+          "its folder and renamed when complete, keeping its permissions; a device or FIFO is written in place.\n"
+          "No partial or temporary file is left by an error, a full disk, SIGINT, SIGTERM, SIGHUP or SIGPIPE.\n"
+          "\n"
+          "exit status: 0 success; 1 a check failed (ggx check); 2 bad input or a failed write, with one line\n"
+          "\"ggx: ...\" on stderr; 141 the reader of stdout went away (also where SIGPIPE is ignored).\n",
+          f);
     fprintf(f, "\nlibggx %d.%d.%d, MIT licence\n", GGX_VERSION_MAJOR, GGX_VERSION_MINOR, GGX_VERSION_PATCH);
 }
 

@@ -1,17 +1,23 @@
 /* ggx sample: N samples of any sampler, with pdf and weight, as CSV or float32. SPDX-License-Identifier: MIT */
 #include <string.h>
+#include <unistd.h>
 
 #include "cli.h"
+
+enum { SAMPLE_PROGRESS_MIN = 1 << 20 };
 
 int cmd_sample(int argc, char **argv)
 {
     options o;
-    parse_options(argc, argv, 2, &o, SHAPE_OPTS ",sampler,view,n,seed,format,out,fresnel,eta");
+    parse_options(argc, argv, 2, &o, SHAPE_OPTS ",sampler,view,n,seed,format,out,fresnel,eta,progress,no-progress");
     if (o.help) {
-        printf("usage: ggx sample [shape] [--sampler NAME] [--view DIR] [-n N] [--seed S] [--format csv|f32] [--out FILE]\n\n"
+        printf("usage: ggx sample [shape] [--sampler NAME] [--view DIR] [-n N] [--seed S] [--format csv|f32] [--out FILE]\n"
+               "                  [--progress|--no-progress]\n\n"
                "Draws N samples (default 1000) with columns x,y,z,pdf,weight. For normal samplers the weight is 1;\n"
                "for samplers of directions it is f |w.n| / pdf. Invalid samples are written as 0,0,0,0,0. --format f32\n"
-               "writes 5 little-endian float32 per sample. --view is the view / known direction (default 40,0).\n\n");
+               "writes 5 little-endian float32 per sample (to a file or a pipe, not to a terminal). --view is the\n"
+               "view / known direction (default 40,0). Runs of %d samples or more show a progress bar on a terminal.\n\n",
+               SAMPLE_PROGRESS_MIN);
         print_samplers(stdout);
         printf("\n%s", SHAPE_HELP);
         return 0;
@@ -26,9 +32,11 @@ int cmd_sample(int argc, char **argv)
     int f32 = 0;
     if (o.format && strcmp(o.format, "f32") == 0) f32 = 1;
     else if (o.format && strcmp(o.format, "csv") != 0) die("--format: '%s' is not csv or f32", o.format);
-    if (f32 && !o.out) die("--format f32 needs --out FILE");
+    int to_stdout = !o.out || strcmp(o.out, "-") == 0;
+    if (f32 && to_stdout && isatty(1)) die("--format f32 is binary: give --out FILE or redirect standard output");
     long n = o.n > 0 ? o.n : 1000;
     rng r = {o.seed};
+    int progress = progress_wanted(o.progress) && n >= SAMPLE_PROGRESS_MIN;
     out_file out;
     out_open(&out, o.out);
     if (!f32) fprintf(out.f, "x,y,z,pdf,weight\n");
@@ -43,7 +51,9 @@ int cmd_sample(int argc, char **argv)
             fprintf(out.f, "%.17g,%.17g,%.17g,%.17g,%.17g\n", w.x, w.y, w.z, pdf, weight);
         }
         if ((i & 1023) == 1023) out_check(&out); /* a full disk or a dead pipe stops the run */
+        if (progress && (i & 0xFFFF) == 0xFFFF) progress_show(smp->name, i + 1, n);
     }
+    if (progress) progress_end(smp->name, n);
     out_close(&out);
     return 0;
 }

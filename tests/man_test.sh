@@ -1,0 +1,28 @@
+#!/bin/sh
+# The man page ggx(1) is complete and well formed: it names every command of `ggx --help` as a section with that
+# command's --help text, every sampler of the registry (as `ggx sample --help` lists them) and the exit statuses,
+# and groff renders it without a warning. Usage: man_test.sh GGX MANPAGE
+set -eu
+ggx=$1
+page=$2
+fail=0
+bad() { echo "man: $*" >&2; fail=1; }
+warn=$(groff -man -Tutf8 -ww -z "$page" 2>&1) || bad "groff failed"
+[ -z "$warn" ] || bad "groff warnings: $warn"
+text=$(groff -man -Tutf8 -P-c -P-b -P-u "$page" 2>/dev/null)
+for c in $("$ggx" --help | awk '/^commands:$/ {on = 1; next} on && /^$/ {exit} on {print $1}'); do
+  printf '%s\n' "$text" | grep -q "^   $c\$" || bad "no section for command '$c'"
+  # the command's usage line, as its --help prints it
+  usage=$("$ggx" "$c" --help | head -n 1)
+  printf '%s\n' "$text" | grep -qF -- "$usage" || bad "'$c --help' usage line missing: $usage"
+done
+for s in $("$ggx" sample --help | awk '/^samplers:$/ {on = 1; next} on && /^$/ {exit} on {print $1}'); do
+  printf '%s\n' "$text" | grep -q "^ *$s  " || bad "sampler '$s' missing"
+done
+for h in NAME SYNOPSIS DESCRIPTION "EXIT STATUS" COMMANDS; do
+  printf '%s\n' "$text" | grep -q "^$h\$" || bad "no $h section"
+done
+printf '%s\n' "$text" | grep -q "141 the reader of stdout" || bad "exit status 141 not described"
+printf '%s\n' "$text" | grep -q "libggx $("$ggx" --version | sed 's/^ggx //')" || bad "version missing"
+[ $fail = 0 ] && echo "man page: $(printf '%s\n' "$text" | wc -l) lines, every command and sampler, no groff warning"
+exit $fail
