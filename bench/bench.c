@@ -110,6 +110,56 @@ SCALAR_BENCH(b_heitz, ggx_sample_vndf_heitz(c->s, c->v[k], c->u1[k], c->u2[k]).z
 SCALAR_BENCH(b_stretch, ggx_sample_ndf_stretch(c->s, c->u1[k], c->u2[k]).z)
 SCALAR_BENCH(b_sbrdf, ggx_sample_brdf(c->s, &c->f, c->v[k], c->u1[k], c->u2[k]).weight)
 SCALAR_BENCH(b_vndf, ggx_sample_vndf(c->s, c->v[k], c->u1[k], c->u2[k]).z)
+SCALAR_BENCH(b_sbrdfb, ggx_sample_brdf_bounded(c->s, &c->f, c->v[k], c->u1[k], c->u2[k]).weight)
+
+static double rnd(uint64_t *s);
+
+/* Bounded reflection sampling against reflection sampling (issue 12): per shape and view, the fraction of samples
+ * wasted (reflected below the horizon) and the variance of the one-sample albedo estimator (F = 1: its weight),
+ * n samples each with the same random numbers. */
+static void bounded_table(long n)
+{
+    static const struct {
+        const char *name;
+        double ax, ay, tx, ty, tz;
+    } shapes[] = {{"iso 0.05", 0.05, 0.05, 0, 0, 0},     {"iso 0.1", 0.1, 0.1, 0, 0, 0},
+                  {"iso 0.3", 0.3, 0.3, 0, 0, 0},        {"iso 0.6", 0.6, 0.6, 0, 0, 0},
+                  {"iso 1", 1, 1, 0, 0, 0},              {"aniso 0.15:0.5", 0.15, 0.5, 0, 0, 0},
+                  {"aniso 0.3:1 rot", 0.3, 1, 0, 0, 0.6}, {"skew 0.3:0.6", 0.3, 0.6, 0.4, -0.3, 0.5},
+                  {"skew 0.6:0.6", 0.6, 0.6, 0.3, 0.2, 0}, {"skew 1:1", 1, 1, 0.4, -0.3, 0.5}};
+    static const double views[] = {0, 45, 70, 80, 89};
+    ggx_fresnel one;
+    ggx_fresnel_one(&one);
+    printf("\nbounded reflection sampling (ggx_sample_brdf_bounded) against ggx_sample_brdf, F = 1, %ld samples each:\n"
+           "wasted = samples below the horizon; var = variance of the albedo estimate per sample (bounded / plain)\n",
+           n);
+    printf("%-16s %5s %9s %9s %9s %9s\n", "shape", "view", "wasted", "bounded", "var b/p", "albedo");
+    double worst_var = 0;
+    for (unsigned i = 0; i < sizeof shapes / sizeof shapes[0]; i++) {
+        ggx_shape s;
+        ggx_shape_ellipsoid(&s, shapes[i].ax, shapes[i].ay, shapes[i].tx, shapes[i].ty, shapes[i].tz);
+        for (unsigned j = 0; j < sizeof views / sizeof views[0]; j++) {
+            double t = views[j] * 3.14159265358979 / 180, ph = 0.7;
+            ggx_vec3 v = {sin(t) * cos(ph), sin(t) * sin(ph), cos(t)};
+            uint64_t seed = 99;
+            double sw[2] = {0, 0}, sw2[2] = {0, 0};
+            long bad[2] = {0, 0};
+            for (long k = 0; k < n; k++) {
+                double u1 = rnd(&seed), u2 = rnd(&seed);
+                ggx_sample a = ggx_sample_brdf(&s, &one, v, u1, u2), b = ggx_sample_brdf_bounded(&s, &one, v, u1, u2);
+                bad[0] += a.event == GGX_EVENT_INVALID, bad[1] += b.event == GGX_EVENT_INVALID;
+                sw[0] += a.weight, sw2[0] += a.weight * a.weight, sw[1] += b.weight, sw2[1] += b.weight * b.weight;
+            }
+            double var[2];
+            for (int q = 0; q < 2; q++) var[q] = sw2[q] / (double)n - (sw[q] / (double)n) * (sw[q] / (double)n);
+            double ratio = var[0] > 0 ? var[1] / var[0] : 1.0;
+            if (ratio > worst_var) worst_var = ratio;
+            printf("%-16s %5.0f %9.4f %9.4f %9.3f %9.4f\n", shapes[i].name, views[j], (double)bad[0] / (double)n,
+                   (double)bad[1] / (double)n, ratio, sw[1] / (double)n);
+        }
+    }
+    printf("largest variance ratio bounded / plain: %.3f\n", worst_var);
+}
 
 /* The inline float sampler of ggx_inline.h behind one call, as the float reference is (a renderer would inline
  * both). */
@@ -291,8 +341,8 @@ int main(int argc, char **argv)
               {"ggx_pdf_vndf", b_pdf},    {"ggx_brdf_eval", b_brdf},
               {"ggx_sample_vndf_caps", b_caps}, {"ggx_sample_vndf_crescent", b_crescent},
               {"ggx_sample_vndf_heitz", b_heitz}, {"ggx_sample_ndf_stretch", b_stretch},
-              {"ggx_sample_brdf", b_sbrdf}};
-    double caps_diag = 0, caps_skew = 0, res[9][2];
+              {"ggx_sample_brdf", b_sbrdf}, {"ggx_sample_brdf_bounded", b_sbrdfb}};
+    double caps_diag = 0, caps_skew = 0, res[10][2];
     for (unsigned k = 0; k < sizeof sb / sizeof sb[0]; k++) {
         sc.s = &diag;
         res[k][0] = time_it(sb[k].f, &sc, ns, NULL);
@@ -304,6 +354,9 @@ int main(int argc, char **argv)
     printf("\nsamplers relative to caps      diagonal A    skewed A\n");
     for (int k = 5; k <= 6; k++) printf("%-28s %10.2f %11.2f\n", sb[k].name, res[k][0] / res[4][0], res[k][1] / res[4][1]);
     printf("skewed caps / diagonal caps: %.2f (target <= 1.2)\n", caps_skew / caps_diag);
+    printf("ggx_sample_brdf_bounded / ggx_sample_brdf: %.2f diagonal, %.2f skewed (target <= 1.15)\n",
+           res[9][0] / res[8][0], res[9][1] / res[8][1]);
+    bounded_table(quick ? 100000 : 400000);
 
     /* Each reference is timed right after the library function it transcribes, on the same shape and inputs. */
     printf("\nreference transcriptions (same run; bench/reference.c), ns per call\n");

@@ -28,6 +28,53 @@ static double fd_solid_angle(const ggx_sampler_info *e, const ggx_shape *s, ggx_
     return sqrt(t_dot(c, c)) / (4 * h * h);
 }
 
+/* The same for samplers of reflected directions (the registry's DIRECTION samplers that do not transmit: reflection
+ * sampling and bounded reflection sampling): |dwo/du1 x dwo/du2| = 1 / pdf of wo, with F = 1; points as below,
+ * and directions within 2 degrees of the horizon skipped. */
+static ggx_vec3 dir_at(const ggx_sampler_info *e, const ggx_shape *s, ggx_vec3 v, double u1, double u2)
+{
+    ggx_fresnel one = {GGX_FRESNEL_ONE, 0, 0, 0};
+    return e->sample_direction(s, &one, 1.5, v, u1, u2, 0.5, GGX_RADIANCE).w;
+}
+static void direction_jacobians(void **state)
+{
+    (void)state;
+    rng r = {62};
+    double worst = 0.0;
+    long total = 0;
+    for (int id = 0; id < GGX_SAMPLER_COUNT; id++) {
+        const ggx_sampler_info *e = ggx_sampler_get((ggx_sampler_id)id);
+        if (e->family != GGX_FAMILY_DIRECTION || sampler_transmits(e)) continue;
+        long checked = 0;
+        for (int i = 0; i < SWEEP_NSHAPES; i++) {
+            ggx_shape s;
+            make_shape(&s, SWEEP_SHAPES[i].p);
+            for (int j = 0; j < SWEEP_NVIEWS; j++) {
+                ggx_vec3 v = sweep_view(SWEEP_VIEWS_DEG[j]);
+                if (v.z < 0.035) continue;
+                for (int t = 0; t < 60; t++) {
+                    double u1 = rng_range(&r, 0.02, 0.98), u2 = rng_range(&r, 0.02, 0.98), h = 1e-6;
+                    ggx_vec3 w = dir_at(e, &s, v, u1, u2), ws[4];
+                    if (w.z < 0.035) continue;
+                    ws[0] = dir_at(e, &s, v, u1 + h, u2), ws[1] = dir_at(e, &s, v, u1 - h, u2);
+                    ws[2] = dir_at(e, &s, v, u1, u2 + h), ws[3] = dir_at(e, &s, v, u1, u2 - h);
+                    if (ws[0].z < 0.035 || ws[1].z < 0.035 || ws[2].z < 0.035 || ws[3].z < 0.035) continue;
+                    ggx_vec3 c = t_cross(t_add(ws[0], t_scale(ws[1], -1)), t_add(ws[2], t_scale(ws[3], -1)));
+                    double fd = sqrt(t_dot(c, c)) / (4 * h * h), pdf = e->pdf_direction(&s, 1.5, v, w);
+                    CHECK_CLOSE(fd * pdf, 1.0, 1e-5, 0, "%s, %s, view %g, u (%.17g, %.17g)", e->name,
+                                SWEEP_SHAPES[i].name, SWEEP_VIEWS_DEG[j], u1, u2);
+                    if (fabs(fd * pdf - 1) > worst) worst = fabs(fd * pdf - 1);
+                    checked++;
+                }
+            }
+        }
+        CHECK(checked >= 500, "%s: only %ld points checked", e->name, checked);
+        total += checked;
+    }
+    CHECK(total > 0, "no reflection sampler in the registry");
+    printf("direction jacobians: %ld points, largest |J pdf - 1| = %.3g\n", total, worst);
+}
+
 /* Step 1e-6 in u: truncation ~1e-12 times the map's curvature, rounding ~1e-10 relative; we require 1e-5. Points
  * within 0.02 of the square's edges or of the seams of the concentric disk map (which some samplers use; the
  * registry does not say which, so they are skipped for all), and samples within 2 degrees of the horizon or of the
@@ -227,6 +274,6 @@ int main(void)
 {
     const struct CMUnitTest tests[] = {cmocka_unit_test(jacobians), cmocka_unit_test(inverses),
                                        cmocka_unit_test(edge_cases), cmocka_unit_test(defaults),
-                                       cmocka_unit_test(registry_pdfs)};
+                                       cmocka_unit_test(registry_pdfs), cmocka_unit_test(direction_jacobians)};
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

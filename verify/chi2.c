@@ -147,7 +147,7 @@ static chi2_result run(const chi2_problem *p, long n, int ntheta, int nphi, uint
         ip = ip < 0 ? 0 : (ip >= nphi ? nphi - 1 : ip);
         obs[((long)region * ntheta + it) * nphi + ip]++;
     }
-    double mass = 0.0;
+    double mass = 0.0, quad_err = 0.0;
     for (int reg = 0; reg < p->nregions; reg++) {
         for (int it = 0; it < ntheta; it++) {
             double c0 = -1.0 + 2.0 * it / ntheta, c1 = -1.0 + 2.0 * (it + 1) / ntheta;
@@ -156,7 +156,13 @@ static chi2_result run(const chi2_problem *p, long n, int ntheta, int nphi, uint
                 long idx = ((long)reg * ntheta + it) * nphi + ip;
                 int mixed;
                 double v = cell_integral(p, reg, c0, c1, p0, p1, 1, &mixed);
-                if (mixed) v = cell_integral(p, reg, c0, c1, p0, p1, 4, NULL);
+                if (mixed) {
+                    /* a jump of the density in the cell (a horizon, a bound): the finer rule, and the difference
+                     * from the coarser one as its error estimate */
+                    double v4 = cell_integral(p, reg, c0, c1, p0, p1, 4, NULL);
+                    v = cell_integral(p, reg, c0, c1, p0, p1, 8, NULL);
+                    quad_err += fabs(v - v4);
+                }
                 if (v == 0.0 && obs[idx] > 0) v = cell_integral(p, reg, c0, c1, p0, p1, 8, NULL); /* a sliver */
                 expd[idx] = v * (double)n;
                 mass += v;
@@ -166,12 +172,20 @@ static chi2_result run(const chi2_problem *p, long n, int ntheta, int nphi, uint
     res.mass = mass;
     res.expected_invalid = (double)n * (1.0 - mass);
     if (res.expected_invalid < 0.0) res.expected_invalid = 0.0;
+    /* The invalid category is known only as well as the total mass: where its expected count is below three times
+     * the quadrature's error estimate (n quad_err) and the observed count is within that and its own noise of it,
+     * it is left out of the test, whose cells still check the distribution (a sampler with few or no invalid
+     * samples and a jump in its density, as bounded reflection sampling, would otherwise fail on quadrature error;
+     * one with too many invalid samples still fails). */
+    double unresolved = 3.0 * (double)n * quad_err;
+    int drop_invalid = res.expected_invalid < unresolved &&
+                       (double)res.invalid <= res.expected_invalid + unresolved + 5.0 * sqrt(unresolved + 1.0);
     /* Pool cells with expected count < 5 (the invalid category is one more cell). If the pool itself expects
      * fewer than 5, it is merged into the smallest regular bin so that every bin expects at least 5. */
     double *bo = malloc(sizeof(double) * (size_t)(ncells + 2)), *be = malloc(sizeof(double) * (size_t)(ncells + 2));
     double pool_o = 0.0, pool_e = 0.0;
     int bins = 0;
-    for (long i = 0; i <= ncells; i++) {
+    for (long i = 0; i < ncells + !drop_invalid; i++) {
         double o = i < ncells ? (double)obs[i] : (double)res.invalid;
         double e = i < ncells ? expd[i] : res.expected_invalid;
         if (e < 5.0) {
@@ -182,7 +196,7 @@ static chi2_result run(const chi2_problem *p, long n, int ntheta, int nphi, uint
             be[bins++] = e;
         }
     }
-    if (pool_e == 0.0 && res.expected_invalid == 0.0 && res.invalid > 0) {
+    if (pool_e == 0.0 && res.expected_invalid == 0.0 && res.invalid > 0 && !drop_invalid) {
         res.zero_cell_hits += res.invalid; /* invalid samples where the pdf integrates to 1 */
     } else if (pool_e >= 5.0 || bins == 0) {
         bo[bins] = pool_o;

@@ -422,6 +422,18 @@ ggx_sample ggx_sample_brdf(const ggx_shape *s, const ggx_fresnel *f, ggx_vec3 wi
 /* The pdf of ggx_sample_brdf for a given pair; 0 unless wi.z > 0 and wo.z > 0. */
 double ggx_pdf_brdf(const ggx_shape *s, ggx_vec3 wi, ggx_vec3 wo);
 
+/* Bounded reflection sampling, for any shape (docs/bounded-vndf.md; after Eto & Tokuyoshi 2023, with a bound derived
+ * for every A): as ggx_sample_brdf, but the spherical cap of the caps sampler starts at the height b below which
+ * every cap point reflects wi below the horizon, so fewer samples are invalid (none at all for isotropic alpha = 1)
+ * and the distribution of valid directions is the same up to the factor kappa = (1 - b) / (1 + vs.z) in (0, 1]:
+ * pdf = ggx_pdf_brdf / kappa (the removed cap points all reflect below the horizon: proved in the document and by
+ * tests/test_sample_dir.c), weight = kappa x ggx_sample_brdf's weight (<= 1, eq 52).
+ * Same domain, invalid samples and contract as ggx_sample_brdf; u1, u2 in [0, 1) (clamped). */
+ggx_sample ggx_sample_brdf_bounded(const ggx_shape *s, const ggx_fresnel *f, ggx_vec3 wi, double u1, double u2);
+/* The pdf of ggx_sample_brdf_bounded for a given pair: ggx_pdf_brdf / kappa, since every removed cap point reflects
+ * below the horizon; 0 unless wi.z > 0 and wo.z > 0. Relative accuracy as ggx_pdf_brdf. */
+double ggx_pdf_brdf_bounded(const ggx_shape *s, ggx_vec3 wi, ggx_vec3 wo);
+
 /* Rough-dielectric sampling (Walter 2007 section 5.3): from the known direction v (either side), m from the VNDF
  * of sgn(v.z) v, then reflection with probability F(|v.m|) (u3 < F) or refraction otherwise (total internal
  * reflection always reflects). pdf = D_v(m) (F / (4 |v.m|) or (1 - F) eta_w^2 |w.m| / (eta_v v.m + eta_w w.m)^2).

@@ -40,6 +40,8 @@ extern "C" {
     X(WALTER_V2, "walter-v2", sample_vndf_walter_v2, REJECTION, ANY, 0, 0,                                         \
       "VNDF: Walter version 2 (rejection, sphere space)")                                                          \
     X(BRDF, "brdf", sample_brdf, DIRECTION, ANY, 0, 1, "directions: reflection sampling (eq 47-50), view = wi")    \
+    X(BRDF_BOUNDED, "brdf-bounded", sample_brdf_bounded, DIRECTION, ANY, 0, 0,                                   \
+      "directions: bounded reflection sampling (caps from the horizon bound), view = wi")                         \
     X(BSDF, "bsdf", sample_bsdf, DIRECTION, ANY, 0, 0,                                                             \
       "directions: rough dielectric (Walter 2007), view = known direction, --eta")
 

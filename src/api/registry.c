@@ -47,6 +47,17 @@ static double pdf_sample_brdf(const ggx_shape *s, double eta, ggx_vec3 v, ggx_ve
     (void)eta;
     return ggx_pdf_brdf(s, v, w);
 }
+static ggx_sample dir_sample_brdf_bounded(const ggx_shape *s, const ggx_fresnel *f, double eta, ggx_vec3 v, double u1,
+                                          double u2, double u3, ggx_transport mode)
+{
+    (void)eta, (void)u3, (void)mode;
+    return ggx_sample_brdf_bounded(s, f, v, u1, u2);
+}
+static double pdf_sample_brdf_bounded(const ggx_shape *s, double eta, ggx_vec3 v, ggx_vec3 w)
+{
+    (void)eta;
+    return ggx_pdf_brdf_bounded(s, v, w);
+}
 static ggx_sample dir_sample_bsdf(const ggx_shape *s, const ggx_fresnel *f, double eta, ggx_vec3 v, double u1,
                                   double u2, double u3, ggx_transport mode)
 {

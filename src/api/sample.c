@@ -78,6 +78,15 @@ GGX_API GGX_HOT ggx_sample ggx_sample_brdf(const ggx_shape *s, const ggx_fresnel
     return ggx_sample_brdf_d(s, f, wi, u1, u2);
 }
 GGX_API GGX_HOT double ggx_pdf_brdf(const ggx_shape *s, ggx_vec3 wi, ggx_vec3 wo) { return ggx_pdf_brdf_d(s, wi, wo); }
+GGX_API GGX_HOT ggx_sample ggx_sample_brdf_bounded(const ggx_shape *s, const ggx_fresnel *f, ggx_vec3 wi, double u1,
+                                                   double u2)
+{
+    return ggx_sample_brdf_bounded_d(s, f, wi, u1, u2);
+}
+GGX_API GGX_HOT double ggx_pdf_brdf_bounded(const ggx_shape *s, ggx_vec3 wi, ggx_vec3 wo)
+{
+    return ggx_pdf_brdf_bounded_d(s, wi, wo);
+}
 GGX_API GGX_HOT ggx_sample ggx_sample_bsdf(const ggx_shape *s, double eta, ggx_vec3 v, double u1, double u2, double u3,
                                    ggx_transport mode)
 {

@@ -119,3 +119,7 @@
 #else
 #error "GGX_K_PRECISION must be 32 or 64"
 #endif
+/* The bounded reflection sampler's sigma2 (k_bound_sigma2) is computed in double for both precisions and lowered by
+ * 2^-20 relative: far above the rounding of its Newton step near a simple root (a few units in the last place of
+ * double, relative to lambda_min over the gap to the next root). */
+#define GGX_BOUND_SAFETY 9.5367431640625e-07

@@ -35,3 +35,4 @@
 #undef GGX_SLOW_WIDE
 #undef GGX_ETA_WIDE
 #undef GGX_K_PRECISION
+#undef GGX_BOUND_SAFETY
