@@ -342,7 +342,8 @@ run_step clone "${IN_ROOT[@]}" "git clone -c advice.detachedHead=false /tmp/libg
   test \"\$(git -C /work/libggx rev-parse HEAD)\" = $SHA && git -C /work/libggx log --oneline -1" || exit 1
 rm -f "$R/tmp/libggx.bundle"
 # The project's CI puts ../shared beside the clone; copy it only if the build or the tests refer to it.
-if git -C "$TOP" grep -q -e '\.\./shared' "$SHA" -- Makefile CMakeLists.txt cmake tests tools src 2>/dev/null; then
+if git -C "$TOP" grep -q -e '\.\./shared' "$SHA" -- Makefile CMakeLists.txt cmake tests tools src \
+     ':!tests/fresh_machine.sh' 2>/dev/null; then
   if [ -d "$TOP/../shared" ]; then cp -a "$TOP/../shared" "$R/work/shared" && say "copied ../shared beside the clone"
   else say "warning: the build refers to ../shared but $TOP/../shared does not exist"; fi
 else

@@ -35,29 +35,22 @@ static double pdf_ndf(const ggx_shape *s, ggx_vec3 v, ggx_vec3 m)
     return ggx_pdf_ndf(s, m);
 }
 
-/* The direction samplers in the table's signature: reflection uses f, the dielectric eta, u3 and the mode. */
-static ggx_sample dir_sample_brdf(const ggx_shape *s, const ggx_fresnel *f, double eta, ggx_vec3 v, double u1,
-                                  double u2, double u3, ggx_transport mode)
-{
-    (void)eta, (void)u3, (void)mode;
-    return ggx_sample_brdf(s, f, v, u1, u2);
-}
-static double pdf_sample_brdf(const ggx_shape *s, double eta, ggx_vec3 v, ggx_vec3 w)
-{
-    (void)eta;
-    return ggx_pdf_brdf(s, v, w);
-}
-static ggx_sample dir_sample_brdf_bounded(const ggx_shape *s, const ggx_fresnel *f, double eta, ggx_vec3 v, double u1,
-                                          double u2, double u3, ggx_transport mode)
-{
-    (void)eta, (void)u3, (void)mode;
-    return ggx_sample_brdf_bounded(s, f, v, u1, u2);
-}
-static double pdf_sample_brdf_bounded(const ggx_shape *s, double eta, ggx_vec3 v, ggx_vec3 w)
-{
-    (void)eta;
-    return ggx_pdf_brdf_bounded(s, v, w);
-}
+/* The direction samplers in the table's signature: reflection (name: ggx_sample_X with pdf ggx_pdf_X) uses f, the
+ * dielectric eta, u3 and the mode. */
+#define DIR_REFLECTION(x)                                                                                         \
+    static ggx_sample dir_sample_##x(const ggx_shape *s, const ggx_fresnel *f, double eta, ggx_vec3 v, double u1, \
+                                     double u2, double u3, ggx_transport mode)                                   \
+    {                                                                                                             \
+        (void)eta, (void)u3, (void)mode;                                                                          \
+        return ggx_sample_##x(s, f, v, u1, u2);                                                                   \
+    }                                                                                                             \
+    static double pdf_sample_##x(const ggx_shape *s, double eta, ggx_vec3 v, ggx_vec3 w)                         \
+    {                                                                                                             \
+        (void)eta;                                                                                                \
+        return ggx_pdf_##x(s, v, w);                                                                              \
+    }
+DIR_REFLECTION(brdf)
+DIR_REFLECTION(brdf_bounded)
 static ggx_sample dir_sample_bsdf(const ggx_shape *s, const ggx_fresnel *f, double eta, ggx_vec3 v, double u1,
                                   double u2, double u3, ggx_transport mode)
 {
