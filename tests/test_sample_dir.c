@@ -280,8 +280,8 @@ static void bounded_removes_only_below_horizon(void **state)
  * shapes (skews too) and views; (2) the albedo estimated with its weights (F = 1) equals the one estimated by plain
  * reflection sampling (chi-square tested above; independent random numbers, 4 times the samples) within 4.5
  * combined standard errors (family-wise about 1e-4 over the 27 cases), for every sweep shape at views 0, 45 and 80
- * degrees; (3) its variance is no larger (kappa times the second moment, docs/bounded-vndf.md; 2% for the noise of
- * the two estimates). The reference is not the hemisphere quadrature of f_r wo.z over the half vector (test_bsdf.c's
+ * degrees; (3) its variance is no larger (kappa times the second moment, docs/bounded-vndf.md), within 4.5 standard
+ * errors of the two variance estimates. The reference is not the hemisphere quadrature of f_r wo.z over the half vector (test_bsdf.c's
  * brdf_albedo): for skew 0.3:1 at view 0 that gives 0.39868 where a uniform-hemisphere Monte Carlo estimate of 2 10^7
  * samples gives 0.40136 +- 0.00009 and both samplers agree with the latter: its integrand jumps at wo.z = 0, a curve
  * the quadrature has no cut for. */
@@ -309,23 +309,25 @@ static void bounded_unbiased(void **state)
         for (int j = 0; j < 3; j++) {
             static const double deg[3] = {0.0, 45.0, 80.0};
             ggx_vec3 v = sweep_view(deg[j]);
-            double mean[2], var[2];
+            double mean[2], var[2], var_se2[2];
             for (int q = 0; q < 2; q++) {
                 long nq = q ? 4 * n : n;
-                double sum = 0, sum2 = 0;
+                double sum = 0, sum2 = 0, sum4 = 0;
                 for (long k = 0; k < nq; k++) {
                     double u1 = rng_uniform(&r), u2 = rng_uniform(&r);
                     double w = q ? ggx_sample_brdf(&s, &one, v, u1, u2).weight
                                  : ggx_sample_brdf_bounded(&s, &one, v, u1, u2).weight;
-                    sum += w, sum2 += w * w;
+                    sum += w, sum2 += w * w, sum4 += w * w * w * w;
                 }
                 mean[q] = sum / (double)nq, var[q] = sum2 / (double)nq - mean[q] * mean[q];
+                /* the squared standard error of the variance estimate, (E w^4 - (E w^2)^2) / n: an upper bound */
+                var_se2[q] = fmax(sum4 / (double)nq - (sum2 / (double)nq) * (sum2 / (double)nq), 0.0) / (double)nq;
             }
             double z = fabs(mean[0] - mean[1]) / sqrt(var[0] / (double)n + var[1] / (4.0 * (double)n) + 1e-30);
             CHECK(z <= 4.5, "%s, view %g: bounded albedo %.6f, plain %.6f (%.1f standard errors)", SWEEP_SHAPES[i].name,
                   deg[j], mean[0], mean[1], z);
-            CHECK(var[0] <= var[1] * 1.02 + 1e-15, "%s, view %g: variance %.6g above plain %.6g", SWEEP_SHAPES[i].name,
-                  deg[j], var[0], var[1]);
+            CHECK(var[0] <= var[1] + 4.5 * sqrt(var_se2[0] + var_se2[1]) + 1e-15,
+                  "%s, view %g: variance %.6g above plain %.6g", SWEEP_SHAPES[i].name, deg[j], var[0], var[1]);
             if (z > worst_z) worst_z = z;
         }
     }
