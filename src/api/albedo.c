@@ -1,0 +1,444 @@
+/* Directional and average albedo of the BRDF with F = 1, by deterministic quadrature in the sphere space of the
+ * shape (docs/albedo.md has the derivation). SPDX-License-Identifier: MIT
+ *
+ * E(v) = int f_r(v, w) w.z dw over w.z > 0. With w = reflect(v, h), dw = 4 (v.h) dh, and h the normal of the
+ * unit sphere at k under m = A^T k / ||A^T k|| (D(m) dm = ||A^T k|| / (pi ||An||) dk, v.m = (Av).k / ||A^T k||):
+ *
+ *   E(v) = ||Av|| / (v.z ||An||) * int_C (v'.k) / pi * G(v, w(k)) dk,   v' = Av / ||Av||,
+ *
+ * where G is G1(v) G1(w) (separable, eq 5) or G2 height-correlated, and C is the set of k with w.z > 0. In h,
+ * w.z > 0 reads 2 (v.h) h.z - v.z |h|^2 > 0, a quadratic form of signature (+, -, -); in k it is k^T Q k > 0 with
+ * Q = A M A^T, a convex cone around the eigenvector P of Q's positive eigenvalue (and w.z > 0 with v.z > 0 implies
+ * v.h > 0 and h.z > 0: the cone lies inside the visible lune). On the meridian of azimuth psi about P, k leaves the
+ * cone at tan^2 t = lambda_P / -(lambda_1 cos^2 psi + lambda_2 sin^2 psi). The integrand is smooth in (t, psi)
+ * except where G1(w) reaches 1 (the min of eq 32, skewed shapes only), which is found by bisection and made a
+ * break point, and it falls to 0 at the cone's edge within a layer of width ~alpha, which a geometric split of the
+ * meridian towards its end resolves. */
+#include <math.h>
+#include <pthread.h>
+
+#include "internal.h"
+
+enum { GL_N = 12, GL_M = 6, MAX_PANELS = 400, KINK_SCAN = 16 };
+static double gl_x[GL_N], gl_w[GL_N], gl_xm[GL_M], gl_wm[GL_M];
+static pthread_once_t gl_once = PTHREAD_ONCE_INIT;
+
+/* Gauss-Legendre nodes and weights of order n by Newton's method on P_n. */
+static void gl_nodes(int n, double *xs, double *ws)
+{
+    for (int i = 0; i < n; i++) {
+        double x = cos(GGX_PI * (i + 0.75) / (n + 0.5)), dp = 1.0;
+        for (int it = 0; it < 100; it++) {
+            double p0 = 1.0, p1 = x;
+            for (int k = 2; k <= n; k++) {
+                double p2 = ((2.0 * k - 1.0) * x * p1 - (k - 1.0) * p0) / k;
+                p0 = p1;
+                p1 = p2;
+            }
+            dp = n * (x * p1 - p0) / (x * x - 1.0);
+            double dx = p1 / dp;
+            x -= dx;
+            if (fabs(dx) < 1e-16) break;
+        }
+        xs[i] = x;
+        ws[i] = 2.0 / ((1.0 - x * x) * dp * dp);
+    }
+}
+
+static void gl_compute(void)
+{
+    gl_nodes(GL_N, gl_x, gl_w);
+    gl_nodes(GL_M, gl_xm, gl_wm);
+}
+
+typedef double (*fn1)(double x, void *ctx);
+
+typedef struct panel {
+    double a, b, value, err;
+} panel;
+
+/* The order-12 rule on [a, b], with its difference to the order-6 rule as the error estimate. */
+static panel make_panel(fn1 f, void *ctx, double a, double b)
+{
+    double c = 0.5 * (a + b), h = 0.5 * (b - a), hi = 0.0, lo = 0.0;
+    for (int i = 0; i < GL_N; i++) hi += gl_w[i] * f(c + h * gl_x[i], ctx);
+    for (int i = 0; i < GL_M; i++) lo += gl_wm[i] * f(c + h * gl_xm[i], ctx);
+    panel p = {a, b, hi * h, fabs(hi - lo) * fabs(h)};
+    return p;
+}
+
+/* Global adaptive quadrature over the break points br[0] < ... < br[nb - 1]: bisect the panel with the largest
+ * error estimate until the estimates sum to abs_tol. Reentrant (the outer integrand calls it). */
+static double adapt(fn1 f, void *ctx, const double *br, int nb, double abs_tol)
+{
+    panel ps[MAX_PANELS];
+    int n = 0;
+    for (int i = 0; i + 1 < nb; i++)
+        if (br[i + 1] > br[i]) ps[n++] = make_panel(f, ctx, br[i], br[i + 1]);
+    for (;;) {
+        double total = 0.0;
+        int worst = 0;
+        for (int i = 0; i < n; i++) {
+            total += ps[i].err;
+            if (ps[i].err > ps[worst].err) worst = i;
+        }
+        if (n == 0 || total <= abs_tol || n + 1 >= MAX_PANELS) break;
+        panel w = ps[worst];
+        double m = 0.5 * (w.a + w.b);
+        if (!(m > w.a && m < w.b)) break;
+        ps[worst] = make_panel(f, ctx, w.a, m);
+        ps[n++] = make_panel(f, ctx, m, w.b);
+    }
+    double sum = 0.0;
+    for (int i = 0; i < n; i++) sum += ps[i].value;
+    return sum;
+}
+
+/* Eigen-decomposition of a symmetric 3x3 matrix by cyclic Jacobi rotations: a[i][i] become the eigenvalues and
+ * row i of vec the unit eigenvector of eigenvalue i. */
+static void jacobi3(double a[3][3], double vec[3][3])
+{
+    double v[3][3] = {{1, 0, 0}, {0, 1, 0}, {0, 0, 1}};
+    for (int sweep = 0; sweep < 64; sweep++) {
+        double off = fabs(a[0][1]) + fabs(a[0][2]) + fabs(a[1][2]);
+        double diag = fabs(a[0][0]) + fabs(a[1][1]) + fabs(a[2][2]);
+        if (!(off > 1e-300 * diag) || off <= 0x1p-60 * diag) break;
+        for (int p = 0; p < 2; p++)
+            for (int q = p + 1; q < 3; q++) {
+                if (a[p][q] == 0) continue;
+                double th = 0.5 * atan2(2 * a[p][q], a[q][q] - a[p][p]), c = cos(th), s = sin(th);
+                for (int k = 0; k < 3; k++) {
+                    double kp = a[k][p], kq = a[k][q];
+                    a[k][p] = c * kp - s * kq;
+                    a[k][q] = s * kp + c * kq;
+                }
+                for (int k = 0; k < 3; k++) {
+                    double pk = a[p][k], qk = a[q][k];
+                    a[p][k] = c * pk - s * qk;
+                    a[q][k] = s * pk + c * qk;
+                }
+                for (int k = 0; k < 3; k++) {
+                    double kp = v[k][p], kq = v[k][q];
+                    v[k][p] = c * kp - s * kq;
+                    v[k][q] = s * kp + c * kq;
+                }
+            }
+    }
+    for (int i = 0; i < 3; i++)
+        for (int k = 0; k < 3; k++) vec[i][k] = v[k][i];
+}
+
+typedef struct albedo_ctx {
+    const ggx_shape *s;
+    ggx_vec3 v, vp, P, E1, E2;
+    double lp, l1, l2; /* eigenvalues of Q: lp > 0 > l1 <= l2 */
+    int hc, skewed, depth;
+    double inner_tol;
+    double cp, sp, T; /* the current meridian */
+} albedo_ctx;
+
+static ggx_vec3 v3(double x, double y, double z)
+{
+    ggx_vec3 r = {x, y, z};
+    return r;
+}
+
+/* The point at fraction x of the current meridian, and its w. Returns k. */
+static ggx_vec3 meridian_point(const albedo_ctx *c, double x, ggx_vec3 *h, ggx_vec3 *w)
+{
+    double t = x * c->T, st = sin(t), ct = cos(t);
+    ggx_vec3 k = v3(ct * c->P.x + st * (c->cp * c->E1.x + c->sp * c->E2.x),
+                    ct * c->P.y + st * (c->cp * c->E1.y + c->sp * c->E2.y),
+                    ct * c->P.z + st * (c->cp * c->E1.z + c->sp * c->E2.z));
+    *h = ggx_k_normalize_d(ggx_k_atmul_d(c->s, k));
+    *w = ggx_reflect_d(c->v, *h);
+    return k;
+}
+
+static double inner_f(double x, void *vc)
+{
+    const albedo_ctx *c = vc;
+    ggx_vec3 h, w;
+    ggx_vec3 k = meridian_point(c, x, &h, &w);
+    if (!(w.z > 0)) return 0.0; /* only at the edge, by rounding */
+    double g = c->hc ? ggx_g2_height_correlated_d(c->s, c->v, w, h) : ggx_k_g1_dir_d(c->s, w);
+    return g * ggx_k_dot_d(k, c->vp) * sin(x * c->T) * c->T;
+}
+
+static double kink_f(double x, const albedo_ctx *c)
+{
+    ggx_vec3 h, w;
+    meridian_point(c, x, &h, &w);
+    return ggx_g1_smith_d(c->s, w) - 1.0;
+}
+
+/* The root of kink_f in [a, b] where it changes sign (Illinois false position, to 1e-12 of the meridian). */
+static double kink_root(const albedo_ctx *c, double a, double fa, double b, double fb)
+{
+    int side = 0;
+    for (int it = 0; it < 60 && b - a > 1e-12; it++) {
+        double x = (a * fb - b * fa) / (fb - fa);
+        if (!(x > a && x < b)) x = 0.5 * (a + b);
+        double fx = kink_f(x, c);
+        if ((fx > 0) == (fb > 0)) {
+            b = x;
+            fb = fx;
+            if (side == -1) fa *= 0.5;
+            side = -1;
+        } else {
+            a = x;
+            fa = fx;
+            if (side == 1) fb *= 0.5;
+            side = 1;
+        }
+    }
+    return 0.5 * (a + b);
+}
+
+/* The integral along the meridian of azimuth psi (t from 0 to the cone's edge T, substituted t = x T). */
+static double outer_f(double psi, void *vc)
+{
+    albedo_ctx *c = vc;
+    c->cp = cos(psi);
+    c->sp = sin(psi);
+    double mu = c->l1 * c->cp * c->cp + c->l2 * c->sp * c->sp;
+    c->T = atan(sqrt(c->lp / -mu));
+    if (!(c->T > 0)) return 0.0;
+    double br[2 + 64 + KINK_SCAN];
+    int nb = 0;
+    br[nb++] = 0.0;
+    /* Geometric split towards the edge: the layer where G1(w) falls to 0 has a width ~alpha. */
+    for (int i = 1; i <= c->depth; i++) br[nb++] = 1.0 - ldexp(1.0, -i);
+    if (c->skewed) { /* where G1_smith(w) crosses 1, the min of eq 32 has a kink */
+        double xa = 0.0, fa = kink_f(0.0, c);
+        for (int i = 1; i <= KINK_SCAN; i++) {
+            double xb = (double)i / KINK_SCAN, fb = i == KINK_SCAN ? -1.0 : kink_f(xb, c);
+            if ((fa > 0) != (fb > 0)) br[nb++] = kink_root(c, xa, fa, xb, fb);
+            xa = xb;
+            fa = fb;
+        }
+    }
+    br[nb++] = 1.0;
+    /* insertion sort: the kinks among the geometric points */
+    for (int i = 1; i < nb; i++)
+        for (int j = i; j > 0 && br[j] < br[j - 1]; j--) {
+            double t = br[j];
+            br[j] = br[j - 1];
+            br[j - 1] = t;
+        }
+    return adapt(inner_f, c, br, nb, c->inner_tol);
+}
+
+/* E(v) for a unit v with v.z > 0 (hc: height-correlated G2), to an absolute error of about tol. */
+static double albedo(const ggx_shape *s, ggx_vec3 v, int hc, double tol)
+{
+    pthread_once(&gl_once, gl_compute);
+    albedo_ctx c;
+    c.s = s;
+    c.v = v;
+    c.hc = hc;
+    c.skewed = s->kind == GGX_SHAPE_SKEWED;
+    ggx_vec3 av = ggx_k_amul_d(s, v);
+    double lav = ggx_k_len_d(av);
+    c.vp = ggx_k_scale_d(av, 1.0 / lav);
+    double pre = lav / (v.z * s->an_len) / GGX_PI;
+    if (!hc) pre *= ggx_k_g1_dir_d(s, v);
+    if (!(pre > 0 && pre <= 1e300)) return 0.0;
+
+    /* Q = A M A^T with h^T M h = 2 (v.h) h.z - v.z |h|^2 */
+    const double M[3][3] = {{-v.z, 0, v.x}, {0, -v.z, v.y}, {v.x, v.y, v.z}};
+    double AM[3][3], Q[3][3], E[3][3];
+    for (int i = 0; i < 3; i++)
+        for (int j = 0; j < 3; j++) AM[i][j] = s->a[i][0] * M[0][j] + s->a[i][1] * M[1][j] + s->a[i][2] * M[2][j];
+    for (int i = 0; i < 3; i++)
+        for (int j = 0; j < 3; j++) Q[i][j] = AM[i][0] * s->a[j][0] + AM[i][1] * s->a[j][1] + AM[i][2] * s->a[j][2];
+    jacobi3(Q, E);
+    int ip = 0;
+    for (int i = 1; i < 3; i++)
+        if (Q[i][i] > Q[ip][ip]) ip = i;
+    int i1 = (ip + 1) % 3, i2 = (ip + 2) % 3;
+    if (Q[i1][i1] > Q[i2][i2]) { /* l1 the most negative: the cone is widest towards E2 */
+        int t = i1;
+        i1 = i2;
+        i2 = t;
+    }
+    c.lp = Q[ip][ip];
+    c.l1 = Q[i1][i1];
+    c.l2 = Q[i2][i2];
+    if (!(c.lp > 0) || !(c.l2 < 0)) return 0.0;
+    c.P = v3(E[ip][0], E[ip][1], E[ip][2]);
+    if (ggx_k_dot_d(c.P, c.vp) < 0) c.P = ggx_k_neg_d(c.P);
+    c.E1 = v3(E[i1][0], E[i1][1], E[i1][2]);
+    c.E2 = ggx_k_cross_d(c.P, c.E1);
+
+    /* The edge layer: G1(w) falls from ~1 to 0 over w.z ~ the smallest roughness, sigma_min(A) / ||An||. */
+    double blk = sqrt(s->a[0][0] * s->a[0][0] + s->a[0][1] * s->a[0][1] + s->a[1][0] * s->a[1][0] +
+                      s->a[1][1] * s->a[1][1]);
+    double sig = s->det / (s->an_len * s->an_len * blk);
+    int depth = 2;
+    while (depth < 40 && ldexp(1.0, -depth) > 0.25 * sig) depth++;
+    c.depth = depth;
+
+    double abs_tol = tol / pre;
+    c.inner_tol = 0.02 * abs_tol;
+    /* psi = pi/2 (E2) is where the cone is widest and, for grazing views, sharpest in psi */
+    const double br[] = {0, 0.25 * GGX_PI, 0.5 * GGX_PI, 0.75 * GGX_PI, GGX_PI,
+                         1.25 * GGX_PI, 1.5 * GGX_PI, 1.75 * GGX_PI, 2 * GGX_PI};
+    return pre * adapt(outer_f, &c, br, 9, 0.5 * abs_tol);
+}
+
+/* The accuracy aimed at: 1e-6 absolute is promised, the quadrature is asked for 100 times better. */
+#define ALBEDO_TOL 1e-8
+
+static double albedo_public(const ggx_shape *s, ggx_vec3 v, int hc)
+{
+    double l = sqrt(v.x * v.x + v.y * v.y + v.z * v.z);
+    if (!(l > 0 && l <= 1e300)) return 0.0;
+    v = v3(v.x / l, v.y / l, v.z / l);
+    if (!(v.z > 0)) return 0.0;
+    double e = albedo(s, v, hc, ALBEDO_TOL);
+    return e >= 0 ? (e <= 1 ? e : 1) : 0;
+}
+
+GGX_API double ggx_albedo(const ggx_shape *s, ggx_vec3 v) { return albedo_public(s, v, 0); }
+GGX_API double ggx_albedo_height_correlated(const ggx_shape *s, ggx_vec3 v) { return albedo_public(s, v, 1); }
+
+/* ---- E_avg = (1 / pi) int_0^2pi int_0^1 E(mu, phi) mu dmu dphi ----
+ * E is smooth in the view except where G1(v) reaches 1 (skewed shapes): those views are break points. It is
+ * integrated over the polar angle, not over mu (for skewed shapes E has a gradient at n, so E(mu) has a square-root
+ * cusp at mu = 1), with theta = (pi / 2) y (2 - y), which turns the term mu^2 ln mu of E mu at grazing into
+ * (1 - y)^5 ln(1 - y). Each smooth piece is integrated by
+ * Gauss-Legendre of orders 8, 16, 32, 64 until two agree, and phi by the trapezoid rule on the period (spectral
+ * for smooth periodic E), doubled until two agree. */
+
+typedef struct avg_ctx {
+    const ggx_shape *s;
+    int hc;
+    double cp, sp, tol;
+} avg_ctx;
+
+static ggx_vec3 avg_view(const avg_ctx *c, double y)
+{
+    double th = 0.5 * GGX_PI * y * (2 - y), st = sin(th);
+    return v3(st * c->cp, st * c->sp, cos(th));
+}
+
+static double avg_y(double y, void *vc)
+{
+    const avg_ctx *c = vc;
+    ggx_vec3 v = avg_view(c, y);
+    if (!(v.z > 0)) return 0.0;
+    double st = sqrt(v.x * v.x + v.y * v.y);
+    return albedo(c->s, v, c->hc, 0.1 * c->tol) * v.z * st * GGX_PI * (1 - y); /* E cos(theta) sin(theta) dtheta */
+}
+
+/* Gauss-Legendre of order n on [a, b] (nodes by gl_nodes; n <= 64). */
+static double gl_fixed(fn1 f, void *ctx, double a, double b, int n)
+{
+    double xs[64], ws[64], sum = 0.0, c = 0.5 * (a + b), h = 0.5 * (b - a);
+    gl_nodes(n, xs, ws);
+    for (int i = 0; i < n; i++) sum += ws[i] * f(c + h * xs[i], ctx);
+    return sum * h;
+}
+
+static double smooth_1d(fn1 f, void *ctx, double a, double b, double tol)
+{
+    double prev = gl_fixed(f, ctx, a, b, 8), cur = prev;
+    for (int n = 16; n <= 64; n *= 2) {
+        cur = gl_fixed(f, ctx, a, b, n);
+        if (fabs(cur - prev) <= tol) return cur;
+        prev = cur;
+    }
+    return cur; /* not converged to tol: the view integrand's own quadrature noise (~ALBEDO_TOL) is the floor */
+}
+
+static double avg_phi(double phi, avg_ctx *c)
+{
+    c->cp = cos(phi);
+    c->sp = sin(phi);
+    double br[2 + 8];
+    int nb = 0;
+    br[nb++] = 0.0;
+    if (c->s->kind == GGX_SHAPE_SKEWED) { /* y where G1_smith(v) crosses 1: a kink of the min in eq 32 */
+        enum { SCAN = 16 };
+        double ya = 0.0, fa = ggx_g1_smith_d(c->s, avg_view(c, 1e-9)) - 1.0; /* G1_smith(n) = 1 exactly */
+        for (int i = 1; i <= SCAN && nb < 8; i++) {
+            double yb = (double)i / SCAN, fb = i == SCAN ? -1.0 : ggx_g1_smith_d(c->s, avg_view(c, yb)) - 1.0;
+            if ((fa > 0) != (fb > 0)) {
+                double lo = ya, hi = yb;
+                for (int it = 0; it < 60 && hi - lo > 1e-15; it++) {
+                    double m = 0.5 * (lo + hi);
+                    if ((ggx_g1_smith_d(c->s, avg_view(c, m)) - 1.0 > 0) == (fa > 0))
+                        lo = m;
+                    else
+                        hi = m;
+                }
+                br[nb++] = 0.5 * (lo + hi);
+            }
+            ya = yb;
+            fa = fb;
+        }
+    }
+    br[nb++] = 1.0;
+    double sum = 0.0;
+    for (int i = 0; i + 1 < nb; i++) sum += smooth_1d(avg_y, c, br[i], br[i + 1], c->tol / (nb - 1));
+    return sum;
+}
+
+/* E_avg's steps, and each E inside it, aim at 1e-7 (1e-6 promised): the line integrals over mu have weights that
+ * sum to 2, the trapezoid rule's difference between levels bounds the coarser level's error. */
+#define AVG_TOL 1e-7
+#define SKEW_PHI_ORDER 32
+#define SKEW_LINE_TOL 1e-6
+
+static double avg_phi_fn(double phi, void *vc) { return avg_phi(phi, vc); }
+
+static double albedo_avg(const ggx_shape *s, int hc)
+{
+    pthread_once(&gl_once, gl_compute);
+    avg_ctx c = {s, hc, 1.0, 0.0, AVG_TOL};
+    double r;
+    int iso = s->kind != GGX_SHAPE_SKEWED && fabs(s->alpha_x - s->alpha_y) <= 1e-12 * fabs(s->alpha_x);
+    if (iso) {
+        r = 2.0 * avg_phi(0.0, &c); /* E does not depend on the view's azimuth */
+    } else if (s->kind != GGX_SHAPE_SKEWED) {
+        /* E is smooth, periodic and even about the tangent axes: the trapezoid rule on a quarter turn from the
+         * axis of alpha_x, with half weights at its ends, is the full-period rule (spectral); doubled until two
+         * levels agree. */
+        double p0 = atan2(s->tangent_sin, s->tangent_cos), span = 0.5 * GGX_PI, prev;
+        int n = 4; /* intervals */
+        double sum = 0.5 * (avg_phi(p0, &c) + avg_phi(p0 + span, &c));
+        for (int i = 1; i < n; i++) sum += avg_phi(p0 + span * i / n, &c);
+        r = sum * span / n;
+        while (n < 1024) {
+            for (int i = 1; i < 2 * n; i += 2) sum += avg_phi(p0 + span * i / (2 * n), &c);
+            n *= 2;
+            prev = r;
+            r = sum * span / n;
+            if (fabs(r - prev) * (4.0 / GGX_PI) <= AVG_TOL) break;
+        }
+        r *= 4.0 / GGX_PI;
+    } else {
+        /* Skewed: G1_smith(v) = 1 on a curve through n (G1_smith(n) = 1 exactly, with a non-zero gradient there),
+         * tangent at n to the azimuth phi_k perpendicular to that gradient; the line integrals are smooth in phi
+         * on either side of phi_k and phi_k + pi, so each half turn is one piece. Inside, E has weaker
+         * singularities (where the kink of G1(w) meets the cone's edge) and the orders converge algebraically:
+         * a fixed order, whose error against doubled orders is measured in docs/albedo.md, keeps the cost at
+         * seconds. */
+        const double eps = 1e-6;
+        c.cp = 1.0;
+        c.sp = 0.0;
+        double gx = ggx_g1_smith_d(s, avg_view(&c, eps)) - 1.0;
+        c.cp = 0.0;
+        c.sp = 1.0;
+        double gy = ggx_g1_smith_d(s, avg_view(&c, eps)) - 1.0;
+        double pk = atan2(gy, gx) + 0.5 * GGX_PI;
+        c.tol = SKEW_LINE_TOL;
+        r = (gl_fixed(avg_phi_fn, &c, pk, pk + GGX_PI, SKEW_PHI_ORDER) +
+             gl_fixed(avg_phi_fn, &c, pk + GGX_PI, pk + 2 * GGX_PI, SKEW_PHI_ORDER)) / GGX_PI;
+    }
+    return r >= 0 ? (r <= 1 ? r : 1) : 0;
+}
+
+GGX_API double ggx_albedo_avg(const ggx_shape *s) { return albedo_avg(s, 0); }
+GGX_API double ggx_albedo_avg_height_correlated(const ggx_shape *s) { return albedo_avg(s, 1); }
