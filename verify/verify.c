@@ -1,6 +1,8 @@
 /* SPDX-License-Identifier: MIT */
 #include "verify.h"
 
+#include "../src/common/gauss.h"
+
 #include <math.h>
 #include <pthread.h>
 #include <stdlib.h>
@@ -52,94 +54,31 @@ void t_frame(ggx_vec3 n, ggx_vec3 *e1, ggx_vec3 *e2)
 
 /* ---- quadrature ---- */
 
-enum { GL_N = 12, GL_M = 6 };
-static double gl_x[GL_N], gl_w[GL_N], gl_xm[GL_M], gl_wm[GL_M];
-/* The nodes are computed once per process; pthread_once makes the first quadratures of concurrent threads wait for
- * them instead of racing on the tables. */
+/* The rule tables are computed once per process; pthread_once makes the first quadratures of concurrent threads
+ * wait for them instead of racing on the tables. */
+static gq_rule rule;
 static pthread_once_t gl_once = PTHREAD_ONCE_INIT;
-
-/* Gauss-Legendre nodes and weights of order n by Newton's method on P_n (no tabulated constants). */
-static void gl_nodes(int n, double *xs, double *ws)
-{
-    for (int i = 0; i < n; i++) {
-        double x = cos(T_PI * (i + 0.75) / (n + 0.5)), dp = 0.0;
-        for (int it = 0; it < 100; it++) {
-            double p0 = 1.0, p1 = x;
-            for (int k = 2; k <= n; k++) {
-                double p2 = ((2.0 * k - 1.0) * x * p1 - (k - 1.0) * p0) / k;
-                p0 = p1;
-                p1 = p2;
-            }
-            dp = n * (x * p1 - p0) / (x * x - 1.0);
-            double dx = p1 / dp;
-            x -= dx;
-            if (fabs(dx) < 1e-16) break;
-        }
-        xs[i] = x;
-        ws[i] = 2.0 / ((1.0 - x * x) * dp * dp);
-    }
-}
-
-static void gl_compute(void)
-{
-    gl_nodes(GL_N, gl_x, gl_w);
-    gl_nodes(GL_M, gl_xm, gl_wm);
-}
-
+static void gl_compute(void) { gq_rule_init(&rule); }
 static void gl_init(void) { pthread_once(&gl_once, gl_compute); }
 
-int quad_gl_order(void) { return GL_N; }
+int quad_gl_order(void) { return GQ_N; }
 
 double quad_gl(t_fn1 f, void *ctx, double a, double b)
 {
     gl_init();
     double c = 0.5 * (a + b), h = 0.5 * (b - a), sum = 0.0;
-    for (int i = 0; i < GL_N; i++) sum += gl_w[i] * f(c + h * gl_x[i], ctx);
+    for (int i = 0; i < GQ_N; i++) sum += rule.w[i] * f(c + h * rule.x[i], ctx);
     return sum * h;
 }
 
-typedef struct panel {
-    double a, b, value, err;
-} panel;
-
-/* One panel: the order-12 rule, with the difference to the order-6 rule as its (pessimistic) error estimate. */
-static panel make_panel(t_fn1 f, void *ctx, double a, double b)
-{
-    double c = 0.5 * (a + b), h = 0.5 * (b - a), hi = 0.0, lo = 0.0;
-    for (int i = 0; i < GL_N; i++) hi += gl_w[i] * f(c + h * gl_x[i], ctx);
-    for (int i = 0; i < GL_M; i++) lo += gl_wm[i] * f(c + h * gl_xm[i], ctx);
-    panel p = {a, b, hi * h, fabs(hi - lo) * fabs(h)};
-    return p;
-}
-
-/* Global adaptive quadrature: bisect the panel with the largest error estimate until the sum of the estimates
- * is below abs_tol. Unlike a recursion with a per-panel tolerance, this converges at jumps and kinks (each
- * bisection halves the error of the panel that holds the jump). */
 enum { MAX_PANELS = 2000 };
 double quad_adapt(t_fn1 f, void *ctx, double a, double b, double abs_tol)
 {
     if (!(b > a)) return 0.0;
     gl_init();
-    panel ps[MAX_PANELS]; /* on the stack: calls nest (the 2D rules call this inside their integrand) */
-    int n = 1;
-    ps[0] = make_panel(f, ctx, a, b);
-    for (;;) {
-        double total = 0.0;
-        int worst = 0;
-        for (int i = 0; i < n; i++) {
-            total += ps[i].err;
-            if (ps[i].err > ps[worst].err) worst = i;
-        }
-        if (total <= abs_tol || n + 1 >= MAX_PANELS) break;
-        panel w = ps[worst];
-        double m = 0.5 * (w.a + w.b);
-        if (!(m > w.a && m < w.b)) break; /* no more resolution */
-        ps[worst] = make_panel(f, ctx, w.a, m);
-        ps[n++] = make_panel(f, ctx, m, w.b);
-    }
-    double sum = 0.0;
-    for (int i = 0; i < n; i++) sum += ps[i].value;
-    return sum;
+    gq_panel ps[MAX_PANELS]; /* on the stack: calls nest (the 2D rules call this inside their integrand) */
+    const double br[2] = {a, b};
+    return gq_adapt(&rule, f, ctx, br, 2, abs_tol, ps, MAX_PANELS);
 }
 
 typedef struct hemi_ctx {

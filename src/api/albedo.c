@@ -17,81 +17,20 @@
 #include <math.h>
 #include <pthread.h>
 
+#include "../common/gauss.h"
 #include "internal.h"
 
-enum { GL_N = 12, GL_M = 6, MAX_PANELS = 400, KINK_SCAN = 16 };
-static double gl_x[GL_N], gl_w[GL_N], gl_xm[GL_M], gl_wm[GL_M];
+enum { MAX_PANELS = 400, KINK_SCAN = 16 };
+static gq_rule rule;
 static pthread_once_t gl_once = PTHREAD_ONCE_INIT;
+static void gl_compute(void) { gq_rule_init(&rule); }
 
-/* Gauss-Legendre nodes and weights of order n by Newton's method on P_n. */
-static void gl_nodes(int n, double *xs, double *ws)
-{
-    for (int i = 0; i < n; i++) {
-        double x = cos(GGX_PI * (i + 0.75) / (n + 0.5)), dp = 1.0;
-        for (int it = 0; it < 100; it++) {
-            double p0 = 1.0, p1 = x;
-            for (int k = 2; k <= n; k++) {
-                double p2 = ((2.0 * k - 1.0) * x * p1 - (k - 1.0) * p0) / k;
-                p0 = p1;
-                p1 = p2;
-            }
-            dp = n * (x * p1 - p0) / (x * x - 1.0);
-            double dx = p1 / dp;
-            x -= dx;
-            if (fabs(dx) < 1e-16) break;
-        }
-        xs[i] = x;
-        ws[i] = 2.0 / ((1.0 - x * x) * dp * dp);
-    }
-}
+typedef gq_fn fn1;
 
-static void gl_compute(void)
-{
-    gl_nodes(GL_N, gl_x, gl_w);
-    gl_nodes(GL_M, gl_xm, gl_wm);
-}
-
-typedef double (*fn1)(double x, void *ctx);
-
-typedef struct panel {
-    double a, b, value, err;
-} panel;
-
-/* The order-12 rule on [a, b], with its difference to the order-6 rule as the error estimate. */
-static panel make_panel(fn1 f, void *ctx, double a, double b)
-{
-    double c = 0.5 * (a + b), h = 0.5 * (b - a), hi = 0.0, lo = 0.0;
-    for (int i = 0; i < GL_N; i++) hi += gl_w[i] * f(c + h * gl_x[i], ctx);
-    for (int i = 0; i < GL_M; i++) lo += gl_wm[i] * f(c + h * gl_xm[i], ctx);
-    panel p = {a, b, hi * h, fabs(hi - lo) * fabs(h)};
-    return p;
-}
-
-/* Global adaptive quadrature over the break points br[0] < ... < br[nb - 1]: bisect the panel with the largest
- * error estimate until the estimates sum to abs_tol. Reentrant (the outer integrand calls it). */
 static double adapt(fn1 f, void *ctx, const double *br, int nb, double abs_tol)
 {
-    panel ps[MAX_PANELS];
-    int n = 0;
-    for (int i = 0; i + 1 < nb; i++)
-        if (br[i + 1] > br[i]) ps[n++] = make_panel(f, ctx, br[i], br[i + 1]);
-    for (;;) {
-        double total = 0.0;
-        int worst = 0;
-        for (int i = 0; i < n; i++) {
-            total += ps[i].err;
-            if (ps[i].err > ps[worst].err) worst = i;
-        }
-        if (n == 0 || total <= abs_tol || n + 1 >= MAX_PANELS) break;
-        panel w = ps[worst];
-        double m = 0.5 * (w.a + w.b);
-        if (!(m > w.a && m < w.b)) break;
-        ps[worst] = make_panel(f, ctx, w.a, m);
-        ps[n++] = make_panel(f, ctx, m, w.b);
-    }
-    double sum = 0.0;
-    for (int i = 0; i < n; i++) sum += ps[i].value;
-    return sum;
+    gq_panel ps[MAX_PANELS];
+    return gq_adapt(&rule, f, ctx, br, nb, abs_tol, ps, MAX_PANELS);
 }
 
 /* Eigen-decomposition of a symmetric 3x3 matrix by cyclic Jacobi rotations: a[i][i] become the eigenvalues and
@@ -336,7 +275,7 @@ static double avg_y(double y, void *vc)
 static double gl_fixed(fn1 f, void *ctx, double a, double b, int n)
 {
     double xs[64], ws[64], sum = 0.0, c = 0.5 * (a + b), h = 0.5 * (b - a);
-    gl_nodes(n, xs, ws);
+    gq_nodes(n, xs, ws);
     for (int i = 0; i < n; i++) sum += ws[i] * f(c + h * xs[i], ctx);
     return sum * h;
 }
