@@ -39,6 +39,14 @@ done
     head -1 eval.csv | grep -q '^wi_x,wi_y,wi_z,wo_x,wo_y,wo_z,h_x,h_y,h_z,D,' && ok || bad "eval CSV shape"
 "$GGX" eval --wi 30,0 --wo 0.1,0.2,0.97 --eta 1.5 --fresnel conductor:0.2,3.9 --format json > eval.json &&
     grep -q '"bsdf"' eval.json && ok || bad "eval JSON"
+# albedo: alpha = 1 has closed forms, 2 (1 - ln 2) / (1 + cos theta) and 1 - mu ln(1 + 1 / mu); E_avg 4 (1 - ln 2)^2
+"$GGX" albedo --alpha 1 > alb.csv && [ "$(wc -l < alb.csv)" -eq 16 ] &&
+    head -1 alb.csv | grep -qx 'view_theta_deg,view_phi_deg,E,E_height_correlated,E_avg,E_avg_height_correlated' &&
+    awk -F, 'NR > 1 { mu = cos($1 * 3.14159265358979 / 180); a = 2 * (1 - log(2)) / (1 + mu); b = 1 - mu * log(1 + 1 / mu)
+                      c = 4 * (1 - log(2))^2; if ((a - $3)^2 > 1e-16 || (b - $4)^2 > 1e-16 || (c - $5)^2 > 1e-16) e++ } END { exit e > 0 }' alb.csv &&
+    ok || bad "albedo CSV against the closed forms at alpha = 1"
+"$GGX" albedo --alpha 0.3 --view 60,30 --rotate 20 --format json > alb.json && grep -q '"E_avg_height_correlated"' alb.json &&
+    [ "$(grep -c view_theta_deg alb.json)" -eq 1 ] && ok || bad "albedo JSON, one view"
 "$GGX" sample > s.csv && [ "$(wc -l < s.csv)" -eq 1001 ] &&
     awk -F, 'NR > 1 { if (NF != 5 || $4 <= 0) e++; l = $1*$1 + $2*$2 + $3*$3; if (l < 0.999999 || l > 1.000001) e++ } END { exit e > 0 }' s.csv &&
     ok || bad "sample CSV (5 columns, unit vectors, pdf > 0)"
@@ -139,6 +147,7 @@ expect2 "short matrix" "needs 9 values" "$GGX" eval --matrix 1,0,0,0,1,0
 expect2 "zero direction" "zero vector" "$GGX" eval --wi 0,0,0
 expect2 "view below the horizon" "above the horizon" "$GGX" sample --view 100,0
 expect2 "vndf figure below" "above the horizon" "$GGX" plot --figure vndf --view 95,0
+expect2 "albedo view below" "above the horizon" "$GGX" albedo --view 95,0
 expect2 "unknown sampler" "unknown sampler" "$GGX" sample --sampler magic
 expect2 "unknown figure" "unknown figure" "$GGX" plot --figure pie
 expect2 "bad count" "not a count" "$GGX" sample -n 0

@@ -118,6 +118,7 @@ void draw_figure(figure_kind k, const ggx_shape *s, ggx_vec3 view, const ggx_sam
 /* ---- subcommands ---- */
 int cmd_demo(int argc, char **argv);
 int cmd_eval(int argc, char **argv);
+int cmd_albedo(int argc, char **argv);
 int cmd_sample(int argc, char **argv);
 int cmd_plot(int argc, char **argv);
 int cmd_check(int argc, char **argv);

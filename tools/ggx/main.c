@@ -13,6 +13,7 @@ static const struct command {
 } COMMANDS[] = {
     {"demo", cmd_demo, "draw the seeds' figures into out/ and check every sampler (what `make run` runs)"},
     {"eval", cmd_eval, "D, G1, G, pdfs, BRDF and BSDF for a shape and directions, as CSV or JSON"},
+    {"albedo", cmd_albedo, "directional and average albedo E(v), E_avg (separable and height-correlated G)"},
     {"sample", cmd_sample, "N samples of a chosen sampler, as CSV or float32, with pdf and weight"},
     {"plot", cmd_plot, "one figure (PNG densities, SVG grids) for any shape, view and sampler"},
     {"check", cmd_check, "chi-square, normalisation and Jacobian checks; exit status 0 only if all pass"},
