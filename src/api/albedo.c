@@ -168,6 +168,11 @@ static double outer_f(double psi, void *vc)
     return adapt(inner_f, c, br, nb, c->inner_tol);
 }
 
+double ggx_internal_albedo_scale(const ggx_shape *s, ggx_vec3 v)
+{
+    return ggx_k_len_d(ggx_k_amul_d(s, v)) / (v.z * s->an_len) * ggx_k_g1_dir_d(s, v);
+}
+
 /* E(v) for a unit v with v.z > 0 (hc: height-correlated G2), to an absolute error of about tol. */
 static double albedo(const ggx_shape *s, ggx_vec3 v, int hc, double tol)
 {
@@ -180,8 +185,7 @@ static double albedo(const ggx_shape *s, ggx_vec3 v, int hc, double tol)
     ggx_vec3 av = ggx_k_amul_d(s, v);
     double lav = ggx_k_len_d(av);
     c.vp = ggx_k_scale_d(av, 1.0 / lav);
-    double pre = lav / (v.z * s->an_len) / GGX_PI;
-    if (!hc) pre *= ggx_k_g1_dir_d(s, v);
+    double pre = (hc ? lav / (v.z * s->an_len) : ggx_internal_albedo_scale(s, v)) / GGX_PI;
     if (!(pre > 0 && pre <= 1e300)) return 0.0;
 
     /* Q = A M A^T with h^T M h = 2 (v.h) h.z - v.z |h|^2 */
@@ -225,6 +229,8 @@ static double albedo(const ggx_shape *s, ggx_vec3 v, int hc, double tol)
                          1.25 * GGX_PI, 1.5 * GGX_PI, 1.75 * GGX_PI, 2 * GGX_PI};
     return pre * adapt(outer_f, &c, br, 9, 0.5 * abs_tol);
 }
+
+double ggx_internal_albedo(const ggx_shape *s, ggx_vec3 v, int hc, double tol) { return albedo(s, v, hc, tol); }
 
 /* The accuracy aimed at: 1e-6 absolute is promised, the quadrature is asked for 100 times better. */
 #define ALBEDO_TOL 1e-8

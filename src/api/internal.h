@@ -30,4 +30,11 @@
 #define GGX_HOT
 #endif
 
+/* From src/api/albedo.c, for the energy tables (src/api/energy.c): E(v) of a unit v with v.z > 0 to an absolute
+ * error of about tol (hc: height-correlated G2), and the separable factor of ggx_albedo's E,
+ * P(v) = ||A v|| G1(v) / (v.z ||A n||), which carries E's steepest dependence on the view: E = P(v) I(v) with I
+ * smooth (docs/albedo.md). v.z > 0. */
+double ggx_internal_albedo(const ggx_shape *s, ggx_vec3 v, int hc, double tol);
+double ggx_internal_albedo_scale(const ggx_shape *s, ggx_vec3 v);
+
 #endif

@@ -14,6 +14,7 @@ GGX_API const char *ggx_status_str(ggx_status status)
                "1e-4 and 1e4 together)";
     case GGX_ERR_ETA: return "an index of refraction must be finite and > 0 (and k >= 0)";
     case GGX_ERR_RANGE: return "a parameter is outside its documented range";
+    case GGX_ERR_MEMORY: return "memory could not be allocated";
     }
     return "unknown status";
 }

@@ -14,7 +14,7 @@ typedef struct gq_rule {
 } gq_rule;
 
 /* Gauss-Legendre nodes and weights of order n on [-1, 1] by Newton's method on P_n (no tabulated constants). */
-static void gq_nodes(int n, double *xs, double *ws)
+static inline void gq_nodes(int n, double *xs, double *ws)
 {
     for (int i = 0; i < n; i++) {
         double x = cos(3.14159265358979323846 * (i + 0.75) / (n + 0.5)), dp = 1.0;
@@ -35,7 +35,7 @@ static void gq_nodes(int n, double *xs, double *ws)
     }
 }
 
-static void gq_rule_init(gq_rule *r)
+static inline void gq_rule_init(gq_rule *r)
 {
     gq_nodes(GQ_N, r->x, r->w);
     gq_nodes(GQ_M, r->xm, r->wm);
@@ -48,7 +48,7 @@ typedef struct gq_panel {
 } gq_panel;
 
 /* The order-12 rule on [a, b], with |order 12 - order 6| as its (pessimistic) error estimate. */
-static gq_panel gq_make_panel(const gq_rule *r, gq_fn f, void *ctx, double a, double b)
+static inline gq_panel gq_make_panel(const gq_rule *r, gq_fn f, void *ctx, double a, double b)
 {
     double c = 0.5 * (a + b), h = 0.5 * (b - a), hi = 0.0, lo = 0.0;
     for (int i = 0; i < GQ_N; i++) hi += r->w[i] * f(c + h * r->x[i], ctx);
@@ -61,7 +61,7 @@ static gq_panel gq_make_panel(const gq_rule *r, gq_fn f, void *ctx, double a, do
  * error estimate until the estimates sum to abs_tol or max_panels (the size of ps) are in use. Unlike a recursion
  * with a per-panel tolerance, this converges at jumps and kinks (each bisection halves the error of the panel that
  * holds one). Reentrant: ps is the caller's (nested integrals keep theirs on the stack). */
-static double gq_adapt(const gq_rule *r, gq_fn f, void *ctx, const double *br, int nb, double abs_tol, gq_panel *ps,
+static inline double gq_adapt(const gq_rule *r, gq_fn f, void *ctx, const double *br, int nb, double abs_tol, gq_panel *ps,
                        int max_panels)
 {
     int n = 0;

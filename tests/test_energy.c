@@ -1,0 +1,471 @@
+/* Energy compensation: the per-shape albedo table against ggx_albedo, the white furnace of the compensated BRDF
+ * (by a quadrature over wo independent of the table's own cell sums), reciprocity, F_avg against adaptive
+ * quadrature, and the samplers of the multiple-scattering lobe and of the compensated BRDF by chi-square against
+ * their pdfs, with negative controls. Part 1: deterministic; part 2: chi-square. SPDX-License-Identifier: MIT */
+#define _POSIX_C_SOURCE 200809L
+#include <math.h>
+#include <pthread.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <time.h>
+
+#include "samplers.h"
+
+/* The promise of ggx.h for the table and the furnace (views up to 89 degrees). */
+#define TABLE_PROMISE 1e-3
+#define MU_MIN 0.0175 /* cos 89 degrees */
+
+typedef struct test_shape {
+    const char *name;
+    shape_params p;
+} test_shape;
+
+/* Isotropic from 0.01 to 1, anisotropic to 1:10 (diagonal and rotated), skewed to 0.5 rad. */
+static const test_shape SHAPES[] = {
+    {"iso 0.01", {0.01, 0.01, 0, 0, 0}},
+    {"iso 0.3", {0.3, 0.3, 0, 0, 0}},
+    {"iso 1", {1, 1, 0, 0, 0}},
+    {"aniso 0.15,0.5", {0.15, 0.5, 0, 0, 0}},
+    {"aniso 0.1,1 rotated 0.5", {0.1, 1, 0, 0, 0.5}},
+    {"skewed 0.1,0.8 (0.5,0.3) rotated 1", {0.1, 0.8, 0.5, 0.3, 1}},
+    {"skewed 0.05,0.3 (-0.5,0.5)", {0.05, 0.3, -0.5, 0.5, 0}},
+};
+enum { NSHAPES = sizeof SHAPES / sizeof SHAPES[0] };
+
+static ggx_shape shapes[NSHAPES];
+static ggx_energy *tables[NSHAPES];
+static double setup_seconds[NSHAPES];
+
+static double now(void)
+{
+    struct timespec t;
+    clock_gettime(CLOCK_MONOTONIC, &t);
+    return (double)t.tv_sec + 1e-9 * (double)t.tv_nsec;
+}
+
+/* Builds every table once, two threads at a time (ggx_energy_create is thread-safe). */
+static void *build_one(void *arg)
+{
+    int i = (int)(size_t)arg;
+    double t0 = now();
+    ggx_status st = ggx_energy_create(&shapes[i], &tables[i]);
+    setup_seconds[i] = now() - t0;
+    return st == GGX_OK ? arg : NULL;
+}
+
+static int build_tables(void **state)
+{
+    (void)state;
+    for (int i = 0; i < NSHAPES; i++) make_shape(&shapes[i], SHAPES[i].p);
+    for (int i = 0; i < NSHAPES; i += 2) {
+        pthread_t th[2];
+        int n = i + 1 < NSHAPES ? 2 : 1;
+        for (int k = 0; k < n; k++) pthread_create(&th[k], NULL, build_one, (void *)(size_t)(i + k));
+        for (int k = 0; k < n; k++) pthread_join(th[k], NULL);
+    }
+    for (int i = 0; i < NSHAPES; i++) {
+        if (!tables[i]) return -1;
+        printf("table %-36s built in %.2f s, E_avg %.6f\n", SHAPES[i].name, setup_seconds[i],
+               ggx_energy_albedo_avg(tables[i]));
+    }
+    return 0;
+}
+
+static int free_tables(void **state)
+{
+    (void)state;
+    for (int i = 0; i < NSHAPES; i++) ggx_energy_free(tables[i]);
+    return 0;
+}
+
+static ggx_vec3 view_mu(double mu, double phi)
+{
+    double st = sqrt(fmax(0.0, 1 - mu * mu));
+    return t_vec(st * cos(phi), st * sin(phi), mu);
+}
+
+/* Random views weighted towards grazing, cos theta in [MU_MIN, 1]. */
+static ggx_vec3 random_table_view(rng *r)
+{
+    double u = rng_uniform(r);
+    return view_mu(MU_MIN + (1 - MU_MIN) * u * u, rng_range(r, 0, 2 * T_PI));
+}
+
+/* ggx_energy_albedo against ggx_albedo at random views and at the table's hardest places (grazing, exactly n). */
+static void table_against_albedo(void **state)
+{
+    (void)state;
+    rng r = {1301};
+    double worst = 0;
+    for (int i = 0; i < NSHAPES; i++) {
+        double shape_worst = 0;
+        for (int k = 0; k < 40; k++) {
+            ggx_vec3 v = k == 0 ? t_vec(0, 0, 1) : k == 1 ? view_mu(MU_MIN, 0.3) : random_table_view(&r);
+            double want = ggx_albedo(&shapes[i], v), got = ggx_energy_albedo(tables[i], v);
+            CHECK_CLOSE(got, want, 0, TABLE_PROMISE, "%s: table E at (%.4f, %.4f, %.4f)", SHAPES[i].name, v.x, v.y,
+                        v.z);
+            CHECK(got >= 0 && got <= 1, "%s: table E in [0, 1]", SHAPES[i].name);
+            if (fabs(got - want) > shape_worst) shape_worst = fabs(got - want);
+        }
+        printf("%-36s max |E_table - E| = %.2e\n", SHAPES[i].name, shape_worst);
+        if (shape_worst > worst) worst = shape_worst;
+        /* E_avg of the table against the exact one (skewed E_avg costs seconds: unskewed shapes only) */
+        if (shapes[i].kind != GGX_SHAPE_SKEWED)
+            CHECK_CLOSE(ggx_energy_albedo_avg(tables[i]), ggx_albedo_avg(&shapes[i]), 0, TABLE_PROMISE,
+                        "%s: E_avg", SHAPES[i].name);
+    }
+    printf("largest table error: %.2e (promise %.0e)\n", worst, TABLE_PROMISE);
+}
+
+/* ---- int f(wi, wo) wo.z dwo by nested adaptive quadrature in (theta, phi) ---- */
+typedef struct furnace_ctx {
+    const ggx_energy *e;
+    const ggx_fresnel *f;
+    ggx_vec3 wi;
+    double theta;
+    int compensated; /* 1: the compensated BRDF, 0: the multiple-scattering lobe alone */
+} furnace_ctx;
+
+static double fq_phi(double phi, void *vc)
+{
+    furnace_ctx *c = vc;
+    ggx_vec3 w = t_dir(c->theta, phi);
+    double f = c->compensated ? ggx_brdf_compensated_eval(c->e, c->f, c->wi, w) : ggx_brdf_ms_eval(c->e, c->f, c->wi, w);
+    return f * cos(c->theta) * sin(c->theta);
+}
+
+static double fq_theta(double theta, void *vc)
+{
+    furnace_ctx *c = vc;
+    c->theta = theta;
+    double sum = 0;
+    for (int k = 0; k < 8; k++) sum += quad_adapt(fq_phi, c, k * T_PI / 4, (k + 1) * T_PI / 4, 1e-9);
+    return sum;
+}
+
+static double ms_albedo(const ggx_energy *e, const ggx_fresnel *f, ggx_vec3 wi)
+{
+    furnace_ctx c = {e, f, wi, 0, 0};
+    double sum = 0;
+    for (int k = 0; k < 8; k++) sum += quad_adapt(fq_theta, &c, k * T_PI / 16, (k + 1) * T_PI / 16, 1e-8);
+    return sum;
+}
+
+/* White furnace: E(wi) (exact, ggx_albedo) + int f_ms wo.z = 1 within the table's error; and with a conductor,
+ * int f_ms wo.z = F_ms (1 - E_table(wi)), the identity that makes the lobe's normalisation right. */
+static void white_furnace(void **state)
+{
+    (void)state;
+    ggx_fresnel one, cond;
+    ggx_fresnel_one(&one);
+    ggx_fresnel_conductor(&cond, 0.2, 3.0);
+    const double thetas[] = {0, 30, 60, 80, 89};
+    double worst = 0, worst_identity = 0;
+    for (int i = 0; i < NSHAPES; i++) {
+        const ggx_energy *e = tables[i];
+        double ea = ggx_energy_albedo_avg(e), fa = ggx_fresnel_avg(&cond);
+        double fms = fa * fa * ea / (1 - fa * (1 - ea));
+        for (int a = 0; a < 5; a++)
+            for (int b = 0; b < 2; b++) {
+                ggx_vec3 wi = t_dir(thetas[a] * T_PI / 180, 0.7 + 2.1 * b);
+                double ms = ms_albedo(e, &one, wi), total = ggx_albedo(&shapes[i], wi) + ms;
+                CHECK_CLOSE(total, 1.0, 0, TABLE_PROMISE, "%s: furnace at theta %g, phi %g", SHAPES[i].name,
+                            thetas[a], 0.7 + 2.1 * b);
+                if (fabs(total - 1) > worst) worst = fabs(total - 1);
+                double id = fabs(ms - (1 - ggx_energy_albedo(e, wi)));
+                if (id > worst_identity) worst_identity = id;
+                CHECK_CLOSE(ms, 1 - ggx_energy_albedo(e, wi), 0, 1e-6, "%s: int f_ms = 1 - E_table",
+                            SHAPES[i].name);
+                if (a == 2) {
+                    double msc = ms_albedo(e, &cond, wi);
+                    CHECK_CLOSE(msc, fms * (1 - ggx_energy_albedo(e, wi)), 1e-6, 1e-9, "%s: conductor F_ms",
+                                SHAPES[i].name);
+                    /* the compensated entry point is the sum of the two lobes */
+                    ggx_vec3 wo = t_dir(0.4, 2.0);
+                    CHECK_CLOSE(ggx_brdf_compensated_eval(e, &cond, wi, wo),
+                                ggx_brdf_eval(&shapes[i], &cond, wi, wo) + ggx_brdf_ms_eval(e, &cond, wi, wo), 1e-14,
+                                0, "%s: compensated = single + multiple", SHAPES[i].name);
+                }
+            }
+    }
+    printf("white furnace: largest |albedo - 1| = %.2e (promise %.0e); int f_ms vs 1 - E_table: %.2e\n", worst,
+           TABLE_PROMISE, worst_identity);
+}
+
+static void reciprocity(void **state)
+{
+    (void)state;
+    rng r = {1302};
+    ggx_fresnel f;
+    ggx_fresnel_schlick(&f, 0.6);
+    for (int i = 0; i < NSHAPES; i++)
+        for (int k = 0; k < 200; k++) {
+            ggx_vec3 a = random_view(&r), b = random_view(&r);
+            double ab = ggx_brdf_compensated_eval(tables[i], &f, a, b), ba = ggx_brdf_compensated_eval(tables[i], &f, b, a);
+            CHECK_CLOSE(ab, ba, 1e-12, 1e-300, "%s: reciprocity", SHAPES[i].name);
+            double mab = ggx_brdf_ms_eval(tables[i], &f, a, b), mba = ggx_brdf_ms_eval(tables[i], &f, b, a);
+            CHECK_CLOSE(mab, mba, 1e-12, 1e-300, "%s: reciprocity of f_ms", SHAPES[i].name);
+            CHECK(mab > 0 && isfinite(ab), "%s: f_ms > 0 above the horizon", SHAPES[i].name);
+        }
+}
+
+/* F_avg against an adaptive quadrature of 2 F(mu) mu, split at the critical angle. */
+typedef struct fa_ctx {
+    const ggx_fresnel *f;
+} fa_ctx;
+static double fa_f(double mu, void *vc) { return 2 * ggx_fresnel_eval(((fa_ctx *)vc)->f, mu) * mu; }
+
+static void fresnel_average(void **state)
+{
+    (void)state;
+    ggx_fresnel fs[7];
+    ggx_fresnel_one(&fs[0]);
+    ggx_fresnel_schlick(&fs[1], 0.04);
+    ggx_fresnel_conductor(&fs[2], 0.2, 3.0);   /* gold-like */
+    ggx_fresnel_conductor(&fs[3], 1.5, 0.0);   /* k = 0 */
+    ggx_fresnel_dielectric(&fs[4], 1.5);
+    ggx_fresnel_dielectric(&fs[5], 1 / 1.5);   /* total internal reflection below mu = 0.745 */
+    ggx_fresnel_dielectric(&fs[6], 1 / 1.05);
+    for (int i = 0; i < 7; i++) {
+        fa_ctx c = {&fs[i]};
+        double want = 0;
+        if (fs[i].kind == GGX_FRESNEL_DIELECTRIC && fs[i].eta < 1) {
+            double mc = sqrt(1 - fs[i].eta * fs[i].eta);
+            want = quad_adapt(fa_f, &c, 0, mc, 1e-14) + quad_adapt(fa_f, &c, mc, 1, 1e-14);
+        } else {
+            want = quad_adapt(fa_f, &c, 0, 1, 1e-14);
+        }
+        CHECK_CLOSE(ggx_fresnel_avg(&fs[i]), want, 1e-9, 1e-14, "F_avg of fresnel %d", i);
+    }
+    CHECK(ggx_fresnel_avg(NULL) == 1.0, "NULL is F = 1");
+}
+
+/* Domain edges: below the horizon, zero, NaN, NULL; u at the ends of [0, 1); error statuses. */
+static void edges(void **state)
+{
+    (void)state;
+    const ggx_energy *e = tables[5];
+    ggx_vec3 up = t_vec(0.1, 0.2, 0.9), down = t_vec(0.3, 0, -0.5), zero = t_vec(0, 0, 0), nan3 = t_vec(NAN, 0, 1);
+    ggx_vec3 bad[] = {down, zero, nan3, t_vec(1, 0, 0), t_vec(INFINITY, 0, 1)};
+    for (int k = 0; k < 5; k++) {
+        CHECK(ggx_energy_albedo(e, bad[k]) == 0, "E of bad view %d", k);
+        CHECK(ggx_brdf_ms_eval(e, NULL, up, bad[k]) == 0 && ggx_brdf_ms_eval(e, NULL, bad[k], up) == 0, "f_ms %d", k);
+        CHECK(ggx_brdf_compensated_eval(e, NULL, bad[k], up) == 0, "compensated %d", k);
+        CHECK(ggx_pdf_brdf_compensated(e, NULL, up, bad[k]) == 0 && ggx_pdf_brdf_ms(e, up, bad[k]) == 0, "pdf %d", k);
+        ggx_sample a = ggx_sample_brdf_compensated(e, NULL, bad[k], 0.3, 0.3, 0.3), b = ggx_sample_brdf_ms(e, NULL, bad[k], 0.3, 0.3);
+        CHECK(a.event == GGX_EVENT_INVALID && a.pdf == 0 && a.weight == 0, "invalid sample %d", k);
+        CHECK(b.event == GGX_EVENT_INVALID && b.pdf == 0 && b.weight == 0, "invalid ms sample %d", k);
+    }
+    CHECK(ggx_energy_albedo(NULL, up) == 0 && ggx_energy_albedo_avg(NULL) == 0 && ggx_energy_shape(NULL) == NULL, "NULL");
+    CHECK(ggx_brdf_compensated_eval(NULL, NULL, up, up) == 0, "NULL energy");
+    ggx_energy *out = (ggx_energy *)&out;
+    CHECK(ggx_energy_create(NULL, &out) == GGX_ERR_NULL && out == NULL, "NULL shape");
+    CHECK(ggx_energy_create(&shapes[0], NULL) == GGX_ERR_NULL, "NULL out");
+    ggx_energy_free(NULL);
+    CHECK(ggx_energy_shape(e)->kind == shapes[5].kind, "shape kept");
+    /* u at the ends, views at n and at grazing: valid samples with finite weights */
+    const double us[] = {0, 0x1.fffffffffffffp-1, 0.5, -1, 2};
+    ggx_vec3 views[] = {t_vec(0, 0, 1), view_mu(1e-6, 1.0), view_mu(MU_MIN, 4.0)};
+    for (int i = 0; i < NSHAPES; i++)
+        for (int a = 0; a < 3; a++)
+            for (int k = 0; k < 5; k++)
+                for (int l = 0; l < 5; l++) {
+                    ggx_sample m = ggx_sample_brdf_ms(tables[i], NULL, views[a], us[k], us[l]);
+                    CHECK(m.event == GGX_EVENT_INVALID || (m.w.z > 0 && isfinite(m.weight) && m.pdf > 0),
+                          "%s: ms sample at u (%g, %g)", SHAPES[i].name, us[k], us[l]);
+                    ggx_sample c = ggx_sample_brdf_compensated(tables[i], NULL, views[a], us[k], us[l], us[(k + l) % 5]);
+                    CHECK(c.event == GGX_EVENT_INVALID || (c.w.z > 0 && isfinite(c.weight) && c.pdf > 0),
+                          "%s: compensated sample", SHAPES[i].name);
+                }
+}
+
+/* ---- chi-square ---- */
+typedef struct smp_ctx {
+    const ggx_energy *e;
+    const ggx_shape *s;
+    ggx_fresnel f;
+    ggx_vec3 v;
+    int compensated; /* 1: ggx_sample_brdf_compensated, 0: ggx_sample_brdf_ms */
+    int control;     /* negative control: the density is deliberately wrong */
+    long checked;
+} smp_ctx;
+
+static double smp_pdf(const smp_ctx *c, ggx_vec3 w)
+{
+    if (c->compensated) return ggx_pdf_brdf_compensated(c->e, &c->f, c->v, w);
+    if (c->control) return w.z > 0 ? w.z / T_PI : 0.0; /* the cosine pdf: not what the lobe sampler draws */
+    return ggx_pdf_brdf_ms(c->e, c->v, w);
+}
+
+static int smp_draw(void *vc, rng *r, ggx_vec3 *w)
+{
+    smp_ctx *c = vc;
+    double u1 = rng_uniform(r), u2 = rng_uniform(r), u3 = rng_uniform(r);
+    ggx_sample s = c->compensated ? ggx_sample_brdf_compensated(c->e, &c->f, c->v, u1, u2, c->control ? 0.5 * u3 : u3)
+                                  : ggx_sample_brdf_ms(c->e, &c->f, c->v, u1, u2);
+    if (s.event == GGX_EVENT_INVALID) return 0;
+    if ((c->checked++ & 15) == 0 && !c->control) {
+        double f = c->compensated ? ggx_brdf_compensated_eval(c->e, &c->f, c->v, s.w) : ggx_brdf_ms_eval(c->e, &c->f, c->v, s.w);
+        CHECK_CLOSE(s.pdf, smp_pdf(c, s.w), 1e-9, 0, "pdf of the sample");
+        CHECK_CLOSE(s.weight, f * s.w.z / s.pdf, 1e-9, 1e-300, "weight of the sample");
+        CHECK_CLOSE(t_dot(s.w, s.w), 1.0, 1e-12, 0, "unit w");
+    }
+    *w = s.w;
+    return 1;
+}
+
+/* Keys: the lobe sampler's directions as they are; the compensated sampler's by their half vector in the sphere
+ * space of the shape (the single-scattering lobe is sharp in w, wide there). */
+static int smp_key(void *vc, ggx_vec3 w, int *region, ggx_vec3 *k)
+{
+    smp_ctx *c = vc;
+    *region = 0;
+    if (!c->compensated) {
+        *k = w;
+        return 1;
+    }
+    ggx_vec3 h = ggx_half_reflect(c->v, w);
+    if (!(t_dot(h, h) > 0.5)) return 0;
+    *k = key_of_normal(c->s, h);
+    return 1;
+}
+
+static double smp_density(void *vc, int region, ggx_vec3 k)
+{
+    smp_ctx *c = vc;
+    (void)region;
+    if (!c->compensated) return smp_pdf(c, k);
+    double jk;
+    ggx_vec3 h = normal_of_key(c->s, k, &jk);
+    if (!(h.z > 0) || !(t_dot(c->v, h) > 0)) return 0.0;
+    ggx_vec3 w = ggx_reflect(c->v, h);
+    if (!(w.z > 0)) return 0.0;
+    return smp_pdf(c, w) / ggx_jacobian_reflect(w, h) * jk;
+}
+
+static chi2_result run(smp_ctx *c, const char *name, uint64_t seed)
+{
+    chi2_problem p = {name, 1, smp_draw, smp_key, smp_density, c};
+    return chi2_run_scaled(&p, seed, test_chi2_level());
+}
+
+/* The lobe sampler's pdf is piecewise constant with jumps on the table's cells, which a chi-square harness that
+ * integrates each cell by Gauss-Legendre does not resolve where 1 - E is steep (grazing, small alpha). Here the bins
+ * are uniform in (t = mu^2, phi), where the cosine-weighted measure is uniform, and each bin's expected count is a
+ * midpoint sum of ggx_pdf_brdf_ms over 100 x 8 points (a jump inside a bin moves the sum by at most its height over
+ * 100 of the bin's widths). Bins expecting fewer than 5 samples are pooled. */
+enum { BT = 50, BP = 32, ST = 100, SP = 8 };
+static int part_ms = 1, part_comp = 1; /* which samplers sampling_chi2 runs (ctest runs them as two entries) */
+static double binned_chi2(smp_ctx *c, uint64_t seed, int *dof)
+{
+    static double obs[BT * BP], ex[BT * BP];
+    long n = chi2_samples();
+    for (int b = 0; b < BT * BP; b++) obs[b] = ex[b] = 0;
+    rng r = {seed};
+    for (long k = 0; k < n; k++) {
+        ggx_vec3 w;
+        if (!smp_draw(c, &r, &w)) continue;
+        double t = w.z * w.z, phi = atan2(w.y, w.x) + T_PI;
+        int bt = (int)(t * BT), bp = (int)(phi / (2 * T_PI) * BP);
+        bt = bt < BT ? bt : BT - 1;
+        bp = bp < BP ? bp : BP - 1;
+        obs[bt * BP + bp]++;
+    }
+    for (int bt = 0; bt < BT; bt++)
+        for (int bp = 0; bp < BP; bp++) {
+            double sum = 0;
+            for (int i = 0; i < ST; i++) {
+                double t = (bt + (i + 0.5) / ST) / BT, mu = sqrt(t), st = sqrt(1 - t);
+                for (int j = 0; j < SP; j++) {
+                    double phi = (bp + (j + 0.5) / SP) / BP * 2 * T_PI - T_PI;
+                    sum += smp_pdf(c, t_vec(st * cos(phi), st * sin(phi), mu)) / (2 * mu); /* dw = dt dphi / (2 mu) */
+                }
+            }
+            ex[bt * BP + bp] = (double)n * sum / (ST * SP) * (1.0 / BT) * (2 * T_PI / BP);
+        }
+    double stat = 0, po = 0, pe = 0;
+    int bins = 0;
+    for (int b = 0; b < BT * BP; b++) {
+        if (ex[b] < 5) {
+            po += obs[b];
+            pe += ex[b];
+            continue;
+        }
+        stat += (obs[b] - ex[b]) * (obs[b] - ex[b]) / ex[b];
+        bins++;
+    }
+    if (pe >= 5) {
+        stat += (po - pe) * (po - pe) / pe;
+        bins++;
+    } else {
+        CHECK(po <= pe + 5 * sqrt(pe) + 5, "pooled bins: %g observed, %g expected", po, pe);
+    }
+    *dof = bins - 1;
+    return chi2_pvalue(stat, *dof);
+}
+
+static void sampling_chi2(void **state)
+{
+    (void)state;
+    const double thetas[] = {0, 45, 80, 89};
+    int runs = 0;
+    for (int i = 0; i < NSHAPES; i++)
+        for (int a = 0; a < 4; a++) {
+            smp_ctx c = {tables[i], &shapes[i], {GGX_FRESNEL_ONE, 0, 0, 0}, t_dir(thetas[a] * T_PI / 180, 0.9), 0, 0, 0};
+            ggx_fresnel_conductor(&c.f, 0.2, 3.0);
+            char name[96];
+            int dof;
+            snprintf(name, sizeof name, "ms lobe %s theta %g", SHAPES[i].name, thetas[a]);
+            if (part_ms && (a == 0 || a == 3)) {
+                double p = binned_chi2(&c, 1400 + 10 * (uint64_t)i + (uint64_t)a, &dof);
+                CHECK(p >= test_chi2_level(), "%s: dof %d, p = %.3g", name, dof, p);
+                runs++;
+            }
+            /* the compensated sampler: alpha >= 0.1 keeps the multiple-scattering part on informative keys */
+            if (!part_comp || i == 0 || a == 0 || a == 2) continue;
+            c.compensated = 1;
+            snprintf(name, sizeof name, "compensated %s theta %g", SHAPES[i].name, thetas[a]);
+            chi2_result r = run(&c, name, 1500 + 10 * (uint64_t)i + (uint64_t)a);
+            CHECK(r.pvalue >= test_chi2_level(), "%s: chi2 %.1f, dof %d, p = %.3g", name, r.stat, r.dof, r.pvalue);
+            runs++;
+        }
+    printf("chi-square runs: %d\n", runs);
+}
+
+/* Negative controls: the lobe sampler against the cosine pdf, the compensated sampler drawing the single-scattering
+ * lobe more often than its pdf says. Both must be rejected. */
+static void negative_controls(void **state)
+{
+    (void)state;
+    long n = chi2_samples();
+    int nt, np;
+    chi2_grid(n, &nt, &np);
+    smp_ctx c = {tables[1], &shapes[1], {GGX_FRESNEL_ONE, 0, 0, 0}, t_dir(1.2, 0.3), 0, 1, 0};
+    int dof;
+    double pv = binned_chi2(&c, 91, &dof);
+    CHECK(pv < test_chi2_level(), "the ms lobe passed against the cosine pdf: p = %.3g", pv);
+    chi2_result r;
+    c.compensated = 1;
+    chi2_problem q = {"control: compensated with u3 halved", 1, smp_draw, smp_key, smp_density, &c};
+    r = chi2_run_quiet(&q, n, nt, np, 92, test_chi2_level());
+    CHECK(r.pvalue < test_chi2_level(), "the compensated sampler passed with the wrong lobe mix: p = %.3g", r.pvalue);
+}
+
+int main(int argc, char **argv)
+{
+    int part = argc > 1 ? atoi(argv[1]) : 0;
+    const struct CMUnitTest first[] = {
+        cmocka_unit_test(table_against_albedo), cmocka_unit_test(white_furnace), cmocka_unit_test(reciprocity),
+        cmocka_unit_test(fresnel_average),      cmocka_unit_test(edges),
+    };
+    const struct CMUnitTest second[] = {cmocka_unit_test(sampling_chi2), cmocka_unit_test(negative_controls)};
+    const struct CMUnitTest third[] = {cmocka_unit_test(sampling_chi2)};
+    int rc = 0;
+    if (part == 0 || part == 1) rc |= cmocka_run_group_tests_name("energy", first, build_tables, free_tables);
+    part_comp = 0;
+    if (part == 0 || part == 2) rc |= cmocka_run_group_tests_name("energy: lobe sampling", second, build_tables, free_tables);
+    part_ms = 0;
+    part_comp = 1;
+    if (part == 0 || part == 3) rc |= cmocka_run_group_tests_name("energy: compensated sampling", third, build_tables, free_tables);
+    return rc;
+}
