@@ -490,12 +490,13 @@ double ggx_pdf_bsdf(const ggx_shape *s, double eta, ggx_vec3 v, ggx_vec3 w);
  * threads may use one at once.
  * ------------------------------------------------------------------------------------------------------------ */
 
-/* A shape's albedo table (opaque; about 17 KB for anisotropic and skewed shapes, 0.8 KB for isotropic ones). */
+/* A shape's albedo table (opaque; about 66 KB for anisotropic and skewed shapes, 0.6 KB for isotropic ones). */
 typedef struct ggx_energy ggx_energy;
 
-/* Builds the table of shape s (copied; s may be freed after). Cost, on one core: about 0.05 s for isotropic shapes,
- * 1 s for unskewed anisotropic ones (E is even about the tangent axes) and 3 to 6 s for skewed ones (docs/energy.md
- * has the measured times). Thread-safe. Errors: GGX_ERR_NULL (s or out NULL), GGX_ERR_MEMORY; *out is NULL then. */
+/* Builds the table of shape s (copied; s may be freed after): 33 x 128 albedos by ggx_albedo's quadrature (33 for
+ * isotropic shapes, a quarter of the columns for unskewed ones, whose E is even about the tangent axes). Cost, on
+ * one core: about 0.05 s for isotropic shapes, 1 to 2 s for anisotropic ones and 5 to 7 s for skewed ones
+ * (docs/energy.md has the measured times); build tables once per material, at scene setup. Thread-safe. Errors: GGX_ERR_NULL (s or out NULL), GGX_ERR_MEMORY; *out is NULL then. */
 ggx_status ggx_energy_create(const ggx_shape *s, ggx_energy **out);
 /* Frees e (NULL is allowed). */
 void ggx_energy_free(ggx_energy *e);
