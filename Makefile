@@ -4,7 +4,7 @@ PREFIX ?= /usr/local
 JOBS ?= 2
 MAKEFLAGS += --no-print-directory
 
-.PHONY: all deps deps-run deps-dev configure configure-run build run example bench test test-long sanitize tsan \
+.PHONY: all deps deps-run deps-dev configure configure-run build run example bench test test-long sanitize tsan tables \
         valgrind fuzz fuzz-ci install clean
 
 all: build
@@ -31,6 +31,12 @@ configure: deps
 
 build: configure
 	@cmake --build $(BUILD) -j $(JOBS)
+
+# Regenerates the shipped albedo tables (src/tables/albedo_iso.inc, about a minute); the file is replaced only when
+# the generator succeeds. tests/tables_test.sh checks that every 8th column regenerates bit for bit.
+tables: deps-dev configure
+	@cmake --build $(BUILD) -j $(JOBS) --target ggx_gen_tables
+	@$(BUILD)/ggx_gen_tables > src/tables/albedo_iso.inc.tmp && mv src/tables/albedo_iso.inc.tmp src/tables/albedo_iso.inc
 
 # The main job on built-in defaults: the seeds' figures into out/ and a check of every sampler. It needs only the
 # command: a first configure leaves the tests out (no cmocka needed); a build that has them keeps them.

@@ -279,6 +279,67 @@ static void edges(void **state)
                 }
 }
 
+/* The shipped isotropic tables against the quadrature at random (alpha, mu), both maskings; outside their alpha
+ * range the quadrature itself; the edges of the domain. */
+static void iso_tables(void **state)
+{
+    (void)state;
+    rng r = {1303};
+    double worst[2] = {0, 0}, worst_avg[2] = {0, 0};
+    for (int k = 0; k < 300; k++) {
+        double a = 1e-3 * pow(2e3, rng_uniform(&r)), u = rng_uniform(&r), mu = MU_MIN + (1 - MU_MIN) * u * u;
+        ggx_shape s;
+        make_shape(&s, (shape_params){a, a, 0, 0, 0});
+        ggx_vec3 v = view_mu(mu, 0.0);
+        for (int hc = 0; hc < 2; hc++) {
+            double want = hc ? ggx_albedo_height_correlated(&s, v) : ggx_albedo(&s, v);
+            double got = ggx_albedo_iso_table(a, mu, hc ? GGX_MASKING_HEIGHT_CORRELATED : GGX_MASKING_SEPARABLE);
+            CHECK_CLOSE(got, want, 0, TABLE_PROMISE, "iso table, alpha %.6g mu %.6g masking %d", a, mu, hc);
+            if (fabs(got - want) > worst[hc]) worst[hc] = fabs(got - want);
+        }
+    }
+    for (int k = 0; k < 24; k++) {
+        double a = 1e-3 * pow(2e3, rng_uniform(&r));
+        ggx_shape s;
+        make_shape(&s, (shape_params){a, a, 0, 0, 0});
+        for (int hc = 0; hc < 2; hc++) {
+            double want = hc ? ggx_albedo_avg_height_correlated(&s) : ggx_albedo_avg(&s);
+            double got = ggx_albedo_avg_iso_table(a, hc ? GGX_MASKING_HEIGHT_CORRELATED : GGX_MASKING_SEPARABLE);
+            CHECK_CLOSE(got, want, 0, 1e-5, "iso E_avg table, alpha %.6g masking %d", a, hc);
+            if (fabs(got - want) > worst_avg[hc]) worst_avg[hc] = fabs(got - want);
+        }
+    }
+    printf("iso tables: largest |E_table - E| %.2e (separable), %.2e (height-correlated); E_avg %.2e, %.2e\n",
+           worst[0], worst[1], worst_avg[0], worst_avg[1]);
+    /* outside [1e-3, 2]: the quadrature, exactly */
+    const double outside[] = {1e-4, 5e-4, 2.5, 40};
+    for (int k = 0; k < 4; k++) {
+        ggx_shape s;
+        make_shape(&s, (shape_params){outside[k], outside[k], 0, 0, 0});
+        CHECK(ggx_albedo_iso_table(outside[k], 0.3, GGX_MASKING_SEPARABLE) == ggx_albedo(&s, view_mu(0.3, 0)),
+              "alpha %g outside the table", outside[k]);
+        CHECK(ggx_albedo_avg_iso_table(outside[k], GGX_MASKING_HEIGHT_CORRELATED) ==
+                  ggx_albedo_avg_height_correlated(&s),
+              "E_avg at alpha %g outside the table", outside[k]);
+    }
+    /* the grid's ends: alpha exactly 1e-3 and 2, mu exactly 1 and tiny */
+    ggx_shape s1, s2;
+    make_shape(&s1, (shape_params){1e-3, 1e-3, 0, 0, 0});
+    make_shape(&s2, (shape_params){2, 2, 0, 0, 0});
+    CHECK_CLOSE(ggx_albedo_iso_table(1e-3, 1.0, GGX_MASKING_SEPARABLE), ggx_albedo(&s1, t_vec(0, 0, 1)), 0, 1e-6, "alpha 1e-3 at n");
+    CHECK_CLOSE(ggx_albedo_iso_table(2.0, 1.0, GGX_MASKING_SEPARABLE), ggx_albedo(&s2, t_vec(0, 0, 1)), 0, 1e-6, "alpha 2 at n");
+    CHECK(ggx_albedo_iso_table(0.3, 1.5, GGX_MASKING_SEPARABLE) == ggx_albedo_iso_table(0.3, 1.0, GGX_MASKING_SEPARABLE), "mu > 1");
+    const double bad_mu[] = {0.0, -0.5, NAN};
+    for (int k = 0; k < 3; k++) CHECK(ggx_albedo_iso_table(0.3, bad_mu[k], GGX_MASKING_SEPARABLE) == 0, "mu %g", bad_mu[k]);
+    const double bad_a[] = {0.0, -1, NAN, INFINITY, 2e4};
+    for (int k = 0; k < 5; k++) {
+        CHECK(ggx_albedo_iso_table(bad_a[k], 0.5, GGX_MASKING_SEPARABLE) == 0, "alpha %g", bad_a[k]);
+        CHECK(ggx_albedo_avg_iso_table(bad_a[k], GGX_MASKING_SEPARABLE) == 0, "E_avg alpha %g", bad_a[k]);
+    }
+    double tiny = ggx_albedo_iso_table(0.3, 1e-300, GGX_MASKING_SEPARABLE);
+    CHECK(tiny >= 0 && tiny <= 1, "mu 1e-300: %g", tiny);
+}
+
 /* ---- chi-square ---- */
 typedef struct smp_ctx {
     const ggx_energy *e;
@@ -458,7 +519,8 @@ int main(int argc, char **argv)
         cmocka_unit_test(table_against_albedo), cmocka_unit_test(white_furnace), cmocka_unit_test(reciprocity),
         cmocka_unit_test(fresnel_average),      cmocka_unit_test(edges),
     };
-    const struct CMUnitTest second[] = {cmocka_unit_test(sampling_chi2), cmocka_unit_test(negative_controls)};
+    const struct CMUnitTest second[] = {cmocka_unit_test(sampling_chi2), cmocka_unit_test(negative_controls),
+                                        cmocka_unit_test(iso_tables)};
     const struct CMUnitTest third[] = {cmocka_unit_test(sampling_chi2)};
     int rc = 0;
     if (part == 0 || part == 1) rc |= cmocka_run_group_tests_name("energy", first, build_tables, free_tables);

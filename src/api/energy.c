@@ -24,6 +24,7 @@
 #include <stdlib.h>
 
 #include "../common/gauss.h"
+#include "../common/interp.h"
 #include "internal.h"
 
 /* Table size: 33 rows in y, 128 columns on a full turn. E of anisotropic shapes has sharp features in the azimuth
@@ -73,11 +74,6 @@ static double node(const ggx_energy *e, int i, int j)
     return e->tab[(size_t)i * np + j];
 }
 
-static double catmull(const double p[4], double f)
-{
-    return p[1] + 0.5 * f * (p[2] - p[0] + f * (2 * p[0] - 5 * p[1] + 4 * p[2] - p[3] + f * (3 * (p[1] - p[2]) + p[3] - p[0])));
-}
-
 /* The interpolated I at table coordinates (y in [0, 1], phi in radians). */
 static double interp(const ggx_energy *e, double y, double phi)
 {
@@ -88,7 +84,7 @@ static double interp(const ggx_energy *e, double y, double phi)
     fy -= i;
     if (e->np == 1) {
         double p[4] = {node(e, i - 1, 0), node(e, i, 0), node(e, i + 1, 0), node(e, i + 2, 0)};
-        return catmull(p, fy);
+        return catmull_rom(p, fy);
     }
     double fp = (phi - e->phi0) * (e->np / (2.0 * GGX_PI));
     fp -= e->np * floor(fp / e->np);
@@ -98,9 +94,9 @@ static double interp(const ggx_energy *e, double y, double phi)
     double col[4];
     for (int dj = -1; dj <= 2; dj++) {
         double p[4] = {node(e, i - 1, j + dj), node(e, i, j + dj), node(e, i + 1, j + dj), node(e, i + 2, j + dj)};
-        col[dj + 1] = catmull(p, fy);
+        col[dj + 1] = catmull_rom(p, fy);
     }
-    return catmull(col, fp);
+    return catmull_rom(col, fp);
 }
 
 /* E of the table at the unit view v (v.z > 0), in [0, 1]. */

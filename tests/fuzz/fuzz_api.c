@@ -1,6 +1,7 @@
 /* libFuzzer target: the shape constructors and every hot function fed from raw bytes (any double, NaN and
  * infinities included), checking the numerical contract of include/ggx/ggx.h; a violation aborts. The samplers are
- * every entry of the registry (ggx_samplers.h), so a new registry line is fuzzed too. SPDX-License-Identifier: MIT */
+ * every entry of the registry (ggx_samplers.h), so a new registry line is fuzzed too; and the energy compensation.
+ * SPDX-License-Identifier: MIT */
 #include <math.h>
 #include <stdint.h>
 #include <stdio.h>
@@ -102,8 +103,53 @@ static void check_directions(const ggx_sampler_info *e, const ggx_shape *s, cons
     }
 }
 
+/* Energy compensation: tables built once (an isotropic and a rotated anisotropic shape; a skewed table takes
+ * seconds), fed raw directions, numbers and any Fresnel term its setup functions accept. */
+static ggx_energy *energy_tables[2];
+static void check_energy(bytes *b)
+{
+    if (!energy_tables[0]) {
+        ggx_shape a, c;
+        REQUIRE(ggx_shape_iso(&a, 0.05) == GGX_OK && ggx_shape_ellipsoid(&c, 0.1, 0.6, 0, 0, 0.4) == GGX_OK, "shapes");
+        REQUIRE(ggx_energy_create(&a, &energy_tables[0]) == GGX_OK &&
+                    ggx_energy_create(&c, &energy_tables[1]) == GGX_OK, "energy tables");
+    }
+    const ggx_energy *e = energy_tables[next_byte(b) & 1];
+    ggx_fresnel f;
+    uint8_t kind = next_byte(b) % 4;
+    double p1 = next_double(b), p2 = next_double(b);
+    ggx_status st = kind == 0   ? ggx_fresnel_one(&f)
+                    : kind == 1 ? ggx_fresnel_dielectric(&f, p1)
+                    : kind == 2 ? ggx_fresnel_conductor(&f, p1, p2)
+                                : ggx_fresnel_schlick(&f, p1);
+    const ggx_fresnel *fp = st == GGX_OK ? &f : NULL;
+    ggx_vec3 wi = vec(b), wo = vec(b);
+    double u1 = next_double(b), u2 = next_double(b), u3 = next_double(b);
+    double fa = ggx_fresnel_avg(fp);
+    REQUIRE(fa >= 0 && fa <= 1 + 1e-12, "F_avg %g", fa);
+    double r[] = {ggx_energy_albedo(e, wi), ggx_brdf_ms_eval(e, fp, wi, wo), ggx_pdf_brdf_ms(e, wi, wo),
+                  ggx_brdf_compensated_eval(e, fp, wi, wo), ggx_pdf_brdf_compensated(e, fp, wi, wo)};
+    for (unsigned i = 0; i < sizeof r / sizeof r[0]; i++)
+        REQUIRE(isfinite(r[i]) && r[i] >= 0, "energy function %u = %g", i, r[i]);
+    REQUIRE(r[0] <= 1, "E %g", r[0]);
+    ggx_sample xs[2] = {ggx_sample_brdf_ms(e, fp, wi, u1, u2), ggx_sample_brdf_compensated(e, fp, wi, u1, u2, u3)};
+    for (int k = 0; k < 2; k++) {
+        if (xs[k].event == GGX_EVENT_INVALID) {
+            REQUIRE(xs[k].pdf == 0 && xs[k].weight == 0 && is_zero(xs[k].w), "energy sampler %d: invalid not zeroed", k);
+            continue;
+        }
+        REQUIRE(is_unit(xs[k].w) && xs[k].w.z > 0 && isfinite(xs[k].pdf) && xs[k].pdf > 0 && isfinite(xs[k].weight) &&
+                    xs[k].weight >= 0,
+                "energy sampler %d: pdf %g weight %g", k, xs[k].pdf, xs[k].weight);
+    }
+}
+
 int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
 {
+    {
+        bytes eb = {data, size};
+        check_energy(&eb);
+    }
     bytes b = {data, size};
     ggx_shape s;
     ggx_status st;
