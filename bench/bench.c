@@ -111,6 +111,58 @@ SCALAR_BENCH(b_stretch, ggx_sample_ndf_stretch(c->s, c->u1[k], c->u2[k]).z)
 SCALAR_BENCH(b_sbrdf, ggx_sample_brdf(c->s, &c->f, c->v[k], c->u1[k], c->u2[k]).weight)
 SCALAR_BENCH(b_vndf, ggx_sample_vndf(c->s, c->v[k], c->u1[k], c->u2[k]).z)
 SCALAR_BENCH(b_sbrdfb, ggx_sample_brdf_bounded(c->s, &c->f, c->v[k], c->u1[k], c->u2[k]).weight)
+/* energy compensation: the table of c->s is bench_energy */
+static const ggx_energy *bench_energy;
+SCALAR_BENCH(b_ealb, ggx_energy_albedo(bench_energy, c->v[k]))
+SCALAR_BENCH(b_ms, ggx_brdf_ms_eval(bench_energy, &c->f, c->v[k], c->m[k]))
+SCALAR_BENCH(b_comp, ggx_brdf_compensated_eval(bench_energy, &c->f, c->v[k], c->m[k]))
+SCALAR_BENCH(b_scomp, ggx_sample_brdf_compensated(bench_energy, &c->f, c->v[k], c->u1[k], c->u2[k], c->u1[(k + 1) & (NS - 1)]).weight)
+SCALAR_BENCH(b_isotab, ggx_albedo_iso_table(0.05 + c->u1[k], c->v[k].z, GGX_MASKING_SEPARABLE))
+SCALAR_BENCH(b_fresnel_avg, ggx_fresnel_avg(&c->f))
+
+/* Energy compensation against the single-scattering functions it adds to, same run; the setup it needs; the shipped
+ * isotropic table against the quadrature it replaces. */
+static void energy_table(sctx *sc, const ggx_shape *diag, const ggx_shape *skew, long ns)
+{
+    printf("\nenergy compensation (docs/energy.md), ns per call   diagonal A    skewed A\n");
+    const ggx_shape *sh[2] = {diag, skew};
+    ggx_energy *e[2];
+    double setup[2], r[8][2];
+    for (int k = 0; k < 2; k++) {
+        double t0 = now();
+        if (ggx_energy_create(sh[k], &e[k]) != GGX_OK) return;
+        setup[k] = now() - t0;
+    }
+    struct {
+        const char *name;
+        bench_fn f;
+    } eb[] = {{"ggx_brdf_eval", b_brdf},
+              {"ggx_brdf_compensated_eval", b_comp},
+              {"ggx_brdf_ms_eval", b_ms},
+              {"ggx_energy_albedo", b_ealb},
+              {"ggx_sample_brdf_bounded", b_sbrdfb},
+              {"ggx_sample_brdf_compensated", b_scomp},
+              {"ggx_fresnel_avg (conductor)", b_fresnel_avg}};
+    for (unsigned i = 0; i < sizeof eb / sizeof eb[0]; i++) {
+        for (int k = 0; k < 2; k++) {
+            sc->s = sh[k];
+            bench_energy = e[k];
+            r[i][k] = time_it(eb[i].f, sc, ns / 4, NULL);
+        }
+        printf("%-44s %10.2f %11.2f\n", eb[i].name, r[i][0], r[i][1]);
+    }
+    printf("compensated / single-scattering: eval %.2f, %.2f; sampling %.2f, %.2f\n", r[1][0] / r[0][0],
+           r[1][1] / r[0][1], r[5][0] / r[4][0], r[5][1] / r[4][1]);
+    printf("ggx_energy_create: %.2f s (diagonal), %.2f s (skewed)\n", setup[0], setup[1]);
+    double tl = time_it(b_isotab, sc, ns / 4, NULL);
+    ggx_shape iso;
+    ggx_shape_iso(&iso, 0.3);
+    double t0 = now();
+    for (int i = 0; i < 20; i++) sink = ggx_albedo(&iso, sc->v[i]);
+    double tq = (now() - t0) / 20 * 1e9;
+    printf("ggx_albedo_iso_table %.1f ns, ggx_albedo (quadrature, alpha 0.3) %.0f ns: %.0fx\n", tl, tq, tq / tl);
+    for (int k = 0; k < 2; k++) ggx_energy_free(e[k]);
+}
 
 static double rnd(uint64_t *s);
 
@@ -357,6 +409,7 @@ int main(int argc, char **argv)
     printf("ggx_sample_brdf_bounded / ggx_sample_brdf: %.2f diagonal, %.2f skewed (target <= 1.15)\n",
            res[9][0] / res[8][0], res[9][1] / res[8][1]);
     bounded_table(quick ? 100000 : 400000);
+    energy_table(&sc, &diag, &skew, ns);
 
     /* Each reference is timed right after the library function it transcribes, on the same shape and inputs. */
     printf("\nreference transcriptions (same run; bench/reference.c), ns per call\n");
