@@ -109,10 +109,11 @@ static void table_against_albedo(void **state)
         }
         printf("%-36s max |E_table - E| = %.2e\n", SHAPES[i].name, shape_worst);
         if (shape_worst > worst) worst = shape_worst;
-        /* E_avg of the table against the exact one (skewed E_avg costs seconds: unskewed shapes only) */
-        if (shapes[i].kind != GGX_SHAPE_SKEWED)
-            CHECK_CLOSE(ggx_energy_albedo_avg(tables[i]), ggx_albedo_avg(&shapes[i]), 0, TABLE_PROMISE,
-                        "%s: E_avg", SHAPES[i].name);
+        /* E_avg of the table against the exact one. A skewed E_avg costs about 15 s each, so for the two skewed
+         * shapes the values are ggx_albedo_avg's, computed once (2026-11-23; 1e-6 promised, docs/albedo.md). */
+        double exact = i == 5 ? 0.467027305 : i == 6 ? 0.312155710 : ggx_albedo_avg(&shapes[i]);
+        CHECK_CLOSE(ggx_energy_albedo_avg(tables[i]), exact, 0, TABLE_PROMISE, "%s: E_avg", SHAPES[i].name);
+        printf("%-36s E_avg of the table - E_avg = %.1e\n", SHAPES[i].name, ggx_energy_albedo_avg(tables[i]) - exact);
     }
     printf("largest table error: %.2e (promise %.0e)\n", worst, TABLE_PROMISE);
 }
@@ -207,6 +208,39 @@ static void reciprocity(void **state)
             CHECK_CLOSE(mab, mba, 1e-12, 1e-300, "%s: reciprocity of f_ms", SHAPES[i].name);
             CHECK(mab > 0 && isfinite(ab), "%s: f_ms > 0 above the horizon", SHAPES[i].name);
         }
+}
+
+/* The lobe's F_ms for a Fresnel term: the library remembers the last few F_avg per thread. Cycling through more
+ * terms than it keeps, from two threads at once, must give exactly what the public functions give. */
+static void *cycle_fresnels(void *arg)
+{
+    const ggx_energy *e = tables[4];
+    ggx_vec3 wi = t_dir(1.1, 0.4), wo = t_dir(0.3, 2.0);
+    double ea = ggx_energy_albedo_avg(e), ei = ggx_energy_albedo(e, wi), eo = ggx_energy_albedo(e, wo);
+    long bad = 0;
+    for (int round = 0; round < 200; round++)
+        for (int k = 0; k < 7; k++) {
+            ggx_fresnel f;
+            if (k == 6)
+                ggx_fresnel_dielectric(&f, 1.0 / (1.2 + 0.1 * (double)(size_t)arg));
+            else
+                ggx_fresnel_conductor(&f, 0.2 + 0.3 * k + 0.01 * (double)(size_t)arg, 3.0 - 0.4 * k);
+            double fa = ggx_fresnel_avg(&f), fms = fa * fa * ea / (1 - fa * (1 - ea));
+            double want = fms * (1 - ei) * (1 - eo) / (T_PI * (1 - ea));
+            if (fabs(ggx_brdf_ms_eval(e, &f, wi, wo) - want) > 1e-14 * want) bad++;
+        }
+    return (void *)bad;
+}
+
+static void fresnel_cache(void **state)
+{
+    (void)state;
+    pthread_t th[2];
+    void *bad[2];
+    for (int k = 0; k < 2; k++) pthread_create(&th[k], NULL, cycle_fresnels, (void *)(size_t)k);
+    for (int k = 0; k < 2; k++) pthread_join(th[k], &bad[k]);
+    CHECK(bad[0] == NULL && bad[1] == NULL, "F_ms differs from the public functions' in %ld + %ld evaluations",
+          (long)(size_t)bad[0], (long)(size_t)bad[1]);
 }
 
 /* F_avg against an adaptive quadrature of 2 F(mu) mu, split at the critical angle. */
@@ -517,7 +551,7 @@ int main(int argc, char **argv)
     int part = argc > 1 ? atoi(argv[1]) : 0;
     const struct CMUnitTest first[] = {
         cmocka_unit_test(table_against_albedo), cmocka_unit_test(white_furnace), cmocka_unit_test(reciprocity),
-        cmocka_unit_test(fresnel_average),      cmocka_unit_test(edges),
+        cmocka_unit_test(fresnel_average),      cmocka_unit_test(edges),         cmocka_unit_test(fresnel_cache),
     };
     const struct CMUnitTest second[] = {cmocka_unit_test(sampling_chi2), cmocka_unit_test(negative_controls),
                                         cmocka_unit_test(iso_tables)};

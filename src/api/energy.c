@@ -41,6 +41,8 @@ struct ggx_energy {
     double e_avg; /* (1 / pi) int E w.z dw of the interpolant */
     double total; /* sum of the cell weights = 2 pi (1 - e_avg) */
     double *tab;  /* NM x np values of I, row-major */
+    double *pad;  /* the same with the ghost nodes of node() around it: (NM + 2) x pw, pw = np + 3 (1 if np = 1) */
+    int pw;
     double *cdf;  /* (NM - 1) np + 1 cumulative cell weights, cdf[0] = 0 */
 };
 
@@ -74,7 +76,7 @@ static double node(const ggx_energy *e, int i, int j)
     return e->tab[(size_t)i * np + j];
 }
 
-/* The interpolated I at table coordinates (y in [0, 1], phi in radians). */
+/* The interpolated I at table coordinates (y in [0, 1], phi in radians), from the padded nodes. */
 static double interp(const ggx_energy *e, double y, double phi)
 {
     double fy = y * (NM - 1);
@@ -82,19 +84,22 @@ static double interp(const ggx_energy *e, double y, double phi)
     if (i > NM - 2) i = NM - 2;
     if (i < 0) i = 0;
     fy -= i;
+    const double *r0 = e->pad + (size_t)i * e->pw; /* row i - 1 */
     if (e->np == 1) {
-        double p[4] = {node(e, i - 1, 0), node(e, i, 0), node(e, i + 1, 0), node(e, i + 2, 0)};
+        double p[4] = {r0[0], r0[1], r0[2], r0[3]};
         return catmull_rom(p, fy);
     }
     double fp = (phi - e->phi0) * (e->np / (2.0 * GGX_PI));
     fp -= e->np * floor(fp / e->np);
     int j = (int)fp;
     if (j > e->np - 1) j = e->np - 1;
+    if (j < 0) j = 0;
     fp -= j;
     double col[4];
-    for (int dj = -1; dj <= 2; dj++) {
-        double p[4] = {node(e, i - 1, j + dj), node(e, i, j + dj), node(e, i + 1, j + dj), node(e, i + 2, j + dj)};
-        col[dj + 1] = catmull_rom(p, fy);
+    for (int dj = 0; dj < 4; dj++) {
+        const double *c = r0 + j + dj; /* column j - 1 + dj */
+        double p[4] = {c[0], c[e->pw], c[2 * e->pw], c[3 * e->pw]};
+        col[dj] = catmull_rom(p, fy);
     }
     return catmull_rom(col, fp);
 }
@@ -127,13 +132,16 @@ GGX_API ggx_status ggx_energy_create(const ggx_shape *s, ggx_energy **out)
     pthread_once(&once, init_rules);
     int iso = s->kind != GGX_SHAPE_SKEWED && fabs(s->alpha_x - s->alpha_y) <= 1e-12 * fabs(s->alpha_x);
     int np = iso ? 1 : NP_FULL, ncell = (NM - 1) * np;
-    ggx_energy *e = malloc(sizeof *e + sizeof(double) * ((size_t)NM * np + ncell + 1));
+    int pw = np == 1 ? 1 : np + 3;
+    ggx_energy *e = malloc(sizeof *e + sizeof(double) * ((size_t)NM * np + (size_t)(NM + 2) * pw + ncell + 1));
     if (!e) return GGX_ERR_MEMORY;
     e->s = *s;
     e->np = np;
     e->phi0 = s->kind == GGX_SHAPE_SKEWED ? 0.0 : atan2(s->tangent_sin, s->tangent_cos);
     e->tab = (double *)(e + 1);
-    e->cdf = e->tab + (size_t)NM * np;
+    e->pad = e->tab + (size_t)NM * np;
+    e->pw = pw;
+    e->cdf = e->pad + (size_t)(NM + 2) * pw;
 
     /* Nodes. Unskewed: E(phi0 + d) = E(phi0 - d) = E(phi0 + pi - d), so columns 0..np/4 determine the rest. */
     int jmax = s->kind == GGX_SHAPE_SKEWED ? np - 1 : np / 4;
@@ -157,6 +165,15 @@ GGX_API ggx_status ggx_energy_create(const ggx_shape *s, ggx_energy **out)
     }
     for (int j = 0; j < np; j++) /* grazing row: quadratic extrapolation (E needs v.z > 0) */
         e->tab[j] = 3.0 * e->tab[np + j] - 3.0 * e->tab[2 * np + j] + e->tab[3 * np + j];
+
+    /* The padded copy that interp reads: row r is node row r - 1 (the columns of the isotropic table are rows). */
+    for (int r = 0; r < NM + 2; r++) {
+        if (np == 1) {
+            e->pad[r] = node(e, r - 1, 0);
+            continue;
+        }
+        for (int c = 0; c < pw; c++) e->pad[(size_t)r * pw + c] = node(e, r - 1, c - 1);
+    }
 
     /* Cell weights int (1 - E) dt dphi, t = mu^2: dt = 2 mu mu'(y) dy. */
     double dphi = 2.0 * GGX_PI / np, sum = 0.0;
@@ -229,6 +246,31 @@ GGX_API double ggx_fresnel_avg(const ggx_fresnel *f)
     return sum; /* 2 x (half-width 1/2) */
 }
 
+/* F_avg of f, remembered per thread for the last few Fresnel terms: a renderer evaluates the same few (one per colour
+ * channel) again and again, and the quadrature of a conductor's or dielectric's F costs about 200 ns. Fields compare
+ * by value (a NaN never matches, and is recomputed). */
+static double fresnel_avg_cached(const ggx_fresnel *f)
+{
+    enum { SLOTS = 4 };
+    static _Thread_local struct {
+        ggx_fresnel f;
+        double avg;
+        int used;
+    } cache[SLOTS];
+    static _Thread_local int next;
+    if (f->kind == GGX_FRESNEL_ONE || f->kind == GGX_FRESNEL_SCHLICK) return ggx_fresnel_avg(f); /* closed forms */
+    for (int i = 0; i < SLOTS; i++)
+        if (cache[i].used && cache[i].f.kind == f->kind && cache[i].f.eta == f->eta && cache[i].f.k == f->k &&
+            cache[i].f.f0 == f->f0)
+            return cache[i].avg;
+    double a = ggx_fresnel_avg(f);
+    cache[next].f = *f;
+    cache[next].avg = a;
+    cache[next].used = 1;
+    next = (next + 1) % SLOTS;
+    return a;
+}
+
 /* Kulla & Conty's factor for the energy that leaves after more than one bounce with Fresnel F_avg per bounce,
  * relative to F = 1: F_avg^2 E_avg / (1 - F_avg (1 - E_avg)) (1 for F = 1). */
 static double ms_fresnel_of(const ggx_energy *e, double fa)
@@ -237,7 +279,7 @@ static double ms_fresnel_of(const ggx_energy *e, double fa)
     return den > 0 ? fa * fa * e->e_avg / den : 0.0;
 }
 
-static double ms_fresnel(const ggx_energy *e, const ggx_fresnel *f) { return ms_fresnel_of(e, ggx_fresnel_avg(f)); }
+static double ms_fresnel(const ggx_energy *e, const ggx_fresnel *f) { return ms_fresnel_of(e, fresnel_avg_cached(f)); }
 
 /* f_ms given E(wi) (ew) and the factor F_ms. */
 static double ms_lobe_e(const ggx_energy *e, double fms, double ew, ggx_vec3 wo)
@@ -349,7 +391,7 @@ GGX_API ggx_sample ggx_sample_brdf_ms(const ggx_energy *e, const ggx_fresnel *f,
  * scattering lobe's F_ms (1 - E(wi)). Writes E(wi) and F_ms for the caller. */
 static double ss_share(const ggx_energy *e, const ggx_fresnel *f, ggx_vec3 wi, double *ew, double *fms)
 {
-    double fa = ggx_fresnel_avg(f);
+    double fa = fresnel_avg_cached(f);
     *ew = table_albedo(e, wi);
     *fms = ms_fresnel_of(e, fa);
     double ss = fa * *ew, ms = (1.0 - e->e_avg > 1e-12) ? *fms * (1.0 - *ew) : 0.0, tot = ss + ms;
