@@ -545,7 +545,9 @@ ggx_sample ggx_sample_brdf_ms(const ggx_energy *e, const ggx_fresnel *f, ggx_vec
 double ggx_pdf_brdf_ms(const ggx_energy *e, ggx_vec3 wi, ggx_vec3 wo);
 
 /* The energy-compensated BRDF, the entry point a renderer calls in place of ggx_brdf_eval:
- * ggx_brdf_eval(shape, f, wi, wo) + ggx_brdf_ms_eval(e, f, wi, wo). Reciprocal to 1e-12. */
+ * ggx_brdf_eval(shape, f, wi, wo) + ggx_brdf_ms_eval(e, f, wi, wo). Reciprocal to 1e-12. Cost: about 300 ns, 6 times
+ * ggx_brdf_eval (two table lookups; F_avg of the last 4 conductor or dielectric terms is remembered per thread,
+ * bench/bench.c). */
 double ggx_brdf_compensated_eval(const ggx_energy *e, const ggx_fresnel *f, ggx_vec3 wi, ggx_vec3 wo);
 /* Samples it: with probability p = F_avg E(wi) / (F_avg E(wi) + F_ms (1 - E(wi))) (u3 < p) the single-scattering
  * lobe by ggx_sample_brdf_bounded, else the multiple-scattering lobe; pdf = p ggx_pdf_brdf_bounded + (1 - p)
