@@ -128,6 +128,136 @@ static void against_quadrature_over_w(void **state)
            worst, d);
 }
 
+/* ---- the rough dielectric: ggx_bsdf_albedo ---- */
+#define BSDF_PROMISE 1e-4
+
+/* int f(v -> w) |w.z| dw over one side (side = +1 above, -1 below) by nested adaptive quadrature in (theta, phi)
+ * about the normal of that side, with break points at the lobe's peak: the mirror direction on v's side, the
+ * direction refracted through n on the other. */
+typedef struct bq_ctx {
+    const ggx_shape *s;
+    ggx_vec3 v;
+    double eta, theta, side, peak_phi;
+} bq_ctx;
+
+static double bq_phi(double phi, void *vc)
+{
+    bq_ctx *c = vc;
+    ggx_vec3 w = t_dir(c->theta, phi);
+    w.z *= c->side;
+    return ggx_bsdf_eval(c->s, c->eta, c->v, w, GGX_RADIANCE) * fabs(w.z) * sin(c->theta);
+}
+
+static double bq_theta(double theta, void *vc)
+{
+    bq_ctx *c = vc;
+    c->theta = theta;
+    return quad_adapt(bq_phi, c, c->peak_phi - T_PI, c->peak_phi, 1e-11) +
+           quad_adapt(bq_phi, c, c->peak_phi, c->peak_phi + T_PI, 1e-11);
+}
+
+static double bsdf_side_over_w(const ggx_shape *s, double eta, ggx_vec3 v, double side)
+{
+    int same = (side > 0) == (v.z > 0);
+    double tv = acos(fabs(v.z)), tp = tv;
+    if (!same) { /* Snell through n: sin t = sin tv * eta_v / eta_t */
+        double rel = v.z > 0 ? 1 / eta : eta, st = sin(tv) * rel;
+        tp = st < 1 ? asin(st) : 0.5 * T_PI;
+    }
+    bq_ctx c = {s, v, eta, 0, side, atan2(-v.y, -v.x) + (same ? 0 : T_PI)};
+    return quad_adapt(bq_theta, &c, 0.0, tp, 1e-10) + quad_adapt(bq_theta, &c, tp, 0.5 * T_PI, 1e-10);
+}
+
+static void bsdf_albedo_deterministic(void **state)
+{
+    (void)state;
+    /* eta = 1: no reflection (F = 0) and transmission straight through every facet: T = G1(u)^2 / G1_smith(u), the
+     * limit of the BSDF's albedo (the BSDF itself is a delta there). For unskewed shapes G1(u). */
+    const shape_params eq1[] = {{0.3, 0.3, 0, 0, 0}, {0.1, 0.6, 0, 0, 1.0}, {0.2, 0.5, 0.5, -0.3, 0.4}};
+    double worst = 0.0;
+    for (int i = 0; i < 3; i++) {
+        ggx_shape s;
+        make_shape(&s, eq1[i]);
+        for (int j = 0; j < 4; j++) {
+            ggx_vec3 v = t_dir(0.1 + 0.45 * j, 0.7 + j);
+            if (j & 1) v.z = -v.z;
+            ggx_vec3 u = v.z > 0 ? v : t_vec(-v.x, -v.y, -v.z); /* sgn(v.z) v */
+            double r, t, e = ggx_bsdf_albedo(&s, 1.0, v, &r, &t);
+            double g = ggx_g1(&s, u, u), want = g * g / ggx_g1_smith(&s, u);
+            CHECK(r <= 1e-12 && e == r + t, "eta = 1 reflects nothing (F = 0 up to rounding): R = %g", r);
+            CHECK_CLOSE(t, want, 0, BSDF_PROMISE, "eta = 1, shape %d, view %d", i, j);
+            worst = fmax(worst, fabs(t - want));
+        }
+    }
+    /* against quadrature of ggx_bsdf_eval over both sides */
+    const shape_params sh[] = {{0.3, 0.3, 0, 0, 0}, {0.2, 0.6, 0, 0, 0.5}, {0.4, 0.25, 0.4, -0.3, 1.0}};
+    const double etas[] = {1.5, 1 / 1.5, 1.33};
+    double worst_q = 0.0;
+    for (int i = 0; i < 3; i++) {
+        ggx_shape s;
+        make_shape(&s, sh[i]);
+        for (int j = 0; j < 4; j++) {
+            double eta = etas[(i + j) % 3];
+            ggx_vec3 v = t_dir(0.2 + 0.4 * j, 0.3 + j);
+            if (j >= 2) v.z = -v.z;
+            double r, t, e = ggx_bsdf_albedo(&s, eta, v, &r, &t);
+            double side = v.z > 0 ? 1 : -1;
+            double rq = bsdf_side_over_w(&s, eta, v, side), tq = bsdf_side_over_w(&s, eta, v, -side);
+            CHECK_CLOSE(r, rq, 0, BSDF_PROMISE, "R, shape %d, eta %g, view %d", i, eta, j);
+            CHECK_CLOSE(t, tq, 0, BSDF_PROMISE, "T, shape %d, eta %g, view %d", i, eta, j);
+            CHECK(e <= 1 && e == r + t, "R + T = %g", e);
+            worst_q = fmax(worst_q, fmax(fabs(r - rq), fabs(t - tq)));
+            printf("  shape %d eta %.3f view (%.3f, %.3f, %.3f): R %.9f (over w %+.1e), T %.9f (over w %+.1e)\n", i,
+                   eta, v.x, v.y, v.z, r, r - rq, t, t - tq);
+        }
+    }
+    /* edges */
+    ggx_shape s;
+    make_shape(&s, (shape_params){0.3, 0.3, 0, 0, 0});
+    double r = 7, t = 7;
+    CHECK(ggx_bsdf_albedo(&s, 1.5, t_vec(1, 0, 0), &r, &t) == 0 && r == 0 && t == 0, "horizon");
+    CHECK(ggx_bsdf_albedo(&s, 0.0, t_vec(0, 0, 1), &r, &t) == 0 && r == 0 && t == 0, "eta 0");
+    CHECK(ggx_bsdf_albedo(&s, NAN, t_vec(0, 0, 1), NULL, NULL) == 0, "eta NaN");
+    CHECK(ggx_bsdf_albedo(&s, 1.5, t_vec(NAN, 0, 1), NULL, NULL) == 0, "NaN view");
+    CHECK(ggx_bsdf_albedo(NULL, 1.5, t_vec(0, 0, 1), &r, &t) == 0 && r == 0 && t == 0, "NULL shape");
+    CHECK(ggx_bsdf_albedo(&s, 1.5, t_vec(0, 0, 5), NULL, NULL) == ggx_bsdf_albedo(&s, 1.5, t_vec(0, 0, 1), NULL, NULL),
+          "v normalised");
+    printf("bsdf albedo: eta = 1 closed form %.2e, against quadrature over w %.2e\n", worst, worst_q);
+}
+
+/* Monte Carlo with ggx_sample_bsdf in the importance mode, whose weight is f(v -> w) |w.z| / pdf: the mean weights
+ * of reflected and transmitted samples are R and T. Within 5 standard errors + 1e-5. */
+static void bsdf_albedo_monte_carlo(void **state)
+{
+    (void)state;
+    const shape_params sh[] = {{0.05, 0.05, 0, 0, 0}, {0.1, 0.5, 0, 0, 0.3}, {0.2, 0.6, 0.4, 0.2, 1.0}};
+    const double etas[] = {1.5, 1 / 1.5, 1.33};
+    long n = (long)(1e6 * test_scale());
+    for (int i = 0; i < 3; i++) {
+        ggx_shape s;
+        make_shape(&s, sh[i]);
+        for (int j = 0; j < 4; j++) {
+            double eta = etas[(i + j) % 3];
+            ggx_vec3 v = t_dir(j < 2 ? 0.5 : 1.4, 0.7);
+            if (j & 1) v.z = -v.z;
+            double r, t;
+            ggx_bsdf_albedo(&s, eta, v, &r, &t);
+            rng g = {(uint64_t)(100 + 10 * i + j)};
+            double sr = 0, sr2 = 0, st = 0, st2 = 0;
+            for (long k = 0; k < n; k++) {
+                double u1 = rng_uniform(&g), u2 = rng_uniform(&g), u3 = rng_uniform(&g);
+                ggx_sample x = ggx_sample_bsdf(&s, eta, v, u1, u2, u3, GGX_IMPORTANCE);
+                if (x.event == GGX_EVENT_REFLECT) sr += x.weight, sr2 += x.weight * x.weight;
+                if (x.event == GGX_EVENT_TRANSMIT) st += x.weight, st2 += x.weight * x.weight;
+            }
+            double mr = sr / (double)n, mt = st / (double)n;
+            double er = sqrt(fmax(0, sr2 / (double)n - mr * mr) / (double)n), et = sqrt(fmax(0, st2 / (double)n - mt * mt) / (double)n);
+            CHECK_CLOSE(r, mr, 0, 5 * er + 1e-5, "R, shape %d, eta %g, view %d", i, eta, j);
+            CHECK_CLOSE(t, mt, 0, 5 * et + 1e-5, "T, shape %d, eta %g, view %d", i, eta, j);
+        }
+    }
+}
+
 /* Monte Carlo with ggx_sample_brdf (F = 1): the mean weight is E(v), a different code path (the sampler, its pdf,
  * the BRDF); and for E_avg, views drawn with density v.z / pi. Within 5 standard errors. */
 static void against_monte_carlo(void **state)
@@ -291,10 +421,11 @@ int main(int argc, char **argv)
     const struct CMUnitTest first[] = {
         cmocka_unit_test(threads),          cmocka_unit_test(closed_forms_alpha_one),
         cmocka_unit_test(domain_edges),     cmocka_unit_test(average_symmetries),
-        cmocka_unit_test(against_quadrature_over_w),
+        cmocka_unit_test(against_quadrature_over_w), cmocka_unit_test(bsdf_albedo_deterministic),
     };
     const struct CMUnitTest second[] = {cmocka_unit_test(against_monte_carlo),
-                                        cmocka_unit_test(average_against_monte_carlo)};
+                                        cmocka_unit_test(average_against_monte_carlo),
+                                        cmocka_unit_test(bsdf_albedo_monte_carlo)};
     const struct CMUnitTest third[] = {cmocka_unit_test(average_against_monte_carlo)};
     int rc = 0;
     if (part == 0 || part == 1) rc |= cmocka_run_group_tests_name("deterministic", first, NULL, NULL);
