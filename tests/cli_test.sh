@@ -47,6 +47,14 @@ done
     ok || bad "albedo CSV against the closed forms at alpha = 1"
 "$GGX" albedo --alpha 0.3 --view 60,30 --rotate 20 --format json > alb.json && grep -q '"E_avg_height_correlated"' alb.json &&
     [ "$(grep -c view_theta_deg alb.json)" -eq 1 ] && ok || bad "albedo JSON, one view"
+# albedo --eta: at eta = 1 nothing is reflected and T = G1(v) = 2 / (1 + sqrt(1 + alpha^2 tan^2 theta)); by default
+# ten views from both sides, each R + T in (0, 1]
+"$GGX" albedo --alpha 0.3 --eta 1 --view 60,0 > ad.csv && head -1 ad.csv | grep -qx 'view_theta_deg,view_phi_deg,R,T,R_plus_T' &&
+    awk -F, 'NR == 2 { g = 2 / (1 + sqrt(1 + 0.09 * 3)); if ($3 > 1e-12 || (g - $4)^2 > 1e-12) e++ } END { exit e > 0 }' ad.csv &&
+    ok || bad "albedo --eta 1 against T = G1"
+"$GGX" albedo --alpha 0.2,0.5 --eta 1.5 > ad.csv && [ "$(wc -l < ad.csv)" -eq 11 ] &&
+    awk -F, 'NR > 1 { if (!($5 > 0 && $5 <= 1) || ($3 + $4 - $5)^2 > 1e-18) e++; if ($1 > 90) below++ } END { exit (e > 0 || below != 5) }' ad.csv &&
+    ok || bad "albedo --eta 1.5, both sides"
 "$GGX" sample > s.csv && [ "$(wc -l < s.csv)" -eq 1001 ] &&
     awk -F, 'NR > 1 { if (NF != 5 || $4 <= 0) e++; l = $1*$1 + $2*$2 + $3*$3; if (l < 0.999999 || l > 1.000001) e++ } END { exit e > 0 }' s.csv &&
     ok || bad "sample CSV (5 columns, unit vectors, pdf > 0)"
@@ -148,6 +156,7 @@ expect2 "zero direction" "zero vector" "$GGX" eval --wi 0,0,0
 expect2 "view below the horizon" "above the horizon" "$GGX" sample --view 100,0
 expect2 "vndf figure below" "above the horizon" "$GGX" plot --figure vndf --view 95,0
 expect2 "albedo view below" "above the horizon" "$GGX" albedo --view 95,0
+expect2 "albedo --eta view on the horizon" "not on the horizon" "$GGX" albedo --eta 1.5 --view 90,0
 expect2 "unknown sampler" "unknown sampler" "$GGX" sample --sampler magic
 expect2 "unknown figure" "unknown figure" "$GGX" plot --figure pie
 expect2 "bad count" "not a count" "$GGX" sample -n 0
