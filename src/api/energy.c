@@ -76,40 +76,47 @@ static double node(const ggx_energy *e, int i, int j)
     return e->tab[(size_t)i * np + j];
 }
 
-/* The interpolated I at table coordinates (y in [0, 1], phi in radians), from the padded nodes. */
-static double interp(const ggx_energy *e, double y, double phi)
+/* The table cell of a unit w with w.z > 0: row i (y in [i, i + 1] / (NM - 1)) and column j, and the fractions
+ * fy, fp inside it. Used by the lookup and by the lobe's pdf, whose cells are the table's. */
+static void table_cell(const ggx_energy *e, ggx_vec3 w, int *i, double *fy, int *j, double *fp)
 {
-    double fy = y * (NM - 1);
-    int i = (int)fy;
-    if (i > NM - 2) i = NM - 2;
-    if (i < 0) i = 0;
-    fy -= i;
+    double st = sqrt(w.x * w.x + w.y * w.y), th = atan2(st, w.z);
+    double y = sqrt(fmax(0.0, 1.0 - th * (2.0 / GGX_PI))) * (NM - 1);
+    *i = (int)y;
+    if (*i > NM - 2) *i = NM - 2;
+    if (*i < 0) *i = 0;
+    *fy = y - *i;
+    *j = 0;
+    *fp = 0.0;
+    if (e->np == 1) return;
+    double p = (atan2(w.y, w.x) - e->phi0) * (e->np / (2.0 * GGX_PI));
+    p -= e->np * floor(p / e->np);
+    *j = (int)p;
+    if (*j > e->np - 1) *j = e->np - 1;
+    if (*j < 0) *j = 0;
+    *fp = p - *j;
+}
+
+/* E of the table at the unit view v (v.z > 0), in [0, 1]: Catmull-Rom over the padded nodes around the cell. */
+static double table_albedo(const ggx_energy *e, ggx_vec3 v)
+{
+    int i, j;
+    double fy, fp, r;
+    table_cell(e, v, &i, &fy, &j, &fp);
     const double *r0 = e->pad + (size_t)i * e->pw; /* row i - 1 */
     if (e->np == 1) {
         double p[4] = {r0[0], r0[1], r0[2], r0[3]};
-        return catmull_rom(p, fy);
+        r = catmull_rom(p, fy);
+    } else {
+        double col[4];
+        for (int dj = 0; dj < 4; dj++) {
+            const double *c = r0 + j + dj; /* column j - 1 + dj */
+            double p[4] = {c[0], c[e->pw], c[2 * e->pw], c[3 * e->pw]};
+            col[dj] = catmull_rom(p, fy);
+        }
+        r = catmull_rom(col, fp);
     }
-    double fp = (phi - e->phi0) * (e->np / (2.0 * GGX_PI));
-    fp -= e->np * floor(fp / e->np);
-    int j = (int)fp;
-    if (j > e->np - 1) j = e->np - 1;
-    if (j < 0) j = 0;
-    fp -= j;
-    double col[4];
-    for (int dj = 0; dj < 4; dj++) {
-        const double *c = r0 + j + dj; /* column j - 1 + dj */
-        double p[4] = {c[0], c[e->pw], c[2 * e->pw], c[3 * e->pw]};
-        col[dj] = catmull_rom(p, fy);
-    }
-    return catmull_rom(col, fp);
-}
-
-/* E of the table at the unit view v (v.z > 0), in [0, 1]. */
-static double table_albedo(const ggx_energy *e, ggx_vec3 v)
-{
-    double st = sqrt(v.x * v.x + v.y * v.y), th = atan2(st, v.z);
-    double y = sqrt(fmax(0.0, 1.0 - th * (2.0 / GGX_PI)));
-    double r = ggx_internal_albedo_scale(&e->s, v) * interp(e, y, atan2(v.y, v.x));
+    r *= ggx_internal_albedo_scale(&e->s, v);
     return r > 0 ? (r < 1 ? r : 1) : 0;
 }
 
@@ -306,17 +313,9 @@ GGX_API double ggx_brdf_ms_eval(const ggx_energy *e, const ggx_fresnel *f, ggx_v
 /* The cell of a unit w with w.z > 0: row i, column j, and its (t, phi) area. */
 static int cell_of(const ggx_energy *e, ggx_vec3 w, double *area)
 {
-    double st = sqrt(w.x * w.x + w.y * w.y), th = atan2(st, w.z);
-    double y = sqrt(fmax(0.0, 1.0 - th * (2.0 / GGX_PI)));
-    int i = (int)(y * (NM - 1));
-    if (i > NM - 2) i = NM - 2;
-    int j = 0;
-    if (e->np > 1) {
-        double fp = (atan2(w.y, w.x) - e->phi0) * (e->np / (2.0 * GGX_PI));
-        fp -= e->np * floor(fp / e->np);
-        j = (int)fp;
-        if (j > e->np - 1) j = e->np - 1;
-    }
+    int i, j;
+    double fy, fp;
+    table_cell(e, w, &i, &fy, &j, &fp);
     double m0 = mu_of_y((double)i / (NM - 1)), m1 = mu_of_y((double)(i + 1) / (NM - 1));
     *area = (m1 * m1 - m0 * m0) * (2.0 * GGX_PI / e->np);
     return i * e->np + j;
