@@ -129,7 +129,7 @@ static void against_quadrature_over_w(void **state)
 }
 
 /* ---- the rough dielectric: ggx_bsdf_albedo ---- */
-#define BSDF_PROMISE 1e-4
+#define BSDF_PROMISE 1e-5
 
 /* int f(v -> w) |w.z| dw over one side (side = +1 above, -1 below) by nested adaptive quadrature in (theta, phi)
  * about the normal of that side, with break points at the lobe's peak: the mirror direction on v's side, the
@@ -203,8 +203,13 @@ static void bsdf_albedo_deterministic(void **state)
             double r, t, e = ggx_bsdf_albedo(&s, eta, v, &r, &t);
             double side = v.z > 0 ? 1 : -1;
             double rq = bsdf_side_over_w(&s, eta, v, side), tq = bsdf_side_over_w(&s, eta, v, -side);
-            CHECK_CLOSE(r, rq, 0, BSDF_PROMISE, "R, shape %d, eta %g, view %d", i, eta, j);
-            CHECK_CLOSE(t, tq, 0, BSDF_PROMISE, "T, shape %d, eta %g, view %d", i, eta, j);
+            /* Light from the denser side: the map from facets to refracted directions folds at the critical angle,
+             * where the transmitted lobe has an integrable 1 / sqrt edge in w that the quadrature over w resolves
+             * only to ~1e-5 (at grazing: 1.6e-5, while 4e8 Monte Carlo samples agree with ggx_bsdf_albedo to 7e-7,
+             * docs/albedo.md). There the reference is trusted to 1e-4. */
+            double rel = v.z > 0 ? eta : 1 / eta, ref_tol = rel < 1 ? 1e-4 : BSDF_PROMISE;
+            CHECK_CLOSE(r, rq, 0, ref_tol, "R, shape %d, eta %g, view %d", i, eta, j);
+            CHECK_CLOSE(t, tq, 0, ref_tol, "T, shape %d, eta %g, view %d", i, eta, j);
             CHECK(e <= 1 && e == r + t, "R + T = %g", e);
             worst_q = fmax(worst_q, fmax(fabs(r - rq), fabs(t - tq)));
             printf("  shape %d eta %.3f view (%.3f, %.3f, %.3f): R %.9f (over w %+.1e), T %.9f (over w %+.1e)\n", i,

