@@ -524,7 +524,7 @@ double ggx_albedo_avg_iso_table(double alpha, ggx_masking g);
  * threads may use one at once.
  * ------------------------------------------------------------------------------------------------------------ */
 
-/* A shape's albedo table (opaque; about 66 KB for anisotropic and skewed shapes, 0.6 KB for isotropic ones). */
+/* A shape's albedo table (opaque; about 100 KB for anisotropic and skewed shapes, 0.8 KB for isotropic ones). */
 typedef struct ggx_energy ggx_energy;
 
 /* Builds the table of shape s (copied; s may be freed after): 33 x 128 albedos by ggx_albedo's quadrature (33 for
