@@ -234,5 +234,9 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
                     e->name, inv.x, inv.y);
         }
     }
+    if (next_byte(&b) == 0x5a) { /* the dielectric's albedo: milliseconds per call, so for one input in 256 */
+        double rr = -1, tt = -1, e = ggx_bsdf_albedo(&s, eta, v, &rr, &tt);
+        REQUIRE(isfinite(e) && rr >= 0 && tt >= 0 && e == rr + tt && e <= 1 + 1e-12, "bsdf albedo R %g T %g", rr, tt);
+    }
     return 0;
 }
