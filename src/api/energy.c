@@ -152,7 +152,12 @@ GGX_API ggx_status ggx_energy_create(const ggx_shape *s, ggx_energy **out)
 
     /* Nodes. Unskewed: E(phi0 + d) = E(phi0 - d) = E(phi0 + pi - d), so columns 0..np/4 determine the rest. */
     int jmax = s->kind == GGX_SHAPE_SKEWED ? np - 1 : np / 4;
-    for (int i = 1; i < NM; i++) {
+    /* Isotropic shapes in the shipped table's range read their rows from it (its rows include these: y = i / 32 is
+     * its row 2 i), instead of 32 quadratures. */
+    double probe;
+    int shipped = iso && ggx_internal_iso_table_i(s->alpha_x, 1.0, &probe);
+    for (int i = 1; i < NM && shipped; i++) ggx_internal_iso_table_i(s->alpha_x, (double)i / (NM - 1), &e->tab[i]);
+    for (int i = 1; i < NM && !shipped; i++) {
         double y = (double)i / (NM - 1);
         for (int j = 0; j <= jmax; j++) {
             ggx_vec3 v = view_at(y, e->phi0 + 2.0 * GGX_PI * j / np);

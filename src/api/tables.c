@@ -32,6 +32,26 @@ static int cell(double t, int n, double *f)
 
 static int in_table(double alpha) { return alpha >= ISO_AMIN && alpha <= ISO_AMAX; }
 
+/* I = E / P at row coordinate y in [0, 1] and alpha in the table's range, bicubic (exact at the nodes in y). */
+static double iso_i(int hc, double y, double alpha)
+{
+    double fy, fx;
+    int i = cell(y, ISO_NY, &fy), j = cell(iso_x_of_alpha(alpha), ISO_NA, &fx);
+    double c[4];
+    for (int dj = -1; dj <= 2; dj++) {
+        double p[4] = {node(hc, i - 1, j + dj), node(hc, i, j + dj), node(hc, i + 1, j + dj), node(hc, i + 2, j + dj)};
+        c[dj + 1] = catmull_rom(p, fy);
+    }
+    return catmull_rom(c, fx);
+}
+
+int ggx_internal_iso_table_i(double alpha, double y, double *i_value)
+{
+    if (!(alpha >= ISO_AMIN && alpha <= ISO_AMAX)) return 0;
+    *i_value = iso_i(0, y, alpha);
+    return 1;
+}
+
 GGX_API double ggx_albedo_iso_table(double alpha, double mu, ggx_masking g)
 {
     int hc = g == GGX_MASKING_HEIGHT_CORRELATED;
@@ -40,14 +60,7 @@ GGX_API double ggx_albedo_iso_table(double alpha, double mu, ggx_masking g)
     if (mu > 1) mu = 1;
     ggx_vec3 v = {sqrt(fmax(0.0, 1.0 - mu * mu)), 0.0, mu};
     if (!in_table(alpha)) return hc ? ggx_albedo_height_correlated(&s, v) : ggx_albedo(&s, v);
-    double fy, fx;
-    int i = cell(iso_y_of_mu(mu), ISO_NY, &fy), j = cell(iso_x_of_alpha(alpha), ISO_NA, &fx);
-    double c[4];
-    for (int dj = -1; dj <= 2; dj++) {
-        double p[4] = {node(hc, i - 1, j + dj), node(hc, i, j + dj), node(hc, i + 1, j + dj), node(hc, i + 2, j + dj)};
-        c[dj + 1] = catmull_rom(p, fy);
-    }
-    double e = ggx_internal_albedo_scale(&s, v) * catmull_rom(c, fx);
+    double e = ggx_internal_albedo_scale(&s, v) * iso_i(hc, iso_y_of_mu(mu), alpha);
     return e > 0 ? (e < 1 ? e : 1) : 0;
 }
 
