@@ -234,6 +234,11 @@ static double albedo(const ggx_shape *s, ggx_vec3 v, int hc, double tol)
 
 double ggx_internal_albedo(const ggx_shape *s, ggx_vec3 v, int hc, double tol) { return albedo(s, v, hc, tol); }
 
+int ggx_internal_is_isotropic(const ggx_shape *s)
+{
+    return s->kind != GGX_SHAPE_SKEWED && fabs(s->alpha_x - s->alpha_y) <= 1e-12 * fabs(s->alpha_x);
+}
+
 /* ---- The rough dielectric: R(v) + T(v) = int f(v -> w) |w.z| dw over both sides (ggx_bsdf_eval) ----
  * Light from v (either side; u = sgn(v.z) v) meets the facets m with u.m > 0 in proportion D_u(m) dm, which in
  * sphere space is P(u) / pi (u'.k) dk on the lune {k.z > 0, u'.k > 0} (as above), and leaves by reflection with
@@ -432,7 +437,7 @@ static double albedo_avg(const ggx_shape *s, int hc)
     pthread_once(&gl_once, gl_compute);
     avg_ctx c = {s, hc, 1.0, 0.0, AVG_TOL};
     double r;
-    int iso = s->kind != GGX_SHAPE_SKEWED && fabs(s->alpha_x - s->alpha_y) <= 1e-12 * fabs(s->alpha_x);
+    int iso = ggx_internal_is_isotropic(s);
     if (iso) {
         r = 2.0 * avg_phi(0.0, &c); /* E does not depend on the view's azimuth */
     } else if (s->kind != GGX_SHAPE_SKEWED) {

@@ -24,6 +24,7 @@
 #include <stdlib.h>
 
 #include "../common/gauss.h"
+#include "../common/albedo_rows.h"
 #include "../common/interp.h"
 #include "internal.h"
 
@@ -46,6 +47,9 @@ struct ggx_energy {
     double *cdf;  /* (NM - 1) np + 1 cumulative cell weights, cdf[0] = 0 */
 };
 
+/* F = 1, for a NULL ggx_fresnel. */
+static const ggx_fresnel fresnel_one = {GGX_FRESNEL_ONE, 0, 0, 0};
+
 static double gl_x[16], gl_w[16], cell_x[CELL_GL], cell_w[CELL_GL];
 static pthread_once_t once = PTHREAD_ONCE_INIT;
 static void init_rules(void)
@@ -58,7 +62,7 @@ static double mu_of_y(double y) { return sin(0.5 * GGX_PI * y * y); }
 
 static ggx_vec3 view_at(double y, double phi)
 {
-    double th = 0.5 * GGX_PI * (1.0 - y * y), st = sin(th);
+    double th = rows_theta_of_y(y), st = sin(th);
     ggx_vec3 v = {st * cos(phi), st * sin(phi), cos(th)};
     return v;
 }
@@ -81,7 +85,7 @@ static double node(const ggx_energy *e, int i, int j)
 static void table_cell(const ggx_energy *e, ggx_vec3 w, int *i, double *fy, int *j, double *fp)
 {
     double st = sqrt(w.x * w.x + w.y * w.y), th = atan2(st, w.z);
-    double y = sqrt(fmax(0.0, 1.0 - th * (2.0 / GGX_PI))) * (NM - 1);
+    double y = rows_y_of_theta(th) * (NM - 1);
     *i = (int)y;
     if (*i > NM - 2) *i = NM - 2;
     if (*i < 0) *i = 0;
@@ -137,7 +141,7 @@ GGX_API ggx_status ggx_energy_create(const ggx_shape *s, ggx_energy **out)
     *out = NULL;
     if (!s) return GGX_ERR_NULL;
     pthread_once(&once, init_rules);
-    int iso = s->kind != GGX_SHAPE_SKEWED && fabs(s->alpha_x - s->alpha_y) <= 1e-12 * fabs(s->alpha_x);
+    int iso = ggx_internal_is_isotropic(s);
     int np = iso ? 1 : NP_FULL, ncell = (NM - 1) * np;
     int pw = np == 1 ? 1 : np + 3;
     ggx_energy *e = malloc(sizeof *e + sizeof(double) * ((size_t)NM * np + (size_t)(NM + 2) * pw + ncell + 1));
@@ -308,8 +312,7 @@ static double ms_lobe(const ggx_energy *e, double fms, ggx_vec3 wi, ggx_vec3 wo)
 
 GGX_API double ggx_brdf_ms_eval(const ggx_energy *e, const ggx_fresnel *f, ggx_vec3 wi, ggx_vec3 wo)
 {
-    const ggx_fresnel one = {GGX_FRESNEL_ONE, 0, 0, 0};
-    if (!f) f = &one;
+    if (!f) f = &fresnel_one;
     ggx_vec3 a, b;
     if (!e || !unit_up(wi, &a) || !unit_up(wo, &b)) return 0.0;
     return ms_lobe(e, ms_fresnel(e, f), a, b);
@@ -379,8 +382,7 @@ static ggx_sample invalid(void)
 
 GGX_API ggx_sample ggx_sample_brdf_ms(const ggx_energy *e, const ggx_fresnel *f, ggx_vec3 wi, double u1, double u2)
 {
-    const ggx_fresnel one = {GGX_FRESNEL_ONE, 0, 0, 0};
-    if (!f) f = &one;
+    if (!f) f = &fresnel_one;
     ggx_vec3 a;
     if (!e || !unit_up(wi, &a)) return invalid();
     ggx_vec3 w = ms_direction(e, u1, u2);
@@ -404,8 +406,7 @@ static double ss_share(const ggx_energy *e, const ggx_fresnel *f, ggx_vec3 wi, d
 
 GGX_API double ggx_brdf_compensated_eval(const ggx_energy *e, const ggx_fresnel *f, ggx_vec3 wi, ggx_vec3 wo)
 {
-    const ggx_fresnel one = {GGX_FRESNEL_ONE, 0, 0, 0};
-    if (!f) f = &one;
+    if (!f) f = &fresnel_one;
     ggx_vec3 a, b;
     if (!e || !unit_up(wi, &a) || !unit_up(wo, &b)) return 0.0;
     return ggx_brdf_eval_d(&e->s, f, a, b) + ms_lobe(e, ms_fresnel(e, f), a, b);
@@ -413,8 +414,7 @@ GGX_API double ggx_brdf_compensated_eval(const ggx_energy *e, const ggx_fresnel 
 
 GGX_API double ggx_pdf_brdf_compensated(const ggx_energy *e, const ggx_fresnel *f, ggx_vec3 wi, ggx_vec3 wo)
 {
-    const ggx_fresnel one = {GGX_FRESNEL_ONE, 0, 0, 0};
-    if (!f) f = &one;
+    if (!f) f = &fresnel_one;
     ggx_vec3 a, b;
     if (!e || !unit_up(wi, &a) || !unit_up(wo, &b)) return 0.0;
     double ew, fms, p = ss_share(e, f, a, &ew, &fms);
@@ -424,21 +424,23 @@ GGX_API double ggx_pdf_brdf_compensated(const ggx_energy *e, const ggx_fresnel *
 GGX_API ggx_sample ggx_sample_brdf_compensated(const ggx_energy *e, const ggx_fresnel *f, ggx_vec3 wi, double u1,
                                                double u2, double u3)
 {
-    const ggx_fresnel one = {GGX_FRESNEL_ONE, 0, 0, 0};
-    if (!f) f = &one;
+    if (!f) f = &fresnel_one;
     ggx_vec3 a;
     if (!e || !unit_up(wi, &a)) return invalid();
     double ew, fms, p = ss_share(e, f, a, &ew, &fms);
     ggx_vec3 w;
-    if (clamp01(u3) < p) {
+    double pdf_ss;
+    if (clamp01(u3) < p) { /* the sample carries its own pdf, ggx_pdf_brdf_bounded's */
         ggx_sample ss = ggx_sample_brdf_bounded_d(&e->s, f, a, u1, u2);
         if (ss.event != GGX_EVENT_REFLECT) return invalid();
         w = ss.w;
+        pdf_ss = ss.pdf;
     } else {
         w = ms_direction(e, u1, u2);
+        pdf_ss = ggx_pdf_brdf_bounded_d(&e->s, a, w); /* 0 for w.z <= 0, which is refused below */
     }
     if (!(w.z > 0)) return invalid();
-    double pdf = p * ggx_pdf_brdf_bounded_d(&e->s, a, w) + (1.0 - p) * ms_pdf(e, w);
+    double pdf = p * pdf_ss + (1.0 - p) * ms_pdf(e, w);
     if (!(pdf > 0)) return invalid();
     double fr = ggx_brdf_eval_d(&e->s, f, a, w) + ms_lobe_e(e, fms, ew, w);
     ggx_sample r = {w, pdf, fr * w.z / pdf, GGX_EVENT_REFLECT};

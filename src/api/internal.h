@@ -36,6 +36,8 @@
  * smooth (docs/albedo.md). v.z > 0. */
 double ggx_internal_albedo(const ggx_shape *s, ggx_vec3 v, int hc, double tol);
 double ggx_internal_albedo_scale(const ggx_shape *s, ggx_vec3 v);
+/* Whether E depends on the view's polar angle only: unskewed with alpha_x = alpha_y (to 1e-12). */
+int ggx_internal_is_isotropic(const ggx_shape *s);
 /* From src/api/tables.c: I = E / P of the shipped isotropic table (separable G) at row coordinate y in [0, 1]
  * (theta = (pi / 2)(1 - y^2)) for alpha; returns 0 (and writes nothing) for alpha outside the table's range. */
 int ggx_internal_iso_table_i(double alpha, double y, double *i_value);

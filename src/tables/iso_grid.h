@@ -11,6 +11,7 @@
 #include <math.h>
 
 #include "ggx/ggx.h"
+#include "../common/albedo_rows.h"
 
 enum { ISO_NY = 65, ISO_NA = 97 };
 #define ISO_AMIN 1e-3
@@ -21,7 +22,7 @@ static inline double iso_x_of_alpha(double a) { return log(a / ISO_AMIN) / log(I
 /* The view of row coordinate y in [0, 1] (in the x-z plane; isotropic E does not depend on the azimuth). */
 static inline ggx_vec3 iso_view_of_y(double y)
 {
-    double th = 0.5 * 3.14159265358979323846 * (1.0 - y * y);
+    double th = rows_theta_of_y(y);
     ggx_vec3 v = {sin(th), 0.0, cos(th)};
     if (y >= 1.0) v.x = 0.0, v.z = 1.0;
     return v;
@@ -29,9 +30,7 @@ static inline ggx_vec3 iso_view_of_y(double y)
 /* The row coordinate of cos theta = mu in [0, 1]. */
 static inline double iso_y_of_mu(double mu)
 {
-    double th = acos(mu < 1 ? (mu > 0 ? mu : 0) : 1);
-    double y2 = 1.0 - th * (2.0 / 3.14159265358979323846);
-    return y2 > 0 ? sqrt(y2) : 0.0;
+    return rows_y_of_theta(acos(mu < 1 ? (mu > 0 ? mu : 0) : 1));
 }
 
 #endif
