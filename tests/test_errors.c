@@ -54,6 +54,59 @@ static void shape_statuses(void **state)
     CHECK(strcmp(ggx_status_str((ggx_status)999), "unknown status") == 0, "unknown");
 }
 
+/* ggx_ellipsoid_matrix: S Rx Ry Rz multiplied out here from the three rotation matrices (Walter eq 3), the same
+ * statuses as ggx_shape_ellipsoid with A untouched on error, and ggx_shape_matrix of it is ggx_shape_ellipsoid's shape
+ * bit for bit. */
+static void ellipsoid_matrix(void **state)
+{
+    (void)state;
+    const double p[][5] = {{0.15, 0.5, 0, 0, 0}, {0.3, 0.6, 0.35, -0.26, 0.52}, {1e-5, 2.0, -1.5, 1.2, 7.0}};
+    for (unsigned k = 0; k < sizeof p / sizeof p[0]; k++) {
+        const double *q = p[k];
+        double cx = cos(q[2]), sx = sin(q[2]), cy = cos(q[3]), sy = sin(q[3]), cz = cos(q[4]), sz = sin(q[4]);
+        const double rx[3][3] = {{1, 0, 0}, {0, cx, -sx}, {0, sx, cx}};
+        const double ry[3][3] = {{cy, 0, sy}, {0, 1, 0}, {-sy, 0, cy}};
+        const double rz[3][3] = {{cz, -sz, 0}, {sz, cz, 0}, {0, 0, 1}};
+        double rxy[3][3] = {{0}}, want[3][3] = {{0}};
+        for (int i = 0; i < 3; i++)
+            for (int j = 0; j < 3; j++)
+                for (int l = 0; l < 3; l++) rxy[i][j] += rx[i][l] * ry[l][j];
+        const double scale[3] = {fmax(q[0], GGX_ALPHA_MIN), fmax(q[1], GGX_ALPHA_MIN), 1.0};
+        for (int i = 0; i < 3; i++)
+            for (int j = 0; j < 3; j++) {
+                for (int l = 0; l < 3; l++) want[i][j] += rxy[i][l] * rz[l][j];
+                want[i][j] *= scale[i];
+            }
+        double A[3][3];
+        CHECK(ggx_ellipsoid_matrix(A, q[0], q[1], q[2], q[3], q[4]) == GGX_OK, "case %u", k);
+        for (int i = 0; i < 3; i++)
+            for (int j = 0; j < 3; j++)
+                CHECK(fabs(A[i][j] - want[i][j]) <= 1e-15, "case %u A[%d][%d] = %.17g, want %.17g", k, i, j, A[i][j],
+                      want[i][j]);
+        ggx_shape from_matrix, direct;
+        memset(&from_matrix, 0, sizeof from_matrix);
+        memset(&direct, 0, sizeof direct);
+        CHECK(ggx_shape_matrix(&from_matrix, (const double(*)[3])A) == GGX_OK, "case %u matrix", k);
+        CHECK(ggx_shape_ellipsoid(&direct, q[0], q[1], q[2], q[3], q[4]) == GGX_OK, "case %u ellipsoid", k);
+        CHECK(memcmp(&from_matrix, &direct, sizeof direct) == 0, "case %u: shapes differ", k);
+    }
+    double A[3][3] = {{7, 7, 7}, {7, 7, 7}, {7, 7, 7}};
+    const struct {
+        ggx_status got, want;
+    } cases[] = {
+        {ggx_ellipsoid_matrix(NULL, 0.3, 0.3, 0, 0, 0), GGX_ERR_NULL},
+        {ggx_ellipsoid_matrix(A, NAN, 0.3, 0, 0, 0), GGX_ERR_NONFINITE},
+        {ggx_ellipsoid_matrix(A, 0.3, 0.3, 0, 0, INFINITY), GGX_ERR_NONFINITE},
+        {ggx_ellipsoid_matrix(A, 0.3, 0.0, 0, 0, 0), GGX_ERR_ALPHA},
+        {ggx_ellipsoid_matrix(A, 2e4, 0.3, 0, 0, 0), GGX_ERR_ALPHA},
+        {ggx_ellipsoid_matrix(A, 0.3, 0.3, 0, 1.6, 0), GGX_ERR_ANGLE},
+    };
+    for (unsigned i = 0; i < sizeof cases / sizeof cases[0]; i++)
+        CHECK(cases[i].got == cases[i].want, "status case %u: got %d", i, cases[i].got);
+    for (int i = 0; i < 3; i++)
+        for (int j = 0; j < 3; j++) CHECK(A[i][j] == 7, "A modified on error");
+}
+
 /* alpha below GGX_ALPHA_MIN is raised to it; a negative-determinant matrix is the same distribution. */
 static void clamps_and_signs(void **state)
 {
@@ -146,6 +199,7 @@ int main(void)
 {
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(shape_statuses),
+        cmocka_unit_test(ellipsoid_matrix),
         cmocka_unit_test(clamps_and_signs),
         cmocka_unit_test(hot_functions_outside_domain),
         cmocka_unit_test(fresnel_statuses),

@@ -141,6 +141,13 @@ ggx_status ggx_shape_aniso(ggx_shape *s, double alpha_x, double alpha_y);
 ggx_status ggx_shape_ellipsoid(ggx_shape *s, double alpha_x, double alpha_y, double theta_x, double theta_y,
                                double theta_z);
 
+/* The matrix A = diag(alpha_x, alpha_y, 1) Rx(theta_x) Ry(theta_y) Rz(theta_z) of ggx_shape_ellipsoid (Walter eq 2-3),
+ * row-major, with the same domain, alpha raised to GGX_ALPHA_MIN and errors (but no conditioning test: that is
+ * ggx_shape_matrix's, which turns A into the shape ggx_shape_ellipsoid gives, bit for bit). The shape stores a
+ * canonical Q A instead (ggx_shape.a); this is the A a user wrote. A is unchanged on error. */
+ggx_status ggx_ellipsoid_matrix(double A[3][3], double alpha_x, double alpha_y, double theta_x, double theta_y,
+                                double theta_z);
+
 /* Any invertible A, row-major (A[row][col], so A n is the last column). A and c A (c != 0) and Q A (Q orthogonal)
  * give the same distributions; a negative determinant is handled by using -A. Absolute areas
  * (ggx_projected_area, ggx_lune_area) and the curvature do depend on the scale of A (Ce = 1).

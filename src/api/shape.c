@@ -143,10 +143,10 @@ GGX_API ggx_status ggx_shape_aniso(ggx_shape *s, double alpha_x, double alpha_y)
 
 GGX_API ggx_status ggx_shape_iso(ggx_shape *s, double alpha) { return ggx_shape_aniso(s, alpha, alpha); }
 
-GGX_API ggx_status ggx_shape_ellipsoid(ggx_shape *s, double alpha_x, double alpha_y, double theta_x, double theta_y,
-                               double theta_z)
+GGX_API ggx_status ggx_ellipsoid_matrix(double A[3][3], double alpha_x, double alpha_y, double theta_x,
+                                        double theta_y, double theta_z)
 {
-    if (!s) return GGX_ERR_NULL;
+    if (!A) return GGX_ERR_NULL;
     if (!isfinite(theta_x) || !isfinite(theta_y) || !isfinite(theta_z)) return GGX_ERR_NONFINITE;
     ggx_status st = check_alpha(&alpha_x);
     if (st == GGX_OK) st = check_alpha(&alpha_y);
@@ -166,9 +166,18 @@ GGX_API ggx_status ggx_shape_ellipsoid(ggx_shape *s, double alpha_x, double alph
         r[1][j] = cx * ry_rz[1][j] - sx * ry_rz[2][j];
         r[2][j] = sx * ry_rz[1][j] + cx * ry_rz[2][j];
     }
-    double A[3][3];
     double scale[3] = {alpha_x, alpha_y, 1.0};
     for (int i = 0; i < 3; i++)
         for (int j = 0; j < 3; j++) A[i][j] = scale[i] * r[i][j];
+    return GGX_OK;
+}
+
+GGX_API ggx_status ggx_shape_ellipsoid(ggx_shape *s, double alpha_x, double alpha_y, double theta_x, double theta_y,
+                               double theta_z)
+{
+    if (!s) return GGX_ERR_NULL;
+    double A[3][3];
+    ggx_status st = ggx_ellipsoid_matrix(A, alpha_x, alpha_y, theta_x, theta_y, theta_z);
+    if (st != GGX_OK) return st;
     return shape_from_matrix(s, (const double(*)[3])A);
 }
