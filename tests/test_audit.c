@@ -24,8 +24,8 @@ static void audit(void **state)
 {
     (void)state;
     double A[2][3][3];
-    audit_walter_matrix(A[0], 0.15, 0.5, 0, 0, 0);
-    audit_walter_matrix(A[1], 0.3, 0.6, 0.4, -0.3, 0.5);
+    CHECK(ggx_ellipsoid_matrix(A[0], 0.15, 0.5, 0, 0, 0) == GGX_OK, "diagonal");
+    CHECK(ggx_ellipsoid_matrix(A[1], 0.3, 0.6, 0.4, -0.3, 0.5) == GGX_OK, "skewed");
     audit_row rows[AUDIT_MAX_ROWS];
     remove("chi2_audit.csv");
     int n = audit_run((const double(*)[3][3])A, rows, 0);

@@ -7,17 +7,6 @@
 
 #include "ggx/ggx_samplers.h"
 
-void audit_walter_matrix(double A[3][3], double ax, double ay, double tx, double ty, double tz)
-{
-    double cx = cos(tx), sx = sin(tx), cy = cos(ty), sy = sin(ty), cz = cos(tz), sz = sin(tz);
-    double ryz[3][3] = {{cy * cz, -cy * sz, sy}, {sz, cz, 0}, {-sy * cz, sy * sz, cy}};
-    for (int j = 0; j < 3; j++) {
-        A[0][j] = ax * ryz[0][j];
-        A[1][j] = ay * (cx * ryz[1][j] - sx * ryz[2][j]);
-        A[2][j] = sx * ryz[1][j] + cx * ryz[2][j];
-    }
-}
-
 typedef ggx_vec3 (*vndf_fn)(const ggx_shape *, ggx_vec3, double, double);
 /* A sampler as a seed writes it, in terms of the matrix A it is given. */
 typedef ggx_vec3 (*literal_fn)(const double A[3][3], double u1, double u2);

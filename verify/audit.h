@@ -26,7 +26,5 @@ void audit_markdown(FILE *f, const audit_row *rows, int n, const char *label_dia
  * for skewed shapes, right for unskewed ones. The negative control of the chi-square tests and `ggx check`'s
  * deliberately wrong sampler. */
 ggx_vec3 verify_crescent_blog_s(const ggx_shape *s, ggx_vec3 v, double u1, double u2);
-/* Walter's A = diag(ax, ay, 1) Rx(tx) Ry(ty) Rz(tz), angles in radians. */
-void audit_walter_matrix(double A[3][3], double ax, double ay, double tx, double ty, double tz);
 
 #endif
