@@ -1,0 +1,841 @@
+"""libggx for Python: Walter's Ellipsoid NDF (anisotropic, rotated and skewed GGX) on numpy arrays.
+
+Conventions are the C library's (include/ggx/ggx.h): local frame with the macro-surface normal n = +z, every
+direction a unit vector pointing away from the surface, angles in radians. A shape is made once
+(``Shape.iso``, ``Shape.aniso``, ``Shape.ellipsoid``, ``Shape.matrix``) and passed to the functions.
+
+Arrays follow numpy's rules: directions are arrays of shape (..., 3), numbers arrays of shape (...); the leading
+dimensions of all inputs broadcast together and give the result's shape (a direction result has shape (..., 3)).
+Inputs are converted to float64. Results are float64 and, element by element, bit for bit what the C function
+returns (each function names it). ``dtype=np.float32`` uses the float batch API (include/ggx/ggx_batch.h, SIMD) where
+it has the function (ndf, g1, pdf_vndf, brdf, sample_ndf and sample_vndf with a batch sampler, sample_brdf), within
+the accuracy that header states; elsewhere float32 results are the float64 ones rounded.
+
+Errors raise ValueError: a shape or Fresnel term the library refuses (with its status message), inputs that do not
+broadcast, a direction array whose last axis is not 3, an unknown sampler or option. Any real input, NaN and
+infinities included, gives a finite result (the C library's contract): 0 outside the domain, the zero vector for a
+sampler that has no sample.
+"""
+
+import collections
+import ctypes
+import math
+import os
+import weakref
+
+import numpy as np
+
+__all__ = [
+    "Shape", "Fresnel", "Energy", "SamplerInfo", "BrdfSample", "DirectionSample", "samplers", "status_message",
+    "ndf", "ndf_spherical", "p22", "gaussian_curvature", "projected_area", "lune_area", "lambda_", "g1", "g1_smith",
+    "g2", "pdf_ndf", "pdf_vndf", "brdf", "bsdf", "albedo", "albedo_avg", "bsdf_albedo", "albedo_iso_table",
+    "albedo_avg_iso_table", "sample", "pdf", "sample_inverse", "sample_ndf", "sample_vndf", "sample_brdf",
+    "pdf_brdf", "sample_bsdf", "pdf_bsdf", "batch_isa", "set_batch_threads",
+]
+
+_lib = ctypes.CDLL(os.path.join(os.path.dirname(os.path.abspath(__file__)), "_ggx_native.so"))
+
+_vp = ctypes.c_void_p
+_sz = ctypes.c_size_t
+_d = ctypes.c_double
+_i = ctypes.c_int
+
+
+class _In(ctypes.Structure):
+    """An input array of the native loops: its address and the step in doubles between elements (0: broadcast)."""
+    _fields_ = [("p", _vp), ("step", ctypes.c_ssize_t)]
+
+
+_inp = ctypes.POINTER(_In)
+
+
+def _proto(name, restype, *argtypes):
+    f = getattr(_lib, name)
+    f.restype = restype
+    f.argtypes = list(argtypes)
+    return f
+
+
+_status_str = _proto("ggx_status_str", ctypes.c_char_p, _i)
+_ellipsoid_matrix = _proto("ggx_ellipsoid_matrix", _i, _vp, _d, _d, _d, _d, _d)
+_shape_ellipsoid = _proto("ggx_shape_ellipsoid", _i, _vp, _d, _d, _d, _d, _d)
+_shape_matrix = _proto("ggx_shape_matrix", _i, _vp, _vp)
+_shape_kind = _proto("ggxpy_shape_kind", _i, _vp)
+_shape_canonical = _proto("ggxpy_shape_canonical", None, _vp, _vp)
+_fresnel_setup = {
+    "one": _proto("ggx_fresnel_one", _i, _vp),
+    "dielectric": _proto("ggx_fresnel_dielectric", _i, _vp, _d),
+    "conductor": _proto("ggx_fresnel_conductor", _i, _vp, _d, _d),
+    "schlick": _proto("ggx_fresnel_schlick", _i, _vp, _d),
+}
+_fresnel_avg = _proto("ggx_fresnel_avg", _d, _vp)
+_SHAPE_SIZE = _proto("ggxpy_sizeof_shape", _sz)()
+_FRESNEL_SIZE = _proto("ggxpy_sizeof_fresnel", _sz)()
+
+# The native loops (python/src/native.c).
+_loop_s = {k: _proto("ggxpy_s_" + k, None, _vp, _vp, _sz, _inp, _vp) for k in ("v", "vv", "vvv", "dd")}
+_loop_sf_vv = _proto("ggxpy_sf_vv", None, _vp, _vp, _vp, _sz, _inp, _vp)
+_loop_bsdf = _proto("ggxpy_bsdf", None, _vp, _d, _i, _sz, _inp, _vp)
+_loop_bsdf_albedo = _proto("ggxpy_bsdf_albedo", None, _vp, _d, _sz, _inp, _vp, _vp)
+_loop_fresnel = _proto("ggxpy_fresnel", None, _vp, _sz, _inp, _vp)
+_loop_iso_table = _proto("ggxpy_albedo_iso_table", None, _i, _sz, _inp, _vp)
+_loop_sampler_pdf = _proto("ggxpy_sampler_pdf", None, _i, _vp, _d, _sz, _inp, _vp)
+_loop_sample = _proto("ggxpy_sample", None, _i, _vp, _sz, _inp, _vp)
+_loop_inverse = _proto("ggxpy_inverse", None, _i, _vp, _sz, _inp, _vp)
+_loop_reject = _proto("ggxpy_sample_reject", None, _i, _vp, _sz, _inp, _vp, _vp)
+_loop_direction = _proto("ggxpy_sample_direction", None, _i, _vp, _vp, _d, _i, _sz, _inp, _vp, _vp, _vp, _vp)
+_loop_energy_albedo = _proto("ggxpy_energy_albedo", None, _vp, _sz, _inp, _vp)
+_loop_energy_pdf_ms = _proto("ggxpy_energy_pdf_ms", None, _vp, _sz, _inp, _vp)
+_loop_ef_vv = _proto("ggxpy_ef_vv", None, _vp, _vp, _vp, _sz, _inp, _vp)
+_loop_energy_sample = _proto("ggxpy_energy_sample", None, _i, _vp, _vp, _sz, _inp, _vp, _vp, _vp, _vp)
+
+_energy_create = _proto("ggx_energy_create", _i, _vp, ctypes.POINTER(_vp))
+_energy_free = _proto("ggx_energy_free", None, _vp)
+_energy_albedo_avg = _proto("ggx_energy_albedo_avg", _d, _vp)
+_albedo_avg_fn = {
+    "separable": _proto("ggx_albedo_avg", _d, _vp),
+    "height-correlated": _proto("ggx_albedo_avg_height_correlated", _d, _vp),
+}
+_albedo_avg_iso_table = _proto("ggx_albedo_avg_iso_table", _d, _d, _i)
+
+# The float batch API (include/ggx/ggx_batch.h), called directly.
+_batch_ndf = _proto("ggx_batch_ndf", None, _vp, _sz, _vp, _vp, _vp, _vp)
+_batch_g1 = _proto("ggx_batch_g1", None, _vp, _sz, _vp, _vp, _vp, _vp, _vp, _vp, _vp)
+_batch_pdf_vndf = _proto("ggx_batch_pdf_vndf", None, _vp, _sz, _vp, _vp, _vp, _vp, _vp, _vp, _vp)
+_batch_brdf = _proto("ggx_batch_brdf", None, _vp, _sz, _vp, _vp, _vp, _vp, _vp, _vp, _vp, _vp)
+_batch_normals = _proto("ggx_batch_sample_normals", _i, _i, _vp, _vp, _vp, _sz, _vp, _vp, _vp, _vp, _vp, _vp)
+_batch_sample_brdf = _proto("ggx_batch_sample_brdf", None, _vp, _vp, _vp, _vp, _vp, _sz, _vp, _vp, _vp, _vp, _vp,
+                            _vp, _vp)
+_batch_get_isa = _proto("ggx_batch_get_isa", _i)
+_batch_isa_name = _proto("ggx_batch_isa_name", ctypes.c_char_p, _i)
+_batch_set_threads = _proto("ggx_batch_set_threads", _i, _i)
+
+
+def _fn(name):
+    """The address of a C function of the library, for the native loops."""
+    return ctypes.cast(getattr(_lib, name), _vp).value
+
+
+def status_message(status):
+    """The library's one-line message for a status code (ggx_status_str)."""
+    return _status_str(int(status)).decode()
+
+
+def _check(status):
+    if status != 0:
+        raise ValueError(status_message(status))
+
+
+def _real(x, what):
+    """A real number for a setup parameter (NaN and infinities pass: the library refuses them with its status)."""
+    try:
+        a = np.asarray(x)
+        if a.shape != () or a.dtype.kind not in "biuf":
+            raise TypeError
+        return float(a)
+    except (TypeError, ValueError):
+        raise ValueError(f"{what}: expected a real number, got {x!r}") from None
+
+
+def _array(x, what):
+    """x as a float64 array; real inputs only (a complex value would silently lose its imaginary part)."""
+    try:
+        a = np.asarray(x)
+        if a.dtype.kind not in "biuf":
+            if a.dtype.kind != "O":
+                raise TypeError
+            a = a.astype(np.float64)
+        return np.asarray(a, dtype=np.float64)
+    except (TypeError, ValueError):
+        raise ValueError(f"{what}: expected real numbers, got {x!r}") from None
+
+
+def _dtype(dtype):
+    try:
+        dt = np.dtype(dtype)
+    except TypeError:
+        raise ValueError(f"dtype: expected float64 or float32, got {dtype!r}") from None
+    if dt not in (np.dtype(np.float64), np.dtype(np.float32)):
+        raise ValueError(f"dtype: expected float64 or float32, got {dt}")
+    return dt
+
+
+def _choice(value, choices, what):
+    if value not in choices:
+        raise ValueError(f"{what}: expected one of {', '.join(map(repr, choices))}, got {value!r}")
+    return choices[value] if isinstance(choices, dict) else value
+
+
+_MODES = {"radiance": 0, "importance": 1}
+_MASKINGS = {"separable": 0, "height-correlated": 1}
+
+
+class _Args:
+    """Inputs converted, broadcast and laid out for a native loop: .shape (the broadcast leading shape), .n, .ins
+    (the _In array), and .arrays (kept alive for the call). Each spec is (value, name, width): width 3 for
+    directions, 1 for numbers."""
+
+    def __init__(self, *specs):
+        arrays = []
+        for value, what, width in specs:
+            a = _array(value, what)
+            if width == 3 and (a.ndim == 0 or a.shape[-1] != 3):
+                raise ValueError(f"{what}: expected an array of shape (..., 3), got shape {a.shape}")
+            arrays.append(a)
+        lead = [a.shape[:-1] if w == 3 else a.shape for a, (_, _, w) in zip(arrays, specs)]
+        try:
+            self.shape = np.broadcast_shapes(*lead)
+        except ValueError:
+            names = ", ".join(f"{what} {s}" for (_, what, _), s in zip(specs, lead))
+            raise ValueError(f"inputs do not broadcast together: {names}") from None
+        self.n = math.prod(self.shape)
+        self.ins = (_In * max(len(specs), 1))()
+        self.arrays = []
+        for k, (a, (_, _, width)) in enumerate(zip(arrays, specs)):
+            core = lead[k]
+            if math.prod(core) == 1:  # one value for every element: no copy
+                a = np.ascontiguousarray(a.reshape(width))
+                step = 0
+            else:
+                if core != self.shape or not a.flags.c_contiguous:
+                    full = self.shape + ((3,) if width == 3 else ())
+                    a = np.ascontiguousarray(np.broadcast_to(a, full))
+                step = width
+            self.arrays.append(a)
+            self.ins[k].p = a.ctypes.data
+            self.ins[k].step = step
+
+    def out(self, *tail, dtype=np.float64):
+        return np.empty(self.shape + tail, dtype=dtype)
+
+    def soa32(self, k):
+        """Input k as float32 arrays of n elements (x, y, z for a direction), for the batch API."""
+        a = self.arrays[k]
+        if a.ndim >= 1 and a.shape[-1] == 3 and self.ins[k].step in (0, 3) and (self.ins[k].step == 3 or a.ndim == 1
+                                                                                and a.size == 3):
+            full = np.broadcast_to(a.reshape(-1, 3) if self.ins[k].step else a, (self.n, 3))
+            return [np.ascontiguousarray(full[:, c], dtype=np.float32) for c in range(3)]
+        return [np.ascontiguousarray(np.broadcast_to(a.reshape(-1) if self.ins[k].step else a[:1], (self.n,)),
+                                     dtype=np.float32)]
+
+
+def _ptr(a):
+    return a.ctypes.data
+
+
+def _scalar(out):
+    """numpy's convention: a 0-d result is returned as a numpy scalar."""
+    return out[()] if out.ndim == 0 else out
+
+
+class _MatrixAttribute:
+    """Shape.matrix: on the class, the constructor Shape.matrix(A); on a shape, its matrix (read-only property)."""
+
+    def __get__(self, shape, cls):
+        if shape is None:
+            return cls._from_matrix
+        return shape._matrix
+
+    def __set__(self, shape, value):
+        raise AttributeError("a Shape is immutable; make a new one")
+
+
+class Shape:
+    """A microfacet shape: Walter's ellipsoid matrix A (ggx_shape). Immutable; safe to share between threads.
+
+    Make one with Shape.iso(alpha), Shape.aniso(alpha_x, alpha_y), Shape.ellipsoid(alpha_x, alpha_y, theta_x=0,
+    theta_y=0, theta_z=0) (radians; A = diag(alpha_x, alpha_y, 1) Rx Ry Rz, Walter eq 2-3) or Shape.matrix(A) (any
+    invertible 3 x 3 A, row-major). Alphas in (0, 1e4] (below 1e-4 raised to 1e-4), skews |theta_x|, |theta_y| <=
+    pi/2; a refused shape raises ValueError with the library's message.
+
+    Properties: matrix, the A given (read-only 3 x 3 float64; diag(alpha_x, alpha_y, 1) Rx Ry Rz for the
+    alpha-based constructors, from ggx_ellipsoid_matrix); canonical_matrix, the Q A the library stores; kind.
+    Shapes pickle (by their constructor and parameters) and compare equal when made by the same call.
+    """
+
+    __slots__ = ("_buf", "_matrix", "_repr", "_args", "__weakref__")
+
+    def __init__(self, *args, **kwargs):
+        raise TypeError("make a Shape with Shape.iso, Shape.aniso, Shape.ellipsoid or Shape.matrix")
+
+    @classmethod
+    def _new(cls, matrix, setup, text, args):
+        self = object.__new__(cls)
+        self._buf = ctypes.create_string_buffer(_SHAPE_SIZE)
+        _check(setup(self._buf))
+        m = np.array(matrix, dtype=np.float64).reshape(3, 3)
+        m.flags.writeable = False
+        self._matrix = m
+        self._repr = text
+        self._args = args
+        return self
+
+    @classmethod
+    def ellipsoid(cls, alpha_x, alpha_y, theta_x=0.0, theta_y=0.0, theta_z=0.0):
+        """Walter's ellipsoid (ggx_shape_ellipsoid): anisotropic GGX rotated by theta_z and skewed by theta_x,
+        theta_y (radians)."""
+        p = [_real(alpha_x, "alpha_x"), _real(alpha_y, "alpha_y"), _real(theta_x, "theta_x"),
+             _real(theta_y, "theta_y"), _real(theta_z, "theta_z")]
+        a = (_d * 9)()
+        _check(_ellipsoid_matrix(a, *p))
+        text = f"Shape.ellipsoid({p[0]!r}, {p[1]!r}, theta_x={p[2]!r}, theta_y={p[3]!r}, theta_z={p[4]!r})"
+        return cls._new(list(a), lambda b: _shape_ellipsoid(b, *p), text, ("ellipsoid", tuple(p)))
+
+    @classmethod
+    def aniso(cls, alpha_x, alpha_y):
+        """Anisotropic GGX along x and y (ggx_shape_aniso): A = diag(alpha_x, alpha_y, 1)."""
+        s = cls.ellipsoid(alpha_x, alpha_y)
+        p = s._args[1]
+        s._repr = f"Shape.aniso({p[0]!r}, {p[1]!r})"
+        s._args = ("aniso", p[:2])
+        return s
+
+    @classmethod
+    def iso(cls, alpha):
+        """Isotropic GGX of roughness alpha (ggx_shape_iso)."""
+        s = cls.ellipsoid(alpha, alpha)
+        s._repr = f"Shape.iso({s._args[1][0]!r})"
+        s._args = ("iso", s._args[1][:1])
+        return s
+
+    @classmethod
+    def _from_matrix(cls, A):
+        """Any invertible A (ggx_shape_matrix): c A and Q A (c != 0, Q orthogonal) are the same distribution."""
+        a = _array(A, "A")
+        if a.shape != (3, 3):
+            raise ValueError(f"A: expected a 3 x 3 matrix, got shape {a.shape}")
+        a = np.ascontiguousarray(a)
+        rows = "[" + ", ".join("[" + ", ".join(repr(float(x)) for x in r) + "]" for r in a) + "]"
+        return cls._new(a, lambda b: _shape_matrix(b, a.ctypes.data), f"Shape.matrix({rows})",
+                        ("matrix", (a.tolist(),)))
+
+    matrix = _MatrixAttribute()
+
+    @property
+    def canonical_matrix(self):
+        """The canonical Q A the library stores (ggx_shape.a): the same distribution, with A n along +z."""
+        a = np.empty((3, 3))
+        _shape_canonical(self._buf, a.ctypes.data)
+        a.flags.writeable = False
+        return a
+
+    @property
+    def kind(self):
+        """'diagonal' (anisotropic GGX along x, y), 'unskewed' (rotated in the tangent plane) or 'skewed'."""
+        return ("diagonal", "unskewed", "skewed")[_shape_kind(self._buf)]
+
+    def __repr__(self):
+        return self._repr
+
+    def __reduce__(self):
+        kind, p = self._args
+        return (getattr(Shape, kind), p)
+
+    def __eq__(self, other):
+        return isinstance(other, Shape) and self._args == other._args
+
+    def __hash__(self):
+        return hash(repr(self._args))
+
+
+class Fresnel:
+    """A Fresnel term (ggx_fresnel): Fresnel.one() (F = 1), Fresnel.dielectric(eta), Fresnel.conductor(eta, k),
+    Fresnel.schlick(f0). f(cos_i) evaluates it elementwise (ggx_fresnel_eval); f.avg is F_avg
+    (ggx_fresnel_avg)."""
+
+    __slots__ = ("_buf", "_repr")
+
+    def __init__(self, *args, **kwargs):
+        raise TypeError("make a Fresnel with Fresnel.one, .dielectric, .conductor or .schlick")
+
+    @classmethod
+    def _new(cls, kind, *params):
+        self = object.__new__(cls)
+        self._buf = ctypes.create_string_buffer(_FRESNEL_SIZE)
+        _check(_fresnel_setup[kind](self._buf, *params))
+        self._repr = f"Fresnel.{kind}({', '.join(repr(p) for p in params)})"
+        return self
+
+    @classmethod
+    def one(cls):
+        return cls._new("one")
+
+    @classmethod
+    def dielectric(cls, eta):
+        return cls._new("dielectric", _real(eta, "eta"))
+
+    @classmethod
+    def conductor(cls, eta, k):
+        return cls._new("conductor", _real(eta, "eta"), _real(k, "k"))
+
+    @classmethod
+    def schlick(cls, f0):
+        return cls._new("schlick", _real(f0, "f0"))
+
+    @property
+    def avg(self):
+        return _fresnel_avg(self._buf)
+
+    def __call__(self, cos_i):
+        a = _Args((cos_i, "cos_i", 1))
+        out = a.out()
+        if a.n:
+            _loop_fresnel(self._buf, a.n, a.ins, _ptr(out))
+        return _scalar(out)
+
+    def __repr__(self):
+        return self._repr
+
+
+_ONE = Fresnel.one()
+
+
+def _fresnel(f):
+    if f is None:
+        return _ONE
+    if not isinstance(f, Fresnel):
+        raise ValueError(f"fresnel: expected a ggx.Fresnel or None, got {f!r}")
+    return f
+
+
+def _shape(s):
+    if not isinstance(s, Shape):
+        raise ValueError(f"shape: expected a ggx.Shape, got {s!r}")
+    return s
+
+
+# --- Evaluations -------------------------------------------------------------------------------------------------
+
+def _eval(cname, shape, *specs):
+    """A double function of the shape and of directions (width 3) or numbers (width 1), through its native loop."""
+    s = _shape(shape)
+    a = _Args(*specs)
+    out = a.out()
+    key = "".join("v" if w == 3 else "d" for _, _, w in specs)
+    if a.n:
+        _loop_s[key](_fn(cname), s._buf, a.n, a.ins, _ptr(out))
+    return a, out
+
+
+def _cast(out, dt):
+    return _scalar(out if dt == np.float64 else out.astype(dt))
+
+
+def _batch_eval(batch, shape, dt, cname, *specs, pre=()):
+    """A function that the float batch API has: its batch loop for float32, the double loop otherwise."""
+    dt = _dtype(dt)
+    if dt == np.float64:
+        return _scalar(_eval(cname, shape, *specs)[1])
+    s = _shape(shape)
+    a = _Args(*specs)
+    out = a.out(dtype=np.float32)
+    if a.n:
+        cols = [c for k in range(len(specs)) for c in a.soa32(k)]
+        batch(_ptr(out), a.n, s._buf, *[p._buf for p in pre], *[_ptr(c) for c in cols])
+    return _scalar(out)
+
+
+def ndf(shape, m, dtype=np.float64):
+    """D(m) (ggx_ndf, Walter eq 1): >= 0, 0 for m.z < 0."""
+    return _batch_eval(_batch_ndf, shape, dtype, "ggx_ndf", (m, "m", 3))
+
+
+def ndf_spherical(shape, theta, phi):
+    """D(m) sin(theta) for m at the spherical angles (theta, phi) (ggx_ndf_spherical)."""
+    return _scalar(_eval("ggx_ndf_spherical", shape, (theta, "theta", 1), (phi, "phi", 1))[1])
+
+
+def p22(shape, slope_x, slope_y):
+    """The slope-space distribution P22 (ggx_p22)."""
+    return _scalar(_eval("ggx_p22", shape, (slope_x, "slope_x", 1), (slope_y, "slope_y", 1))[1])
+
+
+def gaussian_curvature(shape, m):
+    """Gaussian curvature of the ellipsoid where its normal is m (ggx_gaussian_curvature, eq 20)."""
+    return _scalar(_eval("ggx_gaussian_curvature", shape, (m, "m", 3))[1])
+
+
+def projected_area(shape, u):
+    """Projected area of the ellipsoid seen from u (ggx_projected_area, eq 26)."""
+    return _scalar(_eval("ggx_projected_area", shape, (u, "u", 3))[1])
+
+
+def lune_area(shape, u, v):
+    """Projected area seen from u of the lune {m.u >= 0, m.v >= 0} (ggx_lune_area, eq 28)."""
+    return _scalar(_eval("ggx_lune_area", shape, (u, "u", 3), (v, "v", 3))[1])
+
+
+def lambda_(shape, u):
+    """Smith's Lambda(u) and its lune-area generalisation for skewed shapes (ggx_lambda); 0 for u.z <= 0."""
+    return _scalar(_eval("ggx_lambda", shape, (u, "u", 3))[1])
+
+
+def g1(shape, u, m, dtype=np.float64):
+    """Walter's masking G1(u, m) (ggx_g1, eq 6 / 32): in [0, 1]; 0 for u.z <= 0 or u.m <= 0."""
+    return _batch_eval(_batch_g1, shape, dtype, "ggx_g1", (u, "u", 3), (m, "m", 3))
+
+
+def g1_smith(shape, u):
+    """1 / (1 + Lambda(u)) (ggx_g1_smith)."""
+    return _scalar(_eval("ggx_g1_smith", shape, (u, "u", 3))[1])
+
+
+def g2(shape, wi, wo, m, height_correlated=False):
+    """Shadowing-masking: separable G1(wi, m) G1(wo, m) (ggx_g2, eq 5) or height-correlated
+    (ggx_g2_height_correlated)."""
+    name = "ggx_g2_height_correlated" if height_correlated else "ggx_g2"
+    return _scalar(_eval(name, shape, (wi, "wi", 3), (wo, "wo", 3), (m, "m", 3))[1])
+
+
+def pdf_ndf(shape, m):
+    """D(m) m.z (ggx_pdf_ndf): the density of the NDF samplers."""
+    return _scalar(_eval("ggx_pdf_ndf", shape, (m, "m", 3))[1])
+
+
+def pdf_vndf(shape, v, m, dtype=np.float64):
+    """The density of visible normals D_v(m) for view v (ggx_pdf_vndf, Walter eq 33); 0 for v.z <= 0."""
+    return _batch_eval(_batch_pdf_vndf, shape, dtype, "ggx_pdf_vndf", (v, "v", 3), (m, "m", 3))
+
+
+def brdf(shape, wi, wo, fresnel=None, dtype=np.float64):
+    """The microfacet BRDF f_r(wi, wo) (ggx_brdf_eval, Walter eq 4 with G of eq 5); fresnel None means F = 1."""
+    f = _fresnel(fresnel)
+    dt = _dtype(dtype)
+    if dt == np.float32:
+        return _batch_eval(_batch_brdf, shape, dt, "ggx_brdf_eval", (wi, "wi", 3), (wo, "wo", 3), pre=(f,))
+    s = _shape(shape)
+    a = _Args((wi, "wi", 3), (wo, "wo", 3))
+    out = a.out()
+    if a.n:
+        _loop_sf_vv(_fn("ggx_brdf_eval"), s._buf, f._buf, a.n, a.ins, _ptr(out))
+    return _scalar(out)
+
+
+def bsdf(shape, eta, wi, wo, mode="radiance"):
+    """The rough-dielectric BSDF (ggx_bsdf_eval, Walter 2007): eta = index below / index above; wi, wo on either
+    side; mode 'radiance' or 'importance' (the adjoint)."""
+    s = _shape(shape)
+    md = _choice(mode, _MODES, "mode")
+    e = _real(eta, "eta")
+    a = _Args((wi, "wi", 3), (wo, "wo", 3))
+    out = a.out()
+    if a.n:
+        _loop_bsdf(s._buf, e, md, a.n, a.ins, _ptr(out))
+    return _scalar(out)
+
+
+def albedo(shape, v, masking="separable"):
+    """Directional albedo E(v) with F = 1 (ggx_albedo, or ggx_albedo_height_correlated for
+    masking='height-correlated'): deterministic quadrature, absolute error <= 1e-6, 0.1 to 5 ms per element."""
+    name = "ggx_albedo" if _choice(masking, _MASKINGS, "masking") == 0 else "ggx_albedo_height_correlated"
+    return _scalar(_eval(name, shape, (v, "v", 3))[1])
+
+
+def albedo_avg(shape, masking="separable"):
+    """E_avg = (1/pi) int E(v) v.z dv (ggx_albedo_avg or ggx_albedo_avg_height_correlated); a float."""
+    return _albedo_avg_fn[_choice(masking, _MASKINGS, "masking") and "height-correlated" or "separable"](
+        _shape(shape)._buf)
+
+
+def bsdf_albedo(shape, eta, v):
+    """Reflected and transmitted albedo (R, T) of the rough dielectric for light from v, on either side
+    (ggx_bsdf_albedo): absolute error <= 1e-5; milliseconds per element."""
+    s = _shape(shape)
+    e = _real(eta, "eta")
+    a = _Args((v, "v", 3))
+    r, t = a.out(), a.out()
+    if a.n:
+        _loop_bsdf_albedo(s._buf, e, a.n, a.ins, _ptr(r), _ptr(t))
+    return _scalar(r), _scalar(t)
+
+
+def albedo_iso_table(alpha, mu, masking="separable"):
+    """E(mu) of isotropic GGX from the shipped table (ggx_albedo_iso_table): within 1e-3 for mu >= 0.0175."""
+    g = _choice(masking, _MASKINGS, "masking")
+    a = _Args((alpha, "alpha", 1), (mu, "mu", 1))
+    out = a.out()
+    if a.n:
+        _loop_iso_table(g, a.n, a.ins, _ptr(out))
+    return _scalar(out)
+
+
+def albedo_avg_iso_table(alpha, masking="separable"):
+    """E_avg(alpha) of isotropic GGX from the shipped table (ggx_albedo_avg_iso_table); a float."""
+    return _albedo_avg_iso_table(_real(alpha, "alpha"), _choice(masking, _MASKINGS, "masking"))
+
+
+# --- The registry of samplers ------------------------------------------------------------------------------------
+
+SamplerInfo = collections.namedtuple("SamplerInfo", "id name family domain batch inverse help")
+SamplerInfo.__doc__ = """A sampler of the library's registry (ggx_samplers.h): family 'ndf', 'vndf', 'rejection'
+or 'direction'; domain 'any' or 'unskewed'; batch: the float batch API has it; inverse: sample_inverse works."""
+
+_FAMILIES = ("ndf", "vndf", "rejection", "direction")
+
+
+def _registry():
+    out = []
+    desc = _proto("ggxpy_sampler_desc", _i, _i, ctypes.POINTER(ctypes.c_char_p), ctypes.POINTER(ctypes.c_char_p),
+                  ctypes.POINTER(_i), ctypes.POINTER(_i), ctypes.POINTER(_i), ctypes.POINTER(_i))
+    name, hlp = ctypes.c_char_p(), ctypes.c_char_p()
+    fam, dom, bat, inv = _i(), _i(), _i(), _i()
+    k = 0
+    while desc(k, ctypes.byref(name), ctypes.byref(hlp), ctypes.byref(fam), ctypes.byref(dom), ctypes.byref(bat),
+               ctypes.byref(inv)):
+        out.append(SamplerInfo(k, name.value.decode(), _FAMILIES[fam.value], ("any", "unskewed")[dom.value],
+                               bool(bat.value), bool(inv.value), hlp.value.decode()))
+        k += 1
+    return tuple(out)
+
+
+_SAMPLERS = _registry()
+_BY_NAME = {e.name: e for e in _SAMPLERS}
+
+
+def samplers(family=None):
+    """The registry's samplers (SamplerInfo tuples), all or those of one family."""
+    if family is not None:
+        _choice(family, _FAMILIES, "family")
+    return [e for e in _SAMPLERS if family is None or e.family == family]
+
+
+def _sampler(method, families, shape):
+    e = _BY_NAME.get(method)
+    if e is None or e.family not in families:
+        names = [x.name for x in _SAMPLERS if x.family in families]
+        raise ValueError(f"method: expected one of {', '.join(names)}, got {method!r}")
+    if e.domain == "unskewed" and shape.kind == "skewed":
+        raise ValueError(f"sampler '{method}' applies to unskewed shapes only; this shape is skewed")
+    return e
+
+
+BrdfSample = collections.namedtuple("BrdfSample", "w pdf weight")
+BrdfSample.__doc__ = """Sampled directions w (..., 3), their pdfs (per solid angle) and weights f |w.z| / pdf;
+invalid samples (below the horizon) have w = 0, pdf = 0, weight = 0."""
+DirectionSample = collections.namedtuple("DirectionSample", "w pdf weight event")
+DirectionSample.__doc__ = """As BrdfSample, with the event of each sample (int8): 0 invalid, 1 reflection,
+2 transmission."""
+
+_NO_VIEW = (0.0, 0.0, 1.0)
+
+
+def sample(method, shape, v, u1, u2, u3=0.0, fresnel=None, eta=1.5, mode="radiance", dtype=np.float64,
+           return_trials=False):
+    """Any sampler of the registry by name (samplers()).
+
+    ndf, vndf: the normals m (..., 3) for (u1, u2) in [0, 1) (outside: clamped, NaN: 0) and view v (ignored by NDF
+    samplers; pass None); the zero vector where there is no sample. rejection: the same, with each element's
+    candidates drawn from a stream seeded by the bits of (u1, u2) (splitmix64), so equal inputs give equal normals;
+    return_trials=True also returns the number of candidates per element. direction: a DirectionSample from the
+    known direction v (u3 chooses reflection or refraction for 'bsdf'; fresnel is used by the reflection samplers,
+    eta and mode by 'bsdf'). dtype=np.float32 runs batch samplers in float (ggx_batch_sample_normals,
+    ggx_batch_sample_brdf for 'brdf').
+    """
+    s = _shape(shape)
+    e = _sampler(method, _FAMILIES, s)
+    dt = _dtype(dtype)
+    if v is None:
+        if e.family != "ndf":
+            raise ValueError(f"v: sampler '{method}' needs a view")
+        v = _NO_VIEW
+    if e.family in ("ndf", "vndf", "rejection"):
+        a = _Args((v, "v", 3), (u1, "u1", 1), (u2, "u2", 1))
+        if e.family == "rejection":
+            m, trials = a.out(3), a.out()
+            if a.n:
+                _loop_reject(e.id, s._buf, a.n, a.ins, _ptr(m), _ptr(trials))
+            m = m if dt == np.float64 else m.astype(dt)
+            return (m, _scalar(trials.astype(np.int64))) if return_trials else m
+        if dt == np.float32 and e.batch:
+            m = a.out(3, dtype=np.float32)
+            if a.n:
+                (vx, vy, vz), (q1,), (q2,) = a.soa32(0), a.soa32(1), a.soa32(2)
+                cols = [np.empty(a.n, np.float32) for _ in range(3)]
+                _check(_batch_normals(e.id, *[_ptr(c) for c in cols], a.n, s._buf, _ptr(vx), _ptr(vy), _ptr(vz),
+                                      _ptr(q1), _ptr(q2)))
+                m.reshape(-1, 3)[:] = np.stack(cols, axis=-1)
+            return m
+        m = a.out(3)
+        if a.n:
+            _loop_sample(e.id, s._buf, a.n, a.ins, _ptr(m))
+        return m if dt == np.float64 else m.astype(dt)
+    f = _fresnel(fresnel)
+    md = _choice(mode, _MODES, "mode")
+    et = _real(eta, "eta")
+    a = _Args((v, "v", 3), (u1, "u1", 1), (u2, "u2", 1), (u3, "u3", 1))
+    if dt == np.float32 and e.name == "brdf":
+        w, pdf_, weight = a.out(3, dtype=np.float32), a.out(dtype=np.float32), a.out(dtype=np.float32)
+        if a.n:
+            (vx, vy, vz), (q1,), (q2,) = a.soa32(0), a.soa32(1), a.soa32(2)
+            cols = [np.empty(a.n, np.float32) for _ in range(3)]
+            _batch_sample_brdf(*[_ptr(c) for c in cols], _ptr(pdf_), _ptr(weight), a.n, s._buf, f._buf, _ptr(vx),
+                               _ptr(vy), _ptr(vz), _ptr(q1), _ptr(q2))
+            w.reshape(-1, 3)[:] = np.stack(cols, axis=-1)
+        event = np.where(pdf_ > 0, 1, 0).astype(np.int8)
+        return DirectionSample(w, _scalar(pdf_), _scalar(weight), _scalar(event))
+    w, pdf_, weight, event = a.out(3), a.out(), a.out(), a.out(dtype=np.int8)
+    if a.n:
+        _loop_direction(e.id, s._buf, f._buf, et, md, a.n, a.ins, _ptr(w), _ptr(pdf_), _ptr(weight), _ptr(event))
+    if dt == np.float32:
+        w, pdf_, weight = w.astype(dt), pdf_.astype(dt), weight.astype(dt)
+    return DirectionSample(w, _scalar(pdf_), _scalar(weight), _scalar(event))
+
+
+def pdf(method, shape, v, m, eta=1.5):
+    """The density of a registry sampler (ggx_sampler_info.pdf or .pdf_direction): of the normal m for view v
+    (ndf, vndf, rejection; v ignored by NDF samplers, None allowed), or of the direction m from v (direction
+    samplers; eta for 'bsdf')."""
+    s = _shape(shape)
+    e = _sampler(method, _FAMILIES, s)
+    a = _Args((_NO_VIEW if v is None else v, "v", 3), (m, "m", 3))
+    out = a.out()
+    if a.n:
+        _loop_sampler_pdf(e.id, s._buf, _real(eta, "eta"), a.n, a.ins, _ptr(out))
+    return _scalar(out)
+
+
+def sample_inverse(method, shape, v, m):
+    """The (u1, u2) that give the normal m (..., 2), for samplers with an inverse (SamplerInfo.inverse)."""
+    s = _shape(shape)
+    e = _sampler(method, ("ndf", "vndf"), s)
+    if not e.inverse:
+        raise ValueError(f"sampler '{method}' has no inverse")
+    a = _Args((_NO_VIEW if v is None else v, "v", 3), (m, "m", 3))
+    out = a.out(2)
+    if a.n:
+        _loop_inverse(e.id, s._buf, a.n, a.ins, _ptr(out))
+    return out
+
+
+def sample_ndf(shape, u1, u2, method="stretch", dtype=np.float64):
+    """Normals with density D(m) m.z (pdf_ndf) by an NDF sampler of the registry (default: the elliptic
+    stretch, ggx_sample_ndf_stretch)."""
+    _sampler(method, ("ndf",), _shape(shape))
+    return sample(method, shape, None, u1, u2, dtype=dtype)
+
+
+def sample_vndf(shape, v, u1, u2, method="caps", dtype=np.float64):
+    """Visible normals for view v with density pdf_vndf by a VNDF or rejection sampler of the registry (default:
+    spherical caps, ggx_sample_vndf_caps); the zero vector for v.z <= 0."""
+    _sampler(method, ("vndf", "rejection"), _shape(shape))
+    return sample(method, shape, v, u1, u2, dtype=dtype)
+
+
+def sample_brdf(shape, wi, u1, u2, fresnel=None, bounded=False, dtype=np.float64):
+    """Reflection sampling (ggx_sample_brdf, Walter eq 47-50, or ggx_sample_brdf_bounded): a BrdfSample
+    (w, pdf, weight); the weight is <= 1 (eq 52)."""
+    r = sample("brdf-bounded" if bounded else "brdf", shape, wi, u1, u2, fresnel=fresnel, dtype=dtype)
+    return BrdfSample(r.w, r.pdf, r.weight)
+
+
+def pdf_brdf(shape, wi, wo, bounded=False):
+    """The pdf of sample_brdf (ggx_pdf_brdf or ggx_pdf_brdf_bounded)."""
+    return pdf("brdf-bounded" if bounded else "brdf", shape, wi, wo)
+
+
+def sample_bsdf(shape, eta, v, u1, u2, u3, mode="radiance"):
+    """Rough-dielectric sampling (ggx_sample_bsdf): a DirectionSample from the known direction v (either side)."""
+    return sample("bsdf", shape, v, u1, u2, u3, eta=eta, mode=mode)
+
+
+def pdf_bsdf(shape, eta, v, w):
+    """The pdf of sample_bsdf giving w from v (ggx_pdf_bsdf)."""
+    return pdf("bsdf", shape, v, w, eta=eta)
+
+
+# --- Energy compensation -----------------------------------------------------------------------------------------
+
+class Energy:
+    """A shape's albedo table and Kulla-Conty energy compensation (ggx_energy_create; docs/energy.md).
+
+    Building it takes microseconds for isotropic shapes, 1 to 2 s for anisotropic and 5 to 7 s for skewed ones;
+    it is immutable after that and safe to share between threads. Directions need not be unit; fresnel None means
+    F = 1.
+    """
+
+    __slots__ = ("_handle", "_shape", "_finalizer", "__weakref__")
+
+    def __init__(self, shape):
+        self._shape = _shape(shape)
+        h = _vp()
+        _check(_energy_create(self._shape._buf, ctypes.byref(h)))
+        self._handle = h.value
+        self._finalizer = weakref.finalize(self, _energy_free, h.value)
+
+    @property
+    def shape(self):
+        return self._shape
+
+    def __repr__(self):
+        return f"Energy({self._shape!r})"
+
+    def albedo(self, v):
+        """E(v) from the table (ggx_energy_albedo): within 1e-3 of albedo(shape, v)."""
+        a = _Args((v, "v", 3))
+        out = a.out()
+        if a.n:
+            _loop_energy_albedo(self._handle, a.n, a.ins, _ptr(out))
+        return _scalar(out)
+
+    def albedo_avg(self):
+        """E_avg of the table (ggx_energy_albedo_avg); a float."""
+        return _energy_albedo_avg(self._handle)
+
+    def _ef(self, cname, wi, wo, fresnel):
+        f = _fresnel(fresnel)
+        a = _Args((wi, "wi", 3), (wo, "wo", 3))
+        out = a.out()
+        if a.n:
+            _loop_ef_vv(_fn(cname), self._handle, f._buf, a.n, a.ins, _ptr(out))
+        return _scalar(out)
+
+    def brdf_ms(self, wi, wo, fresnel=None):
+        """The multiple-scattering lobe f_ms (ggx_brdf_ms_eval)."""
+        return self._ef("ggx_brdf_ms_eval", wi, wo, fresnel)
+
+    def brdf_compensated(self, wi, wo, fresnel=None):
+        """brdf + brdf_ms (ggx_brdf_compensated_eval): with F = 1 its albedo is 1 within the table's error."""
+        return self._ef("ggx_brdf_compensated_eval", wi, wo, fresnel)
+
+    def pdf_brdf_compensated(self, wi, wo, fresnel=None):
+        """The pdf of sample_brdf_compensated (ggx_pdf_brdf_compensated)."""
+        return self._ef("ggx_pdf_brdf_compensated", wi, wo, fresnel)
+
+    def pdf_brdf_ms(self, wi, wo):
+        """The pdf of sample_brdf_ms (ggx_pdf_brdf_ms)."""
+        a = _Args((wi, "wi", 3), (wo, "wo", 3))
+        out = a.out()
+        if a.n:
+            _loop_energy_pdf_ms(self._handle, a.n, a.ins, _ptr(out))
+        return _scalar(out)
+
+    def _sample(self, compensated, wi, u1, u2, u3, fresnel):
+        f = _fresnel(fresnel)
+        a = _Args((wi, "wi", 3), (u1, "u1", 1), (u2, "u2", 1), (u3, "u3", 1))
+        w, p, weight, event = a.out(3), a.out(), a.out(), a.out(dtype=np.int8)
+        if a.n:
+            _loop_energy_sample(compensated, self._handle, f._buf, a.n, a.ins, _ptr(w), _ptr(p), _ptr(weight),
+                                _ptr(event))
+        return BrdfSample(w, _scalar(p), _scalar(weight))
+
+    def sample_brdf_ms(self, wi, u1, u2, fresnel=None):
+        """Samples the multiple-scattering lobe (ggx_sample_brdf_ms): a BrdfSample."""
+        return self._sample(0, wi, u1, u2, 0.0, fresnel)
+
+    def sample_brdf_compensated(self, wi, u1, u2, u3, fresnel=None):
+        """Samples the compensated BRDF (ggx_sample_brdf_compensated): a BrdfSample."""
+        return self._sample(1, wi, u1, u2, u3, fresnel)
+
+
+def batch_isa():
+    """The instruction set the float batch API uses ('scalar', 'avx2' or 'avx512'; ggx_batch_get_isa)."""
+    return _batch_isa_name(_batch_get_isa()).decode()
+
+
+def set_batch_threads(threads):
+    """Worker threads of the float batch API for arrays of 65536 elements or more (ggx_batch_set_threads;
+    1 to 256)."""
+    t = _real(threads, "threads")
+    if t != int(t):
+        raise ValueError(f"threads: expected an integer, got {threads!r}")
+    _check(_batch_set_threads(int(t)))
