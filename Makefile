@@ -10,9 +10,11 @@ MAKEFLAGS += --no-print-directory
 all: build
 
 # Debian packages: what `make run` needs (compiler, CMake, libpng), and what the test suite adds (cmocka, g++ for the
-# header's C++ test, pkg-config and make for the install test, xmllint for the SVG figures, groff for the man page).
+# header's C++ test, pkg-config and make for the install test, xmllint for the SVG figures, groff for the man page,
+# Python with numpy, pytest and matplotlib for the Python package's tests and its example).
 RUN_PKGS = cmake make gcc libc6-dev libpng-dev
-TEST_PKGS = $(RUN_PKGS) g++ pkg-config libcmocka-dev libxml2-utils groff-base
+TEST_PKGS = $(RUN_PKGS) g++ pkg-config libcmocka-dev libxml2-utils groff-base python3 python3-numpy python3-pytest \
+            python3-matplotlib
 
 deps:
 	@sh cmake/install-deps.sh $(TEST_PKGS)
@@ -63,14 +65,15 @@ test-long: build
 	@cd $(BUILD) && GGX_TEST_SCALE=10 ctest --output-on-failure -R robust
 
 # The whole unit and property suite under AddressSanitizer + UndefinedBehaviorSanitizer (gcc), at a tenth of the
-# sample counts (the install test is left out: its consumer program is not built with the sanitizer runtime).
+# sample counts (the install test is left out: its consumer program is not built with the sanitizer runtime; so is
+# the Python test: python3 would have to load the sanitizer runtime first).
 SAN_FLAGS = -fsanitize=address,undefined -fno-sanitize-recover=all -fno-omit-frame-pointer -g
 sanitize: deps
 	@cmake -S . -B build-san -DCMAKE_BUILD_TYPE=RelWithDebInfo -DGGX_WERROR=ON -DCMAKE_C_FLAGS="$(SAN_FLAGS)" \
 	  -DCMAKE_CXX_FLAGS="$(SAN_FLAGS)" -DCMAKE_EXE_LINKER_FLAGS="$(SAN_FLAGS)" -DCMAKE_SHARED_LINKER_FLAGS="$(SAN_FLAGS)" >/dev/null
 	@cmake --build build-san -j $(JOBS)
 	@cd build-san && GGX_TEST_SCALE=0.1 GGX_CLI_QUICK=1 ASAN_OPTIONS=detect_leaks=1:abort_on_error=1 \
-	  UBSAN_OPTIONS=print_stacktrace=1 ctest --output-on-failure -j $(JOBS) -E install
+	  UBSAN_OPTIONS=print_stacktrace=1 ctest --output-on-failure -j $(JOBS) -E 'install|python'
 
 # The batch tests under ThreadSanitizer (gcc; TSAN_CC=clang works too where its runtime is installed): batch calls
 # from many threads, the first calls of a process included (tests/test_batch_threads.c), must be free of data races.

@@ -56,4 +56,21 @@ cmake -S "$tmp/consumer" -B "$tmp/consumer/build" -DCMAKE_PREFIX_PATH="$prefix" 
 cmake --build "$tmp/consumer/build" >/dev/null
 [ "$(env -u LD_LIBRARY_PATH "$tmp/consumer/build/prog")" = "$out" ] ||
   { echo "install: the find_package consumer printed another line" >&2; exit 1; }
-echo "install test: make install PREFIX=..., the README example and a find_package consumer built and ran"
+
+# The Python package, where the install note says, importable with the PYTHONPATH it prints (from another folder).
+if [ -f "$build/python/ggx/_ggx_native.so" ]; then
+  pyline=$(grep "Python package ggx:" "$tmp/install.log") || { cat "$tmp/install.log"; echo "install: no Python note" >&2; exit 1; }
+  pypath=$(echo "$pyline" | sed -n 's/.*export PYTHONPATH=\(.*\)$/\1/p')
+  [ -n "$pypath" ] || { echo "install: no PYTHONPATH for a prefix outside python's path: $pyline" >&2; exit 1; }
+  case $pypath in "$prefix"/lib/python3.*/dist-packages) ;; *) echo "install: Python package in $pypath" >&2; exit 1;; esac
+  test -f "$pypath/ggx/__init__.py" && test -f "$pypath/ggx/_ggx_native.so" || { echo "install: ggx package files missing" >&2; exit 1; }
+  py=/usr/bin/python3
+  [ -x "$py" ] || py=python3
+  d=$(cd "$tmp" && env -u LD_LIBRARY_PATH PYTHONPATH="$pypath" "$py" -c \
+      'import ggx; print(ggx.__file__); print(ggx.ndf(ggx.Shape.iso(0.3), [0, 0, 1]))')
+  echo "$d" | head -n 1 | grep -q "^$pypath/ggx/__init__.py$" || { echo "install: imported $d" >&2; exit 1; }
+  # D(n) = 1 / (pi alpha^2) for isotropic GGX
+  echo "$d" | tail -n 1 | awk '{exit !($1 > 3.53677 && $1 < 3.53678)}' || { echo "install: ggx.ndf gave $d" >&2; exit 1; }
+  echo "Python package: $pypath/ggx"
+fi
+echo "install test: make install PREFIX=..., the README example, a find_package consumer and the Python package built and ran"

@@ -189,6 +189,7 @@ class _Args:
             names = ", ".join(f"{what} {s}" for (_, what, _), s in zip(specs, lead))
             raise ValueError(f"inputs do not broadcast together: {names}") from None
         self.n = math.prod(self.shape)
+        self.widths = [w for _, _, w in specs]
         self.ins = (_In * max(len(specs), 1))()
         self.arrays = []
         for k, (a, (_, _, width)) in enumerate(zip(arrays, specs)):
@@ -209,14 +210,12 @@ class _Args:
         return np.empty(self.shape + tail, dtype=dtype)
 
     def soa32(self, k):
-        """Input k as float32 arrays of n elements (x, y, z for a direction), for the batch API."""
-        a = self.arrays[k]
-        if a.ndim >= 1 and a.shape[-1] == 3 and self.ins[k].step in (0, 3) and (self.ins[k].step == 3 or a.ndim == 1
-                                                                                and a.size == 3):
-            full = np.broadcast_to(a.reshape(-1, 3) if self.ins[k].step else a, (self.n, 3))
-            return [np.ascontiguousarray(full[:, c], dtype=np.float32) for c in range(3)]
-        return [np.ascontiguousarray(np.broadcast_to(a.reshape(-1) if self.ins[k].step else a[:1], (self.n,)),
-                                     dtype=np.float32)]
+        """Input k as float32 arrays of n elements (x, y, z for a direction), for the batch API. Values beyond
+        float's range become infinities, which the batch API treats as it treats them in float64."""
+        width = self.widths[k]
+        full = np.broadcast_to(self.arrays[k].reshape(-1, width), (self.n, width))
+        with np.errstate(over="ignore"):
+            return [np.ascontiguousarray(full[:, c], dtype=np.float32) for c in range(width)]
 
 
 def _ptr(a):
