@@ -1,10 +1,11 @@
 # libggx: the two commands of the README, and helpers. Everything real is in CMake.
 BUILD ?= build
+PYTHON ?= $(shell test -x /usr/bin/python3 && echo /usr/bin/python3 || echo python3)
 PREFIX ?= /usr/local
 JOBS ?= 2
 MAKEFLAGS += --no-print-directory
 
-.PHONY: all deps deps-run deps-dev configure configure-run build run example bench test test-long sanitize tsan tables \
+.PHONY: all deps deps-run deps-dev configure configure-run build run example bench bench-python test test-long sanitize tsan tables \
         valgrind fuzz fuzz-ci install clean
 
 all: build
@@ -52,6 +53,10 @@ run: configure-run
 # Benchmarks: ns per call of every scalar function and batch kernel, ratios, and the machine's floors.
 bench: build
 	@$(BUILD)/ggx_bench
+
+# The Python package's overhead: ns per element and microseconds per call against its bare native loops.
+bench-python: build
+	@PYTHONPATH=$(BUILD)/python $(PYTHON) bench/bench_python.py
 
 # The small C example of the library (D, G1 and the BRDF for a skewed shape).
 example: build

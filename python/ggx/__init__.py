@@ -111,9 +111,15 @@ _batch_isa_name = _proto("ggx_batch_isa_name", ctypes.c_char_p, _i)
 _batch_set_threads = _proto("ggx_batch_set_threads", _i, _i)
 
 
+_FN = {}
+
+
 def _fn(name):
-    """The address of a C function of the library, for the native loops."""
-    return ctypes.cast(getattr(_lib, name), _vp).value
+    """The address of a C function of the library, for the native loops (looked up once)."""
+    p = _FN.get(name)
+    if p is None:
+        p = _FN[name] = ctypes.cast(getattr(_lib, name), _vp).value
+    return p
 
 
 def status_message(status):
