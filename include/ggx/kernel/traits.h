@@ -37,6 +37,9 @@
  * ||A v||^2 stays below FLT_MAX; anything else is rescaled first. */
 #define GGX_L2_MIN GGX_C(1e-20)
 #define GGX_L2_MAX GGX_C(1e4)
+/* The smallest squared length of the unnormalised normal mu = A^T p that the fast path normalises (k_lune_core_p):
+ * 1e8 times float's smallest normal, so that mu's components lose no precision to subnormals. */
+#define GGX_MU2_MIN GGX_C(1e-30)
 /* sin and cos of x in [-pi/4, pi/4] by minimax polynomials of degree 7 and 8 (fitted to the absolute error on a
  * grid of 2e4 points by reweighted least squares, coefficients rounded to float): approximation errors 1.8e-9 and
  * 5.4e-11, so the float evaluation is within 6.9e-8 of sin and cos, the same as the Taylor series to x^9 and x^10
@@ -96,6 +99,9 @@
  * ||A|| <= 1e50); others are rescaled by their largest component first. */
 #define GGX_L2_MIN 1e-200
 #define GGX_L2_MAX 1e200
+/* As in float: 1e58 times double's smallest normal (mu.mu of a matrix scaled to 1e-50 and a view of length 1e-100
+ * underflows; the proof's normals have mu.mu >= 1e-213). */
+#define GGX_MU2_MIN 1e-250
 /* Taylor series to x^15 and x^16 on [-pi/4, pi/4]: remainders below 7e-17, under double rounding. */
 #define GGX_SIN_POLY(x, x2)                                                                                       \
     ((x) * (1.0 + (x2) * (-1.0 / 6 + (x2) * (1.0 / 120 + (x2) * (-1.0 / 5040 + (x2) * (1.0 / 362880 +            \

@@ -23,6 +23,7 @@
 #undef GGX_RIM_TRIES
 #undef GGX_L2_MIN
 #undef GGX_L2_MAX
+#undef GGX_MU2_MIN
 #undef GGX_SIN_POLY
 #undef GGX_COS_POLY
 #undef ggx_rw
