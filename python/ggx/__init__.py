@@ -12,7 +12,9 @@ it has the function (ndf, g1, pdf_vndf, brdf, sample_ndf and sample_vndf with a 
 the accuracy that header states; elsewhere float32 results are the float64 ones rounded.
 
 Errors raise ValueError: a shape or Fresnel term the library refuses (with its status message), inputs that do not
-broadcast, a direction array whose last axis is not 3, an unknown sampler or option. Any real input, NaN and
+broadcast, a direction array whose last axis is not 3, a complex, non-numeric or masked input, an unknown sampler or
+option. (Calling Shape() or Fresnel() directly, or a wrong number of arguments, is a TypeError, as in Python; an
+array too large for memory is numpy's MemoryError.) Any real input, NaN and
 infinities included, gives a finite result (the C library's contract): 0 outside the domain, the zero vector for a
 sampler that has no sample.
 """
@@ -20,6 +22,7 @@ sampler that has no sample.
 import collections
 import ctypes
 import math
+import numbers
 import os
 import weakref
 
@@ -123,8 +126,9 @@ def _fn(name):
 
 
 def status_message(status):
-    """The library's one-line message for a status code (ggx_status_str)."""
-    return _status_str(int(status)).decode()
+    """The library's one-line message for a status code (ggx_status_str; "unknown status" for other values)."""
+    k = int(status)
+    return _status_str(k if -2 ** 31 <= k < 2 ** 31 else -1).decode()
 
 
 def _check(status):
@@ -135,24 +139,30 @@ def _check(status):
 def _real(x, what):
     """A real number for a setup parameter (NaN and infinities pass: the library refuses them with its status)."""
     try:
+        if isinstance(x, numbers.Real):
+            return float(x)
         a = np.asarray(x)
         if a.shape != () or a.dtype.kind not in "biuf":
             raise TypeError
         return float(a)
-    except (TypeError, ValueError):
+    except (TypeError, ValueError, OverflowError):
         raise ValueError(f"{what}: expected a real number, got {x!r}") from None
 
 
 def _array(x, what):
-    """x as a float64 array; real inputs only (a complex value would silently lose its imaginary part)."""
+    """x as a float64 array of real numbers: a complex value (which would lose its imaginary part), a string or
+    other non-number, or a masked array (whose mask would be ignored) is an error."""
+    if isinstance(x, np.ma.MaskedArray):
+        raise ValueError(f"{what}: masked arrays are not supported (use .filled() or select the valid elements)")
     try:
         a = np.asarray(x)
-        if a.dtype.kind not in "biuf":
-            if a.dtype.kind != "O":
+        if a.dtype.kind == "O":
+            if not all(isinstance(e, numbers.Real) for e in a.flat):
                 raise TypeError
-            a = a.astype(np.float64)
+        elif a.dtype.kind not in "biuf":
+            raise TypeError
         return np.asarray(a, dtype=np.float64)
-    except (TypeError, ValueError):
+    except (TypeError, ValueError, OverflowError):
         raise ValueError(f"{what}: expected real numbers, got {x!r}") from None
 
 
@@ -167,7 +177,7 @@ def _dtype(dtype):
 
 
 def _choice(value, choices, what):
-    if value not in choices:
+    if not isinstance(value, str) or value not in choices:
         raise ValueError(f"{what}: expected one of {', '.join(map(repr, choices))}, got {value!r}")
     return choices[value] if isinstance(choices, dict) else value
 
@@ -215,13 +225,30 @@ class _Args:
     def out(self, *tail, dtype=np.float64):
         return np.empty(self.shape + tail, dtype=dtype)
 
-    def soa32(self, k):
+    def soa32(self, k, role=None):
         """Input k as float32 arrays of n elements (x, y, z for a direction), for the batch API. Values beyond
-        float's range become infinities, which the batch API treats as it treats them in float64."""
+        float's range become infinities (0 for an evaluation, as in float64). role "u": a u below 1 that rounds to 1
+        becomes the largest float below 1 (the batch samplers take u in [0, 1)). role "view": a sampler's view is
+        normalised in float64 first, since the samplers depend on its direction only (a view of length 1e-50 or
+        1e300 would underflow or overflow in float)."""
         width = self.widths[k]
-        full = np.broadcast_to(self.arrays[k].reshape(-1, width), (self.n, width))
+        a = self.arrays[k].reshape(-1, width)
+        if role == "view":
+            big = np.max(np.abs(a), axis=1, keepdims=True)
+            with np.errstate(invalid="ignore", divide="ignore"):
+                b = a / big
+                a = b / np.sqrt(np.sum(b * b, axis=1, keepdims=True))
+            a = np.where(np.isfinite(a).all(axis=1, keepdims=True), a, 0.0)  # zero, infinite, NaN: no view
+        full = np.broadcast_to(a, (self.n, width))
         with np.errstate(over="ignore"):
-            return [np.ascontiguousarray(full[:, c], dtype=np.float32) for c in range(width)]
+            cols = [np.ascontiguousarray(full[:, c], dtype=np.float32) for c in range(width)]
+        if role == "u":
+            below_one = full[:, 0] < 1
+            cols[0][below_one & (cols[0] >= 1)] = _U32_MAX
+        return cols
+
+
+_U32_MAX = np.nextafter(np.float32(1), np.float32(0))
 
 
 def _ptr(a):
@@ -268,9 +295,8 @@ class Shape:
         self = object.__new__(cls)
         self._buf = ctypes.create_string_buffer(_SHAPE_SIZE)
         _check(setup(self._buf))
-        m = np.array(matrix, dtype=np.float64).reshape(3, 3)
-        m.flags.writeable = False
-        self._matrix = m
+        # over immutable bytes: numpy refuses to make such an array (or any view of it) writeable again
+        self._matrix = np.frombuffer(np.array(matrix, dtype=np.float64).reshape(3, 3).tobytes()).reshape(3, 3)
         self._repr = text
         self._args = args
         return self
@@ -312,7 +338,7 @@ class Shape:
         a = np.ascontiguousarray(a)
         rows = "[" + ", ".join("[" + ", ".join(repr(float(x)) for x in r) + "]" for r in a) + "]"
         return cls._new(a, lambda b: _shape_matrix(b, a.ctypes.data), f"Shape.matrix({rows})",
-                        ("matrix", (a.tolist(),)))
+                        ("matrix", (tuple(map(tuple, a.tolist())),)))
 
     matrix = _MatrixAttribute()
 
@@ -340,7 +366,7 @@ class Shape:
         return isinstance(other, Shape) and self._args == other._args
 
     def __hash__(self):
-        return hash(repr(self._args))
+        return hash(self._args)  # consistent with ==: hash(-0.0) == hash(0.0)
 
 
 class Fresnel:
@@ -605,7 +631,7 @@ def samplers(family=None):
 
 
 def _sampler(method, families, shape):
-    e = _BY_NAME.get(method)
+    e = _BY_NAME.get(method) if isinstance(method, str) else None
     if e is None or e.family not in families:
         names = [x.name for x in _SAMPLERS if x.family in families]
         raise ValueError(f"method: expected one of {', '.join(names)}, got {method!r}")
@@ -634,15 +660,14 @@ def sample(method, shape, v, u1, u2, u3=0.0, fresnel=None, eta=1.5, mode="radian
     return_trials=True also returns the number of candidates per element. direction: a DirectionSample from the
     known direction v (u3 chooses reflection or refraction for 'bsdf'; fresnel is used by the reflection samplers,
     eta and mode by 'bsdf'). dtype=np.float32 runs batch samplers in float (ggx_batch_sample_normals,
-    ggx_batch_sample_brdf for 'brdf').
+    ggx_batch_sample_brdf for 'brdf'): the view is normalised in float64 first, u is rounded to float (a u below 1
+    that rounds to 1 becomes the largest float below 1), and a NaN or infinite u gives the zero vector (an invalid
+    sample), as ggx_batch.h states; the other samplers give their float64 result rounded.
     """
     s = _shape(shape)
     e = _sampler(method, _FAMILIES, s)
     dt = _dtype(dtype)
-    if v is None:
-        if e.family != "ndf":
-            raise ValueError(f"v: sampler '{method}' needs a view")
-        v = _NO_VIEW
+    v = _view(v, e)
     if e.family in ("ndf", "vndf", "rejection"):
         a = _Args((v, "v", 3), (u1, "u1", 1), (u2, "u2", 1))
         if e.family == "rejection":
@@ -654,7 +679,7 @@ def sample(method, shape, v, u1, u2, u3=0.0, fresnel=None, eta=1.5, mode="radian
         if dt == np.float32 and e.batch:
             m = a.out(3, dtype=np.float32)
             if a.n:
-                (vx, vy, vz), (q1,), (q2,) = a.soa32(0), a.soa32(1), a.soa32(2)
+                (vx, vy, vz), (q1,), (q2,) = a.soa32(0, "view"), a.soa32(1, "u"), a.soa32(2, "u")
                 cols = [np.empty(a.n, np.float32) for _ in range(3)]
                 _check(_batch_normals(e.id, *[_ptr(c) for c in cols], a.n, s._buf, _ptr(vx), _ptr(vy), _ptr(vz),
                                       _ptr(q1), _ptr(q2)))
@@ -671,7 +696,7 @@ def sample(method, shape, v, u1, u2, u3=0.0, fresnel=None, eta=1.5, mode="radian
     if dt == np.float32 and e.name == "brdf":
         w, pdf_, weight = a.out(3, dtype=np.float32), a.out(dtype=np.float32), a.out(dtype=np.float32)
         if a.n:
-            (vx, vy, vz), (q1,), (q2,) = a.soa32(0), a.soa32(1), a.soa32(2)
+            (vx, vy, vz), (q1,), (q2,) = a.soa32(0, "view"), a.soa32(1, "u"), a.soa32(2, "u")
             cols = [np.empty(a.n, np.float32) for _ in range(3)]
             _batch_sample_brdf(*[_ptr(c) for c in cols], _ptr(pdf_), _ptr(weight), a.n, s._buf, f._buf, _ptr(vx),
                                _ptr(vy), _ptr(vz), _ptr(q1), _ptr(q2))
@@ -686,13 +711,22 @@ def sample(method, shape, v, u1, u2, u3=0.0, fresnel=None, eta=1.5, mode="radian
     return DirectionSample(w, _scalar(pdf_), _scalar(weight), _scalar(event))
 
 
+def _view(v, e):
+    """The view for sampler e: None only for NDF samplers, which ignore it."""
+    if v is None:
+        if e.family != "ndf":
+            raise ValueError(f"v: sampler '{e.name}' needs a view")
+        return _NO_VIEW
+    return v
+
+
 def pdf(method, shape, v, m, eta=1.5):
     """The density of a registry sampler (ggx_sampler_info.pdf or .pdf_direction): of the normal m for view v
-    (ndf, vndf, rejection; v ignored by NDF samplers, None allowed), or of the direction m from v (direction
+    (ndf, vndf, rejection; v ignored by NDF samplers, None allowed there), or of the direction m from v (direction
     samplers; eta for 'bsdf')."""
     s = _shape(shape)
     e = _sampler(method, _FAMILIES, s)
-    a = _Args((_NO_VIEW if v is None else v, "v", 3), (m, "m", 3))
+    a = _Args((_view(v, e), "v", 3), (m, "m", 3))
     out = a.out()
     if a.n:
         _loop_sampler_pdf(e.id, s._buf, _real(eta, "eta"), a.n, a.ins, _ptr(out))
@@ -705,7 +739,7 @@ def sample_inverse(method, shape, v, m):
     e = _sampler(method, ("ndf", "vndf"), s)
     if not e.inverse:
         raise ValueError(f"sampler '{method}' has no inverse")
-    a = _Args((_NO_VIEW if v is None else v, "v", 3), (m, "m", 3))
+    a = _Args((_view(v, e), "v", 3), (m, "m", 3))
     out = a.out(2)
     if a.n:
         _loop_inverse(e.id, s._buf, a.n, a.ins, _ptr(out))
@@ -774,6 +808,15 @@ class Energy:
     def __repr__(self):
         return f"Energy({self._shape!r})"
 
+    def __reduce__(self):
+        return (Energy, (self._shape,))  # pickling rebuilds the table from the shape
+
+    def __copy__(self):
+        return self  # immutable: a copy would share the table anyway
+
+    def __deepcopy__(self, memo):
+        return self
+
     def albedo(self, v):
         """E(v) from the table (ggx_energy_albedo): within 1e-3 of albedo(shape, v)."""
         a = _Args((v, "v", 3))
@@ -839,8 +882,8 @@ def batch_isa():
 
 def set_batch_threads(threads):
     """Worker threads of the float batch API for arrays of 65536 elements or more (ggx_batch_set_threads;
-    1 to 256)."""
+    an integer from 1 to 256)."""
     t = _real(threads, "threads")
-    if t != int(t):
-        raise ValueError(f"threads: expected an integer, got {threads!r}")
+    if not (1 <= t <= 256 and t == int(t)):
+        raise ValueError(f"threads: expected an integer from 1 to 256, got {threads!r}")
     _check(_batch_set_threads(int(t)))

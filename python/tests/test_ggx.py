@@ -590,3 +590,64 @@ def test_readme_python_block():
     out = subprocess.run([sys.executable, "-c", block], check=True, capture_output=True, text=True, timeout=60).stdout
     mean_pdf, e = map(float, out.split())
     assert 1.5 < mean_pdf < 1.7 and abs(e - 0.759274) < 1e-5  # E[pdf] = 1.583 (this seed); E(n) = 0.75927
+
+
+def test_hostile_regressions():
+    """What an adversarial review of the package found (each was broken before its fix)."""
+    import copy
+    from fractions import Fraction
+    # Energy: copies share the (immutable) table; pickling rebuilds it from the shape (it used to copy the pointer)
+    e = ggx.Energy(ggx.Shape.iso(0.3))
+    assert copy.copy(e) is e and copy.deepcopy(e) is e
+    e2 = pickle.loads(pickle.dumps(e))
+    assert e2 is not e and e2.shape == e.shape and e2.albedo([0, 0, 1]) == e.albedo([0, 0, 1])
+    del e, e2
+    # a small matrix with a short view: the caps' fast path overflowed to infinities (a library bug)
+    tiny = ggx.Shape.matrix(np.eye(3) * 1e-49)
+    for z in (1e-62, 1e-70, 1e-100):
+        d = ggx.sample_vndf(tiny, [0, 0, z], 0.3, 0.7) - ggx.sample_vndf(tiny, [0, 0, 1], 0.3, 0.7)
+        assert np.max(np.abs(d)) <= 1e-12, z  # the slow path's normal, not the fast path's bits
+    # float32: a u below 1 that rounds to 1.0f is taken as the largest float below 1 (it gave n instead of a rim
+    # normal), within the batch bound of the double sampler at that u
+    s = ggx.Shape.aniso(0.3, 0.6)
+    top = float(np.nextafter(np.float32(1), np.float32(0)))
+    for name in ("caps", "visible", "stretch", "heitz"):
+        v = None if name in ("stretch", "visible") else [0, 0, 1]
+        lo = ggx.sample(name, s, v, 0.25, 0.99999999, dtype=np.float32)
+        assert same(lo, ggx.sample(name, s, v, 0.25, top, dtype=np.float32)), name
+        assert np.max(np.abs(lo - ggx.sample(name, s, v, 0.25, top))) <= 1e-4, name
+    # float32 samplers normalise the view in float64 first: lengths that float cannot hold give the unit view's normal
+    for z in (1e300, 1e-50):
+        assert same(ggx.sample_vndf(s, [0, 0, z], 0.3, 0.7, dtype=np.float32),
+                    ggx.sample_vndf(s, [0, 0, 1], 0.3, 0.7, dtype=np.float32))
+    assert same(ggx.sample_brdf(s, [0, 0, 1e300], 0.3, 0.7, dtype=np.float32).w,
+                ggx.sample_brdf(s, [0, 0, 1], 0.3, 0.7, dtype=np.float32).w)
+    # equal shapes hash equal (0.0 and -0.0 compare equal)
+    assert len({ggx.Shape.ellipsoid(0.3, 0.3, 0.0), ggx.Shape.ellipsoid(0.3, 0.3, -0.0)}) == 1
+    negzero = np.diag([0.3, 0.3, 1.0])
+    negzero[0, 1] = -0.0
+    assert len({ggx.Shape.matrix(np.diag([0.3, 0.3, 1.0])), ggx.Shape.matrix(negzero)}) == 1
+    # the matrix cannot be made writeable again
+    m = ggx.Shape.iso(0.3).matrix
+    with pytest.raises(ValueError):
+        m.flags.writeable = True
+    # errors that were OverflowError or TypeError
+    bad = [lambda: ggx.ndf(s, [10 ** 400, 0, 1]), lambda: ggx.sample_vndf(s, [0, 0, 1], 10 ** 400, 0.5),
+           lambda: ggx.bsdf(s, 1.5, [0, 0, 1], [0, 0, 1], mode=[]), lambda: ggx.albedo(s, [0, 0, 1], masking={}),
+           lambda: ggx.sample_vndf(s, [0, 0, 1], 0.5, 0.5, method=["caps"]), lambda: ggx.sample(["caps"], s, None, 0, 0),
+           lambda: ggx.set_batch_threads(float("inf")), lambda: ggx.set_batch_threads(float("nan")),
+           lambda: ggx.set_batch_threads(2 ** 32 + 4), lambda: ggx.set_batch_threads(-(2 ** 32) + 4),
+           lambda: ggx.ndf(s, np.array(["0", "0", "1"], dtype=object)),
+           lambda: ggx.ndf(s, np.array([np.complex128(0.1 + 5j), 0, 1], dtype=object)),
+           lambda: ggx.ndf(s, np.ma.masked_array([0.0, 0, 1], mask=[1, 0, 0])),
+           lambda: ggx.pdf("caps", s, None, [0, 0, 1]), lambda: ggx.sample_inverse("caps", s, None, [0, 0, 1])]
+    for k, f in enumerate(bad):
+        try:
+            f()
+        except ValueError:
+            continue
+        pytest.fail(f"case {k} did not raise ValueError")
+    assert ggx.status_message(2 ** 40) == "unknown status" and ggx.status_message(0) == "ok"
+    assert ggx.Shape.iso(Fraction(1, 4)) == ggx.Shape.iso(0.25)
+    assert same(ggx.ndf(s, np.array([0, 0, 1], dtype=object)), ggx.ndf(s, [0.0, 0.0, 1.0]))
+    ggx.set_batch_threads(1)
