@@ -291,11 +291,14 @@ static void b_batch(void *vc, long reps)
         case 4: ggx_batch_sample_ndf(c->out[0], c->out[1], c->out[2], c->n, c->s, c->in[3], c->in[4]); break;
         case 5: ggx_batch_brdf(c->out[0], c->n, c->s, &c->f, c->in[0], c->in[1], c->in[2], c->in[5], c->in[6], c->in[2]); break;
         case 6: ggx_batch_sample_brdf(c->out[0], c->out[1], c->out[2], c->out[3], c->out[4], c->n, c->s, &c->f, c->in[0], c->in[1], c->in[2], c->in[3], c->in[4]); break;
+        case 7: ggx_batch_sample_directions(GGX_SAMPLER_BRDF_BOUNDED, c->out[0], c->out[1], c->out[2], c->out[3], c->out[4], c->n, c->s, &c->f, c->in[0], c->in[1], c->in[2], c->in[3], c->in[4]); break;
         }
     }
 }
-static const char *BATCH_NAMES[] = {"sample_vndf", "pdf_vndf", "ndf", "g1", "sample_ndf", "brdf", "sample_brdf"};
-static const int BATCH_BYTES[] = {32, 28, 16, 28, 20, 28, 40}; /* floats read + written per element, x 4 */
+static const char *BATCH_NAMES[] = {"sample_vndf", "pdf_vndf", "ndf", "g1", "sample_ndf", "brdf", "sample_brdf",
+                                    "brdf_bounded"};
+static const int BATCH_BYTES[] = {32, 28, 16, 28, 20, 28, 40, 40}; /* floats read + written per element, x 4 */
+enum { BATCH_OPS = sizeof BATCH_NAMES / sizeof BATCH_NAMES[0] };
 
 /* ---------------------------------------------------------------- machine limits */
 
@@ -460,7 +463,7 @@ int main(int argc, char **argv)
     double vndf_best = 1e9, vndf_scalar_isa = 0;
     printf("\nbatch float API, ns per element      n = 512 (L1)        n = %zu (64 MiB)\n", big);
     printf("%-14s %-8s %18s %12s %12s   instr/elem\n", "kernel", "isa", "1 thread", "1 thread", "2 threads");
-    for (int op = 0; op < 7; op++) {
+    for (int op = 0; op < BATCH_OPS; op++) {
         for (int k = 0; k < 3; k++) {
             if (ggx_batch_set_isa(isas[k]) != GGX_OK) continue;
             bctx c = {op == 0 || op == 1 ? &skew : &skew, sc.f, 0, {0}, {0}, op};

@@ -127,19 +127,40 @@ static void compare(ggx_batch_isa isa, worst *w)
             }
             CHECK(o1[n] == -7.0f && o2[n] == -7.0f && o3[n] == -7.0f, "%s wrote past n = %d", info->name, n);
         }
-        ggx_batch_sample_brdf(o1, o2, o3, o4, o5, (size_t)n, &s, &f, vx, vy, vz, u1, u2);
-        for (int i = 0; i < n; i++) {
-            ggx_sample x = ggx_sample_brdf(&s, &f, t_vec(V[i][0], V[i][1], V[i][2]), u1[i], u2[i]);
-            if (fabs(x.w.z) < 1e-4 || (x.event == GGX_EVENT_INVALID && fabs(o3[i]) < 1e-4)) continue; /* the horizon */
-            CHECK((x.event != GGX_EVENT_INVALID) == (o4[i] > 0), "%s brdf validity n %d i %d", ggx_batch_isa_name(isa), n, i);
-            if (x.event == GGX_EVENT_INVALID) continue;
-            double e = fmax(fabs(o1[i] - x.w.x), fmax(fabs(o2[i] - x.w.y), fabs(o3[i] - x.w.z)));
-            w->w = fmax(w->w, e);
-            w->spdf = fmax(w->spdf, rel(o4[i], x.pdf));
-            w->weight = fmax(w->weight, fabs(o5[i] - x.weight));
-            CHECK(e <= 1e-4 && rel(o4[i], x.pdf) <= 1e-4 && fabs(o5[i] - x.weight) <= 2e-4 && o5[i] <= 1.0f,
-                  "%s brdf sample n %d i %d: w err %g pdf %g/%g weight %g/%g", ggx_batch_isa_name(isa), n, i, e, o4[i],
-                  x.pdf, o5[i], x.weight);
+        /* every batch direction sampler of the registry (reflection, bounded reflection) against its double
+         * sampler; ggx_batch_sample_brdf is the first of them, bit for bit */
+        for (int id = 0; id < GGX_SAMPLER_COUNT; id++) {
+            const ggx_sampler_info *info = ggx_sampler_get((ggx_sampler_id)id);
+            if (!info->batch || info->family != GGX_FAMILY_DIRECTION) continue;
+            o5[n] = -7.0f;
+            ggx_status st = ggx_batch_sample_directions((ggx_sampler_id)id, o1, o2, o3, o4, o5, (size_t)n, &s, &f, vx,
+                                                        vy, vz, u1, u2);
+            CHECK(st == GGX_OK, "%s: ggx_batch_sample_directions(%s): %s", ggx_batch_isa_name(isa), info->name,
+                  ggx_status_str(st));
+            CHECK(o5[n] == -7.0f, "%s wrote past n = %d", info->name, n);
+            if (id == GGX_SAMPLER_BRDF) {
+                float *pb[5] = {arr(&A, 15), arr(&A, 16), arr(&A, 17), arr(&A, 18), arr(&A, 19)};
+                float *q[5] = {o1, o2, o3, o4, o5};
+                ggx_batch_sample_brdf(pb[0], pb[1], pb[2], pb[3], pb[4], (size_t)n, &s, &f, vx, vy, vz, u1, u2);
+                for (int k = 0; k < 5; k++)
+                    CHECK(n == 0 || memcmp(pb[k], q[k], sizeof(float) * (size_t)n) == 0,
+                          "ggx_batch_sample_brdf differs from ggx_batch_sample_directions(brdf), output %d", k);
+            }
+            for (int i = 0; i < n; i++) {
+                ggx_sample x = info->sample_direction(&s, &f, 1.5, t_vec(V[i][0], V[i][1], V[i][2]), u1[i], u2[i], 0.5,
+                                                      GGX_RADIANCE);
+                if (fabs(x.w.z) < 1e-4 || (x.event == GGX_EVENT_INVALID && fabs(o3[i]) < 1e-4)) continue; /* the horizon */
+                CHECK((x.event != GGX_EVENT_INVALID) == (o4[i] > 0), "%s %s validity n %d i %d",
+                      ggx_batch_isa_name(isa), info->name, n, i);
+                if (x.event == GGX_EVENT_INVALID) continue;
+                double e = fmax(fabs(o1[i] - x.w.x), fmax(fabs(o2[i] - x.w.y), fabs(o3[i] - x.w.z)));
+                w->w = fmax(w->w, e);
+                w->spdf = fmax(w->spdf, rel(o4[i], x.pdf));
+                w->weight = fmax(w->weight, fabs(o5[i] - x.weight));
+                CHECK(e <= 1e-4 && rel(o4[i], x.pdf) <= 1e-4 && fabs(o5[i] - x.weight) <= 2e-4 && o5[i] <= 1.0f,
+                      "%s %s sample n %d i %d: w err %g pdf %g/%g weight %g/%g", ggx_batch_isa_name(isa), info->name,
+                      n, i, e, o4[i], x.pdf, o5[i], x.weight);
+            }
         }
     }
     for (int i = 0; i < 20; i++) free(A.buf[i]);
@@ -172,9 +193,8 @@ static void every_isa(void **state)
 }
 
 /* The registry's batch flag is the batch API's: ggx_batch_sample_normals takes exactly the samplers of normals
- * marked batch (GGX_ERR_RANGE for the others and for ids outside the registry, writing nothing), NULL arrays give
- * GGX_ERR_NULL when n > 0, and a direction sampler marked batch must be reflection sampling, the one direction
- * sampler the batch API has (ggx_batch_sample_brdf, compared above). */
+ * marked batch and ggx_batch_sample_directions exactly the direction samplers marked batch (GGX_ERR_RANGE for the
+ * others and for ids outside the registry, writing nothing); NULL arrays give GGX_ERR_NULL when n > 0. */
 static void registry_entry_points(void **state)
 {
     (void)state;
@@ -198,11 +218,31 @@ static void registry_entry_points(void **state)
         CHECK(st == GGX_ERR_RANGE && m[0] == -7.0f && m[1] == -7.0f && m[2] == -7.0f,
               "sampler id %d (%s), not a batch sampler of normals: status %s", id, info ? info->name : "none",
               ggx_status_str(st));
-        if (info && info->batch && info->family == GGX_FAMILY_DIRECTION)
-            CHECK(id == GGX_SAMPLER_BRDF, "direction sampler %s is marked batch, but the batch API has no entry for it",
-                  info->name);
     }
     CHECK(batched > 0, "no batch sampler of normals in the registry");
+    int directions = 0;
+    for (int id = -1; id <= GGX_SAMPLER_COUNT; id++) {
+        const ggx_sampler_info *info = ggx_sampler_get((ggx_sampler_id)id);
+        float w[5] = {-7.0f, -7.0f, -7.0f, -7.0f, -7.0f};
+        ggx_status st = ggx_batch_sample_directions((ggx_sampler_id)id, &w[0], &w[1], &w[2], &w[3], &w[4], 1, &s, NULL,
+                                                    &v[0], &v[1], &v[2], &u[0], &u[1]);
+        if (info && info->batch && info->family == GGX_FAMILY_DIRECTION) {
+            directions++;
+            ggx_fresnel one;
+            ggx_fresnel_one(&one); /* the batch's NULL: F = 1 */
+            ggx_sample x = info->sample_direction(&s, &one, 1.5, t_vec(v[0], v[1], v[2]), u[0], u[1], 0.5, GGX_RADIANCE);
+            CHECK(st == GGX_OK && (w[3] > 0) == (x.event != GGX_EVENT_INVALID) && fabs(w[3] - x.pdf) <= 1e-4 * x.pdf,
+                  "%s: %s, pdf %g against %g", info->name, ggx_status_str(st), w[3], x.pdf);
+            CHECK(ggx_batch_sample_directions((ggx_sampler_id)id, &w[0], &w[1], &w[2], &w[3], NULL, 1, &s, NULL, &v[0],
+                                              &v[1], &v[2], &u[0], &u[1]) == GGX_ERR_NULL,
+                  "%s: NULL output accepted", info->name);
+            continue;
+        }
+        CHECK(st == GGX_ERR_RANGE && w[0] == -7.0f && w[3] == -7.0f && w[4] == -7.0f,
+              "sampler id %d (%s), not a batch direction sampler: status %s", id, info ? info->name : "none",
+              ggx_status_str(st));
+    }
+    CHECK(directions == 2, "batch direction samplers in the registry: %d, want brdf and brdf-bounded", directions);
 }
 
 /* Threads: a large batch split over threads gives bit-identical results to one thread. */

@@ -59,11 +59,12 @@ typedef enum op {
     OP_SAMPLE_VNDF_ANISO,
     OP_SAMPLE_NDF,
     OP_SAMPLE_BRDF,
+    OP_SAMPLE_BRDF_BOUNDED,
     OP_SAMPLER, /* OP_SAMPLER + id: sampler id of the registry (NDF and VNDF families) */
     NOPS = OP_SAMPLER + GGX_SAMPLER_COUNT
 } op;
 static const char *const op_names[OP_SAMPLER] = {"ndf", "pdf_vndf", "brdf", "sample_vndf", "sample_vndf_aniso",
-                                                 "sample_ndf", "sample_brdf"};
+                                                 "sample_ndf", "sample_brdf", "sample_brdf_bounded"};
 /* The registry's entry of a sampler op (NULL for the other ops). */
 static const ggx_sampler_info *sampler_of(op o)
 {
@@ -173,7 +174,7 @@ static void note(report *r, op o, int q, double err, double tol, const batch *b,
     const ggx_sampler_info *info = sampler_of(o);
     append(&p, &left, "variant %s, %s element %zu of %zu: shape %s", b->vr->name, op_name(o), i, b->n, b->shape);
     if (o != OP_NDF && o != OP_SAMPLE_NDF && !(info && info->family == GGX_FAMILY_NDF))
-        append(&p, &left, "; %s (%.9g, %.9g, %.9g)", o == OP_BRDF || o == OP_SAMPLE_BRDF ? "wi" : "v", b->in[VX][i],
+        append(&p, &left, "; %s (%.9g, %.9g, %.9g)", o == OP_BRDF || o == OP_SAMPLE_BRDF || o == OP_SAMPLE_BRDF_BOUNDED ? "wi" : "v", b->in[VX][i],
                b->in[VY][i], b->in[VZ][i]);
     if (o <= OP_BRDF)
         append(&p, &left, "; %s (%.9g, %.9g, %.9g)", o == OP_BRDF ? "wo" : "m", b->in[MX][i], b->in[MY][i],
@@ -181,7 +182,7 @@ static void note(report *r, op o, int q, double err, double tol, const batch *b,
     else
         append(&p, &left, "; u (%.9g, %.9g)", b->in[U1][i], b->in[U2][i]);
     if (o == OP_SAMPLE_VNDF_ANISO) append(&p, &left, "; alphas (%.9g, %.9g)", b->in[AX][i], b->in[AY][i]);
-    if (b->f && (o == OP_BRDF || o == OP_SAMPLE_BRDF))
+    if (b->f && (o == OP_BRDF || o == OP_SAMPLE_BRDF || o == OP_SAMPLE_BRDF_BOUNDED))
         append(&p, &left, "; fresnel kind %d eta %.9g k %.9g f0 %.9g", (int)b->f->kind, b->f->eta, b->f->k, b->f->f0);
     append(&p, &left, ": ");
     va_list ap;
@@ -225,13 +226,15 @@ static int run_op(op o, batch *b)
     case OP_SAMPLE_VNDF: vr->sample_vndf(vr, b->s, n, v, u1, u2, mo); break;
     case OP_SAMPLE_VNDF_ANISO: vr->sample_vndf_aniso(vr, n, ax, ay, v, u1, u2, mo); break;
     case OP_SAMPLE_NDF: vr->sample_ndf(vr, b->s, n, u1, u2, mo); break;
-    case OP_SAMPLE_BRDF: vr->sample_brdf(vr, b->s, b->f, n, v, u1, u2, so); break;
+    case OP_SAMPLE_BRDF: vr->sample_brdf(vr, 0, b->s, b->f, n, v, u1, u2, so); break;
+    case OP_SAMPLE_BRDF_BOUNDED: vr->sample_brdf(vr, 1, b->s, b->f, n, v, u1, u2, so); break;
     default: vr->sample(vr, info->id, b->s, n, v, u1, u2, mo); break;
     }
     for (size_t i = 0; i < n; i++) {
-        ggx_vec3 w = o == OP_SAMPLE_BRDF ? so[i].w : mo[i];
+        int direction = o == OP_SAMPLE_BRDF || o == OP_SAMPLE_BRDF_BOUNDED;
+        ggx_vec3 w = direction ? so[i].w : mo[i];
         if (o > OP_BRDF) b->out[0][i] = w.x, b->out[1][i] = w.y, b->out[2][i] = w.z;
-        if (o == OP_SAMPLE_BRDF) b->out[3][i] = so[i].pdf, b->out[4][i] = so[i].weight;
+        if (direction) b->out[3][i] = so[i].pdf, b->out[4][i] = so[i].weight;
     }
     free(v), free(m), free(u1), free(u2), free(ax), free(ay), free(mo), free(so);
     return 1;
@@ -298,12 +301,12 @@ static void check_normal(op o, const batch *b, size_t i, report *r)
          why ? why : "", got.x, got.y, got.z, len - 1, got.z, mv, pdf, want.x, want.y, want.z, t_dot(want, v));
 }
 
-/* ggx_sample_brdf: validity, direction, pdf and weight (weight <= 1) where the double wo is off the horizon; an
- * invalid sample is exactly w = 0, pdf 0, weight 0; a non-finite u gives an invalid sample where the variant
- * promises it, else the sample of u clamped into [0, 1]. */
-static void check_brdf_sample(const batch *b, size_t i, report *r)
+/* ggx_sample_brdf (o = OP_SAMPLE_BRDF) or ggx_sample_brdf_bounded: validity, direction, pdf and weight (weight <= 1)
+ * where the double wo is off the horizon; an invalid sample is exactly w = 0, pdf 0, weight 0; a non-finite u gives
+ * an invalid sample where the variant promises it, else the sample of u clamped into [0, 1]. */
+static void check_brdf_sample(op o, const batch *b, size_t i, report *r)
 {
-    const op o = OP_SAMPLE_BRDF;
+    int bounded = o == OP_SAMPLE_BRDF_BOUNDED;
     const variant *vr = b->vr;
     ggx_vec3 wi = in_vec(b, VX, i), w = out_vec(b, i);
     double u1 = b->in[U1][i], u2 = b->in[U2][i], pdf = b->out[3][i], weight = b->out[4][i];
@@ -325,8 +328,10 @@ static void check_brdf_sample(const batch *b, size_t i, report *r)
     }
     if (!b->accuracy) return;
     u1 = clamp_u(u1), u2 = clamp_u(u2);
-    ggx_sample x = ggx_sample_brdf(b->s, b->f, wi, u1, u2);
-    ggx_vec3 wd = x.event != GGX_EVENT_INVALID ? x.w : ggx_reflect(wi, ggx_sample_vndf_caps(b->s, wi, u1, u2));
+    ggx_sample x = bounded ? ggx_sample_brdf_bounded(b->s, b->f, wi, u1, u2) : ggx_sample_brdf(b->s, b->f, wi, u1, u2);
+    /* the invalid sample's reflection, for the horizon test: the bounded sampler's caps take u2 kappa */
+    double u2c = bounded ? u2 * ggx_k_bound_kappa_d(b->s, t_normalize(wi)) : u2;
+    ggx_vec3 wd = x.event != GGX_EVENT_INVALID ? x.w : ggx_reflect(wi, ggx_sample_vndf_caps(b->s, wi, u1, u2c));
     if (fabs(wd.z) < HORIZON) return; /* the horizon: float and double may fall on different sides */
     int dvalid = x.event != GGX_EVENT_INVALID;
     /* a non-finite u is one check: the sample of the clamped u, valid or not alike */
@@ -358,7 +363,7 @@ static void compare(op o, batch *b, report *r)
     if (!run_op(o, b)) return;
     for (size_t i = 0; i < b->n; i++) {
         if (o <= OP_BRDF) check_value(o, b, i, r);
-        else if (o == OP_SAMPLE_BRDF) check_brdf_sample(b, i, r);
+        else if (o == OP_SAMPLE_BRDF || o == OP_SAMPLE_BRDF_BOUNDED) check_brdf_sample(o, b, i, r);
         else check_normal(o, b, i, r);
     }
 }
@@ -367,7 +372,8 @@ static void compare(op o, batch *b, report *r)
  * of normals of the registry (compare skips what the variant lacks). */
 static void compare_samplers(batch *b, report *r)
 {
-    static const op fixed[] = {OP_SAMPLE_VNDF, OP_SAMPLE_VNDF_ANISO, OP_SAMPLE_NDF, OP_SAMPLE_BRDF};
+    static const op fixed[] = {OP_SAMPLE_VNDF, OP_SAMPLE_VNDF_ANISO, OP_SAMPLE_NDF, OP_SAMPLE_BRDF,
+                               OP_SAMPLE_BRDF_BOUNDED};
     for (unsigned q = 0; q < sizeof fixed / sizeof fixed[0]; q++) compare(fixed[q], b, r);
     for (int id = 0; id < GGX_SAMPLER_COUNT; id++) compare((op)(OP_SAMPLER + id), b, r);
 }

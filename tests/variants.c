@@ -78,11 +78,12 @@ static void exported_sample_ndf(const variant *vr, const ggx_shape *s, size_t n,
     (void)vr;
     for (size_t i = 0; i < n; i++) m[i] = ggx_sample_ndf(s, u1[i], u2[i]);
 }
-static void exported_sample_brdf(const variant *vr, const ggx_shape *s, const ggx_fresnel *f, size_t n,
+static void exported_sample_brdf(const variant *vr, int bounded, const ggx_shape *s, const ggx_fresnel *f, size_t n,
                                  const ggx_vec3 *wi, const double *u1, const double *u2, ggx_sample *out)
 {
     (void)vr;
-    for (size_t i = 0; i < n; i++) out[i] = ggx_sample_brdf(s, f, wi[i], u1[i], u2[i]);
+    for (size_t i = 0; i < n; i++)
+        out[i] = bounded ? ggx_sample_brdf_bounded(s, f, wi[i], u1[i], u2[i]) : ggx_sample_brdf(s, f, wi[i], u1[i], u2[i]);
 }
 
 /* ---- inline: the kernels of ggx_inline.h, double (_d) and float (_f) ---- */
@@ -233,7 +234,7 @@ static void inline_sample_ndf(const variant *vr, const ggx_shape *s, size_t n, c
     for (size_t i = 0; i < n; i++)
         m[i] = is_f(vr) ? up3(ggx_sample_ndf_f(&sf, (float)u1[i], (float)u2[i])) : ggx_sample_ndf_d(s, u1[i], u2[i]);
 }
-static void inline_sample_brdf(const variant *vr, const ggx_shape *s, const ggx_fresnel *f, size_t n,
+static void inline_sample_brdf(const variant *vr, int bounded, const ggx_shape *s, const ggx_fresnel *f, size_t n,
                                const ggx_vec3 *wi, const double *u1, const double *u2, ggx_sample *out)
 {
     ggx_shapef sf;
@@ -242,10 +243,13 @@ static void inline_sample_brdf(const variant *vr, const ggx_shape *s, const ggx_
     ggx_fresnelf_from(&ff, f);
     for (size_t i = 0; i < n; i++) {
         if (!is_f(vr)) {
-            out[i] = ggx_sample_brdf_d(s, f, wi[i], u1[i], u2[i]);
+            out[i] = bounded ? ggx_sample_brdf_bounded_d(s, f, wi[i], u1[i], u2[i])
+                             : ggx_sample_brdf_d(s, f, wi[i], u1[i], u2[i]);
             continue;
         }
-        ggx_samplef x = ggx_sample_brdf_f(&sf, &ff, down3(wi[i]), (float)u1[i], (float)u2[i]);
+        ggx_vec3f w = down3(wi[i]);
+        float a = (float)u1[i], b = (float)u2[i];
+        ggx_samplef x = bounded ? ggx_sample_brdf_bounded_f(&sf, &ff, w, a, b) : ggx_sample_brdf_f(&sf, &ff, w, a, b);
         out[i].w = up3(x.w), out[i].pdf = x.pdf, out[i].weight = x.weight, out[i].event = x.event;
     }
 }
@@ -310,7 +314,8 @@ static void batch_run(const variant *vr, const batch_call *c, size_t n)
         case B_SAMPLE_VNDF: ggx_batch_sample_vndf(o[0], o[1], o[2], k, c->s, a[0], a[1], a[2], u1, u2); break;
         case B_SAMPLE_NDF: ggx_batch_sample_ndf(o[0], o[1], o[2], k, c->s, u1, u2); break;
         case B_SAMPLE_BRDF:
-            ggx_batch_sample_brdf(o[0], o[1], o[2], o[3], o[4], k, c->s, c->f, a[0], a[1], a[2], u1, u2);
+            st = ggx_batch_sample_directions(c->id, o[0], o[1], o[2], o[3], o[4], k, c->s, c->f, a[0], a[1], a[2], u1,
+                                             u2);
             break;
         case B_ANISO: ggx_batch_sample_vndf_aniso(o[0], o[1], o[2], k, ax, ay, a[0], a[1], a[2], u1, u2); break;
         }
@@ -384,10 +389,11 @@ static void batch_sample_ndf(const variant *vr, const ggx_shape *s, size_t n, co
     batch_call c = {B_SAMPLE_NDF, 0, s, NULL, NULL, NULL, u1, u2, NULL, NULL, NULL, m, NULL};
     batch_run(vr, &c, n);
 }
-static void batch_sample_brdf(const variant *vr, const ggx_shape *s, const ggx_fresnel *f, size_t n,
+static void batch_sample_brdf(const variant *vr, int bounded, const ggx_shape *s, const ggx_fresnel *f, size_t n,
                               const ggx_vec3 *wi, const double *u1, const double *u2, ggx_sample *out)
 {
-    batch_call c = {B_SAMPLE_BRDF, 0, s, f, wi, NULL, u1, u2, NULL, NULL, NULL, NULL, out};
+    batch_call c = {B_SAMPLE_BRDF, bounded ? GGX_SAMPLER_BRDF_BOUNDED : GGX_SAMPLER_BRDF, s, f, wi, NULL, u1, u2, NULL,
+                    NULL, NULL, NULL, out};
     batch_run(vr, &c, n);
 }
 static void batch_sample_vndf_aniso(const variant *vr, size_t n, const double *alpha_x, const double *alpha_y,

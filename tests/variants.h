@@ -45,13 +45,14 @@ struct variant {
     void (*brdf)(const variant *vr, const ggx_shape *s, const ggx_fresnel *f, size_t n, const ggx_vec3 *wi,
                  const ggx_vec3 *wo, double *fr);
     /* The default samplers of each variant (ggx_sample_vndf, ggx_sample_ndf and their twins; the batch API's
-     * ggx_batch_sample_vndf and ggx_batch_sample_ndf), and reflection sampling (ggx_sample_brdf). */
+     * ggx_batch_sample_vndf and ggx_batch_sample_ndf), and reflection sampling (ggx_sample_brdf, or with bounded
+     * ggx_sample_brdf_bounded; the batch API's ggx_batch_sample_directions). */
     void (*sample_vndf)(const variant *vr, const ggx_shape *s, size_t n, const ggx_vec3 *v, const double *u1,
                         const double *u2, ggx_vec3 *m);
     void (*sample_ndf)(const variant *vr, const ggx_shape *s, size_t n, const double *u1, const double *u2,
                        ggx_vec3 *m);
-    void (*sample_brdf)(const variant *vr, const ggx_shape *s, const ggx_fresnel *f, size_t n, const ggx_vec3 *wi,
-                        const double *u1, const double *u2, ggx_sample *out);
+    void (*sample_brdf)(const variant *vr, int bounded, const ggx_shape *s, const ggx_fresnel *f, size_t n,
+                        const ggx_vec3 *wi, const double *u1, const double *u2, ggx_sample *out);
     /* Per-element anisotropic GGX (ggx_batch_sample_vndf_aniso); NULL where the variant has no such function. */
     void (*sample_vndf_aniso)(const variant *vr, size_t n, const double *alpha_x, const double *alpha_y,
                               const ggx_vec3 *v, const double *u1, const double *u2, ggx_vec3 *m);

@@ -101,6 +101,16 @@ void ggx_batch_sample_brdf(float *wox, float *woy, float *woz, float *pdf, float
                            const ggx_shape *s, const ggx_fresnel *f, const float *wix, const float *wiy,
                            const float *wiz, const float *u1, const float *u2);
 
+/* Directions from any sampler of the registry with batch = 1 and family DIRECTION: reflection sampling
+ * (GGX_SAMPLER_BRDF, as ggx_batch_sample_brdf) and bounded reflection sampling (GGX_SAMPLER_BRDF_BOUNDED, the loop of
+ * ggx_sample_brdf_bounded_f: ggx_sample_brdf_bounded in float), with the same outputs and bounds as
+ * ggx_batch_sample_brdf. f NULL means F = 1. GGX_ERR_RANGE for another sampler, GGX_ERR_NULL for a NULL array or
+ * shape when n > 0; nothing is written then. */
+ggx_status ggx_batch_sample_directions(ggx_sampler_id sampler, float *wox, float *woy, float *woz, float *pdf,
+                                       float *weight, size_t n, const ggx_shape *s, const ggx_fresnel *f,
+                                       const float *wix, const float *wiy, const float *wiz, const float *u1,
+                                       const float *u2);
+
 #ifdef __cplusplus
 }
 #endif

@@ -22,7 +22,8 @@ extern "C" {
  * - family: NDF (m with pdf D(m) m.n), VNDF (m with pdf eq 33 for the view v), REJECTION (VNDF by rejection, with a
  *   source of random numbers), DIRECTION (a direction w with pdf and weight);
  * - domain: ANY shape, or UNSKEWED shapes only (a skewed shape gives the zero vector);
- * - batch: 1 when the float batch API has it (ggx_batch_sample_normals for NDF and VNDF, ggx_batch_sample_brdf). */
+ * - batch: 1 when the float batch API has it (ggx_batch_sample_normals for NDF and VNDF, ggx_batch_sample_directions
+ *   for DIRECTION). */
 #define GGX_SAMPLER_LIST(X)                                                                                       \
     X(STRETCH, "stretch", sample_ndf_stretch, NDF, ANY, 1, 1, "NDF: cosine hemisphere + elliptic stretch (Engstad)") \
     X(ELLIPSE, "ellipse", sample_ndf_ellipse, NDF, ANY, 0, 0,                                                      \
@@ -40,7 +41,7 @@ extern "C" {
     X(WALTER_V2, "walter-v2", sample_vndf_walter_v2, REJECTION, ANY, 0, 0,                                         \
       "VNDF: Walter version 2 (rejection, sphere space)")                                                          \
     X(BRDF, "brdf", sample_brdf, DIRECTION, ANY, 0, 1, "directions: reflection sampling (eq 47-50), view = wi")    \
-    X(BRDF_BOUNDED, "brdf-bounded", sample_brdf_bounded, DIRECTION, ANY, 0, 0,                                   \
+    X(BRDF_BOUNDED, "brdf-bounded", sample_brdf_bounded, DIRECTION, ANY, 0, 1,                                   \
       "directions: bounded reflection sampling (caps from the horizon bound), view = wi")                         \
     X(BSDF, "bsdf", sample_bsdf, DIRECTION, ANY, 0, 0,                                                             \
       "directions: rough dielectric (Walter 2007), view = known direction, --eta")

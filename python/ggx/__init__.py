@@ -107,8 +107,8 @@ _batch_g1 = _proto("ggx_batch_g1", None, _vp, _sz, _vp, _vp, _vp, _vp, _vp, _vp,
 _batch_pdf_vndf = _proto("ggx_batch_pdf_vndf", None, _vp, _sz, _vp, _vp, _vp, _vp, _vp, _vp, _vp)
 _batch_brdf = _proto("ggx_batch_brdf", None, _vp, _sz, _vp, _vp, _vp, _vp, _vp, _vp, _vp, _vp)
 _batch_normals = _proto("ggx_batch_sample_normals", _i, _i, _vp, _vp, _vp, _sz, _vp, _vp, _vp, _vp, _vp, _vp)
-_batch_sample_brdf = _proto("ggx_batch_sample_brdf", None, _vp, _vp, _vp, _vp, _vp, _sz, _vp, _vp, _vp, _vp, _vp,
-                            _vp, _vp)
+_batch_directions = _proto("ggx_batch_sample_directions", _i, _i, _vp, _vp, _vp, _vp, _vp, _sz, _vp, _vp, _vp, _vp,
+                           _vp, _vp, _vp)
 _batch_get_isa = _proto("ggx_batch_get_isa", _i)
 _batch_isa_name = _proto("ggx_batch_isa_name", ctypes.c_char_p, _i)
 _batch_set_threads = _proto("ggx_batch_set_threads", _i, _i)
@@ -660,7 +660,7 @@ def sample(method, shape, v, u1, u2, u3=0.0, fresnel=None, eta=1.5, mode="radian
     return_trials=True also returns the number of candidates per element. direction: a DirectionSample from the
     known direction v (u3 chooses reflection or refraction for 'bsdf'; fresnel is used by the reflection samplers,
     eta and mode by 'bsdf'). dtype=np.float32 runs batch samplers in float (ggx_batch_sample_normals,
-    ggx_batch_sample_brdf for 'brdf'): the view is normalised in float64 first, u is rounded to float (a u below 1
+    ggx_batch_sample_directions for 'brdf' and 'brdf-bounded'): the view is normalised in float64 first, u is rounded to float (a u below 1
     that rounds to 1 becomes the largest float below 1), and a NaN or infinite u gives the zero vector (an invalid
     sample), as ggx_batch.h states; the other samplers give their float64 result rounded.
     """
@@ -693,13 +693,13 @@ def sample(method, shape, v, u1, u2, u3=0.0, fresnel=None, eta=1.5, mode="radian
     md = _choice(mode, _MODES, "mode")
     et = _real(eta, "eta")
     a = _Args((v, "v", 3), (u1, "u1", 1), (u2, "u2", 1), (u3, "u3", 1))
-    if dt == np.float32 and e.name == "brdf":
+    if dt == np.float32 and e.batch:
         w, pdf_, weight = a.out(3, dtype=np.float32), a.out(dtype=np.float32), a.out(dtype=np.float32)
         if a.n:
             (vx, vy, vz), (q1,), (q2,) = a.soa32(0, "view"), a.soa32(1, "u"), a.soa32(2, "u")
             cols = [np.empty(a.n, np.float32) for _ in range(3)]
-            _batch_sample_brdf(*[_ptr(c) for c in cols], _ptr(pdf_), _ptr(weight), a.n, s._buf, f._buf, _ptr(vx),
-                               _ptr(vy), _ptr(vz), _ptr(q1), _ptr(q2))
+            _check(_batch_directions(e.id, *[_ptr(c) for c in cols], _ptr(pdf_), _ptr(weight), a.n, s._buf, f._buf,
+                                     _ptr(vx), _ptr(vy), _ptr(vz), _ptr(q1), _ptr(q2)))
             w.reshape(-1, 3)[:] = np.stack(cols, axis=-1)
         event = np.where(pdf_ > 0, 1, 0).astype(np.int8)
         return DirectionSample(w, _scalar(pdf_), _scalar(weight), _scalar(event))

@@ -225,7 +225,27 @@ GGX_API void ggx_batch_sample_brdf(float *wox, float *woy, float *woz, float *pd
     ggx_shapef sf;
     ggx_shapef_from(&sf, s);
     batch_args a = args(&sf, fr);
+    a.sampler = GGX_SAMPLER_BRDF;
     a.out[0] = wox, a.out[1] = woy, a.out[2] = woz, a.out[3] = pdf, a.out[4] = weight;
     a.in[0] = wix, a.in[1] = wiy, a.in[2] = wiz, a.in[3] = u1, a.in[4] = u2;
     run(LOOP(sample_brdf), &a, n);
+}
+
+GGX_API ggx_status ggx_batch_sample_directions(ggx_sampler_id sampler, float *wox, float *woy, float *woz, float *pdf,
+                                               float *weight, size_t n, const ggx_shape *s, const ggx_fresnel *fr,
+                                               const float *wix, const float *wiy, const float *wiz, const float *u1,
+                                               const float *u2)
+{
+    const ggx_sampler_info *info = ggx_sampler_get(sampler);
+    if (!info || !info->batch || info->family != GGX_FAMILY_DIRECTION) return GGX_ERR_RANGE;
+    if (!wox || !woy || !woz || !pdf || !weight || !s || !wix || !wiy || !wiz || !u1 || !u2)
+        return n ? GGX_ERR_NULL : GGX_OK;
+    ggx_shapef sf;
+    ggx_shapef_from(&sf, s);
+    batch_args a = args(&sf, fr);
+    a.sampler = (int)sampler;
+    a.out[0] = wox, a.out[1] = woy, a.out[2] = woz, a.out[3] = pdf, a.out[4] = weight;
+    a.in[0] = wix, a.in[1] = wiy, a.in[2] = wiz, a.in[3] = u1, a.in[4] = u2;
+    run(LOOP(sample_brdf), &a, n);
+    return GGX_OK;
 }
