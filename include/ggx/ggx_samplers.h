@@ -83,6 +83,9 @@ typedef struct ggx_sampler_info {
                                    double u2, double u3, ggx_transport mode);
     /* DIRECTION: the pdf of sample_direction giving w from v. */
     double (*pdf_direction)(const ggx_shape *s, double eta, ggx_vec3 v, ggx_vec3 w);
+    /* The name of its double API function, "ggx_<stem>" (its inverse is that name + "_inv"), for bindings and tools
+     * that call the named function. (Added after the fields above; entries are only reached through pointers.) */
+    const char *function;
 } ggx_sampler_info;
 
 /* The entry of a sampler; NULL for an id outside [0, GGX_SAMPLER_COUNT). */

@@ -597,24 +597,26 @@ def albedo_avg_iso_table(alpha, masking="separable"):
 
 # --- The registry of samplers ------------------------------------------------------------------------------------
 
-SamplerInfo = collections.namedtuple("SamplerInfo", "id name family domain batch inverse help")
+SamplerInfo = collections.namedtuple("SamplerInfo", "id name family domain batch inverse help function")
 SamplerInfo.__doc__ = """A sampler of the library's registry (ggx_samplers.h): family 'ndf', 'vndf', 'rejection'
-or 'direction'; domain 'any' or 'unskewed'; batch: the float batch API has it; inverse: sample_inverse works."""
+or 'direction'; domain 'any' or 'unskewed'; batch: the float batch API has it; inverse: sample_inverse works;
+function: the name of its C function (ggx_sampler_info.function)."""
 
 _FAMILIES = ("ndf", "vndf", "rejection", "direction")
 
 
 def _registry():
     out = []
-    desc = _proto("ggxpy_sampler_desc", _i, _i, ctypes.POINTER(ctypes.c_char_p), ctypes.POINTER(ctypes.c_char_p),
-                  ctypes.POINTER(_i), ctypes.POINTER(_i), ctypes.POINTER(_i), ctypes.POINTER(_i))
-    name, hlp = ctypes.c_char_p(), ctypes.c_char_p()
+    cp = ctypes.POINTER(ctypes.c_char_p)
+    desc = _proto("ggxpy_sampler_desc", _i, _i, cp, cp, cp, ctypes.POINTER(_i), ctypes.POINTER(_i),
+                  ctypes.POINTER(_i), ctypes.POINTER(_i))
+    name, hlp, fn = ctypes.c_char_p(), ctypes.c_char_p(), ctypes.c_char_p()
     fam, dom, bat, inv = _i(), _i(), _i(), _i()
     k = 0
-    while desc(k, ctypes.byref(name), ctypes.byref(hlp), ctypes.byref(fam), ctypes.byref(dom), ctypes.byref(bat),
-               ctypes.byref(inv)):
+    while desc(k, ctypes.byref(name), ctypes.byref(hlp), ctypes.byref(fn), ctypes.byref(fam), ctypes.byref(dom),
+               ctypes.byref(bat), ctypes.byref(inv)):
         out.append(SamplerInfo(k, name.value.decode(), _FAMILIES[fam.value], ("any", "unskewed")[dom.value],
-                               bool(bat.value), bool(inv.value), hlp.value.decode()))
+                               bool(bat.value), bool(inv.value), hlp.value.decode(), fn.value.decode()))
         k += 1
     return tuple(out)
 

@@ -38,12 +38,13 @@ EXPORT int ggxpy_shape_kind(const ggx_shape *s) { return (int)s->kind; }
 EXPORT void ggxpy_shape_canonical(const ggx_shape *s, double a[9]) { memcpy(a, s->a, sizeof s->a); }
 /* What the Python side shows of a registry entry (it lists the samplers from here, never by hand). 0 for an id
  * outside the registry. */
-EXPORT int ggxpy_sampler_desc(int id, const char **name, const char **help, int *family, int *domain, int *batch,
-                              int *has_inverse)
+EXPORT int ggxpy_sampler_desc(int id, const char **name, const char **help, const char **function, int *family,
+                              int *domain, int *batch, int *has_inverse)
 {
     const ggx_sampler_info *e = ggx_sampler_get((ggx_sampler_id)id);
     if (!e) return 0;
-    *name = e->name, *help = e->help, *family = (int)e->family, *domain = (int)e->domain, *batch = e->batch;
+    *name = e->name, *help = e->help, *function = e->function, *family = (int)e->family, *domain = (int)e->domain;
+    *batch = e->batch;
     *has_inverse = e->inverse != NULL;
     return 1;
 }

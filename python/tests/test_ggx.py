@@ -64,12 +64,23 @@ def c():
         "ggx_pdf_brdf_compensated": (D, P, P, Vec3, Vec3),
         "ggx_sample_brdf_compensated": (Sample, P, P, Vec3, D, D, D), "ggx_sample_brdf_ms": (Sample, P, P, Vec3, D, D),
     }
-    for stem in ("stretch", "ellipse", "inversion", "visible"):
-        sig["ggx_sample_ndf_" + stem] = (Vec3, P, D, D)
-    for stem in ("caps", "crescent", "crescent_polar", "heitz"):
-        sig["ggx_sample_vndf_" + stem] = (Vec3, P, Vec3, D, D)
-        sig[f"ggx_sample_vndf_{stem}_inv"] = (Vec2, P, Vec3, Vec3)
-    sig["ggx_sample_ndf_stretch_inv"] = (Vec2, P, Vec3)
+    # the registry's samplers of normals, by the C function each entry names (ggx_sampler_info.function)
+    for e in ggx.samplers():
+        if e.family == "ndf":
+            sig[e.function] = (Vec3, P, D, D)
+            if e.inverse:
+                sig[e.function + "_inv"] = (Vec2, P, Vec3)
+        elif e.family == "vndf":
+            sig[e.function] = (Vec3, P, Vec3, D, D)
+            if e.inverse:
+                sig[e.function + "_inv"] = (Vec2, P, Vec3, Vec3)
+    sig["ggx_sampler_get"] = (P, I)
+    sig["ggx_sampler_find"] = (P, ctypes.c_char_p)
+    sig["ggx_albedo_avg"] = (D, P)
+    sig["ggx_albedo_avg_height_correlated"] = (D, P)
+    sig["ggx_albedo_avg_iso_table"] = (D, D, I)
+    sig["ggx_fresnel_avg"] = (D, P)
+    sig["ggx_energy_albedo_avg"] = (D, P)
     for name, (res, *args) in sig.items():
         f = getattr(lib, name)
         f.restype, f.argtypes = res, args
@@ -173,20 +184,16 @@ def test_albedo_matches_c(c):
         assert same(ggx.albedo_iso_table(al, mu, g), [c.ggx_albedo_iso_table(x, y, k) for x, y in zip(al, mu)])
 
 
-# The registry's samplers, and what each family's C function is called.
-NDF_C = {"stretch": "ggx_sample_ndf_stretch", "ellipse": "ggx_sample_ndf_ellipse",
-         "inversion": "ggx_sample_ndf_inversion", "visible": "ggx_sample_ndf_visible"}
-
-
-def test_registry_is_the_librarys():
-    names = [e.name for e in ggx.samplers()]
-    assert names[:5] == ["stretch", "ellipse", "inversion", "visible", "caps"] and "bsdf" in names
-    assert [e.id for e in ggx.samplers()] == list(range(len(names)))
-    fams = {e.family for e in ggx.samplers()}
-    assert fams == {"ndf", "vndf", "rejection", "direction"}
+def test_registry_is_the_librarys(c):
+    """The package's list is the C registry's: the same names at the same ids, and nothing past its end."""
+    entries = ggx.samplers()
+    assert [e.id for e in entries] == list(range(len(entries))) and len(entries) >= 13
+    for e in entries:
+        assert c.ggx_sampler_find(e.name.encode()) == c.ggx_sampler_get(e.id), e.name
+        assert hasattr(c, e.function), e.function  # the function it names is exported
+    assert c.ggx_sampler_get(len(entries)) is None
+    assert {e.family for e in entries} == {"ndf", "vndf", "rejection", "direction"}
     assert all(e.family == "ndf" for e in ggx.samplers("ndf"))
-    # every NDF and VNDF sampler of the registry has a C function checked below
-    assert set(NDF_C) == {e.name for e in ggx.samplers("ndf")}
 
 
 @pytest.mark.parametrize("p", SHAPES)
@@ -204,19 +211,19 @@ def test_samplers_match_c_bit_for_bit(c, p):
                 ggx.sample(e.name, s, v, u1, u2)
             continue
         if e.family == "ndf":
-            fn = getattr(c, NDF_C[e.name])
+            fn = getattr(c, e.function)
             got = ggx.sample_ndf(s, u1, u2, method=e.name)
             want = [(q.x, q.y, q.z) for q in (fn(cs, x, y) for x, y in zip(u1, u2))]
             assert same(got, want), e.name
             assert same(ggx.pdf(e.name, s, None, got), [c.ggx_pdf_ndf(cs, v3(m)) for m in got])
         elif e.family == "vndf":
-            fn = getattr(c, "ggx_sample_vndf_" + e.name.replace("-", "_"))
+            fn = getattr(c, e.function)
             got = ggx.sample_vndf(s, v, u1, u2, method=e.name)
             want = [(q.x, q.y, q.z) for q in (fn(cs, v3(x), a, b) for x, a, b in zip(v, u1, u2))]
             assert same(got, want), e.name
             assert same(ggx.pdf(e.name, s, v, got), [c.ggx_pdf_vndf(cs, v3(x), v3(m)) for x, m in zip(v, got)])
             if e.inverse:
-                inv = getattr(c, "ggx_sample_vndf_" + e.name.replace("-", "_") + "_inv")
+                inv = getattr(c, e.function + "_inv")
                 uu = ggx.sample_inverse(e.name, s, v, got)
                 assert same(uu, [(q.x, q.y) for q in (inv(cs, v3(x), v3(m)) for x, m in zip(v, got))]), e.name
         elif e.family == "direction":
@@ -225,11 +232,10 @@ def test_samplers_match_c_bit_for_bit(c, p):
             c.ggx_fresnel_conductor(cf, 0.2, 3.9)
             u3 = r.random(N)
             got = ggx.sample(e.name, s, v, u1, u2, u3, fresnel=fr, eta=1.5, mode="importance")
-            cn = "ggx_sample_" + e.name.replace("-", "_")
-            if e.name == "bsdf":
+            if e.function == "ggx_sample_bsdf":  # the dielectric's signature: eta, u3 and the mode
                 want = [c.ggx_sample_bsdf(cs, 1.5, v3(x), a, b, d, 1) for x, a, b, d in zip(v, u1, u2, u3)]
             else:
-                want = [getattr(c, cn)(cs, cf, v3(x), a, b) for x, a, b in zip(v, u1, u2)]
+                want = [getattr(c, e.function)(cs, cf, v3(x), a, b) for x, a, b in zip(v, u1, u2)]
             assert same(got.w, [(q.w.x, q.w.y, q.w.z) for q in want]), e.name
             assert same(got.pdf, [q.pdf for q in want]) and same(got.weight, [q.weight for q in want]), e.name
             assert list(got.event) == [q.event for q in want], e.name
@@ -612,8 +618,10 @@ def test_hostile_regressions():
     # normal), within the batch bound of the double sampler at that u
     s = ggx.Shape.aniso(0.3, 0.6)
     top = float(np.nextafter(np.float32(1), np.float32(0)))
-    for name in ("caps", "visible", "stretch", "heitz"):
-        v = None if name in ("stretch", "visible") else [0, 0, 1]
+    for e in ggx.samplers():
+        if not e.batch or e.family not in ("ndf", "vndf"):
+            continue
+        name, v = e.name, None if e.family == "ndf" else [0, 0, 1]
         lo = ggx.sample(name, s, v, 0.25, 0.99999999, dtype=np.float32)
         assert same(lo, ggx.sample(name, s, v, 0.25, top, dtype=np.float32)), name
         assert np.max(np.abs(lo - ggx.sample(name, s, v, 0.25, top))) <= 1e-4, name

@@ -79,7 +79,7 @@ static double pdf_sample_bsdf(const ggx_shape *s, double eta, ggx_vec3 v, ggx_ve
 #define INV_DIRECTION_0(ID, stem) NULL
 #define ENTRY(ID, name, stem, family, domain, inverse, batch, help)                                               \
     {GGX_SAMPLER_##ID, name, help, GGX_FAMILY_##family, GGX_DOMAIN_##domain, batch, SAMPLE_##family(ID, stem),     \
-     INV_##family##_##inverse(ID, stem), REST_##family(ID, stem)},
+     INV_##family##_##inverse(ID, stem), REST_##family(ID, stem), "ggx_" #stem},
 static const ggx_sampler_info table[GGX_SAMPLER_COUNT] = {GGX_SAMPLER_LIST(ENTRY)};
 
 GGX_API const ggx_sampler_info *ggx_sampler_get(ggx_sampler_id id)
