@@ -142,9 +142,12 @@ ggx_status ggx_shape_ellipsoid(ggx_shape *s, double alpha_x, double alpha_y, dou
                                double theta_z);
 
 /* The matrix A = diag(alpha_x, alpha_y, 1) Rx(theta_x) Ry(theta_y) Rz(theta_z) of ggx_shape_ellipsoid (Walter eq 2-3),
- * row-major, with the same domain, alpha raised to GGX_ALPHA_MIN and errors (but no conditioning test: that is
- * ggx_shape_matrix's, which turns A into the shape ggx_shape_ellipsoid gives, bit for bit). The shape stores a
- * canonical Q A instead (ggx_shape.a); this is the A a user wrote. A is unchanged on error. */
+ * row-major: the A a user wrote (the shape stores a canonical Q A instead, ggx_shape.a). Same domain as
+ * ggx_shape_ellipsoid, alpha below GGX_ALPHA_MIN raised to it; ggx_shape_matrix of the result is the shape
+ * ggx_shape_ellipsoid gives, bit for bit (tests/test_errors.c). Each entry is the product of the sines and cosines as
+ * written, within 2 ulp of the exact product for the rounded angles (tested against the three rotations multiplied
+ * out). Errors: GGX_ERR_NULL (A NULL), GGX_ERR_NONFINITE (an angle or alpha NaN or infinite), GGX_ERR_ALPHA,
+ * GGX_ERR_ANGLE; never GGX_ERR_SINGULAR (the conditioning test is ggx_shape_matrix's). A is unchanged on error. */
 ggx_status ggx_ellipsoid_matrix(double A[3][3], double alpha_x, double alpha_y, double theta_x, double theta_y,
                                 double theta_z);
 

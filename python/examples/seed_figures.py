@@ -16,12 +16,13 @@ for ax, phi in zip(axes, (0, 90)):
     t, p = np.radians(75), np.radians(phi)
     v = np.array([np.sin(t) * np.cos(p), np.sin(t) * np.sin(p), np.cos(t)])
     pdf = np.where(disk, ggx.pdf_vndf(shape, v, m), np.nan)
-    up = disk & (2 * (m @ v) * m[..., 2] - v[2] > 0)  # z of the mirror reflection of v about m
+    up = disk & (ggx.reflect(v, m)[..., 2] > 0)
     im = ax.imshow(pdf, extent=(-1, 1, -1, 1), origin="lower", cmap="viridis")
     ax.imshow(np.where(up, 0.5, np.nan), extent=(-1, 1, -1, 1), origin="lower", cmap="gray", vmin=0, vmax=1,
               alpha=0.45)
     ax.annotate("v", xy=(0.96 * v[0] / np.hypot(v[0], v[1]), 0.96 * v[1] / np.hypot(v[0], v[1])), color="red")
     ax.set(title=f"$\\theta_v$ = 75°, $\\phi_v$ = {phi}°", xlabel="$m_x$", ylabel="$m_y$", aspect="equal")
     fig.colorbar(im, ax=ax, shrink=0.8, label="pdf (1/sr)")
+    print(f"phi_v = {phi}: peak {np.nanmax(pdf):.3f}, grey {np.mean(up[disk]):.3f} of the disk")
 fig.suptitle("Visible normals of GGX, $\\alpha$ = (0.15, 0.5), seen from the top (grey: reflection above the horizon)")
 fig.savefig(sys.argv[1] if len(sys.argv) > 1 else "seed_figures.png", dpi=120)

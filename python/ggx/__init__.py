@@ -21,6 +21,7 @@ sampler that has no sample.
 
 import collections
 import ctypes
+import decimal
 import math
 import numbers
 import os
@@ -33,7 +34,7 @@ __all__ = [
     "ndf", "ndf_spherical", "p22", "gaussian_curvature", "projected_area", "lune_area", "lambda_", "g1", "g1_smith",
     "g2", "pdf_ndf", "pdf_vndf", "brdf", "bsdf", "albedo", "albedo_avg", "bsdf_albedo", "albedo_iso_table",
     "albedo_avg_iso_table", "sample", "pdf", "sample_inverse", "sample_ndf", "sample_vndf", "sample_brdf",
-    "pdf_brdf", "sample_bsdf", "pdf_bsdf", "batch_isa", "set_batch_threads",
+    "pdf_brdf", "sample_bsdf", "pdf_bsdf", "reflect", "half_reflect", "batch_isa", "set_batch_threads",
 ]
 
 _lib = ctypes.CDLL(os.path.join(os.path.dirname(os.path.abspath(__file__)), "_ggx_native.so"))
@@ -81,6 +82,7 @@ _loop_sf_vv = _proto("ggxpy_sf_vv", None, _vp, _vp, _vp, _sz, _inp, _vp)
 _loop_bsdf = _proto("ggxpy_bsdf", None, _vp, _d, _i, _sz, _inp, _vp)
 _loop_bsdf_albedo = _proto("ggxpy_bsdf_albedo", None, _vp, _d, _sz, _inp, _vp, _vp)
 _loop_fresnel = _proto("ggxpy_fresnel", None, _vp, _sz, _inp, _vp)
+_loop_vv_v = _proto("ggxpy_vv_v", None, _vp, _sz, _inp, _vp)
 _loop_iso_table = _proto("ggxpy_albedo_iso_table", None, _i, _sz, _inp, _vp)
 _loop_sampler_pdf = _proto("ggxpy_sampler_pdf", None, _i, _vp, _d, _sz, _inp, _vp)
 _loop_sample = _proto("ggxpy_sample", None, _i, _vp, _sz, _inp, _vp)
@@ -139,8 +141,11 @@ def _check(status):
 def _real(x, what):
     """A real number for a setup parameter (NaN and infinities pass: the library refuses them with its status)."""
     try:
-        if isinstance(x, numbers.Real):
-            return float(x)
+        if isinstance(x, (numbers.Real, decimal.Decimal)):
+            v = float(x)
+            if math.isinf(v) and not (isinstance(x, float) or x != x or abs(x) == float("inf")):
+                raise OverflowError  # a finite number beyond float64's range
+            return v
         a = np.asarray(x)
         if a.shape != () or a.dtype.kind not in "biuf":
             raise TypeError
@@ -161,7 +166,12 @@ def _array(x, what):
                 raise TypeError
         elif a.dtype.kind not in "biuf":
             raise TypeError
-        return np.asarray(a, dtype=np.float64)
+        d = np.asarray(a, dtype=np.float64)
+        if a.dtype.kind in "fO" and a.dtype != np.float64 and a.dtype != np.float32 and a.dtype != np.float16:
+            with np.errstate(invalid="ignore"):
+                if np.any(np.isinf(d) & ~np.isinf(a.astype(np.longdouble))):
+                    raise OverflowError  # a finite long double or Python number beyond float64's range
+        return d
     except (TypeError, ValueError, OverflowError):
         raise ValueError(f"{what}: expected real numbers, got {x!r}") from None
 
@@ -275,10 +285,10 @@ class _MatrixAttribute:
 class Shape:
     """A microfacet shape: Walter's ellipsoid matrix A (ggx_shape). Immutable; safe to share between threads.
 
-    Make one with Shape.iso(alpha), Shape.aniso(alpha_x, alpha_y), Shape.ellipsoid(alpha_x, alpha_y, theta_x=0,
-    theta_y=0, theta_z=0) (radians; A = diag(alpha_x, alpha_y, 1) Rx Ry Rz, Walter eq 2-3) or Shape.matrix(A) (any
-    invertible 3 x 3 A, row-major). Alphas in (0, 1e4] (below 1e-4 raised to 1e-4), skews |theta_x|, |theta_y| <=
-    pi/2; a refused shape raises ValueError with the library's message.
+    Make one with Shape.iso(alpha), Shape.aniso(ax, ay), Shape.ellipsoid(ax, ay, theta_x=0, theta_y=0, theta_z=0)
+    (radians; A = diag(ax, ay, 1) Rx Ry Rz, Walter eq 2-3) or Shape.matrix(A) (any invertible 3 x 3 A, row-major).
+    Alphas in (0, 1e4] (below 1e-4 raised to 1e-4), skews |theta_x|, |theta_y| <= pi/2; a refused shape raises
+    ValueError with the library's message.
 
     Properties: matrix, the A given (read-only 3 x 3 float64; diag(alpha_x, alpha_y, 1) Rx Ry Rz for the
     alpha-based constructors, from ggx_ellipsoid_matrix); canonical_matrix, the Q A the library stores; kind.
@@ -302,10 +312,10 @@ class Shape:
         return self
 
     @classmethod
-    def ellipsoid(cls, alpha_x, alpha_y, theta_x=0.0, theta_y=0.0, theta_z=0.0):
-        """Walter's ellipsoid (ggx_shape_ellipsoid): anisotropic GGX rotated by theta_z and skewed by theta_x,
-        theta_y (radians)."""
-        p = [_real(alpha_x, "alpha_x"), _real(alpha_y, "alpha_y"), _real(theta_x, "theta_x"),
+    def ellipsoid(cls, ax, ay, theta_x=0.0, theta_y=0.0, theta_z=0.0):
+        """Walter's ellipsoid (ggx_shape_ellipsoid): anisotropic GGX of roughness (ax, ay) rotated by theta_z and
+        skewed by theta_x, theta_y (radians)."""
+        p = [_real(ax, "ax"), _real(ay, "ay"), _real(theta_x, "theta_x"),
              _real(theta_y, "theta_y"), _real(theta_z, "theta_z")]
         a = (_d * 9)()
         _check(_ellipsoid_matrix(a, *p))
@@ -313,9 +323,9 @@ class Shape:
         return cls._new(list(a), lambda b: _shape_ellipsoid(b, *p), text, ("ellipsoid", tuple(p)))
 
     @classmethod
-    def aniso(cls, alpha_x, alpha_y):
-        """Anisotropic GGX along x and y (ggx_shape_aniso): A = diag(alpha_x, alpha_y, 1)."""
-        s = cls.ellipsoid(alpha_x, alpha_y)
+    def aniso(cls, ax, ay):
+        """Anisotropic GGX along x and y (ggx_shape_aniso): A = diag(ax, ay, 1)."""
+        s = cls.ellipsoid(ax, ay)
         p = s._args[1]
         s._repr = f"Shape.aniso({p[0]!r}, {p[1]!r})"
         s._args = ("aniso", p[:2])
@@ -374,7 +384,7 @@ class Fresnel:
     Fresnel.schlick(f0). f(cos_i) evaluates it elementwise (ggx_fresnel_eval); f.avg is F_avg
     (ggx_fresnel_avg)."""
 
-    __slots__ = ("_buf", "_repr")
+    __slots__ = ("_buf", "_repr", "_args")
 
     def __init__(self, *args, **kwargs):
         raise TypeError("make a Fresnel with Fresnel.one, .dielectric, .conductor or .schlick")
@@ -385,7 +395,11 @@ class Fresnel:
         self._buf = ctypes.create_string_buffer(_FRESNEL_SIZE)
         _check(_fresnel_setup[kind](self._buf, *params))
         self._repr = f"Fresnel.{kind}({', '.join(repr(p) for p in params)})"
+        self._args = (kind, params)
         return self
+
+    def __reduce__(self):
+        return (getattr(Fresnel, self._args[0]), self._args[1])
 
     @classmethod
     def one(cls):
@@ -407,12 +421,12 @@ class Fresnel:
     def avg(self):
         return _fresnel_avg(self._buf)
 
-    def __call__(self, cos_i):
+    def __call__(self, cos_i, dtype=np.float64):
         a = _Args((cos_i, "cos_i", 1))
         out = a.out()
         if a.n:
             _loop_fresnel(self._buf, a.n, a.ins, _ptr(out))
-        return _scalar(out)
+        return _as(_scalar(out), dtype)
 
     def __repr__(self):
         return self._repr
@@ -448,8 +462,16 @@ def _eval(cname, shape, *specs):
     return a, out
 
 
-def _cast(out, dt):
-    return _scalar(out if dt == np.float64 else out.astype(dt))
+def _as(x, dtype):
+    """A float64 result (array, numpy scalar, or a tuple of them) in the requested dtype: the rounded result for
+    float32, where the batch API has no loop for the function."""
+    dt = _dtype(dtype)
+    if dt == np.float64:
+        return x
+    if isinstance(x, tuple):
+        items = [_as(e, dtype) if np.asarray(e).dtype == np.float64 else e for e in x]
+        return type(x)(*items) if hasattr(x, "_fields") else tuple(items)
+    return _scalar(np.asarray(x).astype(np.float32))
 
 
 def _batch_eval(batch, shape, dt, cname, *specs, pre=()):
@@ -471,34 +493,34 @@ def ndf(shape, m, dtype=np.float64):
     return _batch_eval(_batch_ndf, shape, dtype, "ggx_ndf", (m, "m", 3))
 
 
-def ndf_spherical(shape, theta, phi):
+def ndf_spherical(shape, theta, phi, dtype=np.float64):
     """D(m) sin(theta) for m at the spherical angles (theta, phi) (ggx_ndf_spherical)."""
-    return _scalar(_eval("ggx_ndf_spherical", shape, (theta, "theta", 1), (phi, "phi", 1))[1])
+    return _as(_scalar(_eval("ggx_ndf_spherical", shape, (theta, "theta", 1), (phi, "phi", 1))[1]), dtype)
 
 
-def p22(shape, slope_x, slope_y):
+def p22(shape, slope_x, slope_y, dtype=np.float64):
     """The slope-space distribution P22 (ggx_p22)."""
-    return _scalar(_eval("ggx_p22", shape, (slope_x, "slope_x", 1), (slope_y, "slope_y", 1))[1])
+    return _as(_scalar(_eval("ggx_p22", shape, (slope_x, "slope_x", 1), (slope_y, "slope_y", 1))[1]), dtype)
 
 
-def gaussian_curvature(shape, m):
+def gaussian_curvature(shape, m, dtype=np.float64):
     """Gaussian curvature of the ellipsoid where its normal is m (ggx_gaussian_curvature, eq 20)."""
-    return _scalar(_eval("ggx_gaussian_curvature", shape, (m, "m", 3))[1])
+    return _as(_scalar(_eval("ggx_gaussian_curvature", shape, (m, "m", 3))[1]), dtype)
 
 
-def projected_area(shape, u):
+def projected_area(shape, u, dtype=np.float64):
     """Projected area of the ellipsoid seen from u (ggx_projected_area, eq 26)."""
-    return _scalar(_eval("ggx_projected_area", shape, (u, "u", 3))[1])
+    return _as(_scalar(_eval("ggx_projected_area", shape, (u, "u", 3))[1]), dtype)
 
 
-def lune_area(shape, u, v):
+def lune_area(shape, u, v, dtype=np.float64):
     """Projected area seen from u of the lune {m.u >= 0, m.v >= 0} (ggx_lune_area, eq 28)."""
-    return _scalar(_eval("ggx_lune_area", shape, (u, "u", 3), (v, "v", 3))[1])
+    return _as(_scalar(_eval("ggx_lune_area", shape, (u, "u", 3), (v, "v", 3))[1]), dtype)
 
 
-def lambda_(shape, u):
+def lambda_(shape, u, dtype=np.float64):
     """Smith's Lambda(u) and its lune-area generalisation for skewed shapes (ggx_lambda); 0 for u.z <= 0."""
-    return _scalar(_eval("ggx_lambda", shape, (u, "u", 3))[1])
+    return _as(_scalar(_eval("ggx_lambda", shape, (u, "u", 3))[1]), dtype)
 
 
 def g1(shape, u, m, dtype=np.float64):
@@ -506,21 +528,21 @@ def g1(shape, u, m, dtype=np.float64):
     return _batch_eval(_batch_g1, shape, dtype, "ggx_g1", (u, "u", 3), (m, "m", 3))
 
 
-def g1_smith(shape, u):
+def g1_smith(shape, u, dtype=np.float64):
     """1 / (1 + Lambda(u)) (ggx_g1_smith)."""
-    return _scalar(_eval("ggx_g1_smith", shape, (u, "u", 3))[1])
+    return _as(_scalar(_eval("ggx_g1_smith", shape, (u, "u", 3))[1]), dtype)
 
 
-def g2(shape, wi, wo, m, height_correlated=False):
+def g2(shape, wi, wo, m, height_correlated=False, dtype=np.float64):
     """Shadowing-masking: separable G1(wi, m) G1(wo, m) (ggx_g2, eq 5) or height-correlated
     (ggx_g2_height_correlated)."""
     name = "ggx_g2_height_correlated" if height_correlated else "ggx_g2"
-    return _scalar(_eval(name, shape, (wi, "wi", 3), (wo, "wo", 3), (m, "m", 3))[1])
+    return _as(_scalar(_eval(name, shape, (wi, "wi", 3), (wo, "wo", 3), (m, "m", 3))[1]), dtype)
 
 
-def pdf_ndf(shape, m):
+def pdf_ndf(shape, m, dtype=np.float64):
     """D(m) m.z (ggx_pdf_ndf): the density of the NDF samplers."""
-    return _scalar(_eval("ggx_pdf_ndf", shape, (m, "m", 3))[1])
+    return _as(_scalar(_eval("ggx_pdf_ndf", shape, (m, "m", 3))[1]), dtype)
 
 
 def pdf_vndf(shape, v, m, dtype=np.float64):
@@ -542,7 +564,7 @@ def brdf(shape, wi, wo, fresnel=None, dtype=np.float64):
     return _scalar(out)
 
 
-def bsdf(shape, eta, wi, wo, mode="radiance"):
+def bsdf(shape, eta, wi, wo, mode="radiance", dtype=np.float64):
     """The rough-dielectric BSDF (ggx_bsdf_eval, Walter 2007): eta = index below / index above; wi, wo on either
     side; mode 'radiance' or 'importance' (the adjoint)."""
     s = _shape(shape)
@@ -552,14 +574,14 @@ def bsdf(shape, eta, wi, wo, mode="radiance"):
     out = a.out()
     if a.n:
         _loop_bsdf(s._buf, e, md, a.n, a.ins, _ptr(out))
-    return _scalar(out)
+    return _as(_scalar(out), dtype)
 
 
-def albedo(shape, v, masking="separable"):
+def albedo(shape, v, masking="separable", dtype=np.float64):
     """Directional albedo E(v) with F = 1 (ggx_albedo, or ggx_albedo_height_correlated for
     masking='height-correlated'): deterministic quadrature, absolute error <= 1e-6, 0.1 to 5 ms per element."""
     name = "ggx_albedo" if _choice(masking, _MASKINGS, "masking") == 0 else "ggx_albedo_height_correlated"
-    return _scalar(_eval(name, shape, (v, "v", 3))[1])
+    return _as(_scalar(_eval(name, shape, (v, "v", 3))[1]), dtype)
 
 
 def albedo_avg(shape, masking="separable"):
@@ -568,7 +590,7 @@ def albedo_avg(shape, masking="separable"):
         _shape(shape)._buf)
 
 
-def bsdf_albedo(shape, eta, v):
+def bsdf_albedo(shape, eta, v, dtype=np.float64):
     """Reflected and transmitted albedo (R, T) of the rough dielectric for light from v, on either side
     (ggx_bsdf_albedo): absolute error <= 1e-5; milliseconds per element."""
     s = _shape(shape)
@@ -577,17 +599,17 @@ def bsdf_albedo(shape, eta, v):
     r, t = a.out(), a.out()
     if a.n:
         _loop_bsdf_albedo(s._buf, e, a.n, a.ins, _ptr(r), _ptr(t))
-    return _scalar(r), _scalar(t)
+    return _as((_scalar(r), _scalar(t)), dtype)
 
 
-def albedo_iso_table(alpha, mu, masking="separable"):
+def albedo_iso_table(alpha, mu, masking="separable", dtype=np.float64):
     """E(mu) of isotropic GGX from the shipped table (ggx_albedo_iso_table): within 1e-3 for mu >= 0.0175."""
     g = _choice(masking, _MASKINGS, "masking")
     a = _Args((alpha, "alpha", 1), (mu, "mu", 1))
     out = a.out()
     if a.n:
         _loop_iso_table(g, a.n, a.ins, _ptr(out))
-    return _scalar(out)
+    return _as(_scalar(out), dtype)
 
 
 def albedo_avg_iso_table(alpha, masking="separable"):
@@ -722,7 +744,7 @@ def _view(v, e):
     return v
 
 
-def pdf(method, shape, v, m, eta=1.5):
+def pdf(method, shape, v, m, eta=1.5, dtype=np.float64):
     """The density of a registry sampler (ggx_sampler_info.pdf or .pdf_direction): of the normal m for view v
     (ndf, vndf, rejection; v ignored by NDF samplers, None allowed there), or of the direction m from v (direction
     samplers; eta for 'bsdf')."""
@@ -732,10 +754,10 @@ def pdf(method, shape, v, m, eta=1.5):
     out = a.out()
     if a.n:
         _loop_sampler_pdf(e.id, s._buf, _real(eta, "eta"), a.n, a.ins, _ptr(out))
-    return _scalar(out)
+    return _as(_scalar(out), dtype)
 
 
-def sample_inverse(method, shape, v, m):
+def sample_inverse(method, shape, v, m, dtype=np.float64):
     """The (u1, u2) that give the normal m (..., 2), for samplers with an inverse (SamplerInfo.inverse)."""
     s = _shape(shape)
     e = _sampler(method, ("ndf", "vndf"), s)
@@ -745,7 +767,7 @@ def sample_inverse(method, shape, v, m):
     out = a.out(2)
     if a.n:
         _loop_inverse(e.id, s._buf, a.n, a.ins, _ptr(out))
-    return out
+    return _as(out, dtype)
 
 
 def sample_ndf(shape, u1, u2, method="stretch", dtype=np.float64):
@@ -769,19 +791,40 @@ def sample_brdf(shape, wi, u1, u2, fresnel=None, bounded=False, dtype=np.float64
     return BrdfSample(r.w, r.pdf, r.weight)
 
 
-def pdf_brdf(shape, wi, wo, bounded=False):
+def pdf_brdf(shape, wi, wo, bounded=False, dtype=np.float64):
     """The pdf of sample_brdf (ggx_pdf_brdf or ggx_pdf_brdf_bounded)."""
-    return pdf("brdf-bounded" if bounded else "brdf", shape, wi, wo)
+    return pdf("brdf-bounded" if bounded else "brdf", shape, wi, wo, dtype=dtype)
 
 
-def sample_bsdf(shape, eta, v, u1, u2, u3, mode="radiance"):
+def sample_bsdf(shape, eta, v, u1, u2, u3, mode="radiance", dtype=np.float64):
     """Rough-dielectric sampling (ggx_sample_bsdf): a DirectionSample from the known direction v (either side)."""
-    return sample("bsdf", shape, v, u1, u2, u3, eta=eta, mode=mode)
+    return sample("bsdf", shape, v, u1, u2, u3, eta=eta, mode=mode, dtype=dtype)
 
 
-def pdf_bsdf(shape, eta, v, w):
+def pdf_bsdf(shape, eta, v, w, dtype=np.float64):
     """The pdf of sample_bsdf giving w from v (ggx_pdf_bsdf)."""
-    return pdf("bsdf", shape, v, w, eta=eta)
+    return pdf("bsdf", shape, v, w, eta=eta, dtype=dtype)
+
+
+# --- Geometry ----------------------------------------------------------------------------------------------------
+
+def _geometry(cname, a_, b_, names, dtype):
+    a = _Args((a_, names[0], 3), (b_, names[1], 3))
+    out = a.out(3)
+    if a.n:
+        _loop_vv_v(_fn(cname), a.n, a.ins, _ptr(out))
+    return _as(out, dtype)
+
+
+def reflect(w, m, dtype=np.float64):
+    """The mirror reflection 2 (w.m) m - w of w about the unit normal m (ggx_reflect); any w, m."""
+    return _geometry("ggx_reflect", w, m, ("w", "m"), dtype)
+
+
+def half_reflect(wi, wo, dtype=np.float64):
+    """The reflection half vector normalize(wi + wo) flipped to h.z >= 0, the zero vector where wi + wo = 0
+    (ggx_half_reflect)."""
+    return _geometry("ggx_half_reflect", wi, wo, ("wi", "wo"), dtype)
 
 
 # --- Energy compensation -----------------------------------------------------------------------------------------
@@ -819,13 +862,13 @@ class Energy:
     def __deepcopy__(self, memo):
         return self
 
-    def albedo(self, v):
+    def albedo(self, v, dtype=np.float64):
         """E(v) from the table (ggx_energy_albedo): within 1e-3 of albedo(shape, v)."""
         a = _Args((v, "v", 3))
         out = a.out()
         if a.n:
             _loop_energy_albedo(self._handle, a.n, a.ins, _ptr(out))
-        return _scalar(out)
+        return _as(_scalar(out), dtype)
 
     def albedo_avg(self):
         """E_avg of the table (ggx_energy_albedo_avg); a float."""

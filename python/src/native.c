@@ -103,6 +103,13 @@ EXPORT void ggxpy_bsdf_albedo(const ggx_shape *s, double eta, size_t n, const gg
     for (size_t i = 0; i < n; i++) ggx_bsdf_albedo(s, eta, vec(&in[0], i), &r[i], &t[i]);
 }
 
+/* --- Geometry: a direction of two directions (ggx_reflect, ggx_half_reflect) --- */
+
+EXPORT void ggxpy_vv_v(ggx_vec3 (*f)(ggx_vec3, ggx_vec3), size_t n, const ggxpy_in *in, double *out)
+{
+    for (size_t i = 0; i < n; i++) put(out, i, f(vec(&in[0], i), vec(&in[1], i)));
+}
+
 /* --- Functions of numbers --- */
 
 EXPORT void ggxpy_dd(double (*f)(double, double), size_t n, const ggxpy_in *in, double *out)

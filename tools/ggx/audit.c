@@ -24,9 +24,9 @@ int cmd_audit(int argc, char **argv)
     double ax = o.have_alpha ? o.alpha[0] : 0.3, ay = o.have_alpha ? o.alpha[1] : 0.6;
     double tx = o.have_skew ? o.skew[0] : 22.918311805232928, ty = o.have_skew ? o.skew[1] : -17.188733853924695;
     double tz = o.have_rotate ? o.rotate : 28.64788975654116;
-    double A[2][3][3];
-    ggx_status st = ggx_ellipsoid_matrix(A[0], ax0, ay0, 0, 0, 0);
-    if (st != GGX_OK) die("invalid shape: %s", ggx_status_str(st));
+    /* the diagonal column: diag(ax, ay, 1), written out (no rotation, and no limit on the alphas of a given matrix) */
+    double A[2][3][3] = {{{ax0, 0, 0}, {0, ay0, 0}, {0, 0, 1}}};
+    ggx_status st;
     if (o.have_matrix) memcpy(A[1], o.matrix, sizeof A[1]);
     else if ((st = ggx_ellipsoid_matrix(A[1], ax, ay, tx * DEG, ty * DEG, tz * DEG)) != GGX_OK)
         die("invalid shape: %s", ggx_status_str(st));
@@ -37,7 +37,7 @@ int cmd_audit(int argc, char **argv)
     }
     if (o.have_matrix) { /* the diagonal column uses the alphas of the given matrix when it has them */
         ggx_shape_matrix(&s, (const double(*)[3])A[1]);
-        if (s.kind != GGX_SHAPE_SKEWED) ggx_ellipsoid_matrix(A[0], s.alpha_x, s.alpha_y, 0, 0, 0);
+        if (s.kind != GGX_SHAPE_SKEWED) A[0][0][0] = s.alpha_x, A[0][1][1] = s.alpha_y;
     }
     audit_row rows[AUDIT_MAX_ROWS];
     int progress = o.progress >= 0 ? o.progress : 0;
