@@ -265,6 +265,15 @@ def _ptr(a):
     return a.ctypes.data
 
 
+def _call(loop, head, specs, dtype=np.float64):
+    """The common wrapper: inputs converted and broadcast, loop(*head, n, inputs, out) run, the result in dtype."""
+    a = _Args(*specs)
+    out = a.out()
+    if a.n:
+        loop(*head, a.n, a.ins, _ptr(out))
+    return _as(_scalar(out), dtype)
+
+
 def _scalar(out):
     """numpy's convention: a 0-d result is returned as a numpy scalar."""
     return out[()] if out.ndim == 0 else out
@@ -422,11 +431,7 @@ class Fresnel:
         return _fresnel_avg(self._buf)
 
     def __call__(self, cos_i, dtype=np.float64):
-        a = _Args((cos_i, "cos_i", 1))
-        out = a.out()
-        if a.n:
-            _loop_fresnel(self._buf, a.n, a.ins, _ptr(out))
-        return _as(_scalar(out), dtype)
+        return _call(_loop_fresnel, (self._buf,), [(cos_i, "cos_i", 1)], dtype)
 
     def __repr__(self):
         return self._repr
@@ -556,25 +561,14 @@ def brdf(shape, wi, wo, fresnel=None, dtype=np.float64):
     dt = _dtype(dtype)
     if dt == np.float32:
         return _batch_eval(_batch_brdf, shape, dt, "ggx_brdf_eval", (wi, "wi", 3), (wo, "wo", 3), pre=(f,))
-    s = _shape(shape)
-    a = _Args((wi, "wi", 3), (wo, "wo", 3))
-    out = a.out()
-    if a.n:
-        _loop_sf_vv(_fn("ggx_brdf_eval"), s._buf, f._buf, a.n, a.ins, _ptr(out))
-    return _scalar(out)
+    return _call(_loop_sf_vv, (_fn("ggx_brdf_eval"), _shape(shape)._buf, f._buf), [(wi, "wi", 3), (wo, "wo", 3)])
 
 
 def bsdf(shape, eta, wi, wo, mode="radiance", dtype=np.float64):
     """The rough-dielectric BSDF (ggx_bsdf_eval, Walter 2007): eta = index below / index above; wi, wo on either
     side; mode 'radiance' or 'importance' (the adjoint)."""
-    s = _shape(shape)
-    md = _choice(mode, _MODES, "mode")
-    e = _real(eta, "eta")
-    a = _Args((wi, "wi", 3), (wo, "wo", 3))
-    out = a.out()
-    if a.n:
-        _loop_bsdf(s._buf, e, md, a.n, a.ins, _ptr(out))
-    return _as(_scalar(out), dtype)
+    head = (_shape(shape)._buf, _real(eta, "eta"), _choice(mode, _MODES, "mode"))
+    return _call(_loop_bsdf, head, [(wi, "wi", 3), (wo, "wo", 3)], dtype)
 
 
 def albedo(shape, v, masking="separable", dtype=np.float64):
@@ -605,11 +599,7 @@ def bsdf_albedo(shape, eta, v, dtype=np.float64):
 def albedo_iso_table(alpha, mu, masking="separable", dtype=np.float64):
     """E(mu) of isotropic GGX from the shipped table (ggx_albedo_iso_table): within 1e-3 for mu >= 0.0175."""
     g = _choice(masking, _MASKINGS, "masking")
-    a = _Args((alpha, "alpha", 1), (mu, "mu", 1))
-    out = a.out()
-    if a.n:
-        _loop_iso_table(g, a.n, a.ins, _ptr(out))
-    return _as(_scalar(out), dtype)
+    return _call(_loop_iso_table, (g,), [(alpha, "alpha", 1), (mu, "mu", 1)], dtype)
 
 
 def albedo_avg_iso_table(alpha, masking="separable"):
@@ -750,11 +740,7 @@ def pdf(method, shape, v, m, eta=1.5, dtype=np.float64):
     samplers; eta for 'bsdf')."""
     s = _shape(shape)
     e = _sampler(method, _FAMILIES, s)
-    a = _Args((_view(v, e), "v", 3), (m, "m", 3))
-    out = a.out()
-    if a.n:
-        _loop_sampler_pdf(e.id, s._buf, _real(eta, "eta"), a.n, a.ins, _ptr(out))
-    return _as(_scalar(out), dtype)
+    return _call(_loop_sampler_pdf, (e.id, s._buf, _real(eta, "eta")), [(_view(v, e), "v", 3), (m, "m", 3)], dtype)
 
 
 def sample_inverse(method, shape, v, m, dtype=np.float64):
@@ -864,43 +850,31 @@ class Energy:
 
     def albedo(self, v, dtype=np.float64):
         """E(v) from the table (ggx_energy_albedo): within 1e-3 of albedo(shape, v)."""
-        a = _Args((v, "v", 3))
-        out = a.out()
-        if a.n:
-            _loop_energy_albedo(self._handle, a.n, a.ins, _ptr(out))
-        return _as(_scalar(out), dtype)
+        return _call(_loop_energy_albedo, (self._handle,), [(v, "v", 3)], dtype)
 
     def albedo_avg(self):
         """E_avg of the table (ggx_energy_albedo_avg); a float."""
         return _energy_albedo_avg(self._handle)
 
-    def _ef(self, cname, wi, wo, fresnel):
-        f = _fresnel(fresnel)
-        a = _Args((wi, "wi", 3), (wo, "wo", 3))
-        out = a.out()
-        if a.n:
-            _loop_ef_vv(_fn(cname), self._handle, f._buf, a.n, a.ins, _ptr(out))
-        return _scalar(out)
+    def _ef(self, cname, wi, wo, fresnel, dtype):
+        head = (_fn(cname), self._handle, _fresnel(fresnel)._buf)
+        return _call(_loop_ef_vv, head, [(wi, "wi", 3), (wo, "wo", 3)], dtype)
 
-    def brdf_ms(self, wi, wo, fresnel=None):
+    def brdf_ms(self, wi, wo, fresnel=None, dtype=np.float64):
         """The multiple-scattering lobe f_ms (ggx_brdf_ms_eval)."""
-        return self._ef("ggx_brdf_ms_eval", wi, wo, fresnel)
+        return self._ef("ggx_brdf_ms_eval", wi, wo, fresnel, dtype)
 
-    def brdf_compensated(self, wi, wo, fresnel=None):
+    def brdf_compensated(self, wi, wo, fresnel=None, dtype=np.float64):
         """brdf + brdf_ms (ggx_brdf_compensated_eval): with F = 1 its albedo is 1 within the table's error."""
-        return self._ef("ggx_brdf_compensated_eval", wi, wo, fresnel)
+        return self._ef("ggx_brdf_compensated_eval", wi, wo, fresnel, dtype)
 
-    def pdf_brdf_compensated(self, wi, wo, fresnel=None):
+    def pdf_brdf_compensated(self, wi, wo, fresnel=None, dtype=np.float64):
         """The pdf of sample_brdf_compensated (ggx_pdf_brdf_compensated)."""
-        return self._ef("ggx_pdf_brdf_compensated", wi, wo, fresnel)
+        return self._ef("ggx_pdf_brdf_compensated", wi, wo, fresnel, dtype)
 
-    def pdf_brdf_ms(self, wi, wo):
+    def pdf_brdf_ms(self, wi, wo, dtype=np.float64):
         """The pdf of sample_brdf_ms (ggx_pdf_brdf_ms)."""
-        a = _Args((wi, "wi", 3), (wo, "wo", 3))
-        out = a.out()
-        if a.n:
-            _loop_energy_pdf_ms(self._handle, a.n, a.ins, _ptr(out))
-        return _scalar(out)
+        return _call(_loop_energy_pdf_ms, (self._handle,), [(wi, "wi", 3), (wo, "wo", 3)], dtype)
 
     def _sample(self, compensated, wi, u1, u2, u3, fresnel):
         f = _fresnel(fresnel)
