@@ -29,6 +29,16 @@ static ggx_vec3 literal_stretch(const double A[3][3], double u1, double u2) /* E
     double r = sqrt(u1), ph = 2 * T_PI * u2;
     return t_normalize(t_matvec(A, t_vec(r * cos(ph), r * sin(ph), sqrt(1 - u1))));
 }
+/* Blog Part 2, eq theta_m_sample and phi_m_sample as written: tan theta = sqrt(u1 / (1 - u1))
+ * sqrt(ax^2 cos^2 2 pi u2 + ay^2 sin^2 2 pi u2), phi = arctan((ay / ax) tan 2 pi u2), the principal value in
+ * (-pi/2, pi/2), so m.x >= 0 for every u. The alphas are the norms of A's first two rows (A = S Rz). */
+static ggx_vec3 literal_inversion(const double A[3][3], double u1, double u2)
+{
+    double ax = hypot(A[0][0], hypot(A[0][1], A[0][2])), ay = hypot(A[1][0], hypot(A[1][1], A[1][2]));
+    double t = 2 * T_PI * u2, c = cos(t), sn = sin(t);
+    double th = atan(sqrt(u1 / (1 - u1)) * sqrt(ax * ax * c * c + ay * ay * sn * sn)), ph = atan(ay / ax * tan(t));
+    return t_vec(sin(th) * cos(ph), sin(th) * sin(ph), cos(th));
+}
 ggx_vec3 verify_crescent_blog_s(const ggx_shape *s, ggx_vec3 v, double u1, double u2)
 {
     if (!(v.z > 0)) return t_vec(0, 0, 0);
@@ -112,8 +122,10 @@ static const sampler_claim CLAIMS[GGX_SAMPLER_COUNT] = {
     [GGX_SAMPLER_ELLIPSE] = {"uniform point of the projected ellipse lifted to the ellipsoid has pdf D(m)(m.n)",
                              "blog Part 2", 84, NULL, NULL,
                              " with the silhouette ellipse of the general A (Schur complement)"},
-    [GGX_SAMPLER_INVERSION] = {"closed-form theta_m, phi_m by inversion has pdf D(m)(m.n)", "blog Part 2", 86, NULL,
-                               NULL, NULL},
+    [GGX_SAMPLER_INVERSION] = {"closed-form theta_m, phi_m by inversion has pdf D(m)(m.n)", "blog Part 2", 86,
+                               literal_inversion,
+                               "phi = atan2(ay sin 2 pi u2, ax cos 2 pi u2): the arctan as written gives no m with m.x < 0",
+                               NULL},
     [GGX_SAMPLER_CAPS] = {"spherical caps with pole normalize(A n) and m = normalize(A^T m_s) give the VNDF",
                           "SPEC (Dupuy & Benyoub 2023)", 94, NULL, NULL, NULL},
     [GGX_SAMPLER_CRESCENT] = {"crescent factor s = (1 + Av.An / (|Av| |An|)) / 2 gives the VNDF (version 3)",
