@@ -112,16 +112,6 @@ EXPORT void ggxpy_vv_v(ggx_vec3 (*f)(ggx_vec3, ggx_vec3), size_t n, const ggxpy_
 
 /* --- Functions of numbers --- */
 
-EXPORT void ggxpy_dd(double (*f)(double, double), size_t n, const ggxpy_in *in, double *out)
-{
-    for (size_t i = 0; i < n; i++) out[i] = f(num(&in[0], i), num(&in[1], i));
-}
-
-EXPORT void ggxpy_ddd(double (*f)(double, double, double), size_t n, const ggxpy_in *in, double *out)
-{
-    for (size_t i = 0; i < n; i++) out[i] = f(num(&in[0], i), num(&in[1], i), num(&in[2], i));
-}
-
 EXPORT void ggxpy_fresnel(const ggx_fresnel *fr, size_t n, const ggxpy_in *in, double *out)
 {
     for (size_t i = 0; i < n; i++) out[i] = ggx_fresnel_eval(fr, num(&in[0], i));
