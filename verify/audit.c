@@ -9,7 +9,7 @@
 
 typedef ggx_vec3 (*vndf_fn)(const ggx_shape *, ggx_vec3, double, double);
 /* A sampler as a seed writes it, in terms of the matrix A it is given. */
-typedef ggx_vec3 (*literal_fn)(const double A[3][3], double u1, double u2);
+typedef ggx_vec3 (*literal_fn)(const double A[3][3], ggx_vec3 v, double u1, double u2); /* v: the view (VNDF) */
 
 typedef struct actx {
     normal_keys keys;      /* first: the chi-square key and density come from normal_keys_* */
@@ -24,20 +24,36 @@ static double pdf_g1_form(const ggx_shape *s, ggx_vec3 v, ggx_vec3 m) /* G1(v) D
     return mv > 0 ? ggx_g1(s, v, m) * ggx_ndf(s, m) * mv / v.z : 0.0;
 }
 
-static ggx_vec3 literal_stretch(const double A[3][3], double u1, double u2) /* Engstad: normalize(A s) */
+static ggx_vec3 literal_stretch(const double A[3][3], ggx_vec3 v, double u1, double u2) /* Engstad: normalize(A s) */
 {
+    (void)v;
     double r = sqrt(u1), ph = 2 * T_PI * u2;
     return t_normalize(t_matvec(A, t_vec(r * cos(ph), r * sin(ph), sqrt(1 - u1))));
 }
 /* Blog Part 2, eq theta_m_sample and phi_m_sample as written: tan theta = sqrt(u1 / (1 - u1))
  * sqrt(ax^2 cos^2 2 pi u2 + ay^2 sin^2 2 pi u2), phi = arctan((ay / ax) tan 2 pi u2), the principal value in
  * (-pi/2, pi/2), so m.x >= 0 for every u. The alphas are the norms of A's first two rows (A = S Rz). */
-static ggx_vec3 literal_inversion(const double A[3][3], double u1, double u2)
+static ggx_vec3 literal_inversion(const double A[3][3], ggx_vec3 v, double u1, double u2)
 {
+    (void)v;
     double ax = hypot(A[0][0], hypot(A[0][1], A[0][2])), ay = hypot(A[1][0], hypot(A[1][1], A[1][2]));
     double t = 2 * T_PI * u2, c = cos(t), sn = sin(t);
     double th = atan(sqrt(u1 / (1 - u1)) * sqrt(ax * ax * c * c + ay * ay * sn * sn)), ph = atan(ay / ax * tan(t));
     return t_vec(sin(th) * cos(ph), sin(th) * sin(ph), cos(th));
+}
+/* Engstad's VNDF proof (Heitz 2018's five steps) as written, with the matrix A it is given: the view stretched,
+ * vh = normalize(A v); frame T1 = normalize(z x vh), T2 = vh x T1; polar disk point (t1, t2); squish t2 by
+ * s = (1 + vh.z) / 2; lift onto the hemisphere about vh; back to the ellipsoid with m = normalize(A nh), the same
+ * A. Right for a diagonal (symmetric) A; the library un-stretches with A'^T in the canonical frame (Walter eq 46). */
+static ggx_vec3 literal_heitz(const double A[3][3], ggx_vec3 v, double u1, double u2)
+{
+    ggx_vec3 vh = t_normalize(t_matvec(A, v));
+    double l = hypot(vh.x, vh.y);
+    ggx_vec3 t1v = l > 0 ? t_vec(-vh.y / l, vh.x / l, 0) : t_vec(1, 0, 0), t2v = t_cross(vh, t1v);
+    double r = sqrt(u1), ph = 2 * T_PI * u2, t1 = r * cos(ph), t2 = r * sin(ph), sq = 0.5 * (1 + vh.z);
+    t2 = (1 - sq) * sqrt(1 - t1 * t1) + sq * t2;
+    ggx_vec3 nh = t_add(t_add(t_scale(t1v, t1), t_scale(t2v, t2)), t_scale(vh, sqrt(fmax(0, 1 - t1 * t1 - t2 * t2))));
+    return t_normalize(t_matvec(A, nh));
 }
 ggx_vec3 verify_crescent_blog_s(const ggx_shape *s, ggx_vec3 v, double u1, double u2)
 {
@@ -56,7 +72,7 @@ static int a_draw(void *vc, rng *r, ggx_vec3 *m)
 {
     actx *c = vc;
     double u1 = rng_uniform(r), u2 = rng_uniform(r);
-    *m = c->literal ? c->literal(c->A, u1, u2) : c->f(c->keys.s, c->keys.v, u1, u2);
+    *m = c->literal ? c->literal(c->A, c->keys.v, u1, u2) : c->f(c->keys.s, c->keys.v, u1, u2);
     return t_dot(*m, *m) > 0.5;
 }
 
@@ -131,7 +147,8 @@ static const sampler_claim CLAIMS[GGX_SAMPLER_COUNT] = {
     [GGX_SAMPLER_CRESCENT] = {"crescent factor s = (1 + Av.An / (|Av| |An|)) / 2 gives the VNDF (version 3)",
                               "Walter eq 34-46", 88, NULL, NULL, NULL},
     [GGX_SAMPLER_HEITZ] = {"Heitz / Engstad five steps (frame, disk, squish by (1 + z)/2, lift, unstretch) give the VNDF",
-                           "Engstad VNDF proof", 92, NULL, NULL, " in the canonical frame where A n is along n"},
+                           "Engstad VNDF proof", 92, literal_heitz,
+                           "m = normalize(A'^T nh) in the canonical frame, A' n along n (Walter eq 46)", NULL},
 };
 
 /* One row per sampler of the family that the seeds describe, in the registry's order: its chi-square verdict for
