@@ -355,6 +355,16 @@ def test_errors_carry_the_librarys_message(make, status):
         assert str(err.value) == ggx.status_message(status)
 
 
+def each_raises_value_error(cases):
+    """Every call in cases raises ValueError; a failure names the first that does not."""
+    for k, f in enumerate(cases):
+        try:
+            f()
+        except ValueError:
+            continue
+        pytest.fail(f"case {k} did not raise ValueError")
+
+
 def test_other_errors():
     s = ggx.Shape.iso(0.3)
     cases = [
@@ -370,12 +380,7 @@ def test_other_errors():
         lambda: ggx.Fresnel.schlick(None), lambda: ggx.set_batch_threads(0), lambda: ggx.set_batch_threads(1.5),
         lambda: ggx.samplers("nonsense"), lambda: ggx.Energy("shape"),
     ]
-    for k, f in enumerate(cases):
-        try:
-            f()
-        except ValueError:
-            continue
-        pytest.fail(f"case {k} did not raise ValueError")
+    each_raises_value_error(cases)
 
 
 def test_fresnel():
@@ -670,12 +675,7 @@ def test_hostile_regressions():
            lambda: ggx.ndf(s, np.array([np.complex128(0.1 + 5j), 0, 1], dtype=object)),
            lambda: ggx.ndf(s, np.ma.masked_array([0.0, 0, 1], mask=[1, 0, 0])),
            lambda: ggx.pdf("caps", s, None, [0, 0, 1]), lambda: ggx.sample_inverse("caps", s, None, [0, 0, 1])]
-    for k, f in enumerate(bad):
-        try:
-            f()
-        except ValueError:
-            continue
-        pytest.fail(f"case {k} did not raise ValueError")
+    each_raises_value_error(bad)
     assert ggx.status_message(2 ** 40) == "unknown status" and ggx.status_message(0) == "ok"
     assert ggx.Shape.iso(Fraction(1, 4)) == ggx.Shape.iso(0.25)
     assert same(ggx.ndf(s, np.array([0, 0, 1], dtype=object)), ggx.ndf(s, [0.0, 0.0, 1.0]))
