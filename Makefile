@@ -10,11 +10,11 @@ MAKEFLAGS += --no-print-directory
 
 all: build
 
-# Debian packages: what `make run` needs (compiler, CMake, libpng), and what the test suite adds (cmocka, g++ for the
-# header's C++ test, pkg-config and make for the install test, xmllint for the SVG figures, groff for the man page,
+# Debian packages: what `make run` needs (compiler, CMake, cairo and a font for the figures), and what the test suite adds (cmocka, g++ for the
+# header's C++ test, make for the install test, xmllint and poppler (pdfinfo) for the figures, groff for the man page,
 # Python with numpy, pytest and matplotlib for the Python package's tests and its example).
-RUN_PKGS = cmake make gcc libc6-dev libpng-dev
-TEST_PKGS = $(RUN_PKGS) g++ pkg-config libcmocka-dev libxml2-utils groff-base python3 python3-numpy python3-pytest \
+RUN_PKGS = cmake make gcc libc6-dev pkg-config libcairo2-dev fonts-dejavu-core
+TEST_PKGS = $(RUN_PKGS) g++ libcmocka-dev libxml2-utils poppler-utils groff-base python3 python3-numpy python3-pytest \
             python3-matplotlib
 
 deps:

@@ -1,6 +1,6 @@
 #!/bin/sh
-# CLI tests: every subcommand on defaults, outputs parsed back (CSV columns, PNG decoded by libpng with the expected
-# size, SVG well-formed), `ggx check` failing on a deliberately wrong sampler, and every bad-input case: exit status
+# CLI tests: every subcommand on defaults, outputs parsed back (CSV columns, PNG decoded with the expected size, SVG
+# well-formed with the expected size, PDF pages and page size by pdfinfo), `ggx check` failing on a deliberately wrong sampler, and every bad-input case: exit status
 # 2, one line on stderr naming the problem, no partial file. Usage: cli_test.sh GGX PNG_INFO
 # GGX_WRAP runs every ggx under a wrapper (make valgrind); GGX_CLI_QUICK=1 uses small sample counts there.
 set -u
@@ -27,12 +27,25 @@ for c in demo eval sample plot check audit; do
 done
 "$GGX" demo $N > demo.txt 2>&1 && ok || bad "ggx demo: $(tail -3 demo.txt)"
 grep -q "all checks pass" demo.txt && ok || bad "demo summary"
-for f in grid-top.svg grid-side.svg skewed-grid-top.svg skewed-grid-side.svg; do
-    xmllint --noout "out/$f" && ok || bad "demo $f is not well-formed XML"
+# the demo's figures: each seed figure for both shapes, at 640 wide and each figure's own height
+svg_size() { xmllint --xpath 'concat(/*[local-name()="svg"]/@width, " ", /*[local-name()="svg"]/@height)' "$1" 2>/dev/null; }
+for p in "" skewed-; do
+    for f in grid-top.svg:640pt:640pt grid-side.svg:640pt:435pt vndf-75-0-grid-top.svg:640pt:640pt \
+             vndf-75-0-grid-side.svg:640pt:435pt vndf-75-90-grid-top.svg:640pt:640pt vndf-75-90-grid-side.svg:640pt:435pt \
+             g1.svg:640pt:397pt lambda.svg:640pt:397pt ndf-slice.svg:640pt:397pt furnace.svg:640pt:397pt; do
+        n=${f%%:*} wh=${f#*:}
+        xmllint --noout "out/$p$n" && [ "$(svg_size "out/$p$n")" = "${wh%%:*} ${wh#*:}" ] && ok ||
+            bad "demo $p$n: not well-formed XML or not ${wh%%:*} x ${wh#*:}: $(svg_size "out/$p$n")"
+    done
+    for f in ndf-top:550 ndf-side:397 vndf-75-0-top:550 vndf-75-0-side:397 vndf-75-90-top:550 vndf-75-90-side:397; do
+        [ "$("$PNG_INFO" "out/$p${f%%:*}.png")" = "640 ${f#*:}" ] && ok || bad "demo $p${f%%:*}.png size $("$PNG_INFO" "out/$p${f%%:*}.png")"
+    done
 done
-for f in ndf-top ndf-side vndf-75-0 vndf-75-90 skewed-ndf-top skewed-ndf-side skewed-vndf-75-0 skewed-vndf-75-90; do
-    [ "$("$PNG_INFO" "out/$f.png")" = "534 432" ] && ok || bad "demo $f.png size $("$PNG_INFO" "out/$f.png")"
-done
+pdfinfo out/figures.pdf > pdf.txt && grep -q "^Pages: *16$" pdf.txt && grep -q "^Page size: *842 x 595 pts" pdf.txt && ok ||
+    bad "demo figures.pdf: $(cat pdf.txt)"
+# the pages name the seed files, in the seeds' order (seed 001's four figures, then seed 004's eight)
+pdftotext out/figures.pdf - | grep -o "Seed [0-9]*_[0-9a-f]*\.txt" | uniq -c | awk '{ print $1, $3 }' | tr '\n' ' ' > seeds.txt
+[ "$(cat seeds.txt)" = "4 001_3ccb6b534f20718a.txt 8 004_96c01450b98ca7e0.txt " ] && ok || bad "figures.pdf seed order: $(cat seeds.txt)"
 
 "$GGX" eval > eval.csv && ok || bad "ggx eval"
 [ "$(wc -l < eval.csv)" -eq 5 ] && [ "$(awk -F, 'NR > 1 && NF != 19 { n++ } END { print n + 0 }' eval.csv)" -eq 0 ] &&
@@ -74,9 +87,18 @@ script -qec "$GGX_BIN sample -n $PN --no-progress --out /dev/null" /dev/null > t
 "$GGX" sample -n $PN --format f32 --out /dev/null 2> err.txt && [ ! -s err.txt ] && ok || bad "sample progress without a terminal"
 "$GGX" sample -n 1000 --progress --out /dev/null 2> err.txt && [ ! -s err.txt ] && ok || bad "progress on a short run"
 "$GGX" sample --sampler brdf --alpha 0.3 --skew 10,5 -n 200 --seed 7 --out b.csv && [ "$(wc -l < b.csv)" -eq 201 ] && ok || bad "sample brdf"
-"$GGX" plot 2> plot.err && [ "$("$PNG_INFO" ndf.png)" = "662 560" ] && ok || bad "plot defaults"
-"$GGX" plot --figure vndf-side --view 60,45 --log --size 256 --out v.png && [ "$("$PNG_INFO" v.png)" = "406 304" ] && ok || bad "plot vndf-side"
+"$GGX" plot 2> plot.err && [ "$("$PNG_INFO" ndf.png)" = "640 550" ] && ok || bad "plot defaults"
+"$GGX" plot --figure vndf-side --view 60,45 --log --size 256 --out v.png && [ "$("$PNG_INFO" v.png)" = "256 159" ] && ok || bad "plot vndf-side"
 "$GGX" plot --figure grid --sampler caps --view 70,0 --skew 15,0 --out g.svg && xmllint --noout g.svg && ok || bad "plot grid"
+# --size W x H is honoured exactly in every format; the format follows the file name
+"$GGX" plot --figure vndf --size 300x500 --theme dark --out d.png 2>/dev/null && [ "$("$PNG_INFO" d.png)" = "300 500" ] && ok || bad "plot --size 300x500"
+"$GGX" plot --figure grid-side --size 333x222 --out gs.svg 2>/dev/null && [ "$(svg_size gs.svg)" = "333pt 222pt" ] && ok || bad "plot --size svg: $(svg_size gs.svg)"
+"$GGX" plot --figure g1 --size 500x300 --out g1.pdf 2>/dev/null && pdfinfo g1.pdf | grep -q "^Page size: *500 x 300 pts" && ok || bad "plot --size pdf"
+for fig in ndf ndf-side vndf vndf-side grid grid-side g1 lambda ndf-slice furnace; do
+    "$GGX" plot --figure $fig --skew 20,-10 --rotate 30 --size 200 --out "f-$fig.pdf" 2>/dev/null && pdfinfo "f-$fig.pdf" | grep -q "^Pages: *1$" &&
+        ok || bad "plot --figure $fig as PDF"
+done
+"$GGX" plot --figure furnace 2>/dev/null && xmllint --noout furnace.svg && ok || bad "plot line figure defaults to SVG"
 "$GGX" check ${N:--n 200000} > check.txt && grep -q "all pass" check.txt && ok || bad "check defaults: $(cat check.txt)"
 if [ "${GGX_CLI_QUICK:-0}" = 1 ]; then # 16 chi-square runs of 10^6 samples: minutes under valgrind
     "$GGX" audit --help > audit.txt && ok || bad "audit --help"
@@ -163,14 +185,16 @@ expect2 "bad count" "not a count" "$GGX" sample -n 0
 expect2 "missing value" "needs a value" "$GGX" sample --seed
 expect2 "bad fresnel" "fresnel" "$GGX" eval --fresnel gold
 expect2 "bad format" "format" "$GGX" eval --format xml
-expect2 "wrong extension" "written as .png" "$GGX" plot --out x.svg
+expect2 "no format in the name" "does not name a format" "$GGX" plot --out x.jpg
+expect2 "bad --size" "is not a size" "$GGX" plot --size 640x20
+expect2 "bad --theme" "is not light or dark" "$GGX" plot --theme blue
 expect2 "unwritable folder (demo)" "cannot create output folder" "$GGX" demo --out /proc/ggx-test-out
 expect2 "unwritable file (plot)" "cannot write" "$GGX" plot --out /proc/ggx-no/x.png
 expect2 "unwritable file (sample)" "cannot write" "$GGX" sample --out /nonexistent-dir/s.csv
 mkdir ro && touch ro/keep
 expect2 "out is a file (demo)" "not a folder" "$GGX" demo --out ro/keep
 # no partial or temporary files anywhere in the work folder after the failures
-[ -z "$(find . -name '*.tmp*')" ] && [ ! -e x.svg ] && [ ! -e x.png ] && ok || bad "temporary files left: $(find . -name '*.tmp*')"
+[ -z "$(find . -name '*.tmp*')" ] && [ ! -e x.jpg ] && [ ! -e x.png ] && ok || bad "temporary files left: $(find . -name '*.tmp*')"
 # a failed write leaves an existing file untouched
 echo previous > keep.csv
 "$GGX" sample --sampler magic --out keep.csv 2>/dev/null
@@ -220,9 +244,9 @@ done
 mkdir -p allnone/skewed-ndf-top.png
 one_line "demo with a figure path taken" "it is a folder" 2 "$GGX" demo --out allnone -n 20000
 [ "$(find allnone -type f | wc -l)" -eq 0 ] && ok || bad "demo left figures: $(find allnone -type f)"
-"$GGX" demo --out sized --size 256 -n 20000 > /dev/null && [ "$("$PNG_INFO" sized/ndf-top.png)" = "406 304" ] && ok || bad "demo --size 256: $("$PNG_INFO" sized/ndf-top.png)"
+"$GGX" demo --out sized --size 256 -n 20000 > /dev/null && [ "$("$PNG_INFO" sized/ndf-top.png)" = "256 220" ] && ok || bad "demo --size 256: $("$PNG_INFO" sized/ndf-top.png)"
 # plot: --out - streams the figure; a long path is written as given (no truncation)
-"$GGX" plot --out - > stdout.png && [ "$("$PNG_INFO" stdout.png)" = "662 560" ] && ok || bad "plot --out -"
+"$GGX" plot --out - > stdout.png && [ "$("$PNG_INFO" stdout.png)" = "640 550" ] && ok || bad "plot --out -"
 long=$(printf 'd%.0s' $(seq 1 120)); deep="$long/$long/$long/$long/$long"
 mkdir -p "$deep" && "$GGX" plot --figure grid --out "$deep/grid.svg" 2>/dev/null && [ -f "$deep/grid.svg" ] && ok || bad "plot --out with a 600-byte path"
 # arguments: GNU --name=value, -V, degrees in messages, a note where the command adjusts, counts that mean something

@@ -9,6 +9,19 @@
 
 jmp_buf *cli_die_jump;
 
+static const char *const FIGURES[] = {"ndf", "ndf-side", "vndf", "vndf-side", "grid", "grid-side",
+                                      "g1", "lambda", "ndf-slice", "furnace"};
+const char FIGURE_NAMES[] = "ndf, ndf-side, vndf, vndf-side, grid, grid-side, g1, lambda, ndf-slice, furnace";
+
+figure_kind figure_from_name(const char *name)
+{
+    for (unsigned i = 0; i < sizeof FIGURES / sizeof FIGURES[0]; i++)
+        if (name && strcmp(name, FIGURES[i]) == 0) return (figure_kind)i;
+    die("--figure: unknown figure '%s' (%s)", name ? name : "", FIGURE_NAMES);
+}
+
+const char *figure_name(figure_kind k) { return FIGURES[k]; }
+
 const char SHAPE_HELP[] =
     "shape (one syntax for every subcommand):\n"
     "  --alpha AX[,AY]       roughness (default 0.15,0.5); one value for isotropic\n"
@@ -82,6 +95,7 @@ void parse_options(int argc, char **argv, int first, options *o, const char *all
     o->n = -1;
     o->seed = 1;
     o->size = 0; /* not given: each command has its default */
+    o->from = NAN;
     o->eta = 1.5;
     o->progress = -1;
     for (int i = first; i < argc; i++) {
@@ -146,10 +160,27 @@ void parse_options(int argc, char **argv, int first, options *o, const char *all
             if (!(v >= 0 && v < 9e15) || v != floor(v)) die("%s: '%s' is not a non-negative integer", a, val);
             o->seed = (unsigned long long)v;
         } else if (strcmp(key, "size") == 0) {
-            double v;
-            parse_list(a, val, &v, 1);
-            if (!(v >= 64 && v <= 4096) || v != floor(v)) die("%s: '%s' is not a size between 64 and 4096", a, val);
-            o->size = (int)v;
+            /* W or WxH, each a whole number of pixels (points in SVG and PDF) from 64 to 4096 */
+            char wbuf[64];
+            const char *x = strchr(val, 'x');
+            double v[2] = {0, 0};
+            if (x && (size_t)(x - val) < sizeof wbuf) {
+                snprintf(wbuf, sizeof wbuf, "%.*s", (int)(x - val), val);
+                parse_list(a, wbuf, &v[0], 1);
+                parse_list(a, x + 1, &v[1], 1);
+            } else {
+                parse_list(a, val, &v[0], 1);
+            }
+            for (int k = 0; k < (x ? 2 : 1); k++)
+                if (!(v[k] >= 64 && v[k] <= 4096) || v[k] != floor(v[k]))
+                    die("%s: '%s' is not a size W or WxH with W and H between 64 and 4096", a, val);
+            o->size = (int)v[0], o->size_h = (int)v[1];
+        } else if (strcmp(key, "theme") == 0) {
+            if (strcmp(val, "light") != 0 && strcmp(val, "dark") != 0) die("%s: '%s' is not light or dark", a, val);
+            o->dark = strcmp(val, "dark") == 0;
+        } else if (strcmp(key, "from") == 0) {
+            parse_list(a, val, &o->from, 1);
+            if (!(fabs(o->from) <= 360)) die("%s: '%s' is not an azimuth in degrees in [-360, 360]", a, val);
         } else if (strcmp(key, "eta") == 0) {
             parse_list(a, val, &o->eta, 1);
             if (!(o->eta > 0)) die("%s: the relative index of refraction must be > 0", a);

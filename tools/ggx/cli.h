@@ -33,7 +33,8 @@ typedef struct options {
     unsigned long long seed;
     const char *out, *format, *sampler, *figure, *fresnel, *claim;
     double eta;
-    int have_eta, log_scale, size, help, progress;
+    int have_eta, log_scale, size, size_h, dark, help, progress; /* size_h: 0 unless --size W x H */
+    double from; /* --from (degrees), NAN when not given */
 } options;
 
 /* Parses argv[first..] into o (defaults first); unknown options and malformed values die(). */
@@ -43,6 +44,8 @@ void shape_from_options(const options *o, ggx_shape *s);
 /* Parses "theta,phi" (degrees) or "x,y,z" (normalised) into a direction. */
 int parse_direction(const char *text, ggx_vec3 *v);
 ggx_fresnel fresnel_from_options(const options *o);
+/* The caption's words for the shape of the options (alphas and angles, or the matrix). */
+void shape_caption(const options *o, char *buf, size_t n);
 
 /* ---- shape options, shared by the subcommands that take a shape ---- */
 #define SHAPE_OPTS "alpha,skew,rotate,matrix"
@@ -96,24 +99,15 @@ int progress_wanted(int option);
 void progress_show(const char *label, long done, long total);
 void progress_end(const char *label, long total);
 
-/* ---- images ---- */
-typedef struct image {
-    int w, h;
-    unsigned char *rgb;
-} image;
-image image_new(int w, int h, unsigned char r, unsigned char g, unsigned char b);
-void image_free(image *im);
-void image_set(image *im, int x, int y, const unsigned char c[3]);
-void image_text(image *im, int x, int y, const char *text, int scale, const unsigned char c[3]);
-void colormap(double t, unsigned char out[3]); /* t in [0, 1] -> a perceptually ordered dark-to-bright colour */
-void write_png(const image *im, const char *path);
-
-/* ---- figures ---- */
-typedef enum figure_kind { FIG_NDF, FIG_NDF_SIDE, FIG_VNDF, FIG_VNDF_SIDE, FIG_GRID, FIG_GRID_SIDE } figure_kind;
+/* ---- figures (drawn in figures.c, figure.h) ---- */
+typedef enum figure_kind {
+    FIG_NDF, FIG_NDF_SIDE, FIG_VNDF, FIG_VNDF_SIDE, FIG_GRID, FIG_GRID_SIDE, /* the seeds' hemisphere figures */
+    FIG_G1, FIG_LAMBDA, FIG_NDF_SLICE, FIG_FURNACE                            /* line plots */
+} figure_kind;
+/* The figure named on the command line (dies on an unknown name, listing the names); figure_name is its inverse. */
 figure_kind figure_from_name(const char *name);
-/* Writes the figure to path (PNG for densities, SVG for grids). */
-void draw_figure(figure_kind k, const ggx_shape *s, ggx_vec3 view, const ggx_sampler_info *sampler, int size,
-                 int log_scale, const char *title, const char *path);
+const char *figure_name(figure_kind k);
+extern const char FIGURE_NAMES[]; /* "ndf, ndf-side, ..." for help texts */
 
 /* ---- subcommands ---- */
 int cmd_demo(int argc, char **argv);

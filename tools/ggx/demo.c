@@ -1,9 +1,11 @@
-/* ggx demo: the seeds' figures for two shapes, then a check of every sampler of normals. SPDX-License-Identifier: MIT */
+/* ggx demo: the seeds' figures for the seeds' shape and a skewed one, the line plots, figures.pdf with all of them
+ * in the seeds' order, then a check of every sampler of normals. SPDX-License-Identifier: MIT */
+#include <math.h>
 #include <string.h>
 #include <time.h>
 
 #include "chi2.h"
-#include "cli.h"
+#include "figure.h"
 
 /* The samplers the demo checks on a shape: those of normals, where the shape is in their domain. */
 static int checked(const ggx_sampler_info *smp, const ggx_shape *s)
@@ -11,55 +13,126 @@ static int checked(const ggx_sampler_info *smp, const ggx_shape *s)
     return smp->family != GGX_FAMILY_DIRECTION && sampler_applies(smp, s);
 }
 
+/* The seeds' figures, in the seeds' order: seed 001's four, seed 004's eight; then the line plots. */
+static const struct demo_figure {
+    const char *file, *seed, *seed_figure;
+    figure_kind kind;
+    double phi_v; /* degrees; NAN: no view */
+    int vndf_sampler;
+} FIGS[] = {
+    {"grid-top.svg", "001_3ccb6b534f20718a.txt", "ggx-top: equal area GGX", FIG_GRID, NAN, 0},
+    {"grid-side.svg", "001_3ccb6b534f20718a.txt", "ggx-side: GGX equal area from the side", FIG_GRID_SIDE, NAN, 0},
+    {"ndf-top.png", "001_3ccb6b534f20718a.txt", "d-top: PDF from top", FIG_NDF, NAN, 0},
+    {"ndf-side.png", "001_3ccb6b534f20718a.txt", "d-side: PDF from side", FIG_NDF_SIDE, NAN, 0},
+    {"vndf-75-0-grid-top.svg", "004_96c01450b98ca7e0.txt", "figure 1: equal area from top", FIG_GRID, 0, 1},
+    {"vndf-75-0-grid-side.svg", "004_96c01450b98ca7e0.txt", "figure 2: equal area from side", FIG_GRID_SIDE, 0, 1},
+    {"vndf-75-0-top.png", "004_96c01450b98ca7e0.txt", "figure 3: PDF from top", FIG_VNDF, 0, 0},
+    {"vndf-75-0-side.png", "004_96c01450b98ca7e0.txt", "figure 4: PDF from side", FIG_VNDF_SIDE, 0, 0},
+    {"vndf-75-90-grid-top.svg", "004_96c01450b98ca7e0.txt", "figure 5: equal area from top", FIG_GRID, 90, 1},
+    {"vndf-75-90-grid-side.svg", "004_96c01450b98ca7e0.txt", "figure 6: equal area from side", FIG_GRID_SIDE, 90, 1},
+    {"vndf-75-90-top.png", "004_96c01450b98ca7e0.txt", "figure 7: PDF from top", FIG_VNDF, 90, 0},
+    {"vndf-75-90-side.png", "004_96c01450b98ca7e0.txt", "figure 8: PDF from side", FIG_VNDF_SIDE, 90, 0},
+    {"g1.svg", NULL, "masking G1", FIG_G1, NAN, 0},
+    {"lambda.svg", NULL, "Smith Lambda", FIG_LAMBDA, NAN, 0},
+    {"ndf-slice.svg", NULL, "NDF slices", FIG_NDF_SLICE, NAN, 0},
+    {"furnace.svg", NULL, "furnace and albedo", FIG_FURNACE, NAN, 0},
+};
+enum { NFIGS = sizeof FIGS / sizeof FIGS[0] };
+
+static const struct demo_shape {
+    const char *prefix;
+    double tx, ty; /* degrees */
+} SHAPES[2] = {{"", 0, 0}, {"skewed-", 15, -10}};
+
+static figure_spec demo_spec(const struct demo_figure *d, const ggx_shape *s, int k, int dark)
+{
+    figure_spec f = {d->kind, s, {0, 0, 1}, ggx_sampler_get(GGX_SAMPLER_STRETCH), 0, dark, NAN, "", ""};
+    if (!isnan(d->phi_v)) parse_direction(d->phi_v == 0 ? "75,0" : "75,90", &f.view);
+    if (d->vndf_sampler) f.sampler = ggx_sampler_get(GGX_SAMPLER_HEITZ);
+    snprintf(f.shape_text, sizeof f.shape_text, "αx 0.15, αy 0.5  ·  θx %g°, θy %g°, θz 0°", SHAPES[k].tx, SHAPES[k].ty);
+    if (d->seed)
+        snprintf(f.note, sizeof f.note, "%s: seed %s, %s", k ? "skewed version of" : "reproduces", d->seed, d->seed_figure);
+    return f;
+}
+
+/* figures.pdf: one page per figure, the seeds' shape at the left and the skewed one at the right. */
+static void write_pdf(const char *path, ggx_shape sh[2])
+{
+    const double W = 842, H = 595; /* A4 landscape, points */
+    canvas c;
+    canvas_open(&c, path, FMT_PDF, (int)W, (int)H, 0);
+    for (int i = 0; i < NFIGS; i++) {
+        if (i) canvas_page(&c);
+        const struct demo_figure *d = &FIGS[i];
+        set_rgb(c.cr, c.th->fg);
+        text_font(c.cr, 13, 1);
+        char head[256];
+        if (d->seed) snprintf(head, sizeof head, "Seed %s, %s", d->seed, d->seed_figure);
+        else snprintf(head, sizeof head, "Beyond the seeds: %s", d->seed_figure);
+        text_at(c.cr, 28, 26, 0, 0, head);
+        text_font(c.cr, 10, 0);
+        text_at(c.cr, 28, 46, 0, 0, "left: the seeds' shape αx 0.15, αy 0.5 (θv 75° where there is a view); "
+                                    "right: the same shape skewed by θx 15°, θy −10°, which the seeds do not show");
+        double pw = 0.5 * (W - 56), ph = fmin(H - 90, pw * figure_aspect(d->kind) * 1.1);
+        for (int k = 0; k < 2; k++) {
+            figure_spec f = demo_spec(d, &sh[k], k, 0);
+            figure_draw(c.cr, c.th, 28 + k * pw, 66 + 0.5 * (H - 90 - ph), pw, ph, &f, NULL);
+        }
+    }
+    canvas_close(&c);
+}
+
 int cmd_demo(int argc, char **argv)
 {
     options o;
-    parse_options(argc, argv, 2, &o, "out,n,size");
+    parse_options(argc, argv, 2, &o, "out,n,size,theme");
     if (o.help) {
-        printf("usage: ggx demo [--out DIR] [-n N] [--size PX]\n\n"
+        printf("usage: ggx demo [--out DIR] [-n N] [--size W] [--theme light|dark]\n\n"
                "Draws the seeds' figures for alpha = (0.15, 0.5) and for the same shape skewed by theta_x = 15,\n"
-               "theta_y = -10 degrees into DIR (default out/): the equal-area grid mapped by NDF sampling (top and\n"
-               "side), the NDF pdf (top and side), the VNDF pdf for theta_v = 75 with phi_v = 0 and 90. Then checks\n"
-               "every sampler for these shapes (N samples each, default 10^6) and prints the table. --size is the\n"
-               "figures' size in pixels (default 384). The figures are written all or none.\n");
+               "theta_y = -10 degrees into DIR (default out/), the skewed ones prefixed skewed-:\n"
+               "  seed 001 (elliptic stretch): grid-top.svg, grid-side.svg (the 10 x 10 equal-area grid mapped by\n"
+               "    NDF sampling), ndf-top.png, ndf-side.png (the NDF pdf);\n"
+               "  seed 004 (visible normals, theta_v = 75, phi_v = P for P = 0 and 90): vndf-75-P-grid-top.svg,\n"
+               "    vndf-75-P-grid-side.svg (the grid mapped by the five-step VNDF sampler), vndf-75-P-top.png,\n"
+               "    vndf-75-P-side.png (the VNDF pdf), each with the grey region of normals that reflect the view\n"
+               "    above the horizon;\n"
+               "  line plots: g1.svg, lambda.svg, ndf-slice.svg, furnace.svg;\n"
+               "  figures.pdf: every figure, one page each in the seeds' order, the seed's shape beside the skewed one.\n"
+               "Then checks every sampler for these shapes (N samples each, default 10^6) and prints the table.\n"
+               "--size: the figures' width (default 640; heights follow each figure's aspect). The figures are\n"
+               "written all or none.\n");
         return 0;
     }
     if (o.n > 0) require_check_n(o.n); /* before any figure is drawn */
-    clock_t c0 = clock();
+    if (o.size_h) die("--size: the demo takes a width only (each figure keeps its own aspect)");
+    struct timespec t0, t1;
+    clock_gettime(CLOCK_MONOTONIC, &t0);
     const char *dir = o.out ? o.out : "out";
     ensure_dir(dir);
-    int size = o.size ? o.size : 384;
-    struct {
-        const char *prefix, *label;
-        double tx, ty;
-    } shapes[2] = {{"", "alpha 0.15,0.5", 0, 0}, {"skewed-", "skewed 15,-10", 15, -10}};
-    ggx_vec3 v0, v90;
+    int size = o.size ? o.size : 640;
+    ggx_vec3 v0;
     parse_direction("75,0", &v0);
-    parse_direction("75,90", &v90);
-    char path[1024], title[128];
-    const ggx_sampler_info *stretch = ggx_sampler_get(GGX_SAMPLER_STRETCH);
+    char path[1024];
     ggx_shape sh[2];
     for (int k = 0; k < 2; k++)
-        if (ggx_shape_ellipsoid(&sh[k], 0.15, 0.5, shapes[k].tx * DEG, shapes[k].ty * DEG, 0) != GGX_OK) die("demo shape");
-    static const struct {
-        figure_kind k;
-        const char *name;
-        int view;
-    } figs[] = {{FIG_GRID, "grid-top.svg", 0},        {FIG_GRID_SIDE, "grid-side.svg", 0},
-                {FIG_NDF, "ndf-top.png", 0},          {FIG_NDF_SIDE, "ndf-side.png", 0},
-                {FIG_VNDF, "vndf-75-0.png", 0},       {FIG_VNDF, "vndf-75-90.png", 90}};
+        if (ggx_shape_ellipsoid(&sh[k], 0.15, 0.5, SHAPES[k].tx * DEG, SHAPES[k].ty * DEG, 0) != GGX_OK) die("demo shape");
     printf("ggx demo: figures in %s/\n", dir);
     out_begin_set(); /* all figures or none */
     for (int k = 0; k < 2; k++) {
-        for (unsigned f = 0; f < sizeof figs / sizeof figs[0]; f++) {
-            snprintf(path, sizeof path, "%s/%s%s", dir, shapes[k].prefix, figs[f].name);
-            snprintf(title, sizeof title, "%s %s", shapes[k].label, figs[f].name);
-            *strrchr(title, '.') = '\0';
-            draw_figure(figs[f].k, &sh[k], figs[f].view ? v90 : v0, stretch, size, 0, title, path);
+        for (int i = 0; i < NFIGS; i++) {
+            snprintf(path, sizeof path, "%s/%s%s", dir, SHAPES[k].prefix, FIGS[i].file);
+            figure_spec f = demo_spec(&FIGS[i], &sh[k], k, o.dark);
+            figure_write(&f, path, format_of_path(path, FMT_PNG), size, (int)lround(size * figure_aspect(f.kind)));
             printf("  %s\n", path);
+            out_flush_stdout();
         }
     }
+    snprintf(path, sizeof path, "%s/figures.pdf", dir);
+    write_pdf(path, sh);
+    printf("  %s (%d pages)\n", path, NFIGS);
     out_commit_set();
+    clock_gettime(CLOCK_MONOTONIC, &t1);
+    printf("figures drawn in %.1f s\n", (double)(t1.tv_sec - t0.tv_sec) + 1e-9 * (double)(t1.tv_nsec - t0.tv_nsec));
     long n = o.n > 0 ? o.n : 1000000;
     /* every sampler of normals of the library, on each shape in its domain */
     int runs = 0;
@@ -69,7 +142,7 @@ int cmd_demo(int argc, char **argv)
     printf("\nchecks (%ld samples each; VNDF for theta_v = 75, phi_v = 0; level %.2g per run):\n", n, alpha);
     int all = 1;
     for (int k = 0; k < 2; k++) {
-        printf("%s\n", shapes[k].label);
+        printf("%s\n", k ? "skewed 15,-10" : "alpha 0.15,0.5");
         print_check_header(stdout);
         for (int i = 0; i < GGX_SAMPLER_COUNT; i++) {
             const ggx_sampler_info *smp = ggx_sampler_get((ggx_sampler_id)i);
@@ -80,7 +153,8 @@ int cmd_demo(int argc, char **argv)
             all &= r.pass;
         }
     }
+    clock_gettime(CLOCK_MONOTONIC, &t1);
     printf("\n%s in %.1f s. Figures: %s/\n", all ? "all checks pass" : "SOME CHECKS FAILED",
-           (double)(clock() - c0) / CLOCKS_PER_SEC, dir);
+           (double)(t1.tv_sec - t0.tv_sec) + 1e-9 * (double)(t1.tv_nsec - t0.tv_nsec), dir);
     return all ? 0 : 1;
 }

@@ -1,153 +1,780 @@
-/* The seeds' figures: density images (PNG, with a colour bar) and equal-area grids mapped onto the hemisphere
- * (SVG), top and side views. SPDX-License-Identifier: MIT */
+/* The figures: the seeds' hemisphere figures (densities and equal-area grids, from above and from the side, with
+ * seed 004's grey region) and the line plots (G1, Lambda, NDF slices, furnace and albedo), drawn with cairo.
+ * SPDX-License-Identifier: MIT */
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
 
-#include "cli.h"
+#include "figure.h"
 
-figure_kind figure_from_name(const char *name)
+#ifndef M_PI
+#define M_PI 3.14159265358979323846
+#endif
+
+static ggx_vec3 v3(double x, double y, double z)
+{
+    ggx_vec3 r = {x, y, z};
+    return r;
+}
+static double dot3(ggx_vec3 a, ggx_vec3 b) { return a.x * b.x + a.y * b.y + a.z * b.z; }
+static ggx_vec3 unit3(ggx_vec3 a)
+{
+    double l = sqrt(dot3(a, a));
+    return v3(a.x / l, a.y / l, a.z / l);
+}
+
+static int is_side(figure_kind k) { return k == FIG_NDF_SIDE || k == FIG_VNDF_SIDE || k == FIG_GRID_SIDE; }
+static int is_grid(figure_kind k) { return k == FIG_GRID || k == FIG_GRID_SIDE; }
+static int is_vndf(figure_kind k) { return k == FIG_VNDF || k == FIG_VNDF_SIDE; }
+static int is_line(figure_kind k) { return k == FIG_G1 || k == FIG_LAMBDA || k == FIG_NDF_SLICE || k == FIG_FURNACE; }
+
+/* ---------------------------------------------------------------------------------------------------------------
+ * The hemisphere's projection
+ * --------------------------------------------------------------------------------------------------------------- */
+
+int hemi_project(const hemi_proj *p, ggx_vec3 m, double *X, double *Y)
+{
+    if (!p->side) {
+        *X = p->cx + p->R * m.x, *Y = p->cy - p->R * m.y;
+        return 1;
+    }
+    *X = p->cx + p->R * dot3(m, p->right), *Y = p->cy - p->R * m.z;
+    return dot3(m, p->toward) >= 0;
+}
+
+int hemi_unproject(const hemi_proj *p, double X, double Y, ggx_vec3 *m)
+{
+    double a = (X - p->cx) / p->R, b = (p->cy - Y) / p->R, r2 = a * a + b * b;
+    if (r2 > 1.0) return 0;
+    if (!p->side) {
+        *m = v3(a, b, sqrt(1.0 - r2));
+        return 1;
+    }
+    if (b < 0) return 0;
+    double c = sqrt(1.0 - r2);
+    *m = v3(a * p->right.x + c * p->toward.x, a * p->right.y + c * p->toward.y, b);
+    return 1;
+}
+
+static void hemi_set_from(hemi_proj *p, double from)
+{
+    p->from = from;
+    p->toward = v3(cos(from), sin(from), 0);
+    p->right = v3(-p->toward.y, p->toward.x, 0); /* n x toward */
+}
+
+/* ---------------------------------------------------------------------------------------------------------------
+ * What the figures show
+ * --------------------------------------------------------------------------------------------------------------- */
+
+double figure_density(const figure_spec *f, ggx_vec3 m)
+{
+    return is_vndf(f->kind) ? ggx_pdf_vndf(f->s, f->view, m) : ggx_pdf_ndf(f->s, m);
+}
+
+double figure_peak(const figure_spec *f, ggx_vec3 *where)
+{
+    /* the hemisphere as the unit disk (a, b) -> (a, b, sqrt(1 - a^2 - b^2)): no singularity at the pole */
+    const int N = 240;
+    double best = -1, ba = 0, bb = 0;
+    for (int i = 0; i <= N; i++)
+        for (int j = 0; j <= N; j++) {
+            double a = -1 + 2.0 * i / N, b = -1 + 2.0 * j / N, r2 = a * a + b * b;
+            if (r2 > 1) continue;
+            double d = figure_density(f, v3(a, b, sqrt(1 - r2)));
+            if (d > best) best = d, ba = a, bb = b;
+        }
+    for (double step = 2.0 / N; step > 1e-10; step *= 0.5) {
+        for (int moved = 1; moved;) {
+            moved = 0;
+            static const int dirs[8][2] = {{1, 0}, {-1, 0}, {0, 1}, {0, -1}, {1, 1}, {1, -1}, {-1, 1}, {-1, -1}};
+            for (int k = 0; k < 8; k++) {
+                double a = ba + step * dirs[k][0], b = bb + step * dirs[k][1], r2 = a * a + b * b;
+                if (r2 > 1) continue;
+                double d = figure_density(f, v3(a, b, sqrt(1 - r2)));
+                if (d > best) best = d, ba = a, bb = b, moved = 1;
+            }
+        }
+    }
+    if (where) *where = v3(ba, bb, sqrt(fmax(0.0, 1 - ba * ba - bb * bb)));
+    return best;
+}
+
+int figure_grey(ggx_vec3 v, ggx_vec3 m) { return 2.0 * dot3(m, v) * m.z - v.z > 0; }
+
+int figure_has_grey(const figure_spec *f)
+{
+    return is_vndf(f->kind) || (is_grid(f->kind) && f->sampler && f->sampler->family == GGX_FAMILY_VNDF);
+}
+
+/* The grey region's boundary at azimuth phi: the polar angle where 2 (m.v) m.z = v.z (docs/figures.md). */
+ggx_vec3 figure_grey_boundary(ggx_vec3 v, double phi)
+{
+    double st = sqrt(fmax(0.0, 1 - v.z * v.z)), pv = atan2(v.y, v.x);
+    double tb = 0.5 * atan2(v.z, -st * cos(phi - pv));
+    return v3(sin(tb) * cos(phi), sin(tb) * sin(phi), cos(tb));
+}
+
+double figure_default_from(const figure_spec *f)
+{
+    if (is_vndf(f->kind) || figure_has_grey(f)) return atan2(f->view.y, f->view.x) - M_PI / 2;
+    figure_spec nd = *f;
+    nd.kind = FIG_NDF;
+    ggx_vec3 m;
+    figure_peak(&nd, &m);
+    return hypot(m.x, m.y) > 1e-2 ? atan2(m.y, m.x) - M_PI / 2 : -M_PI / 2;
+}
+
+/* ---------------------------------------------------------------------------------------------------------------
+ * Spherical polygons on the visible half of a side view
+ * --------------------------------------------------------------------------------------------------------------- */
+
+/* Appends the great-circle arc from a to b (shorter way, end points excluded) to out. */
+static int arc_points(ggx_vec3 a, ggx_vec3 b, ggx_vec3 *out, int n, int max)
+{
+    double w = acos(fmax(-1.0, fmin(1.0, dot3(a, b))));
+    int k = (int)(w / (2.0 * M_PI / 180));
+    for (int i = 1; i < k && n < max; i++) {
+        double t = (double)i / k, s = sin(w);
+        double ca = sin((1 - t) * w) / s, cb = sin(t * w) / s;
+        out[n++] = v3(ca * a.x + cb * b.x, ca * a.y + cb * b.y, ca * a.z + cb * b.z);
+    }
+    return n;
+}
+
+/* Clips a closed spherical polygon (densely sampled) to the hemisphere m.e >= 0; the cut follows the great circle
+ * m.e = 0, the silhouette of a side view. Returns the number of points written to out (0: wholly hidden). */
+static int clip_front(const ggx_vec3 *p, int n, ggx_vec3 e, ggx_vec3 *out, int max)
+{
+    int start = -1;
+    for (int i = 0; i < n; i++)
+        if (dot3(p[i], e) >= 0) { start = i; break; }
+    if (start < 0) return 0;
+    int k = 0;
+    ggx_vec3 exit_pt = p[start];
+    for (int j = 0; j < n; j++) {
+        ggx_vec3 a = p[(start + j) % n], b = p[(start + j + 1) % n];
+        double da = dot3(a, e), db = dot3(b, e);
+        if (da >= 0 && k < max) out[k++] = a;
+        if ((da >= 0) != (db >= 0)) {
+            double t = da / (da - db);
+            ggx_vec3 x = unit3(v3(a.x + t * (b.x - a.x), a.y + t * (b.y - a.y), a.z + t * (b.z - a.z)));
+            if (da >= 0) {
+                exit_pt = x;
+                if (k < max) out[k++] = x;
+            } else {
+                k = arc_points(exit_pt, x, out, k, max);
+                if (k < max) out[k++] = x;
+            }
+        }
+    }
+    return k;
+}
+
+static void path_points(cairo_t *cr, const hemi_proj *hp, const ggx_vec3 *p, int n)
+{
+    cairo_new_path(cr);
+    for (int i = 0; i < n; i++) {
+        double X, Y;
+        hemi_project(hp, p[i], &X, &Y);
+        if (i == 0) cairo_move_to(cr, X, Y);
+        else cairo_line_to(cr, X, Y);
+    }
+    cairo_close_path(cr);
+}
+
+/* The grey region as a closed path (visible part only). */
+#define GREY_N 720
+static void grey_path(cairo_t *cr, const hemi_proj *hp, ggx_vec3 v)
+{
+    static ggx_vec3 ring[GREY_N], vis[GREY_N * 3];
+    for (int i = 0; i < GREY_N; i++) ring[i] = figure_grey_boundary(v, 2 * M_PI * i / GREY_N);
+    if (!hp->side) path_points(cr, hp, ring, GREY_N);
+    else path_points(cr, hp, vis, clip_front(ring, GREY_N, hp->toward, vis, GREY_N * 3));
+}
+
+/* The grey region's boundary curve itself, where visible. */
+static void grey_contour(cairo_t *cr, const hemi_proj *hp, ggx_vec3 v)
+{
+    int pen = 0;
+    cairo_new_path(cr);
+    for (int i = 0; i <= GREY_N; i++) {
+        double X, Y;
+        int vis = hemi_project(hp, figure_grey_boundary(v, 2 * M_PI * i / GREY_N), &X, &Y);
+        if (vis && pen) cairo_line_to(cr, X, Y);
+        else if (vis) cairo_move_to(cr, X, Y);
+        pen = vis;
+    }
+    cairo_stroke(cr);
+}
+
+/* ---------------------------------------------------------------------------------------------------------------
+ * Captions and marks
+ * --------------------------------------------------------------------------------------------------------------- */
+
+static void direction_name(ggx_vec3 d, char *buf, size_t n)
 {
     static const struct {
+        double x, y;
         const char *name;
-        figure_kind k;
-    } names[] = {{"ndf", FIG_NDF},   {"ndf-side", FIG_NDF_SIDE},   {"vndf", FIG_VNDF},
-                 {"vndf-side", FIG_VNDF_SIDE}, {"grid", FIG_GRID}, {"grid-side", FIG_GRID_SIDE}};
-    for (unsigned i = 0; i < sizeof names / sizeof names[0]; i++)
-        if (name && strcmp(name, names[i].name) == 0) return names[i].k;
-    die("--figure: unknown figure '%s' (ndf, ndf-side, vndf, vndf-side, grid, grid-side)", name ? name : "");
+    } axes[] = {{1, 0, "x"}, {-1, 0, "−x"}, {0, 1, "y"}, {0, -1, "−y"}};
+    for (unsigned i = 0; i < 4; i++)
+        if (d.x * axes[i].x + d.y * axes[i].y > 1 - 1e-9) {
+            snprintf(buf, n, "%s", axes[i].name);
+            return;
+        }
+    snprintf(buf, n, "φ %.0f°", fmod(atan2(d.y, d.x) / DEG + 360.0, 360.0));
 }
 
-/* The density shown at a point of the view: the hemisphere seen from above (x, y) or from the side (x, z), the
- * visible half facing -y. */
-static double density_at(figure_kind k, const ggx_shape *s, ggx_vec3 view, double a, double b, int *inside)
+static double azimuth_deg(double rad)
 {
-    ggx_vec3 m;
-    double r2 = a * a + b * b;
-    *inside = r2 <= 1.0;
-    if (!*inside) return 0.0;
-    if (k == FIG_NDF || k == FIG_VNDF) {
-        m.x = a, m.y = b, m.z = sqrt(1.0 - r2);
+    double d = fmod(rad / DEG, 360.0);
+    if (d > 180) d -= 360;
+    if (d <= -180) d += 360;
+    return fabs(d) < 1e-9 ? 0.0 : d;
+}
+
+static void view_text(ggx_vec3 v, char *buf, size_t n)
+{
+    snprintf(buf, n, "view v: θ %.4g°, φ %.4g°", acos(fmax(-1, fmin(1, v.z))) / DEG, azimuth_deg(atan2(v.y, v.x)));
+}
+
+static int caption_lines(const figure_spec *f, char lines[4][400])
+{
+    const char *what;
+    char where[96] = "", view[96];
+    switch (f->kind) {
+    case FIG_NDF: case FIG_NDF_SIDE: what = "NDF pdf D(m) (m·n)"; break;
+    case FIG_VNDF: case FIG_VNDF_SIDE: what = "VNDF pdf G1(v) D(m) (m·v)⁺ / (v·n)"; break;
+    case FIG_GRID: case FIG_GRID_SIDE: what = "Equal-area 10 × 10 grid of the unit square"; break;
+    case FIG_G1: what = "Masking G1(v) against the view's polar angle"; break;
+    case FIG_LAMBDA: what = "Smith Λ(v) against the view's polar angle"; break;
+    case FIG_NDF_SLICE: what = "D(m) along the principal planes through its peak"; break;
+    default: what = "Weak white furnace and directional albedo (F = 1)"; break;
+    }
+    int n = 0;
+    if (is_side(f->kind)) snprintf(where, sizeof where, ", from the side (seen from φ %.4g°)", azimuth_deg(f->from));
+    else if (!is_line(f->kind)) snprintf(where, sizeof where, ", from above");
+    snprintf(lines[n++], 400, "%s%s", what, where);
+    view_text(f->view, view, sizeof view);
+    if (is_grid(f->kind))
+        snprintf(lines[n++], 400, "%s  ·  mapped by sampler '%s'%s%s", f->shape_text, f->sampler->name,
+                 f->sampler->family == GGX_FAMILY_VNDF ? "  ·  " : "", f->sampler->family == GGX_FAMILY_VNDF ? view : "");
+    else if (is_vndf(f->kind)) snprintf(lines[n++], 400, "%s  ·  %s", f->shape_text, view);
+    else snprintf(lines[n++], 400, "%s", f->shape_text);
+    if (figure_has_grey(f)) snprintf(lines[n++], 400, "grey: normals m that reflect v above the horizon (2 (m·v) m·n > v·n)");
+    if (f->note[0]) snprintf(lines[n++], 400, "%s", f->note);
+    return n;
+}
+
+/* Draws the caption at the top of the rectangle; returns its height. */
+static double draw_caption(cairo_t *cr, const theme *th, double x, double y, double w, double F, const figure_spec *f)
+{
+    char lines[4][400];
+    int n = caption_lines(f, lines);
+    set_rgb(cr, th->fg);
+    double yy = y + 0.7 * F;
+    for (int i = 0; i < n; i++) {
+        text_font(cr, i == 0 ? 1.05 * F : 0.86 * F, i == 0);
+        /* shrink a line that would not fit the width */
+        double tw = text_width(cr, lines[i]);
+        if (tw > w - F) text_font(cr, (i == 0 ? 1.05 * F : 0.86 * F) * (w - F) / tw, i == 0);
+        text_at(cr, x + 0.5 * F, yy, 0, 0, lines[i]);
+        yy += (i == 0 ? 1.5 : 1.3) * F;
+    }
+    return yy - y + 0.2 * F;
+}
+
+static double font_for(double w, double h) { return fmax(5.0, fmin(26.0, 0.021 * fmin(w, 1.6 * h))); }
+
+/* Text in the theme's colour on a halo of the background's, readable over the density and off it. */
+static void text_halo(cairo_t *cr, const theme *th, double x, double y, double ax, double ay, const char *s)
+{
+    double size = font_size_of(cr);
+    cairo_new_path(cr);
+    cairo_move_to(cr, x - ax * text_width(cr, s), y + (1.0 - ay) * 0.72 * size);
+    cairo_text_path(cr, s);
+    set_rgb(cr, th->bg);
+    cairo_set_line_width(cr, 0.25 * size);
+    cairo_set_line_join(cr, CAIRO_LINE_JOIN_ROUND);
+    cairo_stroke_preserve(cr);
+    set_rgb(cr, th->fg);
+    cairo_fill(cr);
+}
+
+static void draw_marks(cairo_t *cr, const theme *th, const hemi_proj *hp, const figure_spec *f, double F, int show_view)
+{
+    double cx = hp->cx, cy = hp->cy, R = hp->R;
+    cairo_set_line_width(cr, fmax(0.6, 0.07 * F));
+    set_rgb(cr, th->fg);
+    text_font(cr, 0.9 * F, 0);
+    char name[32];
+    if (!hp->side) {
+        cairo_new_path(cr);
+        cairo_arc(cr, cx, cy, R, 0, 2 * M_PI);
+        cairo_stroke(cr);
+        arrow(cr, cx + R, cy, cx + R + 1.1 * F, cy, 0.45 * F);
+        text_at(cr, cx + R + 0.6 * F, cy - 0.55 * F, 0.5, 1, "x");
+        arrow(cr, cx, cy - R, cx, cy - R - 1.1 * F, 0.45 * F);
+        text_at(cr, cx - 0.45 * F, cy - R - 0.8 * F, 1, 0.5, "y");
+        /* n points at the viewer, at the centre: said beside the disk, not drawn over the density's peak */
+        set_rgb(cr, th->faint);
+        text_font(cr, 0.8 * F, 0);
+        text_at(cr, cx - R - 0.2 * F, cy + R, 0, 1, "n: centre");
     } else {
-        *inside = b >= 0.0;
-        m.x = a, m.y = -sqrt(1.0 - r2), m.z = b;
+        cairo_new_path(cr);
+        cairo_arc(cr, cx, cy, R, M_PI, 2 * M_PI);
+        cairo_stroke(cr);
+        cairo_move_to(cr, cx - R - 0.3 * F, cy);
+        cairo_line_to(cr, cx + R, cy);
+        cairo_stroke(cr);
+        arrow(cr, cx + R, cy, cx + R + 1.1 * F, cy, 0.45 * F);
+        direction_name(hp->right, name, sizeof name);
+        text_at(cr, cx + R + 0.6 * F, cy - 0.55 * F, 0.5, 1, name);
+        arrow(cr, cx, cy - R, cx, cy - R - 1.1 * F, 0.45 * F);
+        text_at(cr, cx + 0.45 * F, cy - R - 0.8 * F, 0, 0.5, "n");
     }
-    return (k == FIG_NDF || k == FIG_NDF_SIDE) ? ggx_pdf_ndf(s, m) : ggx_pdf_vndf(s, view, m);
+    if (show_view) {
+        double X, Y;
+        int vis = hemi_project(hp, f->view, &X, &Y);
+        double dash[] = {0.25 * F, 0.2 * F};
+        cairo_set_source_rgb(cr, 1, 1, 1);
+        cairo_set_line_width(cr, fmax(1.0, 0.16 * F));
+        if (!vis) cairo_set_dash(cr, dash, 2, 0);
+        cairo_new_path(cr);
+        cairo_arc(cr, X, Y, 0.42 * F, 0, 2 * M_PI);
+        cairo_stroke(cr);
+        cairo_set_source_rgb(cr, 0, 0, 0);
+        cairo_set_line_width(cr, fmax(0.6, 0.07 * F));
+        cairo_new_path(cr);
+        cairo_arc(cr, X, Y, 0.55 * F, 0, 2 * M_PI);
+        cairo_stroke(cr);
+        cairo_set_dash(cr, NULL, 0, 0);
+        /* the label below right of the mark, clear of the axis labels (above the x arrow, left of the y / n one) */
+        text_font(cr, 0.95 * F, 1);
+        text_halo(cr, th, X + 0.75 * F, Y + 0.75 * F, 0, 0, vis ? "v" : "v (behind)");
+    }
 }
 
-static void density_png(figure_kind k, const ggx_shape *s, ggx_vec3 view, int size, int log_scale, const char *title,
-                        const char *path)
+/* ---------------------------------------------------------------------------------------------------------------
+ * Hemisphere figures
+ * --------------------------------------------------------------------------------------------------------------- */
+
+/* The colour of a density value, linear or over four decades. */
+static void density_colour(double d, double vmax, int log_scale, double rgb[3])
 {
-    const int top = 36, bar_w = 24, right = 150;
-    int W = size + right, H = size + top + 12;
-    double *val = malloc(sizeof(double) * (size_t)size * (size_t)size);
-    if (!val) die("out of memory");
-    double vmax = 0.0, R = 0.5 * size - 2;
-    int side = k == FIG_NDF_SIDE || k == FIG_VNDF_SIDE;
-    for (int py = 0; py < size; py++) {
-        for (int px = 0; px < size; px++) {
-            /* 2 x 2 supersampling of the pixel */
-            double sum = 0.0;
+    double t = log_scale ? (d > vmax * 1e-4 ? log(d / (vmax * 1e-4)) / log(1e4) : 0.0) : d / vmax;
+    colormap(t, rgb);
+}
+
+/* The density image: each pixel the mean colour of 3 x 3 samples inside the projected hemisphere, its alpha the
+ * covered fraction; the grey region hatched in dark lines (the colours elsewhere untouched, so the brightest pixel
+ * stays the density's peak). One pixel per unit on image surfaces, two on vector ones. */
+static void draw_density(cairo_t *cr, const hemi_proj *hp, const figure_spec *f, double vmax, double F)
+{
+    int vector = cairo_surface_get_type(cairo_get_target(cr)) != CAIRO_SURFACE_TYPE_IMAGE;
+    double scale = vector ? 2.0 : 1.0;
+    double x0 = floor(hp->cx - hp->R - 1), y0 = floor(hp->cy - hp->R - 1);
+    double x1 = ceil(hp->cx + hp->R + 1), y1 = ceil(hp->side ? hp->cy + 1 : hp->cy + hp->R + 1);
+    int W = (int)((x1 - x0) * scale), H = (int)((y1 - y0) * scale);
+    cairo_surface_t *img = cairo_image_surface_create(CAIRO_FORMAT_ARGB32, W, H);
+    unsigned char *data = cairo_image_surface_get_data(img);
+    int stride = cairo_image_surface_get_stride(img), grey = figure_has_grey(f);
+    double period = fmax(4.0, 0.55 * F), width = fmax(1.0, 0.09 * F);
+    const int ss = 3;
+    cairo_surface_flush(img);
+    for (int j = 0; j < H; j++) {
+        unsigned int *row = (unsigned int *)(data + (long)j * stride);
+        for (int i = 0; i < W; i++) {
+            double acc[3] = {0, 0, 0};
             int in = 0;
-            for (int q = 0; q < 4; q++) {
-                double a = (px + 0.25 + 0.5 * (q & 1) - 0.5 * size) / R;
-                double b = side ? (size - 2 - py - 0.25 - 0.5 * (q >> 1)) / R : (0.5 * size - py - 0.25 - 0.5 * (q >> 1)) / R;
-                int inside;
-                sum += density_at(k, s, view, a, b, &inside);
-                in += inside;
+            for (int q = 0; q < ss * ss; q++) {
+                double X = x0 + (i + (q % ss + 0.5) / ss) / scale, Y = y0 + (j + (q / ss + 0.5) / ss) / scale;
+                ggx_vec3 m;
+                if (!hemi_unproject(hp, X, Y, &m)) continue;
+                double rgb[3];
+                density_colour(figure_density(f, m), vmax, f->log_scale, rgb);
+                if (grey && figure_grey(f->view, m) && fmod(X + Y, period) < width)
+                    for (int k = 0; k < 3; k++) rgb[k] = 0.45 * rgb[k] + 0.55 * 0.42;
+                for (int k = 0; k < 3; k++) acc[k] += rgb[k];
+                in++;
             }
-            val[(long)py * size + px] = in ? sum / 4 : -1.0;
-            if (in && sum / 4 > vmax) vmax = sum / 4;
+            unsigned int px = 0;
+            if (in) {
+                double a = (double)in / (ss * ss);
+                px = (unsigned)(a * 255 + 0.5) << 24;
+                for (int k = 0; k < 3; k++) px |= (unsigned)(acc[k] / in * a * 255 + 0.5) << (16 - 8 * k);
+            }
+            row[i] = px;
         }
     }
-    image im = image_new(W, H, 24, 24, 28);
-    const unsigned char white[3] = {235, 235, 235}, grey[3] = {70, 70, 76};
-    double lo = log_scale ? vmax * 1e-4 : 0.0;
-    for (int py = 0; py < size; py++) {
-        for (int px = 0; px < size; px++) {
-            double v = val[(long)py * size + px];
-            unsigned char c[3];
-            if (v < 0) {
-                memcpy(c, grey, 3);
-                if (side) continue;
-            } else {
-                double t = vmax > 0 ? (log_scale ? (v > lo ? log(v / lo) / log(vmax / lo) : 0.0) : v / vmax) : 0.0;
-                colormap(t, c);
-            }
-            image_set(&im, px, py + top, c);
-        }
-    }
-    /* colour bar with five labelled ticks */
-    int bx = size + 16, by = top, bh = size;
-    for (int y = 0; y < bh; y++) {
-        unsigned char c[3];
-        colormap(1.0 - (double)y / (bh - 1), c);
-        for (int x = 0; x < bar_w; x++) image_set(&im, bx + x, by + y, c);
-    }
-    for (int t = 0; t <= 4; t++) {
-        double f = t / 4.0, v = log_scale ? lo * pow(vmax / lo, f) : vmax * f;
-        int y = by + (int)((1.0 - f) * (bh - 1));
-        char lab[32];
-        snprintf(lab, sizeof lab, "%.3g", v);
-        for (int x = 0; x < 6; x++) image_set(&im, bx + bar_w + x, y, white);
-        image_text(&im, bx + bar_w + 10, y - 7 < top ? top : (y - 7 > top + bh - 14 ? top + bh - 14 : y - 7), lab, 2, white);
-    }
-    image_text(&im, 8, 8, title, 2, white);
-    image_text(&im, bx - 4, top + bh + 2, log_scale ? "LOG PDF" : "PDF", 1, white);
-    write_png(&im, path);
-    image_free(&im);
-    free(val);
+    cairo_surface_mark_dirty(img);
+    cairo_save(cr);
+    cairo_translate(cr, x0, y0);
+    cairo_scale(cr, 1 / scale, 1 / scale);
+    cairo_set_source_surface(cr, img, 0, 0);
+    cairo_pattern_set_filter(cairo_get_source(cr), vector ? CAIRO_FILTER_GOOD : CAIRO_FILTER_NEAREST);
+    cairo_paint(cr);
+    cairo_restore(cr);
+    cairo_surface_destroy(img);
 }
 
-static void grid_svg(figure_kind k, const ggx_shape *s, ggx_vec3 view, const ggx_sampler_info *smp, int size,
-                     const char *title, const char *path)
+/* The grid: each of the 10 x 10 cells of the unit square, its boundary traced through the sampler's map, filled in a
+ * checkerboard; on side views only the visible half is drawn (clipped on the silhouette). */
+static void draw_grid(cairo_t *cr, const theme *th, const hemi_proj *hp, const figure_spec *f, double F)
 {
-    if (!smp->sample) die("sampler '%s' is not a map of the unit square; grids need one", smp->name);
-    int side = k == FIG_GRID_SIDE;
-    double R = 0.5 * size - 10, cx = 0.5 * size, cy = side ? size - 20.0 : 0.5 * size + 20;
-    int H = side ? size / 2 + 40 : size + 40;
-    if (side) cy = H - 10.0;
-    out_file o;
-    out_open(&o, path);
-    FILE *f = o.f;
-    fprintf(f, "<?xml version=\"1.0\" encoding=\"UTF-8\"?>\n");
-    fprintf(f, "<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"%d\" height=\"%d\" viewBox=\"0 0 %d %d\">\n", size, H, size, H);
-    fprintf(f, "<rect width=\"100%%\" height=\"100%%\" fill=\"#18181c\"/>\n");
-    fprintf(f, "<text x=\"8\" y=\"18\" font-family=\"sans-serif\" font-size=\"14\" fill=\"#ebebeb\">%s</text>\n", title);
-    if (side)
-        fprintf(f, "<path d=\"M %.2f %.2f A %.2f %.2f 0 0 1 %.2f %.2f Z\" fill=\"#2a2a30\" stroke=\"#888\"/>\n", cx - R, cy, R, R, cx + R, cy);
-    else
-        fprintf(f, "<circle cx=\"%.2f\" cy=\"%.2f\" r=\"%.2f\" fill=\"#2a2a30\" stroke=\"#888\"/>\n", cx, cy, R);
-    const int cells = 10, steps = 24;
-    /* Checkerboard of the 10 x 10 equal-area cells, each cell's boundary traced through the map. */
-    for (int i = 0; i < cells; i++) {
-        for (int j = 0; j < cells; j++) {
-            fprintf(f, "<polygon fill=\"%s\" fill-opacity=\"0.55\" stroke=\"#ebebeb\" stroke-width=\"0.6\" points=\"",
-                    (i + j) % 2 ? "#e0783a" : "#5a2d8c");
-            for (int e = 0; e < 4; e++) {
-                for (int t = 0; t < steps; t++) {
-                    double f0 = (double)t / steps, u1, u2;
-                    if (e == 0) u1 = (i + f0) / cells, u2 = (double)j / cells;
-                    else if (e == 1) u1 = (i + 1.0) / cells, u2 = (j + f0) / cells;
-                    else if (e == 2) u1 = (i + 1.0 - f0) / cells, u2 = (j + 1.0) / cells;
-                    else u1 = (double)i / cells, u2 = (j + 1.0 - f0) / cells;
-                    if (u1 > 1.0 - 1e-9) u1 = 1.0 - 1e-9;
-                    if (u2 > 1.0 - 1e-9) u2 = 1.0 - 1e-9;
-                    ggx_vec3 m = smp->sample(s, view, u1, u2);
-                    double X = cx + R * m.x, Y = side ? cy - R * m.z : cy - R * m.y;
-                    fprintf(f, "%.2f,%.2f ", X, Y);
+    enum { CELLS = 10, STEPS = 40, NP = 4 * STEPS };
+    static ggx_vec3 poly[NP], vis[NP * 4];
+    static const double colours[2][3] = {{0.23, 0.32, 0.55}, {0.99, 0.72, 0.30}};
+    for (int i = 0; i < CELLS; i++)
+        for (int j = 0; j < CELLS; j++) {
+            int n = 0;
+            for (int e = 0; e < 4; e++)
+                for (int t = 0; t < STEPS; t++) {
+                    double g = (double)t / STEPS, u1, u2;
+                    if (e == 0) u1 = (i + g) / CELLS, u2 = (double)j / CELLS;
+                    else if (e == 1) u1 = (i + 1.0) / CELLS, u2 = (j + g) / CELLS;
+                    else if (e == 2) u1 = (i + 1.0 - g) / CELLS, u2 = (j + 1.0) / CELLS;
+                    else u1 = (double)i / CELLS, u2 = (j + 1.0 - g) / CELLS;
+                    u1 = fmin(u1, 1.0 - 1e-9), u2 = fmin(u2, 1.0 - 1e-9);
+                    poly[n++] = f->sampler->sample(f->s, f->view, u1, u2);
+                }
+            const ggx_vec3 *p = poly;
+            if (hp->side) {
+                n = clip_front(poly, n, hp->toward, vis, NP * 4);
+                p = vis;
+            }
+            if (n < 3) continue;
+            path_points(cr, hp, p, n);
+            const double *c = colours[(i + j) % 2];
+            cairo_set_source_rgba(cr, c[0], c[1], c[2], 0.55);
+            cairo_fill_preserve(cr);
+            set_rgb(cr, th->fg);
+            cairo_set_line_width(cr, fmax(0.4, 0.05 * F));
+            cairo_stroke(cr);
+        }
+}
+
+static void draw_hemisphere(cairo_t *cr, const theme *th, double x, double y, double w, double h, const figure_spec *f,
+                            hemi_proj *out)
+{
+    double F = font_for(w, h);
+    double cap = draw_caption(cr, th, x, y, w, F, f);
+    int density = !is_grid(f->kind);
+    double band = density ? 7.4 * F : 0.0, margin = 1.8 * F;
+    double bx = x, by = y + cap, bw = w - band, bh = h - cap - 0.4 * F;
+    hemi_proj hp = {0};
+    hp.side = is_side(f->kind);
+    hemi_set_from(&hp, isnan(f->from) ? -M_PI / 2 : f->from);
+    if (!hp.side) {
+        hp.R = fmax(1.0, 0.5 * fmin(bw - 2 * margin, bh - 2 * margin));
+        hp.cx = bx + 0.5 * bw, hp.cy = by + 0.5 * bh;
+    } else {
+        hp.R = fmax(1.0, fmin(0.5 * (bw - 2 * margin) - 0.8 * F, bh - margin - 1.6 * F));
+        hp.cx = bx + 0.5 * bw, hp.cy = by + margin + hp.R + 0.5 * (bh - margin - 1.6 * F - hp.R);
+    }
+    /* the hemisphere's disk */
+    set_rgb(cr, th->disk);
+    cairo_new_path(cr);
+    if (hp.side) cairo_arc(cr, hp.cx, hp.cy, hp.R, M_PI, 2 * M_PI);
+    else cairo_arc(cr, hp.cx, hp.cy, hp.R, 0, 2 * M_PI);
+    cairo_close_path(cr);
+    cairo_fill(cr);
+    double vmax = 0;
+    if (density) {
+        vmax = figure_peak(f, NULL);
+        draw_density(cr, &hp, f, vmax, F);
+    } else {
+        if (figure_has_grey(f)) {
+            grey_path(cr, &hp, f->view);
+            set_rgb(cr, th->region);
+            cairo_fill(cr);
+        }
+        draw_grid(cr, th, &hp, f, F);
+    }
+    /* rings of polar angle 30 and 60 degrees (top view) */
+    if (!hp.side) {
+        double dash[] = {0.3 * F, 0.3 * F};
+        cairo_set_dash(cr, dash, 2, 0);
+        cairo_set_line_width(cr, fmax(0.4, 0.05 * F));
+        cairo_set_source_rgba(cr, 0.5, 0.5, 0.55, 0.8);
+        for (int r = 30; r <= 60; r += 30) {
+            cairo_new_path(cr);
+            cairo_arc(cr, hp.cx, hp.cy, hp.R * sin(r * DEG), 0, 2 * M_PI);
+            cairo_stroke(cr);
+        }
+        cairo_set_dash(cr, NULL, 0, 0);
+    }
+    if (figure_has_grey(f)) {
+        cairo_set_line_width(cr, fmax(0.8, 0.12 * F));
+        cairo_set_source_rgb(cr, 0.25, 0.25, 0.27);
+        grey_contour(cr, &hp, f->view);
+    }
+    draw_marks(cr, th, &hp, f, F, is_vndf(f->kind) || figure_has_grey(f));
+    if (hp.side) {
+        set_rgb(cr, th->faint);
+        text_font(cr, 0.8 * F, 0);
+        char seen[96];
+        snprintf(seen, sizeof seen, "seen from φ %.4g°", azimuth_deg(hp.from));
+        text_at(cr, hp.cx, hp.cy + 0.6 * F, 0.5, 0, seen);
+    }
+    if (density) {
+        double bar_h = hp.side ? hp.R : 2 * hp.R, bar_y = hp.cy - (hp.side ? hp.R : hp.R);
+        colour_bar(cr, th, x + w - band + 1.2 * F, bar_y, 1.1 * F, bar_h, vmax, vmax * 1e-4, f->log_scale,
+                   f->log_scale ? "pdf (sr⁻¹, log scale)" : "pdf (sr⁻¹)", 0.8 * F);
+    }
+    if (out) *out = hp;
+}
+
+/* ---------------------------------------------------------------------------------------------------------------
+ * Line plots
+ * --------------------------------------------------------------------------------------------------------------- */
+
+#define LINE_MAX_POINTS 360
+typedef struct series {
+    double x[LINE_MAX_POINTS], y[LINE_MAX_POINTS];
+    int n;
+    char label[96];
+} series;
+
+/* Okabe and Ito's colour-blind-safe palette, with dashes so that print in grey still tells the curves apart. */
+static const double PALETTE[6][3] = {{0.0, 0.447, 0.698}, {0.835, 0.369, 0.0}, {0.0, 0.62, 0.451},
+                                     {0.8, 0.475, 0.655}, {0.337, 0.706, 0.914}, {0.902, 0.624, 0.0}};
+
+static ggx_vec3 dir_deg(double theta, double phi)
+{
+    return v3(sin(theta * DEG) * cos(phi * DEG), sin(theta * DEG) * sin(phi * DEG), cos(theta * DEG));
+}
+
+/* The azimuths the direction plots sample: the principal ones of an unskewed shape, the four quadrants otherwise. */
+static int plot_azimuths(const ggx_shape *s, double *phi)
+{
+    if (s->kind != GGX_SHAPE_SKEWED) {
+        double p0 = atan2(s->tangent_sin, s->tangent_cos) / DEG;
+        phi[0] = p0, phi[1] = p0 + 45, phi[2] = p0 + 90;
+        return 3;
+    }
+    for (int i = 0; i < 4; i++) phi[i] = 90.0 * i;
+    return 4;
+}
+
+/* The NDF's principal axes: D(m) = c / (m^T B m)^2 with B = A'^{-1} A'^{-T}; Jacobi's method on B. */
+static void principal_axes(const ggx_shape *s, ggx_vec3 axes[3], double eig[3])
+{
+    double B[3][3], V[3][3] = {{1, 0, 0}, {0, 1, 0}, {0, 0, 1}};
+    for (int i = 0; i < 3; i++)
+        for (int j = 0; j < 3; j++) {
+            B[i][j] = 0;
+            for (int k = 0; k < 3; k++) B[i][j] += s->ainv_t[k][i] * s->ainv_t[k][j];
+        }
+    for (int sweep = 0; sweep < 50; sweep++) {
+        for (int p = 0; p < 2; p++)
+            for (int q = p + 1; q < 3; q++) {
+                if (fabs(B[p][q]) < 1e-300) continue;
+                double th = 0.5 * atan2(2 * B[p][q], B[q][q] - B[p][p]), c = cos(th), sn = sin(th);
+                for (int k = 0; k < 3; k++) { /* B <- B J, V <- V J */
+                    double bp = B[k][p], bq = B[k][q];
+                    B[k][p] = c * bp - sn * bq, B[k][q] = sn * bp + c * bq;
+                    double vp = V[k][p], vq = V[k][q];
+                    V[k][p] = c * vp - sn * vq, V[k][q] = sn * vp + c * vq;
+                }
+                for (int k = 0; k < 3; k++) { /* B <- J^T B */
+                    double bp = B[p][k], bq = B[q][k];
+                    B[p][k] = c * bp - sn * bq, B[q][k] = sn * bp + c * bq;
                 }
             }
-            fprintf(f, "\"/>\n");
-        }
     }
-    fprintf(f, "</svg>\n");
-    out_close(&o);
+    for (int i = 0; i < 3; i++) eig[i] = B[i][i], axes[i] = v3(V[0][i], V[1][i], V[2][i]);
 }
 
-void draw_figure(figure_kind k, const ggx_shape *s, ggx_vec3 view, const ggx_sampler_info *sampler, int size,
-                 int log_scale, const char *title, const char *path)
+static int line_series(const figure_spec *f, series *sr, const char **xlabel, const char **ylabel, int *logy)
 {
-    if (k == FIG_GRID || k == FIG_GRID_SIDE) grid_svg(k, s, view, sampler, size, title, path);
-    else density_png(k, s, view, size, log_scale, title, path);
+    double phi[4];
+    int na = plot_azimuths(f->s, phi), ns = 0;
+    ggx_vec3 n = v3(0, 0, 1);
+    *xlabel = "view polar angle θ (degrees)";
+    *logy = 0;
+    if (f->kind == FIG_G1 || f->kind == FIG_LAMBDA) {
+        *ylabel = f->kind == FIG_G1 ? "G1(v)" : "Λ(v)";
+        for (int a = 0; a < na; a++, ns++) {
+            series *s = &sr[ns];
+            s->n = 0;
+            snprintf(s->label, sizeof s->label, "φ %.4g°", azimuth_deg(phi[a] * DEG));
+            for (int i = 0; i < 179; i++) {
+                double th = 0.5 * i;
+                ggx_vec3 v = dir_deg(th, phi[a]);
+                s->x[s->n] = th;
+                s->y[s->n++] = f->kind == FIG_G1 ? ggx_g1(f->s, v, n) : ggx_lambda(f->s, v);
+            }
+        }
+    } else if (f->kind == FIG_NDF_SLICE) {
+        *xlabel = "angle from the peak in the plane (degrees)";
+        *ylabel = "D(m) (sr⁻¹)";
+        *logy = 1;
+        ggx_vec3 ax[3];
+        double eig[3];
+        principal_axes(f->s, ax, eig);
+        int top = 0; /* the peak: the axis of the smallest eigenvalue of B, turned to the upper side */
+        for (int i = 1; i < 3; i++)
+            if (eig[i] < eig[top]) top = i;
+        ggx_vec3 pk = ax[top].z < 0 ? v3(-ax[top].x, -ax[top].y, -ax[top].z) : ax[top];
+        for (int i = 0; i < 3; i++) {
+            if (i == top) continue;
+            series *s = &sr[ns++];
+            s->n = 0;
+            ggx_vec3 t = ax[i];
+            if (t.x + 1e-9 * t.y < 0) t = v3(-t.x, -t.y, -t.z);
+            double alpha = sqrt(eig[top] / eig[i]);
+            snprintf(s->label, sizeof s->label, "toward φ %.4g° (α %.3g)", azimuth_deg(atan2(t.y, t.x)), alpha);
+            for (int k = 0; k <= 358; k++) {
+                double g = (-89.5 + 0.5 * k) * DEG;
+                ggx_vec3 m = v3(cos(g) * pk.x + sin(g) * t.x, cos(g) * pk.y + sin(g) * t.y, cos(g) * pk.z + sin(g) * t.z);
+                double d = ggx_ndf(f->s, m);
+                if (d > 0) s->x[s->n] = g / DEG, s->y[s->n++] = d;
+            }
+        }
+    } else {
+        *ylabel = "fraction of energy";
+        for (int a = 0; a < 2; a++) {
+            double p = phi[a == 0 ? 0 : (na == 3 ? 2 : 1)];
+            series *w = &sr[ns++], *e = &sr[ns++];
+            w->n = e->n = 0;
+            snprintf(w->label, sizeof w->label, "weak furnace, φ %.4g°", azimuth_deg(p * DEG));
+            snprintf(e->label, sizeof e->label, "albedo E(v), φ %.4g°", azimuth_deg(p * DEG));
+            for (int i = 0; i < 179; i++) {
+                ggx_vec3 v = dir_deg(0.5 * i, p);
+                /* int G1(v) D(m) (m.v)+ / (v.n) dm = G1(v) (1 + Lambda(v)): the lune's area over the footprint */
+                w->x[w->n] = 0.5 * i, w->y[w->n++] = ggx_g1(f->s, v, n) * (1 + ggx_lambda(f->s, v));
+                if (i % 4 == 0) e->x[e->n] = 0.5 * i, e->y[e->n++] = ggx_albedo(f->s, v);
+            }
+        }
+    }
+    return ns;
+}
+
+static void draw_lines(cairo_t *cr, const theme *th, double x, double y, double w, double h, const figure_spec *f)
+{
+    static series sr[8];
+    const char *xlabel, *ylabel;
+    int logy, ns = line_series(f, sr, &xlabel, &ylabel, &logy);
+    double F = font_for(w, h);
+    double cap = draw_caption(cr, th, x, y, w, F, f);
+    double legend_w = 0;
+    text_font(cr, 0.8 * F, 0);
+    for (int i = 0; i < ns; i++) legend_w = fmax(legend_w, text_width(cr, sr[i].label));
+    legend_w += 3.6 * F;
+    double px = x + 5.0 * F, py = y + cap + 0.6 * F, pw = w - 5.0 * F - legend_w - 0.8 * F, ph = h - cap - 4.2 * F;
+    double xlo = 1e300, xhi = -1e300, ylo = 1e300, yhi = -1e300;
+    for (int i = 0; i < ns; i++)
+        for (int k = 0; k < sr[i].n; k++) {
+            xlo = fmin(xlo, sr[i].x[k]), xhi = fmax(xhi, sr[i].x[k]);
+            double v = logy ? log10(sr[i].y[k]) : sr[i].y[k];
+            if (isfinite(v)) ylo = fmin(ylo, v), yhi = fmax(yhi, v);
+        }
+    if (f->kind == FIG_NDF_SLICE) xlo = -90, xhi = 90;
+    else xlo = 0, xhi = 90;
+    if (logy) ylo = floor(fmax(ylo, yhi - 6)), yhi = ceil(yhi);
+    else ylo = fmin(0.0, ylo), yhi = (f->kind == FIG_LAMBDA) ? yhi * 1.05 : fmax(1.0, yhi) * 1.05;
+    if (!(yhi > ylo)) yhi = ylo + 1;
+#define MAPX(v) (px + pw * ((v) - xlo) / (xhi - xlo))
+#define MAPY(v) (py + ph * (1 - ((v) - ylo) / (yhi - ylo)))
+    /* axes, grid lines and ticks */
+    double ticks[64];
+    cairo_set_line_width(cr, fmax(0.4, 0.05 * F));
+    text_font(cr, 0.8 * F, 0);
+    int nt = f->kind == FIG_NDF_SLICE ? 7 : 7;
+    for (int i = 0; i < nt; i++) ticks[i] = f->kind == FIG_NDF_SLICE ? -90 + 30 * i : 15 * i;
+    for (int i = 0; i < nt; i++) {
+        double X = MAPX(ticks[i]);
+        cairo_set_source_rgba(cr, th->faint[0], th->faint[1], th->faint[2], 0.35);
+        cairo_move_to(cr, X, py), cairo_line_to(cr, X, py + ph), cairo_stroke(cr);
+        set_rgb(cr, th->fg);
+        char b[32];
+        format_tick(ticks[i], b, sizeof b);
+        text_at(cr, X, py + ph + 0.45 * F, 0.5, 0, b);
+    }
+    nt = logy ? 0 : nice_ticks(ylo, yhi, 6, ticks, 64);
+    if (logy)
+        for (double d = ylo; d <= yhi + 1e-9; d += 1) ticks[nt++] = d;
+    for (int i = 0; i < nt; i++) {
+        double Y = MAPY(ticks[i]);
+        cairo_set_source_rgba(cr, th->faint[0], th->faint[1], th->faint[2], 0.35);
+        cairo_move_to(cr, px, Y), cairo_line_to(cr, px + pw, Y), cairo_stroke(cr);
+        set_rgb(cr, th->fg);
+        char b[32];
+        format_tick(logy ? pow(10, ticks[i]) : ticks[i], b, sizeof b);
+        text_at(cr, px - 0.4 * F, Y, 1, 0.5, b);
+    }
+    set_rgb(cr, th->fg);
+    cairo_set_line_width(cr, fmax(0.6, 0.07 * F));
+    cairo_rectangle(cr, px, py, pw, ph);
+    cairo_stroke(cr);
+    text_font(cr, 0.85 * F, 0);
+    text_at(cr, px + 0.5 * pw, py + ph + 2.0 * F, 0.5, 0, xlabel);
+    text_vertical(cr, x + 1.0 * F, py + 0.5 * ph, ylabel);
+    /* the curves, clipped to the box */
+    cairo_save(cr);
+    cairo_rectangle(cr, px, py, pw, ph);
+    cairo_clip(cr);
+    cairo_set_line_width(cr, fmax(1.0, 0.14 * F));
+    cairo_set_line_join(cr, CAIRO_LINE_JOIN_ROUND);
+    for (int i = 0; i < ns; i++) {
+        double dashes[2] = {0.7 * F * (i % 3), 0.35 * F};
+        set_rgb(cr, PALETTE[i % 6]);
+        cairo_set_dash(cr, dashes, i % 3 ? 2 : 0, 0);
+        for (int k = 0; k < sr[i].n; k++) {
+            double Y = MAPY(logy ? log10(sr[i].y[k]) : sr[i].y[k]);
+            if (k == 0) cairo_move_to(cr, MAPX(sr[i].x[k]), Y);
+            else cairo_line_to(cr, MAPX(sr[i].x[k]), Y);
+        }
+        cairo_stroke(cr);
+    }
+    cairo_restore(cr);
+    /* legend, at the right of the box */
+    text_font(cr, 0.8 * F, 0);
+    for (int i = 0; i < ns; i++) {
+        double lx = px + pw + 0.8 * F, ly = py + 0.6 * F + 1.4 * F * i;
+        double dashes[2] = {0.7 * F * (i % 3), 0.35 * F};
+        set_rgb(cr, PALETTE[i % 6]);
+        cairo_set_line_width(cr, fmax(1.0, 0.14 * F));
+        cairo_set_dash(cr, dashes, i % 3 ? 2 : 0, 0);
+        cairo_move_to(cr, lx, ly), cairo_line_to(cr, lx + 2.4 * F, ly), cairo_stroke(cr);
+        cairo_set_dash(cr, NULL, 0, 0);
+        set_rgb(cr, th->fg);
+        text_at(cr, lx + 2.9 * F, ly, 0, 0.5, sr[i].label);
+    }
+#undef MAPX
+#undef MAPY
+}
+
+/* ---------------------------------------------------------------------------------------------------------------
+ * Entry points
+ * --------------------------------------------------------------------------------------------------------------- */
+
+void figure_draw(cairo_t *cr, const theme *th, double x, double y, double w, double h, const figure_spec *fin,
+                 hemi_proj *proj)
+{
+    figure_spec f = *fin;
+    if (is_side(f.kind) && isnan(f.from)) f.from = figure_default_from(&f);
+    cairo_save(cr);
+    cairo_rectangle(cr, x, y, w, h);
+    cairo_clip(cr);
+    if (is_line(f.kind)) draw_lines(cr, th, x, y, w, h, &f);
+    else draw_hemisphere(cr, th, x, y, w, h, &f, proj);
+    cairo_restore(cr);
+}
+
+double figure_aspect(figure_kind k)
+{
+    if (is_line(k)) return 0.62;
+    if (is_side(k)) return is_grid(k) ? 0.68 : 0.62;
+    return is_grid(k) ? 1.0 : 0.86;
+}
+
+void figure_write(const figure_spec *f, const char *path, canvas_format fmt, int w, int h)
+{
+    canvas c;
+    canvas_open(&c, path, fmt, w, h, f->dark);
+    figure_draw(c.cr, c.th, 0, 0, w, h, f, NULL);
+    canvas_close(&c);
 }

@@ -15,7 +15,7 @@ static const struct command {
     {"eval", cmd_eval, "D, G1, G, pdfs, BRDF and BSDF for a shape and directions, as CSV or JSON"},
     {"albedo", cmd_albedo, "directional and average albedo E(v), E_avg (separable and height-correlated G)"},
     {"sample", cmd_sample, "N samples of a chosen sampler, as CSV or float32, with pdf and weight"},
-    {"plot", cmd_plot, "one figure (PNG densities, SVG grids) for any shape, view and sampler"},
+    {"plot", cmd_plot, "one figure (PNG, SVG or PDF) for any shape, view and sampler: the seeds' figures and line plots"},
     {"check", cmd_check, "chi-square, normalisation and Jacobian checks; exit status 0 only if all pass"},
     {"audit", cmd_audit, "the table of the seeds' claims for default or given shapes"},
 };

@@ -1,46 +1,74 @@
-/* ggx plot: one figure (PNG density or SVG grid) for any shape, view and sampler. SPDX-License-Identifier: MIT */
+/* ggx plot: one figure for any shape, view and sampler, as PNG, SVG or PDF. SPDX-License-Identifier: MIT */
+#include <math.h>
 #include <string.h>
-#include <sys/stat.h>
 
-#include "cli.h"
+#include "figure.h"
 
-static const char *default_ext(figure_kind k) { return (k == FIG_GRID || k == FIG_GRID_SIDE) ? "svg" : "png"; }
+/* The caption's description of the shape given on the command line. */
+void shape_caption(const options *o, char *buf, size_t n)
+{
+    if (o->have_matrix)
+        snprintf(buf, n, "A = [%g %g %g; %g %g %g; %g %g %g]", o->matrix[0][0], o->matrix[0][1], o->matrix[0][2],
+                 o->matrix[1][0], o->matrix[1][1], o->matrix[1][2], o->matrix[2][0], o->matrix[2][1], o->matrix[2][2]);
+    else
+        snprintf(buf, n, "αx %.4g, αy %.4g  ·  θx %.4g°, θy %.4g°, θz %.4g°", o->alpha[0], o->alpha[1], o->skew[0],
+                 o->skew[1], o->rotate);
+}
 
 int cmd_plot(int argc, char **argv)
 {
     options o;
-    parse_options(argc, argv, 2, &o, SHAPE_OPTS ",figure,view,sampler,size,log,out");
+    parse_options(argc, argv, 2, &o, SHAPE_OPTS ",figure,view,sampler,size,log,theme,from,out");
     if (o.help) {
-        printf("usage: ggx plot [shape] [--figure NAME] [--view DIR] [--sampler NAME] [--size PX] [--log] [--out FILE]\n\n"
-               "Figures: ndf, ndf-side (pdf D(m) m.n from above / from the side, PNG with a colour bar), vndf,\n"
-               "vndf-side (the visible-normal pdf for --view, default 75,0), grid, grid-side (the 10 x 10 equal-area\n"
-               "grid of the unit square mapped onto the hemisphere by --sampler, default stretch, SVG). --log uses a\n"
-               "logarithmic colour scale over four decades (for sharp lobes). --size in pixels (default 512).\n"
-               "--out defaults to FIGURE.png or FIGURE.svg in the current folder.\n\n%s", SHAPE_HELP);
+        printf("usage: ggx plot [shape] [--figure NAME] [--view DIR] [--sampler NAME] [--from DEG] [--size W[xH]]\n"
+               "                [--log] [--theme light|dark] [--out FILE]\n\n"
+               "Figures (the seeds' hemisphere figures, then line plots):\n"
+               "  ndf, ndf-side      the NDF pdf D(m) (m.n), from above / from the side, with a colour bar (sr^-1)\n"
+               "  vndf, vndf-side    the visible-normal pdf for --view (default 75,0), with seed 004's grey region:\n"
+               "                     the normals that reflect the view above the horizon\n"
+               "  grid, grid-side    the 10 x 10 equal-area grid of the unit square mapped onto the hemisphere by\n"
+               "                     --sampler (default stretch; a VNDF sampler maps for --view and shows the region)\n"
+               "  g1, lambda         G1(v) and Lambda(v) against the view's polar angle, at several azimuths\n"
+               "  ndf-slice          D(m) along the two principal planes through its peak (log scale)\n"
+               "  furnace            the weak white furnace G1(v) int D (m.v)+ / (v.n) dm and the albedo E(v)\n\n"
+               "Side views look from the azimuth --from (degrees); by default from the view's azimuth - 90 (VNDF\n"
+               "figures: the view points right and the lobe is seen in profile, as in the seeds) or the NDF peak's\n"
+               "azimuth - 90 (-90, from -y, when the peak is at n); the caption states it. Only the visible half of\n"
+               "the hemisphere is drawn. --log: a logarithmic colour scale over four decades.\n"
+               "--size W or WxH: the file's size, exactly, in pixels (PNG) or points (SVG, PDF); with W alone the\n"
+               "height follows the figure's aspect. Default width 640. --theme: light (default, for print) or dark.\n"
+               "--out FILE: its name says the format (.png, .svg, .pdf); default FIGURE.png for hemisphere figures\n"
+               "and FIGURE.svg for line plots; - writes the default format to standard output.\n\n%s",
+               SHAPE_HELP);
         return 0;
     }
     ggx_shape s;
     shape_from_options(&o, &s);
     figure_kind k = figure_from_name(o.figure ? o.figure : "ndf");
+    int line = k >= FIG_G1;
     if (!o.have_view) parse_direction("75,0", &o.view);
     if ((k == FIG_VNDF || k == FIG_VNDF_SIDE) && !(o.view.z > 0)) die("--view must be above the horizon for a VNDF figure");
     const ggx_sampler_info *smp = o.sampler ? find_sampler(o.sampler) : ggx_sampler_get(GGX_SAMPLER_STRETCH);
-    require_domain(smp, &s);
-    if (smp->family == GGX_FAMILY_VNDF && !(o.view.z > 0))
-        die("--view must be above the horizon for sampler '%s'", smp->name);
-    char fallback[64], title[128];
-    snprintf(fallback, sizeof fallback, "%s.%s", o.figure ? o.figure : "ndf", default_ext(k));
+    if (k == FIG_GRID || k == FIG_GRID_SIDE) {
+        require_domain(smp, &s);
+        if (!smp->sample) die("sampler '%s' is not a map of the unit square; grids need one", smp->name);
+        if (smp->family == GGX_FAMILY_VNDF && !(o.view.z > 0)) die("--view must be above the horizon for sampler '%s'", smp->name);
+    }
+    canvas_format deflt = line ? FMT_SVG : FMT_PNG;
+    char fallback[64];
+    snprintf(fallback, sizeof fallback, "%s%s", figure_name(k), format_ext(deflt));
     const char *path = o.out ? o.out : fallback;
-    /* a file name says its format: a PNG figure is not written to x.svg. Standard output ("-") and what is not a
-     * regular file (a device, a FIFO) take the figure's own format. */
-    const char *want = (k == FIG_GRID || k == FIG_GRID_SIDE) ? ".svg" : ".png";
+    /* a file name says its format; standard output ("-") and what is not a regular file (a device, a FIFO) take
+     * the figure's default format */
+    canvas_format fmt = format_of_path(path, deflt);
     size_t pl = strlen(path);
-    struct stat st;
-    int stream = strcmp(path, "-") == 0 || (stat(path, &st) == 0 && !S_ISREG(st.st_mode) && !S_ISDIR(st.st_mode));
-    if (!stream && (pl < 4 || strcmp(path + pl - 4, want) != 0))
-        die("--out: figure '%s' is written as %s (or give - for standard output)", o.figure ? o.figure : "ndf", want);
-    snprintf(title, sizeof title, "%s  alpha %.3g,%.3g", o.figure ? o.figure : "ndf", o.alpha[0], o.alpha[1]);
-    draw_figure(k, &s, o.view, smp, o.size ? o.size : 512, o.log_scale, title, path);
-    if (strcmp(path, "-") != 0) fprintf(stderr, "ggx: wrote %s\n", path);
+    if (!path_is_stream(path) && (pl < 4 || strcmp(path + pl - 4, format_ext(fmt)) != 0))
+        die("--out: '%s' does not name a format: end it in .png, .svg or .pdf (or give - for standard output)", path);
+    figure_spec f = {k, &s, o.view, smp, o.log_scale, o.dark, o.from * DEG, "", ""};
+    shape_caption(&o, f.shape_text, sizeof f.shape_text);
+    int w = o.size ? o.size : 640;
+    int h = o.size_h ? o.size_h : (int)lround(w * figure_aspect(k));
+    figure_write(&f, path, fmt, w, h);
+    if (strcmp(path, "-") != 0) fprintf(stderr, "ggx: wrote %s (%d x %d)\n", path, w, h);
     return 0;
 }

@@ -1,0 +1,239 @@
+/* The figures' promises: the brightest pixel of every density figure sits on the density's peak (so the image is
+ * neither mirrored, shifted nor mis-scaled), side views draw only the visible half, and seed 004's grey region is
+ * what it says: its pointwise test, its drawn boundary and its measure agree with sampling.
+ * SPDX-License-Identifier: MIT */
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+
+#include "figure.h"
+#include "testlib.h"
+
+#ifndef M_PI
+#define M_PI 3.14159265358979323846
+#endif
+
+static const shape_params SHAPES[] = {
+    {0.15, 0.5, 0, 0, 0},                  /* the seeds' */
+    {0.15, 0.5, 15 * DEG, -10 * DEG, 0},   /* the demo's skewed one */
+    {0.2, 0.6, 0, 0, 30 * DEG},            /* rotated by theta_z only */
+    {0.3, 0.3, 0, 0, 0},                   /* isotropic */
+    {0.25, 0.5, -20 * DEG, 25 * DEG, 70 * DEG}, /* skewed and rotated */
+};
+enum { NSHAPES = sizeof SHAPES / sizeof SHAPES[0] };
+
+static ggx_vec3 dir(double theta_deg, double phi_deg)
+{
+    ggx_vec3 v = {sin(theta_deg * DEG) * cos(phi_deg * DEG), sin(theta_deg * DEG) * sin(phi_deg * DEG), cos(theta_deg * DEG)};
+    return v;
+}
+
+/* Renders the figure into an image surface of w x h and returns the centroid of its brightest pixels (those of
+ * the largest luminance: 8-bit colours tie near a smooth peak) among the pixels wholly inside the projected
+ * hemisphere and away from the view's mark. */
+static void brightest(const figure_spec *f, int w, int h, hemi_proj *hp, double *bx, double *by)
+{
+    cairo_surface_t *s = cairo_image_surface_create(CAIRO_FORMAT_RGB24, w, h);
+    cairo_t *cr = cairo_create(s);
+    const theme *th = theme_get(0);
+    set_rgb(cr, th->bg);
+    cairo_paint(cr);
+    figure_draw(cr, th, 0, 0, w, h, f, hp);
+    cairo_surface_flush(s);
+    const unsigned char *data = cairo_image_surface_get_data(s);
+    int stride = cairo_image_surface_get_stride(s);
+    double vx = 0, vy = 0;
+    int has_view = f->kind == FIG_VNDF || f->kind == FIG_VNDF_SIDE;
+    if (has_view) hemi_project(hp, f->view, &vx, &vy);
+    double best = -1, sx = 0, sy = 0;
+    int count = 0;
+    for (int y = 0; y < h; y++)
+        for (int x = 0; x < w; x++) {
+            double X = x + 0.5, Y = y + 0.5, dx = X - hp->cx, dy = Y - hp->cy;
+            if (hypot(dx, dy) > hp->R - 1.5 || (hp->side && dy > -1.5)) continue;
+            if (has_view && hypot(X - vx, Y - vy) < 40) continue;
+            unsigned px = *(const unsigned *)(data + (long)y * stride + 4 * x);
+            double lum = 0.2126 * ((px >> 16) & 255) + 0.7152 * ((px >> 8) & 255) + 0.0722 * (px & 255);
+            if (lum > best) best = lum, sx = sy = 0, count = 0;
+            if (lum == best) sx += X, sy += Y, count++;
+        }
+    *bx = sx / count, *by = sy / count;
+    cairo_destroy(cr);
+    cairo_surface_destroy(s);
+}
+
+/* The brightest pixel of every density figure within 2 pixels of the analytic peak's projection. */
+static void peak_pixel(void **state)
+{
+    (void)state;
+    static const figure_kind KINDS[] = {FIG_NDF, FIG_NDF_SIDE, FIG_VNDF, FIG_VNDF_SIDE};
+    static const double VIEWS[][2] = {{75, 0}, {75, 90}, {40, 200}};
+    int runs = 0, skipped = 0;
+    for (int i = 0; i < NSHAPES; i++) {
+        ggx_shape s;
+        make_shape(&s, SHAPES[i]);
+        for (unsigned k = 0; k < sizeof KINDS / sizeof KINDS[0]; k++) {
+            int nv = (KINDS[k] == FIG_VNDF || KINDS[k] == FIG_VNDF_SIDE) ? 3 : 1;
+            for (int j = 0; j < nv; j++) {
+                figure_spec f = {KINDS[k], &s, dir(VIEWS[j][0], VIEWS[j][1]), NULL, 0, 0, NAN, "shape", ""};
+                int w = 720, h = (int)lround(w * figure_aspect(f.kind));
+                hemi_proj hp;
+                double bx, by, px, py;
+                ggx_vec3 m;
+                figure_spec flat = f;
+                flat.kind = f.kind == FIG_NDF_SIDE ? FIG_NDF : f.kind == FIG_VNDF_SIDE ? FIG_VNDF : f.kind;
+                double top = figure_peak(&flat, &m);
+                /* side views are seen here facing the peak (by default they show it in profile, on the rim, where
+                 * the density runs along the silhouette and 8-bit colours tie over many pixels) */
+                if (f.kind == FIG_NDF_SIDE || f.kind == FIG_VNDF_SIDE) f.from = atan2(m.y, m.x);
+                brightest(&f, w, h, &hp, &bx, &by);
+                hemi_project(&hp, m, &px, &py);
+                /* a side view sees a peak near n on its rim, foreshortened to a pixel's width, where which pixel is
+                 * brightest depends on how the pixel grid meets the circle: such peaks are tested from above only */
+                if (hp.side && m.x * hp.toward.x + m.y * hp.toward.y < 0.3) {
+                    skipped++;
+                    continue;
+                }
+                CHECK(hypot(bx - px, by - py) <= 2.0,
+                      "figure %s, shape %d, view (%g, %g): brightest pixels at (%.1f, %.1f), peak %.4g at m = (%.4f, %.4f, "
+                      "%.4f) projects to (%.1f, %.1f)", figure_name(f.kind), i, VIEWS[j][0], VIEWS[j][1], bx, by, top,
+                      m.x, m.y, m.z, px, py);
+                runs++;
+            }
+        }
+    }
+    /* every top view, and at least five side views whose peak faces the viewer */
+    CHECK(runs + skipped == NSHAPES * 8 && runs - NSHAPES * 4 >= 5, "%d figures tested, %d side views skipped", runs, skipped);
+    print_message("peak_pixel: %d figures tested (%d side views of peaks near n left to the top views)\n", runs, skipped);
+}
+
+/* The peak finder itself: at the seeds' shape the NDF peak is 1 / (pi ax ay) at n and the VNDF peaks are the
+ * 4.106 and 3.749 the seeds' figures show (theta_v = 75, phi_v = 0 and 90). */
+static void peak_values(void **state)
+{
+    (void)state;
+    ggx_shape s;
+    make_shape(&s, SHAPES[0]);
+    figure_spec f = {FIG_NDF, &s, dir(75, 0), NULL, 0, 0, NAN, "", ""};
+    ggx_vec3 m;
+    CHECK_CLOSE(figure_peak(&f, &m), 1 / (M_PI * 0.15 * 0.5), 1e-9, 0, "NDF peak");
+    CHECK(m.z > 1 - 1e-12, "NDF peak at n: m.z = %.15g", m.z);
+    f.kind = FIG_VNDF;
+    CHECK_CLOSE(figure_peak(&f, &m), 4.106, 0, 5e-4, "VNDF peak, phi_v = 0");
+    f.view = dir(75, 90);
+    CHECK_CLOSE(figure_peak(&f, &m), 3.749, 0, 5e-4, "VNDF peak, phi_v = 90");
+}
+
+/* Side views: a visible direction projects and unprojects to itself; a hidden one reports hidden; the default
+ * azimuth puts the view to the right (VNDF) and the NDF peak on the silhouette. */
+static void side_views(void **state)
+{
+    (void)state;
+    rng r = {11};
+    hemi_proj hp = {1, 100, 200, 80, {0, 0, 0}, {0, 0, 0}, 0};
+    for (int t = 0; t < 2000; t++) {
+        double from = rng_range(&r, -M_PI, M_PI);
+        hp.toward = (ggx_vec3){cos(from), sin(from), 0}, hp.right = (ggx_vec3){-sin(from), cos(from), 0};
+        ggx_vec3 m = random_view(&r), back;
+        double X, Y;
+        int vis = hemi_project(&hp, m, &X, &Y);
+        CHECK(vis == (m.x * hp.toward.x + m.y * hp.toward.y >= 0), "visibility of (%g, %g, %g)", m.x, m.y, m.z);
+        if (!vis) continue;
+        CHECK(hemi_unproject(&hp, X, Y, &back), "unproject");
+        CHECK(fabs(back.x - m.x) + fabs(back.y - m.y) + fabs(back.z - m.z) < 1e-9, "round trip of (%g, %g, %g)", m.x, m.y, m.z);
+    }
+    for (int i = 0; i < NSHAPES; i++) {
+        ggx_shape s;
+        make_shape(&s, SHAPES[i]);
+        figure_spec f = {FIG_VNDF_SIDE, &s, dir(60, 130), NULL, 0, 0, NAN, "", ""};
+        double from = figure_default_from(&f);
+        CHECK(fabs(cos(from) * f.view.x + sin(from) * f.view.y) < 1e-12, "the view lies in the plane seen in profile");
+        CHECK(-sin(from) * f.view.x + cos(from) * f.view.y > 0, "the view points right");
+        f.kind = FIG_NDF_SIDE;
+        from = figure_default_from(&f);
+        ggx_vec3 m;
+        f.kind = FIG_NDF;
+        figure_peak(&f, &m);
+        CHECK(fabs(cos(from) * m.x + sin(from) * m.y) < 1e-6, "shape %d: the NDF peak lies in the plane seen in profile", i);
+    }
+}
+
+/* The grey region: its boundary (as drawn) separates grey from not grey; it covers exactly half of the top view's
+ * disk for every view (the projected area of theta < theta_b(phi) is pi / 2: docs/figures.md); the fraction of
+ * VNDF samples inside it equals the fraction of sampled reflections above the horizon; and the integral of the VNDF
+ * pdf over it, bounded by the drawn boundary, matches that fraction within 1%. */
+typedef struct grey_ctx {
+    const ggx_shape *s;
+    ggx_vec3 v;
+    double phi;
+} grey_ctx;
+
+static double grey_inner(double theta, void *ctx)
+{
+    grey_ctx *g = ctx;
+    ggx_vec3 m = {sin(theta) * cos(g->phi), sin(theta) * sin(g->phi), cos(theta)};
+    return ggx_pdf_vndf(g->s, g->v, m) * sin(theta);
+}
+
+static void grey_region(void **state)
+{
+    (void)state;
+    rng r = {5};
+    for (int t = 0; t < 500; t++) {
+        ggx_vec3 v = t == 0 ? dir(75, 0) : random_view(&r);
+        double area = 0;
+        const int NPHI = 2048;
+        for (int k = 0; k < NPHI; k++) {
+            double phi = 2 * M_PI * k / NPHI;
+            ggx_vec3 b = figure_grey_boundary(v, phi);
+            double st = sqrt(b.x * b.x + b.y * b.y), ct = b.z, th = atan2(st, ct);
+            ggx_vec3 in = {sin(th - 1e-7) * cos(phi), sin(th - 1e-7) * sin(phi), cos(th - 1e-7)};
+            ggx_vec3 out = {sin(th + 1e-7) * cos(phi), sin(th + 1e-7) * sin(phi), cos(th + 1e-7)};
+            if (th + 1e-7 < M_PI / 2) CHECK(!figure_grey(v, out), "just outside the boundary is not grey");
+            CHECK(figure_grey(v, in), "just inside the boundary is grey (v = (%g, %g, %g), phi %g)", v.x, v.y, v.z, phi);
+            area += 0.5 * st * st * (2 * M_PI / NPHI);
+        }
+        CHECK_CLOSE(area, M_PI / 2, 1e-9, 0, "projected area of the grey region, v = (%g, %g, %g)", v.x, v.y, v.z);
+    }
+    static const double VIEWS[][2] = {{75, 0}, {75, 90}, {40, 30}, {85, 200}, {10, 300}};
+    long N = (long)(400000 * test_scale());
+    for (int i = 0; i < NSHAPES; i++) {
+        ggx_shape s;
+        make_shape(&s, SHAPES[i]);
+        ggx_fresnel one;
+        ggx_fresnel_one(&one);
+        for (unsigned j = 0; j < sizeof VIEWS / sizeof VIEWS[0]; j++) {
+            ggx_vec3 v = dir(VIEWS[j][0], VIEWS[j][1]);
+            long inside = 0, above = 0;
+            for (long n = 0; n < N; n++) {
+                inside += figure_grey(v, ggx_sample_vndf(&s, v, rng_uniform(&r), rng_uniform(&r)));
+                ggx_sample w = ggx_sample_brdf(&s, &one, v, rng_uniform(&r), rng_uniform(&r));
+                above += w.pdf > 0 && w.w.z > 0;
+            }
+            double a = (double)inside / (double)N, b = (double)above / (double)N, sigma = sqrt(2 * b * (1 - b) / (double)N) + 1e-12;
+            CHECK(fabs(a - b) < 5 * sigma, "shape %d, view (%g, %g): VNDF samples in the region %.5f, reflections above "
+                  "the horizon %.5f (5 sigma = %.2g)", i, VIEWS[j][0], VIEWS[j][1], a, b, 5 * sigma);
+            grey_ctx g = {&s, v, 0};
+            double I = 0;
+            const int NPHI = 720;
+            for (int k = 0; k < NPHI; k++) {
+                g.phi = 2 * M_PI * (k + 0.5) / NPHI;
+                ggx_vec3 bd = figure_grey_boundary(v, g.phi);
+                I += quad_adapt(grey_inner, &g, 0, acos(bd.z), 1e-9) * (2 * M_PI / NPHI);
+            }
+            CHECK(fabs(I - b) <= 0.01 * b, "shape %d, view (%g, %g): integral of the VNDF pdf over the region %.5f, "
+                  "sampled fraction %.5f", i, VIEWS[j][0], VIEWS[j][1], I, b);
+        }
+    }
+}
+
+int main(void)
+{
+    const struct CMUnitTest tests[] = {
+        cmocka_unit_test(peak_values),
+        cmocka_unit_test(peak_pixel),
+        cmocka_unit_test(side_views),
+        cmocka_unit_test(grey_region),
+    };
+    return cmocka_run_group_tests(tests, NULL, NULL);
+}

@@ -1,0 +1,61 @@
+/* The figures of the ggx command: the seeds' hemisphere figures and the line plots researchers make of the model,
+ * drawn with cairo into any rectangle of a canvas (a file of its own, or a page of figures.pdf).
+ * SPDX-License-Identifier: MIT */
+#ifndef GGX_FIGURE_H
+#define GGX_FIGURE_H
+
+#include "canvas.h"
+
+/* What a figure shows. */
+typedef struct figure_spec {
+    figure_kind kind;
+    const ggx_shape *s;
+    ggx_vec3 view;                    /* VNDF figures and VNDF samplers' grids; above the horizon */
+    const ggx_sampler_info *sampler; /* grids: the map of the unit square */
+    int log_scale, dark;
+    double from;                      /* side views: the azimuth of the viewer (radians); NAN: the default */
+    char shape_text[192];             /* the caption's shape, e.g. "αx 0.15, αy 0.5, θx 0°, θy 0°, θz 0°" */
+    char note[192];                   /* one more caption line (the seed figure reproduced), or "" */
+} figure_spec;
+
+/* The hemisphere's projection in a figure: from above (x right, y up) or from the side, seen from the horizontal
+ * direction toward (azimuth `from`) with right = n x toward pointing right and n up. */
+typedef struct hemi_proj {
+    int side;
+    double cx, cy, R; /* the projected centre of the hemisphere (the origin) and its radius, in canvas units */
+    ggx_vec3 right, toward;
+    double from;
+} hemi_proj;
+
+/* Projects a unit direction; returns 0 when it is hidden (side views: behind the hemisphere, m.toward < 0). */
+int hemi_project(const hemi_proj *p, ggx_vec3 m, double *X, double *Y);
+/* The visible unit direction under a canvas point; 0 when the point is outside the projected hemisphere. */
+int hemi_unproject(const hemi_proj *p, double X, double Y, ggx_vec3 *m);
+
+/* The density a hemisphere figure shows: D(m) m.n for NDF figures, the VNDF pdf for the view for VNDF figures. */
+double figure_density(const figure_spec *f, ggx_vec3 m);
+/* The density's largest value and where it is (a dense search of the hemisphere refined by pattern search on the
+ * function itself, not on the image): the colour scale's top and the peak the tests find in the image. */
+double figure_peak(const figure_spec *f, ggx_vec3 *where);
+/* The seed 004 grey region: 1 when the view reflected about m, 2 (m.v) m - v, lies above the horizon. Its
+ * boundary is theta_b(phi) = atan2(cos theta_v, -sin theta_v cos(phi - phi_v)) / 2 (derived in docs/figures.md). */
+int figure_grey(ggx_vec3 v, ggx_vec3 m);
+/* The point of the grey region's boundary at azimuth phi (radians), for a view v above the horizon. */
+ggx_vec3 figure_grey_boundary(ggx_vec3 v, double phi);
+/* 1 when the figure shades the grey region (VNDF densities, grids of a VNDF sampler). */
+int figure_has_grey(const figure_spec *f);
+/* The default azimuth a side view is seen from: the view's azimuth - 90 degrees for VNDF figures (the view then
+ * points right and the lobe is seen in profile, as in the seeds), the NDF peak's azimuth - 90 degrees otherwise
+ * (-90 degrees, from -y, when the peak is at n). */
+double figure_default_from(const figure_spec *f);
+
+/* Draws the figure into the rectangle (x, y, w, h) of cr; *proj (may be NULL) receives the hemisphere's
+ * projection (hemisphere figures). */
+void figure_draw(cairo_t *cr, const theme *th, double x, double y, double w, double h, const figure_spec *f,
+                 hemi_proj *proj);
+/* The figure's natural aspect, height / width, for a file of a given width. */
+double figure_aspect(figure_kind k);
+/* Writes the figure to path: PNG, SVG or PDF as its name says (standard output and devices: fmt), w x h exactly. */
+void figure_write(const figure_spec *f, const char *path, canvas_format fmt, int w, int h);
+
+#endif
