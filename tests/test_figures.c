@@ -197,6 +197,17 @@ static void grey_region(void **state)
     }
     static const double VIEWS[][2] = {{75, 0}, {75, 90}, {40, 30}, {85, 200}, {10, 300}};
     long N = (long)(400000 * test_scale());
+    /* half the cosine-weighted solid angle: alpha = 1 isotropic GGX's normals (pdf cos / pi) are grey half the time */
+    ggx_shape one_iso;
+    CHECK(ggx_shape_iso(&one_iso, 1.0) == GGX_OK, "alpha 1");
+    for (unsigned j = 0; j < sizeof VIEWS / sizeof VIEWS[0]; j++) {
+        ggx_vec3 v = dir(VIEWS[j][0], VIEWS[j][1]);
+        long inside = 0;
+        for (long n = 0; n < N; n++) inside += figure_grey(v, ggx_sample_ndf(&one_iso, rng_uniform(&r), rng_uniform(&r)));
+        double a = (double)inside / (double)N;
+        CHECK(fabs(a - 0.5) < 5 * sqrt(0.25 / (double)N), "alpha 1, view (%g, %g): %.5f of the normals grey", VIEWS[j][0],
+              VIEWS[j][1], a);
+    }
     for (int i = 0; i < NSHAPES; i++) {
         ggx_shape s;
         make_shape(&s, SHAPES[i]);
