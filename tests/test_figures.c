@@ -146,16 +146,30 @@ static void side_views(void **state)
         ggx_shape s;
         make_shape(&s, SHAPES[i]);
         figure_spec f = {FIG_VNDF_SIDE, &s, dir(60, 130), NULL, 0, 0, NAN, "", ""};
-        double from = figure_default_from(&f);
-        CHECK(fabs(cos(from) * f.view.x + sin(from) * f.view.y) < 1e-12, "the view lies in the plane seen in profile");
-        CHECK(-sin(from) * f.view.x + cos(from) * f.view.y > 0, "the view points right");
+        double from = figure_default_from(&f), across = cos(from) * f.view.x + sin(from) * f.view.y,
+               right = -sin(from) * f.view.x + cos(from) * f.view.y;
+        /* in profile, the view pointing right; or facing the view */
+        CHECK((fabs(across) < 1e-12 && right > 0) || (fabs(right) < 1e-12 && across > 0), "shape %d: view across %g, "
+              "right %g", i, across, right);
         f.kind = FIG_NDF_SIDE;
         from = figure_default_from(&f);
         ggx_vec3 m;
         f.kind = FIG_NDF;
         figure_peak(&f, &m);
-        CHECK(fabs(cos(from) * m.x + sin(from) * m.y) < 1e-6, "shape %d: the NDF peak lies in the plane seen in profile", i);
+        double pa = cos(from) * m.x + sin(from) * m.y, pr = -sin(from) * m.x + cos(from) * m.y;
+        CHECK((fabs(pa) < 1e-6 && pr >= -1e-9) || (fabs(pr) < 1e-6 && pa >= -1e-9),
+              "shape %d: the NDF peak in the plane seen in profile or facing the viewer (%g, %g)", i, pa, pr);
     }
+    /* the seeds' shape: phi_v = 0 seen from -y as in seed 004 (profile); phi_v = 90 faced from +y (the lobe is
+     * narrow along x, so its profile would show a sliver) */
+    ggx_shape s;
+    make_shape(&s, SHAPES[0]);
+    figure_spec f = {FIG_VNDF_SIDE, &s, dir(75, 0), NULL, 0, 0, NAN, "", ""};
+    CHECK(fabs(figure_default_from(&f) + M_PI / 2) < 1e-12, "phi_v = 0: from %g", figure_default_from(&f));
+    f.view = dir(75, 90);
+    CHECK(fabs(figure_default_from(&f) - M_PI / 2) < 1e-12, "phi_v = 90: from %g", figure_default_from(&f));
+    f.kind = FIG_NDF_SIDE;
+    CHECK(fabs(figure_default_from(&f) + M_PI / 2) < 1e-12, "NDF: from %g", figure_default_from(&f));
 }
 
 /* The grey region: its boundary (as drawn) separates grey from not grey; it covers exactly half of the top view's

@@ -198,6 +198,10 @@ void colour_bar(cairo_t *cr, const theme *th, double x, double y, double w, doub
         format_tick(ticks[i], buf, sizeof buf);
         text_at(cr, x + w + 0.4 * font, ty, 0, 0.5, buf);
     }
+    /* the top of the scale, the density's peak, said above the bar */
+    char top[48];
+    snprintf(top, sizeof top, "max %.4g", vmax);
+    text_at(cr, x, y - 0.5 * font, 0, 1, top);
     text_vertical(cr, x + w + 3.3 * font, y + 0.5 * h, label);
 }
 

@@ -44,9 +44,11 @@ int figure_grey(ggx_vec3 v, ggx_vec3 m);
 ggx_vec3 figure_grey_boundary(ggx_vec3 v, double phi);
 /* 1 when the figure shades the grey region (VNDF densities, grids of a VNDF sampler). */
 int figure_has_grey(const figure_spec *f);
-/* The default azimuth a side view is seen from: the view's azimuth - 90 degrees for VNDF figures (the view then
- * points right and the lobe is seen in profile, as in the seeds), the NDF peak's azimuth - 90 degrees otherwise
- * (-90 degrees, from -y, when the peak is at n). */
+/* The default azimuth a side view is seen from. The lobe leans toward the view's azimuth (VNDF figures and VNDF
+ * samplers' grids) or the NDF peak's (0 when the peak is at n). The view is from that azimuth - 90 degrees (the lean
+ * in profile, pointing right, as in the seeds: from -y for phi_v = 0) when the lobe is at least as wide across that
+ * plane (||A' t|| for t toward the viewer) as across the lean; else from the lobe's azimuth, facing it, so that the
+ * visible half is not a sliver (phi_v = 90 on the seeds' shape, narrow along x). */
 double figure_default_from(const figure_spec *f);
 
 /* Draws the figure into the rectangle (x, y, w, h) of cr; *proj (may be NULL) receives the hemisphere's

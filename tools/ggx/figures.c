@@ -39,7 +39,7 @@ int hemi_project(const hemi_proj *p, ggx_vec3 m, double *X, double *Y)
         return 1;
     }
     *X = p->cx + p->R * dot3(m, p->right), *Y = p->cy - p->R * m.z;
-    return dot3(m, p->toward) >= 0;
+    return dot3(m, p->toward) >= -1e-9; /* the silhouette itself is visible */
 }
 
 int hemi_unproject(const hemi_proj *p, double X, double Y, ggx_vec3 *m)
@@ -115,14 +115,34 @@ ggx_vec3 figure_grey_boundary(ggx_vec3 v, double phi)
     return v3(sin(tb) * cos(phi), sin(tb) * sin(phi), cos(tb));
 }
 
+/* The lobe's width seen across a horizontal direction t: ||A' t||, the ellipsoid's extent along t (alpha_x along x
+ * for a diagonal A). */
+static double lobe_width(const ggx_shape *s, double azimuth)
+{
+    double t[3] = {cos(azimuth), sin(azimuth), 0}, w = 0;
+    for (int i = 0; i < 3; i++) {
+        double r = s->a[i][0] * t[0] + s->a[i][1] * t[1];
+        w += r * r;
+    }
+    return w;
+}
+
 double figure_default_from(const figure_spec *f)
 {
-    if (is_vndf(f->kind) || figure_has_grey(f)) return atan2(f->view.y, f->view.x) - M_PI / 2;
-    figure_spec nd = *f;
-    nd.kind = FIG_NDF;
-    ggx_vec3 m;
-    figure_peak(&nd, &m);
-    return hypot(m.x, m.y) > 1e-2 ? atan2(m.y, m.x) - M_PI / 2 : -M_PI / 2;
+    double lobe; /* the azimuth the lobe leans toward */
+    if (is_vndf(f->kind) || figure_has_grey(f)) {
+        lobe = atan2(f->view.y, f->view.x);
+    } else {
+        figure_spec nd = *f;
+        nd.kind = FIG_NDF;
+        ggx_vec3 m;
+        figure_peak(&nd, &m);
+        lobe = hypot(m.x, m.y) > 1e-2 ? atan2(m.y, m.x) : 0.0;
+    }
+    /* in profile (from lobe - 90 degrees: the lean in the image plane, pointing right) unless the lobe is narrower
+     * across that plane than across the other, where the visible half would be a sliver: then facing it */
+    double profile = lobe - M_PI / 2;
+    return lobe_width(f->s, profile) >= lobe_width(f->s, lobe) ? profile : lobe;
 }
 
 /* ---------------------------------------------------------------------------------------------------------------
@@ -245,7 +265,11 @@ static int caption_lines(const figure_spec *f, char lines[4][400])
     char where[96] = "", view[96];
     switch (f->kind) {
     case FIG_NDF: case FIG_NDF_SIDE: what = "NDF pdf D(m) (m·n)"; break;
-    case FIG_VNDF: case FIG_VNDF_SIDE: what = "VNDF pdf G1(v) D(m) (m·v)⁺ / (v·n)"; break;
+    case FIG_VNDF: case FIG_VNDF_SIDE:
+        /* for skewed shapes Walter's clamped G1 does not normalise the G1 form: name eq 33 */
+        what = f->s->kind == GGX_SHAPE_SKEWED ? "VNDF pdf D(m) (m·v)⁺ / ∫ D (m'·v)⁺ dm' (Walter eq 33)"
+                                              : "VNDF pdf G1(v) D(m) (m·v)⁺ / (v·n)";
+        break;
     case FIG_GRID: case FIG_GRID_SIDE: what = "Equal-area 10 × 10 grid of the unit square"; break;
     case FIG_G1: what = "Masking G1(v) against the view's polar angle"; break;
     case FIG_LAMBDA: what = "Smith Λ(v) against the view's polar angle"; break;
@@ -262,7 +286,9 @@ static int caption_lines(const figure_spec *f, char lines[4][400])
                  f->sampler->family == GGX_FAMILY_VNDF ? "  ·  " : "", f->sampler->family == GGX_FAMILY_VNDF ? view : "");
     else if (is_vndf(f->kind)) snprintf(lines[n++], 400, "%s  ·  %s", f->shape_text, view);
     else snprintf(lines[n++], 400, "%s", f->shape_text);
-    if (figure_has_grey(f)) snprintf(lines[n++], 400, "grey: normals m that reflect v above the horizon (2 (m·v) m·n > v·n)");
+    if (figure_has_grey(f))
+        snprintf(lines[n++], 400, "%s: normals m that reflect v above the horizon (2 (m·v) m·n > v·n)%s",
+                 is_grid(f->kind) ? "grey" : "hatched grey", is_grid(f->kind) ? "; blank: m·v < 0, never sampled" : "");
     if (f->note[0]) snprintf(lines[n++], 400, "%s", f->note);
     return n;
 }
@@ -330,7 +356,7 @@ static void draw_marks(cairo_t *cr, const theme *th, const hemi_proj *hp, const 
         cairo_stroke(cr);
         arrow(cr, cx + R, cy, cx + R + 1.1 * F, cy, 0.45 * F);
         direction_name(hp->right, name, sizeof name);
-        text_at(cr, cx + R + 0.6 * F, cy - 0.55 * F, 0.5, 1, name);
+        text_at(cr, cx + R + 0.15 * F, cy - 0.55 * F, 0, 1, name);
         arrow(cr, cx, cy - R, cx, cy - R - 1.1 * F, 0.45 * F);
         text_at(cr, cx + 0.45 * F, cy - R - 0.8 * F, 0, 0.5, "n");
     }
@@ -352,7 +378,7 @@ static void draw_marks(cairo_t *cr, const theme *th, const hemi_proj *hp, const 
         cairo_set_dash(cr, NULL, 0, 0);
         /* the label below right of the mark, clear of the axis labels (above the x arrow, left of the y / n one) */
         text_font(cr, 0.95 * F, 1);
-        text_halo(cr, th, X + 0.75 * F, Y + 0.75 * F, 0, 0, vis ? "v" : "v (behind)");
+        text_halo(cr, th, X + 0.75 * F, Y + 0.75 * F, 0, 0, "v");
     }
 }
 
@@ -395,7 +421,7 @@ static void draw_density(cairo_t *cr, const hemi_proj *hp, const figure_spec *f,
                 double rgb[3];
                 density_colour(figure_density(f, m), vmax, f->log_scale, rgb);
                 if (grey && figure_grey(f->view, m) && fmod(X + Y, period) < width)
-                    for (int k = 0; k < 3; k++) rgb[k] = 0.45 * rgb[k] + 0.55 * 0.42;
+                    for (int k = 0; k < 3; k++) rgb[k] = 0.3 * rgb[k] + 0.7 * 0.5;
                 for (int k = 0; k < 3; k++) acc[k] += rgb[k];
                 in++;
             }
@@ -421,27 +447,50 @@ static void draw_density(cairo_t *cr, const hemi_proj *hp, const figure_spec *f,
 
 /* The grid: each of the 10 x 10 cells of the unit square, its boundary traced through the sampler's map, filled in a
  * checkerboard; on side views only the visible half is drawn (clipped on the silhouette). */
+/* Appends the map of the segment from (a1, a2) to (b1, b2) of the unit square (start point excluded), subdividing
+ * where the map turns fast: near a point where the sampler's Jacobian is singular (the caps map at the cap's rim
+ * opposite the view) one step of the square sweeps a long arc of the hemisphere. */
+static int trace_edge(const figure_spec *f, double a1, double a2, ggx_vec3 ma, double b1, double b2, ggx_vec3 *out,
+                      int n, int max, int depth)
+{
+    /* u = 1 itself is outside the samplers' domain; 1 - 1e-7 keeps the map away from the rounding of its singular point */
+    ggx_vec3 mb = f->sampler->sample(f->s, f->view, fmin(b1, 1.0 - 1e-7), fmin(b2, 1.0 - 1e-7));
+    if (depth < 14 && dot3(ma, mb) < cos(1.0 * DEG)) {
+        double c1 = 0.5 * (a1 + b1), c2 = 0.5 * (a2 + b2);
+        n = trace_edge(f, a1, a2, ma, c1, c2, out, n, max, depth + 1);
+        ggx_vec3 mc = n > 0 ? out[n - 1] : ma;
+        return trace_edge(f, c1, c2, mc, b1, b2, out, n, max, depth + 1);
+    }
+    /* still a jump: the segment crosses the singular point, whose image is the arc of the great circle m.v = 0
+     * between the two limits (the boundary of the visible normals) */
+    if (dot3(ma, mb) < cos(1.0 * DEG)) n = arc_points(ma, mb, out, n, max);
+    if (n < max) out[n++] = mb;
+    return n;
+}
+
+/* The grid: each of the 10 x 10 cells of the unit square, its boundary traced through the sampler's map, filled in a
+ * checkerboard; on side views only the visible half is drawn (clipped on the silhouette). */
 static void draw_grid(cairo_t *cr, const theme *th, const hemi_proj *hp, const figure_spec *f, double F)
 {
-    enum { CELLS = 10, STEPS = 40, NP = 4 * STEPS };
-    static ggx_vec3 poly[NP], vis[NP * 4];
+    enum { CELLS = 10, STEPS = 40, NP = 4096 };
+    static ggx_vec3 poly[NP], vis[NP * 2];
     static const double colours[2][3] = {{0.23, 0.32, 0.55}, {0.99, 0.72, 0.30}};
     for (int i = 0; i < CELLS; i++)
         for (int j = 0; j < CELLS; j++) {
+            const double c1[5] = {(double)i / CELLS, (i + 1.0) / CELLS, (i + 1.0) / CELLS, (double)i / CELLS, (double)i / CELLS};
+            const double c2[5] = {(double)j / CELLS, (double)j / CELLS, (j + 1.0) / CELLS, (j + 1.0) / CELLS, (double)j / CELLS};
             int n = 0;
+            ggx_vec3 prev = f->sampler->sample(f->s, f->view, c1[0], c2[0]);
             for (int e = 0; e < 4; e++)
-                for (int t = 0; t < STEPS; t++) {
-                    double g = (double)t / STEPS, u1, u2;
-                    if (e == 0) u1 = (i + g) / CELLS, u2 = (double)j / CELLS;
-                    else if (e == 1) u1 = (i + 1.0) / CELLS, u2 = (j + g) / CELLS;
-                    else if (e == 2) u1 = (i + 1.0 - g) / CELLS, u2 = (j + 1.0) / CELLS;
-                    else u1 = (double)i / CELLS, u2 = (j + 1.0 - g) / CELLS;
-                    u1 = fmin(u1, 1.0 - 1e-9), u2 = fmin(u2, 1.0 - 1e-9);
-                    poly[n++] = f->sampler->sample(f->s, f->view, u1, u2);
+                for (int t = 1; t <= STEPS; t++) {
+                    double g0 = (t - 1.0) / STEPS, g = (double)t / STEPS;
+                    n = trace_edge(f, c1[e] + g0 * (c1[e + 1] - c1[e]), c2[e] + g0 * (c2[e + 1] - c2[e]), prev,
+                                   c1[e] + g * (c1[e + 1] - c1[e]), c2[e] + g * (c2[e + 1] - c2[e]), poly, n, NP, 0);
+                    prev = poly[n - 1];
                 }
             const ggx_vec3 *p = poly;
             if (hp->side) {
-                n = clip_front(poly, n, hp->toward, vis, NP * 4);
+                n = clip_front(poly, n, hp->toward, vis, NP * 2);
                 p = vis;
             }
             if (n < 3) continue;
@@ -470,7 +519,7 @@ static void draw_hemisphere(cairo_t *cr, const theme *th, double x, double y, do
         hp.R = fmax(1.0, 0.5 * fmin(bw - 2 * margin, bh - 2 * margin));
         hp.cx = bx + 0.5 * bw, hp.cy = by + 0.5 * bh;
     } else {
-        hp.R = fmax(1.0, fmin(0.5 * (bw - 2 * margin) - 0.8 * F, bh - margin - 1.6 * F));
+        hp.R = fmax(1.0, fmin(0.5 * bw - margin - 2.6 * F, bh - margin - 1.6 * F));
         hp.cx = bx + 0.5 * bw, hp.cy = by + margin + hp.R + 0.5 * (bh - margin - 1.6 * F - hp.R);
     }
     /* the hemisphere's disk */
@@ -600,8 +649,8 @@ static int line_series(const figure_spec *f, series *sr, const char **xlabel, co
             series *s = &sr[ns];
             s->n = 0;
             snprintf(s->label, sizeof s->label, "φ %.4g°", azimuth_deg(phi[a] * DEG));
-            for (int i = 0; i < 179; i++) {
-                double th = 0.5 * i;
+            for (int i = 0; i <= 179; i++) {
+                double th = fmin(0.5 * i, 89.9);
                 ggx_vec3 v = dir_deg(th, phi[a]);
                 s->x[s->n] = th;
                 s->y[s->n++] = f->kind == FIG_G1 ? ggx_g1(f->s, v, n) : ggx_lambda(f->s, v);
@@ -636,16 +685,17 @@ static int line_series(const figure_spec *f, series *sr, const char **xlabel, co
     } else {
         *ylabel = "fraction of energy";
         for (int a = 0; a < 2; a++) {
-            double p = phi[a == 0 ? 0 : (na == 3 ? 2 : 1)];
+            double p = phi[a == 0 ? 0 : 2]; /* unskewed: the principal axes; skewed: 0 and 180 degrees */
             series *w = &sr[ns++], *e = &sr[ns++];
             w->n = e->n = 0;
             snprintf(w->label, sizeof w->label, "weak furnace, φ %.4g°", azimuth_deg(p * DEG));
             snprintf(e->label, sizeof e->label, "albedo E(v), φ %.4g°", azimuth_deg(p * DEG));
-            for (int i = 0; i < 179; i++) {
-                ggx_vec3 v = dir_deg(0.5 * i, p);
+            for (int i = 0; i <= 179; i++) {
+                double th = fmin(0.5 * i, 89.9);
+                ggx_vec3 v = dir_deg(th, p);
                 /* int G1(v) D(m) (m.v)+ / (v.n) dm = G1(v) (1 + Lambda(v)): the lune's area over the footprint */
-                w->x[w->n] = 0.5 * i, w->y[w->n++] = ggx_g1(f->s, v, n) * (1 + ggx_lambda(f->s, v));
-                if (i % 4 == 0) e->x[e->n] = 0.5 * i, e->y[e->n++] = ggx_albedo(f->s, v);
+                w->x[w->n] = th, w->y[w->n++] = ggx_g1(f->s, v, n) * (1 + ggx_lambda(f->s, v));
+                if (i % 4 == 0 || i == 179) e->x[e->n] = th, e->y[e->n++] = ggx_albedo(f->s, v);
             }
         }
     }
