@@ -568,7 +568,7 @@ static void draw_hemisphere(cairo_t *cr, const theme *th, double x, double y, do
         text_at(cr, hp.cx, hp.cy + 0.6 * F, 0.5, 0, seen);
     }
     if (density) {
-        double bar_h = hp.side ? hp.R : 2 * hp.R, bar_y = hp.cy - (hp.side ? hp.R : hp.R);
+        double bar_h = hp.side ? hp.R : 2 * hp.R, bar_y = hp.cy - hp.R;
         colour_bar(cr, th, x + w - band + 1.2 * F, bar_y, 1.1 * F, bar_h, vmax, vmax * 1e-4, f->log_scale,
                    f->log_scale ? "pdf (sr⁻¹, log scale)" : "pdf (sr⁻¹)", 0.8 * F);
     }
@@ -732,7 +732,7 @@ static void draw_lines(cairo_t *cr, const theme *th, double x, double y, double 
     double ticks[64];
     cairo_set_line_width(cr, fmax(0.4, 0.05 * F));
     text_font(cr, 0.8 * F, 0);
-    int nt = f->kind == FIG_NDF_SLICE ? 7 : 7;
+    int nt = 7; /* every 15 degrees over [0, 90], every 30 over [-90, 90] */
     for (int i = 0; i < nt; i++) ticks[i] = f->kind == FIG_NDF_SLICE ? -90 + 30 * i : 15 * i;
     for (int i = 0; i < nt; i++) {
         double X = MAPX(ticks[i]);
