@@ -77,7 +77,7 @@ sanitize: deps
 	@cmake -S . -B build-san -DCMAKE_BUILD_TYPE=RelWithDebInfo -DGGX_WERROR=ON -DCMAKE_C_FLAGS="$(SAN_FLAGS)" \
 	  -DCMAKE_CXX_FLAGS="$(SAN_FLAGS)" -DCMAKE_EXE_LINKER_FLAGS="$(SAN_FLAGS)" -DCMAKE_SHARED_LINKER_FLAGS="$(SAN_FLAGS)" >/dev/null
 	@cmake --build build-san -j $(JOBS)
-	@cd build-san && GGX_TEST_SCALE=0.1 GGX_CLI_QUICK=1 ASAN_OPTIONS=detect_leaks=1:abort_on_error=1 \
+	@cd build-san && GGX_TEST_SCALE=0.1 GGX_CLI_QUICK=1 ASAN_OPTIONS=detect_leaks=1:abort_on_error=1 LSAN_OPTIONS=suppressions=$(CURDIR)/tests/lsan.supp:print_suppressions=0 \
 	  UBSAN_OPTIONS=print_stacktrace=1 ctest --output-on-failure -j $(JOBS) -E 'install|python'
 
 # The batch tests under ThreadSanitizer (gcc; TSAN_CC=clang works too where its runtime is installed): batch calls
@@ -94,7 +94,7 @@ tsan: deps
 # The CLI tests with every ggx run under valgrind (memcheck, leak check); any error fails the test.
 valgrind: deps-dev build
 	@cd $(BUILD)/tests && GGX_CLI_QUICK=1 \
-	  GGX_WRAP="valgrind -q --error-exitcode=99 --leak-check=full --errors-for-leak-kinds=definite,indirect" \
+	  GGX_WRAP="valgrind -q --error-exitcode=99 --leak-check=full --errors-for-leak-kinds=definite,indirect --suppressions=$(CURDIR)/tests/valgrind.supp" \
 	  sh ../../tests/cli_test.sh $(CURDIR)/$(BUILD)/ggx $(CURDIR)/$(BUILD)/tests/png_info
 
 # libFuzzer: each target for FUZZ_SECONDS (default 60) from the committed corpus; new inputs go to build-fuzz/.
