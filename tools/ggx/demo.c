@@ -47,9 +47,10 @@ static const struct demo_shape {
 static figure_spec demo_spec(const struct demo_figure *d, const ggx_shape *s, int k, int dark)
 {
     figure_spec f = {d->kind, s, {0, 0, 1}, ggx_sampler_get(GGX_SAMPLER_STRETCH), 0, dark, NAN, "", ""};
-    if (!isnan(d->phi_v)) parse_direction(d->phi_v == 0 ? "75,0" : "75,90", &f.view);
+    if (!isnan(d->phi_v)) /* theta_v = 75 degrees */
+        f.view = (ggx_vec3){sin(75 * DEG) * cos(d->phi_v * DEG), sin(75 * DEG) * sin(d->phi_v * DEG), cos(75 * DEG)};
     if (d->vndf_sampler) f.sampler = ggx_sampler_get(GGX_SAMPLER_HEITZ);
-    snprintf(f.shape_text, sizeof f.shape_text, "αx 0.15, αy 0.5  ·  θx %g°, θy %g°, θz 0°", SHAPES[k].tx, SHAPES[k].ty);
+    figure_shape_caption(f.shape_text, sizeof f.shape_text, 0.15, 0.5, SHAPES[k].tx, SHAPES[k].ty, 0);
     if (d->seed)
         snprintf(f.note, sizeof f.note, "%s: seed %s, %s", k ? "skewed version of" : "reproduces", d->seed, d->seed_figure);
     return f;
@@ -122,7 +123,7 @@ int cmd_demo(int argc, char **argv)
         for (int i = 0; i < NFIGS; i++) {
             snprintf(path, sizeof path, "%s/%s%s", dir, SHAPES[k].prefix, FIGS[i].file);
             figure_spec f = demo_spec(&FIGS[i], &sh[k], k, o.dark);
-            figure_write(&f, path, format_of_path(path, FMT_PNG), size, (int)lround(size * figure_aspect(f.kind)));
+            figure_write(&f, path, format_of_path(path, FMT_PNG), size, figure_height(f.kind, size));
             printf("  %s\n", path);
             out_flush_stdout();
         }

@@ -55,8 +55,11 @@ double figure_default_from(const figure_spec *f);
  * projection (hemisphere figures). */
 void figure_draw(cairo_t *cr, const theme *th, double x, double y, double w, double h, const figure_spec *f,
                  hemi_proj *proj);
-/* The figure's natural aspect, height / width, for a file of a given width. */
+/* The figure's natural aspect, height / width, and the height of a file of a given width with it. */
 double figure_aspect(figure_kind k);
+int figure_height(figure_kind k, int width);
+/* The captions' words for a shape given by its alphas and angles (degrees). */
+void figure_shape_caption(char *buf, size_t n, double ax, double ay, double tx, double ty, double tz);
 /* Writes the figure to path: PNG, SVG or PDF as its name says (standard output and devices: fmt), w x h exactly. */
 void figure_write(const figure_spec *f, const char *path, canvas_format fmt, int w, int h);
 

@@ -821,6 +821,13 @@ double figure_aspect(figure_kind k)
     return is_grid(k) ? 1.0 : 0.86;
 }
 
+int figure_height(figure_kind k, int width) { return (int)lround(width * figure_aspect(k)); }
+
+void figure_shape_caption(char *buf, size_t n, double ax, double ay, double tx, double ty, double tz)
+{
+    snprintf(buf, n, "αx %.4g, αy %.4g  ·  θx %.4g°, θy %.4g°, θz %.4g°", ax, ay, tx, ty, tz);
+}
+
 void figure_write(const figure_spec *f, const char *path, canvas_format fmt, int w, int h)
 {
     canvas c;

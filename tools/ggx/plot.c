@@ -11,8 +11,7 @@ void shape_caption(const options *o, char *buf, size_t n)
         snprintf(buf, n, "A = [%g %g %g; %g %g %g; %g %g %g]", o->matrix[0][0], o->matrix[0][1], o->matrix[0][2],
                  o->matrix[1][0], o->matrix[1][1], o->matrix[1][2], o->matrix[2][0], o->matrix[2][1], o->matrix[2][2]);
     else
-        snprintf(buf, n, "αx %.4g, αy %.4g  ·  θx %.4g°, θy %.4g°, θz %.4g°", o->alpha[0], o->alpha[1], o->skew[0],
-                 o->skew[1], o->rotate);
+        figure_shape_caption(buf, n, o->alpha[0], o->alpha[1], o->skew[0], o->skew[1], o->rotate);
 }
 
 int cmd_plot(int argc, char **argv)
@@ -68,7 +67,7 @@ int cmd_plot(int argc, char **argv)
     figure_spec f = {k, &s, o.view, smp, o.log_scale, o.dark, o.from * DEG, "", ""};
     shape_caption(&o, f.shape_text, sizeof f.shape_text);
     int w = o.size ? o.size : 640;
-    int h = o.size_h ? o.size_h : (int)lround(w * figure_aspect(k));
+    int h = o.size_h ? o.size_h : figure_height(k, w);
     figure_write(&f, path, fmt, w, h);
     if (strcmp(path, "-") != 0) fprintf(stderr, "ggx: wrote %s (%d x %d)\n", path, w, h);
     return 0;
