@@ -113,19 +113,35 @@ void text_font(cairo_t *cr, double size, int bold)
     cairo_set_font_size(cr, size);
 }
 
+/* The typographic minus: a hyphen that starts a number ("-10°", "φ -90°", a negative tick) becomes U+2212; hyphens
+ * inside words (sampler names such as walter-v1) stay. */
+static const char *typeset(const char *s, char *out, size_t n)
+{
+    size_t k = 0;
+    for (const char *p = s; *p && k + 4 < n; p++) {
+        int number = p[0] == '-' && (p[1] >= '0' && p[1] <= '9') && (p == s || p[-1] == ' ' || p[-1] == '(' || p[-1] == ',');
+        if (number) out[k++] = '\xe2', out[k++] = '\x88', out[k++] = '\x92';
+        else out[k++] = *p;
+    }
+    out[k] = '\0';
+    return out;
+}
+
 double text_width(cairo_t *cr, const char *s)
 {
+    char t[512];
     cairo_text_extents_t e;
-    cairo_text_extents(cr, s, &e);
+    cairo_text_extents(cr, typeset(s, t, sizeof t), &e);
     return e.x_advance;
 }
 
 void text_at(cairo_t *cr, double x, double y, double ax, double ay, const char *s)
 {
     /* ay: 0 puts the top of capitals at y, 0.5 centres them, 1 puts the baseline at y */
+    char t[512];
     double cap = 0.72 * font_size_of(cr);
     cairo_move_to(cr, x - ax * text_width(cr, s), y + (1.0 - ay) * cap);
-    cairo_show_text(cr, s);
+    cairo_show_text(cr, typeset(s, t, sizeof t));
 }
 
 double font_size_of(cairo_t *cr)

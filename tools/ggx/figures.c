@@ -259,7 +259,8 @@ static void view_text(ggx_vec3 v, char *buf, size_t n)
     snprintf(buf, n, "view v: θ %.4g°, φ %.4g°", acos(fmax(-1, fmin(1, v.z))) / DEG, azimuth_deg(atan2(v.y, v.x)));
 }
 
-static int caption_lines(const figure_spec *f, char lines[4][400])
+enum { CAPTION_LINES = 5 }; /* title, shape and view, grey region, log scale, seed note */
+static int caption_lines(const figure_spec *f, char lines[CAPTION_LINES][400])
 {
     const char *what;
     char where[96] = "", view[96];
@@ -289,15 +290,18 @@ static int caption_lines(const figure_spec *f, char lines[4][400])
     if (figure_has_grey(f))
         snprintf(lines[n++], 400, "%s: normals m that reflect v above the horizon (2 (m·v) m·n > v·n)%s",
                  is_grid(f->kind) ? "grey" : "hatched grey", is_grid(f->kind) ? "; blank: m·v < 0, never sampled" : "");
+    if (f->log_scale && !is_grid(f->kind) && !is_line(f->kind)) snprintf(lines[n++], 400, "log scale: blank where the pdf is 0");
     if (f->note[0]) snprintf(lines[n++], 400, "%s", f->note);
     return n;
 }
 
 /* Draws the caption at the top of the rectangle; returns its height. */
-static double draw_caption(cairo_t *cr, const theme *th, double x, double y, double w, double F, const figure_spec *f)
+static double draw_caption(cairo_t *cr, const theme *th, double x, double y, double w, double F, const figure_spec *f,
+                           int max_lines)
 {
-    char lines[4][400];
+    char lines[CAPTION_LINES][400];
     int n = caption_lines(f, lines);
+    if (n > max_lines) n = max_lines;
     set_rgb(cr, th->fg);
     double yy = y + 0.7 * F;
     for (int i = 0; i < n; i++) {
@@ -311,7 +315,7 @@ static double draw_caption(cairo_t *cr, const theme *th, double x, double y, dou
     return yy - y + 0.2 * F;
 }
 
-static double font_for(double w, double h) { return fmax(5.0, fmin(26.0, 0.021 * fmin(w, 1.6 * h))); }
+static double font_for(double w, double h) { return fmax(6.0, fmin(26.0, 0.021 * fmin(w, 1.6 * h))); }
 
 /* Text in the theme's colour on a halo of the background's, readable over the density and off it. */
 static void text_halo(cairo_t *cr, const theme *th, double x, double y, double ax, double ay, const char *s)
@@ -418,8 +422,9 @@ static void draw_density(cairo_t *cr, const hemi_proj *hp, const figure_spec *f,
                 double X = x0 + (i + (q % ss + 0.5) / ss) / scale, Y = y0 + (j + (q / ss + 0.5) / ss) / scale;
                 ggx_vec3 m;
                 if (!hemi_unproject(hp, X, Y, &m)) continue;
-                double rgb[3];
-                density_colour(figure_density(f, m), vmax, f->log_scale, rgb);
+                double rgb[3], d = figure_density(f, m);
+                if (f->log_scale && !(d > 0)) continue; /* zero has no place on a log scale: left blank */
+                density_colour(d, vmax, f->log_scale, rgb);
                 if (grey && figure_grey(f->view, m) && fmod(X + Y, period) < width)
                     for (int k = 0; k < 3; k++) rgb[k] = 0.3 * rgb[k] + 0.7 * 0.5;
                 for (int k = 0; k < 3; k++) acc[k] += rgb[k];
@@ -508,9 +513,11 @@ static void draw_hemisphere(cairo_t *cr, const theme *th, double x, double y, do
                             hemi_proj *out)
 {
     double F = font_for(w, h);
-    double cap = draw_caption(cr, th, x, y, w, F, f);
+    /* a small figure (an icon, a thumbnail) keeps the picture, its marks and the title; the rest would be unreadable */
+    int compact = w < 300 || h < 200;
+    double cap = draw_caption(cr, th, x, y, w, F, f, compact ? 1 : CAPTION_LINES);
     int density = !is_grid(f->kind);
-    double band = density ? 7.4 * F : 0.0, margin = 1.8 * F;
+    double band = density && !compact ? 7.4 * F : 0.0, margin = 1.8 * F;
     double bx = x, by = y + cap, bw = w - band, bh = h - cap - 0.4 * F;
     hemi_proj hp = {0};
     hp.side = is_side(f->kind);
@@ -556,18 +563,18 @@ static void draw_hemisphere(cairo_t *cr, const theme *th, double x, double y, do
     }
     if (figure_has_grey(f)) {
         cairo_set_line_width(cr, fmax(0.8, 0.12 * F));
-        cairo_set_source_rgb(cr, 0.25, 0.25, 0.27);
+        cairo_set_source_rgba(cr, th->fg[0], th->fg[1], th->fg[2], 0.75);
         grey_contour(cr, &hp, f->view);
     }
     draw_marks(cr, th, &hp, f, F, is_vndf(f->kind) || figure_has_grey(f));
-    if (hp.side) {
+    if (hp.side && !compact) {
         set_rgb(cr, th->faint);
         text_font(cr, 0.8 * F, 0);
         char seen[96];
         snprintf(seen, sizeof seen, "seen from φ %.4g°", azimuth_deg(hp.from));
         text_at(cr, hp.cx, hp.cy + 0.6 * F, 0.5, 0, seen);
     }
-    if (density) {
+    if (band > 0) {
         double bar_h = hp.side ? hp.R : 2 * hp.R, bar_y = hp.cy - hp.R;
         colour_bar(cr, th, x + w - band + 1.2 * F, bar_y, 1.1 * F, bar_h, vmax, vmax * 1e-4, f->log_scale,
                    f->log_scale ? "pdf (sr⁻¹, log scale)" : "pdf (sr⁻¹)", 0.8 * F);
@@ -708,7 +715,7 @@ static void draw_lines(cairo_t *cr, const theme *th, double x, double y, double 
     const char *xlabel, *ylabel;
     int logy, ns = line_series(f, sr, &xlabel, &ylabel, &logy);
     double F = font_for(w, h);
-    double cap = draw_caption(cr, th, x, y, w, F, f);
+    double cap = draw_caption(cr, th, x, y, w, F, f, CAPTION_LINES);
     double legend_w = 0;
     text_font(cr, 0.8 * F, 0);
     for (int i = 0; i < ns; i++) legend_w = fmax(legend_w, text_width(cr, sr[i].label));
@@ -717,6 +724,7 @@ static void draw_lines(cairo_t *cr, const theme *th, double x, double y, double 
     double xlo = 1e300, xhi = -1e300, ylo = 1e300, yhi = -1e300;
     for (int i = 0; i < ns; i++)
         for (int k = 0; k < sr[i].n; k++) {
+            if (f->kind == FIG_LAMBDA && sr[i].x[k] > 85) continue; /* the scale of the curve; the asymptote leaves the box */
             xlo = fmin(xlo, sr[i].x[k]), xhi = fmax(xhi, sr[i].x[k]);
             double v = logy ? log10(sr[i].y[k]) : sr[i].y[k];
             if (isfinite(v)) ylo = fmin(ylo, v), yhi = fmax(yhi, v);
@@ -725,6 +733,7 @@ static void draw_lines(cairo_t *cr, const theme *th, double x, double y, double 
     else xlo = 0, xhi = 90;
     if (logy) ylo = floor(fmax(ylo, yhi - 6)), yhi = ceil(yhi);
     else ylo = fmin(0.0, ylo), yhi = (f->kind == FIG_LAMBDA) ? yhi * 1.05 : fmax(1.0, yhi) * 1.05;
+    if (!logy && ylo < 0) ylo -= 0.05 * (yhi - ylo); /* a negative curve (Lambda of a skewed shape) clear of the frame */
     if (!(yhi > ylo)) yhi = ylo + 1;
 #define MAPX(v) (px + pw * ((v) - xlo) / (xhi - xlo))
 #define MAPY(v) (py + ph * (1 - ((v) - ylo) / (yhi - ylo)))
