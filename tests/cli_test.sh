@@ -103,7 +103,19 @@ done
 if [ "${GGX_CLI_QUICK:-0}" = 1 ]; then # 16 chi-square runs of 10^6 samples: minutes under valgrind
     "$GGX" audit --help > audit.txt && ok || bad "audit --help"
 else
-    "$GGX" audit > audit.md && [ "$(grep -c '^| [0-9]' audit.md)" -eq 16 ] && grep -q 'fails' audit.md && ok || bad "audit"
+    # docs/audit.md is the command's output on its defaults, byte for byte
+    "$GGX" audit > audit.md && [ "$(grep -c '^| [0-9]' audit.md)" -eq 15 ] && grep -q 'fails' audit.md &&
+        cmp -s audit.md "$ROOT/docs/audit.md" && ok || bad "audit: docs/audit.md is not ggx audit's output: $(diff audit.md "$ROOT/docs/audit.md" | head -5)"
+    # JSON: a list of 15 claims, each naming its seed file and giving three verdicts from the vocabulary
+    "$GGX" audit --format json --rotate 10 > audit.json && /usr/bin/python3 -c '
+import json, sys
+rows = json.load(open("audit.json"))
+words = {"holds", "holds with a correction", "fails", "not claimed"}
+assert len(rows) == 15, len(rows)
+for r in rows:
+    assert r["seed_file"].endswith(".txt") and len(r["verdicts"]) == 3, r
+    assert all(v["verdict"] in words and v["evidence"] for v in r["verdicts"]), r
+' && ok || bad "audit --format json"
 fi
 
 # --- the samplers of the command are the registry's (in its order) and wrong-s, nothing else. The registry's list
@@ -181,6 +193,7 @@ expect2 "albedo view below" "above the horizon" "$GGX" albedo --view 95,0
 expect2 "albedo --eta view on the horizon" "not on the horizon" "$GGX" albedo --eta 1.5 --view 90,0
 expect2 "unknown sampler" "unknown sampler" "$GGX" sample --sampler magic
 expect2 "unknown figure" "unknown figure" "$GGX" plot --figure pie
+expect2 "bad audit format" "is not md, csv or json" "$GGX" audit --format xml
 expect2 "bad count" "not a count" "$GGX" sample -n 0
 expect2 "missing value" "needs a value" "$GGX" sample --seed
 expect2 "bad fresnel" "fresnel" "$GGX" eval --fresnel gold
@@ -262,7 +275,11 @@ one_line "too few samples (demo)" "needs at least 10000 samples" 2 "$GGX" demo -
 "$GGX" check --alpha 1e4 --sampler caps -n 20000 > nojac.txt && grep -q "(no point)" nojac.txt && ! grep -q "0.00e+00" nojac.txt && ok || bad "check without Jacobian points: $(cat nojac.txt)"
 one_line "ill-conditioned matrix" "ill-conditioned" 2 "$GGX" eval --matrix 1e9,0,0,0,1,0,0,0,1
 if [ "${GGX_CLI_QUICK:-0}" != 1 ]; then
-    "$GGX" audit --alpha 0.15,0.5 > a2.md && grep -q "diagonal A (0.15, 0.5) | shape (0.15, 0.5; 22.92, -17.19, 28.65 deg)" a2.md && ok || bad "audit --alpha: $(sed -n 1p a2.md)"
+    # CSV: a header row, one row per claim and shape (45), every row naming a seed file; --alpha sets all three shapes
+    "$GGX" audit --alpha 0.15,0.5 --format csv > a2.csv && head -1 a2.csv | grep -qx 'id,seed_file,where,scope,claim,shape,verdict,evidence' &&
+        [ "$(tail -n +2 a2.csv | grep -c '^"[a-z0-9-]*","[0-9][0-9][0-9]_[0-9a-f]*\.txt')" -eq 45 ] &&
+        grep -q '"rotated A (0.15, 0.5; theta_z 28.65 deg)"' a2.csv && grep -q '"skewed A (0.15, 0.5; 22.92, -17.19, 28.65 deg)"' a2.csv &&
+        ok || bad "audit --alpha --format csv: $(head -3 a2.csv)"
     # the README's command lines, run as written (from the ```sh block of "The ggx command")
     sed -n '/^## The `ggx` command/,/^## /p' "$ROOT/README.md" | sed -n '/^```sh/,/^```/p' | grep '^ggx ' |
         sed 's/ *#.*//' > readme_cmds.txt
