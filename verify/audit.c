@@ -4,6 +4,7 @@
 #include <math.h>
 #include <stdarg.h>
 #include <stdio.h>
+#include <stdlib.h>
 #include <string.h>
 
 #include "ggx/ggx_samplers.h"
@@ -131,6 +132,7 @@ static void verdict_p(audit_row *r, int k, double p)
 static audit_row *add(audit_row *rows, int *n, const char *id, const char *claim, const char *seed_file,
                       const char *where, audit_scope scope)
 {
+    if (*n >= AUDIT_MAX_ROWS) abort(); /* a claim added beyond the table's size: raise AUDIT_MAX_ROWS */
     audit_row *r = &rows[(*n)++];
     memset(r, 0, sizeof *r);
     r->id = id, r->claim = claim, r->seed_file = seed_file, r->where = where, r->scope = scope;
@@ -219,8 +221,7 @@ static void sampler_rows(audit_row *rows, int *nr, ggx_sampler_family family, co
             }
             if (cl->note_skewed && sh[k].kind == GGX_SHAPE_SKEWED) append(r, k, "%s", cl->note_skewed);
         }
-        apply_scope(r, sh);
-    }
+        }
 }
 
 static double ndf_cos(ggx_vec3 m, void *ctx) { return ggx_ndf(ctx, m) * m.z; }
@@ -282,6 +283,121 @@ static void verdict_views(audit_row *r, int k, double (*f)(const ggx_shape *, gg
             VIEW_THETAS * VIEW_PHIS);
 }
 
+/* Areas by shooting rays at the ellipsoid x^T A^T A x = 1 itself (Ce = 1), not by integrating D: N rays along -u
+ * through the rectangle that bounds its shadow (half-widths ||A^-T e|| along e1, e2 perpendicular to u: the
+ * ellipsoid's support function); a ray hits where (p + l u)^T M (p + l u) = 1 has a root, M = A^T A, and the point
+ * seen from u is the larger root, whose outward normal M x faces u. With lune set, only hits whose normal has
+ * m.v >= 0 count (Walter eq 28's lune). Returns the shadow's area; *sigma its Monte Carlo standard error. */
+static double ray_area(const double A[3][3], ggx_vec3 u, ggx_vec3 v, int lune, long N, uint64_t seed, double *sigma)
+{
+    double M[3][3], Ait[3][3]; /* A^T A and A^-T (cofactors / det) */
+    double det = A[0][0] * (A[1][1] * A[2][2] - A[1][2] * A[2][1]) - A[0][1] * (A[1][0] * A[2][2] - A[1][2] * A[2][0]) +
+                 A[0][2] * (A[1][0] * A[2][1] - A[1][1] * A[2][0]);
+    for (int i = 0; i < 3; i++)
+        for (int j = 0; j < 3; j++) {
+            M[i][j] = 0;
+            for (int k = 0; k < 3; k++) M[i][j] += A[k][i] * A[k][j];
+            int i1 = (i + 1) % 3, i2 = (i + 2) % 3, j1 = (j + 1) % 3, j2 = (j + 2) % 3;
+            Ait[i][j] = (A[i1][j1] * A[i2][j2] - A[i1][j2] * A[i2][j1]) / det;
+        }
+    ggx_vec3 e1, e2;
+    t_frame(u, &e1, &e2);
+    ggx_vec3 h1v = t_matvec((const double(*)[3])Ait, e1), h2v = t_matvec((const double(*)[3])Ait, e2);
+    double h1 = sqrt(t_dot(h1v, h1v)), h2 = sqrt(t_dot(h2v, h2v));
+    ggx_vec3 Mu = t_matvec((const double(*)[3])M, u);
+    double a = t_dot(u, Mu);
+    rng g = {seed};
+    long hits = 0;
+    for (long i = 0; i < N; i++) {
+        ggx_vec3 p = t_add(t_scale(e1, h1 * (2 * rng_uniform(&g) - 1)), t_scale(e2, h2 * (2 * rng_uniform(&g) - 1)));
+        ggx_vec3 Mp = t_matvec((const double(*)[3])M, p);
+        double b = t_dot(u, Mp), c = t_dot(p, Mp) - 1, disc = b * b - a * c;
+        if (disc < 0) continue;
+        if (lune) {
+            ggx_vec3 x = t_add(p, t_scale(u, (-b + sqrt(disc)) / a)), nrm = t_matvec((const double(*)[3])M, x);
+            if (t_dot(nrm, v) < 0) continue;
+        }
+        hits++;
+    }
+    double f = (double)hits / (double)N, box = 4 * h1 * h2;
+    *sigma = box * sqrt(f * (1 - f) / (double)N);
+    return box * f;
+}
+
+/* A row checked by ray shooting for each shape: the worst |rays / formula - 1| over the directions, within 5 sigma. */
+static void verdict_rays(audit_row *r, int k, const double A[3][3], const ggx_shape *s, int lune)
+{
+    static const double dirs[4][2] = {{0.0, 0.0}, {0.7, 0.4}, {1.2, -2.0}, {1.5, 2.6}};
+    const ggx_vec3 v = t_dir(1.0, 1.1), n = t_vec(0, 0, 1);
+    double worst = 0, worst_sig = 0;
+    int ok = 1;
+    for (int i = 0; i < 4; i++) {
+        ggx_vec3 u = t_dir(dirs[i][0], dirs[i][1]), w = lune ? (i % 2 ? v : n) : u;
+        double sig, got = ray_area(A, u, w, lune, 1000000, 301 + (uint64_t)i, &sig);
+        double want = lune ? ggx_lune_area(s, u, w) : ggx_projected_area(s, u);
+        ok &= fabs(got - want) <= 5 * sig;
+        if (fabs(got / want - 1) > worst) worst = fabs(got / want - 1), worst_sig = sig / want;
+    }
+    set(r, k, ok ? AUDIT_HOLDS : AUDIT_FAILS, "10^6 rays at the ellipsoid from each of 4 directions%s: worst |rays / formula - 1| = "
+        "%.1e (%s 5 sigma = %.1e)", lune ? " (lunes with v = n and v at 57 degrees)" : "", worst, ok ? "within" : "beyond",
+        5 * worst_sig);
+}
+
+/* The user's A: its inverse transpose, A^T A, and A v (the audit checks the seeds' formulas on the matrix given,
+ * independently of the library's canonical frame). */
+static void inv_t(const double A[3][3], double Ait[3][3])
+{
+    double det = A[0][0] * (A[1][1] * A[2][2] - A[1][2] * A[2][1]) - A[0][1] * (A[1][0] * A[2][2] - A[1][2] * A[2][0]) +
+                 A[0][2] * (A[1][0] * A[2][1] - A[1][1] * A[2][0]);
+    for (int i = 0; i < 3; i++)
+        for (int j = 0; j < 3; j++) {
+            int i1 = (i + 1) % 3, i2 = (i + 2) % 3, j1 = (j + 1) % 3, j2 = (j + 2) % 3;
+            Ait[i][j] = (A[i1][j1] * A[i2][j2] - A[i1][j2] * A[i2][j1]) / det;
+        }
+}
+static double norm_of(const double M[3][3], ggx_vec3 v)
+{
+    ggx_vec3 r = t_matvec(M, v);
+    return sqrt(t_dot(r, r));
+}
+/* The alphas of an unskewed shape (the formulas the seeds write for a diagonal A, in x and y); 0 for a skewed one. */
+static int diag_alphas(const ggx_shape *s, double *ax, double *ay)
+{
+    *ax = s->alpha_x, *ay = s->alpha_y;
+    return s->kind != GGX_SHAPE_SKEWED;
+}
+static ggx_vec3 random_upper(rng *g) { return t_dir(acos(0.02 + 0.98 * rng_uniform(g)), 2 * T_PI * rng_uniform(g)); }
+
+/* The visible-normal pdf of seed 004 as written, D(m) (m.v) G1(v) / (v.n) on {m.v > 0} with D's formula (no
+ * indicator of m.n > 0), over the lower half: D's formula is even, so that part is the integral over the upper
+ * hemisphere of D(m) (-m.v)+. */
+typedef struct lower_ctx {
+    double ax, ay;
+    ggx_vec3 v;
+} lower_ctx;
+static double ggx_formula(double ax, double ay, ggx_vec3 m)
+{
+    double q = m.x * m.x / (ax * ax) + m.y * m.y / (ay * ay) + m.z * m.z;
+    return 1.0 / (T_PI * ax * ay * q * q);
+}
+static double lower_f(ggx_vec3 m, void *vc)
+{
+    lower_ctx *c = vc;
+    double mv = -t_dot(m, c->v);
+    return mv > 0 ? ggx_formula(c->ax, c->ay, m) * mv : 0.0;
+}
+/* The mean normal int_{m.n > 0} D(m) m dm, one component at a time. */
+typedef struct mean_ctx {
+    const ggx_shape *s;
+    int axis;
+} mean_ctx;
+static double mean_f(ggx_vec3 m, void *vc)
+{
+    mean_ctx *c = vc;
+    /* shifted to stay positive (the quadrature's tolerance is relative): 1 + m_axis, or 1 for axis 3 */
+    return ggx_ndf(c->s, m) * (1 + (c->axis == 0 ? m.x : c->axis == 1 ? m.y : c->axis == 2 ? m.z : 0.0));
+}
+
 int audit_run(const double A[AUDIT_SHAPES][3][3], audit_row *rows, int progress)
 {
     ggx_shape sh[AUDIT_SHAPES];
@@ -315,7 +431,14 @@ int audit_run(const double A[AUDIT_SHAPES][3][3], audit_row *rows, int progress)
         set(r, k, worst < 1e-12 ? AUDIT_HOLDS : AUDIT_FAILS, "largest relative difference %.1e over 1000 normals%s",
             worst, sh[k].kind == GGX_SHAPE_UNSKEWED ? " (the formula in x, y, not in the rotated axes)" : "");
     }
-    apply_scope(r, sh);
+
+    r = add(rows, &nr, "area", "projected area of the ellipsoid seen from u: pi ||Au|| / |A|", SEED_WALTER ", " SEED_BLOG1,
+            "Walter eq 26; blog Part 1 eq A_perp_expression", AUDIT_SCOPE_ANY);
+    for (int k = 0; k < AUDIT_SHAPES; k++) verdict_rays(r, k, A[k], &sh[k], 0);
+
+    r = add(rows, &nr, "lune", "projected area of the lune m.u >= 0, m.v >= 0: pi (||Au|| ||Av|| + Au.Av) / (2 |A| ||Av||)",
+            SEED_WALTER, "eq 28", AUDIT_SCOPE_ANY);
+    for (int k = 0; k < AUDIT_SHAPES; k++) verdict_rays(r, k, A[k], &sh[k], 1);
 
     r = add(rows, &nr, "g1-blog", "G1 = 2 ||An|| (v.n) / (||Av|| + ||An|| (v.n)), a ratio of projected areas", SEED_BLOG2,
             "masking as a ratio of projected areas", AUDIT_SCOPE_ANY);
@@ -424,7 +547,6 @@ int audit_run(const double A[AUDIT_SHAPES][3][3], audit_row *rows, int progress)
         set(r, k, below > 0 ? AUDIT_HOLDS : AUDIT_FAILS, "%.1f %% of reflections below the horizon at an 80 degree view",
             100.0 * (double)below / (double)n_all);
     }
-    apply_scope(r, sh);
 
     r = add(rows, &nr, "rejection", "version 2 (ellipsoid as its own bound) rejects less than version 1 (bounding sphere)",
             SEED_WALTER, "section 4, versions 1 and 2", AUDIT_SCOPE_ANY);
@@ -444,6 +566,284 @@ int audit_run(const double A[AUDIT_SHAPES][3][3], audit_row *rows, int progress)
         set(r, k, N / t1 <= got2 && match ? AUDIT_HOLDS : AUDIT_FAILS, "acceptance %.3f vs %.3f; v2 %s A_l(v,n)/A_e(v) = %.3f",
             N / t1, got2, match ? "matches" : "differs from", want2);
     }
+    /* ---- blog Part 1 ---- */
+    r = add(rows, &nr, "p22", "D(m) = P22(p, q) / cos^4 theta with P22 = 1 / (pi ax ay (1 + p^2/ax^2 + q^2/ay^2)^2), p, q the slopes",
+            SEED_BLOG1, "eq (1) and eq:p_22", AUDIT_SCOPE_DIAGONAL);
+    for (int k = 0; k < AUDIT_SHAPES; k++) {
+        double ax, ay, worst = 0;
+        if (!diag_alphas(&sh[k], &ax, &ay)) {
+            set(r, k, AUDIT_NOT_CLAIMED, "cannot be applied (a skewed A has no ax, ay)");
+            continue;
+        }
+        rng g = {76};
+        for (int i = 0; i < 1000; i++) {
+            ggx_vec3 m = random_upper(&g);
+            double p = -m.x / m.z, q = -m.y / m.z, t = 1 + p * p / (ax * ax) + q * q / (ay * ay);
+            double lit = 1 / (T_PI * ax * ay * t * t) / (m.z * m.z * m.z * m.z);
+            worst = fmax(worst, fabs(lit / ggx_ndf(&sh[k], m) - 1));
+        }
+        set(r, k, worst < 1e-9 ? AUDIT_HOLDS : AUDIT_FAILS, "largest relative difference from Walter eq 1 %.1e over 1000 "
+            "normals%s", worst, sh[k].kind == GGX_SHAPE_UNSKEWED ? " (the slopes taken along x, y, not the rotated axes)" : "");
+    }
+
+    /* ---- blog Part 2 ---- */
+    r = add(rows, &nr, "unit-norms", "with n = +z, ||An|| = ||A^-T n|| = 1 (the step from the blog's pdf to the G1 form)",
+            SEED_BLOG2, "text before eq:g1-equality", AUDIT_SCOPE_ANY);
+    for (int k = 0; k < AUDIT_SHAPES; k++) {
+        double Ait[3][3];
+        inv_t(A[k], Ait);
+        double a = norm_of(A[k], n), b = norm_of((const double(*)[3])Ait, n);
+        set(r, k, fabs(a - 1) < 1e-12 && fabs(b - 1) < 1e-12 ? AUDIT_HOLDS : AUDIT_FAILS,
+            "||An|| = %.6g, ||A^-T n|| = %.6g, product %.6g (>= 1 by Cauchy-Schwarz, 1 only where A^T A n is along n)", a, b,
+            a * b);
+    }
+
+    r = add(rows, &nr, "sm-lt-su", "for any v not along n, S_m < S_u, i.e. ||An|| (v.n) < ||Av||", SEED_BLOG2,
+            "text after eq:masked-projection", AUDIT_SCOPE_ANY);
+    for (int k = 0; k < AUDIT_SHAPES; k++) {
+        rng g = {77};
+        double worst = 0;
+        ggx_vec3 at = n;
+        for (int i = 0; i < 100000; i++) {
+            ggx_vec3 u = random_upper(&g);
+            double x = norm_of(A[k], n) * u.z / norm_of(A[k], u);
+            if (x > worst) worst = x, at = u;
+        }
+        if (worst < 1)
+            set(r, k, AUDIT_HOLDS, "largest ||An|| (v.n) / ||Av|| over 10^5 views %.4f < 1", worst);
+        else
+            set(r, k, AUDIT_FAILS, "||An|| (v.n) / ||Av|| = %.4f at theta %.2f, phi %.2f rad (Walter footnote 4: the "
+                "microsurface's projected area can be below the footprint's)", worst, acos(at.z), atan2(at.y, at.x));
+    }
+
+    r = add(rows, &nr, "su", "S_u, the area that the visible upper half projects along v, = (A_perp(v) + A_perp(n) (v.n)) / 2",
+            SEED_BLOG2, "eq:unmasked-projection", AUDIT_SCOPE_ANY);
+    for (int k = 0; k < AUDIT_SHAPES; k++) {
+        static const double dirs[3][2] = {{0.7, 0.4}, {1.2, -2.0}, {1.5, 2.6}};
+        double worst = 0, worst_sig = 0;
+        int ok = 1;
+        for (int i = 0; i < 3; i++) {
+            ggx_vec3 u = t_dir(dirs[i][0], dirs[i][1]);
+            double sig, got = ray_area(A[k], u, n, 1, 1000000, 311 + (uint64_t)i, &sig);
+            double lit = 0.5 * (ggx_projected_area(&sh[k], u) + ggx_projected_area(&sh[k], n) * u.z);
+            ok &= fabs(got - lit) <= 5 * sig;
+            if (fabs(lit / got - 1) > worst) worst = fabs(lit / got - 1), worst_sig = sig / got;
+        }
+        set(r, k, ok ? AUDIT_HOLDS : AUDIT_FAILS, "against 10^6 rays at the ellipsoid from each of 3 views: worst |formula / "
+            "rays - 1| = %.1e (5 sigma = %.1e)%s", worst, 5 * worst_sig, ok ? "" : "; Walter eq 28's A_l(v, n) holds (row lune)");
+    }
+
+    /* ---- Walter ---- */
+    r = add(rows, &nr, "invariance", "D is unchanged by A -> c A and A -> Q A, Q orthogonal (with |A| read as |det A|)",
+            SEED_WALTER, "section 1, after eq 1", AUDIT_SCOPE_ANY);
+    for (int k = 0; k < AUDIT_SHAPES; k++) {
+        double cA[3][3], QA[3][3], Q[3][3];
+        ggx_vec3 q0 = t_normalize(t_vec(0.3, -0.5, 0.8)), q1, q2;
+        t_frame(q0, &q1, &q2);
+        ggx_vec3 cols[3] = {q0, q1, t_scale(q2, -1)}; /* det Q = -1: a reflection, the hard case */
+        for (int i = 0; i < 3; i++)
+            for (int j = 0; j < 3; j++) Q[i][j] = j == 0 ? cols[0].x * (i == 0) + cols[0].y * (i == 1) + cols[0].z * (i == 2) : 0;
+        for (int i = 0; i < 3; i++) Q[i][0] = i == 0 ? cols[0].x : i == 1 ? cols[0].y : cols[0].z;
+        for (int i = 0; i < 3; i++) Q[i][1] = i == 0 ? cols[1].x : i == 1 ? cols[1].y : cols[1].z;
+        for (int i = 0; i < 3; i++) Q[i][2] = i == 0 ? cols[2].x : i == 1 ? cols[2].y : cols[2].z;
+        for (int i = 0; i < 3; i++)
+            for (int j = 0; j < 3; j++) {
+                cA[i][j] = 3.7 * A[k][i][j];
+                QA[i][j] = 0;
+                for (int l = 0; l < 3; l++) QA[i][j] += Q[i][l] * A[k][l][j];
+            }
+        ggx_shape sc, sq;
+        if (ggx_shape_matrix(&sc, (const double(*)[3])cA) != GGX_OK || ggx_shape_matrix(&sq, (const double(*)[3])QA) != GGX_OK) {
+            set(r, k, AUDIT_FAILS, "c A or Q A refused as a shape");
+            continue;
+        }
+        rng g = {78};
+        double worst = 0;
+        for (int i = 0; i < 1000; i++) {
+            ggx_vec3 m = random_upper(&g);
+            double d = ggx_ndf(&sh[k], m);
+            worst = fmax(worst, fmax(fabs(ggx_ndf(&sc, m) / d - 1), fabs(ggx_ndf(&sq, m) / d - 1)));
+        }
+        set(r, k, worst < 1e-12 ? AUDIT_HOLDS : AUDIT_FAILS, "largest relative change of D over 1000 normals %.1e (c = 3.7, Q a "
+            "reflection)", worst);
+    }
+
+    r = add(rows, &nr, "rotate-z", "theta_z rotates the distribution in the tangent plane: D_{S Rz}(m) = D_S(Rz m)", SEED_WALTER,
+            "eq 3 and text", AUDIT_SCOPE_ROTATED);
+    for (int k = 0; k < AUDIT_SHAPES; k++) {
+        double ax, ay;
+        if (!diag_alphas(&sh[k], &ax, &ay)) {
+            set(r, k, AUDIT_NOT_CLAIMED, "cannot be applied (a skewed A is not S Rz)");
+            continue;
+        }
+        /* the shape's own S and rotation Rz = S^-1 A (A = S Rz): the alphas are the norms of A's first two rows */
+        ax = sqrt(A[k][0][0] * A[k][0][0] + A[k][0][1] * A[k][0][1] + A[k][0][2] * A[k][0][2]);
+        ay = sqrt(A[k][1][0] * A[k][1][0] + A[k][1][1] * A[k][1][1] + A[k][1][2] * A[k][1][2]);
+        ggx_shape S;
+        ggx_shape_aniso(&S, ax, ay);
+        rng g = {79};
+        double worst = 0;
+        for (int i = 0; i < 1000; i++) {
+            ggx_vec3 m = random_upper(&g), am = t_matvec(A[k], m), rm = t_vec(am.x / ax, am.y / ay, am.z);
+            worst = fmax(worst, fabs(ggx_ndf(&S, rm) / ggx_ndf(&sh[k], m) - 1));
+        }
+        set(r, k, worst < 1e-12 ? AUDIT_HOLDS : AUDIT_FAILS, "largest relative difference over 1000 normals %.1e (theta_z = %.4g "
+            "rad)", worst, atan2(-A[k][0][1], A[k][0][0]));
+    }
+
+    r = add(rows, &nr, "min-inactive", "for theta_x = theta_y = 0 the min in G1 never acts: A_e(n) |u.n| <= A_l(u, n) for all u",
+            SEED_WALTER, "eq 31 and text", AUDIT_SCOPE_ROTATED);
+    for (int k = 0; k < AUDIT_SHAPES; k++) {
+        rng g = {80};
+        double worst = 0;
+        ggx_vec3 at = n;
+        for (int i = 0; i < 100000; i++) {
+            ggx_vec3 u = random_upper(&g);
+            double x = ggx_projected_area(&sh[k], n) * u.z / ggx_lune_area(&sh[k], u, n);
+            if (x > worst) worst = x, at = u;
+        }
+        if (worst <= 1 + 1e-12)
+            set(r, k, AUDIT_HOLDS, "largest A_e(n) |u.n| / A_l(u, n) over 10^5 directions %.6f", worst);
+        else
+            set(r, k, AUDIT_FAILS, "A_e(n) |u.n| / A_l(u, n) = %.4f at theta %.2f, phi %.2f rad: the min clips G1 "
+                "(footnote 4)", worst, acos(at.z), atan2(at.y, at.x));
+    }
+
+    r = add(rows, &nr, "mean-normal", "the average microsurface normal, int_{m.n > 0} D(m) m dm, points along A^T A n",
+            SEED_WALTER, "section 5.1", AUDIT_SCOPE_ANY);
+    for (int k = 0; k < AUDIT_SHAPES; k++) {
+        double c[4];
+        for (int a = 0; a < 4; a++) {
+            mean_ctx mc = {&sh[k], a};
+            c[a] = quad_hemisphere(&sh[k], mean_f, &mc, NULL, 0, 1e-11, NULL);
+        }
+        for (int a = 0; a < 3; a++) c[a] -= c[3];
+        ggx_vec3 got = t_normalize(t_vec(c[0], c[1], c[2])), want = t_normalize(t_mattvec(A[k], t_matvec(A[k], n)));
+        ggx_vec3 x = t_cross(got, want);
+        double ang = atan2(sqrt(t_dot(x, x)), t_dot(got, want));
+        set(r, k, ang < 1e-7 ? AUDIT_HOLDS : AUDIT_FAILS, "angle between the quadrature's mean normal and A^T A n %.1e rad; "
+            "the mean normal leans %.4g degrees from n", ang, acos(fmin(1.0, got.z)) * 180 / T_PI);
+    }
+
+    r = add(rows, &nr, "reciprocity", "the BRDF (eq 4 with G of eq 5, 6) is reciprocal: f_r(i, o) = f_r(o, i)", SEED_WALTER,
+            "section 1.1", AUDIT_SCOPE_ANY);
+    for (int k = 0; k < AUDIT_SHAPES; k++) {
+        rng g = {81};
+        double worst = 0;
+        ggx_fresnel fr;
+        ggx_fresnel_dielectric(&fr, 1.5);
+        for (int i = 0; i < 10000; i++) {
+            ggx_vec3 wi = random_upper(&g), wo = random_upper(&g);
+            double a = ggx_brdf_eval(&sh[k], &fr, wi, wo), b = ggx_brdf_eval(&sh[k], &fr, wo, wi);
+            if (a > 0 || b > 0) worst = fmax(worst, fabs(a - b) / fmax(a, b));
+        }
+        set(r, k, worst < 1e-12 ? AUDIT_HOLDS : AUDIT_FAILS, "largest relative difference over 10^4 pairs %.1e (dielectric "
+            "Fresnel 1.5)", worst);
+    }
+
+    r = add(rows, &nr, "energy", "with G of eq 5, 6 the BRDF conserves energy: the albedo (F = 1) is at most 1", SEED_WALTER,
+            "section 1.1", AUDIT_SCOPE_ANY);
+    for (int k = 0; k < AUDIT_SHAPES; k++) {
+        double emax = 0, at = 0, lo = 1;
+        for (int i = 0; i < 12; i++) {
+            ggx_vec3 u = t_dir(0.1 + 1.45 * i / 11.0, 0.9 * i);
+            double e = ggx_albedo(&sh[k], u);
+            if (e > emax) emax = e, at = acos(u.z);
+            lo = fmin(lo, e);
+        }
+        set(r, k, emax <= 1 + 1e-6 ? AUDIT_HOLDS : AUDIT_FAILS, "albedo from %.4f to %.4f over 12 views (largest at theta %.2f "
+            "rad)", lo, emax, at);
+    }
+
+    /* ---- Engstad, Elliptic Stretch ---- */
+    r = add(rows, &nr, "stretch-omega", "cosine-weighting toward omega, then stretching: p(m) = |m.omega| D(m) / ||m_||",
+            SEED_STRETCH, "GGX composition (end)", AUDIT_SCOPE_DIAGONAL);
+    for (int k = 0; k < AUDIT_SHAPES; k++) {
+        double ax, ay;
+        if (!diag_alphas(&sh[k], &ax, &ay)) {
+            set(r, k, AUDIT_NOT_CLAIMED, "cannot be applied (a skewed A has no ax, ay)");
+            continue;
+        }
+        /* at omega = n the composition is the plain stretch, whose pdf is D(m) (m.n) (row stretch); ||m_|| =
+         * 1 / ||S^-1 m|| and the pre-stretch s = S^-1 m / ||S^-1 m|| */
+        rng g = {82};
+        double worst_lit = 0, worst_fix = 0;
+        for (int i = 0; i < 1000; i++) {
+            ggx_vec3 m = random_upper(&g);
+            double sinv = sqrt(m.x * m.x / (ax * ax) + m.y * m.y / (ay * ay) + m.z * m.z), d = ggx_formula(ax, ay, m);
+            double lit = m.z * d * sinv, fix = (m.z / sinv) * d * sinv, want = ggx_pdf_ndf(&sh[k], m);
+            worst_lit = fmax(worst_lit, fabs(lit / want - 1)), worst_fix = fmax(worst_fix, fabs(fix / want - 1));
+        }
+        if (worst_lit < 1e-9) set(r, k, AUDIT_HOLDS, "at omega = n: largest relative difference from D(m) (m.n) %.1e", worst_lit);
+        else
+            set(r, k, worst_fix < 1e-9 ? AUDIT_CORRECTED : AUDIT_FAILS, "at omega = n it is off D(m) (m.n) by up to %.0f %%; "
+                "with the cosine of the pre-stretch direction, p(m) = |s.omega| D(m) / ||m_||, by %.0e",
+                100 * worst_lit, worst_fix);
+    }
+
+    /* ---- Engstad, visible GGX ---- */
+    r = add(rows, &nr, "disk-concentric", "the concentric map as written (polar(a, pi b / 4a) if |a| > |b|, polar(b, pi a / 4b) "
+            "if |a| < |b|, else (a, b)) is uniform on the disk, Jacobian pi", SEED_VNDF, "step 2, sample a disk",
+            AUDIT_SCOPE_ANY);
+    {
+        rng g = {83};
+        long N = 200000, top_lit = 0, top_fix = 0, off = 0;
+        for (long i = 0; i < N; i++) {
+            double a = 2 * rng_uniform(&g) - 1, b = 2 * rng_uniform(&g) - 1, sx, sy, fx, fy;
+            if (fabs(a) > fabs(b)) sx = fx = a * cos(T_PI * b / (4 * a)), sy = fy = a * sin(T_PI * b / (4 * a));
+            else if (fabs(a) < fabs(b)) {
+                sx = b * cos(T_PI * a / (4 * b)), sy = b * sin(T_PI * a / (4 * b));
+                fx = b * cos(T_PI / 2 - T_PI * a / (4 * b)), fy = b * sin(T_PI / 2 - T_PI * a / (4 * b));
+            } else sx = fx = a, sy = fy = b;
+            top_lit += fabs(sy) > fabs(sx), top_fix += fabs(fy) > fabs(fx);
+            off += sx * sx + sy * sy > 1 + 1e-12;
+        }
+        /* (a, b) with |a| = |b| != 0 lies off the disk: a set of measure zero, hit here only if the sampler hits it */
+        double f_lit = (double)top_lit / (double)N, f_fix = (double)top_fix / (double)N, sig = sqrt(0.25 / (double)N);
+        for (int k = 0; k < AUDIT_SHAPES; k++)
+            set(r, k, fabs(f_fix - 0.5) < 5 * sig ? AUDIT_CORRECTED : AUDIT_FAILS, "as written no point reaches the top and "
+                "bottom quarters |t| > |s| (fraction %.4f of 2e5, uniform: 0.5; %ld off the disk); with the second branch "
+                "polar(b, pi/2 - pi a / 4b) the fraction is %.4f", f_lit, off, f_fix);
+    }
+
+    r = add(rows, &nr, "vndf-support", "p_vGGX(m) = D(m) (m.v) G1(v) / (v.n) on {m.v > 0} integrates to 1 (D as written, with "
+            "no m.n > 0)", SEED_VNDF, "vGGX Sampling", AUDIT_SCOPE_DIAGONAL);
+    for (int k = 0; k < AUDIT_SHAPES; k++) {
+        double ax, ay;
+        if (!diag_alphas(&sh[k], &ax, &ay) || sh[k].kind != GGX_SHAPE_DIAGONAL) {
+            set(r, k, AUDIT_NOT_CLAIMED, "cannot be applied (the seed's D is written for a diagonal A)");
+            continue;
+        }
+        ggx_vec3 vv = t_dir(75 * T_PI / 180, 0);
+        lower_ctx lc = {ax, ay, vv};
+        ggx_vec3 cut = t_scale(vv, -1);
+        double lower = quad_hemisphere(&sh[k], lower_f, &lc, &cut, 1, 1e-10, NULL) * ggx_g1(&sh[k], vv, n) / vv.z;
+        double upper = g1_form_integral(&sh[k], vv);
+        set(r, k, fabs(1 + lower - 1) < 1e-6 ? AUDIT_HOLDS : AUDIT_CORRECTED, "at theta_v = 75 degrees it integrates to %.4f; "
+            "holds with m.n > 0 in the support (%.6f)", upper + lower, upper);
+    }
+
+    r = add(rows, &nr, "lambda-zz", "Lambda(v) = -1/2 + sqrt((ax^2 vx^2 + ay^2 vy^2) / vz^2 + 1) / 2 and G1 = 2 z_z / (1 + z_z), "
+            "z_z = v.n / ||Av||", SEED_VNDF, "vGGX Sampling; Solving for z_z", AUDIT_SCOPE_DIAGONAL);
+    for (int k = 0; k < AUDIT_SHAPES; k++) {
+        double ax, ay;
+        if (!diag_alphas(&sh[k], &ax, &ay)) {
+            set(r, k, AUDIT_NOT_CLAIMED, "cannot be applied (a skewed A has no ax, ay)");
+            continue;
+        }
+        rng g = {84};
+        double wl = 0, wz = 0;
+        for (int i = 0; i < 1000; i++) {
+            ggx_vec3 u = random_upper(&g);
+            double lam = -0.5 + 0.5 * sqrt((ax * ax * u.x * u.x + ay * ay * u.y * u.y) / (u.z * u.z) + 1);
+            double zz = u.z / norm_of(A[k], u), g1 = ggx_g1(&sh[k], u, n);
+            wl = fmax(wl, fabs(1 / (1 + lam) / g1 - 1)), wz = fmax(wz, fabs(2 * zz / (1 + zz) / g1 - 1));
+        }
+        set(r, k, fmax(wl, wz) < 1e-9 ? AUDIT_HOLDS : AUDIT_FAILS, "largest relative difference from Walter's G1: the Lambda form "
+            "%.1e, the z_z form %.1e, over 1000 views", wl, wz);
+    }
+    /* a shape outside a claim's scope: not claimed, with what happens when applied anyway */
+    for (int i = 0; i < nr; i++) apply_scope(&rows[i], sh);
     if (progress) fputc('\n', stderr);
     return nr;
 }
