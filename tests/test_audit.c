@@ -26,7 +26,7 @@ static const struct {
     {"unit-norms", {H, H, F}},    {"sm-lt-su", {H, H, F}},  {"su", {H, H, F}},          {"invariance", {H, H, H}},
     {"rotate-z", {H, H, N}},      {"min-inactive", {H, H, N}}, {"mean-normal", {H, H, H}}, {"reciprocity", {H, H, H}},
     {"energy", {H, H, H}},        {"stretch-omega", {C, N, N}}, {"disk-concentric", {C, C, C}}, {"vndf-support", {C, N, N}},
-    {"lambda-zz", {H, N, N}},
+    {"lambda-zz", {H, N, N}},     {"curvature", {H, H, H}}, {"dof", {H, H, H}},         {"vndf-phi90", {H, N, N}},
 };
 
 static void default_shapes(double A[AUDIT_SHAPES][3][3])

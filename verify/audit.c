@@ -398,6 +398,61 @@ static double mean_f(ggx_vec3 m, void *vc)
     return ggx_ndf(c->s, m) * (1 + (c->axis == 0 ? m.x : c->axis == 1 ? m.y : c->axis == 2 ? m.z : 0.0));
 }
 
+/* The surface point of the ellipsoid x^T A^T A x = 1 whose outward normal is m: p = A^-1 A^-T m / ||A^-T m|| (the
+ * gradient 2 A^T A p is along m). */
+static ggx_vec3 point_of_normal(const double Ait[3][3], ggx_vec3 m)
+{
+    ggx_vec3 q = t_matvec(Ait, m);
+    return t_scale(t_mattvec(Ait, q), 1 / sqrt(t_dot(q, q)));
+}
+
+/* Eigenvalues of a symmetric n x n matrix (n <= 9) by Jacobi rotations, into ev (unsorted). */
+static void sym_eigenvalues(int nn, double M[9][9], double *ev)
+{
+    for (int sweep = 0; sweep < 100; sweep++) {
+        double off = 0;
+        for (int p = 0; p < nn; p++)
+            for (int q = p + 1; q < nn; q++) off += M[p][q] * M[p][q];
+        if (off < 1e-300) break;
+        for (int p = 0; p < nn; p++)
+            for (int q = p + 1; q < nn; q++) {
+                if (M[p][q] == 0) continue;
+                double th = 0.5 * atan2(2 * M[p][q], M[q][q] - M[p][p]), c = cos(th), sn = sin(th);
+                for (int k = 0; k < nn; k++) {
+                    double a = M[k][p], b = M[k][q];
+                    M[k][p] = c * a - sn * b, M[k][q] = sn * a + c * b;
+                }
+                for (int k = 0; k < nn; k++) {
+                    double a = M[p][k], b = M[q][k];
+                    M[p][k] = c * a - sn * b, M[q][k] = sn * a + c * b;
+                }
+            }
+    }
+    for (int i = 0; i < nn; i++) ev[i] = M[i][i];
+}
+
+/* The mean of m under the VNDF pdf for v, its polar angle (radians): how far the visible normals lean. */
+typedef struct vmean_ctx {
+    const ggx_shape *s;
+    ggx_vec3 v;
+    int axis;
+} vmean_ctx;
+static double vmean_f(ggx_vec3 m, void *vc)
+{
+    vmean_ctx *c = vc;
+    return ggx_pdf_vndf(c->s, c->v, m) * (1 + (c->axis == 0 ? m.x : c->axis == 1 ? m.y : c->axis == 2 ? m.z : 0.0));
+}
+static double vndf_lean(const ggx_shape *s, ggx_vec3 v)
+{
+    double c[4];
+    for (int a = 0; a < 4; a++) {
+        vmean_ctx mc = {s, v, a};
+        c[a] = quad_hemisphere(s, vmean_f, &mc, &v, 1, 1e-10, NULL);
+    }
+    ggx_vec3 mean = t_vec(c[0] - c[3], c[1] - c[3], c[2] - c[3]);
+    return atan2(hypot(mean.x, mean.y), mean.z);
+}
+
 int audit_run(const double A[AUDIT_SHAPES][3][3], audit_row *rows, int progress)
 {
     ggx_shape sh[AUDIT_SHAPES];
@@ -841,6 +896,83 @@ int audit_run(const double A[AUDIT_SHAPES][3][3], audit_row *rows, int progress)
         }
         set(r, k, fmax(wl, wz) < 1e-9 ? AUDIT_HOLDS : AUDIT_FAILS, "largest relative difference from Walter's G1: the Lambda form "
             "%.1e, the z_z form %.1e, over 1000 views", wl, wz);
+    }
+    r = add(rows, &nr, "curvature", "Gaussian curvature of the ellipsoid at the point with normal m: K(m) = |A|^2 ||A^-T m||^4",
+            SEED_WALTER ", " SEED_BLOG1, "Walter eq 20; blog Part 1 eq:k_g", AUDIT_SCOPE_ANY);
+    for (int k = 0; k < AUDIT_SHAPES; k++) {
+        /* independently: the Gauss map's Jacobian by finite differences, K = d(solid angle) / d(area), with the normal
+         * moved by unit-speed tangent steps and the surface point found from the normal */
+        double Ait[3][3];
+        inv_t(A[k], Ait);
+        rng g = {85};
+        double worst = 0;
+        for (int i = 0; i < 500; i++) {
+            ggx_vec3 m = random_upper(&g), t1, t2;
+            t_frame(m, &t1, &t2);
+            const double h = 1e-5;
+            ggx_vec3 pa = t_add(point_of_normal((const double(*)[3])Ait, t_normalize(t_add(m, t_scale(t1, h)))),
+                                t_scale(point_of_normal((const double(*)[3])Ait, t_normalize(t_add(m, t_scale(t1, -h)))), -1));
+            ggx_vec3 pb = t_add(point_of_normal((const double(*)[3])Ait, t_normalize(t_add(m, t_scale(t2, h)))),
+                                t_scale(point_of_normal((const double(*)[3])Ait, t_normalize(t_add(m, t_scale(t2, -h)))), -1));
+            ggx_vec3 c = t_cross(pa, pb);
+            double K = 4 * h * h / sqrt(t_dot(c, c)), q = norm_of((const double(*)[3])Ait, m);
+            worst = fmax(worst, fabs(sh[k].det * sh[k].det * q * q * q * q / K - 1));
+        }
+        set(r, k, worst < 1e-6 ? AUDIT_HOLDS : AUDIT_FAILS, "largest relative difference from the Gauss map's finite-difference "
+            "Jacobian %.1e over 500 normals", worst);
+    }
+
+    r = add(rows, &nr, "dof", "of the 9 entries of A only 5 are useful degrees of freedom (3 of rotation, 2 of scale)",
+            SEED_WALTER, "section 1", AUDIT_SCOPE_ANY);
+    for (int k = 0; k < AUDIT_SHAPES; k++) {
+        /* the rank of the Jacobian of (D(m_1), ..., D(m_40)) with respect to A's 9 entries, by central differences:
+         * the eigenvalues of J^T J, counted above 1e-8 of the largest */
+        enum { NM = 40 };
+        double J[NM][9], JTJ[9][9], ev[9];
+        rng g = {86};
+        ggx_vec3 ms[NM];
+        for (int i = 0; i < NM; i++) ms[i] = random_upper(&g);
+        int bad = 0;
+        for (int e = 0; e < 9; e++) {
+            double Ap[3][3], Am[3][3], h = 1e-6;
+            memcpy(Ap, A[k], sizeof Ap), memcpy(Am, A[k], sizeof Am);
+            Ap[e / 3][e % 3] += h, Am[e / 3][e % 3] -= h;
+            ggx_shape sp, sm;
+            bad |= ggx_shape_matrix(&sp, (const double(*)[3])Ap) != GGX_OK || ggx_shape_matrix(&sm, (const double(*)[3])Am) != GGX_OK;
+            for (int i = 0; i < NM && !bad; i++)
+                J[i][e] = (ggx_ndf(&sp, ms[i]) - ggx_ndf(&sm, ms[i])) / (2 * h) / ggx_ndf(&sh[k], ms[i]);
+        }
+        if (bad) {
+            set(r, k, AUDIT_FAILS, "a perturbed A was refused");
+            continue;
+        }
+        for (int a = 0; a < 9; a++)
+            for (int b = 0; b < 9; b++) {
+                JTJ[a][b] = 0;
+                for (int i = 0; i < NM; i++) JTJ[a][b] += J[i][a] * J[i][b];
+            }
+        sym_eigenvalues(9, JTJ, ev);
+        double top = 0;
+        for (int i = 0; i < 9; i++) top = fmax(top, ev[i]);
+        int rank = 0;
+        double gap_lo = INFINITY, gap_hi = 0; /* the smallest kept and the largest dropped eigenvalue */
+        for (int i = 0; i < 9; i++) {
+            if (ev[i] > 1e-8 * top) rank++, gap_lo = fmin(gap_lo, ev[i] / top);
+            else gap_hi = fmax(gap_hi, ev[i] / top);
+        }
+        set(r, k, rank == 5 ? AUDIT_HOLDS : AUDIT_FAILS, "rank of d D(m_i) / d A over 40 normals: %d (eigenvalues of J^T J: "
+            "smallest kept %.1e, largest dropped %.1e of the largest)", rank, gap_lo, gap_hi);
+    }
+
+    r = add(rows, &nr, "vndf-phi90", "at theta_v = 75 degrees the VNDF leans toward the view more for phi_v = 90 than for phi_v = "
+            "0, since ay > ax (figures 1-8)", SEED_VNDF, "figures, alpha (0.15, 0.5)", AUDIT_SCOPE_DIAGONAL);
+    for (int k = 0; k < AUDIT_SHAPES; k++) {
+        double l0 = vndf_lean(&sh[k], t_dir(75 * T_PI / 180, 0)), l90 = vndf_lean(&sh[k], t_dir(75 * T_PI / 180, T_PI / 2));
+        double ax = hypot(A[k][0][0], hypot(A[k][0][1], A[k][0][2])), ay = hypot(A[k][1][0], hypot(A[k][1][1], A[k][1][2]));
+        int want = ay > ax;
+        set(r, k, (l90 > l0) == want ? AUDIT_HOLDS : AUDIT_FAILS, "mean visible normal %.2f degrees from n for phi_v = 0, %.2f "
+            "for phi_v = 90 (n leans %.2f degrees without a view)", l0 * 180 / T_PI, l90 * 180 / T_PI,
+            acos(fmin(1.0, t_normalize(t_mattvec(A[k], t_matvec(A[k], n))).z)) * 180 / T_PI);
     }
     /* a shape outside a claim's scope: not claimed, with what happens when applied anyway */
     for (int i = 0; i < nr; i++) apply_scope(&rows[i], sh);
