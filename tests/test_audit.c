@@ -27,6 +27,9 @@ static const struct {
     {"rotate-z", {H, H, N}},      {"min-inactive", {H, H, N}}, {"mean-normal", {H, H, H}}, {"reciprocity", {H, H, H}},
     {"energy", {H, H, H}},        {"stretch-omega", {C, N, N}}, {"disk-concentric", {C, C, C}}, {"vndf-support", {C, N, N}},
     {"lambda-zz", {H, N, N}},     {"curvature", {H, H, H}}, {"dof", {H, H, H}},         {"vndf-phi90", {H, N, N}},
+    {"cosine-jacobian", {H, H, H}}, {"slope-jacobian", {H, H, H}}, {"squish-jacobian", {H, H, H}},
+    {"stretch-jacobian", {H, N, N}}, {"reflect-jacobian", {H, H, H}}, {"cross-product", {H, H, H}},
+    {"sphere-normal", {H, H, H}}, {"half-cut", {H, H, H}},  {"g1-pdf-identity", {H, H, H}}, {"vndf-frame", {H, N, N}},
 };
 
 static void default_shapes(double A[AUDIT_SHAPES][3][3])

@@ -453,6 +453,52 @@ static double vndf_lean(const ggx_shape *s, ggx_vec3 v)
     return atan2(hypot(mean.x, mean.y), mean.z);
 }
 
+/* Finite-difference area Jacobian |d m / d(a, b)| of a map from the plane to the unit sphere (or to the plane, with
+ * z = 0), by central differences of step h. */
+typedef ggx_vec3 (*map2_fn)(const void *ctx, double a, double b);
+static double fd_jacobian(map2_fn f, const void *ctx, double a, double b, double h)
+{
+    ggx_vec3 da = t_scale(t_add(f(ctx, a + h, b), t_scale(f(ctx, a - h, b), -1)), 0.5 / h);
+    ggx_vec3 db = t_scale(t_add(f(ctx, a, b + h), t_scale(f(ctx, a, b - h), -1)), 0.5 / h);
+    ggx_vec3 c = t_cross(da, db);
+    return sqrt(t_dot(c, c));
+}
+/* Maps whose Jacobians the seeds state. */
+static ggx_vec3 map_cosine(const void *ctx, double u, double v) /* Engstad's cosine-weighted hemisphere */
+{
+    (void)ctx;
+    return t_vec(sqrt(u) * cos(2 * T_PI * v), sqrt(u) * sin(2 * T_PI * v), sqrt(1 - u));
+}
+static ggx_vec3 map_slope(const void *ctx, double x, double y) /* slopes (x, y) -> normalize(x, y, 1) */
+{
+    (void)ctx;
+    return t_normalize(t_vec(x, y, 1));
+}
+static ggx_vec3 map_squish(const void *ctx, double sx, double t) /* the crescent squish of the disk, factor *ctx */
+{
+    double z = *(const double *)ctx;
+    return t_vec(sx, (1 - z) * sqrt(1 - sx * sx) + z * t, 0);
+}
+typedef struct stretch_ctx {
+    const double (*A)[3];
+    ggx_vec3 s, t1, t2; /* the direction s and its tangent frame */
+} stretch_ctx;
+static ggx_vec3 map_stretch(const void *ctx, double a, double b) /* s -> m = normalize(A^T s), s moved in its tangent plane */
+{
+    const stretch_ctx *c = ctx;
+    ggx_vec3 s = t_normalize(t_add(c->s, t_add(t_scale(c->t1, a), t_scale(c->t2, b))));
+    return t_normalize(t_mattvec(c->A, s));
+}
+typedef struct reflect_ctx {
+    ggx_vec3 psi, m, t1, t2;
+} reflect_ctx;
+static ggx_vec3 map_reflect(const void *ctx, double a, double b) /* m -> omega = 2 (psi.m) m - psi */
+{
+    const reflect_ctx *c = ctx;
+    ggx_vec3 m = t_normalize(t_add(c->m, t_add(t_scale(c->t1, a), t_scale(c->t2, b))));
+    return t_add(t_scale(m, 2 * t_dot(c->psi, m)), t_scale(c->psi, -1));
+}
+
 int audit_run(const double A[AUDIT_SHAPES][3][3], audit_row *rows, int progress)
 {
     ggx_shape sh[AUDIT_SHAPES];
@@ -973,6 +1019,176 @@ int audit_run(const double A[AUDIT_SHAPES][3][3], audit_row *rows, int progress)
         set(r, k, (l90 > l0) == want ? AUDIT_HOLDS : AUDIT_FAILS, "mean visible normal %.2f degrees from n for phi_v = 0, %.2f "
             "for phi_v = 90 (n leans %.2f degrees without a view)", l0 * 180 / T_PI, l90 * 180 / T_PI,
             acos(fmin(1.0, t_normalize(t_mattvec(A[k], t_matvec(A[k], n))).z)) * 180 / T_PI);
+    }
+    /* ---- Jacobians the seeds state, by finite differences of the maps themselves ---- */
+    r = add(rows, &nr, "cosine-jacobian", "the cosine-weighted map s(u, v) has |ds / d(u, v)| = pi / s_z, so p(s) = (s.n) / pi",
+            SEED_STRETCH, "Cosine-Weighted Half-Sphere", AUDIT_SCOPE_ANY);
+    {
+        rng g = {87};
+        double worst = 0;
+        for (int i = 0; i < 1000; i++) {
+            double u = 0.01 + 0.98 * rng_uniform(&g), w = rng_uniform(&g);
+            worst = fmax(worst, fabs(fd_jacobian(map_cosine, NULL, u, w, 1e-6) / (T_PI / sqrt(1 - u)) - 1));
+        }
+        for (int k = 0; k < AUDIT_SHAPES; k++)
+            set(r, k, worst < 1e-6 ? AUDIT_HOLDS : AUDIT_FAILS, "largest relative difference from the finite-difference "
+                "Jacobian %.1e over 1000 points (the map does not depend on A)", worst);
+    }
+
+    r = add(rows, &nr, "slope-jacobian", "the slope map m = normalize(x, y, 1) has |dm / d(x, y)| = m_z^3", SEED_STRETCH,
+            "Relation to slope-space", AUDIT_SCOPE_ANY);
+    {
+        rng g = {88};
+        double worst = 0;
+        for (int i = 0; i < 1000; i++) {
+            double x = 6 * rng_uniform(&g) - 3, y = 6 * rng_uniform(&g) - 3;
+            ggx_vec3 m = map_slope(NULL, x, y);
+            worst = fmax(worst, fabs(fd_jacobian(map_slope, NULL, x, y, 1e-6) / (m.z * m.z * m.z) - 1));
+        }
+        for (int k = 0; k < AUDIT_SHAPES; k++)
+            set(r, k, worst < 1e-6 ? AUDIT_HOLDS : AUDIT_FAILS, "largest relative difference from the finite-difference "
+                "Jacobian %.1e over 1000 slopes in [-3, 3]^2 (the map does not depend on A)", worst);
+    }
+
+    r = add(rows, &nr, "squish-jacobian", "the crescent squish (s, t) -> (s, (1 - z) sqrt(1 - s^2) + z t) has Jacobian z",
+            SEED_VNDF ", " SEED_BLOG2 ", " SEED_WALTER, "004 step 3; blog Part 2; Walter eq 38-41", AUDIT_SCOPE_ANY);
+    {
+        rng g = {89};
+        double worst = 0;
+        for (int i = 0; i < 1000; i++) {
+            double z = 0.5 + 0.5 * rng_uniform(&g), sx = 1.8 * rng_uniform(&g) - 0.9, t = 1.8 * rng_uniform(&g) - 0.9;
+            worst = fmax(worst, fabs(fd_jacobian(map_squish, &z, sx, t, 1e-6) / z - 1));
+        }
+        for (int k = 0; k < AUDIT_SHAPES; k++)
+            set(r, k, worst < 1e-6 ? AUDIT_HOLDS : AUDIT_FAILS, "largest relative difference from the finite-difference "
+                "Jacobian %.1e over 1000 points, z in [1/2, 1]", worst);
+    }
+
+    r = add(rows, &nr, "stretch-jacobian", "the elliptic stretch m = normalize(A s) has solid-angle Jacobian |dm / ds| = ax ay "
+            "||A^-1 m||^3", SEED_STRETCH ", " SEED_VNDF, "GGX composition; 004 Elliptic Stretch", AUDIT_SCOPE_DIAGONAL);
+    for (int k = 0; k < AUDIT_SHAPES; k++) {
+        double ax, ay;
+        if (!diag_alphas(&sh[k], &ax, &ay)) {
+            set(r, k, AUDIT_NOT_CLAIMED, "cannot be applied (a skewed A has no ax, ay)");
+            continue;
+        }
+        /* the map of the shape itself, m = normalize(A^T s) (A^T = A for a diagonal A), against the literal form
+         * in x, y and against |A| ||A^-T m||^3 (the form for any A) */
+        double Ait[3][3];
+        inv_t(A[k], Ait);
+        rng g = {90};
+        double worst_lit = 0, worst_gen = 0;
+        for (int i = 0; i < 1000; i++) {
+            stretch_ctx c = {A[k], random_upper(&g), {0, 0, 0}, {0, 0, 0}};
+            t_frame(c.s, &c.t1, &c.t2);
+            double J = fd_jacobian(map_stretch, &c, 0, 0, 1e-6);
+            ggx_vec3 m = map_stretch(&c, 0, 0);
+            double qd = sqrt(m.x * m.x / (ax * ax) + m.y * m.y / (ay * ay) + m.z * m.z), q = norm_of((const double(*)[3])Ait, m);
+            worst_lit = fmax(worst_lit, fabs(ax * ay * qd * qd * qd / J - 1));
+            worst_gen = fmax(worst_gen, fabs(sh[k].det * q * q * q / J - 1));
+        }
+        set(r, k, worst_lit < 1e-6 ? AUDIT_HOLDS : AUDIT_FAILS, "largest relative difference from the finite-difference Jacobian "
+            "%.1e over 1000 directions (for any A, |A| ||A^-T m||^3 with m = normalize(A^T s): %.1e)", worst_lit, worst_gen);
+    }
+
+    r = add(rows, &nr, "reflect-jacobian", "the reflection omega = 2 (psi.m) m - psi has |d omega / dm| = 4 |psi.m|", SEED_WALTER,
+            "eq 47-48", AUDIT_SCOPE_ANY);
+    {
+        rng g = {91};
+        double worst = 0;
+        for (int i = 0; i < 1000; i++) {
+            reflect_ctx c = {random_upper(&g), random_upper(&g), {0, 0, 0}, {0, 0, 0}};
+            if (t_dot(c.psi, c.m) < 0.05) continue;
+            t_frame(c.m, &c.t1, &c.t2);
+            worst = fmax(worst, fabs(fd_jacobian(map_reflect, &c, 0, 0, 1e-6) / (4 * t_dot(c.psi, c.m)) - 1));
+        }
+        for (int k = 0; k < AUDIT_SHAPES; k++)
+            set(r, k, worst < 1e-6 ? AUDIT_HOLDS : AUDIT_FAILS, "largest relative difference from the finite-difference "
+                "Jacobian %.1e over 1000 pairs (the map does not depend on A)", worst);
+    }
+
+    /* ---- identities at random points, on the matrix given ---- */
+    r = add(rows, &nr, "cross-product", "(M a) x (M b) = |M| M^-T (a x b) for a non-singular M", SEED_WALTER, "eq 25",
+            AUDIT_SCOPE_ANY);
+    for (int k = 0; k < AUDIT_SHAPES; k++) {
+        double Ait[3][3];
+        inv_t(A[k], Ait);
+        rng g = {92};
+        double worst = 0;
+        for (int i = 0; i < 1000; i++) {
+            ggx_vec3 a = random_upper(&g), b = random_upper(&g);
+            ggx_vec3 l = t_cross(t_matvec(A[k], a), t_matvec(A[k], b)), rr = t_scale(t_matvec((const double(*)[3])Ait, t_cross(a, b)), sh[k].det);
+            ggx_vec3 d = t_add(l, t_scale(rr, -1));
+            worst = fmax(worst, sqrt(t_dot(d, d) / t_dot(l, l)));
+        }
+        set(r, k, worst < 1e-12 ? AUDIT_HOLDS : AUDIT_FAILS, "largest relative difference %.1e over 1000 pairs (M = A; det A > 0 "
+            "here: with det < 0 the right side flips sign)", worst);
+    }
+
+    r = add(rows, &nr, "sphere-normal", "m' = A^-T m / ||A^-T m|| is the sphere's normal at A p, p the ellipsoid point with normal m; "
+            "m'.v' = (m.v) / (||Av|| ||A^-T m||)", SEED_BLOG2, "eq:m-to-m-prime, eq:mv-sphere-to-ellipsoid", AUDIT_SCOPE_ANY);
+    for (int k = 0; k < AUDIT_SHAPES; k++) {
+        double Ait[3][3];
+        inv_t(A[k], Ait);
+        rng g = {93};
+        double worst = 0;
+        for (int i = 0; i < 1000; i++) {
+            ggx_vec3 m = random_upper(&g), vv = random_upper(&g);
+            ggx_vec3 mp = t_normalize(t_matvec((const double(*)[3])Ait, m)), Ap = t_normalize(t_matvec(A[k], point_of_normal((const double(*)[3])Ait, m)));
+            ggx_vec3 d = t_add(mp, t_scale(Ap, -1)), vp = t_normalize(t_matvec(A[k], vv));
+            double lhs = t_dot(mp, vp), rhs = t_dot(m, vv) / (norm_of(A[k], vv) * norm_of((const double(*)[3])Ait, m));
+            worst = fmax(worst, fmax(sqrt(t_dot(d, d)), fabs(lhs - rhs)));
+        }
+        set(r, k, worst < 1e-12 ? AUDIT_HOLDS : AUDIT_FAILS, "largest difference %.1e over 1000 normals and views", worst);
+    }
+
+    r = add(rows, &nr, "half-cut", "the half of the ellipsoid with m.n > 0 is the half cut by the plane through its centre "
+            "perpendicular to A^T A n", SEED_WALTER, "sections 2.3, 5.1", AUDIT_SCOPE_ANY);
+    for (int k = 0; k < AUDIT_SHAPES; k++) {
+        double Ait[3][3];
+        inv_t(A[k], Ait);
+        rng g = {94};
+        long disagree = 0;
+        ggx_vec3 ata = t_mattvec(A[k], t_matvec(A[k], n));
+        for (int i = 0; i < 100000; i++) {
+            ggx_vec3 sp = t_dir(acos(2 * rng_uniform(&g) - 1), 2 * T_PI * rng_uniform(&g));
+            ggx_vec3 p = t_mattvec((const double(*)[3])Ait, sp); /* A^-1 s: a point of the ellipsoid */
+            ggx_vec3 m = t_normalize(t_mattvec(A[k], t_matvec(A[k], p)));
+            disagree += (m.z > 0) != (t_dot(ata, p) > 0);
+        }
+        set(r, k, disagree == 0 ? AUDIT_HOLDS : AUDIT_FAILS, "%ld of 10^5 random surface points on the wrong side", disagree);
+    }
+
+    r = add(rows, &nr, "g1-pdf-identity", "(1/s) ||An|| / ||Av|| = 2 ||An|| ||A^-T n|| / (||Av|| ||A^-T n|| + v.n), with the blog's "
+            "s and (Av).(A^-T n) = v.n", SEED_BLOG2, "eq:g1-pdf", AUDIT_SCOPE_ANY);
+    for (int k = 0; k < AUDIT_SHAPES; k++) {
+        double Ait[3][3];
+        inv_t(A[k], Ait);
+        rng g = {95};
+        double worst = 0;
+        for (int i = 0; i < 1000; i++) {
+            ggx_vec3 vv = random_upper(&g), av = t_matvec(A[k], vv), an_t = t_matvec((const double(*)[3])Ait, n);
+            double avl = sqrt(t_dot(av, av)), atl = sqrt(t_dot(an_t, an_t)), anl = norm_of(A[k], n);
+            double sb = 0.5 * (1 + t_dot(av, an_t) / (avl * atl));
+            double lhs = anl / avl / sb, rhs = 2 * anl * atl / (avl * atl + vv.z);
+            worst = fmax(worst, fabs(lhs / rhs - 1));
+        }
+        set(r, k, worst < 1e-12 ? AUDIT_HOLDS : AUDIT_FAILS, "largest relative difference %.1e over 1000 views (an identity for "
+            "every A; the next step needs ||An|| ||A^-T n|| = 1, row unit-norms)", worst);
+    }
+
+    r = add(rows, &nr, "vndf-frame", "z = Av / ||Av||, x = (-z_y, z_x, 0) / ||.||, y = z x x is orthonormal with y.n >= 0",
+            SEED_VNDF, "step 1, make a frame", AUDIT_SCOPE_DIAGONAL);
+    for (int k = 0; k < AUDIT_SHAPES; k++) {
+        rng g = {96};
+        double worst = 0, ymin = 1;
+        for (int i = 0; i < 1000; i++) {
+            ggx_vec3 z = t_normalize(t_matvec(A[k], random_upper(&g))), x = t_normalize(t_vec(-z.y, z.x, 0)), y = t_cross(z, x);
+            worst = fmax(worst, fmax(fabs(t_dot(x, z)), fmax(fabs(t_dot(y, y) - 1), fabs(t_dot(x, y)))));
+            ymin = fmin(ymin, y.z);
+        }
+        set(r, k, worst < 1e-12 && ymin >= 0 ? AUDIT_HOLDS : AUDIT_FAILS, "orthonormal to %.0e over 1000 views; smallest y.n "
+            "%.3f", fmax(worst, 1e-17), ymin);
     }
     /* a shape outside a claim's scope: not claimed, with what happens when applied anyway */
     for (int i = 0; i < nr; i++) apply_scope(&rows[i], sh);
