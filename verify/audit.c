@@ -210,12 +210,14 @@ static void sampler_rows(audit_row *rows, int *nr, ggx_sampler_family family, co
             }
             uint64_t seed = cl->chi2_seed + 2 * (uint64_t)k;
             actx c = {{&sh[k], view, info->pdf}, info->sample, cl->literal, A[k]};
-            verdict_p(r, k, chi2_p(&c, seed, progress));
+            double p_as_written = chi2_p(&c, seed, progress);
+            verdict_p(r, k, p_as_written);
             if (cl->literal && r->verdict[k] == AUDIT_FAILS) {
                 c.literal = NULL;
                 double p = chi2_p(&c, seed + 1, progress);
                 if (p >= alpha_level() && in_scope(cl->scope, &sh[k]))
-                    set(r, k, AUDIT_CORRECTED, "as written chi-square p = 0; holds as %s (p = %.2g)", cl->library, p);
+                    set(r, k, AUDIT_CORRECTED, "as written chi-square p = %.2g; holds as %s (p = %.2g)", p_as_written,
+                        cl->library, p);
                 else
                     append(r, k, "; holds as %s (p = %.2g)", cl->library, p);
             }
@@ -283,6 +285,18 @@ static void verdict_views(audit_row *r, int k, double (*f)(const ggx_shape *, gg
             VIEW_THETAS * VIEW_PHIS);
 }
 
+/* The inverse transpose of the user's A, by cofactors (the audit checks the seeds' formulas on the matrix given,
+ * independently of the library's canonical frame). */
+static void inv_t(const double A[3][3], double Ait[3][3])
+{
+    double det = A[0][0] * (A[1][1] * A[2][2] - A[1][2] * A[2][1]) - A[0][1] * (A[1][0] * A[2][2] - A[1][2] * A[2][0]) +
+                 A[0][2] * (A[1][0] * A[2][1] - A[1][1] * A[2][0]);
+    for (int i = 0; i < 3; i++)
+        for (int j = 0; j < 3; j++) {
+            int i1 = (i + 1) % 3, i2 = (i + 2) % 3, j1 = (j + 1) % 3, j2 = (j + 2) % 3;
+            Ait[i][j] = (A[i1][j1] * A[i2][j2] - A[i1][j2] * A[i2][j1]) / det;
+        }
+}
 /* Areas by shooting rays at the ellipsoid x^T A^T A x = 1 itself (Ce = 1), not by integrating D: N rays along -u
  * through the rectangle that bounds its shadow (half-widths ||A^-T e|| along e1, e2 perpendicular to u: the
  * ellipsoid's support function); a ray hits where (p + l u)^T M (p + l u) = 1 has a root, M = A^T A, and the point
@@ -290,15 +304,12 @@ static void verdict_views(audit_row *r, int k, double (*f)(const ggx_shape *, gg
  * m.v >= 0 count (Walter eq 28's lune). Returns the shadow's area; *sigma its Monte Carlo standard error. */
 static double ray_area(const double A[3][3], ggx_vec3 u, ggx_vec3 v, int lune, long N, uint64_t seed, double *sigma)
 {
-    double M[3][3], Ait[3][3]; /* A^T A and A^-T (cofactors / det) */
-    double det = A[0][0] * (A[1][1] * A[2][2] - A[1][2] * A[2][1]) - A[0][1] * (A[1][0] * A[2][2] - A[1][2] * A[2][0]) +
-                 A[0][2] * (A[1][0] * A[2][1] - A[1][1] * A[2][0]);
+    double M[3][3], Ait[3][3]; /* A^T A and A^-T */
+    inv_t(A, Ait);
     for (int i = 0; i < 3; i++)
         for (int j = 0; j < 3; j++) {
             M[i][j] = 0;
             for (int k = 0; k < 3; k++) M[i][j] += A[k][i] * A[k][j];
-            int i1 = (i + 1) % 3, i2 = (i + 2) % 3, j1 = (j + 1) % 3, j2 = (j + 2) % 3;
-            Ait[i][j] = (A[i1][j1] * A[i2][j2] - A[i1][j2] * A[i2][j1]) / det;
         }
     ggx_vec3 e1, e2;
     t_frame(u, &e1, &e2);
@@ -343,18 +354,6 @@ static void verdict_rays(audit_row *r, int k, const double A[3][3], const ggx_sh
         5 * worst_sig);
 }
 
-/* The user's A: its inverse transpose, A^T A, and A v (the audit checks the seeds' formulas on the matrix given,
- * independently of the library's canonical frame). */
-static void inv_t(const double A[3][3], double Ait[3][3])
-{
-    double det = A[0][0] * (A[1][1] * A[2][2] - A[1][2] * A[2][1]) - A[0][1] * (A[1][0] * A[2][2] - A[1][2] * A[2][0]) +
-                 A[0][2] * (A[1][0] * A[2][1] - A[1][1] * A[2][0]);
-    for (int i = 0; i < 3; i++)
-        for (int j = 0; j < 3; j++) {
-            int i1 = (i + 1) % 3, i2 = (i + 2) % 3, j1 = (j + 1) % 3, j2 = (j + 2) % 3;
-            Ait[i][j] = (A[i1][j1] * A[i2][j2] - A[i1][j2] * A[i2][j1]) / det;
-        }
-}
 static double norm_of(const double M[3][3], ggx_vec3 v)
 {
     ggx_vec3 r = t_matvec(M, v);
@@ -526,8 +525,7 @@ int audit_run(const double A[AUDIT_SHAPES][3][3], audit_row *rows, int progress)
         double worst = 0, ax = sh[k].alpha_x, ay = sh[k].alpha_y;
         for (int i = 0; i < 1000; i++) {
             ggx_vec3 m = t_dir(acos(rng_uniform(&g)), 2 * T_PI * rng_uniform(&g));
-            double q = m.x * m.x / (ax * ax) + m.y * m.y / (ay * ay) + m.z * m.z;
-            worst = fmax(worst, fabs(ggx_ndf(&sh[k], m) * T_PI * ax * ay * q * q - 1));
+            worst = fmax(worst, fabs(ggx_ndf(&sh[k], m) / ggx_formula(ax, ay, m) - 1));
         }
         set(r, k, worst < 1e-12 ? AUDIT_HOLDS : AUDIT_FAILS, "largest relative difference %.1e over 1000 normals%s",
             worst, sh[k].kind == GGX_SHAPE_UNSKEWED ? " (the formula in x, y, not in the rotated axes)" : "");
@@ -738,15 +736,11 @@ int audit_run(const double A[AUDIT_SHAPES][3][3], audit_row *rows, int progress)
     r = add(rows, &nr, "invariance", "D is unchanged by A -> c A and A -> Q A, Q orthogonal (with |A| read as |det A|)",
             SEED_WALTER, "section 1, after eq 1", AUDIT_SCOPE_ANY);
     for (int k = 0; k < AUDIT_SHAPES; k++) {
-        double cA[3][3], QA[3][3], Q[3][3];
+        double cA[3][3], QA[3][3];
         ggx_vec3 q0 = t_normalize(t_vec(0.3, -0.5, 0.8)), q1, q2;
         t_frame(q0, &q1, &q2);
-        ggx_vec3 cols[3] = {q0, q1, t_scale(q2, -1)}; /* det Q = -1: a reflection, the hard case */
-        for (int i = 0; i < 3; i++)
-            for (int j = 0; j < 3; j++) Q[i][j] = j == 0 ? cols[0].x * (i == 0) + cols[0].y * (i == 1) + cols[0].z * (i == 2) : 0;
-        for (int i = 0; i < 3; i++) Q[i][0] = i == 0 ? cols[0].x : i == 1 ? cols[0].y : cols[0].z;
-        for (int i = 0; i < 3; i++) Q[i][1] = i == 0 ? cols[1].x : i == 1 ? cols[1].y : cols[1].z;
-        for (int i = 0; i < 3; i++) Q[i][2] = i == 0 ? cols[2].x : i == 1 ? cols[2].y : cols[2].z;
+        q2 = t_scale(q2, -1); /* columns q0, q1, q2 of Q with det Q = -1: a reflection, the hard case */
+        const double Q[3][3] = {{q0.x, q1.x, q2.x}, {q0.y, q1.y, q2.y}, {q0.z, q1.z, q2.z}};
         for (int i = 0; i < 3; i++)
             for (int j = 0; j < 3; j++) {
                 cA[i][j] = 3.7 * A[k][i][j];
