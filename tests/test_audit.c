@@ -30,6 +30,8 @@ static const struct {
     {"cosine-jacobian", {H, H, H}}, {"slope-jacobian", {H, H, H}}, {"squish-jacobian", {H, H, H}},
     {"stretch-jacobian", {H, N, N}}, {"reflect-jacobian", {H, H, H}}, {"cross-product", {H, H, H}},
     {"sphere-normal", {H, H, H}}, {"half-cut", {H, H, H}},  {"g1-pdf-identity", {H, H, H}}, {"vndf-frame", {H, N, N}},
+    {"vndf-eq33", {H, H, H}},     {"sggx", {H, H, H}},      {"hessian", {H, H, H}},     {"normalize-derivative", {H, H, H}},
+    {"stretch-inverse", {H, N, N}}, {"equal-area-grid", {H, N, N}},
 };
 
 static void default_shapes(double A[AUDIT_SHAPES][3][3])

@@ -498,6 +498,28 @@ static ggx_vec3 map_reflect(const void *ctx, double a, double b) /* m -> omega =
     return t_add(t_scale(m, 2 * t_dot(c->psi, m)), t_scale(c->psi, -1));
 }
 
+/* Walter eq 33 as written: (A_e(n) / A_l(psi, n)) X+(m.psi) D(m) |m.psi|, from the projected areas. */
+typedef struct eq33_ctx {
+    const ggx_shape *s;
+    ggx_vec3 v;
+} eq33_ctx;
+static double eq33_f(ggx_vec3 m, void *vc)
+{
+    eq33_ctx *c = vc;
+    double mv = t_dot(m, c->v);
+    return mv > 0 ? ggx_projected_area(c->s, t_vec(0, 0, 1)) / ggx_lune_area(c->s, c->v, t_vec(0, 0, 1)) * ggx_ndf(c->s, m) * mv : 0.0;
+}
+static double eq33_integral(const ggx_shape *s, ggx_vec3 v)
+{
+    eq33_ctx c = {s, v};
+    return quad_hemisphere(s, eq33_f, &c, &v, 1, 1e-11, NULL);
+}
+static ggx_vec3 map_normalize(const void *ctx, double a, double b) /* p(a, b) = p0 + a t1 + b t2 -> p / ||p|| */
+{
+    const ggx_vec3 *f = ctx; /* p0, t1, t2 */
+    return t_normalize(t_add(f[0], t_add(t_scale(f[1], a), t_scale(f[2], b))));
+}
+
 int audit_run(const double A[AUDIT_SHAPES][3][3], audit_row *rows, int progress)
 {
     ggx_shape sh[AUDIT_SHAPES];
@@ -1183,6 +1205,117 @@ int audit_run(const double A[AUDIT_SHAPES][3][3], audit_row *rows, int progress)
         }
         set(r, k, worst < 1e-12 && ymin >= 0 ? AUDIT_HOLDS : AUDIT_FAILS, "orthonormal to %.0e over 1000 views; smallest y.n "
             "%.3f", fmax(worst, 1e-17), ymin);
+    }
+    r = add(rows, &nr, "vndf-eq33", "p_h(m) = (A_e(n) / A_l(psi, n)) X+(m.psi) D(m) |m.psi| integrates to 1 over m", SEED_WALTER,
+            "eq 33 (as fixed in May 2016)", AUDIT_SCOPE_ANY);
+    for (int k = 0; k < AUDIT_SHAPES; k++) verdict_views(r, k, eq33_integral, &sh[k], 1e-6, "it");
+
+    r = add(rows, &nr, "sggx", "the ellipsoid NDF is SGGX with S = A^T A: D_SGGX(m) = 1 / (pi sqrt|S| (m^T S^-1 m)^2) = ||An|| D(m)",
+            SEED_WALTER, "section 5.2", AUDIT_SCOPE_ANY);
+    for (int k = 0; k < AUDIT_SHAPES; k++) {
+        double Ait[3][3];
+        inv_t(A[k], Ait);
+        rng g = {97};
+        double worst = 0;
+        for (int i = 0; i < 1000; i++) {
+            ggx_vec3 m = random_upper(&g), q = t_matvec((const double(*)[3])Ait, m); /* m^T S^-1 m = ||A^-T m||^2 */
+            double qq = t_dot(q, q), d_sggx = 1 / (T_PI * sh[k].det * qq * qq);
+            worst = fmax(worst, fabs(d_sggx / (norm_of(A[k], n) * ggx_ndf(&sh[k], m)) - 1));
+        }
+        set(r, k, worst < 1e-12 ? AUDIT_HOLDS : AUDIT_FAILS, "largest relative difference %.1e over 1000 normals", worst);
+    }
+
+    r = add(rows, &nr, "hessian", "with H = 2 A^T A: |H| = 8 |A|^2, adj(H) = |H| H^-1 and m^T H^-1 m = ||A^-T m||^2 / 2", SEED_WALTER,
+            "eq 11-19", AUDIT_SCOPE_ANY);
+    for (int k = 0; k < AUDIT_SHAPES; k++) {
+        double H[3][3], Hinv_t[3][3];
+        for (int i = 0; i < 3; i++)
+            for (int j = 0; j < 3; j++) {
+                H[i][j] = 0;
+                for (int l = 0; l < 3; l++) H[i][j] += 2 * A[k][l][i] * A[k][l][j];
+            }
+        inv_t((const double(*)[3])H, Hinv_t); /* H symmetric: H^-T = H^-1 */
+        double detH = H[0][0] * (H[1][1] * H[2][2] - H[1][2] * H[2][1]) - H[0][1] * (H[1][0] * H[2][2] - H[1][2] * H[2][0]) +
+                      H[0][2] * (H[1][0] * H[2][1] - H[1][1] * H[2][0]);
+        double worst = fabs(detH / (8 * sh[k].det * sh[k].det) - 1);
+        for (int i = 0; i < 3; i++)
+            for (int j = 0; j < 3; j++) { /* the adjugate by cofactors against |H| H^-1 */
+                int i1 = (j + 1) % 3, i2 = (j + 2) % 3, j1 = (i + 1) % 3, j2 = (i + 2) % 3;
+                double adj = H[i1][j1] * H[i2][j2] - H[i1][j2] * H[i2][j1];
+                worst = fmax(worst, fabs(adj - detH * Hinv_t[i][j]) / fabs(detH) * 1e0);
+            }
+        double Ait[3][3];
+        inv_t(A[k], Ait);
+        rng g = {98};
+        for (int i = 0; i < 1000; i++) {
+            ggx_vec3 m = random_upper(&g), hm = t_matvec((const double(*)[3])Hinv_t, m), q = t_matvec((const double(*)[3])Ait, m);
+            worst = fmax(worst, fabs(t_dot(m, hm) / (0.5 * t_dot(q, q)) - 1));
+        }
+        set(r, k, worst < 1e-10 ? AUDIT_HOLDS : AUDIT_FAILS, "largest relative difference %.1e (|H|, the adjugate, 1000 normals)",
+            worst);
+    }
+
+    r = add(rows, &nr, "normalize-derivative", "d(p / ||p||) = p x (dp x p) / ||p||^3, and the normalizing Jacobian |d p^ / d(u, v)| "
+            "= |p.(p_u x p_v)| / ||p||^3", SEED_STRETCH, "Differentiation; the Normalizing Jacobian formula", AUDIT_SCOPE_ANY);
+    {
+        rng g = {99};
+        double worst = 0;
+        for (int i = 0; i < 1000; i++) {
+            ggx_vec3 f[3] = {t_scale(random_upper(&g), 0.5 + 2 * rng_uniform(&g)), random_upper(&g), random_upper(&g)};
+            f[1] = t_scale(f[1], 2 * rng_uniform(&g) - 1), f[2] = t_scale(f[2], 2 * rng_uniform(&g) - 1);
+            double pl = sqrt(t_dot(f[0], f[0])), J = fd_jacobian(map_normalize, f, 0, 0, 1e-6);
+            double want = fabs(t_dot(f[0], t_cross(f[1], f[2]))) / (pl * pl * pl);
+            if (want > 1e-3) worst = fmax(worst, fabs(J / want - 1));
+            ggx_vec3 d = t_scale(t_add(map_normalize(f, 1e-6, 0), t_scale(map_normalize(f, -1e-6, 0), -1)), 0.5e6);
+            ggx_vec3 dw = t_scale(t_cross(f[0], t_cross(f[1], f[0])), 1 / (pl * pl * pl)), e = t_add(d, t_scale(dw, -1));
+            worst = fmax(worst, sqrt(t_dot(e, e)) / fmax(1e-3, sqrt(t_dot(dw, dw))));
+        }
+        for (int k = 0; k < AUDIT_SHAPES; k++)
+            set(r, k, worst < 1e-6 ? AUDIT_HOLDS : AUDIT_FAILS, "largest relative difference from finite differences %.1e over "
+                "1000 random planes (the formula does not depend on A)", worst);
+    }
+
+    r = add(rows, &nr, "stretch-inverse", "s = A^-1 m / ||A^-1 m|| inverts m = A s / ||A s||, and |s_z| = |m_z| ||m_||, "
+            "mx^2/ax^2 + my^2/ay^2 + mz^2 = 1 / ||m_||^2 (m_ = A s)", SEED_VNDF ", " SEED_STRETCH, "004 Elliptic Stretch; 001 Elliptic "
+            "Stretch", AUDIT_SCOPE_DIAGONAL);
+    for (int k = 0; k < AUDIT_SHAPES; k++) {
+        double ax, ay;
+        if (!diag_alphas(&sh[k], &ax, &ay)) {
+            set(r, k, AUDIT_NOT_CLAIMED, "cannot be applied (a skewed A has no ax, ay)");
+            continue;
+        }
+        double Ait[3][3];
+        inv_t(A[k], Ait);
+        rng g = {100};
+        double worst = 0;
+        for (int i = 0; i < 1000; i++) {
+            ggx_vec3 sv = random_upper(&g), mb = t_matvec(A[k], sv), m = t_normalize(mb);
+            ggx_vec3 back = t_normalize(t_mattvec((const double(*)[3])Ait, m)), d = t_add(back, t_scale(sv, -1)); /* A^-1 m */
+            double ml = sqrt(t_dot(mb, mb)), q = m.x * m.x / (ax * ax) + m.y * m.y / (ay * ay) + m.z * m.z;
+            worst = fmax(worst, fmax(sqrt(t_dot(d, d)), fmax(fabs(fabs(sv.z) / (fabs(m.z) * ml) - 1), fabs(q * ml * ml - 1))));
+        }
+        set(r, k, worst < 1e-12 ? AUDIT_HOLDS : AUDIT_FAILS, "largest difference %.1e over 1000 directions%s", worst,
+            sh[k].kind == GGX_SHAPE_UNSKEWED ? " (the norm in x, y, not the rotated axes)" : "");
+    }
+
+    r = add(rows, &nr, "equal-area-grid", "the 10 x 10 grid of the unit square maps to 100 cells of equal probability under "
+            "D(m)(m.n) (the figures, alpha 0.15, 0.5)", SEED_STRETCH, "Visualization", AUDIT_SCOPE_DIAGONAL);
+    for (int k = 0; k < AUDIT_SHAPES; k++) {
+        /* normals drawn by an independent sampler (the ellipse lift), mapped back to the unit square by the stretch's
+         * inverse; the 100 cells' counts against 1/100 each (chi-square, 99 degrees of freedom) */
+        rng g = {101};
+        enum { NS = 200000 };
+        long cells[100] = {0};
+        for (int i = 0; i < NS; i++) {
+            ggx_vec2 u = ggx_sample_ndf_stretch_inv(&sh[k], ggx_sample_ndf_ellipse(&sh[k], rng_uniform(&g), rng_uniform(&g)));
+            int a = (int)(u.x * 10), b = (int)(u.y * 10);
+            cells[(a < 0 ? 0 : a > 9 ? 9 : a) * 10 + (b < 0 ? 0 : b > 9 ? 9 : b)]++;
+        }
+        double x2 = 0, e = NS / 100.0;
+        for (int i = 0; i < 100; i++) x2 += ((double)cells[i] - e) * ((double)cells[i] - e) / e;
+        /* 99 degrees of freedom: mean 99, sd 14; beyond 99 + 6 sd = 183 the cells are not equal */
+        set(r, k, x2 < 183 ? AUDIT_HOLDS : AUDIT_FAILS, "chi-square %.1f over the 100 cells with 99 degrees of freedom (2e5 normals "
+            "from the ellipse lift, mapped back by the stretch's inverse)", x2);
     }
     /* a shape outside a claim's scope: not claimed, with what happens when applied anyway */
     for (int i = 0; i < nr; i++) apply_scope(&rows[i], sh);
