@@ -280,6 +280,10 @@ if [ "${GGX_CLI_QUICK:-0}" != 1 ]; then
         [ "$(tail -n +2 a2.csv | grep -c '^"[a-z0-9-]*","[0-9][0-9][0-9]_[0-9a-f]*\.txt')" -eq 150 ] &&
         grep -q '"rotated A (0.15, 0.5; theta_z 28.65 deg)"' a2.csv && grep -q '"skewed A (0.15, 0.5; 22.92, -17.19, 28.65 deg)"' a2.csv &&
         ok || bad "audit --alpha --format csv: $(head -3 a2.csv)"
+    # every audit row that docs/seed-claims.md names as covering a claim exists
+    grep -o '(covered: [a-z0-9-]*)' "$ROOT/docs/seed-claims.md" | sed 's/(covered: \(.*\))/\1/' | sort -u > covered.txt
+    cut -d, -f1 a2.csv | tr -d '"' | sort -u > ids.txt
+    [ -s covered.txt ] && [ -z "$(comm -23 covered.txt ids.txt)" ] && ok || bad "seed-claims.md names rows the audit lacks: $(comm -23 covered.txt ids.txt)"
     # the README's command lines, run as written (from the ```sh block of "The ggx command")
     sed -n '/^## The `ggx` command/,/^## /p' "$ROOT/README.md" | sed -n '/^```sh/,/^```/p' | grep '^ggx ' |
         sed 's/ *#.*//' > readme_cmds.txt
