@@ -104,14 +104,14 @@ if [ "${GGX_CLI_QUICK:-0}" = 1 ]; then # 16 chi-square runs of 10^6 samples: min
     "$GGX" audit --help > audit.txt && ok || bad "audit --help"
 else
     # docs/audit.md is the command's output on its defaults, byte for byte
-    "$GGX" audit > audit.md && [ "$(grep -c '^| [0-9]' audit.md)" -eq 50 ] && grep -q 'fails' audit.md &&
+    "$GGX" audit > audit.md && [ "$(grep -c '^| [0-9]' audit.md)" -eq 54 ] && grep -q 'fails' audit.md &&
         cmp -s audit.md "$ROOT/docs/audit.md" && ok || bad "audit: docs/audit.md is not ggx audit's output: $(diff audit.md "$ROOT/docs/audit.md" | head -5)"
-    # JSON: a list of 50 claims, each naming its seed file and giving three verdicts from the vocabulary
+    # JSON: a list of 54 claims, each naming its seed file and giving three verdicts from the vocabulary
     "$GGX" audit --format json --rotate 10 > audit.json && /usr/bin/python3 -c '
 import json, sys
 rows = json.load(open("audit.json"))
 words = {"holds", "holds with a correction", "fails", "not claimed"}
-assert len(rows) == 50, len(rows)
+assert len(rows) == 54, len(rows)
 for r in rows:
     assert r["seed_file"].endswith(".txt") and len(r["verdicts"]) == 3, r
     assert all(v["verdict"] in words and v["evidence"] for v in r["verdicts"]), r
@@ -275,9 +275,9 @@ one_line "too few samples (demo)" "needs at least 10000 samples" 2 "$GGX" demo -
 "$GGX" check --alpha 1e4 --sampler caps -n 20000 > nojac.txt && grep -q "(no point)" nojac.txt && ! grep -q "0.00e+00" nojac.txt && ok || bad "check without Jacobian points: $(cat nojac.txt)"
 one_line "ill-conditioned matrix" "ill-conditioned" 2 "$GGX" eval --matrix 1e9,0,0,0,1,0,0,0,1
 if [ "${GGX_CLI_QUICK:-0}" != 1 ]; then
-    # CSV: a header row, one row per claim and shape (150), every row naming a seed file; --alpha sets all three shapes
+    # CSV: a header row, one row per claim and shape (162), every row naming a seed file; --alpha sets all three shapes
     "$GGX" audit --alpha 0.15,0.5 --format csv > a2.csv && head -1 a2.csv | grep -qx 'id,seed_file,where,scope,claim,shape,verdict,evidence' &&
-        [ "$(tail -n +2 a2.csv | grep -c '^"[a-z0-9-]*","[0-9][0-9][0-9]_[0-9a-f]*\.txt')" -eq 150 ] &&
+        [ "$(tail -n +2 a2.csv | grep -c '^"[a-z0-9-]*","[0-9][0-9][0-9]_[0-9a-f]*\.txt')" -eq 162 ] &&
         grep -q '"rotated A (0.15, 0.5; theta_z 28.65 deg)"' a2.csv && grep -q '"skewed A (0.15, 0.5; 22.92, -17.19, 28.65 deg)"' a2.csv &&
         ok || bad "audit --alpha --format csv: $(head -3 a2.csv)"
     # every audit row that docs/seed-claims.md names as covering a claim exists

@@ -31,7 +31,8 @@ static const struct {
     {"stretch-jacobian", {H, N, N}}, {"reflect-jacobian", {H, H, H}}, {"cross-product", {H, H, H}},
     {"sphere-normal", {H, H, H}}, {"half-cut", {H, H, H}},  {"g1-pdf-identity", {H, H, H}}, {"vndf-frame", {H, N, N}},
     {"vndf-eq33", {H, H, H}},     {"sggx", {H, H, H}},      {"hessian", {H, H, H}},     {"normalize-derivative", {H, H, H}},
-    {"stretch-inverse", {H, N, N}}, {"equal-area-grid", {H, N, N}},
+    {"stretch-inverse", {H, N, N}}, {"equal-area-grid", {H, N, N}}, {"inversion-forms", {H, N, N}},
+    {"spherical-form", {H, N, N}}, {"det-sr", {H, H, H}},    {"an-is-n", {H, H, N}},
 };
 
 static void default_shapes(double A[AUDIT_SHAPES][3][3])

@@ -1317,6 +1317,66 @@ int audit_run(const double A[AUDIT_SHAPES][3][3], audit_row *rows, int progress)
         set(r, k, x2 < 183 ? AUDIT_HOLDS : AUDIT_FAILS, "chi-square %.1f over the 100 cells with 99 degrees of freedom (2e5 normals "
             "from the ellipse lift, mapped back by the stretch's inverse)", x2);
     }
+    r = add(rows, &nr, "inversion-forms", "for the lifted normal: cos phi_m = ax cos 2 pi xi2 / N, sin phi_m = ay sin 2 pi xi2 / N and "
+            "tan theta_m = sqrt(xi1 / (1 - xi1)) N = sqrt(xi1 / ((1 - xi1)(cos^2 phi_m / ax^2 + sin^2 phi_m / ay^2))), N^2 = "
+            "ax^2 cos^2 + ay^2 sin^2", SEED_BLOG2, "Sampling Normals; eq:theta_m_sample", AUDIT_SCOPE_DIAGONAL);
+    for (int k = 0; k < AUDIT_SHAPES; k++) {
+        if (sh[k].kind != GGX_SHAPE_DIAGONAL) {
+            set(r, k, AUDIT_NOT_CLAIMED, "cannot be applied (written in x and y for a diagonal A)");
+            continue;
+        }
+        double ax = A[k][0][0], ay = A[k][1][1];
+        rng g = {102};
+        double worst = 0;
+        for (int i = 0; i < 1000; i++) {
+            double x1 = rng_uniform(&g), t = 2 * T_PI * rng_uniform(&g), c = cos(t), sn = sin(t);
+            /* the normal at the point lifted from (a r cos t, b r sin t), a = 1 / ax, b = 1 / ay: the gradient A^T A p */
+            ggx_vec3 p = t_vec(sqrt(x1) * c / ax, sqrt(x1) * sn / ay, sqrt(1 - x1));
+            ggx_vec3 m = t_normalize(t_mattvec(A[k], t_matvec(A[k], p)));
+            double N = sqrt(ax * ax * c * c + ay * ay * sn * sn), ph = atan2(m.y, m.x), th = atan2(hypot(m.x, m.y), m.z);
+            double inv = sqrt(x1 / ((1 - x1) * (cos(ph) * cos(ph) / (ax * ax) + sin(ph) * sin(ph) / (ay * ay))));
+            worst = fmax(worst, fmax(fabs(cos(ph) - ax * c / N), fabs(sin(ph) - ay * sn / N)));
+            worst = fmax(worst, fmax(fabs(tan(th) / (sqrt(x1 / (1 - x1)) * N) - 1), fabs(inv / (sqrt(x1 / (1 - x1)) * N) - 1)));
+        }
+        set(r, k, worst < 1e-9 ? AUDIT_HOLDS : AUDIT_FAILS, "largest difference %.1e over 1000 points (the angles from the "
+            "ellipsoid's own normal, the gradient at the lifted point)", worst);
+    }
+
+    r = add(rows, &nr, "spherical-form", "D = 1 / (pi ax ay cos^4 theta (1 + tan^2 theta (cos^2 phi / ax^2 + sin^2 phi / ay^2))^2)",
+            SEED_BLOG1, "normal in spherical coordinates", AUDIT_SCOPE_DIAGONAL);
+    for (int k = 0; k < AUDIT_SHAPES; k++) {
+        double ax, ay;
+        if (!diag_alphas(&sh[k], &ax, &ay)) {
+            set(r, k, AUDIT_NOT_CLAIMED, "cannot be applied (a skewed A has no ax, ay)");
+            continue;
+        }
+        rng g = {103};
+        double worst = 0;
+        for (int i = 0; i < 1000; i++) {
+            double th = acos(0.02 + 0.98 * rng_uniform(&g)), ph = 2 * T_PI * rng_uniform(&g), c = cos(th), t2 = tan(th) * tan(th);
+            double q = 1 + t2 * (cos(ph) * cos(ph) / (ax * ax) + sin(ph) * sin(ph) / (ay * ay));
+            worst = fmax(worst, fabs(1 / (T_PI * ax * ay * c * c * c * c * q * q) / ggx_ndf(&sh[k], t_dir(th, ph)) - 1));
+        }
+        set(r, k, worst < 1e-9 ? AUDIT_HOLDS : AUDIT_FAILS, "largest relative difference from Walter eq 1 %.1e over 1000 normals",
+            worst);
+    }
+
+    r = add(rows, &nr, "det-sr", "A = S R with R a rotation: |A| = |S| = ax ay", SEED_WALTER, "eq 2 and text", AUDIT_SCOPE_ANY);
+    for (int k = 0; k < AUDIT_SHAPES; k++) {
+        /* S's entries are the norms of A's rows (R's rows are unit vectors) */
+        double rn[3];
+        for (int i = 0; i < 3; i++) rn[i] = sqrt(A[k][i][0] * A[k][i][0] + A[k][i][1] * A[k][i][1] + A[k][i][2] * A[k][i][2]);
+        double e = fabs(sh[k].det / (rn[0] * rn[1] * rn[2]) - 1);
+        set(r, k, e < 1e-12 ? AUDIT_HOLDS : AUDIT_FAILS, "|det A| = %.6g, ax ay = %.6g (relative difference %.1e)", sh[k].det,
+            rn[0] * rn[1] * rn[2], e);
+    }
+
+    r = add(rows, &nr, "an-is-n", "theta_x = theta_y = 0 gives A n = n, so ||An|| = 1", SEED_WALTER, "section 1, last sentence",
+            AUDIT_SCOPE_ROTATED);
+    for (int k = 0; k < AUDIT_SHAPES; k++) {
+        ggx_vec3 an = t_matvec(A[k], n), d = t_add(an, t_scale(n, -1));
+        set(r, k, sqrt(t_dot(d, d)) < 1e-12 ? AUDIT_HOLDS : AUDIT_FAILS, "A n = (%.4g, %.4g, %.4g)", an.x, an.y, an.z);
+    }
     /* a shape outside a claim's scope: not claimed, with what happens when applied anyway */
     for (int i = 0; i < nr; i++) apply_scope(&rows[i], sh);
     if (progress) fputc('\n', stderr);
