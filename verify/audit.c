@@ -365,6 +365,13 @@ static int diag_alphas(const ggx_shape *s, double *ax, double *ay)
     *ax = s->alpha_x, *ay = s->alpha_y;
     return s->kind != GGX_SHAPE_SKEWED;
 }
+/* The same for a row: a skewed shape gets "cannot be applied" and 0. */
+static int alphas_or_skip(audit_row *r, int k, const ggx_shape *s, double *ax, double *ay)
+{
+    if (diag_alphas(s, ax, ay)) return 1;
+    set(r, k, AUDIT_NOT_CLAIMED, "cannot be applied (a skewed A has no ax, ay)");
+    return 0;
+}
 static ggx_vec3 random_upper(rng *g) { return t_dir(acos(0.02 + 0.98 * rng_uniform(g)), 2 * T_PI * rng_uniform(g)); }
 
 /* The visible-normal pdf of seed 004 as written, D(m) (m.v) G1(v) / (v.n) on {m.v > 0} with D's formula (no
@@ -877,10 +884,7 @@ int audit_run(const double A[AUDIT_SHAPES][3][3], audit_row *rows, int progress)
             SEED_STRETCH, "GGX composition (end)", AUDIT_SCOPE_DIAGONAL);
     for (int k = 0; k < AUDIT_SHAPES; k++) {
         double ax, ay;
-        if (!diag_alphas(&sh[k], &ax, &ay)) {
-            set(r, k, AUDIT_NOT_CLAIMED, "cannot be applied (a skewed A has no ax, ay)");
-            continue;
-        }
+        if (!alphas_or_skip(r, k, &sh[k], &ax, &ay)) continue;
         /* at omega = n the composition is the plain stretch, whose pdf is D(m) (m.n) (row stretch); ||m_|| =
          * 1 / ||S^-1 m|| and the pre-stretch s = S^-1 m / ||S^-1 m|| */
         rng g = {82};
@@ -944,10 +948,7 @@ int audit_run(const double A[AUDIT_SHAPES][3][3], audit_row *rows, int progress)
             "z_z = v.n / ||Av||", SEED_VNDF, "vGGX Sampling; Solving for z_z", AUDIT_SCOPE_DIAGONAL);
     for (int k = 0; k < AUDIT_SHAPES; k++) {
         double ax, ay;
-        if (!diag_alphas(&sh[k], &ax, &ay)) {
-            set(r, k, AUDIT_NOT_CLAIMED, "cannot be applied (a skewed A has no ax, ay)");
-            continue;
-        }
+        if (!alphas_or_skip(r, k, &sh[k], &ax, &ay)) continue;
         rng g = {84};
         double wl = 0, wz = 0;
         for (int i = 0; i < 1000; i++) {
@@ -1084,10 +1085,7 @@ int audit_run(const double A[AUDIT_SHAPES][3][3], audit_row *rows, int progress)
             "||A^-1 m||^3", SEED_STRETCH ", " SEED_VNDF, "GGX composition; 004 Elliptic Stretch", AUDIT_SCOPE_DIAGONAL);
     for (int k = 0; k < AUDIT_SHAPES; k++) {
         double ax, ay;
-        if (!diag_alphas(&sh[k], &ax, &ay)) {
-            set(r, k, AUDIT_NOT_CLAIMED, "cannot be applied (a skewed A has no ax, ay)");
-            continue;
-        }
+        if (!alphas_or_skip(r, k, &sh[k], &ax, &ay)) continue;
         /* the map of the shape itself, m = normalize(A^T s) (A^T = A for a diagonal A), against the literal form
          * in x, y and against |A| ||A^-T m||^3 (the form for any A) */
         double Ait[3][3];
@@ -1280,10 +1278,7 @@ int audit_run(const double A[AUDIT_SHAPES][3][3], audit_row *rows, int progress)
             "Stretch", AUDIT_SCOPE_DIAGONAL);
     for (int k = 0; k < AUDIT_SHAPES; k++) {
         double ax, ay;
-        if (!diag_alphas(&sh[k], &ax, &ay)) {
-            set(r, k, AUDIT_NOT_CLAIMED, "cannot be applied (a skewed A has no ax, ay)");
-            continue;
-        }
+        if (!alphas_or_skip(r, k, &sh[k], &ax, &ay)) continue;
         double Ait[3][3];
         inv_t(A[k], Ait);
         rng g = {100};
@@ -1346,10 +1341,7 @@ int audit_run(const double A[AUDIT_SHAPES][3][3], audit_row *rows, int progress)
             SEED_BLOG1, "normal in spherical coordinates", AUDIT_SCOPE_DIAGONAL);
     for (int k = 0; k < AUDIT_SHAPES; k++) {
         double ax, ay;
-        if (!diag_alphas(&sh[k], &ax, &ay)) {
-            set(r, k, AUDIT_NOT_CLAIMED, "cannot be applied (a skewed A has no ax, ay)");
-            continue;
-        }
+        if (!alphas_or_skip(r, k, &sh[k], &ax, &ay)) continue;
         rng g = {103};
         double worst = 0;
         for (int i = 0; i < 1000; i++) {
