@@ -232,6 +232,11 @@ static float ref_caps_f_z(const sctx *c, long k)
 }
 SCALAR_BENCH(r_caps, ref_caps_vndf_d(c->s->a, c->v[k], c->u1[k], c->u2[k]).z)
 SCALAR_BENCH(r_caps_f, ref_caps_f_z(c, k))
+#ifdef GGX_BENCH_V3
+#include "isa_v3.h"
+SCALAR_BENCH(b_vndf_f_v3, bench_v3_vndf_f_z(&c->sf, c->fv[k], c->fu1[k], c->fu2[k]))
+SCALAR_BENCH(r_caps_f_v3, bench_v3_listing_z(c->ax, c->ay, c->fv[k], c->fu1[k], c->fu2[k]))
+#endif
 SCALAR_BENCH(r_g1, ref_g1_eq6(c->s->a, c->v[k], c->m[k]))
 SCALAR_BENCH(r_pdf, ref_pdf_vndf_eq33(c->s->a, c->s->ainv_t, c->s->det, c->v[k], c->m[k]))
 SCALAR_BENCH(r_floor, ref_sqrt_sincos_f(c->fu1[k], c->fu2[k]))
@@ -425,10 +430,18 @@ int main(int argc, char **argv)
               {"Dupuy-Benyoub float (diagonal)", "ggx_sample_vndf", r_caps_f, b_vndf, &diag, &diag},
               {"Dupuy-Benyoub float (diagonal)", "ggx_sample_vndf_f (diagonal)", r_caps_f, b_vndf_f, &diag, &diag},
               {"Dupuy-Benyoub float (diagonal)", "ggx_sample_vndf_f (skewed)", r_caps_f, b_vndf_f, &diag, &skew},
+#ifdef GGX_BENCH_V3
+              {"Dupuy-Benyoub float, v3 (diag)", "ggx_sample_vndf_f, v3 (diag)", r_caps_f_v3, b_vndf_f_v3, &diag, &diag},
+              {"Dupuy-Benyoub float, v3 (diag)", "ggx_sample_vndf_f, v3 (skewed)", r_caps_f_v3, b_vndf_f_v3, &diag,
+               &skew},
+#endif
               {"eq 6 plain (skewed)", "ggx_g1", r_g1, b_g1, &skew, &skew},
               {"eq 33 plain (skewed)", "ggx_pdf_vndf", r_pdf, b_pdf, &skew, &skew},
               {"sqrtf + sinf/cosf", NULL, r_floor, NULL, &diag, &diag}};
     for (unsigned k = 0; k < sizeof rb / sizeof rb[0]; k++) {
+#ifdef GGX_BENCH_V3
+        if ((rb[k].ref == r_caps_f_v3) && !bench_v3_supported()) continue;
+#endif
         sc.s = rb[k].s;
         double tr = time_it(rb[k].ref, &sc, ns, NULL);
         if (!rb[k].lib) {

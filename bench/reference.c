@@ -13,7 +13,7 @@
 /* Spherical caps (Dupuy & Benyoub 2023) for any A: in sphere space the visible normals of the unit sphere seen from
  * v' = normalize(A v) are v' + c with c uniform on the cap c.z >= -v'.z; A^T maps a sphere normal back to the
  * ellipsoid's (Walter section 1). A is canonical, so the truncation m.n >= 0 is c.z >= -v'.z. */
-ggx_vec3 ref_caps_vndf_d(const double A[3][3], ggx_vec3 v, double u1, double u2)
+ggx_vec3 REF_FN(ref_caps_vndf_d)(const double A[3][3], ggx_vec3 v, double u1, double u2)
 {
     double sx = A[0][0] * v.x + A[0][1] * v.y + A[0][2] * v.z;
     double sy = A[1][0] * v.x + A[1][1] * v.y + A[1][2] * v.z;
@@ -46,7 +46,8 @@ static rvec3f normalize_f(rvec3f a)
     return r;
 }
 
-void ref_caps_vndf_f_diag(float ax, float ay, float vx, float vy, float vz, float u1, float u2, float out[3])
+void REF_FN(ref_caps_vndf_f_diag)(float ax, float ay, float vx, float vy, float vz, float u1, float u2,
+                                  float out[3])
 {
     rvec3f wi = normalize_f((rvec3f){ax * vx, ay * vy, vz});
     float phi = 2.0f * (float)REF_PI * u1;
@@ -60,7 +61,7 @@ void ref_caps_vndf_f_diag(float ax, float ay, float vx, float vy, float vz, floa
 
 /* Walter eq 6 with eq 26 and 28: G1 = min(1, A_e(n) |u.n| / A_l(u, n))
  * = min(1, 2 ||A n||^2 |u.n| / (||A u|| ||A n|| + (A u).(A n))) X+(u.m); n = +z, so A n is A's third column. */
-double ref_g1_eq6(const double A[3][3], ggx_vec3 u, ggx_vec3 m)
+double REF_FN(ref_g1_eq6)(const double A[3][3], ggx_vec3 u, ggx_vec3 m)
 {
     if (!(u.x * m.x + u.y * m.y + u.z * m.z > 0.0)) return 0.0;
     double nx = A[0][2], ny = A[1][2], nz = A[2][2];
@@ -74,7 +75,8 @@ double ref_g1_eq6(const double A[3][3], ggx_vec3 u, ggx_vec3 m)
 
 /* Walter eq 33: D_v(m) = A_e(n) / A_l(v, n) X+(m.v) D(m) (m.v), with D(m) = X+(m.n) / (pi |A| ||A n||
  * ||A^{-T} m||^4) (eq 1) and the area ratio from eq 26 and 28 as in ref_g1_eq6. */
-double ref_pdf_vndf_eq33(const double A[3][3], const double AinvT[3][3], double det, ggx_vec3 v, ggx_vec3 m)
+double REF_FN(ref_pdf_vndf_eq33)(const double A[3][3], const double AinvT[3][3], double det, ggx_vec3 v,
+                                 ggx_vec3 m)
 {
     double nx = A[0][2], ny = A[1][2], nz = A[2][2];
     double vx = A[0][0] * v.x + A[0][1] * v.y + A[0][2] * v.z;
@@ -90,7 +92,7 @@ double ref_pdf_vndf_eq33(const double A[3][3], const double AinvT[3][3], double 
     return ratio * (mv > 0.0 ? mv : 0.0) * d;
 }
 
-float ref_sqrt_sincos_f(float u1, float x)
+float REF_FN(ref_sqrt_sincos_f)(float u1, float x)
 {
     float phi = 2.0f * (float)REF_PI * u1;
     return sqrtf(x) + sinf(phi) + cosf(phi);

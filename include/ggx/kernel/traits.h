@@ -23,6 +23,7 @@
 /* The fast paths' "not final" marker. */
 #define GGX_NAN ((float)NAN)
 #define GGX_ROUND_MAGIC 12582912.0f /* 1.5 2^23: x + it - it rounds x to an integer for |x| < 2^22 */
+#define GGX_QUARTER_MAGIC 3145728.0f /* 1.5 2^21: x + it - it rounds x to a multiple of 1/4 for |x| < 2^20 */
 /* Rim step in sphere space: samples on the rim of the lune (pdf 0) are moved inside by this much, as in double, so
  * that the float sampler follows the double one to the rim. It need not exceed float rounding: (A^T p).z = p.z
  * exactly for the normalised float shape (third column (0, 0, 1)), and m.v is verified after the move (a failure
@@ -90,6 +91,7 @@
 #define GGX_HUGE DBL_MAX
 #define GGX_NAN ((double)NAN)
 #define GGX_ROUND_MAGIC 6755399441055744.0 /* 1.5 2^52 */
+#define GGX_QUARTER_MAGIC 1688849860263936.0 /* 1.5 2^50 */
 /* 2^-30: far above the rounding of a double dot product (1e-16); the moved set has probability ~1e-9. */
 #define GGX_RIM_STEP 9.313225746154785e-10
 /* 2^-48: far above the rounding of a dot product of unit vectors (~1e-16). */

@@ -18,6 +18,7 @@
 #undef GGX_HUGE
 #undef GGX_NAN
 #undef GGX_ROUND_MAGIC
+#undef GGX_QUARTER_MAGIC
 #undef GGX_RIM_STEP
 #undef GGX_MARGIN
 #undef GGX_RIM_TRIES
