@@ -1,24 +1,14 @@
-/* SPDX-License-Identifier: MIT */
+/* The seed audit: audit_run, the claims of the first 54 rows, and the writer. The later claims are in
+ * verify/audit_*.c by subject; their shared parts in verify/audit_internal.h. SPDX-License-Identifier: MIT */
 #include "audit.h"
 
 #include <math.h>
-#include <stdarg.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 
+#include "audit_internal.h"
 #include "ggx/ggx_samplers.h"
-
-typedef ggx_vec3 (*vndf_fn)(const ggx_shape *, ggx_vec3, double, double);
-/* A sampler as a seed writes it, in terms of the matrix A it is given. */
-typedef ggx_vec3 (*literal_fn)(const double A[3][3], ggx_vec3 v, double u1, double u2); /* v: the view (VNDF) */
-
-typedef struct actx {
-    normal_keys keys;      /* first: the chi-square key and density come from normal_keys_* */
-    vndf_fn f;             /* sampler (for NDF samplers v is n) */
-    literal_fn literal;    /* or, when set, the seed's literal form applied to A */
-    const double (*A)[3];
-} actx;
 
 static double pdf_g1_form(const ggx_shape *s, ggx_vec3 v, ggx_vec3 m) /* G1(v) D (m.v)+ / v.n, Walter's G1 */
 {
@@ -70,91 +60,25 @@ ggx_vec3 verify_crescent_blog_s(const ggx_shape *s, ggx_vec3 v, double u1, doubl
     return t_normalize(t_mattvec(s->a, p));
 }
 
-static int a_draw(void *vc, rng *r, ggx_vec3 *m)
-{
-    actx *c = vc;
-    double u1 = rng_uniform(r), u2 = rng_uniform(r);
-    *m = c->literal ? c->literal(c->A, c->keys.v, u1, u2) : c->f(c->keys.s, c->keys.v, u1, u2);
-    return t_dot(*m, *m) > 0.5;
-}
 
-/* chi-square p-value of the sampler of c against its pdf (0 when a sample has zero pdf); a dot on stderr when
- * progress is set. Quiet: a claim that fails is an answer, not a failure to keep a histogram of. */
-static double chi2_p(actx *c, uint64_t seed, int progress)
-{
-    chi2_problem p = {"audit", 1, a_draw, normal_keys_key, normal_keys_density, c};
-    chi2_result r = chi2_run_quiet(&p, 1000000, 100, 200, seed, 0.0);
-    if (progress) fputc('.', stderr);
-    return r.zero_cell_hits ? 0.0 : r.pvalue;
-}
 
-static double chi2_sampler(const ggx_shape *s, ggx_vec3 v, vndf_fn f, verify_pdf_fn pdf, uint64_t seed, int progress)
-{
-    actx c = {{s, v, pdf}, f, NULL, NULL};
-    return chi2_p(&c, seed, progress);
-}
 
-static double alpha_level(void) { return chi2_sidak(CHI2_SUITE_RUNS); }
 
-/* The seeds, by file (../shared/seeds). */
-#define SEED_BLOG2 "000_a290dd7369ef5aa9.txt"    /* blog, Part 2 */
-#define SEED_STRETCH "001_3ccb6b534f20718a.txt"  /* Engstad, Elliptic Stretch */
-#define SEED_BLOG1 "002_bcf7c176b3e74bba.txt"    /* blog, Part 1 */
-#define SEED_WALTER "003_d5b5d8b0d5f73c5c.txt"   /* Walter et al., The Ellipsoid NDF */
-#define SEED_VNDF "004_96c01450b98ca7e0.txt"     /* Engstad, Proof of the Sampling Method for Visible GGX */
 
-/* Sets a row's verdict for shape k and its evidence (printf-style). */
-static void set(audit_row *r, int k, audit_verdict v, const char *fmt, ...) __attribute__((format(printf, 4, 5)));
-static void set(audit_row *r, int k, audit_verdict v, const char *fmt, ...)
-{
-    va_list ap;
-    va_start(ap, fmt);
-    r->verdict[k] = v;
-    vsnprintf(r->text[k], AUDIT_TEXT, fmt, ap);
-    va_end(ap);
-}
 
-static void append(audit_row *r, int k, const char *fmt, ...) __attribute__((format(printf, 3, 4)));
-static void append(audit_row *r, int k, const char *fmt, ...)
-{
-    size_t l = strlen(r->text[k]);
-    va_list ap;
-    va_start(ap, fmt);
-    vsnprintf(r->text[k] + l, AUDIT_TEXT - l, fmt, ap);
-    va_end(ap);
-}
 
-static void verdict_p(audit_row *r, int k, double p)
-{
-    set(r, k, p >= alpha_level() ? AUDIT_HOLDS : AUDIT_FAILS, "chi-square p = %.2g", p);
-}
 
-static audit_row *add(audit_row *rows, int *n, const char *id, const char *claim, const char *seed_file,
-                      const char *where, audit_scope scope)
-{
-    if (*n >= AUDIT_MAX_ROWS) abort(); /* a claim added beyond the table's size: raise AUDIT_MAX_ROWS */
-    audit_row *r = &rows[(*n)++];
-    memset(r, 0, sizeof *r);
-    r->id = id, r->claim = claim, r->seed_file = seed_file, r->where = where, r->scope = scope;
-    for (int k = 0; k < AUDIT_SHAPES; k++) set(r, k, AUDIT_NOT_CLAIMED, "not checked");
-    return r;
-}
 
-static int in_scope(audit_scope scope, const ggx_shape *s)
-{
-    return scope == AUDIT_SCOPE_ANY || s->kind == GGX_SHAPE_DIAGONAL ||
-           (scope == AUDIT_SCOPE_ROTATED && s->kind == GGX_SHAPE_UNSKEWED);
-}
 
 /* After a row's checks: a shape outside the seed's scope gets "not claimed", its evidence kept as what happens when
  * the claim is applied anyway. */
 static void apply_scope(audit_row *r, const ggx_shape sh[AUDIT_SHAPES])
 {
     for (int k = 0; k < AUDIT_SHAPES; k++) {
-        if (in_scope(r->scope, &sh[k]) || r->verdict[k] == AUDIT_NOT_CLAIMED) continue;
+        if (au_in_scope(r->scope, &sh[k]) || r->verdict[k] == AUDIT_NOT_CLAIMED) continue;
         char t[AUDIT_TEXT];
         snprintf(t, sizeof t, "%s", r->text[k]);
-        set(r, k, AUDIT_NOT_CLAIMED, "applied anyway, it %s: %s", r->verdict[k] == AUDIT_FAILS ? "fails" : "holds", t);
+        au_set(r, k, AUDIT_NOT_CLAIMED, "applied anyway, it %s: %s", r->verdict[k] == AUDIT_FAILS ? "fails" : "holds", t);
     }
 }
 
@@ -168,7 +92,7 @@ typedef struct sampler_claim {
     const char *claim, *seed_file, *where;
     audit_scope scope;
     uint64_t chi2_seed;
-    literal_fn literal;
+    au_literal_fn literal;
     const char *library, *note_skewed;
 } sampler_claim;
 
@@ -201,27 +125,27 @@ static void sampler_rows(audit_row *rows, int *nr, ggx_sampler_family family, co
         const ggx_sampler_info *info = ggx_sampler_get((ggx_sampler_id)id);
         const sampler_claim *cl = &CLAIMS[id];
         if (info->family != family || !cl->claim || !info->sample) continue;
-        audit_row *r = add(rows, nr, info->name, cl->claim, cl->seed_file, cl->where, cl->scope);
+        audit_row *r = au_add(rows, nr, info->name, cl->claim, cl->seed_file, cl->where, cl->scope);
         ggx_vec3 view = family == GGX_FAMILY_NDF ? t_vec(0, 0, 1) : v;
         for (int k = 0; k < AUDIT_SHAPES; k++) {
             if (info->domain == GGX_DOMAIN_UNSKEWED && sh[k].kind == GGX_SHAPE_SKEWED) {
-                set(r, k, AUDIT_NOT_CLAIMED, "cannot be applied (the formula has no skew parameters)");
+                au_set(r, k, AUDIT_NOT_CLAIMED, "cannot be applied (the formula has no skew parameters)");
                 continue;
             }
             uint64_t seed = cl->chi2_seed + 2 * (uint64_t)k;
-            actx c = {{&sh[k], view, info->pdf}, info->sample, cl->literal, A[k]};
-            double p_as_written = chi2_p(&c, seed, progress);
-            verdict_p(r, k, p_as_written);
+            au_actx c = {{&sh[k], view, info->pdf}, info->sample, cl->literal, A[k]};
+            double p_as_written = au_chi2_p(&c, seed, progress);
+            au_verdict_p(r, k, p_as_written);
             if (cl->literal && r->verdict[k] == AUDIT_FAILS) {
                 c.literal = NULL;
-                double p = chi2_p(&c, seed + 1, progress);
-                if (p >= alpha_level() && in_scope(cl->scope, &sh[k]))
-                    set(r, k, AUDIT_CORRECTED, "as written chi-square p = %.2g; holds as %s (p = %.2g)", p_as_written,
+                double p = au_chi2_p(&c, seed + 1, progress);
+                if (p >= au_alpha_level() && au_in_scope(cl->scope, &sh[k]))
+                    au_set(r, k, AUDIT_CORRECTED, "as written chi-square p = %.2g; holds as %s (p = %.2g)", p_as_written,
                         cl->library, p);
                 else
-                    append(r, k, "; holds as %s (p = %.2g)", cl->library, p);
+                    au_append(r, k, "; holds as %s (p = %.2g)", cl->library, p);
             }
-            if (cl->note_skewed && sh[k].kind == GGX_SHAPE_SKEWED) append(r, k, "%s", cl->note_skewed);
+            if (cl->note_skewed && sh[k].kind == GGX_SHAPE_SKEWED) au_append(r, k, "%s", cl->note_skewed);
         }
         }
 }
@@ -241,7 +165,6 @@ static double vis_f(ggx_vec3 m, void *vc)
     return (c->use_g1 ? ggx_g1(c->s, c->v, m) : 1.0) * ggx_ndf(c->s, m) * mv / c->v.z;
 }
 
-static double uniform_cb(void *st) { return rng_uniform((rng *)st); }
 
 /* A claim about every view is checked on a grid of views, not one: 6 polar angles from 0.3 to 1.5 rad (86 degrees)
  * times 8 azimuths. f returns the claim's error at view v; the worst view is reported. */
@@ -278,62 +201,13 @@ static void verdict_views(audit_row *r, int k, double (*f)(const ggx_shape *, gg
 {
     double th = 0, ph = 0, x = 1, worst = worst_view(f, s, &th, &ph, &x);
     if (worst < tol)
-        set(r, k, AUDIT_HOLDS, "%s integrates to 1 within %.0e at all %d views of the grid", what, fmax(worst, 1e-16),
+        au_set(r, k, AUDIT_HOLDS, "%s integrates to 1 within %.0e at all %d views of the grid", what, fmax(worst, 1e-16),
             VIEW_THETAS * VIEW_PHIS);
     else
-        set(r, k, AUDIT_FAILS, "%s integrates to %.4f at theta %.1f, phi %.2f rad (worst of %d views)", what, x, th, ph,
+        au_set(r, k, AUDIT_FAILS, "%s integrates to %.4f at theta %.1f, phi %.2f rad (worst of %d views)", what, x, th, ph,
             VIEW_THETAS * VIEW_PHIS);
 }
 
-/* The inverse transpose of the user's A, by cofactors (the audit checks the seeds' formulas on the matrix given,
- * independently of the library's canonical frame). */
-static void inv_t(const double A[3][3], double Ait[3][3])
-{
-    double det = A[0][0] * (A[1][1] * A[2][2] - A[1][2] * A[2][1]) - A[0][1] * (A[1][0] * A[2][2] - A[1][2] * A[2][0]) +
-                 A[0][2] * (A[1][0] * A[2][1] - A[1][1] * A[2][0]);
-    for (int i = 0; i < 3; i++)
-        for (int j = 0; j < 3; j++) {
-            int i1 = (i + 1) % 3, i2 = (i + 2) % 3, j1 = (j + 1) % 3, j2 = (j + 2) % 3;
-            Ait[i][j] = (A[i1][j1] * A[i2][j2] - A[i1][j2] * A[i2][j1]) / det;
-        }
-}
-/* Areas by shooting rays at the ellipsoid x^T A^T A x = 1 itself (Ce = 1), not by integrating D: N rays along -u
- * through the rectangle that bounds its shadow (half-widths ||A^-T e|| along e1, e2 perpendicular to u: the
- * ellipsoid's support function); a ray hits where (p + l u)^T M (p + l u) = 1 has a root, M = A^T A, and the point
- * seen from u is the larger root, whose outward normal M x faces u. With lune set, only hits whose normal has
- * m.v >= 0 count (Walter eq 28's lune). Returns the shadow's area; *sigma its Monte Carlo standard error. */
-static double ray_area(const double A[3][3], ggx_vec3 u, ggx_vec3 v, int lune, long N, uint64_t seed, double *sigma)
-{
-    double M[3][3], Ait[3][3]; /* A^T A and A^-T */
-    inv_t(A, Ait);
-    for (int i = 0; i < 3; i++)
-        for (int j = 0; j < 3; j++) {
-            M[i][j] = 0;
-            for (int k = 0; k < 3; k++) M[i][j] += A[k][i] * A[k][j];
-        }
-    ggx_vec3 e1, e2;
-    t_frame(u, &e1, &e2);
-    ggx_vec3 h1v = t_matvec((const double(*)[3])Ait, e1), h2v = t_matvec((const double(*)[3])Ait, e2);
-    double h1 = sqrt(t_dot(h1v, h1v)), h2 = sqrt(t_dot(h2v, h2v));
-    ggx_vec3 Mu = t_matvec((const double(*)[3])M, u);
-    double a = t_dot(u, Mu);
-    rng g = {seed};
-    long hits = 0;
-    for (long i = 0; i < N; i++) {
-        ggx_vec3 p = t_add(t_scale(e1, h1 * (2 * rng_uniform(&g) - 1)), t_scale(e2, h2 * (2 * rng_uniform(&g) - 1)));
-        ggx_vec3 Mp = t_matvec((const double(*)[3])M, p);
-        double b = t_dot(u, Mp), c = t_dot(p, Mp) - 1, disc = b * b - a * c;
-        if (disc < 0) continue;
-        if (lune) {
-            ggx_vec3 x = t_add(p, t_scale(u, (-b + sqrt(disc)) / a)), nrm = t_matvec((const double(*)[3])M, x);
-            if (t_dot(nrm, v) < 0) continue;
-        }
-        hits++;
-    }
-    double f = (double)hits / (double)N, box = 4 * h1 * h2;
-    *sigma = box * sqrt(f * (1 - f) / (double)N);
-    return box * f;
-}
 
 /* A row checked by ray shooting for each shape: the worst |rays / formula - 1| over the directions, within 5 sigma. */
 static void verdict_rays(audit_row *r, int k, const double A[3][3], const ggx_shape *s, int lune)
@@ -344,35 +218,16 @@ static void verdict_rays(audit_row *r, int k, const double A[3][3], const ggx_sh
     int ok = 1;
     for (int i = 0; i < 4; i++) {
         ggx_vec3 u = t_dir(dirs[i][0], dirs[i][1]), w = lune ? (i % 2 ? v : n) : u;
-        double sig, got = ray_area(A, u, w, lune, 1000000, 301 + (uint64_t)i, &sig);
+        double sig, got = au_ray_area(A, u, w, lune, 1000000, 301 + (uint64_t)i, &sig);
         double want = lune ? ggx_lune_area(s, u, w) : ggx_projected_area(s, u);
         ok &= fabs(got - want) <= 5 * sig;
         if (fabs(got / want - 1) > worst) worst = fabs(got / want - 1), worst_sig = sig / want;
     }
-    set(r, k, ok ? AUDIT_HOLDS : AUDIT_FAILS, "10^6 rays at the ellipsoid from each of 4 directions%s: worst |rays / formula - 1| = "
+    au_set(r, k, ok ? AUDIT_HOLDS : AUDIT_FAILS, "10^6 rays at the ellipsoid from each of 4 directions%s: worst |rays / formula - 1| = "
         "%.1e (%s 5 sigma = %.1e)", lune ? " (lunes with v = n and v at 57 degrees)" : "", worst, ok ? "within" : "beyond",
         5 * worst_sig);
 }
 
-static double norm_of(const double M[3][3], ggx_vec3 v)
-{
-    ggx_vec3 r = t_matvec(M, v);
-    return sqrt(t_dot(r, r));
-}
-/* The alphas of an unskewed shape (the formulas the seeds write for a diagonal A, in x and y); 0 for a skewed one. */
-static int diag_alphas(const ggx_shape *s, double *ax, double *ay)
-{
-    *ax = s->alpha_x, *ay = s->alpha_y;
-    return s->kind != GGX_SHAPE_SKEWED;
-}
-/* The same for a row: a skewed shape gets "cannot be applied" and 0. */
-static int alphas_or_skip(audit_row *r, int k, const ggx_shape *s, double *ax, double *ay)
-{
-    if (diag_alphas(s, ax, ay)) return 1;
-    set(r, k, AUDIT_NOT_CLAIMED, "cannot be applied (a skewed A has no ax, ay)");
-    return 0;
-}
-static ggx_vec3 random_upper(rng *g) { return t_dir(acos(0.02 + 0.98 * rng_uniform(g)), 2 * T_PI * rng_uniform(g)); }
 
 /* The visible-normal pdf of seed 004 as written, D(m) (m.v) G1(v) / (v.n) on {m.v > 0} with D's formula (no
  * indicator of m.n > 0), over the lower half: D's formula is even, so that part is the integral over the upper
@@ -381,16 +236,11 @@ typedef struct lower_ctx {
     double ax, ay;
     ggx_vec3 v;
 } lower_ctx;
-static double ggx_formula(double ax, double ay, ggx_vec3 m)
-{
-    double q = m.x * m.x / (ax * ax) + m.y * m.y / (ay * ay) + m.z * m.z;
-    return 1.0 / (T_PI * ax * ay * q * q);
-}
 static double lower_f(ggx_vec3 m, void *vc)
 {
     lower_ctx *c = vc;
     double mv = -t_dot(m, c->v);
-    return mv > 0 ? ggx_formula(c->ax, c->ay, m) * mv : 0.0;
+    return mv > 0 ? au_ggx_formula(c->ax, c->ay, m) * mv : 0.0;
 }
 /* The mean normal int_{m.n > 0} D(m) m dm, one component at a time. */
 typedef struct mean_ctx {
@@ -404,38 +254,7 @@ static double mean_f(ggx_vec3 m, void *vc)
     return ggx_ndf(c->s, m) * (1 + (c->axis == 0 ? m.x : c->axis == 1 ? m.y : c->axis == 2 ? m.z : 0.0));
 }
 
-/* The surface point of the ellipsoid x^T A^T A x = 1 whose outward normal is m: p = A^-1 A^-T m / ||A^-T m|| (the
- * gradient 2 A^T A p is along m). */
-static ggx_vec3 point_of_normal(const double Ait[3][3], ggx_vec3 m)
-{
-    ggx_vec3 q = t_matvec(Ait, m);
-    return t_scale(t_mattvec(Ait, q), 1 / sqrt(t_dot(q, q)));
-}
 
-/* Eigenvalues of a symmetric n x n matrix (n <= 9) by Jacobi rotations, into ev (unsorted). */
-static void sym_eigenvalues(int nn, double M[9][9], double *ev)
-{
-    for (int sweep = 0; sweep < 100; sweep++) {
-        double off = 0;
-        for (int p = 0; p < nn; p++)
-            for (int q = p + 1; q < nn; q++) off += M[p][q] * M[p][q];
-        if (off < 1e-300) break;
-        for (int p = 0; p < nn; p++)
-            for (int q = p + 1; q < nn; q++) {
-                if (M[p][q] == 0) continue;
-                double th = 0.5 * atan2(2 * M[p][q], M[q][q] - M[p][p]), c = cos(th), sn = sin(th);
-                for (int k = 0; k < nn; k++) {
-                    double a = M[k][p], b = M[k][q];
-                    M[k][p] = c * a - sn * b, M[k][q] = sn * a + c * b;
-                }
-                for (int k = 0; k < nn; k++) {
-                    double a = M[p][k], b = M[q][k];
-                    M[p][k] = c * a - sn * b, M[q][k] = sn * a + c * b;
-                }
-            }
-    }
-    for (int i = 0; i < nn; i++) ev[i] = M[i][i];
-}
 
 /* The mean of m under the VNDF pdf for v, its polar angle (radians): how far the visible normals lean. */
 typedef struct vmean_ctx {
@@ -459,16 +278,6 @@ static double vndf_lean(const ggx_shape *s, ggx_vec3 v)
     return atan2(hypot(mean.x, mean.y), mean.z);
 }
 
-/* Finite-difference area Jacobian |d m / d(a, b)| of a map from the plane to the unit sphere (or to the plane, with
- * z = 0), by central differences of step h. */
-typedef ggx_vec3 (*map2_fn)(const void *ctx, double a, double b);
-static double fd_jacobian(map2_fn f, const void *ctx, double a, double b, double h)
-{
-    ggx_vec3 da = t_scale(t_add(f(ctx, a + h, b), t_scale(f(ctx, a - h, b), -1)), 0.5 / h);
-    ggx_vec3 db = t_scale(t_add(f(ctx, a, b + h), t_scale(f(ctx, a, b - h), -1)), 0.5 / h);
-    ggx_vec3 c = t_cross(da, db);
-    return sqrt(t_dot(c, c));
-}
 /* Maps whose Jacobians the seeds state. */
 static ggx_vec3 map_cosine(const void *ctx, double u, double v) /* Engstad's cosine-weighted hemisphere */
 {
@@ -536,72 +345,72 @@ int audit_run(const double A[AUDIT_SHAPES][3][3], audit_row *rows, int progress)
     int nr = 0;
     audit_row *r;
 
-    r = add(rows, &nr, "norm", "D(m) is normalised: the integral of D(m)(m.n) is 1", SEED_WALTER ", " SEED_BLOG1,
+    r = au_add(rows, &nr, "norm", "D(m) is normalised: the integral of D(m)(m.n) is 1", SEED_WALTER ", " SEED_BLOG1,
             "Walter eq 1, 9; blog Part 1", AUDIT_SCOPE_ANY);
     for (int k = 0; k < AUDIT_SHAPES; k++) {
         double I = quad_hemisphere(&sh[k], ndf_cos, &sh[k], NULL, 0, 1e-11, NULL);
-        set(r, k, fabs(I - 1) < 1e-9 ? AUDIT_HOLDS : AUDIT_FAILS, "|integral - 1| = %.1e", fabs(I - 1));
+        au_set(r, k, fabs(I - 1) < 1e-9 ? AUDIT_HOLDS : AUDIT_FAILS, "|integral - 1| = %.1e", fabs(I - 1));
     }
 
-    r = add(rows, &nr, "ggx", "R = I gives anisotropic GGX 1 / (pi ax ay (mx^2/ax^2 + my^2/ay^2 + mz^2)^2)",
+    r = au_add(rows, &nr, "ggx", "R = I gives anisotropic GGX 1 / (pi ax ay (mx^2/ax^2 + my^2/ay^2 + mz^2)^2)",
             SEED_WALTER ", " SEED_BLOG1, "Walter section 1; blog Part 1", AUDIT_SCOPE_DIAGONAL);
     for (int k = 0; k < AUDIT_SHAPES; k++) {
         if (sh[k].kind == GGX_SHAPE_SKEWED) {
-            set(r, k, AUDIT_NOT_CLAIMED, "cannot be applied (a skewed A has no ax, ay)");
+            au_set(r, k, AUDIT_NOT_CLAIMED, "cannot be applied (a skewed A has no ax, ay)");
             continue;
         }
         rng g = {71};
         double worst = 0, ax = sh[k].alpha_x, ay = sh[k].alpha_y;
         for (int i = 0; i < 1000; i++) {
             ggx_vec3 m = t_dir(acos(rng_uniform(&g)), 2 * T_PI * rng_uniform(&g));
-            worst = fmax(worst, fabs(ggx_ndf(&sh[k], m) / ggx_formula(ax, ay, m) - 1));
+            worst = fmax(worst, fabs(ggx_ndf(&sh[k], m) / au_ggx_formula(ax, ay, m) - 1));
         }
-        set(r, k, worst < 1e-12 ? AUDIT_HOLDS : AUDIT_FAILS, "largest relative difference %.1e over 1000 normals%s",
+        au_set(r, k, worst < 1e-12 ? AUDIT_HOLDS : AUDIT_FAILS, "largest relative difference %.1e over 1000 normals%s",
             worst, sh[k].kind == GGX_SHAPE_UNSKEWED ? " (the formula in x, y, not in the rotated axes)" : "");
     }
 
-    r = add(rows, &nr, "area", "projected area of the ellipsoid seen from u: pi ||Au|| / |A|", SEED_WALTER ", " SEED_BLOG1,
+    r = au_add(rows, &nr, "area", "projected area of the ellipsoid seen from u: pi ||Au|| / |A|", SEED_WALTER ", " SEED_BLOG1,
             "Walter eq 26; blog Part 1 eq A_perp_expression", AUDIT_SCOPE_ANY);
     for (int k = 0; k < AUDIT_SHAPES; k++) verdict_rays(r, k, A[k], &sh[k], 0);
 
-    r = add(rows, &nr, "lune", "projected area of the lune m.u >= 0, m.v >= 0: pi (||Au|| ||Av|| + Au.Av) / (2 |A| ||Av||)",
+    r = au_add(rows, &nr, "lune", "projected area of the lune m.u >= 0, m.v >= 0: pi (||Au|| ||Av|| + Au.Av) / (2 |A| ||Av||)",
             SEED_WALTER, "eq 28", AUDIT_SCOPE_ANY);
     for (int k = 0; k < AUDIT_SHAPES; k++) verdict_rays(r, k, A[k], &sh[k], 1);
 
-    r = add(rows, &nr, "g1-blog", "G1 = 2 ||An|| (v.n) / (||Av|| + ||An|| (v.n)), a ratio of projected areas", SEED_BLOG2,
+    r = au_add(rows, &nr, "g1-blog", "G1 = 2 ||An|| (v.n) / (||Av|| + ||An|| (v.n)), a ratio of projected areas", SEED_BLOG2,
             "masking as a ratio of projected areas", AUDIT_SCOPE_ANY);
     for (int k = 0; k < AUDIT_SHAPES; k++) verdict_views(r, k, blog_g1_integral, &sh[k], 1e-6, "the VNDF built with it");
 
-    r = add(rows, &nr, "g1-walter", "G1 = min(1, 2 ||An||^2 |u.n| / (||Au|| ||An|| + Au.An)) X+(u.m) conserves energy",
+    r = au_add(rows, &nr, "g1-walter", "G1 = min(1, 2 ||An||^2 |u.n| / (||Au|| ||An|| + Au.An)) X+(u.m) conserves energy",
             SEED_WALTER, "eq 6, 31-32", AUDIT_SCOPE_ANY);
     for (int k = 0; k < AUDIT_SHAPES; k++) {
         vis_ctx c = {&sh[k], v_clip, 1};
         double W = quad_hemisphere(&sh[k], vis_f, &c, &v_clip, 1, 1e-11, NULL);
-        set(r, k, W <= 1 + 1e-9 ? AUDIT_HOLDS : AUDIT_FAILS, "weak furnace %.6f%s", W,
+        au_set(r, k, W <= 1 + 1e-9 ? AUDIT_HOLDS : AUDIT_FAILS, "weak furnace %.6f%s", W,
             W < 1 - 1e-6 ? " < 1: the min is active" : " = 1");
     }
 
     sampler_rows(rows, &nr, GGX_FAMILY_NDF, sh, A, v, progress);
 
-    r = add(rows, &nr, "vndf-g1", "VNDF pdf = G1(v) D(m) (m.v)+ / (v.n)", SEED_BLOG2 ", " SEED_VNDF,
+    r = au_add(rows, &nr, "vndf-g1", "VNDF pdf = G1(v) D(m) (m.v)+ / (v.n)", SEED_BLOG2 ", " SEED_VNDF,
             "blog Part 2 (VNDF); Engstad's proof, final pdf", AUDIT_SCOPE_ANY);
     /* every view of the grid for each shape; where it holds also the caps sampler against it (chi-square) */
     for (int k = 0; k < AUDIT_SHAPES; k++) {
         verdict_views(r, k, g1_form_integral, &sh[k], 1e-6, "with Walter's G1 it");
         if (r->verdict[k] != AUDIT_HOLDS) continue;
-        double p = chi2_sampler(&sh[k], v, ggx_sample_vndf_caps, pdf_g1_form, 87 + 2 * (uint64_t)k, progress);
-        if (p < alpha_level()) verdict_p(r, k, p);
-        else append(r, k, "; the caps sampler against it: chi-square p = %.2g", p);
+        double p = au_chi2_sampler(&sh[k], v, ggx_sample_vndf_caps, pdf_g1_form, 87 + 2 * (uint64_t)k, progress);
+        if (p < au_alpha_level()) au_verdict_p(r, k, p);
+        else au_append(r, k, "; the caps sampler against it: chi-square p = %.2g", p);
     }
 
     sampler_rows(rows, &nr, GGX_FAMILY_VNDF, sh, A, v, progress);
 
-    r = add(rows, &nr, "crescent-blog", "crescent factor with A^-T n: s = (1 + Av.A^-T n / (|Av| |A^-T n|)) / 2",
+    r = au_add(rows, &nr, "crescent-blog", "crescent factor with A^-T n: s = (1 + Av.A^-T n / (|Av| |A^-T n|)) / 2",
             SEED_BLOG2, "VNDF sampling, the crescent's squish factor", AUDIT_SCOPE_ANY);
     for (int k = 0; k < AUDIT_SHAPES; k++)
-        verdict_p(r, k, chi2_sampler(&sh[k], v, verify_crescent_blog_s, ggx_pdf_vndf, 90 + 2 * (uint64_t)k, progress));
+        au_verdict_p(r, k, au_chi2_sampler(&sh[k], v, verify_crescent_blog_s, ggx_pdf_vndf, 90 + 2 * (uint64_t)k, progress));
 
-    r = add(rows, &nr, "jacobian-blog", "solid-angle Jacobian |d omega' / d omega| = |A| ||A^-T m|| for m' = normalize(A^-T m)",
+    r = au_add(rows, &nr, "jacobian-blog", "solid-angle Jacobian |d omega' / d omega| = |A| ||A^-T m|| for m' = normalize(A^-T m)",
             SEED_BLOG2, "VNDF pdf derivation", AUDIT_SCOPE_ANY);
     for (int k = 0; k < AUDIT_SHAPES; k++) {
         rng g = {72};
@@ -636,13 +445,13 @@ int audit_run(const double A[AUDIT_SHAPES][3][3], audit_row *rows, int progress)
             double x = p_blog / ggx_pdf_vndf(&sh[k], v, m) / (sh[k].det * sh[k].det);
             lo = fmin(lo, x), hi = fmax(hi, x);
         }
-        set(r, k, worst_blog < 1e-6 ? AUDIT_HOLDS : AUDIT_FAILS,
+        au_set(r, k, worst_blog < 1e-6 ? AUDIT_HOLDS : AUDIT_FAILS,
             "off by up to %.0f %% (finite differences, 200 normals); 1 / (|A| ||A^-T m||^3) holds to %.0e. Its D(m, v) "
             "step errs by the inverse factor: the final p(m) = D(m,v)(m.v)/s is |A|^2 VNDF to %.0e",
             100 * worst_blog, worst_true, fmax(fabs(lo - 1), fabs(hi - 1)));
     }
 
-    r = add(rows, &nr, "weight", "reflection weight G1 G1 F A_l(v,n) / (|v.n| A_e(n)) never exceeds 1", SEED_WALTER,
+    r = au_add(rows, &nr, "weight", "reflection weight G1 G1 F A_l(v,n) / (|v.n| A_e(n)) never exceeds 1", SEED_WALTER,
             "eq 49-52", AUDIT_SCOPE_ANY);
     for (int k = 0; k < AUDIT_SHAPES; k++) {
         rng g = {73};
@@ -658,12 +467,12 @@ int audit_run(const double A[AUDIT_SHAPES][3][3], audit_row *rows, int progress)
         }
         audit_verdict vd = wmax <= 1 + 1e-12 ? AUDIT_HOLDS : AUDIT_FAILS;
         if (ratio_min > 1 - 1e-9)
-            set(r, k, vd, "largest weight 1 %+.0e over 2e5 samples; weight = G1(wo) F to %.0e", wmax - 1, fabs(1 - ratio_min));
+            au_set(r, k, vd, "largest weight 1 %+.0e over 2e5 samples; weight = G1(wo) F to %.0e", wmax - 1, fabs(1 - ratio_min));
         else
-            set(r, k, vd, "largest weight 1 %+.0e over 2e5 samples; weight / G1(wo) F goes down to %.3f", wmax - 1, ratio_min);
+            au_set(r, k, vd, "largest weight 1 %+.0e over 2e5 samples; weight / G1(wo) F goes down to %.3f", wmax - 1, ratio_min);
     }
 
-    r = add(rows, &nr, "below", "reflected directions can fall below the horizon, so w.n > 0 must be checked", SEED_VNDF,
+    r = au_add(rows, &nr, "below", "reflected directions can fall below the horizon, so w.n > 0 must be checked", SEED_VNDF,
             "the rejection check w.n > 0", AUDIT_SCOPE_DIAGONAL);
     for (int k = 0; k < AUDIT_SHAPES; k++) {
         rng g = {74};
@@ -672,11 +481,11 @@ int audit_run(const double A[AUDIT_SHAPES][3][3], audit_row *rows, int progress)
         ggx_vec3 wi = t_dir(80 * T_PI / 180, 0.3);
         for (long i = 0; i < n_all; i++)
             below += ggx_sample_brdf(&sh[k], &one, wi, rng_uniform(&g), rng_uniform(&g)).event == GGX_EVENT_INVALID;
-        set(r, k, below > 0 ? AUDIT_HOLDS : AUDIT_FAILS, "%.1f %% of reflections below the horizon at an 80 degree view",
+        au_set(r, k, below > 0 ? AUDIT_HOLDS : AUDIT_FAILS, "%.1f %% of reflections below the horizon at an 80 degree view",
             100.0 * (double)below / (double)n_all);
     }
 
-    r = add(rows, &nr, "rejection", "version 2 (ellipsoid as its own bound) rejects less than version 1 (bounding sphere)",
+    r = au_add(rows, &nr, "rejection", "version 2 (ellipsoid as its own bound) rejects less than version 1 (bounding sphere)",
             SEED_WALTER, "section 4, versions 1 and 2", AUDIT_SCOPE_ANY);
     for (int k = 0; k < AUDIT_SHAPES; k++) {
         rng g = {75};
@@ -684,67 +493,67 @@ int audit_run(const double A[AUDIT_SHAPES][3][3], audit_row *rows, int progress)
         double t1 = 0, t2 = 0;
         const int N = 100000;
         for (int i = 0; i < N; i++) {
-            ggx_sample_vndf_walter_v1(&sh[k], v, uniform_cb, &g, &t);
+            ggx_sample_vndf_walter_v1(&sh[k], v, au_uniform_cb, &g, &t);
             t1 += t;
-            ggx_sample_vndf_walter_v2(&sh[k], v, uniform_cb, &g, &t);
+            ggx_sample_vndf_walter_v2(&sh[k], v, au_uniform_cb, &g, &t);
             t2 += t;
         }
         double want2 = ggx_lune_area(&sh[k], v, n) / ggx_projected_area(&sh[k], v), got2 = N / t2;
         int match = fabs(got2 - want2) < 5 * sqrt(want2 * (1 - want2) / N) + 1e-9;
-        set(r, k, N / t1 <= got2 && match ? AUDIT_HOLDS : AUDIT_FAILS, "acceptance %.3f vs %.3f; v2 %s A_l(v,n)/A_e(v) = %.3f",
+        au_set(r, k, N / t1 <= got2 && match ? AUDIT_HOLDS : AUDIT_FAILS, "acceptance %.3f vs %.3f; v2 %s A_l(v,n)/A_e(v) = %.3f",
             N / t1, got2, match ? "matches" : "differs from", want2);
     }
     /* ---- blog Part 1 ---- */
-    r = add(rows, &nr, "p22", "D(m) = P22(p, q) / cos^4 theta with P22 = 1 / (pi ax ay (1 + p^2/ax^2 + q^2/ay^2)^2), p, q the slopes",
+    r = au_add(rows, &nr, "p22", "D(m) = P22(p, q) / cos^4 theta with P22 = 1 / (pi ax ay (1 + p^2/ax^2 + q^2/ay^2)^2), p, q the slopes",
             SEED_BLOG1, "eq (1) and eq:p_22", AUDIT_SCOPE_DIAGONAL);
     for (int k = 0; k < AUDIT_SHAPES; k++) {
         double ax, ay, worst = 0;
-        if (!diag_alphas(&sh[k], &ax, &ay)) {
-            set(r, k, AUDIT_NOT_CLAIMED, "cannot be applied (a skewed A has no ax, ay)");
+        if (!au_diag_alphas(&sh[k], &ax, &ay)) {
+            au_set(r, k, AUDIT_NOT_CLAIMED, "cannot be applied (a skewed A has no ax, ay)");
             continue;
         }
         rng g = {76};
         for (int i = 0; i < 1000; i++) {
-            ggx_vec3 m = random_upper(&g);
+            ggx_vec3 m = au_random_upper(&g);
             double p = -m.x / m.z, q = -m.y / m.z, t = 1 + p * p / (ax * ax) + q * q / (ay * ay);
             double lit = 1 / (T_PI * ax * ay * t * t) / (m.z * m.z * m.z * m.z);
             worst = fmax(worst, fabs(lit / ggx_ndf(&sh[k], m) - 1));
         }
-        set(r, k, worst < 1e-9 ? AUDIT_HOLDS : AUDIT_FAILS, "largest relative difference from Walter eq 1 %.1e over 1000 "
+        au_set(r, k, worst < 1e-9 ? AUDIT_HOLDS : AUDIT_FAILS, "largest relative difference from Walter eq 1 %.1e over 1000 "
             "normals%s", worst, sh[k].kind == GGX_SHAPE_UNSKEWED ? " (the slopes taken along x, y, not the rotated axes)" : "");
     }
 
     /* ---- blog Part 2 ---- */
-    r = add(rows, &nr, "unit-norms", "with n = +z, ||An|| = ||A^-T n|| = 1 (the step from the blog's pdf to the G1 form)",
+    r = au_add(rows, &nr, "unit-norms", "with n = +z, ||An|| = ||A^-T n|| = 1 (the step from the blog's pdf to the G1 form)",
             SEED_BLOG2, "text before eq:g1-equality", AUDIT_SCOPE_ANY);
     for (int k = 0; k < AUDIT_SHAPES; k++) {
         double Ait[3][3];
-        inv_t(A[k], Ait);
-        double a = norm_of(A[k], n), b = norm_of((const double(*)[3])Ait, n);
-        set(r, k, fabs(a - 1) < 1e-12 && fabs(b - 1) < 1e-12 ? AUDIT_HOLDS : AUDIT_FAILS,
+        au_inv_t(A[k], Ait);
+        double a = au_norm_of(A[k], n), b = au_norm_of((const double(*)[3])Ait, n);
+        au_set(r, k, fabs(a - 1) < 1e-12 && fabs(b - 1) < 1e-12 ? AUDIT_HOLDS : AUDIT_FAILS,
             "||An|| = %.6g, ||A^-T n|| = %.6g, product %.6g (>= 1 by Cauchy-Schwarz, 1 only where A^T A n is along n)", a, b,
             a * b);
     }
 
-    r = add(rows, &nr, "sm-lt-su", "for any v not along n, S_m < S_u, i.e. ||An|| (v.n) < ||Av||", SEED_BLOG2,
+    r = au_add(rows, &nr, "sm-lt-su", "for any v not along n, S_m < S_u, i.e. ||An|| (v.n) < ||Av||", SEED_BLOG2,
             "text after eq:masked-projection", AUDIT_SCOPE_ANY);
     for (int k = 0; k < AUDIT_SHAPES; k++) {
         rng g = {77};
         double worst = 0;
         ggx_vec3 at = n;
         for (int i = 0; i < 100000; i++) {
-            ggx_vec3 u = random_upper(&g);
-            double x = norm_of(A[k], n) * u.z / norm_of(A[k], u);
+            ggx_vec3 u = au_random_upper(&g);
+            double x = au_norm_of(A[k], n) * u.z / au_norm_of(A[k], u);
             if (x > worst) worst = x, at = u;
         }
         if (worst < 1)
-            set(r, k, AUDIT_HOLDS, "largest ||An|| (v.n) / ||Av|| over 10^5 views %.4f < 1", worst);
+            au_set(r, k, AUDIT_HOLDS, "largest ||An|| (v.n) / ||Av|| over 10^5 views %.4f < 1", worst);
         else
-            set(r, k, AUDIT_FAILS, "||An|| (v.n) / ||Av|| = %.4f at theta %.2f, phi %.2f rad (Walter footnote 4: the "
+            au_set(r, k, AUDIT_FAILS, "||An|| (v.n) / ||Av|| = %.4f at theta %.2f, phi %.2f rad (Walter footnote 4: the "
                 "microsurface's projected area can be below the footprint's)", worst, acos(at.z), atan2(at.y, at.x));
     }
 
-    r = add(rows, &nr, "su", "S_u, the area that the visible upper half projects along v, = (A_perp(v) + A_perp(n) (v.n)) / 2",
+    r = au_add(rows, &nr, "su", "S_u, the area that the visible upper half projects along v, = (A_perp(v) + A_perp(n) (v.n)) / 2",
             SEED_BLOG2, "eq:unmasked-projection", AUDIT_SCOPE_ANY);
     for (int k = 0; k < AUDIT_SHAPES; k++) {
         static const double dirs[3][2] = {{0.7, 0.4}, {1.2, -2.0}, {1.5, 2.6}};
@@ -752,17 +561,17 @@ int audit_run(const double A[AUDIT_SHAPES][3][3], audit_row *rows, int progress)
         int ok = 1;
         for (int i = 0; i < 3; i++) {
             ggx_vec3 u = t_dir(dirs[i][0], dirs[i][1]);
-            double sig, got = ray_area(A[k], u, n, 1, 1000000, 311 + (uint64_t)i, &sig);
+            double sig, got = au_ray_area(A[k], u, n, 1, 1000000, 311 + (uint64_t)i, &sig);
             double lit = 0.5 * (ggx_projected_area(&sh[k], u) + ggx_projected_area(&sh[k], n) * u.z);
             ok &= fabs(got - lit) <= 5 * sig;
             if (fabs(lit / got - 1) > worst) worst = fabs(lit / got - 1), worst_sig = sig / got;
         }
-        set(r, k, ok ? AUDIT_HOLDS : AUDIT_FAILS, "against 10^6 rays at the ellipsoid from each of 3 views: worst |formula / "
+        au_set(r, k, ok ? AUDIT_HOLDS : AUDIT_FAILS, "against 10^6 rays at the ellipsoid from each of 3 views: worst |formula / "
             "rays - 1| = %.1e (5 sigma = %.1e)%s", worst, 5 * worst_sig, ok ? "" : "; Walter eq 28's A_l(v, n) holds (row lune)");
     }
 
     /* ---- Walter ---- */
-    r = add(rows, &nr, "invariance", "D is unchanged by A -> c A and A -> Q A, Q orthogonal (with |A| read as |det A|)",
+    r = au_add(rows, &nr, "invariance", "D is unchanged by A -> c A and A -> Q A, Q orthogonal (with |A| read as |det A|)",
             SEED_WALTER, "section 1, after eq 1", AUDIT_SCOPE_ANY);
     for (int k = 0; k < AUDIT_SHAPES; k++) {
         double cA[3][3], QA[3][3];
@@ -778,26 +587,26 @@ int audit_run(const double A[AUDIT_SHAPES][3][3], audit_row *rows, int progress)
             }
         ggx_shape sc, sq;
         if (ggx_shape_matrix(&sc, (const double(*)[3])cA) != GGX_OK || ggx_shape_matrix(&sq, (const double(*)[3])QA) != GGX_OK) {
-            set(r, k, AUDIT_FAILS, "c A or Q A refused as a shape");
+            au_set(r, k, AUDIT_FAILS, "c A or Q A refused as a shape");
             continue;
         }
         rng g = {78};
         double worst = 0;
         for (int i = 0; i < 1000; i++) {
-            ggx_vec3 m = random_upper(&g);
+            ggx_vec3 m = au_random_upper(&g);
             double d = ggx_ndf(&sh[k], m);
             worst = fmax(worst, fmax(fabs(ggx_ndf(&sc, m) / d - 1), fabs(ggx_ndf(&sq, m) / d - 1)));
         }
-        set(r, k, worst < 1e-12 ? AUDIT_HOLDS : AUDIT_FAILS, "largest relative change of D over 1000 normals %.1e (c = 3.7, Q a "
+        au_set(r, k, worst < 1e-12 ? AUDIT_HOLDS : AUDIT_FAILS, "largest relative change of D over 1000 normals %.1e (c = 3.7, Q a "
             "reflection)", worst);
     }
 
-    r = add(rows, &nr, "rotate-z", "theta_z rotates the distribution in the tangent plane: D_{S Rz}(m) = D_S(Rz m)", SEED_WALTER,
+    r = au_add(rows, &nr, "rotate-z", "theta_z rotates the distribution in the tangent plane: D_{S Rz}(m) = D_S(Rz m)", SEED_WALTER,
             "eq 3 and text", AUDIT_SCOPE_ROTATED);
     for (int k = 0; k < AUDIT_SHAPES; k++) {
         double ax, ay;
-        if (!diag_alphas(&sh[k], &ax, &ay)) {
-            set(r, k, AUDIT_NOT_CLAIMED, "cannot be applied (a skewed A is not S Rz)");
+        if (!au_diag_alphas(&sh[k], &ax, &ay)) {
+            au_set(r, k, AUDIT_NOT_CLAIMED, "cannot be applied (a skewed A is not S Rz)");
             continue;
         }
         /* the shape's own S and rotation Rz = S^-1 A (A = S Rz): the alphas are the norms of A's first two rows */
@@ -808,32 +617,32 @@ int audit_run(const double A[AUDIT_SHAPES][3][3], audit_row *rows, int progress)
         rng g = {79};
         double worst = 0;
         for (int i = 0; i < 1000; i++) {
-            ggx_vec3 m = random_upper(&g), am = t_matvec(A[k], m), rm = t_vec(am.x / ax, am.y / ay, am.z);
+            ggx_vec3 m = au_random_upper(&g), am = t_matvec(A[k], m), rm = t_vec(am.x / ax, am.y / ay, am.z);
             worst = fmax(worst, fabs(ggx_ndf(&S, rm) / ggx_ndf(&sh[k], m) - 1));
         }
-        set(r, k, worst < 1e-12 ? AUDIT_HOLDS : AUDIT_FAILS, "largest relative difference over 1000 normals %.1e (theta_z = %.4g "
+        au_set(r, k, worst < 1e-12 ? AUDIT_HOLDS : AUDIT_FAILS, "largest relative difference over 1000 normals %.1e (theta_z = %.4g "
             "rad)", worst, atan2(-A[k][0][1], A[k][0][0]));
     }
 
-    r = add(rows, &nr, "min-inactive", "for theta_x = theta_y = 0 the min in G1 never acts: A_e(n) |u.n| <= A_l(u, n) for all u",
+    r = au_add(rows, &nr, "min-inactive", "for theta_x = theta_y = 0 the min in G1 never acts: A_e(n) |u.n| <= A_l(u, n) for all u",
             SEED_WALTER, "eq 31 and text", AUDIT_SCOPE_ROTATED);
     for (int k = 0; k < AUDIT_SHAPES; k++) {
         rng g = {80};
         double worst = 0;
         ggx_vec3 at = n;
         for (int i = 0; i < 100000; i++) {
-            ggx_vec3 u = random_upper(&g);
+            ggx_vec3 u = au_random_upper(&g);
             double x = ggx_projected_area(&sh[k], n) * u.z / ggx_lune_area(&sh[k], u, n);
             if (x > worst) worst = x, at = u;
         }
         if (worst <= 1 + 1e-12)
-            set(r, k, AUDIT_HOLDS, "largest A_e(n) |u.n| / A_l(u, n) over 10^5 directions %.6f", worst);
+            au_set(r, k, AUDIT_HOLDS, "largest A_e(n) |u.n| / A_l(u, n) over 10^5 directions %.6f", worst);
         else
-            set(r, k, AUDIT_FAILS, "A_e(n) |u.n| / A_l(u, n) = %.4f at theta %.2f, phi %.2f rad: the min clips G1 "
+            au_set(r, k, AUDIT_FAILS, "A_e(n) |u.n| / A_l(u, n) = %.4f at theta %.2f, phi %.2f rad: the min clips G1 "
                 "(footnote 4)", worst, acos(at.z), atan2(at.y, at.x));
     }
 
-    r = add(rows, &nr, "mean-normal", "the average microsurface normal, int_{m.n > 0} D(m) m dm, points along A^T A n",
+    r = au_add(rows, &nr, "mean-normal", "the average microsurface normal, int_{m.n > 0} D(m) m dm, points along A^T A n",
             SEED_WALTER, "section 5.1", AUDIT_SCOPE_ANY);
     for (int k = 0; k < AUDIT_SHAPES; k++) {
         double c[4];
@@ -845,11 +654,11 @@ int audit_run(const double A[AUDIT_SHAPES][3][3], audit_row *rows, int progress)
         ggx_vec3 got = t_normalize(t_vec(c[0], c[1], c[2])), want = t_normalize(t_mattvec(A[k], t_matvec(A[k], n)));
         ggx_vec3 x = t_cross(got, want);
         double ang = atan2(sqrt(t_dot(x, x)), t_dot(got, want));
-        set(r, k, ang < 1e-7 ? AUDIT_HOLDS : AUDIT_FAILS, "angle between the quadrature's mean normal and A^T A n %.1e rad; "
+        au_set(r, k, ang < 1e-7 ? AUDIT_HOLDS : AUDIT_FAILS, "angle between the quadrature's mean normal and A^T A n %.1e rad; "
             "the mean normal leans %.4g degrees from n", ang, acos(fmin(1.0, got.z)) * 180 / T_PI);
     }
 
-    r = add(rows, &nr, "reciprocity", "the BRDF (eq 4 with G of eq 5, 6) is reciprocal: f_r(i, o) = f_r(o, i)", SEED_WALTER,
+    r = au_add(rows, &nr, "reciprocity", "the BRDF (eq 4 with G of eq 5, 6) is reciprocal: f_r(i, o) = f_r(o, i)", SEED_WALTER,
             "section 1.1", AUDIT_SCOPE_ANY);
     for (int k = 0; k < AUDIT_SHAPES; k++) {
         rng g = {81};
@@ -857,15 +666,15 @@ int audit_run(const double A[AUDIT_SHAPES][3][3], audit_row *rows, int progress)
         ggx_fresnel fr;
         ggx_fresnel_dielectric(&fr, 1.5);
         for (int i = 0; i < 10000; i++) {
-            ggx_vec3 wi = random_upper(&g), wo = random_upper(&g);
+            ggx_vec3 wi = au_random_upper(&g), wo = au_random_upper(&g);
             double a = ggx_brdf_eval(&sh[k], &fr, wi, wo), b = ggx_brdf_eval(&sh[k], &fr, wo, wi);
             if (a > 0 || b > 0) worst = fmax(worst, fabs(a - b) / fmax(a, b));
         }
-        set(r, k, worst < 1e-12 ? AUDIT_HOLDS : AUDIT_FAILS, "largest relative difference over 10^4 pairs %.1e (dielectric "
+        au_set(r, k, worst < 1e-12 ? AUDIT_HOLDS : AUDIT_FAILS, "largest relative difference over 10^4 pairs %.1e (dielectric "
             "Fresnel 1.5)", worst);
     }
 
-    r = add(rows, &nr, "energy", "with G of eq 5, 6 the BRDF conserves energy: the albedo (F = 1) is at most 1", SEED_WALTER,
+    r = au_add(rows, &nr, "energy", "with G of eq 5, 6 the BRDF conserves energy: the albedo (F = 1) is at most 1", SEED_WALTER,
             "section 1.1", AUDIT_SCOPE_ANY);
     for (int k = 0; k < AUDIT_SHAPES; k++) {
         double emax = 0, at = 0, lo = 1;
@@ -875,35 +684,35 @@ int audit_run(const double A[AUDIT_SHAPES][3][3], audit_row *rows, int progress)
             if (e > emax) emax = e, at = acos(u.z);
             lo = fmin(lo, e);
         }
-        set(r, k, emax <= 1 + 1e-6 ? AUDIT_HOLDS : AUDIT_FAILS, "albedo from %.4f to %.4f over 12 views (largest at theta %.2f "
+        au_set(r, k, emax <= 1 + 1e-6 ? AUDIT_HOLDS : AUDIT_FAILS, "albedo from %.4f to %.4f over 12 views (largest at theta %.2f "
             "rad)", lo, emax, at);
     }
 
     /* ---- Engstad, Elliptic Stretch ---- */
-    r = add(rows, &nr, "stretch-omega", "cosine-weighting toward omega, then stretching: p(m) = |m.omega| D(m) / ||m_||",
+    r = au_add(rows, &nr, "stretch-omega", "cosine-weighting toward omega, then stretching: p(m) = |m.omega| D(m) / ||m_||",
             SEED_STRETCH, "GGX composition (end)", AUDIT_SCOPE_DIAGONAL);
     for (int k = 0; k < AUDIT_SHAPES; k++) {
         double ax, ay;
-        if (!alphas_or_skip(r, k, &sh[k], &ax, &ay)) continue;
+        if (!au_alphas_or_skip(r, k, &sh[k], &ax, &ay)) continue;
         /* at omega = n the composition is the plain stretch, whose pdf is D(m) (m.n) (row stretch); ||m_|| =
          * 1 / ||S^-1 m|| and the pre-stretch s = S^-1 m / ||S^-1 m|| */
         rng g = {82};
         double worst_lit = 0, worst_fix = 0;
         for (int i = 0; i < 1000; i++) {
-            ggx_vec3 m = random_upper(&g);
-            double sinv = sqrt(m.x * m.x / (ax * ax) + m.y * m.y / (ay * ay) + m.z * m.z), d = ggx_formula(ax, ay, m);
+            ggx_vec3 m = au_random_upper(&g);
+            double sinv = sqrt(m.x * m.x / (ax * ax) + m.y * m.y / (ay * ay) + m.z * m.z), d = au_ggx_formula(ax, ay, m);
             double lit = m.z * d * sinv, fix = (m.z / sinv) * d * sinv, want = ggx_pdf_ndf(&sh[k], m);
             worst_lit = fmax(worst_lit, fabs(lit / want - 1)), worst_fix = fmax(worst_fix, fabs(fix / want - 1));
         }
-        if (worst_lit < 1e-9) set(r, k, AUDIT_HOLDS, "at omega = n: largest relative difference from D(m) (m.n) %.1e", worst_lit);
+        if (worst_lit < 1e-9) au_set(r, k, AUDIT_HOLDS, "at omega = n: largest relative difference from D(m) (m.n) %.1e", worst_lit);
         else
-            set(r, k, worst_fix < 1e-9 ? AUDIT_CORRECTED : AUDIT_FAILS, "at omega = n it is off D(m) (m.n) by up to %.0f %%; "
+            au_set(r, k, worst_fix < 1e-9 ? AUDIT_CORRECTED : AUDIT_FAILS, "at omega = n it is off D(m) (m.n) by up to %.0f %%; "
                 "with the cosine of the pre-stretch direction, p(m) = |s.omega| D(m) / ||m_||, by %.0e",
                 100 * worst_lit, worst_fix);
     }
 
     /* ---- Engstad, visible GGX ---- */
-    r = add(rows, &nr, "disk-concentric", "the concentric map as written (polar(a, pi b / 4a) if |a| > |b|, polar(b, pi a / 4b) "
+    r = au_add(rows, &nr, "disk-concentric", "the concentric map as written (polar(a, pi b / 4a) if |a| > |b|, polar(b, pi a / 4b) "
             "if |a| < |b|, else (a, b)) is uniform on the disk, Jacobian pi", SEED_VNDF, "step 2, sample a disk",
             AUDIT_SCOPE_ANY);
     {
@@ -922,17 +731,17 @@ int audit_run(const double A[AUDIT_SHAPES][3][3], audit_row *rows, int progress)
         /* (a, b) with |a| = |b| != 0 lies off the disk: a set of measure zero, hit here only if the sampler hits it */
         double f_lit = (double)top_lit / (double)N, f_fix = (double)top_fix / (double)N, sig = sqrt(0.25 / (double)N);
         for (int k = 0; k < AUDIT_SHAPES; k++)
-            set(r, k, fabs(f_fix - 0.5) < 5 * sig ? AUDIT_CORRECTED : AUDIT_FAILS, "as written no point reaches the top and "
+            au_set(r, k, fabs(f_fix - 0.5) < 5 * sig ? AUDIT_CORRECTED : AUDIT_FAILS, "as written no point reaches the top and "
                 "bottom quarters |t| > |s| (fraction %.4f of 2e5, uniform: 0.5; %ld off the disk); with the second branch "
                 "polar(b, pi/2 - pi a / 4b) the fraction is %.4f", f_lit, off, f_fix);
     }
 
-    r = add(rows, &nr, "vndf-support", "p_vGGX(m) = D(m) (m.v) G1(v) / (v.n) on {m.v > 0} integrates to 1 (D as written, with "
+    r = au_add(rows, &nr, "vndf-support", "p_vGGX(m) = D(m) (m.v) G1(v) / (v.n) on {m.v > 0} integrates to 1 (D as written, with "
             "no m.n > 0)", SEED_VNDF, "vGGX Sampling", AUDIT_SCOPE_DIAGONAL);
     for (int k = 0; k < AUDIT_SHAPES; k++) {
         double ax, ay;
-        if (!diag_alphas(&sh[k], &ax, &ay) || sh[k].kind != GGX_SHAPE_DIAGONAL) {
-            set(r, k, AUDIT_NOT_CLAIMED, "cannot be applied (the seed's D is written for a diagonal A)");
+        if (!au_diag_alphas(&sh[k], &ax, &ay) || sh[k].kind != GGX_SHAPE_DIAGONAL) {
+            au_set(r, k, AUDIT_NOT_CLAIMED, "cannot be applied (the seed's D is written for a diagonal A)");
             continue;
         }
         ggx_vec3 vv = t_dir(75 * T_PI / 180, 0);
@@ -940,52 +749,52 @@ int audit_run(const double A[AUDIT_SHAPES][3][3], audit_row *rows, int progress)
         ggx_vec3 cut = t_scale(vv, -1);
         double lower = quad_hemisphere(&sh[k], lower_f, &lc, &cut, 1, 1e-10, NULL) * ggx_g1(&sh[k], vv, n) / vv.z;
         double upper = g1_form_integral(&sh[k], vv);
-        set(r, k, fabs(1 + lower - 1) < 1e-6 ? AUDIT_HOLDS : AUDIT_CORRECTED, "at theta_v = 75 degrees it integrates to %.4f; "
+        au_set(r, k, fabs(1 + lower - 1) < 1e-6 ? AUDIT_HOLDS : AUDIT_CORRECTED, "at theta_v = 75 degrees it integrates to %.4f; "
             "holds with m.n > 0 in the support (%.6f)", upper + lower, upper);
     }
 
-    r = add(rows, &nr, "lambda-zz", "Lambda(v) = -1/2 + sqrt((ax^2 vx^2 + ay^2 vy^2) / vz^2 + 1) / 2 and G1 = 2 z_z / (1 + z_z), "
+    r = au_add(rows, &nr, "lambda-zz", "Lambda(v) = -1/2 + sqrt((ax^2 vx^2 + ay^2 vy^2) / vz^2 + 1) / 2 and G1 = 2 z_z / (1 + z_z), "
             "z_z = v.n / ||Av||", SEED_VNDF, "vGGX Sampling; Solving for z_z", AUDIT_SCOPE_DIAGONAL);
     for (int k = 0; k < AUDIT_SHAPES; k++) {
         double ax, ay;
-        if (!alphas_or_skip(r, k, &sh[k], &ax, &ay)) continue;
+        if (!au_alphas_or_skip(r, k, &sh[k], &ax, &ay)) continue;
         rng g = {84};
         double wl = 0, wz = 0;
         for (int i = 0; i < 1000; i++) {
-            ggx_vec3 u = random_upper(&g);
+            ggx_vec3 u = au_random_upper(&g);
             double lam = -0.5 + 0.5 * sqrt((ax * ax * u.x * u.x + ay * ay * u.y * u.y) / (u.z * u.z) + 1);
-            double zz = u.z / norm_of(A[k], u), g1 = ggx_g1(&sh[k], u, n);
+            double zz = u.z / au_norm_of(A[k], u), g1 = ggx_g1(&sh[k], u, n);
             wl = fmax(wl, fabs(1 / (1 + lam) / g1 - 1)), wz = fmax(wz, fabs(2 * zz / (1 + zz) / g1 - 1));
         }
-        set(r, k, fmax(wl, wz) < 1e-9 ? AUDIT_HOLDS : AUDIT_FAILS, "largest relative difference from Walter's G1: the Lambda form "
+        au_set(r, k, fmax(wl, wz) < 1e-9 ? AUDIT_HOLDS : AUDIT_FAILS, "largest relative difference from Walter's G1: the Lambda form "
             "%.1e, the z_z form %.1e, over 1000 views", wl, wz);
     }
-    r = add(rows, &nr, "curvature", "Gaussian curvature of the ellipsoid at the point with normal m: K(m) = |A|^2 ||A^-T m||^4",
+    r = au_add(rows, &nr, "curvature", "Gaussian curvature of the ellipsoid at the point with normal m: K(m) = |A|^2 ||A^-T m||^4",
             SEED_WALTER ", " SEED_BLOG1, "Walter eq 20; blog Part 1 eq:k_g", AUDIT_SCOPE_ANY);
     for (int k = 0; k < AUDIT_SHAPES; k++) {
         /* independently: the Gauss map's Jacobian by finite differences, K = d(solid angle) / d(area), with the normal
          * moved by unit-speed tangent steps and the surface point found from the normal */
         double Ait[3][3];
-        inv_t(A[k], Ait);
+        au_inv_t(A[k], Ait);
         rng g = {85};
         double worst = 0;
         for (int i = 0; i < 500; i++) {
-            ggx_vec3 m = random_upper(&g), t1, t2;
+            ggx_vec3 m = au_random_upper(&g), t1, t2;
             t_frame(m, &t1, &t2);
             const double h = 1e-5;
-            ggx_vec3 pa = t_add(point_of_normal((const double(*)[3])Ait, t_normalize(t_add(m, t_scale(t1, h)))),
-                                t_scale(point_of_normal((const double(*)[3])Ait, t_normalize(t_add(m, t_scale(t1, -h)))), -1));
-            ggx_vec3 pb = t_add(point_of_normal((const double(*)[3])Ait, t_normalize(t_add(m, t_scale(t2, h)))),
-                                t_scale(point_of_normal((const double(*)[3])Ait, t_normalize(t_add(m, t_scale(t2, -h)))), -1));
+            ggx_vec3 pa = t_add(au_point_of_normal((const double(*)[3])Ait, t_normalize(t_add(m, t_scale(t1, h)))),
+                                t_scale(au_point_of_normal((const double(*)[3])Ait, t_normalize(t_add(m, t_scale(t1, -h)))), -1));
+            ggx_vec3 pb = t_add(au_point_of_normal((const double(*)[3])Ait, t_normalize(t_add(m, t_scale(t2, h)))),
+                                t_scale(au_point_of_normal((const double(*)[3])Ait, t_normalize(t_add(m, t_scale(t2, -h)))), -1));
             ggx_vec3 c = t_cross(pa, pb);
-            double K = 4 * h * h / sqrt(t_dot(c, c)), q = norm_of((const double(*)[3])Ait, m);
+            double K = 4 * h * h / sqrt(t_dot(c, c)), q = au_norm_of((const double(*)[3])Ait, m);
             worst = fmax(worst, fabs(sh[k].det * sh[k].det * q * q * q * q / K - 1));
         }
-        set(r, k, worst < 1e-6 ? AUDIT_HOLDS : AUDIT_FAILS, "largest relative difference from the Gauss map's finite-difference "
+        au_set(r, k, worst < 1e-6 ? AUDIT_HOLDS : AUDIT_FAILS, "largest relative difference from the Gauss map's finite-difference "
             "Jacobian %.1e over 500 normals", worst);
     }
 
-    r = add(rows, &nr, "dof", "of the 9 entries of A only 5 are useful degrees of freedom (3 of rotation, 2 of scale)",
+    r = au_add(rows, &nr, "dof", "of the 9 entries of A only 5 are useful degrees of freedom (3 of rotation, 2 of scale)",
             SEED_WALTER, "section 1", AUDIT_SCOPE_ANY);
     for (int k = 0; k < AUDIT_SHAPES; k++) {
         /* the rank of the Jacobian of (D(m_1), ..., D(m_40)) with respect to A's 9 entries, by central differences:
@@ -994,7 +803,7 @@ int audit_run(const double A[AUDIT_SHAPES][3][3], audit_row *rows, int progress)
         double J[NM][9], JTJ[9][9], ev[9];
         rng g = {86};
         ggx_vec3 ms[NM];
-        for (int i = 0; i < NM; i++) ms[i] = random_upper(&g);
+        for (int i = 0; i < NM; i++) ms[i] = au_random_upper(&g);
         int bad = 0;
         for (int e = 0; e < 9; e++) {
             double Ap[3][3], Am[3][3], h = 1e-6;
@@ -1006,7 +815,7 @@ int audit_run(const double A[AUDIT_SHAPES][3][3], audit_row *rows, int progress)
                 J[i][e] = (ggx_ndf(&sp, ms[i]) - ggx_ndf(&sm, ms[i])) / (2 * h) / ggx_ndf(&sh[k], ms[i]);
         }
         if (bad) {
-            set(r, k, AUDIT_FAILS, "a perturbed A was refused");
+            au_set(r, k, AUDIT_FAILS, "a perturbed A was refused");
             continue;
         }
         for (int a = 0; a < 9; a++)
@@ -1014,7 +823,7 @@ int audit_run(const double A[AUDIT_SHAPES][3][3], audit_row *rows, int progress)
                 JTJ[a][b] = 0;
                 for (int i = 0; i < NM; i++) JTJ[a][b] += J[i][a] * J[i][b];
             }
-        sym_eigenvalues(9, JTJ, ev);
+        au_sym_eigenvalues(9, JTJ, ev);
         double top = 0;
         for (int i = 0; i < 9; i++) top = fmax(top, ev[i]);
         int rank = 0;
@@ -1023,36 +832,36 @@ int audit_run(const double A[AUDIT_SHAPES][3][3], audit_row *rows, int progress)
             if (ev[i] > 1e-8 * top) rank++, gap_lo = fmin(gap_lo, ev[i] / top);
             else gap_hi = fmax(gap_hi, ev[i] / top);
         }
-        set(r, k, rank == 5 ? AUDIT_HOLDS : AUDIT_FAILS, "rank of d D(m_i) / d A over 40 normals: %d (eigenvalues of J^T J: "
+        au_set(r, k, rank == 5 ? AUDIT_HOLDS : AUDIT_FAILS, "rank of d D(m_i) / d A over 40 normals: %d (eigenvalues of J^T J: "
             "smallest kept %.1e, largest dropped %.1e of the largest)", rank, gap_lo, gap_hi);
     }
 
-    r = add(rows, &nr, "vndf-phi90", "at theta_v = 75 degrees the VNDF leans toward the view more for phi_v = 90 than for phi_v = "
+    r = au_add(rows, &nr, "vndf-phi90", "at theta_v = 75 degrees the VNDF leans toward the view more for phi_v = 90 than for phi_v = "
             "0, since ay > ax (figures 1-8)", SEED_VNDF, "figures, alpha (0.15, 0.5)", AUDIT_SCOPE_DIAGONAL);
     for (int k = 0; k < AUDIT_SHAPES; k++) {
         double l0 = vndf_lean(&sh[k], t_dir(75 * T_PI / 180, 0)), l90 = vndf_lean(&sh[k], t_dir(75 * T_PI / 180, T_PI / 2));
         double ax = hypot(A[k][0][0], hypot(A[k][0][1], A[k][0][2])), ay = hypot(A[k][1][0], hypot(A[k][1][1], A[k][1][2]));
         int want = ay > ax;
-        set(r, k, (l90 > l0) == want ? AUDIT_HOLDS : AUDIT_FAILS, "mean visible normal %.2f degrees from n for phi_v = 0, %.2f "
+        au_set(r, k, (l90 > l0) == want ? AUDIT_HOLDS : AUDIT_FAILS, "mean visible normal %.2f degrees from n for phi_v = 0, %.2f "
             "for phi_v = 90 (n leans %.2f degrees without a view)", l0 * 180 / T_PI, l90 * 180 / T_PI,
             acos(fmin(1.0, t_normalize(t_mattvec(A[k], t_matvec(A[k], n))).z)) * 180 / T_PI);
     }
     /* ---- Jacobians the seeds state, by finite differences of the maps themselves ---- */
-    r = add(rows, &nr, "cosine-jacobian", "the cosine-weighted map s(u, v) has |ds / d(u, v)| = pi / s_z, so p(s) = (s.n) / pi",
+    r = au_add(rows, &nr, "cosine-jacobian", "the cosine-weighted map s(u, v) has |ds / d(u, v)| = pi / s_z, so p(s) = (s.n) / pi",
             SEED_STRETCH, "Cosine-Weighted Half-Sphere", AUDIT_SCOPE_ANY);
     {
         rng g = {87};
         double worst = 0;
         for (int i = 0; i < 1000; i++) {
             double u = 0.01 + 0.98 * rng_uniform(&g), w = rng_uniform(&g);
-            worst = fmax(worst, fabs(fd_jacobian(map_cosine, NULL, u, w, 1e-6) / (T_PI / sqrt(1 - u)) - 1));
+            worst = fmax(worst, fabs(au_fd_jacobian(map_cosine, NULL, u, w, 1e-6) / (T_PI / sqrt(1 - u)) - 1));
         }
         for (int k = 0; k < AUDIT_SHAPES; k++)
-            set(r, k, worst < 1e-6 ? AUDIT_HOLDS : AUDIT_FAILS, "largest relative difference from the finite-difference "
+            au_set(r, k, worst < 1e-6 ? AUDIT_HOLDS : AUDIT_FAILS, "largest relative difference from the finite-difference "
                 "Jacobian %.1e over 1000 points (the map does not depend on A)", worst);
     }
 
-    r = add(rows, &nr, "slope-jacobian", "the slope map m = normalize(x, y, 1) has |dm / d(x, y)| = m_z^3", SEED_STRETCH,
+    r = au_add(rows, &nr, "slope-jacobian", "the slope map m = normalize(x, y, 1) has |dm / d(x, y)| = m_z^3", SEED_STRETCH,
             "Relation to slope-space", AUDIT_SCOPE_ANY);
     {
         rng g = {88};
@@ -1060,107 +869,107 @@ int audit_run(const double A[AUDIT_SHAPES][3][3], audit_row *rows, int progress)
         for (int i = 0; i < 1000; i++) {
             double x = 6 * rng_uniform(&g) - 3, y = 6 * rng_uniform(&g) - 3;
             ggx_vec3 m = map_slope(NULL, x, y);
-            worst = fmax(worst, fabs(fd_jacobian(map_slope, NULL, x, y, 1e-6) / (m.z * m.z * m.z) - 1));
+            worst = fmax(worst, fabs(au_fd_jacobian(map_slope, NULL, x, y, 1e-6) / (m.z * m.z * m.z) - 1));
         }
         for (int k = 0; k < AUDIT_SHAPES; k++)
-            set(r, k, worst < 1e-6 ? AUDIT_HOLDS : AUDIT_FAILS, "largest relative difference from the finite-difference "
+            au_set(r, k, worst < 1e-6 ? AUDIT_HOLDS : AUDIT_FAILS, "largest relative difference from the finite-difference "
                 "Jacobian %.1e over 1000 slopes in [-3, 3]^2 (the map does not depend on A)", worst);
     }
 
-    r = add(rows, &nr, "squish-jacobian", "the crescent squish (s, t) -> (s, (1 - z) sqrt(1 - s^2) + z t) has Jacobian z",
+    r = au_add(rows, &nr, "squish-jacobian", "the crescent squish (s, t) -> (s, (1 - z) sqrt(1 - s^2) + z t) has Jacobian z",
             SEED_VNDF ", " SEED_BLOG2 ", " SEED_WALTER, "004 step 3; blog Part 2; Walter eq 38-41", AUDIT_SCOPE_ANY);
     {
         rng g = {89};
         double worst = 0;
         for (int i = 0; i < 1000; i++) {
             double z = 0.5 + 0.5 * rng_uniform(&g), sx = 1.8 * rng_uniform(&g) - 0.9, t = 1.8 * rng_uniform(&g) - 0.9;
-            worst = fmax(worst, fabs(fd_jacobian(map_squish, &z, sx, t, 1e-6) / z - 1));
+            worst = fmax(worst, fabs(au_fd_jacobian(map_squish, &z, sx, t, 1e-6) / z - 1));
         }
         for (int k = 0; k < AUDIT_SHAPES; k++)
-            set(r, k, worst < 1e-6 ? AUDIT_HOLDS : AUDIT_FAILS, "largest relative difference from the finite-difference "
+            au_set(r, k, worst < 1e-6 ? AUDIT_HOLDS : AUDIT_FAILS, "largest relative difference from the finite-difference "
                 "Jacobian %.1e over 1000 points, z in [1/2, 1]", worst);
     }
 
-    r = add(rows, &nr, "stretch-jacobian", "the elliptic stretch m = normalize(A s) has solid-angle Jacobian |dm / ds| = ax ay "
+    r = au_add(rows, &nr, "stretch-jacobian", "the elliptic stretch m = normalize(A s) has solid-angle Jacobian |dm / ds| = ax ay "
             "||A^-1 m||^3", SEED_STRETCH ", " SEED_VNDF, "GGX composition; 004 Elliptic Stretch", AUDIT_SCOPE_DIAGONAL);
     for (int k = 0; k < AUDIT_SHAPES; k++) {
         double ax, ay;
-        if (!alphas_or_skip(r, k, &sh[k], &ax, &ay)) continue;
+        if (!au_alphas_or_skip(r, k, &sh[k], &ax, &ay)) continue;
         /* the map of the shape itself, m = normalize(A^T s) (A^T = A for a diagonal A), against the literal form
          * in x, y and against |A| ||A^-T m||^3 (the form for any A) */
         double Ait[3][3];
-        inv_t(A[k], Ait);
+        au_inv_t(A[k], Ait);
         rng g = {90};
         double worst_lit = 0, worst_gen = 0;
         for (int i = 0; i < 1000; i++) {
-            stretch_ctx c = {A[k], random_upper(&g), {0, 0, 0}, {0, 0, 0}};
+            stretch_ctx c = {A[k], au_random_upper(&g), {0, 0, 0}, {0, 0, 0}};
             t_frame(c.s, &c.t1, &c.t2);
-            double J = fd_jacobian(map_stretch, &c, 0, 0, 1e-6);
+            double J = au_fd_jacobian(map_stretch, &c, 0, 0, 1e-6);
             ggx_vec3 m = map_stretch(&c, 0, 0);
-            double qd = sqrt(m.x * m.x / (ax * ax) + m.y * m.y / (ay * ay) + m.z * m.z), q = norm_of((const double(*)[3])Ait, m);
+            double qd = sqrt(m.x * m.x / (ax * ax) + m.y * m.y / (ay * ay) + m.z * m.z), q = au_norm_of((const double(*)[3])Ait, m);
             worst_lit = fmax(worst_lit, fabs(ax * ay * qd * qd * qd / J - 1));
             worst_gen = fmax(worst_gen, fabs(sh[k].det * q * q * q / J - 1));
         }
-        set(r, k, worst_lit < 1e-6 ? AUDIT_HOLDS : AUDIT_FAILS, "largest relative difference from the finite-difference Jacobian "
+        au_set(r, k, worst_lit < 1e-6 ? AUDIT_HOLDS : AUDIT_FAILS, "largest relative difference from the finite-difference Jacobian "
             "%.1e over 1000 directions (for any A, |A| ||A^-T m||^3 with m = normalize(A^T s): %.1e)", worst_lit, worst_gen);
     }
 
-    r = add(rows, &nr, "reflect-jacobian", "the reflection omega = 2 (psi.m) m - psi has |d omega / dm| = 4 |psi.m|", SEED_WALTER,
+    r = au_add(rows, &nr, "reflect-jacobian", "the reflection omega = 2 (psi.m) m - psi has |d omega / dm| = 4 |psi.m|", SEED_WALTER,
             "eq 47-48", AUDIT_SCOPE_ANY);
     {
         rng g = {91};
         double worst = 0;
         for (int i = 0; i < 1000; i++) {
-            reflect_ctx c = {random_upper(&g), random_upper(&g), {0, 0, 0}, {0, 0, 0}};
+            reflect_ctx c = {au_random_upper(&g), au_random_upper(&g), {0, 0, 0}, {0, 0, 0}};
             if (t_dot(c.psi, c.m) < 0.05) continue;
             t_frame(c.m, &c.t1, &c.t2);
-            worst = fmax(worst, fabs(fd_jacobian(map_reflect, &c, 0, 0, 1e-6) / (4 * t_dot(c.psi, c.m)) - 1));
+            worst = fmax(worst, fabs(au_fd_jacobian(map_reflect, &c, 0, 0, 1e-6) / (4 * t_dot(c.psi, c.m)) - 1));
         }
         for (int k = 0; k < AUDIT_SHAPES; k++)
-            set(r, k, worst < 1e-6 ? AUDIT_HOLDS : AUDIT_FAILS, "largest relative difference from the finite-difference "
+            au_set(r, k, worst < 1e-6 ? AUDIT_HOLDS : AUDIT_FAILS, "largest relative difference from the finite-difference "
                 "Jacobian %.1e over 1000 pairs (the map does not depend on A)", worst);
     }
 
     /* ---- identities at random points, on the matrix given ---- */
-    r = add(rows, &nr, "cross-product", "(M a) x (M b) = |M| M^-T (a x b) for a non-singular M", SEED_WALTER, "eq 25",
+    r = au_add(rows, &nr, "cross-product", "(M a) x (M b) = |M| M^-T (a x b) for a non-singular M", SEED_WALTER, "eq 25",
             AUDIT_SCOPE_ANY);
     for (int k = 0; k < AUDIT_SHAPES; k++) {
         double Ait[3][3];
-        inv_t(A[k], Ait);
+        au_inv_t(A[k], Ait);
         rng g = {92};
         double worst = 0;
         for (int i = 0; i < 1000; i++) {
-            ggx_vec3 a = random_upper(&g), b = random_upper(&g);
+            ggx_vec3 a = au_random_upper(&g), b = au_random_upper(&g);
             ggx_vec3 l = t_cross(t_matvec(A[k], a), t_matvec(A[k], b)), rr = t_scale(t_matvec((const double(*)[3])Ait, t_cross(a, b)), sh[k].det);
             ggx_vec3 d = t_add(l, t_scale(rr, -1));
             worst = fmax(worst, sqrt(t_dot(d, d) / t_dot(l, l)));
         }
-        set(r, k, worst < 1e-12 ? AUDIT_HOLDS : AUDIT_FAILS, "largest relative difference %.1e over 1000 pairs (M = A; det A > 0 "
+        au_set(r, k, worst < 1e-12 ? AUDIT_HOLDS : AUDIT_FAILS, "largest relative difference %.1e over 1000 pairs (M = A; det A > 0 "
             "here: with det < 0 the right side flips sign)", worst);
     }
 
-    r = add(rows, &nr, "sphere-normal", "m' = A^-T m / ||A^-T m|| is the sphere's normal at A p, p the ellipsoid point with normal m; "
+    r = au_add(rows, &nr, "sphere-normal", "m' = A^-T m / ||A^-T m|| is the sphere's normal at A p, p the ellipsoid point with normal m; "
             "m'.v' = (m.v) / (||Av|| ||A^-T m||)", SEED_BLOG2, "eq:m-to-m-prime, eq:mv-sphere-to-ellipsoid", AUDIT_SCOPE_ANY);
     for (int k = 0; k < AUDIT_SHAPES; k++) {
         double Ait[3][3];
-        inv_t(A[k], Ait);
+        au_inv_t(A[k], Ait);
         rng g = {93};
         double worst = 0;
         for (int i = 0; i < 1000; i++) {
-            ggx_vec3 m = random_upper(&g), vv = random_upper(&g);
-            ggx_vec3 mp = t_normalize(t_matvec((const double(*)[3])Ait, m)), Ap = t_normalize(t_matvec(A[k], point_of_normal((const double(*)[3])Ait, m)));
+            ggx_vec3 m = au_random_upper(&g), vv = au_random_upper(&g);
+            ggx_vec3 mp = t_normalize(t_matvec((const double(*)[3])Ait, m)), Ap = t_normalize(t_matvec(A[k], au_point_of_normal((const double(*)[3])Ait, m)));
             ggx_vec3 d = t_add(mp, t_scale(Ap, -1)), vp = t_normalize(t_matvec(A[k], vv));
-            double lhs = t_dot(mp, vp), rhs = t_dot(m, vv) / (norm_of(A[k], vv) * norm_of((const double(*)[3])Ait, m));
+            double lhs = t_dot(mp, vp), rhs = t_dot(m, vv) / (au_norm_of(A[k], vv) * au_norm_of((const double(*)[3])Ait, m));
             worst = fmax(worst, fmax(sqrt(t_dot(d, d)), fabs(lhs - rhs)));
         }
-        set(r, k, worst < 1e-12 ? AUDIT_HOLDS : AUDIT_FAILS, "largest difference %.1e over 1000 normals and views", worst);
+        au_set(r, k, worst < 1e-12 ? AUDIT_HOLDS : AUDIT_FAILS, "largest difference %.1e over 1000 normals and views", worst);
     }
 
-    r = add(rows, &nr, "half-cut", "the half of the ellipsoid with m.n > 0 is the half cut by the plane through its centre "
+    r = au_add(rows, &nr, "half-cut", "the half of the ellipsoid with m.n > 0 is the half cut by the plane through its centre "
             "perpendicular to A^T A n", SEED_WALTER, "sections 2.3, 5.1", AUDIT_SCOPE_ANY);
     for (int k = 0; k < AUDIT_SHAPES; k++) {
         double Ait[3][3];
-        inv_t(A[k], Ait);
+        au_inv_t(A[k], Ait);
         rng g = {94};
         long disagree = 0;
         ggx_vec3 ata = t_mattvec(A[k], t_matvec(A[k], n));
@@ -1170,60 +979,60 @@ int audit_run(const double A[AUDIT_SHAPES][3][3], audit_row *rows, int progress)
             ggx_vec3 m = t_normalize(t_mattvec(A[k], t_matvec(A[k], p)));
             disagree += (m.z > 0) != (t_dot(ata, p) > 0);
         }
-        set(r, k, disagree == 0 ? AUDIT_HOLDS : AUDIT_FAILS, "%ld of 10^5 random surface points on the wrong side", disagree);
+        au_set(r, k, disagree == 0 ? AUDIT_HOLDS : AUDIT_FAILS, "%ld of 10^5 random surface points on the wrong side", disagree);
     }
 
-    r = add(rows, &nr, "g1-pdf-identity", "(1/s) ||An|| / ||Av|| = 2 ||An|| ||A^-T n|| / (||Av|| ||A^-T n|| + v.n), with the blog's "
+    r = au_add(rows, &nr, "g1-pdf-identity", "(1/s) ||An|| / ||Av|| = 2 ||An|| ||A^-T n|| / (||Av|| ||A^-T n|| + v.n), with the blog's "
             "s and (Av).(A^-T n) = v.n", SEED_BLOG2, "eq:g1-pdf", AUDIT_SCOPE_ANY);
     for (int k = 0; k < AUDIT_SHAPES; k++) {
         double Ait[3][3];
-        inv_t(A[k], Ait);
+        au_inv_t(A[k], Ait);
         rng g = {95};
         double worst = 0;
         for (int i = 0; i < 1000; i++) {
-            ggx_vec3 vv = random_upper(&g), av = t_matvec(A[k], vv), an_t = t_matvec((const double(*)[3])Ait, n);
-            double avl = sqrt(t_dot(av, av)), atl = sqrt(t_dot(an_t, an_t)), anl = norm_of(A[k], n);
+            ggx_vec3 vv = au_random_upper(&g), av = t_matvec(A[k], vv), an_t = t_matvec((const double(*)[3])Ait, n);
+            double avl = sqrt(t_dot(av, av)), atl = sqrt(t_dot(an_t, an_t)), anl = au_norm_of(A[k], n);
             double sb = 0.5 * (1 + t_dot(av, an_t) / (avl * atl));
             double lhs = anl / avl / sb, rhs = 2 * anl * atl / (avl * atl + vv.z);
             worst = fmax(worst, fabs(lhs / rhs - 1));
         }
-        set(r, k, worst < 1e-12 ? AUDIT_HOLDS : AUDIT_FAILS, "largest relative difference %.1e over 1000 views (an identity for "
+        au_set(r, k, worst < 1e-12 ? AUDIT_HOLDS : AUDIT_FAILS, "largest relative difference %.1e over 1000 views (an identity for "
             "every A; the next step needs ||An|| ||A^-T n|| = 1, row unit-norms)", worst);
     }
 
-    r = add(rows, &nr, "vndf-frame", "z = Av / ||Av||, x = (-z_y, z_x, 0) / ||.||, y = z x x is orthonormal with y.n >= 0",
+    r = au_add(rows, &nr, "vndf-frame", "z = Av / ||Av||, x = (-z_y, z_x, 0) / ||.||, y = z x x is orthonormal with y.n >= 0",
             SEED_VNDF, "step 1, make a frame", AUDIT_SCOPE_DIAGONAL);
     for (int k = 0; k < AUDIT_SHAPES; k++) {
         rng g = {96};
         double worst = 0, ymin = 1;
         for (int i = 0; i < 1000; i++) {
-            ggx_vec3 z = t_normalize(t_matvec(A[k], random_upper(&g))), x = t_normalize(t_vec(-z.y, z.x, 0)), y = t_cross(z, x);
+            ggx_vec3 z = t_normalize(t_matvec(A[k], au_random_upper(&g))), x = t_normalize(t_vec(-z.y, z.x, 0)), y = t_cross(z, x);
             worst = fmax(worst, fmax(fabs(t_dot(x, z)), fmax(fabs(t_dot(y, y) - 1), fabs(t_dot(x, y)))));
             ymin = fmin(ymin, y.z);
         }
-        set(r, k, worst < 1e-12 && ymin >= 0 ? AUDIT_HOLDS : AUDIT_FAILS, "orthonormal to %.0e over 1000 views; smallest y.n "
+        au_set(r, k, worst < 1e-12 && ymin >= 0 ? AUDIT_HOLDS : AUDIT_FAILS, "orthonormal to %.0e over 1000 views; smallest y.n "
             "%.3f", fmax(worst, 1e-17), ymin);
     }
-    r = add(rows, &nr, "vndf-eq33", "p_h(m) = (A_e(n) / A_l(psi, n)) X+(m.psi) D(m) |m.psi| integrates to 1 over m", SEED_WALTER,
+    r = au_add(rows, &nr, "vndf-eq33", "p_h(m) = (A_e(n) / A_l(psi, n)) X+(m.psi) D(m) |m.psi| integrates to 1 over m", SEED_WALTER,
             "eq 33 (as fixed in May 2016)", AUDIT_SCOPE_ANY);
     for (int k = 0; k < AUDIT_SHAPES; k++) verdict_views(r, k, eq33_integral, &sh[k], 1e-6, "it");
 
-    r = add(rows, &nr, "sggx", "the ellipsoid NDF is SGGX with S = A^T A: D_SGGX(m) = 1 / (pi sqrt|S| (m^T S^-1 m)^2) = ||An|| D(m)",
+    r = au_add(rows, &nr, "sggx", "the ellipsoid NDF is SGGX with S = A^T A: D_SGGX(m) = 1 / (pi sqrt|S| (m^T S^-1 m)^2) = ||An|| D(m)",
             SEED_WALTER, "section 5.2", AUDIT_SCOPE_ANY);
     for (int k = 0; k < AUDIT_SHAPES; k++) {
         double Ait[3][3];
-        inv_t(A[k], Ait);
+        au_inv_t(A[k], Ait);
         rng g = {97};
         double worst = 0;
         for (int i = 0; i < 1000; i++) {
-            ggx_vec3 m = random_upper(&g), q = t_matvec((const double(*)[3])Ait, m); /* m^T S^-1 m = ||A^-T m||^2 */
+            ggx_vec3 m = au_random_upper(&g), q = t_matvec((const double(*)[3])Ait, m); /* m^T S^-1 m = ||A^-T m||^2 */
             double qq = t_dot(q, q), d_sggx = 1 / (T_PI * sh[k].det * qq * qq);
-            worst = fmax(worst, fabs(d_sggx / (norm_of(A[k], n) * ggx_ndf(&sh[k], m)) - 1));
+            worst = fmax(worst, fabs(d_sggx / (au_norm_of(A[k], n) * ggx_ndf(&sh[k], m)) - 1));
         }
-        set(r, k, worst < 1e-12 ? AUDIT_HOLDS : AUDIT_FAILS, "largest relative difference %.1e over 1000 normals", worst);
+        au_set(r, k, worst < 1e-12 ? AUDIT_HOLDS : AUDIT_FAILS, "largest relative difference %.1e over 1000 normals", worst);
     }
 
-    r = add(rows, &nr, "hessian", "with H = 2 A^T A: |H| = 8 |A|^2, adj(H) = |H| H^-1 and m^T H^-1 m = ||A^-T m||^2 / 2", SEED_WALTER,
+    r = au_add(rows, &nr, "hessian", "with H = 2 A^T A: |H| = 8 |A|^2, adj(H) = |H| H^-1 and m^T H^-1 m = ||A^-T m||^2 / 2", SEED_WALTER,
             "eq 11-19", AUDIT_SCOPE_ANY);
     for (int k = 0; k < AUDIT_SHAPES; k++) {
         double H[3][3], Hinv_t[3][3];
@@ -1232,7 +1041,7 @@ int audit_run(const double A[AUDIT_SHAPES][3][3], audit_row *rows, int progress)
                 H[i][j] = 0;
                 for (int l = 0; l < 3; l++) H[i][j] += 2 * A[k][l][i] * A[k][l][j];
             }
-        inv_t((const double(*)[3])H, Hinv_t); /* H symmetric: H^-T = H^-1 */
+        au_inv_t((const double(*)[3])H, Hinv_t); /* H symmetric: H^-T = H^-1 */
         double detH = H[0][0] * (H[1][1] * H[2][2] - H[1][2] * H[2][1]) - H[0][1] * (H[1][0] * H[2][2] - H[1][2] * H[2][0]) +
                       H[0][2] * (H[1][0] * H[2][1] - H[1][1] * H[2][0]);
         double worst = fabs(detH / (8 * sh[k].det * sh[k].det) - 1);
@@ -1243,25 +1052,25 @@ int audit_run(const double A[AUDIT_SHAPES][3][3], audit_row *rows, int progress)
                 worst = fmax(worst, fabs(adj - detH * Hinv_t[i][j]) / fabs(detH) * 1e0);
             }
         double Ait[3][3];
-        inv_t(A[k], Ait);
+        au_inv_t(A[k], Ait);
         rng g = {98};
         for (int i = 0; i < 1000; i++) {
-            ggx_vec3 m = random_upper(&g), hm = t_matvec((const double(*)[3])Hinv_t, m), q = t_matvec((const double(*)[3])Ait, m);
+            ggx_vec3 m = au_random_upper(&g), hm = t_matvec((const double(*)[3])Hinv_t, m), q = t_matvec((const double(*)[3])Ait, m);
             worst = fmax(worst, fabs(t_dot(m, hm) / (0.5 * t_dot(q, q)) - 1));
         }
-        set(r, k, worst < 1e-10 ? AUDIT_HOLDS : AUDIT_FAILS, "largest relative difference %.1e (|H|, the adjugate, 1000 normals)",
+        au_set(r, k, worst < 1e-10 ? AUDIT_HOLDS : AUDIT_FAILS, "largest relative difference %.1e (|H|, the adjugate, 1000 normals)",
             worst);
     }
 
-    r = add(rows, &nr, "normalize-derivative", "d(p / ||p||) = p x (dp x p) / ||p||^3, and the normalizing Jacobian |d p^ / d(u, v)| "
+    r = au_add(rows, &nr, "normalize-derivative", "d(p / ||p||) = p x (dp x p) / ||p||^3, and the normalizing Jacobian |d p^ / d(u, v)| "
             "= |p.(p_u x p_v)| / ||p||^3", SEED_STRETCH, "Differentiation; the Normalizing Jacobian formula", AUDIT_SCOPE_ANY);
     {
         rng g = {99};
         double worst = 0;
         for (int i = 0; i < 1000; i++) {
-            ggx_vec3 f[3] = {t_scale(random_upper(&g), 0.5 + 2 * rng_uniform(&g)), random_upper(&g), random_upper(&g)};
+            ggx_vec3 f[3] = {t_scale(au_random_upper(&g), 0.5 + 2 * rng_uniform(&g)), au_random_upper(&g), au_random_upper(&g)};
             f[1] = t_scale(f[1], 2 * rng_uniform(&g) - 1), f[2] = t_scale(f[2], 2 * rng_uniform(&g) - 1);
-            double pl = sqrt(t_dot(f[0], f[0])), J = fd_jacobian(map_normalize, f, 0, 0, 1e-6);
+            double pl = sqrt(t_dot(f[0], f[0])), J = au_fd_jacobian(map_normalize, f, 0, 0, 1e-6);
             double want = fabs(t_dot(f[0], t_cross(f[1], f[2]))) / (pl * pl * pl);
             if (want > 1e-3) worst = fmax(worst, fabs(J / want - 1));
             ggx_vec3 d = t_scale(t_add(map_normalize(f, 1e-6, 0), t_scale(map_normalize(f, -1e-6, 0), -1)), 0.5e6);
@@ -1269,31 +1078,31 @@ int audit_run(const double A[AUDIT_SHAPES][3][3], audit_row *rows, int progress)
             worst = fmax(worst, sqrt(t_dot(e, e)) / fmax(1e-3, sqrt(t_dot(dw, dw))));
         }
         for (int k = 0; k < AUDIT_SHAPES; k++)
-            set(r, k, worst < 1e-6 ? AUDIT_HOLDS : AUDIT_FAILS, "largest relative difference from finite differences %.1e over "
+            au_set(r, k, worst < 1e-6 ? AUDIT_HOLDS : AUDIT_FAILS, "largest relative difference from finite differences %.1e over "
                 "1000 random planes (the formula does not depend on A)", worst);
     }
 
-    r = add(rows, &nr, "stretch-inverse", "s = A^-1 m / ||A^-1 m|| inverts m = A s / ||A s||, and |s_z| = |m_z| ||m_||, "
+    r = au_add(rows, &nr, "stretch-inverse", "s = A^-1 m / ||A^-1 m|| inverts m = A s / ||A s||, and |s_z| = |m_z| ||m_||, "
             "mx^2/ax^2 + my^2/ay^2 + mz^2 = 1 / ||m_||^2 (m_ = A s)", SEED_VNDF ", " SEED_STRETCH, "004 Elliptic Stretch; 001 Elliptic "
             "Stretch", AUDIT_SCOPE_DIAGONAL);
     for (int k = 0; k < AUDIT_SHAPES; k++) {
         double ax, ay;
-        if (!alphas_or_skip(r, k, &sh[k], &ax, &ay)) continue;
+        if (!au_alphas_or_skip(r, k, &sh[k], &ax, &ay)) continue;
         double Ait[3][3];
-        inv_t(A[k], Ait);
+        au_inv_t(A[k], Ait);
         rng g = {100};
         double worst = 0;
         for (int i = 0; i < 1000; i++) {
-            ggx_vec3 sv = random_upper(&g), mb = t_matvec(A[k], sv), m = t_normalize(mb);
+            ggx_vec3 sv = au_random_upper(&g), mb = t_matvec(A[k], sv), m = t_normalize(mb);
             ggx_vec3 back = t_normalize(t_mattvec((const double(*)[3])Ait, m)), d = t_add(back, t_scale(sv, -1)); /* A^-1 m */
             double ml = sqrt(t_dot(mb, mb)), q = m.x * m.x / (ax * ax) + m.y * m.y / (ay * ay) + m.z * m.z;
             worst = fmax(worst, fmax(sqrt(t_dot(d, d)), fmax(fabs(fabs(sv.z) / (fabs(m.z) * ml) - 1), fabs(q * ml * ml - 1))));
         }
-        set(r, k, worst < 1e-12 ? AUDIT_HOLDS : AUDIT_FAILS, "largest difference %.1e over 1000 directions%s", worst,
+        au_set(r, k, worst < 1e-12 ? AUDIT_HOLDS : AUDIT_FAILS, "largest difference %.1e over 1000 directions%s", worst,
             sh[k].kind == GGX_SHAPE_UNSKEWED ? " (the norm in x, y, not the rotated axes)" : "");
     }
 
-    r = add(rows, &nr, "equal-area-grid", "the 10 x 10 grid of the unit square maps to 100 cells of equal probability under "
+    r = au_add(rows, &nr, "equal-area-grid", "the 10 x 10 grid of the unit square maps to 100 cells of equal probability under "
             "D(m)(m.n) (the figures, alpha 0.15, 0.5)", SEED_STRETCH, "Visualization", AUDIT_SCOPE_DIAGONAL);
     for (int k = 0; k < AUDIT_SHAPES; k++) {
         /* normals drawn by an independent sampler (the ellipse lift), mapped back to the unit square by the stretch's
@@ -1309,15 +1118,15 @@ int audit_run(const double A[AUDIT_SHAPES][3][3], audit_row *rows, int progress)
         double x2 = 0, e = NS / 100.0;
         for (int i = 0; i < 100; i++) x2 += ((double)cells[i] - e) * ((double)cells[i] - e) / e;
         /* 99 degrees of freedom: mean 99, sd 14; beyond 99 + 6 sd = 183 the cells are not equal */
-        set(r, k, x2 < 183 ? AUDIT_HOLDS : AUDIT_FAILS, "chi-square %.1f over the 100 cells with 99 degrees of freedom (2e5 normals "
+        au_set(r, k, x2 < 183 ? AUDIT_HOLDS : AUDIT_FAILS, "chi-square %.1f over the 100 cells with 99 degrees of freedom (2e5 normals "
             "from the ellipse lift, mapped back by the stretch's inverse)", x2);
     }
-    r = add(rows, &nr, "inversion-forms", "for the lifted normal: cos phi_m = ax cos 2 pi xi2 / N, sin phi_m = ay sin 2 pi xi2 / N and "
+    r = au_add(rows, &nr, "inversion-forms", "for the lifted normal: cos phi_m = ax cos 2 pi xi2 / N, sin phi_m = ay sin 2 pi xi2 / N and "
             "tan theta_m = sqrt(xi1 / (1 - xi1)) N = sqrt(xi1 / ((1 - xi1)(cos^2 phi_m / ax^2 + sin^2 phi_m / ay^2))), N^2 = "
             "ax^2 cos^2 + ay^2 sin^2", SEED_BLOG2, "Sampling Normals; eq:theta_m_sample", AUDIT_SCOPE_DIAGONAL);
     for (int k = 0; k < AUDIT_SHAPES; k++) {
         if (sh[k].kind != GGX_SHAPE_DIAGONAL) {
-            set(r, k, AUDIT_NOT_CLAIMED, "cannot be applied (written in x and y for a diagonal A)");
+            au_set(r, k, AUDIT_NOT_CLAIMED, "cannot be applied (written in x and y for a diagonal A)");
             continue;
         }
         double ax = A[k][0][0], ay = A[k][1][1];
@@ -1333,15 +1142,15 @@ int audit_run(const double A[AUDIT_SHAPES][3][3], audit_row *rows, int progress)
             worst = fmax(worst, fmax(fabs(cos(ph) - ax * c / N), fabs(sin(ph) - ay * sn / N)));
             worst = fmax(worst, fmax(fabs(tan(th) / (sqrt(x1 / (1 - x1)) * N) - 1), fabs(inv / (sqrt(x1 / (1 - x1)) * N) - 1)));
         }
-        set(r, k, worst < 1e-9 ? AUDIT_HOLDS : AUDIT_FAILS, "largest difference %.1e over 1000 points (the angles from the "
+        au_set(r, k, worst < 1e-9 ? AUDIT_HOLDS : AUDIT_FAILS, "largest difference %.1e over 1000 points (the angles from the "
             "ellipsoid's own normal, the gradient at the lifted point)", worst);
     }
 
-    r = add(rows, &nr, "spherical-form", "D = 1 / (pi ax ay cos^4 theta (1 + tan^2 theta (cos^2 phi / ax^2 + sin^2 phi / ay^2))^2)",
+    r = au_add(rows, &nr, "spherical-form", "D = 1 / (pi ax ay cos^4 theta (1 + tan^2 theta (cos^2 phi / ax^2 + sin^2 phi / ay^2))^2)",
             SEED_BLOG1, "normal in spherical coordinates", AUDIT_SCOPE_DIAGONAL);
     for (int k = 0; k < AUDIT_SHAPES; k++) {
         double ax, ay;
-        if (!alphas_or_skip(r, k, &sh[k], &ax, &ay)) continue;
+        if (!au_alphas_or_skip(r, k, &sh[k], &ax, &ay)) continue;
         rng g = {103};
         double worst = 0;
         for (int i = 0; i < 1000; i++) {
@@ -1349,25 +1158,25 @@ int audit_run(const double A[AUDIT_SHAPES][3][3], audit_row *rows, int progress)
             double q = 1 + t2 * (cos(ph) * cos(ph) / (ax * ax) + sin(ph) * sin(ph) / (ay * ay));
             worst = fmax(worst, fabs(1 / (T_PI * ax * ay * c * c * c * c * q * q) / ggx_ndf(&sh[k], t_dir(th, ph)) - 1));
         }
-        set(r, k, worst < 1e-9 ? AUDIT_HOLDS : AUDIT_FAILS, "largest relative difference from Walter eq 1 %.1e over 1000 normals",
+        au_set(r, k, worst < 1e-9 ? AUDIT_HOLDS : AUDIT_FAILS, "largest relative difference from Walter eq 1 %.1e over 1000 normals",
             worst);
     }
 
-    r = add(rows, &nr, "det-sr", "A = S R with R a rotation: |A| = |S| = ax ay", SEED_WALTER, "eq 2 and text", AUDIT_SCOPE_ANY);
+    r = au_add(rows, &nr, "det-sr", "A = S R with R a rotation: |A| = |S| = ax ay", SEED_WALTER, "eq 2 and text", AUDIT_SCOPE_ANY);
     for (int k = 0; k < AUDIT_SHAPES; k++) {
         /* S's entries are the norms of A's rows (R's rows are unit vectors) */
         double rn[3];
         for (int i = 0; i < 3; i++) rn[i] = sqrt(A[k][i][0] * A[k][i][0] + A[k][i][1] * A[k][i][1] + A[k][i][2] * A[k][i][2]);
         double e = fabs(sh[k].det / (rn[0] * rn[1] * rn[2]) - 1);
-        set(r, k, e < 1e-12 ? AUDIT_HOLDS : AUDIT_FAILS, "|det A| = %.6g, ax ay = %.6g (relative difference %.1e)", sh[k].det,
+        au_set(r, k, e < 1e-12 ? AUDIT_HOLDS : AUDIT_FAILS, "|det A| = %.6g, ax ay = %.6g (relative difference %.1e)", sh[k].det,
             rn[0] * rn[1] * rn[2], e);
     }
 
-    r = add(rows, &nr, "an-is-n", "theta_x = theta_y = 0 gives A n = n, so ||An|| = 1", SEED_WALTER, "section 1, last sentence",
+    r = au_add(rows, &nr, "an-is-n", "theta_x = theta_y = 0 gives A n = n, so ||An|| = 1", SEED_WALTER, "section 1, last sentence",
             AUDIT_SCOPE_ROTATED);
     for (int k = 0; k < AUDIT_SHAPES; k++) {
         ggx_vec3 an = t_matvec(A[k], n), d = t_add(an, t_scale(n, -1));
-        set(r, k, sqrt(t_dot(d, d)) < 1e-12 ? AUDIT_HOLDS : AUDIT_FAILS, "A n = (%.4g, %.4g, %.4g)", an.x, an.y, an.z);
+        au_set(r, k, sqrt(t_dot(d, d)) < 1e-12 ? AUDIT_HOLDS : AUDIT_FAILS, "A n = (%.4g, %.4g, %.4g)", an.x, an.y, an.z);
     }
     /* a shape outside a claim's scope: not claimed, with what happens when applied anyway */
     for (int i = 0; i < nr; i++) apply_scope(&rows[i], sh);
@@ -1466,7 +1275,7 @@ void audit_write(FILE *f, audit_format fmt, const audit_row *rows, int n, const 
                "rad, phi = -0.6 (and phi = 2.5 where Walter's min must be active). Chi-square: 10^6 samples, 100 x 200 "
                "equal-area cells in sphere space, Sidak level %.2g. Finite-difference checks of the curvature and of "
                "every sampler's Jacobian are in tests/test_ndf.c and tests/test_sample_map.c.\n\n",
-            alpha_level());
+            au_alpha_level());
     fprintf(f, "| # | id | claim | seed file, where | scope | %s | %s | %s |\n|---|---|---|---|---|---|---|---|\n",
             labels[0], labels[1], labels[2]);
     for (int i = 0; i < n; i++) {

@@ -1,0 +1,90 @@
+/* The seed audit's shared parts: the row vocabulary, the chi-square runs, and the geometric checks that the claim
+ * files (verify/audit*.c) use. Internal to the verification library. SPDX-License-Identifier: MIT */
+#ifndef GGX_AUDIT_INTERNAL_H
+#define GGX_AUDIT_INTERNAL_H
+
+#include <stdint.h>
+
+#include "audit.h"
+#include "chi2.h"
+
+/* The seeds, by file (../shared/seeds). */
+#define SEED_BLOG2 "000_a290dd7369ef5aa9.txt"    /* blog, Part 2 */
+#define SEED_STRETCH "001_3ccb6b534f20718a.txt"  /* Engstad, Elliptic Stretch */
+#define SEED_BLOG1 "002_bcf7c176b3e74bba.txt"    /* blog, Part 1 */
+#define SEED_WALTER "003_d5b5d8b0d5f73c5c.txt"   /* Walter et al., The Ellipsoid NDF */
+#define SEED_VNDF "004_96c01450b98ca7e0.txt"     /* Engstad, Proof of the Sampling Method for Visible GGX */
+
+/* What every claim file's rows see: the table, the three shapes (as given and as the library's shapes). */
+typedef struct au_ctx {
+    audit_row *rows;
+    int *nr;
+    const ggx_shape *sh;        /* [AUDIT_SHAPES] */
+    const double (*A)[3][3];    /* [AUDIT_SHAPES], Walter's A as given */
+    int progress;
+} au_ctx;
+
+/* ---- rows ---- */
+/* A new row, every verdict "not claimed: not checked" until set; aborts beyond AUDIT_MAX_ROWS. */
+audit_row *au_add(audit_row *rows, int *n, const char *id, const char *claim, const char *seed_file,
+                  const char *where, audit_scope scope);
+/* Sets a row's verdict for shape k and its evidence (printf-style); au_append adds to the evidence. */
+void au_set(audit_row *r, int k, audit_verdict v, const char *fmt, ...) __attribute__((format(printf, 4, 5)));
+void au_append(audit_row *r, int k, const char *fmt, ...) __attribute__((format(printf, 3, 4)));
+/* Whether the seed's scope covers shape s. */
+int au_in_scope(audit_scope scope, const ggx_shape *s);
+
+/* ---- chi-square ---- */
+typedef ggx_vec3 (*au_vndf_fn)(const ggx_shape *, ggx_vec3, double, double);
+/* A sampler as a seed writes it, in terms of the matrix A it is given. */
+typedef ggx_vec3 (*au_literal_fn)(const double A[3][3], ggx_vec3 v, double u1, double u2); /* v: the view (VNDF) */
+typedef struct au_actx {
+    normal_keys keys;      /* first: the chi-square key and density come from normal_keys_* */
+    au_vndf_fn f;          /* sampler (for NDF samplers v is n) */
+    au_literal_fn literal; /* or, when set, the seed's literal form applied to A */
+    const double (*A)[3];
+} au_actx;
+/* chi-square p-value of the sampler of c against its pdf (0 when a sample has zero pdf); a dot on stderr when
+ * progress is set. Quiet: a claim that fails is an answer, not a failure to keep a histogram of. */
+double au_chi2_p(au_actx *c, uint64_t seed, int progress);
+double au_chi2_sampler(const ggx_shape *s, ggx_vec3 v, au_vndf_fn f, verify_pdf_fn pdf, uint64_t seed, int progress);
+/* The same for a sampler that draws from a random stream (rejection samplers): draw as in chi2_problem. */
+double au_chi2_draw(const ggx_shape *s, ggx_vec3 v, int (*draw)(void *ctx, rng *r, ggx_vec3 *m), void *ctx,
+                    verify_pdf_fn pdf, uint64_t seed, int progress);
+/* The significance level of one run: the suite's Sidak-corrected level. */
+double au_alpha_level(void);
+/* holds if p >= au_alpha_level(), else fails; the evidence is the p-value. */
+void au_verdict_p(audit_row *r, int k, double p);
+/* rng_uniform as the library's callback (the rejection samplers' random stream). */
+double au_uniform_cb(void *st);
+
+/* ---- geometry ---- */
+/* The inverse transpose of the user's A, by cofactors (the audit checks the seeds' formulas on the matrix given,
+ * independently of the library's canonical frame). */
+void au_inv_t(const double A[3][3], double Ait[3][3]);
+/* Areas by shooting rays at the ellipsoid x^T A^T A x = 1 itself (Ce = 1), not by integrating D: N rays along -u
+ * through the rectangle that bounds its shadow (half-widths ||A^-T e|| along e1, e2 perpendicular to u: the
+ * ellipsoid's support function); a ray hits where (p + l u)^T M (p + l u) = 1 has a root, M = A^T A, and the point
+ * seen from u is the larger root, whose outward normal M x faces u. With lune set, only hits whose normal has
+ * m.v >= 0 count (Walter eq 28's lune). Returns the shadow's area; *sigma its Monte Carlo standard error. */
+double au_ray_area(const double A[3][3], ggx_vec3 u, ggx_vec3 v, int lune, long N, uint64_t seed, double *sigma);
+double au_norm_of(const double M[3][3], ggx_vec3 v); /* ||M v|| */
+/* The alphas of an unskewed shape (the formulas the seeds write for a diagonal A, in x and y); 0 for a skewed one. */
+int au_diag_alphas(const ggx_shape *s, double *ax, double *ay);
+/* The same for a row: a skewed shape gets "cannot be applied" and 0. */
+int au_alphas_or_skip(audit_row *r, int k, const ggx_shape *s, double *ax, double *ay);
+/* A random direction of the upper hemisphere, cos theta uniform in [0.02, 1]. */
+ggx_vec3 au_random_upper(rng *g);
+/* Anisotropic GGX as the seeds write it: 1 / (pi ax ay (mx^2/ax^2 + my^2/ay^2 + mz^2)^2). */
+double au_ggx_formula(double ax, double ay, ggx_vec3 m);
+/* The surface point of the ellipsoid x^T A^T A x = 1 whose outward normal is m: p = A^-1 A^-T m / ||A^-T m|| (the
+ * gradient 2 A^T A p is along m). */
+ggx_vec3 au_point_of_normal(const double Ait[3][3], ggx_vec3 m);
+/* Eigenvalues of a symmetric n x n matrix (n <= 9) by Jacobi rotations, into ev (unsorted). */
+void au_sym_eigenvalues(int nn, double M[9][9], double *ev);
+/* Finite-difference area Jacobian |d m / d(a, b)| of a map from the plane to the unit sphere (or to the plane, with
+ * z = 0), by central differences of step h. */
+typedef ggx_vec3 (*au_map2_fn)(const void *ctx, double a, double b);
+double au_fd_jacobian(au_map2_fn f, const void *ctx, double a, double b, double h);
+
+#endif

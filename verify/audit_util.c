@@ -1,0 +1,203 @@
+/* The seed audit's shared parts (verify/audit_internal.h). SPDX-License-Identifier: MIT */
+#include <math.h>
+#include <stdarg.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "audit_internal.h"
+
+static int au_a_draw(void *vc, rng *r, ggx_vec3 *m)
+{
+    au_actx *c = vc;
+    double u1 = rng_uniform(r), u2 = rng_uniform(r);
+    *m = c->literal ? c->literal(c->A, c->keys.v, u1, u2) : c->f(c->keys.s, c->keys.v, u1, u2);
+    return t_dot(*m, *m) > 0.5;
+}
+
+double au_chi2_p(au_actx *c, uint64_t seed, int progress)
+{
+    chi2_problem p = {"audit", 1, au_a_draw, normal_keys_key, normal_keys_density, c};
+    chi2_result r = chi2_run_quiet(&p, 1000000, 100, 200, seed, 0.0);
+    if (progress) fputc('.', stderr);
+    return r.zero_cell_hits ? 0.0 : r.pvalue;
+}
+
+double au_chi2_sampler(const ggx_shape *s, ggx_vec3 v, au_vndf_fn f, verify_pdf_fn pdf, uint64_t seed, int progress)
+{
+    au_actx c = {{s, v, pdf}, f, NULL, NULL};
+    return au_chi2_p(&c, seed, progress);
+}
+
+typedef struct draw_ctx {
+    normal_keys keys; /* first, as in au_actx */
+    int (*draw)(void *ctx, rng *r, ggx_vec3 *m);
+    void *ctx;
+} draw_ctx;
+static int draw_fwd(void *vc, rng *r, ggx_vec3 *m)
+{
+    draw_ctx *c = vc;
+    return c->draw(c->ctx, r, m);
+}
+double au_chi2_draw(const ggx_shape *s, ggx_vec3 v, int (*draw)(void *ctx, rng *r, ggx_vec3 *m), void *ctx,
+                    verify_pdf_fn pdf, uint64_t seed, int progress)
+{
+    draw_ctx c = {{s, v, pdf}, draw, ctx};
+    chi2_problem p = {"audit", 1, draw_fwd, normal_keys_key, normal_keys_density, &c};
+    chi2_result r = chi2_run_quiet(&p, 1000000, 100, 200, seed, 0.0);
+    if (progress) fputc('.', stderr);
+    return r.zero_cell_hits ? 0.0 : r.pvalue;
+}
+
+double au_alpha_level(void) { return chi2_sidak(CHI2_SUITE_RUNS); }
+
+void au_set(audit_row *r, int k, audit_verdict v, const char *fmt, ...)
+{
+    va_list ap;
+    va_start(ap, fmt);
+    r->verdict[k] = v;
+    vsnprintf(r->text[k], AUDIT_TEXT, fmt, ap);
+    va_end(ap);
+}
+
+void au_append(audit_row *r, int k, const char *fmt, ...)
+{
+    size_t l = strlen(r->text[k]);
+    va_list ap;
+    va_start(ap, fmt);
+    vsnprintf(r->text[k] + l, AUDIT_TEXT - l, fmt, ap);
+    va_end(ap);
+}
+
+void au_verdict_p(audit_row *r, int k, double p)
+{
+    au_set(r, k, p >= au_alpha_level() ? AUDIT_HOLDS : AUDIT_FAILS, "chi-square p = %.2g", p);
+}
+
+audit_row *au_add(audit_row *rows, int *n, const char *id, const char *claim, const char *seed_file,
+                  const char *where, audit_scope scope)
+{
+    if (*n >= AUDIT_MAX_ROWS) abort(); /* a claim added beyond the table's size: raise AUDIT_MAX_ROWS */
+    audit_row *r = &rows[(*n)++];
+    memset(r, 0, sizeof *r);
+    r->id = id, r->claim = claim, r->seed_file = seed_file, r->where = where, r->scope = scope;
+    for (int k = 0; k < AUDIT_SHAPES; k++) au_set(r, k, AUDIT_NOT_CLAIMED, "not checked");
+    return r;
+}
+
+int au_in_scope(audit_scope scope, const ggx_shape *s)
+{
+    return scope == AUDIT_SCOPE_ANY || s->kind == GGX_SHAPE_DIAGONAL ||
+           (scope == AUDIT_SCOPE_ROTATED && s->kind == GGX_SHAPE_UNSKEWED);
+}
+
+double au_uniform_cb(void *st) { return rng_uniform((rng *)st); }
+
+void au_inv_t(const double A[3][3], double Ait[3][3])
+{
+    double det = A[0][0] * (A[1][1] * A[2][2] - A[1][2] * A[2][1]) - A[0][1] * (A[1][0] * A[2][2] - A[1][2] * A[2][0]) +
+                 A[0][2] * (A[1][0] * A[2][1] - A[1][1] * A[2][0]);
+    for (int i = 0; i < 3; i++)
+        for (int j = 0; j < 3; j++) {
+            int i1 = (i + 1) % 3, i2 = (i + 2) % 3, j1 = (j + 1) % 3, j2 = (j + 2) % 3;
+            Ait[i][j] = (A[i1][j1] * A[i2][j2] - A[i1][j2] * A[i2][j1]) / det;
+        }
+}
+
+double au_ray_area(const double A[3][3], ggx_vec3 u, ggx_vec3 v, int lune, long N, uint64_t seed, double *sigma)
+{
+    double M[3][3], Ait[3][3]; /* A^T A and A^-T */
+    au_inv_t(A, Ait);
+    for (int i = 0; i < 3; i++)
+        for (int j = 0; j < 3; j++) {
+            M[i][j] = 0;
+            for (int k = 0; k < 3; k++) M[i][j] += A[k][i] * A[k][j];
+        }
+    ggx_vec3 e1, e2;
+    t_frame(u, &e1, &e2);
+    ggx_vec3 h1v = t_matvec((const double(*)[3])Ait, e1), h2v = t_matvec((const double(*)[3])Ait, e2);
+    double h1 = sqrt(t_dot(h1v, h1v)), h2 = sqrt(t_dot(h2v, h2v));
+    ggx_vec3 Mu = t_matvec((const double(*)[3])M, u);
+    double a = t_dot(u, Mu);
+    rng g = {seed};
+    long hits = 0;
+    for (long i = 0; i < N; i++) {
+        ggx_vec3 p = t_add(t_scale(e1, h1 * (2 * rng_uniform(&g) - 1)), t_scale(e2, h2 * (2 * rng_uniform(&g) - 1)));
+        ggx_vec3 Mp = t_matvec((const double(*)[3])M, p);
+        double b = t_dot(u, Mp), c = t_dot(p, Mp) - 1, disc = b * b - a * c;
+        if (disc < 0) continue;
+        if (lune) {
+            ggx_vec3 x = t_add(p, t_scale(u, (-b + sqrt(disc)) / a)), nrm = t_matvec((const double(*)[3])M, x);
+            if (t_dot(nrm, v) < 0) continue;
+        }
+        hits++;
+    }
+    double f = (double)hits / (double)N, box = 4 * h1 * h2;
+    *sigma = box * sqrt(f * (1 - f) / (double)N);
+    return box * f;
+}
+
+double au_norm_of(const double M[3][3], ggx_vec3 v)
+{
+    ggx_vec3 r = t_matvec(M, v);
+    return sqrt(t_dot(r, r));
+}
+
+int au_diag_alphas(const ggx_shape *s, double *ax, double *ay)
+{
+    *ax = s->alpha_x, *ay = s->alpha_y;
+    return s->kind != GGX_SHAPE_SKEWED;
+}
+
+int au_alphas_or_skip(audit_row *r, int k, const ggx_shape *s, double *ax, double *ay)
+{
+    if (au_diag_alphas(s, ax, ay)) return 1;
+    au_set(r, k, AUDIT_NOT_CLAIMED, "cannot be applied (a skewed A has no ax, ay)");
+    return 0;
+}
+
+ggx_vec3 au_random_upper(rng *g) { return t_dir(acos(0.02 + 0.98 * rng_uniform(g)), 2 * T_PI * rng_uniform(g)); }
+
+double au_ggx_formula(double ax, double ay, ggx_vec3 m)
+{
+    double q = m.x * m.x / (ax * ax) + m.y * m.y / (ay * ay) + m.z * m.z;
+    return 1.0 / (T_PI * ax * ay * q * q);
+}
+
+ggx_vec3 au_point_of_normal(const double Ait[3][3], ggx_vec3 m)
+{
+    ggx_vec3 q = t_matvec(Ait, m);
+    return t_scale(t_mattvec(Ait, q), 1 / sqrt(t_dot(q, q)));
+}
+
+void au_sym_eigenvalues(int nn, double M[9][9], double *ev)
+{
+    for (int sweep = 0; sweep < 100; sweep++) {
+        double off = 0;
+        for (int p = 0; p < nn; p++)
+            for (int q = p + 1; q < nn; q++) off += M[p][q] * M[p][q];
+        if (off < 1e-300) break;
+        for (int p = 0; p < nn; p++)
+            for (int q = p + 1; q < nn; q++) {
+                if (M[p][q] == 0) continue;
+                double th = 0.5 * atan2(2 * M[p][q], M[q][q] - M[p][p]), c = cos(th), sn = sin(th);
+                for (int k = 0; k < nn; k++) {
+                    double a = M[k][p], b = M[k][q];
+                    M[k][p] = c * a - sn * b, M[k][q] = sn * a + c * b;
+                }
+                for (int k = 0; k < nn; k++) {
+                    double a = M[p][k], b = M[q][k];
+                    M[p][k] = c * a - sn * b, M[q][k] = sn * a + c * b;
+                }
+            }
+    }
+    for (int i = 0; i < nn; i++) ev[i] = M[i][i];
+}
+
+double au_fd_jacobian(au_map2_fn f, const void *ctx, double a, double b, double h)
+{
+    ggx_vec3 da = t_scale(t_add(f(ctx, a + h, b), t_scale(f(ctx, a - h, b), -1)), 0.5 / h);
+    ggx_vec3 db = t_scale(t_add(f(ctx, a, b + h), t_scale(f(ctx, a, b - h), -1)), 0.5 / h);
+    ggx_vec3 c = t_cross(da, db);
+    return sqrt(t_dot(c, c));
+}
