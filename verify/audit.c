@@ -279,11 +279,6 @@ static double vndf_lean(const ggx_shape *s, ggx_vec3 v)
 }
 
 /* Maps whose Jacobians the seeds state. */
-static ggx_vec3 map_cosine(const void *ctx, double u, double v) /* Engstad's cosine-weighted hemisphere */
-{
-    (void)ctx;
-    return t_vec(sqrt(u) * cos(2 * T_PI * v), sqrt(u) * sin(2 * T_PI * v), sqrt(1 - u));
-}
 static ggx_vec3 map_slope(const void *ctx, double x, double y) /* slopes (x, y) -> normalize(x, y, 1) */
 {
     (void)ctx;
@@ -854,7 +849,7 @@ int audit_run(const double A[AUDIT_SHAPES][3][3], audit_row *rows, int progress)
         double worst = 0;
         for (int i = 0; i < 1000; i++) {
             double u = 0.01 + 0.98 * rng_uniform(&g), w = rng_uniform(&g);
-            worst = fmax(worst, fabs(au_fd_jacobian(map_cosine, NULL, u, w, 1e-6) / (T_PI / sqrt(1 - u)) - 1));
+            worst = fmax(worst, fabs(au_fd_jacobian(au_map_cosine, NULL, u, w, 1e-6) / (T_PI / sqrt(1 - u)) - 1));
         }
         for (int k = 0; k < AUDIT_SHAPES; k++)
             au_set(r, k, worst < 1e-6 ? AUDIT_HOLDS : AUDIT_FAILS, "largest relative difference from the finite-difference "
@@ -1178,6 +1173,9 @@ int audit_run(const double A[AUDIT_SHAPES][3][3], audit_row *rows, int progress)
         ggx_vec3 an = t_matvec(A[k], n), d = t_add(an, t_scale(n, -1));
         au_set(r, k, sqrt(t_dot(d, d)) < 1e-12 ? AUDIT_HOLDS : AUDIT_FAILS, "A n = (%.4g, %.4g, %.4g)", an.x, an.y, an.z);
     }
+    const au_ctx ctx = {rows, &nr, sh, A, progress};
+    au_rows_ellipsoid(&ctx);
+    au_rows_stretch(&ctx);
     /* a shape outside a claim's scope: not claimed, with what happens when applied anyway */
     for (int i = 0; i < nr; i++) apply_scope(&rows[i], sh);
     if (progress) fputc('\n', stderr);

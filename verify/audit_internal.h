@@ -86,5 +86,40 @@ void au_sym_eigenvalues(int nn, double M[9][9], double *ev);
  * z = 0), by central differences of step h. */
 typedef ggx_vec3 (*au_map2_fn)(const void *ctx, double a, double b);
 double au_fd_jacobian(au_map2_fn f, const void *ctx, double a, double b, double h);
+/* Engstad's cosine-weighted hemisphere s(u, v) = (sqrt(u) cos 2 pi v, sqrt(u) sin 2 pi v, sqrt(1 - u)) (ctx unused). */
+ggx_vec3 au_map_cosine(const void *ctx, double u, double v);
+/* The determinant of the columns a, b, c. */
+double au_det3(ggx_vec3 a, ggx_vec3 b, ggx_vec3 c);
+
+/* ---- claims about every shape of a kind ---- */
+enum { AU_KIN = 24 };
+/* Shape i of the family of the audit's shape s0 (Walter's A0): i = 0 is s0 itself; the others are random shapes of
+ * the same kind (diagonal, theta_z-rotated or skewed), A = S Rx Ry Rz (ggx_ellipsoid_matrix) with the alphas
+ * log-uniform in [0.05, 2], theta_z uniform, and for skewed shapes theta_x, theta_y uniform in +-[0.02, 0.6] rad.
+ * offdiag: how far A^T A is from diagonal, ||off-diagonal part|| / trace (0 for diagonal shapes): counterexamples
+ * are ordered by it, the smallest being the failing shape nearest to a diagonal one. */
+typedef struct au_kin {
+    double A[3][3];
+    ggx_shape s;
+    double offdiag;
+    char label[120];
+} au_kin;
+void au_kin_shape(const ggx_shape *s0, const double A0[3][3], int i, uint64_t seed, au_kin *out);
+/* An identity or inequality claimed at every point of every shape of a kind: err returns the claim's error at one
+ * random point of shape K (0 where it holds exactly, NaN where it cannot be evaluated counts as a failure) and
+ * writes the point into at. The verdict for shape k: holds if every error is <= tol over `points` points on each of
+ * AU_KIN shapes; else fails, with the counterexample on the failing shape of least offdiag (the smallest found). */
+typedef double (*au_err_fn)(const au_kin *K, rng *g, void *ctx, char *at, size_t nat);
+void au_verdict_kin(audit_row *r, int k, const ggx_shape *s0, const double A0[3][3], au_err_fn err, void *ctx,
+                    int points, double tol, const char *what);
+/* The same claim checked over the family, returning the largest error (for rows that combine several claims). */
+double au_kin_worst(const ggx_shape *s0, const double A0[3][3], au_err_fn err, void *ctx, int points, double tol,
+                    char *example, size_t nexample);
+
+/* ---- the rows of each subject (verify/audit_*.c), in the order audit_run calls them ---- */
+void au_rows_ellipsoid(const au_ctx *c);
+void au_rows_sampling(const au_ctx *c);
+void au_rows_scattering(const au_ctx *c);
+void au_rows_stretch(const au_ctx *c);
 
 #endif

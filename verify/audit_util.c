@@ -201,3 +201,94 @@ double au_fd_jacobian(au_map2_fn f, const void *ctx, double a, double b, double 
     ggx_vec3 c = t_cross(da, db);
     return sqrt(t_dot(c, c));
 }
+
+void au_kin_shape(const ggx_shape *s0, const double A0[3][3], int i, uint64_t seed, au_kin *out)
+{
+    if (i == 0) {
+        memcpy(out->A, A0, sizeof out->A);
+        out->s = *s0;
+        snprintf(out->label, sizeof out->label, "the audit's shape");
+    } else {
+        rng g = {seed * 1000003u + (uint64_t)i};
+        double ax = 0.05 * pow(40.0, rng_uniform(&g)), ay = 0.05 * pow(40.0, rng_uniform(&g)), tx = 0, ty = 0, tz = 0;
+        if (s0->kind != GGX_SHAPE_DIAGONAL) tz = T_PI * (2 * rng_uniform(&g) - 1);
+        if (s0->kind == GGX_SHAPE_SKEWED) {
+            tx = (0.02 + 0.58 * rng_uniform(&g)) * (rng_uniform(&g) < 0.5 ? -1 : 1);
+            ty = (0.02 + 0.58 * rng_uniform(&g)) * (rng_uniform(&g) < 0.5 ? -1 : 1);
+        }
+        if (ggx_ellipsoid_matrix(out->A, ax, ay, tx, ty, tz) != GGX_OK ||
+            ggx_shape_matrix(&out->s, (const double(*)[3])out->A) != GGX_OK)
+            abort(); /* every shape drawn is valid */
+        snprintf(out->label, sizeof out->label, "alphas (%.3g, %.3g), angles (%.3g, %.3g, %.3g) rad", ax, ay, tx, ty, tz);
+    }
+    double M[3][3];
+    for (int a = 0; a < 3; a++)
+        for (int b = 0; b < 3; b++) M[a][b] = out->A[0][a] * out->A[0][b] + out->A[1][a] * out->A[1][b] + out->A[2][a] * out->A[2][b];
+    out->offdiag = sqrt(M[0][1] * M[0][1] + M[0][2] * M[0][2] + M[1][2] * M[1][2]) / (M[0][0] + M[1][1] + M[2][2]);
+}
+
+typedef struct kin_result {
+    double worst;                   /* the largest error (infinite for NaN) */
+    int failed;                     /* points with error > tol */
+    double ex_off, ex_err;          /* the failing shape nearest to diagonal, its worst error */
+    char ex_shape[120], ex_at[160]; /* and where */
+} kin_result;
+
+static kin_result kin_run(const ggx_shape *s0, const double A0[3][3], au_err_fn err, void *ctx, int points, double tol)
+{
+    kin_result res = {0, 0, INFINITY, 0, "", ""};
+    for (int i = 0; i < AU_KIN; i++) {
+        au_kin K;
+        au_kin_shape(s0, A0, i, 0x5eed, &K);
+        rng g = {977 + (uint64_t)i};
+        for (int j = 0; j < points; j++) {
+            char at[160] = "";
+            double e = err(&K, &g, ctx, at, sizeof at);
+            if (!(e <= tol)) {
+                if (isnan(e)) e = INFINITY;
+                res.failed++;
+                if (K.offdiag < res.ex_off) { /* ties: the first found (the audit's own shape first) */
+                    res.ex_off = K.offdiag, res.ex_err = e;
+                    snprintf(res.ex_shape, sizeof res.ex_shape, "%s", K.label);
+                    snprintf(res.ex_at, sizeof res.ex_at, "%s", at);
+                }
+            }
+            if (e > res.worst) res.worst = e;
+        }
+    }
+    return res;
+}
+
+double au_kin_worst(const ggx_shape *s0, const double A0[3][3], au_err_fn err, void *ctx, int points, double tol,
+                    char *example, size_t nexample)
+{
+    kin_result res = kin_run(s0, A0, err, ctx, points, tol);
+    if (example) {
+        if (res.failed)
+            snprintf(example, nexample, "%s, %s, error %.3g", res.ex_shape, res.ex_at, res.ex_err);
+        else
+            example[0] = 0;
+    }
+    return res.worst;
+}
+
+void au_verdict_kin(audit_row *r, int k, const ggx_shape *s0, const double A0[3][3], au_err_fn err, void *ctx,
+                    int points, double tol, const char *what)
+{
+    kin_result res = kin_run(s0, A0, err, ctx, points, tol);
+    if (!res.failed)
+        au_set(r, k, AUDIT_HOLDS, "%s within %.1e at %d points on %d shapes of this kind", what, res.worst,
+               points * AU_KIN, AU_KIN);
+    else
+        au_set(r, k, AUDIT_FAILS, "%s off by up to %.3g (%d of %d points); smallest counterexample (off-diagonal share of "
+               "A^T A %.2g): %s, %s, error %.3g", what, res.worst, res.failed, points * AU_KIN, res.ex_off, res.ex_shape,
+               res.ex_at, res.ex_err);
+}
+
+ggx_vec3 au_map_cosine(const void *ctx, double u, double v)
+{
+    (void)ctx;
+    return t_vec(sqrt(u) * cos(2 * T_PI * v), sqrt(u) * sin(2 * T_PI * v), sqrt(1 - u));
+}
+
+double au_det3(ggx_vec3 a, ggx_vec3 b, ggx_vec3 c) { return t_dot(a, t_cross(b, c)); }
