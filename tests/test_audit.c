@@ -6,6 +6,7 @@
 #include <string.h>
 
 #include "audit.h"
+#include "audit_internal.h"
 #include "testlib.h"
 
 #define H AUDIT_HOLDS
@@ -33,6 +34,20 @@ static const struct {
     {"vndf-eq33", {H, H, H}},     {"sggx", {H, H, H}},      {"hessian", {H, H, H}},     {"normalize-derivative", {H, H, H}},
     {"stretch-inverse", {H, N, N}}, {"equal-area-grid", {H, N, N}}, {"inversion-forms", {H, N, N}},
     {"spherical-form", {H, N, N}}, {"det-sr", {H, H, H}},    {"an-is-n", {H, H, N}},
+    /* verify/audit_ellipsoid.c */
+    {"normal-point", {H, H, H}},  {"gauss-map", {H, H, H}}, {"silhouette", {H, H, H}},  {"surface-integrals", {H, H, H}},
+    {"lune-sphere", {H, H, H}},   {"ce-cancels", {H, H, H}}, {"semi-axes", {H, N, N}},  {"skew-max", {H, H, H}},
+    {"ndf-along-u", {H, N, N}},   {"sin-jacobian", {H, H, H}}, {"ellipsoid-map", {H, N, N}},
+    /* verify/audit_sampling.c */
+    {"lift", {H, N, N}},          {"sphere-disk", {H, H, H}}, {"crescent-sphere", {H, H, H}},
+    {"concentric-walter", {H, H, H}}, {"squeeze-walter", {H, H, H}}, {"frame-eq42", {H, H, H}}, {"lune-point", {H, H, H}}, {"walter-v1", {H, H, H}},
+    {"pm-blog", {H, H, F}},       {"vndf-total-jacobian", {H, N, N}}, {"project-jacobian", {H, H, H}},
+    /* verify/audit_scattering.c */
+    {"smith-integral", {C, C, F}}, {"eq7-transmission", {H, H, H}}, {"weight-formula", {H, H, H}},
+    {"g-approx", {H, N, N}},      {"brdf-form", {H, N, N}}, {"reflect-below", {H, N, N}},
+    /* verify/audit_stretch.c */
+    {"vector-identities", {H, H, H}}, {"det-scale", {H, N, N}}, {"stretch-total-jacobian", {H, N, N}},
+    {"slope-stretch", {H, N, N}}, {"d-slope", {H, N, N}},   {"iso", {H, N, N}},
 };
 
 static void default_shapes(double A[AUDIT_SHAPES][3][3])
@@ -115,8 +130,54 @@ static void view_grid(void **state)
     CHECK(found == 2, "rows g1-blog and vndf-g1: %d found", found);
 }
 
+/* Claims about every shape of a kind: a failure is reported with the failing shape nearest to a diagonal one (the
+ * smallest counterexample), and a claim that holds everywhere holds. The synthetic claim fails where A^T A's
+ * off-diagonal share exceeds the bound (the family's median share). */
+static double share_bound;
+static double offdiag_err(const au_kin *K, rng *g, void *ctx, char *at, size_t nat)
+{
+    (void)g, (void)ctx;
+    snprintf(at, nat, "share %.6f", K->offdiag);
+    return K->offdiag > share_bound ? K->offdiag : 0;
+}
+static int cmp_d(const void *a, const void *b)
+{
+    double x = *(const double *)a, y = *(const double *)b;
+    return (x > y) - (x < y);
+}
+static void kin_counterexample(void **state)
+{
+    (void)state;
+    double A[3][3], shares[AU_KIN];
+    ggx_shape s;
+    CHECK(ggx_ellipsoid_matrix(A, 0.3, 0.6, 0.4, -0.3, 0.5) == GGX_OK && ggx_shape_matrix(&s, (const double(*)[3])A) == GGX_OK,
+          "skewed shape");
+    for (int i = 0; i < AU_KIN; i++) {
+        au_kin K;
+        au_kin_shape(&s, (const double(*)[3])A, i, 0x5eed, &K);
+        CHECK(K.s.kind == GGX_SHAPE_SKEWED && K.offdiag > 0, "shape %d of the skewed family: kind %d", i, (int)K.s.kind);
+        shares[i] = K.offdiag;
+    }
+    qsort(shares, AU_KIN, sizeof shares[0], cmp_d);
+    share_bound = shares[AU_KIN / 2];
+    double least = shares[AU_KIN / 2 + 1]; /* the smallest failing share */
+    audit_row row;
+    memset(&row, 0, sizeof row);
+    au_verdict_kin(&row, 0, &s, (const double(*)[3])A, offdiag_err, NULL, 3, 0, "synthetic:");
+    char want[64];
+    snprintf(want, sizeof want, "share %.6f", least);
+    CHECK(row.verdict[0] == AUDIT_FAILS && strstr(row.text[0], want), "expected the counterexample %s: %s", want, row.text[0]);
+    /* the diagonal family: every share 0, so the same claim holds */
+    ggx_shape d;
+    double D[3][3] = {{0.2, 0, 0}, {0, 0.7, 0}, {0, 0, 1}};
+    CHECK(ggx_shape_matrix(&d, (const double(*)[3])D) == GGX_OK, "diagonal shape");
+    au_verdict_kin(&row, 1, &d, (const double(*)[3])D, offdiag_err, NULL, 3, 0, "synthetic:");
+    CHECK(row.verdict[1] == AUDIT_HOLDS, "%s", row.text[1]);
+}
+
 int main(void)
 {
-    const struct CMUnitTest tests[] = {cmocka_unit_test(audit), cmocka_unit_test(view_grid)};
+    const struct CMUnitTest tests[] = {cmocka_unit_test(audit), cmocka_unit_test(view_grid),
+                                       cmocka_unit_test(kin_counterexample)};
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

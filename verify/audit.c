@@ -33,20 +33,6 @@ static ggx_vec3 literal_inversion(const double A[3][3], ggx_vec3 v, double u1, d
     double th = atan(sqrt(u1 / (1 - u1)) * sqrt(ax * ax * c * c + ay * ay * sn * sn)), ph = atan(ay / ax * tan(t));
     return t_vec(sin(th) * cos(ph), sin(th) * sin(ph), cos(th));
 }
-/* Engstad's VNDF proof (Heitz 2018's five steps) as written, with the matrix A it is given: the view stretched,
- * vh = normalize(A v); frame T1 = normalize(z x vh), T2 = vh x T1; polar disk point (t1, t2); squish t2 by
- * s = (1 + vh.z) / 2; lift onto the hemisphere about vh; back to the ellipsoid with m = normalize(A nh), the same
- * A. Right for a diagonal (symmetric) A; the library un-stretches with A'^T in the canonical frame (Walter eq 46). */
-static ggx_vec3 literal_heitz(const double A[3][3], ggx_vec3 v, double u1, double u2)
-{
-    ggx_vec3 vh = t_normalize(t_matvec(A, v));
-    double l = hypot(vh.x, vh.y);
-    ggx_vec3 t1v = l > 0 ? t_vec(-vh.y / l, vh.x / l, 0) : t_vec(1, 0, 0), t2v = t_cross(vh, t1v);
-    double r = sqrt(u1), ph = 2 * T_PI * u2, t1 = r * cos(ph), t2 = r * sin(ph), sq = 0.5 * (1 + vh.z);
-    t2 = (1 - sq) * sqrt(1 - t1 * t1) + sq * t2;
-    ggx_vec3 nh = t_add(t_add(t_scale(t1v, t1), t_scale(t2v, t2)), t_scale(vh, sqrt(fmax(0, 1 - t1 * t1 - t2 * t2))));
-    return t_normalize(t_matvec(A, nh));
-}
 ggx_vec3 verify_crescent_blog_s(const ggx_shape *s, ggx_vec3 v, double u1, double u2)
 {
     if (!(v.z > 0)) return t_vec(0, 0, 0);
@@ -111,7 +97,7 @@ static const sampler_claim CLAIMS[GGX_SAMPLER_COUNT] = {
     [GGX_SAMPLER_CRESCENT] = {"crescent factor s = (1 + Av.An / (|Av| |An|)) / 2 gives the VNDF (version 3)",
                               SEED_WALTER, "eq 34-46", AUDIT_SCOPE_ANY, 88, NULL, NULL, NULL},
     [GGX_SAMPLER_HEITZ] = {"Heitz / Engstad five steps (frame, disk, squish by (1 + z)/2, lift, unstretch) give the VNDF",
-                           SEED_VNDF, "sections 1-3 (A diagonal, section 1.2)", AUDIT_SCOPE_DIAGONAL, 92, literal_heitz,
+                           SEED_VNDF, "sections 1-3 (A diagonal, section 1.2)", AUDIT_SCOPE_DIAGONAL, 92, au_literal_heitz,
                            "m = normalize(A'^T nh) in the canonical frame, A' n along n (Walter eq 46)", NULL},
 };
 
@@ -166,21 +152,6 @@ static double vis_f(ggx_vec3 m, void *vc)
 }
 
 
-/* A claim about every view is checked on a grid of views, not one: 6 polar angles from 0.3 to 1.5 rad (86 degrees)
- * times 8 azimuths. f returns the claim's error at view v; the worst view is reported. */
-enum { VIEW_THETAS = 6, VIEW_PHIS = 8 };
-static double worst_view(double (*f)(const ggx_shape *s, ggx_vec3 v), const ggx_shape *s, double *theta, double *phi,
-                         double *value)
-{
-    static const double thetas[VIEW_THETAS] = {0.3, 0.7, 1.0, 1.2, 1.4, 1.5};
-    double worst = -1;
-    for (int i = 0; i < VIEW_THETAS; i++)
-        for (int j = 0; j < VIEW_PHIS; j++) {
-            double ph = -T_PI + 2 * T_PI * (j + 0.5) / VIEW_PHIS, x = f(s, t_dir(thetas[i], ph));
-            if (fabs(x - 1) > worst) worst = fabs(x - 1), *theta = thetas[i], *phi = ph, *value = x;
-        }
-    return worst;
-}
 /* The integral of a VNDF built with the blog's G1 (vis_f without Walter's G1, times the blog's G1), and of
  * G1(v) D (m.v)+ / (v.n) with Walter's G1: both are 1 where the claim holds. */
 static double blog_g1_integral(const ggx_shape *s, ggx_vec3 v)
@@ -194,18 +165,6 @@ static double g1_form_integral(const ggx_shape *s, ggx_vec3 v)
 {
     vis_ctx c = {s, v, 1};
     return quad_hemisphere(s, vis_f, &c, &v, 1, 1e-11, NULL);
-}
-/* A row's verdict over the view grid: holds within tol, or fails with the worst view. */
-static void verdict_views(audit_row *r, int k, double (*f)(const ggx_shape *, ggx_vec3), const ggx_shape *s, double tol,
-                          const char *what)
-{
-    double th = 0, ph = 0, x = 1, worst = worst_view(f, s, &th, &ph, &x);
-    if (worst < tol)
-        au_set(r, k, AUDIT_HOLDS, "%s integrates to 1 within %.0e at all %d views of the grid", what, fmax(worst, 1e-16),
-            VIEW_THETAS * VIEW_PHIS);
-    else
-        au_set(r, k, AUDIT_FAILS, "%s integrates to %.4f at theta %.1f, phi %.2f rad (worst of %d views)", what, x, th, ph,
-            VIEW_THETAS * VIEW_PHIS);
 }
 
 
@@ -374,7 +333,7 @@ int audit_run(const double A[AUDIT_SHAPES][3][3], audit_row *rows, int progress)
 
     r = au_add(rows, &nr, "g1-blog", "G1 = 2 ||An|| (v.n) / (||Av|| + ||An|| (v.n)), a ratio of projected areas", SEED_BLOG2,
             "masking as a ratio of projected areas", AUDIT_SCOPE_ANY);
-    for (int k = 0; k < AUDIT_SHAPES; k++) verdict_views(r, k, blog_g1_integral, &sh[k], 1e-6, "the VNDF built with it");
+    for (int k = 0; k < AUDIT_SHAPES; k++) au_verdict_views(r, k, blog_g1_integral, &sh[k], 1e-6, "the VNDF built with it");
 
     r = au_add(rows, &nr, "g1-walter", "G1 = min(1, 2 ||An||^2 |u.n| / (||Au|| ||An|| + Au.An)) X+(u.m) conserves energy",
             SEED_WALTER, "eq 6, 31-32", AUDIT_SCOPE_ANY);
@@ -391,7 +350,7 @@ int audit_run(const double A[AUDIT_SHAPES][3][3], audit_row *rows, int progress)
             "blog Part 2 (VNDF); Engstad's proof, final pdf", AUDIT_SCOPE_ANY);
     /* every view of the grid for each shape; where it holds also the caps sampler against it (chi-square) */
     for (int k = 0; k < AUDIT_SHAPES; k++) {
-        verdict_views(r, k, g1_form_integral, &sh[k], 1e-6, "with Walter's G1 it");
+        au_verdict_views(r, k, g1_form_integral, &sh[k], 1e-6, "with Walter's G1 it");
         if (r->verdict[k] != AUDIT_HOLDS) continue;
         double p = au_chi2_sampler(&sh[k], v, ggx_sample_vndf_caps, pdf_g1_form, 87 + 2 * (uint64_t)k, progress);
         if (p < au_alpha_level()) au_verdict_p(r, k, p);
@@ -1010,7 +969,7 @@ int audit_run(const double A[AUDIT_SHAPES][3][3], audit_row *rows, int progress)
     }
     r = au_add(rows, &nr, "vndf-eq33", "p_h(m) = (A_e(n) / A_l(psi, n)) X+(m.psi) D(m) |m.psi| integrates to 1 over m", SEED_WALTER,
             "eq 33 (as fixed in May 2016)", AUDIT_SCOPE_ANY);
-    for (int k = 0; k < AUDIT_SHAPES; k++) verdict_views(r, k, eq33_integral, &sh[k], 1e-6, "it");
+    for (int k = 0; k < AUDIT_SHAPES; k++) au_verdict_views(r, k, eq33_integral, &sh[k], 1e-6, "it");
 
     r = au_add(rows, &nr, "sggx", "the ellipsoid NDF is SGGX with S = A^T A: D_SGGX(m) = 1 / (pi sqrt|S| (m^T S^-1 m)^2) = ||An|| D(m)",
             SEED_WALTER, "section 5.2", AUDIT_SCOPE_ANY);
@@ -1175,6 +1134,8 @@ int audit_run(const double A[AUDIT_SHAPES][3][3], audit_row *rows, int progress)
     }
     const au_ctx ctx = {rows, &nr, sh, A, progress};
     au_rows_ellipsoid(&ctx);
+    au_rows_sampling(&ctx);
+    au_rows_scattering(&ctx);
     au_rows_stretch(&ctx);
     /* a shape outside a claim's scope: not claimed, with what happens when applied anyway */
     for (int i = 0; i < nr; i++) apply_scope(&rows[i], sh);
@@ -1268,12 +1229,16 @@ void audit_write(FILE *f, audit_format fmt, const audit_row *rows, int n, const 
                "its seed file (../shared/seeds), where it is, and the shapes the seed states it for. Verdicts: "
                "**holds**; **holds with a correction** (the seed's formula fails as written, the evidence states the "
                "form that holds); **fails** (with the counterexample found); **not claimed** for this shape (the "
-               "evidence says what happens when it is applied anyway). Views: the claims on G1 and on the VNDF's G1 "
-               "form are checked at 48 views (theta from 0.3 to 1.5 rad, 8 azimuths); the others at v at theta = 1.2 "
-               "rad, phi = -0.6 (and phi = 2.5 where Walter's min must be active). Chi-square: 10^6 samples, 100 x 200 "
-               "equal-area cells in sphere space, Sidak level %.2g. Finite-difference checks of the curvature and of "
-               "every sampler's Jacobian are in tests/test_ndf.c and tests/test_sample_map.c.\n\n",
-            au_alpha_level());
+               "evidence says what happens when it is applied anyway). Shapes: a claim about every point of every "
+               "shape is checked at random points of %d shapes of each column's kind, the column's own and %d random "
+               "ones (alphas 0.05 to 2, any theta_z, skews up to 0.6 rad); a failure reports the smallest "
+               "counterexample found, on the failing shape whose A^T A is nearest to diagonal. Views: claims about "
+               "every view are checked at 48 views (theta from 0.3 to 1.5 rad, 8 azimuths), or at random views; the "
+               "chi-square rows at v at theta = 1.2 rad, phi = -0.6 (and phi = 2.5 where Walter's min must be active). "
+               "Chi-square: 10^6 samples, 100 x 200 equal-area cells in sphere space, Sidak level %.2g. Areas by rays "
+               "shot at the ellipsoid itself, curvature and Jacobians by finite differences; more of them in "
+               "tests/test_ndf.c and tests/test_sample_map.c.\n\n",
+            AU_KIN, AU_KIN - 1, au_alpha_level());
     fprintf(f, "| # | id | claim | seed file, where | scope | %s | %s | %s |\n|---|---|---|---|---|---|---|---|\n",
             labels[0], labels[1], labels[2]);
     for (int i = 0; i < n; i++) {

@@ -91,6 +91,21 @@ ggx_vec3 au_map_cosine(const void *ctx, double u, double v);
 /* The determinant of the columns a, b, c. */
 double au_det3(ggx_vec3 a, ggx_vec3 b, ggx_vec3 c);
 
+/* Engstad's VNDF proof (Heitz 2018's five steps) as written, with the matrix A it is given: the view stretched,
+ * vh = normalize(A v); frame T1 = normalize(z x vh), T2 = vh x T1; polar disk point (t1, t2); squish t2 by
+ * s = (1 + vh.z) / 2; lift onto the hemisphere about vh; back to the ellipsoid with m = normalize(A nh), the same
+ * A. Right for a diagonal (symmetric) A; the library un-stretches with A'^T in the canonical frame (Walter eq 46).
+ * With A = I it is the blog's crescent map in sphere space. */
+ggx_vec3 au_literal_heitz(const double A[3][3], ggx_vec3 v, double u1, double u2);
+
+/* ---- claims about every view ---- */
+/* A claim about every view is checked on a grid of views, not one: 6 polar angles from 0.3 to 1.5 rad (86 degrees)
+ * times 8 azimuths. f returns the claim's value at view v (1 where it holds); the verdict: holds if |f - 1| < tol at
+ * every view, else fails with the worst view; "what" names the quantity ("... integrates to 1"). */
+enum { AU_VIEW_THETAS = 6, AU_VIEW_PHIS = 8, AU_VIEWS = AU_VIEW_THETAS * AU_VIEW_PHIS };
+void au_verdict_views(audit_row *r, int k, double (*f)(const ggx_shape *, ggx_vec3), const ggx_shape *s, double tol,
+                      const char *what);
+
 /* ---- claims about every shape of a kind ---- */
 enum { AU_KIN = 24 };
 /* Shape i of the family of the audit's shape s0 (Walter's A0): i = 0 is s0 itself; the others are random shapes of
