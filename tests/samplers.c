@@ -203,3 +203,88 @@ void check_chi2_coverage(const variant *var, unsigned families)
     }
     printf("%s: %d registry samplers covered by chi-square runs\n", var->name, covered);
 }
+
+enum { BT = 50, BP = 32, ST = 100, SP = 8 };
+double binned_chi2(const binned_problem *p, uint64_t seed, int *dof)
+{
+    static _Thread_local double obs[2 * BT * BP], ex[2 * BT * BP];
+    int nb = p->sides * BT * BP;
+    long n = chi2_samples();
+    for (int b = 0; b < nb; b++) obs[b] = ex[b] = 0;
+    rng r = {seed};
+    for (long k = 0; k < n; k++) {
+        ggx_vec3 w;
+        if (!p->draw(p->ctx, &r, &w)) continue;
+        int side = w.z < 0 && p->sides == 2;
+        double t = w.z * w.z, phi = atan2(w.y, w.x) + T_PI;
+        int bt = (int)(t * BT), bp = (int)(phi / (2 * T_PI) * BP);
+        bt = bt < BT ? bt : BT - 1;
+        bp = bp < BP ? bp : BP - 1;
+        obs[(side * BT + bt) * BP + bp]++;
+    }
+    for (int side = 0; side < p->sides; side++)
+        for (int bt = 0; bt < BT; bt++)
+            for (int bp = 0; bp < BP; bp++) {
+                double sum = 0;
+                for (int i = 0; i < ST; i++) {
+                    double t = (bt + (i + 0.5) / ST) / BT, mu = sqrt(t), st = sqrt(1 - t);
+                    for (int j = 0; j < SP; j++) {
+                        double phi = (bp + (j + 0.5) / SP) / BP * 2 * T_PI - T_PI;
+                        ggx_vec3 w = t_vec(st * cos(phi), st * sin(phi), side ? -mu : mu);
+                        sum += p->pdf(p->ctx, w) / (2 * mu); /* dw = dt dphi / (2 mu) */
+                    }
+                }
+                ex[(side * BT + bt) * BP + bp] = (double)n * sum / (ST * SP) * (1.0 / BT) * (2 * T_PI / BP);
+            }
+    double stat = 0, po = 0, pe = 0;
+    int bins = 0;
+    for (int b = 0; b < nb; b++) {
+        if (ex[b] < 5) {
+            po += obs[b];
+            pe += ex[b];
+            continue;
+        }
+        stat += (obs[b] - ex[b]) * (obs[b] - ex[b]) / ex[b];
+        bins++;
+    }
+    if (pe >= 5) {
+        stat += (po - pe) * (po - pe) / pe;
+        bins++;
+    } else {
+        CHECK(po <= pe + 5 * sqrt(pe) + 5, "pooled bins: %g observed, %g expected", po, pe);
+    }
+    *dof = bins - 1;
+    return chi2_pvalue(stat, *dof);
+}
+
+typedef struct hemi_ctx {
+    double (*f)(ggx_vec3 w, void *ctx);
+    void *ctx;
+    double theta;
+    int below;
+} hemi_ctx;
+
+static double hemi_phi(double phi, void *vc)
+{
+    hemi_ctx *c = vc;
+    ggx_vec3 w = t_dir(c->theta, phi);
+    if (c->below) w.z = -w.z;
+    return c->f(w, c->ctx) * cos(c->theta) * sin(c->theta);
+}
+
+static double hemi_theta(double theta, void *vc)
+{
+    hemi_ctx *c = vc;
+    c->theta = theta;
+    double sum = 0;
+    for (int k = 0; k < 8; k++) sum += quad_adapt(hemi_phi, c, k * T_PI / 4, (k + 1) * T_PI / 4, 1e-9);
+    return sum;
+}
+
+double hemisphere_cos_quad(double (*f)(ggx_vec3 w, void *ctx), void *ctx, int below)
+{
+    hemi_ctx c = {f, ctx, 0, below};
+    double sum = 0;
+    for (int k = 0; k < 8; k++) sum += quad_adapt(hemi_theta, &c, k * T_PI / 16, (k + 1) * T_PI / 16, 1e-8);
+    return sum;
+}

@@ -86,4 +86,24 @@ extern int chi2_runs_by[VARIANT_COUNT][GGX_SAMPLER_COUNT];
  * registered sampler that no sweep reaches (a domain that excludes every swept shape, a family left out) fails. */
 void check_chi2_coverage(const variant *var, unsigned families);
 
+/* int f(w) |w.z| dw over the upper hemisphere (below = 0) or the lower one, by nested adaptive quadrature in
+ * (theta, phi): 8 panels of theta to tolerance 1e-8, each line 8 panels of phi to 1e-9. For the energy tables'
+ * smooth multiple-scattering lobes (tests/test_energy.c, tests/test_energy_bsdf.c). */
+double hemisphere_cos_quad(double (*f)(ggx_vec3 w, void *ctx), void *ctx, int below);
+
+/* Chi-square of a sampler of directions whose pdf has jumps (the energy tables' cells), which the harness's per-cell
+ * Gauss-Legendre does not resolve where the pdf is steep (alpha = 0.01 at grazing: chi2 = 15196 for 10000 dof for a
+ * correct sampler). The bins are uniform in (t = w.z^2, phi), where the cosine-weighted measure is uniform, on each
+ * side of the surface (sides = 1: w.z > 0 only; 2: both); each bin's expected count is a midpoint sum of pdf over
+ * 100 x 8 points (a jump inside a bin moves the sum by at most its height over 100 of the bin's widths). Bins
+ * expecting fewer than 5 samples are pooled. chi2_samples() draws; invalid draws are not binned. Returns the
+ * p-value and writes the degrees of freedom. */
+typedef struct binned_problem {
+    int (*draw)(void *ctx, rng *r, ggx_vec3 *w); /* 0: an invalid sample */
+    double (*pdf)(void *ctx, ggx_vec3 w);        /* per solid angle */
+    int sides;
+    void *ctx;
+} binned_problem;
+double binned_chi2(const binned_problem *p, uint64_t seed, int *dof);
+
 #endif

@@ -123,33 +123,19 @@ typedef struct furnace_ctx {
     const ggx_energy *e;
     const ggx_fresnel *f;
     ggx_vec3 wi;
-    double theta;
     int compensated; /* 1: the compensated BRDF, 0: the multiple-scattering lobe alone */
 } furnace_ctx;
 
-static double fq_phi(double phi, void *vc)
+static double fq(ggx_vec3 w, void *vc)
 {
     furnace_ctx *c = vc;
-    ggx_vec3 w = t_dir(c->theta, phi);
-    double f = c->compensated ? ggx_brdf_compensated_eval(c->e, c->f, c->wi, w) : ggx_brdf_ms_eval(c->e, c->f, c->wi, w);
-    return f * cos(c->theta) * sin(c->theta);
-}
-
-static double fq_theta(double theta, void *vc)
-{
-    furnace_ctx *c = vc;
-    c->theta = theta;
-    double sum = 0;
-    for (int k = 0; k < 8; k++) sum += quad_adapt(fq_phi, c, k * T_PI / 4, (k + 1) * T_PI / 4, 1e-9);
-    return sum;
+    return c->compensated ? ggx_brdf_compensated_eval(c->e, c->f, c->wi, w) : ggx_brdf_ms_eval(c->e, c->f, c->wi, w);
 }
 
 static double ms_albedo(const ggx_energy *e, const ggx_fresnel *f, ggx_vec3 wi)
 {
-    furnace_ctx c = {e, f, wi, 0, 0};
-    double sum = 0;
-    for (int k = 0; k < 8; k++) sum += quad_adapt(fq_theta, &c, k * T_PI / 16, (k + 1) * T_PI / 16, 1e-8);
-    return sum;
+    furnace_ctx c = {e, f, wi, 0};
+    return hemisphere_cos_quad(fq, &c, 0);
 }
 
 /* White furnace: E(wi) (exact, ggx_albedo) + int f_ms wo.z = 1 within the table's error; and with a conductor,
@@ -444,59 +430,14 @@ static chi2_result run(smp_ctx *c, const char *name, uint64_t seed)
     return chi2_run_scaled(&p, seed, test_chi2_level());
 }
 
-/* The lobe sampler's pdf is piecewise constant with jumps on the table's cells, which a chi-square harness that
- * integrates each cell by Gauss-Legendre does not resolve where 1 - E is steep (grazing, small alpha). Here the bins
- * are uniform in (t = mu^2, phi), where the cosine-weighted measure is uniform, and each bin's expected count is a
- * midpoint sum of ggx_pdf_brdf_ms over 100 x 8 points (a jump inside a bin moves the sum by at most its height over
- * 100 of the bin's widths). Bins expecting fewer than 5 samples are pooled. */
-enum { BT = 50, BP = 32, ST = 100, SP = 8 };
 static int part_ms = 1, part_comp = 1; /* which samplers sampling_chi2 runs (ctest runs them as two entries) */
-static double binned_chi2(smp_ctx *c, uint64_t seed, int *dof)
+
+/* The lobe sampler's pdf is piecewise constant with jumps on the table's cells: binned_chi2 (tests/samplers.h). */
+static double binned_pdf(void *vc, ggx_vec3 w) { return smp_pdf(vc, w); }
+static double binned(smp_ctx *c, uint64_t seed, int *dof)
 {
-    static double obs[BT * BP], ex[BT * BP];
-    long n = chi2_samples();
-    for (int b = 0; b < BT * BP; b++) obs[b] = ex[b] = 0;
-    rng r = {seed};
-    for (long k = 0; k < n; k++) {
-        ggx_vec3 w;
-        if (!smp_draw(c, &r, &w)) continue;
-        double t = w.z * w.z, phi = atan2(w.y, w.x) + T_PI;
-        int bt = (int)(t * BT), bp = (int)(phi / (2 * T_PI) * BP);
-        bt = bt < BT ? bt : BT - 1;
-        bp = bp < BP ? bp : BP - 1;
-        obs[bt * BP + bp]++;
-    }
-    for (int bt = 0; bt < BT; bt++)
-        for (int bp = 0; bp < BP; bp++) {
-            double sum = 0;
-            for (int i = 0; i < ST; i++) {
-                double t = (bt + (i + 0.5) / ST) / BT, mu = sqrt(t), st = sqrt(1 - t);
-                for (int j = 0; j < SP; j++) {
-                    double phi = (bp + (j + 0.5) / SP) / BP * 2 * T_PI - T_PI;
-                    sum += smp_pdf(c, t_vec(st * cos(phi), st * sin(phi), mu)) / (2 * mu); /* dw = dt dphi / (2 mu) */
-                }
-            }
-            ex[bt * BP + bp] = (double)n * sum / (ST * SP) * (1.0 / BT) * (2 * T_PI / BP);
-        }
-    double stat = 0, po = 0, pe = 0;
-    int bins = 0;
-    for (int b = 0; b < BT * BP; b++) {
-        if (ex[b] < 5) {
-            po += obs[b];
-            pe += ex[b];
-            continue;
-        }
-        stat += (obs[b] - ex[b]) * (obs[b] - ex[b]) / ex[b];
-        bins++;
-    }
-    if (pe >= 5) {
-        stat += (po - pe) * (po - pe) / pe;
-        bins++;
-    } else {
-        CHECK(po <= pe + 5 * sqrt(pe) + 5, "pooled bins: %g observed, %g expected", po, pe);
-    }
-    *dof = bins - 1;
-    return chi2_pvalue(stat, *dof);
+    binned_problem p = {smp_draw, binned_pdf, 1, c};
+    return binned_chi2(&p, seed, dof);
 }
 
 static void sampling_chi2(void **state)
@@ -512,7 +453,7 @@ static void sampling_chi2(void **state)
             int dof;
             snprintf(name, sizeof name, "ms lobe %s theta %g", SHAPES[i].name, thetas[a]);
             if (part_ms && (a == 0 || a == 3)) {
-                double p = binned_chi2(&c, 1400 + 10 * (uint64_t)i + (uint64_t)a, &dof);
+                double p = binned(&c, 1400 + 10 * (uint64_t)i + (uint64_t)a, &dof);
                 CHECK(p >= test_chi2_level(), "%s: dof %d, p = %.3g", name, dof, p);
                 runs++;
             }
@@ -537,7 +478,7 @@ static void negative_controls(void **state)
     chi2_grid(n, &nt, &np);
     smp_ctx c = {tables[1], &shapes[1], {GGX_FRESNEL_ONE, 0, 0, 0}, t_dir(1.2, 0.3), 0, 1, 0};
     int dof;
-    double pv = binned_chi2(&c, 91, &dof);
+    double pv = binned(&c, 91, &dof);
     CHECK(pv < test_chi2_level(), "the ms lobe passed against the cosine pdf: p = %.3g", pv);
     chi2_result r;
     c.compensated = 1;
