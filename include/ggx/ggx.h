@@ -579,6 +579,81 @@ ggx_sample ggx_sample_brdf_compensated(const ggx_energy *e, const ggx_fresnel *f
                                        double u3);
 double ggx_pdf_brdf_compensated(const ggx_energy *e, const ggx_fresnel *f, ggx_vec3 wi, ggx_vec3 wo);
 
+/* ------------------------------------------------------------------------------------------------------------
+ * Energy compensation of the rough dielectric (docs/energy.md; Kulla & Conty 2017, for every shape)
+ *
+ * ggx_bsdf_eval loses, for light arriving from wi on side a (0: above, 1: below the surface), 1 - E_a(wi) of its
+ * energy, E_a = R + T of ggx_bsdf_albedo. The multiple-scattering lobes on both sides return it: for wi on side a
+ * and wo on side b, in the radiance convention,
+ *   f_ms(wi, wo) = c_ab (1 - E_a(wi)) (1 - E_b(wo)),
+ * with c_ab fixed at setup so that (1) int f_ms(wi, wo) |wo.z| dwo = 1 - E_a(wi) from both sides, the share x_a of
+ * it transmitted, and (2) f_ms(wi, wo) / eta_o^2 = f_ms(wo, wi) / eta_i^2 (the generalised reciprocity of
+ * ggx_bsdf_eval). (1) and (2) leave one free number, the transmitted shares: x_a <= 1 - F_avg,a (the average Fresnel
+ * transmittance from side a), with equality on the side that loses more (the derivation is in docs/energy.md).
+ * E_a is a per-(shape, eta) table of ggx_bsdf_albedo for each side, built by ggx_bsdf_energy_create and read by
+ * interpolation, so that a non-absorbing interface keeps R + T = 1 - (E_a - E_a,table)(wi): within 1e-3 of 1 from
+ * both sides for every shape, eta and view with |wi.z| >= 0.0175 (89 degrees) that tests/test_energy_bsdf.c tries
+ * (isotropic alpha 0.05 to 1, anisotropic to 1:10, rotated, skewed to 0.5 rad; eta 1.001 to 2 and below 1; the
+ * largest error measured is in docs/energy.md).
+ * Sides, directions and modes as for ggx_bsdf_eval: eta = eta_below / eta_above, directions point away from the
+ * surface on either side, GGX_IMPORTANCE gives the adjoint f(wo, wi). Directions need not be unit (they are
+ * normalised); w.z = 0, zero or non-finite vectors give 0 or an invalid sample; e NULL gives 0 or an invalid sample.
+ * An object is read-only after creation: any number of threads may use one at once.
+ * ------------------------------------------------------------------------------------------------------------ */
+
+/* The albedo tables of a shape and an index of refraction (opaque; about 400 KB for anisotropic and skewed shapes,
+ * 3 KB for isotropic ones). */
+typedef struct ggx_bsdf_energy ggx_bsdf_energy;
+
+/* Builds the tables of shape s (copied) and eta for both sides: 2 x 65 x 128 values of ggx_bsdf_albedo's R + T by
+ * quadrature (65 for each side of isotropic shapes, a quarter of the columns for unskewed ones), the two sides on
+ * two threads. Cost, measured on this project's 2-core machine (docs/energy.md): 0.2 to 0.5 s for isotropic shapes,
+ * about 11 s for anisotropic ones and about 1 minute (some 110 s of CPU) for skewed ones; build them once per
+ * material, at scene setup. Thread-safe.
+ * Errors: GGX_ERR_NULL (s or out NULL), GGX_ERR_NONFINITE (eta NaN or infinite), GGX_ERR_ETA (eta <= 0, above 1e300,
+ * or exactly 1, where the transmission is a delta that ggx_bsdf_eval does not represent), GGX_ERR_MEMORY; *out is
+ * NULL then. */
+ggx_status ggx_bsdf_energy_create(const ggx_shape *s, double eta, ggx_bsdf_energy **out);
+/* Frees e (NULL is allowed). */
+void ggx_bsdf_energy_free(ggx_bsdf_energy *e);
+/* The shape and the eta e was built for; NULL and 0 for e NULL. */
+const ggx_shape *ggx_bsdf_energy_shape(const ggx_bsdf_energy *e);
+double ggx_bsdf_energy_eta(const ggx_bsdf_energy *e);
+
+/* E(v) = R + T of light arriving from v (either side) from the table: ggx_bsdf_albedo's sum within 1e-3 absolute for
+ * |v.z| >= 0.0175 (the largest error measured over random views is in docs/energy.md), in [0, 1]; about 100 ns.
+ * v.z = 0: 0. */
+double ggx_bsdf_energy_albedo(const ggx_bsdf_energy *e, ggx_vec3 v);
+/* E_avg of one side's table, (1 / pi) int E(v) |v.z| dv over that side: below = 0 for light from above, else from
+ * below. */
+double ggx_bsdf_energy_albedo_avg(const ggx_bsdf_energy *e, int below);
+
+/* The multiple-scattering lobes f_ms(wi, wo) above (either side each), for the transport mode. Generalised
+ * reciprocity to 1e-12: f_ms(wi, wo) / eta_o^2 = f_ms(wo, wi) / eta_i^2 (radiance). */
+double ggx_bsdf_ms_eval(const ggx_bsdf_energy *e, ggx_vec3 wi, ggx_vec3 wo, ggx_transport mode);
+/* Samples the lobes from the known direction v (as for ggx_sample_bsdf: for GGX_RADIANCE v is towards the camera,
+ * w towards the light): the other side with probability x_a (u3 < x_a), then (1 - E(w)) |w.z| on that side,
+ * piecewise constant over the table's cells (u1, u2). pdf = ggx_pdf_bsdf_ms, weight =
+ * ggx_bsdf_ms_eval(e, w, v, mode) |w.z| / pdf; event GGX_EVENT_REFLECT or GGX_EVENT_TRANSMIT by the side of w.
+ * u1, u2, u3 in [0, 1) (clamped). */
+ggx_sample ggx_sample_bsdf_ms(const ggx_bsdf_energy *e, ggx_vec3 v, double u1, double u2, double u3,
+                              ggx_transport mode);
+double ggx_pdf_bsdf_ms(const ggx_bsdf_energy *e, ggx_vec3 v, ggx_vec3 w);
+
+/* The energy-compensated rough dielectric, the entry point a renderer calls in place of ggx_bsdf_eval:
+ * ggx_bsdf_eval(shape, eta, wi, wo, mode) + ggx_bsdf_ms_eval(e, wi, wo, mode). Generalised reciprocity to 1e-12;
+ * with it a non-absorbing interface passes the white furnace within 1e-3 from both sides (above). */
+double ggx_bsdf_compensated_eval(const ggx_bsdf_energy *e, ggx_vec3 wi, ggx_vec3 wo, ggx_transport mode);
+/* Samples it from the known direction v (either side; conventions of ggx_sample_bsdf): with probability
+ * p = E(v) of the table (u3 < p) the single-scattering lobe by ggx_sample_bsdf (u1, u2 and u3 / p), else the
+ * multiple-scattering lobes as ggx_sample_bsdf_ms (u1, u2 and (u3 - p) / (1 - p)); pdf = p ggx_pdf_bsdf +
+ * (1 - p) ggx_pdf_bsdf_ms (ggx_pdf_bsdf_compensated), weight = ggx_bsdf_compensated_eval(e, w, v, mode) |w.z| / pdf,
+ * which for GGX_IMPORTANCE averages to the albedo R + T = 1 of a non-absorbing interface. A single-scattering draw
+ * that ggx_sample_bsdf marks invalid is invalid. u1, u2, u3 in [0, 1) (clamped). */
+ggx_sample ggx_sample_bsdf_compensated(const ggx_bsdf_energy *e, ggx_vec3 v, double u1, double u2, double u3,
+                                       ggx_transport mode);
+double ggx_pdf_bsdf_compensated(const ggx_bsdf_energy *e, ggx_vec3 v, ggx_vec3 w);
+
 #ifdef __cplusplus
 }
 #endif

@@ -249,7 +249,7 @@ typedef struct bsdf_ctx {
     const ggx_shape *s;
     ggx_vec3 v, up, E1, E2; /* v as given, the lune's pole u' = A u / |A u| and a frame about it */
     double eta_rel, sgn, cp, sp, T, inner_tol;
-    int part; /* 0: reflection, 1: transmission */
+    int part; /* 0: reflection, 1: transmission, 2: both (their sum in one quadrature) */
 } bsdf_ctx;
 
 static double bsdf_inner(double x, void *vc)
@@ -263,13 +263,14 @@ static double bsdf_inner(double x, void *vc)
     double vm = c->sgn * ggx_k_dot_d(c->v, m);
     if (!(vm > 0) || !(m.z > 0)) return 0.0;
     double F = ggx_fresnel_dielectric_eval_d(vm, c->eta_rel), g = 0.0;
-    if (c->part == 0) {
+    if (c->part != 1) {
         ggx_vec3 w = ggx_reflect_d(c->v, m);
         if (c->sgn * w.z > 0) g = F * ggx_k_g1_dir_d(c->s, ggx_k_scale_d(w, c->sgn));
-    } else if (F < 1) {
+    }
+    if (c->part != 0 && F < 1) {
         ggx_vec3 w;
         if (ggx_refract_d(c->v, m, c->eta_rel, &w) && c->sgn * w.z < 0)
-            g = (1 - F) * ggx_k_g1_dir_d(c->s, ggx_k_scale_d(w, -c->sgn));
+            g += (1 - F) * ggx_k_g1_dir_d(c->s, ggx_k_scale_d(w, -c->sgn));
     }
     return g * ct * st * c->T;
 }
@@ -309,6 +310,11 @@ static double bsdf_part(const ggx_shape *s, ggx_vec3 v, double eta, int part, do
     const double br[] = {0, 0.25 * GGX_PI, 0.5 * GGX_PI, 0.75 * GGX_PI, GGX_PI,
                          1.25 * GGX_PI, 1.5 * GGX_PI, 1.75 * GGX_PI, 2 * GGX_PI};
     return pre * adapt(bsdf_outer, &c, br, 9, 0.5 * abs_tol);
+}
+
+double ggx_internal_bsdf_albedo(const ggx_shape *s, double eta, ggx_vec3 v, double tol)
+{
+    return bsdf_part(s, v, eta, 2, tol);
 }
 
 GGX_API double ggx_bsdf_albedo(const ggx_shape *s, double eta, ggx_vec3 v, double *reflected, double *transmitted)

@@ -36,6 +36,9 @@
  * smooth (docs/albedo.md). v.z > 0. */
 double ggx_internal_albedo(const ggx_shape *s, ggx_vec3 v, int hc, double tol);
 double ggx_internal_albedo_scale(const ggx_shape *s, ggx_vec3 v);
+/* From src/api/albedo.c: R + T of ggx_bsdf_albedo in one quadrature, for a unit v with v.z != 0, to an absolute
+ * error of about tol (the energy tables of the rough dielectric, src/api/energy_bsdf.c). */
+double ggx_internal_bsdf_albedo(const ggx_shape *s, double eta, ggx_vec3 v, double tol);
 /* Whether E depends on the view's polar angle only: unskewed with alpha_x = alpha_y (to 1e-12). */
 int ggx_internal_is_isotropic(const ggx_shape *s);
 /* From src/api/tables.c: I = E / P of the shipped isotropic table (separable G) at row coordinate y in [0, 1]
