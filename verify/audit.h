@@ -7,7 +7,7 @@
 
 #include "chi2.h"
 
-enum { AUDIT_SHAPES = 3, AUDIT_MAX_ROWS = 128, AUDIT_TEXT = 400 };
+enum { AUDIT_SHAPES = 3, AUDIT_MAX_ROWS = 128, AUDIT_TEXT = 720 };
 
 /* The shapes a seed states a claim for: a diagonal A = diag(ax, ay, 1); A = S Rz (anisotropy rotated in the tangent
  * plane, "rotated"); any A (skewed included). */

@@ -117,13 +117,17 @@ typedef struct au_kin {
     double A[3][3];
     ggx_shape s;
     double offdiag;
+    double params[5]; /* ax, ay, theta_x, theta_y, theta_z of a random shape */
+    int has_params;   /* 0 for the audit's own shape (given as a matrix) */
     char label[120];
 } au_kin;
 void au_kin_shape(const ggx_shape *s0, const double A0[3][3], int i, uint64_t seed, au_kin *out);
 /* An identity or inequality claimed at every point of every shape of a kind: err returns the claim's error at one
  * random point of shape K (0 where it holds exactly, NaN where it cannot be evaluated counts as a failure) and
  * writes the point into at. The verdict for shape k: holds if every error is <= tol over `points` points on each of
- * AU_KIN shapes; else fails, with the counterexample on the failing shape of least offdiag (the smallest found). */
+ * AU_KIN shapes; else fails, with the counterexample on the failing shape of least offdiag, whose skew angles (for
+ * a skewed kind; its rotation for a rotated kind) are then halved while the claim still fails at its points: the
+ * smallest counterexample found. */
 typedef double (*au_err_fn)(const au_kin *K, rng *g, void *ctx, char *at, size_t nat);
 void au_verdict_kin(audit_row *r, int k, const ggx_shape *s0, const double A0[3][3], au_err_fn err, void *ctx,
                     int points, double tol, const char *what);

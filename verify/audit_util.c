@@ -202,11 +202,31 @@ double au_fd_jacobian(au_map2_fn f, const void *ctx, double a, double b, double 
     return sqrt(t_dot(c, c));
 }
 
+/* Shape (ax, ay, tx, ty, tz) into out; 0 if the library refuses it. */
+static int kin_make(double ax, double ay, double tx, double ty, double tz, au_kin *out)
+{
+    out->params[0] = ax, out->params[1] = ay, out->params[2] = tx, out->params[3] = ty, out->params[4] = tz;
+    out->has_params = 1;
+    if (ggx_ellipsoid_matrix(out->A, ax, ay, tx, ty, tz) != GGX_OK ||
+        ggx_shape_matrix(&out->s, (const double(*)[3])out->A) != GGX_OK)
+        return 0;
+    snprintf(out->label, sizeof out->label, "alphas (%.3g, %.3g), angles (%.3g, %.3g, %.3g) rad", ax, ay, tx, ty, tz);
+    return 1;
+}
+static void kin_offdiag(au_kin *out)
+{
+    double M[3][3];
+    for (int a = 0; a < 3; a++)
+        for (int b = 0; b < 3; b++) M[a][b] = out->A[0][a] * out->A[0][b] + out->A[1][a] * out->A[1][b] + out->A[2][a] * out->A[2][b];
+    out->offdiag = sqrt(M[0][1] * M[0][1] + M[0][2] * M[0][2] + M[1][2] * M[1][2]) / (M[0][0] + M[1][1] + M[2][2]);
+}
+
 void au_kin_shape(const ggx_shape *s0, const double A0[3][3], int i, uint64_t seed, au_kin *out)
 {
     if (i == 0) {
         memcpy(out->A, A0, sizeof out->A);
         out->s = *s0;
+        out->has_params = 0;
         snprintf(out->label, sizeof out->label, "the audit's shape");
     } else {
         rng g = {seed * 1000003u + (uint64_t)i};
@@ -216,27 +236,38 @@ void au_kin_shape(const ggx_shape *s0, const double A0[3][3], int i, uint64_t se
             tx = (0.02 + 0.58 * rng_uniform(&g)) * (rng_uniform(&g) < 0.5 ? -1 : 1);
             ty = (0.02 + 0.58 * rng_uniform(&g)) * (rng_uniform(&g) < 0.5 ? -1 : 1);
         }
-        if (ggx_ellipsoid_matrix(out->A, ax, ay, tx, ty, tz) != GGX_OK ||
-            ggx_shape_matrix(&out->s, (const double(*)[3])out->A) != GGX_OK)
-            abort(); /* every shape drawn is valid */
-        snprintf(out->label, sizeof out->label, "alphas (%.3g, %.3g), angles (%.3g, %.3g, %.3g) rad", ax, ay, tx, ty, tz);
+        if (!kin_make(ax, ay, tx, ty, tz, out)) abort(); /* every shape drawn is valid */
     }
-    double M[3][3];
-    for (int a = 0; a < 3; a++)
-        for (int b = 0; b < 3; b++) M[a][b] = out->A[0][a] * out->A[0][b] + out->A[1][a] * out->A[1][b] + out->A[2][a] * out->A[2][b];
-    out->offdiag = sqrt(M[0][1] * M[0][1] + M[0][2] * M[0][2] + M[1][2] * M[1][2]) / (M[0][0] + M[1][1] + M[2][2]);
+    kin_offdiag(out);
 }
 
 typedef struct kin_result {
     double worst;                   /* the largest error (infinite for NaN) */
     int failed;                     /* points with error > tol */
-    double ex_off, ex_err;          /* the failing shape nearest to diagonal, its worst error */
+    int ex_index;                   /* the failing shape nearest to diagonal (-1: none) */
+    double ex_off, ex_err;          /* its off-diagonal share and worst error */
     char ex_shape[120], ex_at[160]; /* and where */
+    char shrunk[400];               /* the smallest counterexample of the shrinking search, or "" */
 } kin_result;
+
+/* The worst error of err on shape K at the points of shape index i (the same points as in kin_run). */
+static double kin_points(const au_kin *K, int i, au_err_fn err, void *ctx, int points, double tol, char *at, size_t nat)
+{
+    rng g = {977 + (uint64_t)i};
+    double worst = 0;
+    for (int j = 0; j < points; j++) {
+        char here[160] = "";
+        double e = err(K, &g, ctx, here, sizeof here);
+        if (!(e <= tol) && !(e <= worst)) worst = isnan(e) ? INFINITY : e, snprintf(at, nat, "%s", here);
+    }
+    return worst;
+}
 
 static kin_result kin_run(const ggx_shape *s0, const double A0[3][3], au_err_fn err, void *ctx, int points, double tol)
 {
-    kin_result res = {0, 0, INFINITY, 0, "", ""};
+    kin_result res = {0, 0, -1, INFINITY, 0, "", "", ""};
+    au_kin ex;
+    memset(&ex, 0, sizeof ex);
     for (int i = 0; i < AU_KIN; i++) {
         au_kin K;
         au_kin_shape(s0, A0, i, 0x5eed, &K);
@@ -248,13 +279,35 @@ static kin_result kin_run(const ggx_shape *s0, const double A0[3][3], au_err_fn 
                 if (isnan(e)) e = INFINITY;
                 res.failed++;
                 if (K.offdiag < res.ex_off) { /* ties: the first found (the audit's own shape first) */
-                    res.ex_off = K.offdiag, res.ex_err = e;
+                    res.ex_index = i, res.ex_off = K.offdiag, res.ex_err = e, ex = K;
                     snprintf(res.ex_shape, sizeof res.ex_shape, "%s", K.label);
                     snprintf(res.ex_at, sizeof res.ex_at, "%s", at);
                 }
             }
             if (e > res.worst) res.worst = e;
         }
+    }
+    /* The smallest counterexample: the failing shape's skew angles (or, for a rotated shape, its rotation) halved
+     * while the claim still fails at its points, down to 2^-30. */
+    if (res.ex_index >= 0 && ex.has_params && s0->kind != GGX_SHAPE_DIAGONAL) {
+        int skew = s0->kind == GGX_SHAPE_SKEWED, halvings = 0;
+        double f = 1, last_err = res.ex_err;
+        char at[160] = "", last_at[160] = "";
+        for (int h = 1; h <= 30; h++) {
+            au_kin K;
+            double g2 = f * 0.5, *q = ex.params;
+            if (!kin_make(q[0], q[1], skew ? q[2] * g2 : 0, skew ? q[3] * g2 : 0, skew ? q[4] : q[4] * g2, &K)) break;
+            double e = kin_points(&K, res.ex_index, err, ctx, points, tol, at, sizeof at);
+            if (!(e > tol)) break;
+            f = g2, halvings = h, last_err = e;
+            snprintf(last_at, sizeof last_at, "%s", at);
+        }
+        if (halvings > 0 && skew)
+            snprintf(res.shrunk, sizeof res.shrunk, "; with its skew halved %d times, (theta_x, theta_y) = (%.3g, %.3g) "
+                     "rad, it still fails: %s, error %.3g", halvings, ex.params[2] * f, ex.params[3] * f, last_at, last_err);
+        else if (halvings > 0)
+            snprintf(res.shrunk, sizeof res.shrunk, "; with its rotation halved %d times, theta_z = %.3g rad, it still "
+                     "fails: %s, error %.3g", halvings, ex.params[4] * f, last_at, last_err);
     }
     return res;
 }
@@ -281,8 +334,8 @@ void au_verdict_kin(audit_row *r, int k, const ggx_shape *s0, const double A0[3]
                points * AU_KIN, AU_KIN);
     else
         au_set(r, k, AUDIT_FAILS, "%s off by up to %.3g (%d of %d points); smallest counterexample (off-diagonal share of "
-               "A^T A %.2g): %s, %s, error %.3g", what, res.worst, res.failed, points * AU_KIN, res.ex_off, res.ex_shape,
-               res.ex_at, res.ex_err);
+               "A^T A %.2g): %s, %s, error %.3g%s", what, res.worst, res.failed, points * AU_KIN, res.ex_off, res.ex_shape,
+               res.ex_at, res.ex_err, res.shrunk);
 }
 
 ggx_vec3 au_map_cosine(const void *ctx, double u, double v)
@@ -304,29 +357,21 @@ ggx_vec3 au_literal_heitz(const double A[3][3], ggx_vec3 v, double u1, double u2
     return t_normalize(t_matvec(A, nh));
 }
 
-/* A claim about every view is checked on a grid of views, not one: 6 polar angles from 0.3 to 1.5 rad (86 degrees)
- * times 8 azimuths. f returns the claim's error at view v; the worst view is reported. */
-static double worst_view(double (*f)(const ggx_shape *s, ggx_vec3 v), const ggx_shape *s, double *theta, double *phi,
-                         double *value)
+void au_verdict_views(audit_row *r, int k, double (*f)(const ggx_shape *, ggx_vec3), const ggx_shape *s, double tol,
+                      const char *what)
 {
     static const double thetas[AU_VIEW_THETAS] = {0.3, 0.7, 1.0, 1.2, 1.4, 1.5};
-    double worst = -1;
+    double worst = -1, th = 0, ph = 0, x = 1, first_th = INFINITY, first_ph = 0, first_x = 1;
     for (int i = 0; i < AU_VIEW_THETAS; i++)
         for (int j = 0; j < AU_VIEW_PHIS; j++) {
-            double ph = -T_PI + 2 * T_PI * (j + 0.5) / AU_VIEW_PHIS, x = f(s, t_dir(thetas[i], ph));
-            if (fabs(x - 1) > worst) worst = fabs(x - 1), *theta = thetas[i], *phi = ph, *value = x;
+            double phi = -T_PI + 2 * T_PI * (j + 0.5) / AU_VIEW_PHIS, y = f(s, t_dir(thetas[i], phi));
+            if (fabs(y - 1) > worst) worst = fabs(y - 1), th = thetas[i], ph = phi, x = y;
+            if (!(fabs(y - 1) < tol) && thetas[i] < first_th) first_th = thetas[i], first_ph = phi, first_x = y;
         }
-    return worst;
-}
-
-void au_verdict_views(audit_row *r, int k, double (*f)(const ggx_shape *, ggx_vec3), const ggx_shape *s, double tol,
-                          const char *what)
-{
-    double th = 0, ph = 0, x = 1, worst = worst_view(f, s, &th, &ph, &x);
     if (worst < tol)
         au_set(r, k, AUDIT_HOLDS, "%s integrates to 1 within %.0e at all %d views of the grid", what, fmax(worst, 1e-16),
-            AU_VIEWS);
+               AU_VIEWS);
     else
-        au_set(r, k, AUDIT_FAILS, "%s integrates to %.4f at theta %.1f, phi %.2f rad (worst of %d views)", what, x, th, ph,
-            AU_VIEWS);
+        au_set(r, k, AUDIT_FAILS, "%s integrates to %.4f at theta %.1f, phi %.2f rad (worst of %d views); the view nearest "
+               "n where it fails: %.4f at theta %.1f, phi %.2f", what, x, th, ph, AU_VIEWS, first_x, first_th, first_ph);
 }
