@@ -1,6 +1,7 @@
 /* libFuzzer target: the shape constructors and every hot function fed from raw bytes (any double, NaN and
  * infinities included), checking the numerical contract of include/ggx/ggx.h; a violation aborts. The samplers are
- * every entry of the registry (ggx_samplers.h), so a new registry line is fuzzed too; and the energy compensation.
+ * every entry of the registry (ggx_samplers.h), so a new registry line is fuzzed too; and the energy compensation
+ * of the conductor and of the rough dielectric.
  * SPDX-License-Identifier: MIT */
 #include <math.h>
 #include <stdint.h>
@@ -144,11 +145,45 @@ static void check_energy(bytes *b)
     }
 }
 
+/* The rough dielectric's compensation: one isotropic table per index (eta 1.5 and 1/1.5: a table of an anisotropic
+ * shape takes seconds), fed raw directions on either side, numbers and both transport modes. */
+static ggx_bsdf_energy *bsdf_tables[2];
+static void check_bsdf_energy(bytes *b)
+{
+    if (!bsdf_tables[0]) {
+        ggx_shape a;
+        REQUIRE(ggx_shape_iso(&a, 0.2) == GGX_OK && ggx_bsdf_energy_create(&a, 1.5, &bsdf_tables[0]) == GGX_OK &&
+                    ggx_bsdf_energy_create(&a, 1 / 1.5, &bsdf_tables[1]) == GGX_OK,
+                "dielectric energy tables");
+    }
+    const ggx_bsdf_energy *e = bsdf_tables[next_byte(b) & 1];
+    ggx_transport mode = (next_byte(b) & 1) ? GGX_IMPORTANCE : GGX_RADIANCE;
+    ggx_vec3 wi = vec(b), wo = vec(b);
+    double u1 = next_double(b), u2 = next_double(b), u3 = next_double(b);
+    double r[] = {ggx_bsdf_energy_albedo(e, wi), ggx_bsdf_ms_eval(e, wi, wo, mode), ggx_pdf_bsdf_ms(e, wi, wo),
+                  ggx_bsdf_compensated_eval(e, wi, wo, mode), ggx_pdf_bsdf_compensated(e, wi, wo)};
+    for (unsigned i = 0; i < sizeof r / sizeof r[0]; i++)
+        REQUIRE(isfinite(r[i]) && r[i] >= 0, "dielectric energy function %u = %g", i, r[i]);
+    REQUIRE(r[0] <= 1, "E %g", r[0]);
+    ggx_sample xs[2] = {ggx_sample_bsdf_ms(e, wi, u1, u2, u3, mode), ggx_sample_bsdf_compensated(e, wi, u1, u2, u3, mode)};
+    for (int k = 0; k < 2; k++) {
+        if (xs[k].event == GGX_EVENT_INVALID) {
+            REQUIRE(xs[k].pdf == 0 && xs[k].weight == 0 && is_zero(xs[k].w), "dielectric sampler %d: invalid not zeroed", k);
+            continue;
+        }
+        REQUIRE(is_unit(xs[k].w) && xs[k].w.z != 0 && isfinite(xs[k].pdf) && xs[k].pdf > 0 && isfinite(xs[k].weight) &&
+                    xs[k].weight >= 0,
+                "dielectric sampler %d: pdf %g weight %g", k, xs[k].pdf, xs[k].weight);
+    }
+}
+
 int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
 {
     {
         bytes eb = {data, size};
         check_energy(&eb);
+        bytes db = {data, size};
+        check_bsdf_energy(&db);
     }
     bytes b = {data, size};
     ggx_shape s;
