@@ -41,7 +41,7 @@ static const struct {
     /* verify/audit_sampling.c */
     {"lift", {H, N, N}},          {"sphere-disk", {H, H, H}}, {"crescent-sphere", {H, H, H}},
     {"concentric-walter", {H, H, H}}, {"squeeze-walter", {H, H, H}}, {"frame-eq42", {H, H, H}}, {"lune-point", {H, H, H}}, {"walter-v1", {H, H, H}},
-    {"pm-blog", {H, H, F}},       {"vndf-total-jacobian", {H, N, N}}, {"project-jacobian", {H, H, H}},
+    {"pm-blog", {H, H, H}},       {"vndf-total-jacobian", {H, N, N}}, {"project-jacobian", {H, H, H}},
     /* verify/audit_scattering.c */
     {"smith-integral", {C, C, F}}, {"eq7-transmission", {H, H, H}}, {"weight-formula", {H, H, H}},
     {"g-approx", {H, N, N}},      {"brdf-form", {H, N, N}}, {"reflect-below", {H, N, N}},

@@ -447,7 +447,7 @@ void au_rows_ellipsoid(const au_ctx *c)
                AUDIT_SCOPE_DIAGONAL);
     for (int k = 0; k < AUDIT_SHAPES; k++)
         au_verdict_kin(r, k, &c->sh[k], c->A[k], err_semi_axes, NULL, 1, 1e-12,
-                       "semi-axes along the rows of R and the eigenvalues of A^T A: relative difference");
+                       "semi-axes along the rows of R and the eigenvalues of A^T A (A = S R: algebra): relative difference");
 
     r = au_add(c->rows, c->nr, "skew-max", "theta_x, theta_y move the maximum of D from n to R^T z (for ax, ay < 1)",
                SEED_WALTER, "section 1 after eq 3", AUDIT_SCOPE_ANY);

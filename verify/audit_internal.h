@@ -75,6 +75,9 @@ int au_diag_alphas(const ggx_shape *s, double *ax, double *ay);
 int au_alphas_or_skip(audit_row *r, int k, const ggx_shape *s, double *ax, double *ay);
 /* A random direction of the upper hemisphere, cos theta uniform in [0.02, 1]. */
 ggx_vec3 au_random_upper(rng *g);
+/* A view for inequalities that fail first near n (by a term of first order in the tilt of A^T A n): half of them
+ * au_random_upper, half within 0.5 rad of n, concentrated toward it. */
+ggx_vec3 au_view_near_n(rng *g);
 /* Anisotropic GGX as the seeds write it: 1 / (pi ax ay (mx^2/ax^2 + my^2/ay^2 + mz^2)^2). */
 double au_ggx_formula(double ax, double ay, ggx_vec3 m);
 /* The surface point of the ellipsoid x^T A^T A x = 1 whose outward normal is m: p = A^-1 A^-T m / ||A^-T m|| (the
@@ -119,15 +122,19 @@ typedef struct au_kin {
     double offdiag;
     double params[5]; /* ax, ay, theta_x, theta_y, theta_z of a random shape */
     int has_params;   /* 0 for the audit's own shape (given as a matrix) */
+    int searching;    /* 1 while the smallest counterexample is searched for: err functions keep tallies out */
     char label[120];
 } au_kin;
 void au_kin_shape(const ggx_shape *s0, const double A0[3][3], int i, uint64_t seed, au_kin *out);
+/* The alphas of Walter's A = S R as the seeds' formulas take them: the norms of A's first two rows (the library's
+ * shape may name the same ellipsoid by swapped alphas and a quarter turn). */
+void au_kin_alphas(const au_kin *K, double *ax, double *ay);
 /* An identity or inequality claimed at every point of every shape of a kind: err returns the claim's error at one
  * random point of shape K (0 where it holds exactly, NaN where it cannot be evaluated counts as a failure) and
  * writes the point into at. The verdict for shape k: holds if every error is <= tol over `points` points on each of
- * AU_KIN shapes; else fails, with the counterexample on the failing shape of least offdiag, whose skew angles (for
- * a skewed kind; its rotation for a rotated kind) are then halved while the claim still fails at its points: the
- * smallest counterexample found. */
+ * AU_KIN shapes; else fails, with the counterexample on the smallest failing shape (least |theta_z| for a rotated
+ * kind, least offdiag for a skewed one), whose skew (or rotation) is then halved 30 times, reporting the smallest
+ * scale at which the claim still fails (the smallest counterexample found; verify/audit_util.c says how). */
 typedef double (*au_err_fn)(const au_kin *K, rng *g, void *ctx, char *at, size_t nat);
 void au_verdict_kin(audit_row *r, int k, const ggx_shape *s0, const double A0[3][3], au_err_fn err, void *ctx,
                     int points, double tol, const char *what);

@@ -57,7 +57,9 @@ static double err_total_jacobian(const au_kin *K, rng *g, void *ctx, char *at, s
 {
     (void)ctx;
     jac_ctx c = {(const double(*)[3])K->A};
-    double u = 0.05 + 0.9 * rng_uniform(g), v = rng_uniform(g), axy = K->s.alpha_x * K->s.alpha_y;
+    double ax, ay;
+    au_kin_alphas(K, &ax, &ay);
+    double u = 0.05 + 0.9 * rng_uniform(g), v = rng_uniform(g), axy = ax * ay;
     ggx_vec3 s = au_map_cosine(NULL, u, v), mu = t_matvec(c.A, s), m = t_normalize(mu);
     double l = sqrt(t_dot(mu, mu)), fd = au_fd_jacobian(map_cos_stretch, &c, u, v, 1e-6);
     double f1 = T_PI * axy / (fabs(s.z) * l * l * l), f2 = T_PI * axy / (fabs(m.z) * l * l * l * l);
@@ -73,7 +75,9 @@ static double err_slope_stretch(const au_kin *K, rng *g, void *ctx, char *at, si
 {
     (void)ctx;
     ggx_vec3 m = au_random_upper(g);
-    ggx_vec3 a = t_normalize(t_vec(K->s.alpha_x * m.x / m.z, K->s.alpha_y * m.y / m.z, 1));
+    double ax, ay;
+    au_kin_alphas(K, &ax, &ay);
+    ggx_vec3 a = t_normalize(t_vec(ax * m.x / m.z, ay * m.y / m.z, 1));
     ggx_vec3 b = t_normalize(t_mattvec((const double(*)[3])K->A, m));
     snprintf(at, nat, "m = (%.3g, %.3g, %.3g)", m.x, m.y, m.z);
     return vdiff(a, b, 1);
@@ -84,7 +88,9 @@ static double err_d_slope(const au_kin *K, rng *g, void *ctx, char *at, size_t n
 {
     (void)ctx;
     ggx_vec3 m = au_random_upper(g);
-    double ax = K->s.alpha_x, ay = K->s.alpha_y, x = m.x / m.z, y = m.y / m.z, t = x * x / (ax * ax) + y * y / (ay * ay) + 1;
+    double ax, ay;
+    au_kin_alphas(K, &ax, &ay);
+    double x = m.x / m.z, y = m.y / m.z, t = x * x / (ax * ax) + y * y / (ay * ay) + 1;
     double q = x * x + y * y + 1, d1 = q * q / (T_PI * ax * ay * t * t), p22 = 1 / (T_PI * ax * ay * t * t);
     double d2 = p22 / (m.z * m.z * m.z * m.z), d = ggx_ndf(&K->s, m);
     snprintf(at, nat, "m = (%.3g, %.3g, %.3g): D %.5g, the slope forms %.5g, %.5g", m.x, m.y, m.z, d, d1, d2);
@@ -125,13 +131,13 @@ void au_rows_stretch(const au_ctx *c)
                "Cosine-Weighted Half-Sphere; Jacobian Determinant; Derivation", AUDIT_SCOPE_ANY);
     for (int k = 0; k < AUDIT_SHAPES; k++)
         au_verdict_kin(r, k, &c->sh[k], c->A[k], err_vector_identities, NULL, 400, 1e-13,
-                       "at random vectors (no A involved): relative difference");
+                       "at random vectors (identities; no A involved): relative difference");
 
     r = au_add(c->rows, c->nr, "det-scale", "det(m_, m_u, m_v) = ax ay det(s, s_u, s_v) for the stretched m_ = (ax sx, ay sy, "
                "sz) = A s", SEED_STRETCH, "Elliptic Stretch", AUDIT_SCOPE_DIAGONAL);
     for (int k = 0; k < AUDIT_SHAPES; k++)
         au_verdict_kin(r, k, &c->sh[k], c->A[k], err_det_scale, NULL, 100, 1e-7,
-                       "with ax ay = |A| and m_ = A s: relative difference (central differences)");
+                       "with ax ay = |A| and m_ = A s (det(A X) = det A det X, an identity): relative difference");
 
     r = au_add(c->rows, c->nr, "stretch-total-jacobian", "the stretched cosine map has |dm / d(u, v)| = pi ax ay / (|s_z| "
                "||m_||^3) = pi ax ay / (|m_z| ||m_||^4) = 1 / (|m_z| D(m))", SEED_STRETCH, "Elliptic Stretch",
@@ -149,7 +155,7 @@ void au_rows_stretch(const au_ctx *c)
         double ax, ay;
         if (!au_alphas_or_skip(r, k, &c->sh[k], &ax, &ay)) continue;
         au_verdict_kin(r, k, &c->sh[k], c->A[k], err_slope_stretch, NULL, 200, 1e-12,
-                       "against the ellipsoid's stretch normalize(A^T m): distance");
+                       "against the ellipsoid's stretch normalize(A^T m) (for a diagonal A, normalize(k x) = normalize(x)): distance");
     }
 
     r = au_add(c->rows, c->nr, "d-slope", "D(m~) = (m~x^2 + m~y^2 + 1)^2 / (pi ax ay (m~x^2/ax^2 + m~y^2/ay^2 + 1)^2) = "
