@@ -473,6 +473,7 @@ int audit_run(const double A[AUDIT_SHAPES][3][3], audit_row *rows, int progress)
     const ggx_vec3 v = t_dir(1.2, -0.6), v_clip = t_dir(1.2, 2.5), n = t_vec(0, 0, 1);
     int nr = 0;
     audit_row *r;
+    const au_ctx ctx = {rows, &nr, sh, A, progress};
 
     r = au_add(rows, &nr, "norm", "D(m) is normalised: the integral of D(m)(m.n) is 1", SEED_WALTER ", " SEED_BLOG1,
             "Walter eq 1, 9; blog Part 1", AUDIT_SCOPE_ANY);
@@ -483,13 +484,8 @@ int audit_run(const double A[AUDIT_SHAPES][3][3], audit_row *rows, int progress)
 
     r = au_add(rows, &nr, "ggx", "R = I gives anisotropic GGX 1 / (pi ax ay (mx^2/ax^2 + my^2/ay^2 + mz^2)^2)",
             SEED_WALTER ", " SEED_BLOG1, "Walter section 1; blog Part 1", AUDIT_SCOPE_DIAGONAL);
-    for (int k = 0; k < AUDIT_SHAPES; k++) {
-        double ax, ay;
-        if (!au_alphas_or_skip(r, k, &sh[k], &ax, &ay)) continue;
-        au_verdict_kin(r, k, &sh[k], A[k], err_ggx, NULL, 50, 1e-12, sh[k].kind == GGX_SHAPE_UNSKEWED
-                       ? "the formula in x, y (not in the rotated axes) against D: relative difference"
-                       : "against D: relative difference");
-    }
+    au_kin_row(&ctx, r, 1, err_ggx, NULL, 50, 1e-12, "the formula in x and y (for a rotated A, not in its rotated axes) "
+               "against D: relative difference");
 
     r = au_add(rows, &nr, "area", "projected area of the ellipsoid seen from u: pi ||Au|| / |A|", SEED_WALTER ", " SEED_BLOG1,
             "Walter eq 26; blog Part 1 eq A_perp_expression", AUDIT_SCOPE_ANY);
@@ -632,19 +628,13 @@ int audit_run(const double A[AUDIT_SHAPES][3][3], audit_row *rows, int progress)
     /* ---- blog Part 1 ---- */
     r = au_add(rows, &nr, "p22", "D(m) = P22(p, q) / cos^4 theta with P22 = 1 / (pi ax ay (1 + p^2/ax^2 + q^2/ay^2)^2), p, q the slopes",
             SEED_BLOG1, "eq (1) and eq:p_22", AUDIT_SCOPE_DIAGONAL);
-    for (int k = 0; k < AUDIT_SHAPES; k++) {
-        double ax, ay;
-        if (!au_alphas_or_skip(r, k, &sh[k], &ax, &ay)) continue;
-        au_verdict_kin(r, k, &sh[k], A[k], err_p22, NULL, 50, 1e-9, sh[k].kind == GGX_SHAPE_UNSKEWED
-                       ? "the slopes taken along x, y (not the rotated axes), against Walter eq 1: relative difference"
-                       : "against Walter eq 1: relative difference");
-    }
+    au_kin_row(&ctx, r, 1, err_p22, NULL, 50, 1e-9, "the slopes along x and y (for a rotated A, not its rotated axes), "
+               "against Walter eq 1: relative difference");
 
     /* ---- blog Part 2 ---- */
     r = au_add(rows, &nr, "unit-norms", "with n = +z, ||An|| = ||A^-T n|| = 1 (the step from the blog's pdf to the G1 form)",
             SEED_BLOG2, "text before eq:g1-equality", AUDIT_SCOPE_ANY);
-    for (int k = 0; k < AUDIT_SHAPES; k++)
-        au_verdict_kin(r, k, &sh[k], A[k], err_unit_norms, NULL, 1, 1e-12, "| ||An|| - 1 | and | ||A^-T n|| - 1 |:");
+    au_kin_row(&ctx, r, 0, err_unit_norms, NULL, 1, 1e-12, "| ||An|| - 1 | and | ||A^-T n|| - 1 |:");
 
     r = au_add(rows, &nr, "sm-lt-su", "for any v not along n, S_m < S_u, i.e. ||An|| (v.n) < ||Av||", SEED_BLOG2,
             "text after eq:masked-projection", AUDIT_SCOPE_ANY);
@@ -675,9 +665,7 @@ int audit_run(const double A[AUDIT_SHAPES][3][3], audit_row *rows, int progress)
     /* ---- Walter ---- */
     r = au_add(rows, &nr, "invariance", "D is unchanged by A -> c A and A -> Q A, Q orthogonal (with |A| read as |det A|)",
             SEED_WALTER, "section 1, after eq 1", AUDIT_SCOPE_ANY);
-    for (int k = 0; k < AUDIT_SHAPES; k++)
-        au_verdict_kin(r, k, &sh[k], A[k], err_invariance, NULL, 50, 1e-12,
-                       "the relative change of D (c = 3.7, Q a reflection):");
+    au_kin_row(&ctx, r, 0, err_invariance, NULL, 50, 1e-12, "the relative change of D (c = 3.7, Q a reflection):");
 
     r = au_add(rows, &nr, "rotate-z", "theta_z rotates the distribution in the tangent plane: D_{S Rz}(m) = D_S(Rz m)", SEED_WALTER,
             "eq 3 and text", AUDIT_SCOPE_ROTATED);
@@ -828,9 +816,8 @@ int audit_run(const double A[AUDIT_SHAPES][3][3], audit_row *rows, int progress)
     }
     r = au_add(rows, &nr, "curvature", "Gaussian curvature of the ellipsoid at the point with normal m: K(m) = |A|^2 ||A^-T m||^4",
             SEED_WALTER ", " SEED_BLOG1, "Walter eq 20; blog Part 1 eq:k_g", AUDIT_SCOPE_ANY);
-    for (int k = 0; k < AUDIT_SHAPES; k++)
-        au_verdict_kin(r, k, &sh[k], A[k], err_curvature, NULL, 20, 1e-6,
-                       "against the Gauss map's finite-difference Jacobian: relative difference");
+    au_kin_row(&ctx, r, 0, err_curvature, NULL, 20, 1e-6, "against the Gauss map's finite-difference Jacobian: "
+               "relative difference");
 
     r = au_add(rows, &nr, "dof", "of the 9 entries of A only 5 are useful degrees of freedom (3 of rotation, 2 of scale)",
             SEED_WALTER, "section 1", AUDIT_SCOPE_ANY);
@@ -978,8 +965,7 @@ int audit_run(const double A[AUDIT_SHAPES][3][3], audit_row *rows, int progress)
 
     r = au_add(rows, &nr, "sphere-normal", "m' = A^-T m / ||A^-T m|| is the sphere's normal at A p, p the ellipsoid point with normal m; "
             "m'.v' = (m.v) / (||Av|| ||A^-T m||)", SEED_BLOG2, "eq:m-to-m-prime, eq:mv-sphere-to-ellipsoid", AUDIT_SCOPE_ANY);
-    for (int k = 0; k < AUDIT_SHAPES; k++)
-        au_verdict_kin(r, k, &sh[k], A[k], err_sphere_normal, NULL, 50, 1e-12, "difference");
+    au_kin_row(&ctx, r, 0, err_sphere_normal, NULL, 50, 1e-12, "difference");
 
     r = au_add(rows, &nr, "half-cut", "the half of the ellipsoid with m.n > 0 is the half cut by the plane through its centre "
             "perpendicular to A^T A n", SEED_WALTER, "sections 2.3, 5.1", AUDIT_SCOPE_ANY);
@@ -1035,8 +1021,7 @@ int audit_run(const double A[AUDIT_SHAPES][3][3], audit_row *rows, int progress)
 
     r = au_add(rows, &nr, "sggx", "the ellipsoid NDF is SGGX with S = A^T A: D_SGGX(m) = 1 / (pi sqrt|S| (m^T S^-1 m)^2) = ||An|| D(m)",
             SEED_WALTER, "section 5.2", AUDIT_SCOPE_ANY);
-    for (int k = 0; k < AUDIT_SHAPES; k++)
-        au_verdict_kin(r, k, &sh[k], A[k], err_sggx, NULL, 50, 1e-12, "relative difference");
+    au_kin_row(&ctx, r, 0, err_sggx, NULL, 50, 1e-12, "relative difference");
 
     r = au_add(rows, &nr, "hessian", "with H = 2 A^T A: |H| = 8 |A|^2, adj(H) = |H| H^-1 and m^T H^-1 m = ||A^-T m||^2 / 2", SEED_WALTER,
             "eq 11-19", AUDIT_SCOPE_ANY);
@@ -1169,14 +1154,11 @@ int audit_run(const double A[AUDIT_SHAPES][3][3], audit_row *rows, int progress)
     }
 
     r = au_add(rows, &nr, "det-sr", "A = S R with R a rotation: |A| = |S| = ax ay", SEED_WALTER, "eq 2 and text", AUDIT_SCOPE_ANY);
-    for (int k = 0; k < AUDIT_SHAPES; k++)
-        au_verdict_kin(r, k, &sh[k], A[k], err_det_sr, NULL, 1, 1e-12, "|det A| against ax ay: relative difference");
+    au_kin_row(&ctx, r, 0, err_det_sr, NULL, 1, 1e-12, "|det A| against ax ay: relative difference");
 
     r = au_add(rows, &nr, "an-is-n", "theta_x = theta_y = 0 gives A n = n, so ||An|| = 1", SEED_WALTER, "section 1, last sentence",
             AUDIT_SCOPE_ROTATED);
-    for (int k = 0; k < AUDIT_SHAPES; k++)
-        au_verdict_kin(r, k, &sh[k], A[k], err_an_is_n, NULL, 1, 1e-12, "|A n - n|:");
-    const au_ctx ctx = {rows, &nr, sh, A, progress};
+    au_kin_row(&ctx, r, 0, err_an_is_n, NULL, 1, 1e-12, "|A n - n|:");
     au_rows_ellipsoid(&ctx);
     au_rows_sampling(&ctx);
     au_rows_scattering(&ctx);

@@ -409,25 +409,21 @@ void au_rows_ellipsoid(const au_ctx *c)
                "||grad f||^2 = 4 / (m^T A^-1 A^-T m); each m occurs at the one point p = A^-1 A^-T m / ||A^-T m|| = "
                "(1/2) ||grad f|| A^-1 A^-T m", SEED_BLOG1 ", " SEED_WALTER, "blog Part 1 eq:mag-gradient and after "
                "eq:ellipsoid-k; Walter section 2", AUDIT_SCOPE_ANY);
-    for (int k = 0; k < AUDIT_SHAPES; k++)
-        au_verdict_kin(r, k, &c->sh[k], c->A[k], err_normal_point, NULL, 200, 1e-12,
-                       "at random surface points: the largest relative difference");
+    au_kin_row(c, r, 0, err_normal_point, NULL, 200, 1e-12, "at random surface points: the largest relative "
+               "difference");
 
     r = au_add(c->rows, c->nr, "gauss-map", "Gaussian curvature K = grad f^T adj(H) grad f / ||grad f||^4 = -det [[H, grad "
                "f], [grad f^T, 0]] / ||grad f||^4 = 16 / (a^2 b^2 c^2 ||grad f||^4) on the surface; the Gauss map's "
                "Jacobian d omega / dA is K", SEED_BLOG1 ", " SEED_WALTER, "blog Part 1 eq:d-generic, eq:ellipsoid-k; "
                "Walter eq 10", AUDIT_SCOPE_ANY);
-    for (int k = 0; k < AUDIT_SHAPES; k++)
-        au_verdict_kin(r, k, &c->sh[k], c->A[k], err_gauss_map, NULL, 20, 1e-6,
-                       "against the finite-difference Gauss map (solid angle of the normals over the area of a patch), "
-                       "with a^2 b^2 c^2 = 1 / |A|^2:");
+    au_kin_row(c, r, 0, err_gauss_map, NULL, 20, 1e-6, "against the finite-difference Gauss map (solid angle of the normals over the area of a patch), " "with "
+               "a^2 b^2 c^2 = 1 / |A|^2:");
 
     r = au_add(c->rows, c->nr, "silhouette", "the points with m.v = 0 are the plane (A^T A v).p = 0 (A^T A v not along v); "
                "that ellipse's area times its cosine to v is the projected area A_e(v)", SEED_BLOG2 ", " SEED_WALTER,
                "blog Part 2 Figure 1; Walter eq 23", AUDIT_SCOPE_ANY);
-    for (int k = 0; k < AUDIT_SHAPES; k++)
-        au_verdict_kin(r, k, &c->sh[k], c->A[k], err_silhouette, NULL, 50, 1e-12,
-                       "m.v at 16 points of the section and the section's projected area against eq 26:");
+    au_kin_row(c, r, 0, err_silhouette, NULL, 50, 1e-12, "m.v at 16 points of the section and the section's "
+               "projected area against eq 26:");
 
     r = au_add(c->rows, c->nr, "surface-integrals", "A_e(u) = int X+(u.m) (u.m) dp and A_l(u, v) = int X+(u.m) X+(v.m) (u.m) "
                "dp over the surface, A_e(u) = A_l(u, u)", SEED_WALTER ", " SEED_BLOG1, "Walter eq 21-22, 27; blog Part 1 "
@@ -445,9 +441,8 @@ void au_rows_ellipsoid(const au_ctx *c)
     r = au_add(c->rows, c->nr, "semi-axes", "the equivalent ellipsoid has semi-axis 1 / alpha along each rough direction "
                "(smoother is longer), 1 along the third", SEED_BLOG1, "text after the anisotropic D",
                AUDIT_SCOPE_DIAGONAL);
-    for (int k = 0; k < AUDIT_SHAPES; k++)
-        au_verdict_kin(r, k, &c->sh[k], c->A[k], err_semi_axes, NULL, 1, 1e-12,
-                       "semi-axes along the rows of R and the eigenvalues of A^T A (A = S R: algebra): relative difference");
+    au_kin_row(c, r, 0, err_semi_axes, NULL, 1, 1e-12, "semi-axes along the rows of R and the eigenvalues of A^T A "
+               "(A = S R: algebra): relative difference");
 
     r = au_add(c->rows, c->nr, "skew-max", "theta_x, theta_y move the maximum of D from n to R^T z (for ax, ay < 1)",
                SEED_WALTER, "section 1 after eq 3", AUDIT_SCOPE_ANY);
@@ -457,9 +452,8 @@ void au_rows_ellipsoid(const au_ctx *c)
                "(m.u) over m.u > 0 for any u; D(m, v) = (||An|| / ||Av||) D(m)", SEED_BLOG1 ", " SEED_BLOG2,
                "blog Part 1 eq:NDF_norm and after eq:A_perp_expression; Part 2 'According to part 1'",
                AUDIT_SCOPE_DIAGONAL);
-    for (int k = 0; k < AUDIT_SHAPES; k++)
-        au_verdict_kin(r, k, &c->sh[k], c->A[k], err_d_u, NULL, 2, 1e-8,
-                       "with abc = 1 / |A|: the quadrature's |integral - 1| and the Part 2 ratio,");
+    au_kin_row(c, r, 0, err_d_u, NULL, 2, 1e-8, "with abc = 1 / |A|: the quadrature's |integral - 1| and the Part 2 "
+               "ratio,");
 
     r = au_add(c->rows, c->nr, "sin-jacobian", "D(theta, phi) = D(m) |dm / d(theta, phi)| = D(m) sin theta, so the integral "
                "of D(m) cos theta sin theta d theta d phi is 1", SEED_BLOG1, "last equation", AUDIT_SCOPE_ANY);
@@ -467,7 +461,5 @@ void au_rows_ellipsoid(const au_ctx *c)
 
     r = au_add(c->rows, c->nr, "ellipsoid-map", "m = A s / ||A s|| is the normal of the ellipsoid p^T A^T A p = 1 at p = "
                "A^-1 s", SEED_VNDF, "Use of the diagonal A matrix", AUDIT_SCOPE_DIAGONAL);
-    for (int k = 0; k < AUDIT_SHAPES; k++)
-        au_verdict_kin(r, k, &c->sh[k], c->A[k], err_ellipsoid_map, NULL, 200, 1e-12,
-                       "against normalize(A^T A p): distance");
+    au_kin_row(c, r, 0, err_ellipsoid_map, NULL, 200, 1e-12, "against normalize(A^T A p): distance");
 }

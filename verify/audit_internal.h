@@ -138,6 +138,10 @@ void au_kin_alphas(const au_kin *K, double *ax, double *ay);
 typedef double (*au_err_fn)(const au_kin *K, rng *g, void *ctx, char *at, size_t nat);
 void au_verdict_kin(audit_row *r, int k, const ggx_shape *s0, const double A0[3][3], au_err_fn err, void *ctx,
                     int points, double tol, const char *what);
+/* A row of such a claim: au_verdict_kin for each of the audit's shapes; with unskewed_only a skewed shape gets
+ * "cannot be applied" (the seed's formula takes ax, ay). */
+void au_kin_row(const au_ctx *c, audit_row *r, int unskewed_only, au_err_fn err, void *ctx, int points, double tol,
+                const char *what);
 /* The same claim checked over the family, returning the largest error (for rows that combine several claims). */
 double au_kin_worst(const ggx_shape *s0, const double A0[3][3], au_err_fn err, void *ctx, int points, double tol,
                     char *example, size_t nexample);

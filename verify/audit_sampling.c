@@ -280,12 +280,8 @@ void au_rows_sampling(const au_ctx *c)
                "of area pi a b = A_perp(n); z = c sqrt(1 - xi1) lifts it to the ellipsoid, whose normal there is "
                "normalize(sqrt(xi1) cos 2 pi xi2 / a, sqrt(xi1) sin 2 pi xi2 / b, sqrt(1 - xi1) / c)", SEED_BLOG2,
                "Sampling Normals (first eqnarrays)", AUDIT_SCOPE_DIAGONAL);
-    for (int k = 0; k < AUDIT_SHAPES; k++) {
-        double ax, ay;
-        if (!au_alphas_or_skip(r, k, &c->sh[k], &ax, &ay)) continue;
-        au_verdict_kin(r, k, &c->sh[k], c->A[k], err_lift, NULL, 100, 1e-6,
-                       "with a = 1/ax, b = 1/ay, c = 1 on the shape's ellipsoid (point, normal, Jacobian pi a b, area):");
-    }
+    au_kin_row(c, r, 1, err_lift, NULL, 100, 1e-6, "with a = 1/ax, b = 1/ay, c = 1 on the shape's ellipsoid (point, "
+               "normal, Jacobian pi a b, area):");
 
     r = au_add(c->rows, c->nr, "sphere-disk", "a uniform unit disk _|_ v' projected onto the unit sphere along v' has "
                "density p_s(m') = (m'.v') / pi on m'.v' > 0", SEED_BLOG2, "eq p_s(m')", AUDIT_SCOPE_ANY);
@@ -334,9 +330,7 @@ void au_rows_sampling(const au_ctx *c)
     r = au_add(c->rows, c->nr, "squeeze-walter", "s = (1 + A psi.A n / (||A psi|| ||An||)) / 2; xb = s xa + (1 - s) sqrt(1 - "
                "ya^2), yb = ya has |d(xb, yb) / d(xa, ya)| = s and, lifted, lands in the lune", SEED_WALTER, "eq 38-41",
                AUDIT_SCOPE_ANY);
-    for (int k = 0; k < AUDIT_SHAPES; k++)
-        au_verdict_kin(r, k, &c->sh[k], c->A[k], err_squeeze, NULL, 100, 1e-7,
-                       "the finite-difference Jacobian against s and pc.An >= 0:");
+    au_kin_row(c, r, 0, err_squeeze, NULL, 100, 1e-7, "the finite-difference Jacobian against s and pc.An >= 0:");
 
     r = au_add(c->rows, c->nr, "frame-eq42", "e3 = A psi / ||A psi||, e2 = A psi x A n / ||.|| = A^-T (psi x n) / ||.|| (det A "
                "> 0), e1 = e2 x e3 is the unit vector _|_ e3 nearest A n", SEED_WALTER, "eq 42-44", AUDIT_SCOPE_ANY);
@@ -389,16 +383,10 @@ void au_rows_sampling(const au_ctx *c)
     r = au_add(c->rows, c->nr, "vndf-total-jacobian", "the five steps' |dm / du| = ax ay ||A^-1 m||^3 (1/z)((1 + z_z)/2) pi "
                "with z = (m.v) / (||A^-1 m|| ||Av||) = s.z_hat, = pi ax ay ||A^-1 m||^4 (v.n) / ((m.v) G1(v))",
                SEED_VNDF, "Proof of the PDF; Solving for z; Total Jacobian Determinant", AUDIT_SCOPE_DIAGONAL);
-    for (int k = 0; k < AUDIT_SHAPES; k++) {
-        double ax, ay;
-        if (!au_alphas_or_skip(r, k, &c->sh[k], &ax, &ay)) continue;
-        au_verdict_kin(r, k, &c->sh[k], c->A[k], err_total_vndf, NULL, 50, 1e-6,
-                       "against the finite-difference Jacobian of the steps as written (and z two ways):");
-    }
+    au_kin_row(c, r, 1, err_total_vndf, NULL, 50, 1e-6, "against the finite-difference Jacobian of the steps as "
+               "written (and z two ways):");
 
     r = au_add(c->rows, c->nr, "project-jacobian", "(x, y) -> (x, y, sqrt(1 - x^2 - y^2)) has area Jacobian 1 / z (the frame "
                "rotation keeps areas)", SEED_VNDF, "Project the point", AUDIT_SCOPE_ANY);
-    for (int k = 0; k < AUDIT_SHAPES; k++)
-        au_verdict_kin(r, k, &c->sh[k], c->A[k], err_project, NULL, 50, 1e-7,
-                       "against finite differences (no A involved):");
+    au_kin_row(c, r, 0, err_project, NULL, 50, 1e-7, "against finite differences (no A involved):");
 }

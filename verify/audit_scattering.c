@@ -167,9 +167,8 @@ void au_rows_scattering(const au_ctx *c)
 
     r = au_add(c->rows, c->nr, "weight-formula", "the reflection sample's weight f_r |omega.n| / p_o = G1(psi, m) G1(omega, m) "
                "F(psi.m) A_l(psi, n) / (|psi.n| A_e(n))", SEED_WALTER, "eq 49-50", AUDIT_SCOPE_ANY);
-    for (int k = 0; k < AUDIT_SHAPES; k++)
-        au_verdict_kin(r, k, &c->sh[k], c->A[k], err_weight, &glass, 200, 1e-12,
-                       "ggx_sample_brdf's weight and f_r |omega.n| / pdf against eq 50 (Fresnel 1.5):");
+    au_kin_row(c, r, 0, err_weight, &glass, 200, 1e-12, "ggx_sample_brdf's weight and f_r |omega.n| / pdf against eq "
+               "50 (Fresnel 1.5):");
 
     r = au_add(c->rows, c->nr, "g-approx", "G(v, omega) = 1 / (1 + Lambda(v) + Lambda(omega)) is approximated by G1(v) "
                "G1(omega), never above it (Lambda >= 0)", SEED_VNDF, "vGGX Sampling", AUDIT_SCOPE_DIAGONAL);

@@ -135,37 +135,23 @@ void au_rows_stretch(const au_ctx *c)
 
     r = au_add(c->rows, c->nr, "det-scale", "det(m_, m_u, m_v) = ax ay det(s, s_u, s_v) for the stretched m_ = (ax sx, ay sy, "
                "sz) = A s", SEED_STRETCH, "Elliptic Stretch", AUDIT_SCOPE_DIAGONAL);
-    for (int k = 0; k < AUDIT_SHAPES; k++)
-        au_verdict_kin(r, k, &c->sh[k], c->A[k], err_det_scale, NULL, 100, 1e-7,
-                       "with ax ay = |A| and m_ = A s (det(A X) = det A det X, an identity): relative difference");
+    au_kin_row(c, r, 0, err_det_scale, NULL, 100, 1e-7, "with ax ay = |A| and m_ = A s (det(A X) = det A det X, an "
+               "identity): relative difference");
 
     r = au_add(c->rows, c->nr, "stretch-total-jacobian", "the stretched cosine map has |dm / d(u, v)| = pi ax ay / (|s_z| "
                "||m_||^3) = pi ax ay / (|m_z| ||m_||^4) = 1 / (|m_z| D(m))", SEED_STRETCH, "Elliptic Stretch",
                AUDIT_SCOPE_DIAGONAL);
-    for (int k = 0; k < AUDIT_SHAPES; k++) {
-        double ax, ay;
-        if (!au_alphas_or_skip(r, k, &c->sh[k], &ax, &ay)) continue;
-        au_verdict_kin(r, k, &c->sh[k], c->A[k], err_total_jacobian, NULL, 100, 1e-6,
-                       "m = normalize(A s) against its finite-difference Jacobian: all three forms");
-    }
+    au_kin_row(c, r, 1, err_total_jacobian, NULL, 100, 1e-6, "m = normalize(A s) against its finite-difference "
+               "Jacobian: all three forms");
 
     r = au_add(c->rows, c->nr, "slope-stretch", "a stretch in slope space, normalize(ax m~x, ay m~y, 1) with m~ = m / m_z, "
                "is the ellipsoid's stretch", SEED_STRETCH, "Relation to slope-space", AUDIT_SCOPE_DIAGONAL);
-    for (int k = 0; k < AUDIT_SHAPES; k++) {
-        double ax, ay;
-        if (!au_alphas_or_skip(r, k, &c->sh[k], &ax, &ay)) continue;
-        au_verdict_kin(r, k, &c->sh[k], c->A[k], err_slope_stretch, NULL, 200, 1e-12,
-                       "against the ellipsoid's stretch normalize(A^T m) (for a diagonal A, normalize(k x) = normalize(x)): distance");
-    }
+    au_kin_row(c, r, 1, err_slope_stretch, NULL, 200, 1e-12, "against the ellipsoid's stretch normalize(A^T m) (for "
+               "a diagonal A, normalize(k x) = normalize(x)): distance");
 
     r = au_add(c->rows, c->nr, "d-slope", "D(m~) = (m~x^2 + m~y^2 + 1)^2 / (pi ax ay (m~x^2/ax^2 + m~y^2/ay^2 + 1)^2) = "
                "P22(m~) / m_z^4", SEED_STRETCH, "Relation to slope-space", AUDIT_SCOPE_DIAGONAL);
-    for (int k = 0; k < AUDIT_SHAPES; k++) {
-        double ax, ay;
-        if (!au_alphas_or_skip(r, k, &c->sh[k], &ax, &ay)) continue;
-        au_verdict_kin(r, k, &c->sh[k], c->A[k], err_d_slope, NULL, 200, 1e-12,
-                       "against Walter eq 1 (slopes along x, y): relative difference");
-    }
+    au_kin_row(c, r, 1, err_d_slope, NULL, 200, 1e-12, "against Walter eq 1 (slopes along x, y): relative difference");
 
     r = au_add(c->rows, c->nr, "iso", "for ax = ay = alpha: D = alpha^2 / (pi (1 - m_z^2 + alpha^2 m_z^2)^2) = alpha^2 / "
                "(pi (cos^2 theta (alpha^2 - 1) + 1)^2)", SEED_STRETCH, "Isotropic roughness", AUDIT_SCOPE_DIAGONAL);

@@ -419,3 +419,13 @@ void au_verdict_views(audit_row *r, int k, double (*f)(const ggx_shape *, ggx_ve
         au_set(r, k, AUDIT_FAILS, "%s integrates to %.4f at theta %.1f, phi %.2f rad (worst of %d views); the view nearest "
                "n where it fails: %.4f at theta %.1f, phi %.2f", what, x, th, ph, AU_VIEWS, first_x, first_th, first_ph);
 }
+
+void au_kin_row(const au_ctx *c, audit_row *r, int unskewed_only, au_err_fn err, void *ctx, int points, double tol,
+                const char *what)
+{
+    for (int k = 0; k < AUDIT_SHAPES; k++) {
+        double ax, ay;
+        if (unskewed_only && !au_alphas_or_skip(r, k, &c->sh[k], &ax, &ay)) continue;
+        au_verdict_kin(r, k, &c->sh[k], c->A[k], err, ctx, points, tol, what);
+    }
+}
