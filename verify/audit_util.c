@@ -15,20 +15,6 @@ static int au_a_draw(void *vc, rng *r, ggx_vec3 *m)
     return t_dot(*m, *m) > 0.5;
 }
 
-double au_chi2_p(au_actx *c, uint64_t seed, int progress)
-{
-    chi2_problem p = {"audit", 1, au_a_draw, normal_keys_key, normal_keys_density, c};
-    chi2_result r = chi2_run_quiet(&p, 1000000, 100, 200, seed, 0.0);
-    if (progress) fputc('.', stderr);
-    return r.zero_cell_hits ? 0.0 : r.pvalue;
-}
-
-double au_chi2_sampler(const ggx_shape *s, ggx_vec3 v, au_vndf_fn f, verify_pdf_fn pdf, uint64_t seed, int progress)
-{
-    au_actx c = {{s, v, pdf}, f, NULL, NULL};
-    return au_chi2_p(&c, seed, progress);
-}
-
 typedef struct draw_ctx {
     normal_keys keys; /* first, as in au_actx */
     int (*draw)(void *ctx, rng *r, ggx_vec3 *m);
@@ -47,6 +33,17 @@ double au_chi2_draw(const ggx_shape *s, ggx_vec3 v, int (*draw)(void *ctx, rng *
     chi2_result r = chi2_run_quiet(&p, 1000000, 100, 200, seed, 0.0);
     if (progress) fputc('.', stderr);
     return r.zero_cell_hits ? 0.0 : r.pvalue;
+}
+
+double au_chi2_p(au_actx *c, uint64_t seed, int progress)
+{
+    return au_chi2_draw(c->keys.s, c->keys.v, au_a_draw, c, c->keys.pdf, seed, progress);
+}
+
+double au_chi2_sampler(const ggx_shape *s, ggx_vec3 v, au_vndf_fn f, verify_pdf_fn pdf, uint64_t seed, int progress)
+{
+    au_actx c = {{s, v, pdf}, f, NULL, NULL};
+    return au_chi2_p(&c, seed, progress);
 }
 
 double au_alpha_level(void) { return chi2_sidak(CHI2_SUITE_RUNS); }
