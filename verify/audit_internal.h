@@ -103,8 +103,9 @@ ggx_vec3 au_literal_heitz(const double A[3][3], ggx_vec3 v, double u1, double u2
 
 /* ---- claims about every view ---- */
 /* A claim about every view is checked on a grid of views, not one: 6 polar angles from 0.3 to 1.5 rad (86 degrees)
- * times 8 azimuths. f returns the claim's value at view v (1 where it holds); the verdict: holds if |f - 1| < tol at
- * every view, else fails with the worst view; "what" names the quantity ("... integrates to 1"). */
+ * times 8 azimuths. f returns the claim's value at view v (an integral that is 1 where it holds); the verdict: holds
+ * if |f - 1| < tol at every view, else fails with the worst view and the failing view nearest n. The evidence reads
+ * "<what> integrates to ...". */
 enum { AU_VIEW_THETAS = 6, AU_VIEW_PHIS = 8, AU_VIEWS = AU_VIEW_THETAS * AU_VIEW_PHIS };
 void au_verdict_views(audit_row *r, int k, double (*f)(const ggx_shape *, ggx_vec3), const ggx_shape *s, double tol,
                       const char *what);
