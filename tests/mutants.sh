@@ -34,7 +34,10 @@ control=$(build_and_test)
 if [ -n "$control" ]; then echo "the unmutated tree fails: $control"; exit 1; fi
 mutate() { # file, old text, new text, description
     rm -rf "$work/src" && cp -r "$work/tree" "$work/src"
-    if ! grep -qF "$2" "$work/src/$1"; then echo "MUTANT NOT APPLIED: $4"; survived=$((survived + 1)); return; fi
+    # (the whole text, lines included: grep -F would accept any one of its lines)
+    if ! python3 -c "import sys; sys.exit(sys.argv[2] not in open(sys.argv[1]).read())" "$work/src/$1" "$2"; then
+        echo "MUTANT NOT APPLIED: $4"; survived=$((survived + 1)); return
+    fi
     python3 -c "import sys; p, o, n = sys.argv[1:4]; s = open(p).read(); open(p, 'w').write(s.replace(o, n, 1))" \
         "$work/src/$1" "$2" "$3"
     failed=$(build_and_test)
@@ -51,10 +54,10 @@ mutate src/api/shape.c "t.ndf_scale = 1.0 / (GGX_PI * t.det * t.an_len);" "t.ndf
     "D without ||A n|| (eq 1 normalisation)"
 mutate $K/ndf.inc "    int up = au.z >= 0;
     *w = up ? lu + au.z : xy;
-    *d = 2 * s->an_len * (up ? 1 : lu - au.z);" \
+    *d = 2 * GGX_A33(s) * (up ? 1 : lu - au.z);" \
     "    ggx_v3 g = GGX_FN(k_normalize)(GGX_FN(k_v3)(s->ainv_t[0][2], s->ainv_t[1][2], s->ainv_t[2][2]));
     *w = lu + GGX_FN(k_dot)(au, g);
-    *d = 2 * s->an_len;" \
+    *d = 2 * GGX_A33(s);" \
     "masking lune built from A^-T n (blog Part 2 form) instead of A n"
 mutate $K/ndf.inc "return GGX_FN(k_min1)(GGX_FN(g1_smith)(s, u));" "return GGX_FN(g1_smith)(s, u);" \
     "G1 without the min of eq 32"
