@@ -261,6 +261,35 @@ static void properties(void **state)
 }
 
 
+/* The premise of the float caps proof (sample.inc, above k_lune_core_p), from the computed lune point p and the
+ * float shape's entries in double: p.z^2 >= K ||A||_F L with K = 2.02 (66 u + 4.08 (margin + u)), u = 2^-24, L =
+ * ||A v||. The sampler tests the cheaper p.z >= T L and p.z^2 >= C ||A||_F^2 (traits), whose product implies it
+ * where T sqrt(C) >= K (2^-14 against 1.63e-5). The outcome check above cannot see a weakened test: the bound is a
+ * worst case that real roundings stay far from. Here a test of the wrong constant, or of a wrong ||A||_F^2
+ * (ggx_shapef's a_frob2), claims inputs whose premise fails: shapes with ||A||_F / L between 15 and 68 and p.z
+ * within a factor 1.5 of T L. */
+static long premise_checked;
+static void proof_premise_f(const ggx_shapef *sf, ggx_vec3f v, float u1, float u2, const char *what)
+{
+    ggx_vec3f av = ggx_k_amul_f(sf, v), sv;
+    float k;
+    ggx_vec3f p = ggx_k_lune_point_scaled_f(GGX_SAMPLER_CAPS, av, ggx_k_len_f(av), u1, u2, &k, &sv);
+    double f2 = 0, l2 = 0;
+    for (int i = 0; i < 3; i++) {
+        double ai = 0;
+        for (int j = 0; j < 3; j++) {
+            f2 += (double)sf->a[i][j] * sf->a[i][j];
+            ai += (double)sf->a[i][j] * (j == 0 ? v.x : j == 1 ? v.y : v.z);
+        }
+        l2 += ai * ai;
+    }
+    double u = ldexp(1.0, -24), K = 2.02 * (66 * u + 4.08 * (ldexp(1.0, -20) + u));
+    double lhs = (double)p.z * p.z, rhs = K * sqrt(f2) * sqrt(l2);
+    CHECK(lhs >= rhs, "float proof claimed without its premise: %s, v (%.9g, %.9g, %.9g), u (%.9g, %.9g): p.z^2 %.4g < "
+          "K ||A||_F L %.4g", what, v.x, v.y, v.z, u1, u2, lhs, rhs);
+    premise_checked++;
+}
+
 /* The scalar caps sampler returns m without the ellipsoid-space check where a bound proves that the check would pass
  * (k_lune_core_p, *proved). Over the extreme shapes (alpha 1e-4 with skews to pi/2, ratio 1:1e7, scaled matrices)
  * and random ones, views of length 1/2 to 2 including grazing ones, and u2 up to 1 - 2^-52: wherever the proof holds
@@ -286,6 +315,11 @@ static void caps_proof(void **state)
         v = t_vec(v.x * len, v.y * len, v.z * len);
         double u1 = rng_uniform(&r), u2 = rng_uniform(&r);
         if (i % 4 == 0) u2 = 1 - ldexp(1.0, -(int)(1 + i / 4 % 52)); /* towards the rim */
+        if (i % 4 == 1) { /* p.z within a factor 1.5 of the proof's T L (proof_premise_f) */
+            ggx_vec3f vf = {(float)v.x, (float)v.y, (float)v.z}, av = ggx_k_amul_f(&sf, vf);
+            double vsz = av.z / (double)ggx_k_len_f(av);
+            u2 = 1 - ldexp(1.0, -6) * (1 + 0.5 * u2) / (1 + vsz); /* 2^-6: GGX_PROOF_T in float */
+        }
         int ok, pr;
         ggx_vec3 m = ggx_k_lune_core_p_d(&s, v, u1, u2, GGX_SAMPLER_CAPS, &ok, &pr);
         if (pr) {
@@ -306,11 +340,12 @@ static void caps_proof(void **state)
                   "float proof without the check: %s, v (%.9g, %.9g, %.9g), u (%.9g, %.9g): ok %d, m.v %.3g", what,
                   vf.x, vf.y, vf.z, f1, f2, ok, mv);
         }
+        if (pr) proof_premise_f(&sf, vf, f1, f2, what);
         proved_f += pr, ok_f += ok;
         total++;
     }
-    printf("caps proof: %ld inputs; double proved %ld of %ld checked good, float %ld of %ld\n", total, proved_d, ok_d,
-           proved_f, ok_f);
+    printf("caps proof: %ld inputs; double proved %ld of %ld checked good, float %ld of %ld; float premise checked "
+           "%ld times\n", total, proved_d, ok_d, proved_f, ok_f, premise_checked);
     CHECK(10 * proved_d > 6 * ok_d && 10 * proved_f > 5 * ok_f, "the proof covers too few inputs");
 }
 
