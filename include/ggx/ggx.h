@@ -352,7 +352,7 @@ double ggx_albedo_height_correlated(const ggx_shape *s, ggx_vec3 v);
  * 6.4e-7 where the light comes from the less dense side, against Monte Carlo with ggx_sample_bsdf, and against
  * T = G1(u)^2 / G1_smith(u), u = sgn(v.z) v, R = 0, the limit at eta = 1, where the transmission is a delta that
  * ggx_bsdf_eval gives as 0). v.z = 0, a zero or non-finite v, eta outside
- * (0, 1e300] or s NULL: 0 and both outputs 0. Cost: 2 to 500 ms; up to 1.5 s for extreme skewed shapes. */
+ * (0, 1e300] or s NULL: 0 and both outputs 0. Cost: 2 to 100 ms (docs/albedo.md). */
 double ggx_bsdf_albedo(const ggx_shape *s, double eta, ggx_vec3 v, double *reflected, double *transmitted);
 
 /* Average albedo E_avg = (1 / pi) int E(v) v.z dv over the upper hemisphere (Kulla & Conty 2017), of ggx_albedo

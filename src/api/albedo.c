@@ -250,7 +250,52 @@ typedef struct bsdf_ctx {
     ggx_vec3 v, up, E1, E2; /* v as given, the lune's pole u' = A u / |A u| and a frame about it */
     double eta_rel, sgn, cp, sp, T, inner_tol;
     int part; /* 0: reflection, 1: transmission, 2: both (their sum in one quadrature) */
+    int nq;
+    double q[3][3][3]; /* the kink cones k^T q k = 0 (bsdf_kinks) */
 } bsdf_ctx;
+
+/* The integrand's kinks on the lune, each a quadratic cone k^T Q k = 0 in sphere space (with u = sgn v, Au = A'u,
+ * a = ||A n||, so that m.z = a k.z / |A'^T k| and u.m = Au.k / |A'^T k|; each equation below is multiplied by
+ * |A'^T k|^2):
+ *   the reflection's horizon, 2 (u.m) m.z = u.z:            a (Au z^T + z Au^T) - u.z A'A'^T;
+ *   total internal reflection (eta_rel < 1), (u.m)^2 = 1 - eta_rel^2:   Au Au^T - (1 - eta_rel^2) A'A'^T;
+ *   the refraction's horizon, eta_r (u.m) - s = eta_r u.z / m.z with eta_r = 1 / eta_rel and s the refracted
+ *   cosine, squared (which admits roots of the other sign, harmless as extra break points):
+ *     (eta_rel^2 - 1) a^2 z z^T + u.z a (Au z^T + z Au^T) - u.z^2 A'A'^T.
+ * On a meridian k = cos t u' + sin t d each is a quadratic in tan t, solved in closed form (bsdf_outer), so the
+ * panels start at the kinks instead of bisecting towards them: 2.5 to 5 times fewer integrand calls at the tables'
+ * tolerance (docs/energy.md). */
+static void bsdf_kinks(bsdf_ctx *c, ggx_vec3 u)
+{
+    const ggx_shape *s = c->s;
+    ggx_vec3 au = ggx_k_amul_d(s, u);
+    double a = s->an_len, au3[3] = {au.x, au.y, au.z}, aat[3][3], er2 = c->eta_rel * c->eta_rel;
+    for (int i = 0; i < 3; i++)
+        for (int j = 0; j < 3; j++) {
+            aat[i][j] = 0;
+            for (int k = 0; k < 3; k++) aat[i][j] += s->a[i][k] * s->a[j][k];
+        }
+    c->nq = 0;
+    for (int kind = 0; kind < 3; kind++) {
+        if (kind == 1 && !(er2 < 1)) continue;
+        double(*q)[3] = c->q[c->nq++];
+        for (int i = 0; i < 3; i++)
+            for (int j = 0; j < 3; j++) {
+                double sym = a * (au3[i] * (j == 2) + (i == 2) * au3[j]);
+                if (kind == 0) q[i][j] = sym - u.z * aat[i][j];
+                else if (kind == 1) q[i][j] = au3[i] * au3[j] - (1 - er2) * aat[i][j];
+                else q[i][j] = (er2 - 1) * a * a * (i == 2) * (j == 2) + u.z * sym - u.z * u.z * aat[i][j];
+            }
+    }
+}
+
+static double qform(double q[3][3], ggx_vec3 x, ggx_vec3 y)
+{
+    double xs[3] = {x.x, x.y, x.z}, ys[3] = {y.x, y.y, y.z}, r = 0;
+    for (int i = 0; i < 3; i++)
+        for (int j = 0; j < 3; j++) r += xs[i] * q[i][j] * ys[j];
+    return r;
+}
 
 static double bsdf_inner(double x, void *vc)
 {
@@ -281,9 +326,41 @@ static double bsdf_outer(double psi, void *vc)
     c->cp = cos(psi);
     c->sp = sin(psi);
     double d = c->cp * c->E1.z + c->sp * c->E2.z; /* k.z = cos t u'.z + sin t d */
+    /* A skewed A can put the pole below the horizon (u'.z < 0): the meridian then enters the lune at t0 = atan(-u'.z
+     * / d), where the integrand jumps from 0 (refraction only: the reflection of a horizontal facet is below the
+     * horizon), or not at all. */
+    if (!(c->up.z > 0) && !(d > 0)) return 0.0;
     c->T = d < 0 ? atan2(c->up.z, -d) : 0.5 * GGX_PI;
-    double br[] = {0.0, 0.25, 0.5, 0.75, 0.875, 0.9375, 1.0};
-    return adapt(bsdf_inner, c, br, 7, c->inner_tol);
+    double x0 = c->up.z < 0 ? atan2(-c->up.z, d) / c->T : 0.0;
+    /* the fixed points, then the kinks (bsdf_kinks): roots of q_c tau^2 + 2 q_b tau + q_a = 0 with tau = tan t.
+     * Between the kinks the integrand is smooth but for the layer of width ~alpha where G1 falls towards the lune's
+     * edge, which 0.875 starts (fewer fixed points let the error estimate be fooled; more cost 1.5x, docs/albedo.md) */
+    double br[4 + 6] = {x0};
+    int nb = 1;
+    for (int i = 1; i < 4; i++) {
+        static const double fixed[] = {0.0, 0.5, 0.875, 1.0};
+        if (fixed[i] > x0) br[nb++] = fixed[i];
+    }
+    int nfixed = nb;
+    ggx_vec3 dv = v3(c->cp * c->E1.x + c->sp * c->E2.x, c->cp * c->E1.y + c->sp * c->E2.y,
+                     c->cp * c->E1.z + c->sp * c->E2.z);
+    for (int i = 0; i < c->nq; i++) {
+        double qa = qform(c->q[i], c->up, c->up), qb = qform(c->q[i], c->up, dv), qc = qform(c->q[i], dv, dv);
+        double disc = qb * qb - qa * qc;
+        if (!(disc >= 0)) continue;
+        double r = -qb - (qb >= 0 ? 1 : -1) * sqrt(disc), taus[2] = {r / qc, qa / r}; /* without cancellation */
+        for (int j = 0; j < 2; j++) {
+            double x = atan(taus[j]) / c->T;
+            if (x > x0 + 1e-9 && x < 1 - 1e-9) br[nb++] = x;
+        }
+    }
+    for (int i = nfixed; i < nb; i++) /* insertion into the sorted list */
+        for (int j = i; j > 0 && br[j - 1] > br[j]; j--) {
+            double t = br[j];
+            br[j] = br[j - 1];
+            br[j - 1] = t;
+        }
+    return adapt(bsdf_inner, c, br, nb, c->inner_tol);
 }
 
 static double bsdf_part(const ggx_shape *s, ggx_vec3 v, double eta, int part, double tol)
@@ -305,6 +382,7 @@ static double bsdf_part(const ggx_shape *s, ggx_vec3 v, double eta, int part, do
     double l = ggx_k_len_d(e1);
     c.E1 = l > 1e-12 ? ggx_k_scale_d(e1, 1.0 / l) : v3(1, 0, 0);
     c.E2 = ggx_k_cross_d(c.up, c.E1);
+    bsdf_kinks(&c, u);
     double abs_tol = tol / pre;
     c.inner_tol = 0.02 * abs_tol;
     const double br[] = {0, 0.25 * GGX_PI, 0.5 * GGX_PI, 0.75 * GGX_PI, GGX_PI,
