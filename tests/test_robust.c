@@ -269,6 +269,20 @@ static void properties(void **state)
  * (ggx_shapef's a_frob2), claims inputs whose premise fails: shapes with ||A||_F / L between 15 and 68 and p.z
  * within a factor 1.5 of T L. */
 static long premise_checked;
+/* The same premise for the double proof, whose constants leave a factor 10 (traits): K = 2.02 (66 u + 4.08 (margin +
+ * u)), u = 2^-53, margin 2^-48; ||A||_F^2 is the shape's a_frob2 field, checked against its entries. */
+static void proof_premise_d(const ggx_shape *s, ggx_vec3 v, double u1, double u2, const char *what)
+{
+    ggx_vec3 av = ggx_k_amul_d(s, v), sv;
+    double k, f2 = 0, l2 = av.x * av.x + av.y * av.y + av.z * av.z;
+    ggx_vec3 p = ggx_k_lune_point_scaled_d(GGX_SAMPLER_CAPS, av, ggx_k_len_d(av), u1, u2, &k, &sv);
+    for (int i = 0; i < 3; i++)
+        for (int j = 0; j < 3; j++) f2 += s->a[i][j] * s->a[i][j];
+    double u = ldexp(1.0, -53), K = 2.02 * (66 * u + 4.08 * (ldexp(1.0, -48) + u));
+    CHECK(p.z * p.z >= K * sqrt(f2) * sqrt(l2), "double proof claimed without its premise: %s, v (%.17g, %.17g, %.17g), "
+          "u (%.17g, %.17g): p.z^2 %.4g < K ||A||_F L %.4g", what, v.x, v.y, v.z, u1, u2, p.z * p.z,
+          K * sqrt(f2) * sqrt(l2));
+}
 static void proof_premise_f(const ggx_shapef *sf, ggx_vec3f v, float u1, float u2, const char *what)
 {
     ggx_vec3f av = ggx_k_amul_f(sf, v), sv;
@@ -293,8 +307,10 @@ static void proof_premise_f(const ggx_shapef *sf, ggx_vec3f v, float u1, float u
 /* The scalar caps sampler returns m without the ellipsoid-space check where a bound proves that the check would pass
  * (k_lune_core_p, *proved). Over the extreme shapes (alpha 1e-4 with skews to pi/2, ratio 1:1e7, scaled matrices)
  * and random ones, views of length 1/2 to 2 including grazing ones, and u2 up to 1 - 2^-52: wherever the proof holds
- * the check holds too, in double and in float, and the sampler returns that very m. The proof must also cover most
- * inputs, or it would be vacuous. */
+ * the check holds too, in double and in float, and the sampler returns that very m; and the proof's premise holds
+ * (proof_premise_d, _f), with u2 placed where p.z is near the proof's T ||A v|| and views swept towards A's most
+ * contracted direction, where the C term acts (a C 1024 times too small fails there). The proof must also cover
+ * most inputs, or it would be vacuous. */
 static void caps_proof(void **state)
 {
     (void)state;
@@ -320,9 +336,34 @@ static void caps_proof(void **state)
             double vsz = av.z / (double)ggx_k_len_f(av);
             u2 = 1 - ldexp(1.0, -6) * (1 + 0.5 * u2) / (1 + vsz); /* 2^-6: GGX_PROOF_T in float */
         }
+        if (i % 4 == 3) { /* the same for the double proof's T */
+            if (i % 16 == 7) { /* and views near A's most contracted direction, where ||A||_F / ||A v|| is largest
+                                * and the C term of the proof acts: power iteration with A^-1 A^-T, then a random
+                                * share 10^-8 to 1 of the random view, which sweeps the ratio */
+                ggx_vec3 r0 = v;
+                for (int it = 0; it < 30; it++) {
+                    ggx_vec3 w = t_vec(0, 0, 0), x;
+                    double(*b)[3] = s.ainv_t; /* A'^-T; A'^-1 is its transpose */
+                    w = t_vec(b[0][0] * v.x + b[0][1] * v.y + b[0][2] * v.z, b[1][0] * v.x + b[1][1] * v.y + b[1][2] * v.z,
+                              b[2][0] * v.x + b[2][1] * v.y + b[2][2] * v.z);
+                    x = t_vec(b[0][0] * w.x + b[1][0] * w.y + b[2][0] * w.z, b[0][1] * w.x + b[1][1] * w.y + b[2][1] * w.z,
+                              b[0][2] * w.x + b[1][2] * w.y + b[2][2] * w.z);
+                    double l = sqrt(x.x * x.x + x.y * x.y + x.z * x.z);
+                    v = t_vec(x.x / l, x.y / l, x.z / l);
+                }
+                if (v.z < 0) v = t_vec(-v.x, -v.y, -v.z);
+                double t = pow(10.0, -8 * rng_uniform(&r));
+                v = t_vec(v.x + t * r0.x, v.y + t * r0.y, v.z + t * r0.z);
+                double l = sqrt(v.x * v.x + v.y * v.y + v.z * v.z);
+                v = t_vec(v.x * len / l, v.y * len / l, v.z * len / l);
+            }
+            ggx_vec3 av = ggx_k_amul_d(&s, v);
+            u2 = 1 - ldexp(1.0, -14) * (1 + 0.5 * u2) / (1 + av.z / ggx_k_len_d(av)); /* 2^-14: GGX_PROOF_T */
+        }
         int ok, pr;
         ggx_vec3 m = ggx_k_lune_core_p_d(&s, v, u1, u2, GGX_SAMPLER_CAPS, &ok, &pr);
         if (pr) {
+            proof_premise_d(&s, v, u1, u2, what);
             ggx_vec3 w = ggx_sample_vndf_caps_d(&s, v, u1, u2);
             CHECK(ok && m.x == w.x && m.y == w.y && m.z == w.z,
                   "double proof without the check: %s, v (%.17g, %.17g, %.17g), u (%.17g, %.17g): ok %d", what, v.x,
