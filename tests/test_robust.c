@@ -266,11 +266,13 @@ static void properties(void **state)
  * ||A v||. The sampler tests the cheaper p.z >= T L and p.z^2 >= C ||A||_F^2 (traits), whose product implies it
  * where T sqrt(C) >= K (2^-14 against 1.63e-5). The outcome check above cannot see a weakened test: the bound is a
  * worst case that real roundings stay far from. Here a test of the wrong constant, or of a wrong ||A||_F^2
- * (ggx_shapef's a_frob2), claims inputs whose premise fails: shapes with ||A||_F / L between 15 and 68 and p.z
- * within a factor 1.5 of T L. */
-static long premise_checked;
+ * (ggx_shapef's a_frob2), claims inputs whose premise fails: with p.z = c T L, c in [1, 1.5], the sampler claims
+ * the proof for ||A||_F / L <= 4 c, the a_frob2 / 64 mutant up to 32 c, and the premise fails above 15 c^2, so
+ * such a mutant fails for ratios between 15 and 48. near_f and near_d count the proved inputs within that factor
+ * 1.5 of T L, which caps_proof requires to be many, so that the placement cannot silently stop working. */
+static long premise_checked, near_f, near_d;
 /* The same premise for the double proof, whose constants leave a factor 10 (traits): K = 2.02 (66 u + 4.08 (margin +
- * u)), u = 2^-53, margin 2^-48; ||A||_F^2 is the shape's a_frob2 field, checked against its entries. */
+ * u)), u = 2^-53, margin 2^-48; ||A||_F^2 summed from the shape's entries, as GGX_FROB2 does in double. */
 static void proof_premise_d(const ggx_shape *s, ggx_vec3 v, double u1, double u2, const char *what)
 {
     ggx_vec3 av = ggx_k_amul_d(s, v), sv;
@@ -279,6 +281,7 @@ static void proof_premise_d(const ggx_shape *s, ggx_vec3 v, double u1, double u2
     for (int i = 0; i < 3; i++)
         for (int j = 0; j < 3; j++) f2 += s->a[i][j] * s->a[i][j];
     double u = ldexp(1.0, -53), K = 2.02 * (66 * u + 4.08 * (ldexp(1.0, -48) + u));
+    near_d += p.z < 1.5 * ldexp(1.0, -14) * sqrt(l2);
     CHECK(p.z * p.z >= K * sqrt(f2) * sqrt(l2), "double proof claimed without its premise: %s, v (%.17g, %.17g, %.17g), "
           "u (%.17g, %.17g): p.z^2 %.4g < K ||A||_F L %.4g", what, v.x, v.y, v.z, u1, u2, p.z * p.z,
           K * sqrt(f2) * sqrt(l2));
@@ -301,6 +304,7 @@ static void proof_premise_f(const ggx_shapef *sf, ggx_vec3f v, float u1, float u
     double lhs = (double)p.z * p.z, rhs = K * sqrt(f2) * sqrt(l2);
     CHECK(lhs >= rhs, "float proof claimed without its premise: %s, v (%.9g, %.9g, %.9g), u (%.9g, %.9g): p.z^2 %.4g < "
           "K ||A||_F L %.4g", what, v.x, v.y, v.z, u1, u2, lhs, rhs);
+    near_f += p.z < 1.5 * ldexp(1.0, -6) * sqrt(l2);
     premise_checked++;
 }
 
@@ -386,7 +390,9 @@ static void caps_proof(void **state)
         total++;
     }
     printf("caps proof: %ld inputs; double proved %ld of %ld checked good, float %ld of %ld; float premise checked "
-           "%ld times\n", total, proved_d, ok_d, proved_f, ok_f, premise_checked);
+           "%ld times; proved within 1.5 T ||A v||: double %ld, float %ld\n", total, proved_d, ok_d, proved_f, ok_f,
+           premise_checked, near_d, near_f);
+    CHECK(100 * near_d > total && 100 * near_f > total, "too few proved inputs near the proofs' bound");
     CHECK(10 * proved_d > 6 * ok_d && 10 * proved_f > 5 * ok_f, "the proof covers too few inputs");
 }
 

@@ -254,7 +254,7 @@ typedef struct bsdf_ctx {
     double q[3][3][3]; /* the kink cones k^T q k = 0 (bsdf_kinks) */
 } bsdf_ctx;
 
-/* The integrand's kinks on the lune, each a quadratic cone k^T Q k = 0 in sphere space (with u = sgn v, Au = A'u,
+/* The integrand's kinks on the lune, each a quadratic cone k^T Q k = 0 in sphere space (u = sgn(v.z) v, Au = A'u,
  * a = ||A n||, so that m.z = a k.z / |A'^T k| and u.m = Au.k / |A'^T k|; each equation below is multiplied by
  * |A'^T k|^2):
  *   the reflection's horizon, 2 (u.m) m.z = u.z:            a (Au z^T + z Au^T) - u.z A'A'^T;
