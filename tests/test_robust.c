@@ -271,6 +271,8 @@ static void properties(void **state)
  * such a mutant fails for ratios between 15 and 48. near_f and near_d count the proved inputs within that factor
  * 1.5 of T L, which caps_proof requires to be many, so that the placement cannot silently stop working. */
 static long premise_checked, near_f, near_d;
+/* The premise's constant K for unit roundoff u and the margin (sample.inc, above k_lune_core_p). */
+static double proof_k(double u, double margin) { return 2.02 * (66 * u + 4.08 * (margin + u)); }
 /* The same premise for the double proof, whose constants leave a factor 10 (traits): K = 2.02 (66 u + 4.08 (margin +
  * u)), u = 2^-53, margin 2^-48; ||A||_F^2 summed from the shape's entries, as GGX_FROB2 does in double. */
 static void proof_premise_d(const ggx_shape *s, ggx_vec3 v, double u1, double u2, const char *what)
@@ -280,7 +282,7 @@ static void proof_premise_d(const ggx_shape *s, ggx_vec3 v, double u1, double u2
     ggx_vec3 p = ggx_k_lune_point_scaled_d(GGX_SAMPLER_CAPS, av, ggx_k_len_d(av), u1, u2, &k, &sv);
     for (int i = 0; i < 3; i++)
         for (int j = 0; j < 3; j++) f2 += s->a[i][j] * s->a[i][j];
-    double u = ldexp(1.0, -53), K = 2.02 * (66 * u + 4.08 * (ldexp(1.0, -48) + u));
+    double K = proof_k(ldexp(1.0, -53), ldexp(1.0, -48));
     near_d += p.z < 1.5 * ldexp(1.0, -14) * sqrt(l2);
     CHECK(p.z * p.z >= K * sqrt(f2) * sqrt(l2), "double proof claimed without its premise: %s, v (%.17g, %.17g, %.17g), "
           "u (%.17g, %.17g): p.z^2 %.4g < K ||A||_F L %.4g", what, v.x, v.y, v.z, u1, u2, p.z * p.z,
@@ -300,7 +302,7 @@ static void proof_premise_f(const ggx_shapef *sf, ggx_vec3f v, float u1, float u
         }
         l2 += ai * ai;
     }
-    double u = ldexp(1.0, -24), K = 2.02 * (66 * u + 4.08 * (ldexp(1.0, -20) + u));
+    double K = proof_k(ldexp(1.0, -24), ldexp(1.0, -20));
     double lhs = (double)p.z * p.z, rhs = K * sqrt(f2) * sqrt(l2);
     CHECK(lhs >= rhs, "float proof claimed without its premise: %s, v (%.9g, %.9g, %.9g), u (%.9g, %.9g): p.z^2 %.4g < "
           "K ||A||_F L %.4g", what, v.x, v.y, v.z, u1, u2, lhs, rhs);
