@@ -348,20 +348,15 @@ static void caps_proof(void **state)
                                 * share 10^-8 to 1 of the random view, which sweeps the ratio */
                 ggx_vec3 r0 = v;
                 for (int it = 0; it < 30; it++) {
-                    ggx_vec3 w = t_vec(0, 0, 0), x;
-                    double(*b)[3] = s.ainv_t; /* A'^-T; A'^-1 is its transpose */
-                    w = t_vec(b[0][0] * v.x + b[0][1] * v.y + b[0][2] * v.z, b[1][0] * v.x + b[1][1] * v.y + b[1][2] * v.z,
-                              b[2][0] * v.x + b[2][1] * v.y + b[2][2] * v.z);
-                    x = t_vec(b[0][0] * w.x + b[1][0] * w.y + b[2][0] * w.z, b[0][1] * w.x + b[1][1] * w.y + b[2][1] * w.z,
-                              b[0][2] * w.x + b[1][2] * w.y + b[2][2] * w.z);
-                    double l = sqrt(x.x * x.x + x.y * x.y + x.z * x.z);
-                    v = t_vec(x.x / l, x.y / l, x.z / l);
+                    ggx_vec3 w = ggx_k_binvmul_d(&s, v); /* A'^-T v; then A'^-1 w, the transpose's product */
+                    double(*b)[3] = s.ainv_t;
+                    v = ggx_k_normalize_d(t_vec(b[0][0] * w.x + b[1][0] * w.y + b[2][0] * w.z,
+                                                b[0][1] * w.x + b[1][1] * w.y + b[2][1] * w.z,
+                                                b[0][2] * w.x + b[1][2] * w.y + b[2][2] * w.z));
                 }
-                if (v.z < 0) v = t_vec(-v.x, -v.y, -v.z);
+                if (v.z < 0) v = ggx_k_neg_d(v);
                 double t = pow(10.0, -8 * rng_uniform(&r));
-                v = t_vec(v.x + t * r0.x, v.y + t * r0.y, v.z + t * r0.z);
-                double l = sqrt(v.x * v.x + v.y * v.y + v.z * v.z);
-                v = t_vec(v.x * len / l, v.y * len / l, v.z * len / l);
+                v = ggx_k_scale_d(ggx_k_normalize_d(ggx_k_add_d(v, ggx_k_scale_d(r0, t))), len);
             }
             ggx_vec3 av = ggx_k_amul_d(&s, v);
             u2 = 1 - ldexp(1.0, -14) * (1 + 0.5 * u2) / (1 + av.z / ggx_k_len_d(av)); /* 2^-14: GGX_PROOF_T */
