@@ -69,6 +69,19 @@ static void jacobi3(double a[3][3], double vec[3][3])
         for (int k = 0; k < 3; k++) vec[i][k] = v[k][i];
 }
 
+/* The cone of the reflection's horizon in sphere space: Q = A M A^T with h^T M h = 2 (v.h) h.z - v.z |h|^2, so that
+ * k^T Q k > 0 where the reflection of v about the normal of k is above the horizon (shared by ggx_albedo's domain
+ * and the dielectric's kinks). */
+static void horizon_cone(const ggx_shape *s, ggx_vec3 v, double Q[3][3])
+{
+    const double M[3][3] = {{-v.z, 0, v.x}, {0, -v.z, v.y}, {v.x, v.y, v.z}};
+    double AM[3][3];
+    for (int i = 0; i < 3; i++)
+        for (int j = 0; j < 3; j++) AM[i][j] = s->a[i][0] * M[0][j] + s->a[i][1] * M[1][j] + s->a[i][2] * M[2][j];
+    for (int i = 0; i < 3; i++)
+        for (int j = 0; j < 3; j++) Q[i][j] = AM[i][0] * s->a[j][0] + AM[i][1] * s->a[j][1] + AM[i][2] * s->a[j][2];
+}
+
 typedef struct albedo_ctx {
     const ggx_shape *s;
     ggx_vec3 v, vp, P, E1, E2;
@@ -190,13 +203,8 @@ static double albedo(const ggx_shape *s, ggx_vec3 v, int hc, double tol)
     double pre = (hc ? lav / (v.z * s->an_len) : ggx_internal_albedo_scale(s, v)) / GGX_PI;
     if (!(pre > 0 && pre <= 1e300)) return 0.0;
 
-    /* Q = A M A^T with h^T M h = 2 (v.h) h.z - v.z |h|^2 */
-    const double M[3][3] = {{-v.z, 0, v.x}, {0, -v.z, v.y}, {v.x, v.y, v.z}};
-    double AM[3][3], Q[3][3], E[3][3];
-    for (int i = 0; i < 3; i++)
-        for (int j = 0; j < 3; j++) AM[i][j] = s->a[i][0] * M[0][j] + s->a[i][1] * M[1][j] + s->a[i][2] * M[2][j];
-    for (int i = 0; i < 3; i++)
-        for (int j = 0; j < 3; j++) Q[i][j] = AM[i][0] * s->a[j][0] + AM[i][1] * s->a[j][1] + AM[i][2] * s->a[j][2];
+    double Q[3][3], E[3][3];
+    horizon_cone(s, v, Q);
     jacobi3(Q, E);
     int ip = 0;
     for (int i = 1; i < 3; i++)
@@ -257,35 +265,33 @@ typedef struct bsdf_ctx {
 /* The integrand's kinks on the lune, each a quadratic cone k^T Q k = 0 in sphere space (u = sgn(v.z) v, Au = A'u,
  * a = ||A n||, so that m.z = a k.z / |A'^T k| and u.m = Au.k / |A'^T k|; each equation below is multiplied by
  * |A'^T k|^2):
- *   the reflection's horizon, 2 (u.m) m.z = u.z:            a (Au z^T + z Au^T) - u.z A'A'^T;
+ *   the reflection's horizon, 2 (u.m) m.z = u.z:            a (Au z^T + z Au^T) - u.z A'A'^T (horizon_cone);
  *   total internal reflection (eta_rel < 1), (u.m)^2 = 1 - eta_rel^2:   Au Au^T - (1 - eta_rel^2) A'A'^T;
  *   the refraction's horizon, eta_r (u.m) - s = eta_r u.z / m.z with eta_r = 1 / eta_rel and s the refracted
  *   cosine, squared (which admits roots of the other sign, harmless as extra break points):
- *     (eta_rel^2 - 1) a^2 z z^T + u.z a (Au z^T + z Au^T) - u.z^2 A'A'^T.
+ *     (eta_rel^2 - 1) a^2 z z^T + u.z a (Au z^T + z Au^T) - u.z^2 A'A'^T, i.e. u.z times the reflection's cone plus
+ *     (eta_rel^2 - 1) a^2 z z^T.
  * On a meridian k = cos t u' + sin t d each is a quadratic in tan t, solved in closed form (bsdf_outer), so the
  * panels start at the kinks instead of bisecting towards them: ggx_bsdf_albedo is about 10 times faster and the
  * dielectric's tables build 3 to 3.5 times faster (docs/albedo.md, docs/energy.md). */
 static void bsdf_kinks(bsdf_ctx *c, ggx_vec3 u)
 {
     const ggx_shape *s = c->s;
-    ggx_vec3 au = ggx_k_amul_d(s, u);
-    double a = s->an_len, au3[3] = {au.x, au.y, au.z}, aat[3][3], er2 = c->eta_rel * c->eta_rel;
-    for (int i = 0; i < 3; i++)
-        for (int j = 0; j < 3; j++) {
-            aat[i][j] = 0;
-            for (int k = 0; k < 3; k++) aat[i][j] += s->a[i][k] * s->a[j][k];
-        }
-    c->nq = 0;
-    for (int kind = 0; kind < 3; kind++) {
-        if (kind == 1 && !(er2 < 1)) continue;
-        double(*q)[3] = c->q[c->nq++];
+    double a = s->an_len, er2 = c->eta_rel * c->eta_rel;
+    horizon_cone(s, u, c->q[0]);
+    for (int i = 0; i < 3; i++) /* the refraction's horizon: u.z times the reflection's, plus (eta_rel^2 - 1) a^2 zz^T */
+        for (int j = 0; j < 3; j++) c->q[1][i][j] = u.z * c->q[0][i][j];
+    c->q[1][2][2] += (er2 - 1) * a * a;
+    c->nq = 2;
+    if (er2 < 1) { /* total internal reflection */
+        ggx_vec3 au = ggx_k_amul_d(s, u);
+        double au3[3] = {au.x, au.y, au.z};
         for (int i = 0; i < 3; i++)
             for (int j = 0; j < 3; j++) {
-                double sym = a * (au3[i] * (j == 2) + (i == 2) * au3[j]);
-                if (kind == 0) q[i][j] = sym - u.z * aat[i][j];
-                else if (kind == 1) q[i][j] = au3[i] * au3[j] - (1 - er2) * aat[i][j];
-                else q[i][j] = (er2 - 1) * a * a * (i == 2) * (j == 2) + u.z * sym - u.z * u.z * aat[i][j];
+                double aat = s->a[i][0] * s->a[j][0] + s->a[i][1] * s->a[j][1] + s->a[i][2] * s->a[j][2];
+                c->q[2][i][j] = au3[i] * au3[j] - (1 - er2) * aat;
             }
+        c->nq = 3;
     }
 }
 
