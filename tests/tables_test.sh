@@ -1,23 +1,36 @@
 #!/bin/sh
-# The shipped tables regenerate bit for bit: every 8th column of src/tables/albedo_iso.inc, recomputed by the
-# generator, must appear in the file character for character (17 significant digits: the doubles themselves), and
-# the file must hold the whole grid. Usage: tables_test.sh GENERATOR TABLE_FILE. SPDX-License-Identifier: MIT
+# The shipped tables regenerate bit for bit: a share of the lines of src/tables/albedo_iso.inc (every 8th column,
+# 17 significant digits: the doubles themselves) and of src/tables/bsdf_iso.inc (every 97th line, 9 significant
+# digits with a point and a suffix: the floats themselves), recomputed by the generator, must appear in the files character for character, and
+# the files must hold the whole grids. Usage: tables_test.sh GENERATOR ISO_FILE BSDF_FILE. SPDX-License-Identifier: MIT
 set -eu
 gen=$1
-file=$2
+iso=$2
+bsdf=$3
 tmp=$(mktemp)
 trap 'rm -f "$tmp"' EXIT
-"$gen" --every 8 | grep -E '^    /\* (sep|hc) alpha' > "$tmp"
-n=$(wc -l < "$tmp")
-[ "$n" -eq 52 ] || { echo "FAIL: the generator gave $n columns, 52 expected"; exit 1; }
-bad=0
-while IFS= read -r line; do
-    if ! grep -qxF -- "$line" "$file"; then
-        echo "FAIL: not in $file as regenerated: $(printf '%s' "$line" | cut -c1-100)..."
-        bad=$((bad + 1))
-    fi
-done < "$tmp"
-total=$(grep -cE '^    /\* (sep|hc) alpha' "$file")
-[ "$total" -eq 388 ] || { echo "FAIL: $file has $total columns, 388 expected (2 x 97 tables, 2 x 97 averages)"; exit 1; }
-[ "$bad" -eq 0 ] || exit 1
-echo "tables: 52 of 388 columns regenerated bit for bit"
+
+# check FILE PATTERN GENERATED_LINES TOTAL_LINES WHAT
+check() {
+    n=$(wc -l < "$tmp")
+    [ "$n" -eq "$3" ] || { echo "FAIL: the generator gave $n lines for $1, $3 expected"; exit 1; }
+    bad=0
+    while IFS= read -r line; do
+        if ! grep -qxF -- "$line" "$1"; then
+            echo "FAIL: not in $1 as regenerated: $(printf '%s' "$line" | cut -c1-100)..."
+            bad=$((bad + 1))
+        fi
+    done < "$tmp"
+    total=$(grep -cE "$2" "$1")
+    [ "$total" -eq "$4" ] || { echo "FAIL: $1 has $total lines, $4 expected ($5)"; exit 1; }
+    [ "$bad" -eq 0 ] || exit 1
+    echo "tables: $3 of $4 lines of $1 regenerated bit for bit"
+}
+
+pat='^    /\* (sep|hc) alpha'
+"$gen" --every 8 | grep -E "$pat" > "$tmp"
+check "$iso" "$pat" 52 388 "2 x 97 tables, 2 x 97 averages"
+
+pat='^    /\* eta_r [0-9.e+-]+ alpha'
+"$gen" --bsdf --every 97 | grep -E "$pat" > "$tmp"
+check "$bsdf" "$pat" 17 1584 "2 halves x 24 eta_r x 33 alpha"

@@ -414,11 +414,68 @@ static int timed_teardown(void **state)
 }
 #define TIMED(f) cmocka_unit_test_setup_teardown(f, timed_setup, timed_teardown)
 
+/* The shipped isotropic table (ggx_bsdf_albedo_iso_table) against ggx_bsdf_albedo at random (alpha, eta, mu) from
+ * both sides, weighted towards grazing and towards eta_r near 1, where E changes fastest; at its nodes; outside its
+ * range the quadrature itself; the edges of the domain. Part 1 only. */
+static void iso_table(void **state)
+{
+    (void)state;
+    if (part != 1) return;
+    rng r = {2411};
+    double worst = 0, worst_a = 0, worst_e = 0, worst_mu = 0;
+    for (int k = 0; k < 400; k++) {
+        double a = 1e-2 * pow(200.0, rng_uniform(&r)), u = rng_uniform(&r), w = rng_uniform(&r);
+        double mu = MU_MIN + (1 - MU_MIN) * u * u, eta = 1 + 0.05 * pow(40.0, w); /* eta - 1 log-uniform, 0.05 to 2 */
+        if (rng_uniform(&r) < 0.5) eta = 1 / eta;
+        if (rng_uniform(&r) < 0.5) mu = -mu;
+        ggx_shape sh;
+        make_shape(&sh, (shape_params){a, a, 0, 0, 0});
+        double want = ggx_bsdf_albedo(&sh, eta, view_mu(fabs(mu), 0.0, mu < 0), NULL, NULL);
+        double got = ggx_bsdf_albedo_iso_table(a, eta, mu), err = fabs(got - want);
+        CHECK_CLOSE(got, want, 0, PROMISE, "iso table, alpha %.6g eta %.6g mu %.6g", a, eta, mu);
+        if (err > worst) worst = err, worst_a = a, worst_e = eta, worst_mu = mu;
+    }
+    printf("iso table of R + T: largest |E_table - E| %.2e (alpha %.4g, eta %.4g, mu %.4g)\n", worst, worst_a, worst_e,
+           worst_mu);
+    /* from below through eta is from above through 1 / eta (an isotropic ellipsoid is symmetric about the plane) */
+    CHECK(ggx_bsdf_albedo_iso_table(0.3, 1.5, -0.4) == ggx_bsdf_albedo_iso_table(0.3, 1 / 1.5, 0.4), "the sides' symmetry");
+    /* at a node (alpha 2 = the last column, eta_r 3 = the last node, mu = 1): the node's 1e-6 and float's rounding */
+    ggx_shape s2;
+    make_shape(&s2, (shape_params){2, 2, 0, 0, 0});
+    CHECK_CLOSE(ggx_bsdf_albedo_iso_table(2.0, 3.0, 1.0), ggx_bsdf_albedo(&s2, 3.0, t_vec(0, 0, 1), NULL, NULL), 0, 2e-6,
+                "the node alpha 2, eta 3 at n");
+    CHECK_CLOSE(ggx_bsdf_albedo_iso_table(2.0, 3.0, -1.0), ggx_bsdf_albedo(&s2, 3.0, t_vec(0, 0, -1), NULL, NULL), 0, 2e-6,
+                "the node alpha 2, eta 1/3 at -n");
+    /* outside the table: the quadrature, exactly */
+    const double out_a[] = {5e-3, 2.5, 0.3, 0.3, 0.3, 0.3}, out_e[] = {1.5, 1.5, 1.01, 1 / 1.01, 3.5, 1.0};
+    for (int k = 0; k < 6; k++) {
+        ggx_shape sh;
+        make_shape(&sh, (shape_params){out_a[k], out_a[k], 0, 0, 0});
+        for (int side = 0; side < 2; side++)
+            CHECK(ggx_bsdf_albedo_iso_table(out_a[k], out_e[k], side ? -0.3 : 0.3) ==
+                      ggx_bsdf_albedo(&sh, out_e[k], view_mu(0.3, 0.0, side), NULL, NULL),
+                  "alpha %g eta %g side %d outside the table", out_a[k], out_e[k], side);
+    }
+    CHECK(ggx_bsdf_albedo_iso_table(0.3, 1.5, 1.5) == ggx_bsdf_albedo_iso_table(0.3, 1.5, 1.0), "mu > 1");
+    CHECK(ggx_bsdf_albedo_iso_table(0.3, 1.5, -7.0) == ggx_bsdf_albedo_iso_table(0.3, 1.5, -1.0), "mu < -1");
+    const double bad_mu[] = {0.0, -0.0, NAN};
+    for (int k = 0; k < 3; k++) CHECK(ggx_bsdf_albedo_iso_table(0.3, 1.5, bad_mu[k]) == 0, "mu %g", bad_mu[k]);
+    const double bad[] = {0.0, -1, NAN, INFINITY, 2e4};
+    for (int k = 0; k < 5; k++) {
+        CHECK(ggx_bsdf_albedo_iso_table(bad[k], 1.5, 0.5) == 0, "alpha %g", bad[k]);
+        if (k < 4) CHECK(ggx_bsdf_albedo_iso_table(0.3, bad[k], 0.5) == 0, "eta %g", bad[k]);
+    }
+    for (int side = 0; side < 2; side++) {
+        double tiny = ggx_bsdf_albedo_iso_table(0.3, 1.5, side ? -1e-300 : 1e-300);
+        CHECK(tiny >= 0 && tiny <= 1, "mu 1e-300: %g", tiny);
+    }
+}
+
 int main(int argc, char **argv)
 {
     part = argc > 1 ? atoi(argv[1]) : 1;
     const struct CMUnitTest deterministic[] = {
-        TIMED(table_against_albedo), TIMED(white_furnace), TIMED(reciprocity), TIMED(edges)};
+        TIMED(table_against_albedo), TIMED(white_furnace), TIMED(reciprocity), TIMED(edges), TIMED(iso_table)};
     const struct CMUnitTest sampling[] = {TIMED(sampling_chi2), TIMED(negative_controls), TIMED(monte_carlo_furnace)};
     if (part == 2) return cmocka_run_group_tests_name("energy of the dielectric: sampling", sampling, build_tables, free_tables);
     return cmocka_run_group_tests_name("energy of the dielectric", deterministic, build_tables, free_tables);

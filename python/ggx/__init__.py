@@ -33,7 +33,7 @@ __all__ = [
     "Shape", "Fresnel", "Energy", "SamplerInfo", "BrdfSample", "DirectionSample", "samplers", "status_message",
     "ndf", "ndf_spherical", "p22", "gaussian_curvature", "projected_area", "lune_area", "lambda_", "g1", "g1_smith",
     "g2", "pdf_ndf", "pdf_vndf", "brdf", "bsdf", "albedo", "albedo_avg", "bsdf_albedo", "albedo_iso_table",
-    "albedo_avg_iso_table", "sample", "pdf", "sample_inverse", "sample_ndf", "sample_vndf", "sample_brdf",
+    "albedo_avg_iso_table", "bsdf_albedo_iso_table", "sample", "pdf", "sample_inverse", "sample_ndf", "sample_vndf", "sample_brdf",
     "pdf_brdf", "sample_bsdf", "pdf_bsdf", "reflect", "half_reflect", "batch_isa", "set_batch_threads",
 ]
 
@@ -84,6 +84,7 @@ _loop_bsdf_albedo = _proto("ggxpy_bsdf_albedo", None, _vp, _d, _sz, _inp, _vp, _
 _loop_fresnel = _proto("ggxpy_fresnel", None, _vp, _sz, _inp, _vp)
 _loop_vv_v = _proto("ggxpy_vv_v", None, _vp, _sz, _inp, _vp)
 _loop_iso_table = _proto("ggxpy_albedo_iso_table", None, _i, _sz, _inp, _vp)
+_loop_bsdf_iso_table = _proto("ggxpy_bsdf_albedo_iso_table", None, _sz, _inp, _vp)
 _loop_sampler_pdf = _proto("ggxpy_sampler_pdf", None, _i, _vp, _d, _sz, _inp, _vp)
 _loop_sample = _proto("ggxpy_sample", None, _i, _vp, _sz, _inp, _vp)
 _loop_inverse = _proto("ggxpy_inverse", None, _i, _vp, _sz, _inp, _vp)
@@ -600,6 +601,12 @@ def albedo_iso_table(alpha, mu, masking="separable", dtype=np.float64):
     """E(mu) of isotropic GGX from the shipped table (ggx_albedo_iso_table): within 1e-3 for mu >= 0.0175."""
     g = _choice(masking, _MASKINGS, "masking")
     return _call(_loop_iso_table, (g,), [(alpha, "alpha", 1), (mu, "mu", 1)], dtype)
+
+
+def bsdf_albedo_iso_table(alpha, eta, mu, dtype=np.float64):
+    """R + T of the isotropic rough dielectric from the shipped table (ggx_bsdf_albedo_iso_table); mu > 0: light
+    from above, mu < 0: from below. Within 1e-3 for alpha >= 0.02 and |mu| >= 0.0175."""
+    return _call(_loop_bsdf_iso_table, (), [(alpha, "alpha", 1), (eta, "eta", 1), (mu, "mu", 1)], dtype)
 
 
 def albedo_avg_iso_table(alpha, masking="separable"):

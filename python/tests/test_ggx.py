@@ -56,6 +56,7 @@ def c():
         "ggx_sample_brdf": (Sample, P, P, Vec3, D, D), "ggx_sample_brdf_bounded": (Sample, P, P, Vec3, D, D),
         "ggx_sample_bsdf": (Sample, P, D, Vec3, D, D, D, I),
         "ggx_fresnel_eval": (D, P, D), "ggx_albedo_iso_table": (D, D, D, I),
+        "ggx_bsdf_albedo_iso_table": (D, D, D, D),
         "ggx_shape_ellipsoid": (I, P, D, D, D, D, D), "ggx_shape_matrix": (I, P, P),
         "ggx_fresnel_conductor": (I, P, D, D), "ggx_fresnel_one": (I, P),
         "ggx_energy_create": (I, P, ctypes.POINTER(P)), "ggx_energy_free": (None, P),
@@ -193,6 +194,12 @@ def test_albedo_matches_c(c):
     al, mu = r.uniform(1e-3, 2, N), r.uniform(-0.1, 1.1, N)
     for g, k in (("separable", 0), ("height-correlated", 1)):
         assert same(ggx.albedo_iso_table(al, mu, g), [c.ggx_albedo_iso_table(x, y, k) for x, y in zip(al, mu)])
+    # the dielectric's table, from both sides, inside its range (alpha 1e-2 to 2, eta_r 1.05 to 3 and inverse)
+    al, eta, mu = r.uniform(1e-2, 2, N), r.uniform(1.05, 3, N), r.uniform(-1.1, 1.1, N)
+    eta = np.where(r.uniform(size=N) < 0.5, eta, 1 / eta)
+    assert same(ggx.bsdf_albedo_iso_table(al, eta, mu),
+                [c.ggx_bsdf_albedo_iso_table(x, e, y) for x, e, y in zip(al, eta, mu)])
+    assert ggx.bsdf_albedo_iso_table(0.3, 1.5, 0.0) == 0.0
 
 
 def test_registry_is_the_librarys(c):

@@ -20,6 +20,7 @@
 #include <pthread.h>
 #include <stdlib.h>
 
+#include "../tables/bsdf_grid.h"
 #include "energy_table.h"
 
 /* The nodes are computed to TABLE_TOL; the lookup's error is dominated by the interpolation (docs/energy.md). */
@@ -28,6 +29,8 @@
  * where E dips over a width ~alpha; 128 columns: with 64 it erred by 3.9e-3 at grazing for alpha (0.1, 1)
  * (docs/energy.md). */
 enum { ROWS = 65, COLUMNS = 128 };
+/* the rows of the shipped isotropic table are these rows (bsdf_node reads them) */
+_Static_assert((int)ROWS == (int)BSDF_NY, "the per-shape tables and the shipped table share their rows");
 
 struct ggx_bsdf_energy {
     ggx_shape s;
@@ -41,12 +44,16 @@ typedef struct bsdf_nodes {
     ggx_bsdf_energy *e;
     double sgn; /* 1: light from above, -1: from below */
     double *storage;
+    int shipped; /* isotropic, with (alpha, eta) in the shipped table's range: its rows are read instead */
 } bsdf_nodes;
 
+/* A node: I = E / P of ggx_bsdf_albedo's R + T, or for an isotropic shape in the shipped table's range its value at
+ * the same row (the tables share their rows), interpolated in alpha and eta. */
 static double bsdf_node(void *vc, ggx_vec3 v, double y)
 {
     const bsdf_nodes *c = vc;
-    (void)y;
+    double i_value, eta_r = c->sgn > 0 ? c->e->eta : 1.0 / c->e->eta;
+    if (c->shipped && ggx_internal_bsdf_iso_table_i(c->e->s.alpha_x, eta_r, y, &i_value)) return i_value;
     ggx_vec3 u = {c->sgn * v.x, c->sgn * v.y, c->sgn * v.z};
     return ggx_internal_bsdf_albedo(&c->e->s, c->e->eta, u, TABLE_TOL) / ggx_internal_albedo_scale(&c->e->s, v);
 }
@@ -79,9 +86,12 @@ GGX_API ggx_status ggx_bsdf_energy_create(const ggx_shape *s, double eta, ggx_bs
     e->s = *s;
     e->eta = eta;
     /* The two sides on two threads (in turn where no thread can be started): they share nothing but the shape. */
-    bsdf_nodes c[2] = {{e, 1.0, (double *)(e + 1)}, {e, -1.0, (double *)(e + 1) + n}};
+    double probe;
+    int shipped = ggx_internal_is_isotropic(s) && ggx_internal_bsdf_iso_table_i(s->alpha_x, eta, 1.0, &probe);
+    bsdf_nodes c[2] = {{e, 1.0, (double *)(e + 1), shipped}, {e, -1.0, (double *)(e + 1) + n, shipped}};
     pthread_t th;
-    int threaded = pthread_create(&th, NULL, build_side, &c[1]) == 0;
+    /* a second thread only when there are quadratures to share */
+    int threaded = !shipped && pthread_create(&th, NULL, build_side, &c[1]) == 0;
     build_side(&c[0]);
     if (threaded)
         pthread_join(th, NULL);

@@ -44,5 +44,9 @@ int ggx_internal_is_isotropic(const ggx_shape *s);
 /* From src/api/tables.c: I = E / P of the shipped isotropic table (separable G) at row coordinate y in [0, 1]
  * (theta = (pi / 2)(1 - y^2)) for alpha; returns 0 (and writes nothing) for alpha outside the table's range. */
 int ggx_internal_iso_table_i(double alpha, double y, double *i_value);
+/* From src/api/tables.c: I = E / P of the shipped table of the rough dielectric's R + T for isotropic shapes at row
+ * coordinate y, alpha and the relative index eta_r the light meets (eta from above, 1 / eta from below); returns 0
+ * (and writes nothing) outside the table's range. */
+int ggx_internal_bsdf_iso_table_i(double alpha, double eta_r, double y, double *i_value);
 
 #endif

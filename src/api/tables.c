@@ -2,6 +2,7 @@
  * grid is src/tables/iso_grid.h). Bicubic Catmull-Rom in (y, x) of I = E / P, times the closed-form P.
  * SPDX-License-Identifier: MIT */
 #include <math.h>
+#include <stddef.h>
 
 #include "../common/interp.h"
 #include "../tables/iso_grid.h"
@@ -81,5 +82,67 @@ GGX_API double ggx_albedo_avg_iso_table(double alpha, ggx_masking g)
     int j = cell(iso_x_of_alpha(alpha), ISO_NA, &fx);
     double p[4] = {avg_node(hc, j - 1), avg_node(hc, j), avg_node(hc, j + 1), avg_node(hc, j + 2)};
     double e = catmull_rom(p, fx);
+    return e > 0 ? (e < 1 ? e : 1) : 0;
+}
+
+/* The rough dielectric's table (src/tables/bsdf_iso.inc, grid src/tables/bsdf_grid.h): tricubic Catmull-Rom in
+ * (y, alpha, eta_r) of I = E / P, times P. */
+#include "../tables/bsdf_grid.h"
+#include "../tables/bsdf_iso.inc"
+
+/* Node (k, j, i) of half h, with ghosts: past the pole a row continues mirrored (E is even in theta through n),
+ * below grazing linear extrapolation, beyond either end in alpha or eta_r quadratic extrapolation (a linear one left
+ * 9.8e-4 between the last two alpha nodes, a quadratic 3.1e-4). */
+static double bsdf_node(int h, int k, int j, int i)
+{
+    if (k < 0) return 3.0 * bsdf_node(h, 0, j, i) - 3.0 * bsdf_node(h, 1, j, i) + bsdf_node(h, 2, j, i);
+    if (k > BSDF_NE - 1)
+        return 3.0 * bsdf_node(h, BSDF_NE - 1, j, i) - 3.0 * bsdf_node(h, BSDF_NE - 2, j, i) + bsdf_node(h, BSDF_NE - 3, j, i);
+    if (j < 0) return 3.0 * bsdf_node(h, k, 0, i) - 3.0 * bsdf_node(h, k, 1, i) + bsdf_node(h, k, 2, i);
+    if (j > BSDF_NA - 1)
+        return 3.0 * bsdf_node(h, k, BSDF_NA - 1, i) - 3.0 * bsdf_node(h, k, BSDF_NA - 2, i) + bsdf_node(h, k, BSDF_NA - 3, i);
+    if (i > BSDF_NY - 1) i = 2 * (BSDF_NY - 1) - i;
+    const float *r = bsdf_iso_tab[h][k][j];
+    return i < 0 ? 2.0 * r[0] - r[1] : (double)r[i];
+}
+
+/* I at row coordinate y in [0, 1], alpha and eta_r; 0 when (alpha, eta_r) is outside the table. */
+static int bsdf_i(double alpha, double eta_r, double y, double *out)
+{
+    int h;
+    double z = bsdf_z_of_eta(eta_r, &h), x = bsdf_x_of_alpha(alpha);
+    if (!(z >= 0 && z <= 1 && x >= 0 && x <= 1 && eta_r != 1.0)) return 0;
+    double fy, fx, fz;
+    int i = cell(y, BSDF_NY, &fy), j = cell(x, BSDF_NA, &fx), k = cell(z, BSDF_NE, &fz);
+    double ce[4];
+    for (int dk = -1; dk <= 2; dk++) {
+        double ca[4];
+        for (int dj = -1; dj <= 2; dj++) {
+            double p[4];
+            for (int di = -1; di <= 2; di++) p[di + 1] = bsdf_node(h, k + dk, j + dj, i + di);
+            ca[dj + 1] = catmull_rom(p, fy);
+        }
+        ce[dk + 1] = catmull_rom(ca, fx);
+    }
+    *out = catmull_rom(ce, fz);
+    return 1;
+}
+
+int ggx_internal_bsdf_iso_table_i(double alpha, double eta_r, double y, double *i_value)
+{
+    return bsdf_i(alpha, eta_r, y, i_value);
+}
+
+GGX_API double ggx_bsdf_albedo_iso_table(double alpha, double eta, double mu)
+{
+    ggx_shape s;
+    if (!(mu != 0) || mu != mu || ggx_shape_iso(&s, alpha) != GGX_OK || !(eta > 0 && eta <= 1e300)) return 0.0;
+    double a = fabs(mu) < 1 ? fabs(mu) : 1.0, eta_r = mu > 0 ? eta : 1.0 / eta, i_value;
+    ggx_vec3 v = {sqrt(fmax(0.0, 1.0 - a * a)), 0.0, a};
+    if (!bsdf_i(alpha, eta_r, iso_y_of_mu(a), &i_value)) {
+        if (mu < 0) v.z = -v.z;
+        return ggx_bsdf_albedo(&s, eta, v, NULL, NULL);
+    }
+    double e = ggx_internal_albedo_scale(&s, v) * i_value;
     return e > 0 ? (e < 1 ? e : 1) : 0;
 }
