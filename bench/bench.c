@@ -120,6 +120,7 @@ SCALAR_BENCH(b_scomp, ggx_sample_brdf_compensated(bench_energy, &c->f, c->v[k], 
 SCALAR_BENCH(b_isotab, ggx_albedo_iso_table(0.05 + c->u1[k], c->v[k].z, GGX_MASKING_SEPARABLE))
 SCALAR_BENCH(b_fresnel_avg, ggx_fresnel_avg(&c->f))
 /* the dielectric's table from both sides (v.z of either sign), eta 1.2 to 2.2 */
+SCALAR_BENCH(b_anitab, ggx_albedo_aniso_table(0.05 + c->u1[k], 0.05 + 0.9 * c->u2[k], c->v[k]))
 SCALAR_BENCH(b_bsdftab, ggx_bsdf_albedo_iso_table(0.05 + c->u1[k], 1.2 + c->u2[k], c->u2[k] < 0.5 ? c->v[k].z : -c->v[k].z))
 
 /* Energy compensation against the single-scattering functions it adds to, same run; the setup it needs; the shipped
@@ -163,6 +164,13 @@ static void energy_table(sctx *sc, const ggx_shape *diag, const ggx_shape *skew,
     for (int i = 0; i < 20; i++) sink = ggx_albedo(&iso, sc->v[i]);
     double tq = (now() - t0) / 20 * 1e9;
     printf("ggx_albedo_iso_table %.1f ns, ggx_albedo (quadrature, alpha 0.3) %.0f ns: %.0fx\n", tl, tq, tq / tl);
+    double ta = time_it(b_anitab, sc, ns / 4, NULL);
+    ggx_shape an;
+    ggx_shape_aniso(&an, 0.15, 0.5);
+    t0 = now();
+    for (int i = 0; i < 20; i++) sink = ggx_albedo(&an, sc->v[i]);
+    tq = (now() - t0) / 20 * 1e9;
+    printf("ggx_albedo_aniso_table %.1f ns, ggx_albedo (quadrature, alpha (0.15, 0.5)) %.0f ns: %.0fx\n", ta, tq, tq / ta);
     double tb = time_it(b_bsdftab, sc, ns / 4, NULL);
     t0 = now();
     for (int i = 0; i < 20; i++) sink = ggx_bsdf_albedo(&iso, 1.5, sc->v[i], NULL, NULL);

@@ -1,12 +1,15 @@
 #!/bin/sh
 # The shipped tables regenerate bit for bit: a share of the lines of src/tables/albedo_iso.inc (every 8th column,
-# 17 significant digits: the doubles themselves) and of src/tables/bsdf_iso.inc (every 97th line, 9 significant
-# digits with a point and a suffix: the floats themselves), recomputed by the generator, must appear in the files character for character, and
-# the files must hold the whole grids. Usage: tables_test.sh GENERATOR ISO_FILE BSDF_FILE. SPDX-License-Identifier: MIT
+# 17 significant digits: the doubles themselves), of src/tables/bsdf_iso.inc (every 97th line) and of
+# src/tables/albedo_aniso.inc (every 69th pair of roughnesses; both with 9 significant digits and a float suffix:
+# the floats themselves), recomputed by the generator, must appear in the files character for character, and the
+# files must hold the whole grids. Usage: tables_test.sh GENERATOR ISO_FILE BSDF_FILE ANISO_FILE.
+# SPDX-License-Identifier: MIT
 set -eu
 gen=$1
 iso=$2
 bsdf=$3
+aniso=$4
 tmp=$(mktemp)
 trap 'rm -f "$tmp"' EXIT
 
@@ -34,3 +37,7 @@ check "$iso" "$pat" 52 388 "2 x 97 tables, 2 x 97 averages"
 pat='^    /\* eta_r [0-9.e+-]+ alpha'
 "$gen" --bsdf --every 97 | grep -E "$pat" > "$tmp"
 check "$bsdf" "$pat" 17 1584 "2 halves x 24 eta_r x 33 alpha"
+
+pat='^    /\* ax [0-9.e+-]+ ay [0-9.e+-]+ row'
+"$gen" --aniso --every 69 | grep -E "$pat" > "$tmp"
+check "$aniso" "$pat" 132 9108 "276 pairs of roughnesses x 33 rows"

@@ -528,6 +528,16 @@ double ggx_albedo_avg_iso_table(double alpha, ggx_masking g);
  * by ggx_shape_iso and ggx_bsdf_albedo) it computes the quadrature instead (milliseconds). mu = 0, NaN, eta outside
  * (0, 1e300] or an alpha that ggx_shape_iso rejects: 0; |mu| > 1 reads as 1. In [0, 1]. Thread-safe. */
 double ggx_bsdf_albedo_iso_table(double alpha, double eta, double mu);
+/* E(v) of anisotropic GGX (ggx_shape_aniso(alpha_x, alpha_y): ggx_albedo, separable G) at a view v in the shape's
+ * frame (x along alpha_x; v need not be unit; a rotated shape's view is first turned into its frame). Read from a
+ * shipped table of 33 views x 33 azimuths (a quarter turn: E is even about both tangent axes) x 21 x 21 roughnesses
+ * (1e-2 to 2, the pairs alpha_x <= alpha_y stored) by interpolation in all four, about 0.5 microsecond:
+ * within 1e-3 absolute of ggx_albedo for v.z >= 0.0175 (89 degrees) and alpha_x / alpha_y in [1/20, 20] (errors
+ * up to 3.8e-3 measured beyond, at grazing near the axis of the smaller alpha); the largest errors measured are in
+ * docs/energy.md (9.7e-4 at alphas near 0.02 at 89 degrees). A roughness outside [1e-2, 2] (but accepted by
+ * ggx_shape_aniso): the quadrature instead (milliseconds). v.z <= 0, a zero or non-finite v, or alphas that
+ * ggx_shape_aniso rejects: 0. In [0, 1]. Thread-safe. */
+double ggx_albedo_aniso_table(double alpha_x, double alpha_y, ggx_vec3 v);
 
 /* ------------------------------------------------------------------------------------------------------------
  * Energy compensation (docs/energy.md; Kulla & Conty 2017, for every shape)
@@ -551,9 +561,10 @@ typedef struct ggx_energy ggx_energy;
 
 /* Builds the table of shape s (copied; s may be freed after): 33 x 128 albedos by ggx_albedo's quadrature (a quarter
  * of the columns for unskewed shapes, whose E is even about the tangent axes; isotropic shapes read their 33 from the
- * shipped table of ggx_albedo_iso_table when alpha is in [1e-3, 2]). Cost, on one core: microseconds for isotropic
- * shapes (0.02 to 0.07 s outside that range), 1 to 2 s for anisotropic ones and 5 to 7 s for skewed ones
- * (docs/energy.md has the measured times); build tables once per material, at scene setup. Thread-safe. Errors: GGX_ERR_NULL (s or out NULL), GGX_ERR_MEMORY; *out is NULL then. */
+ * shipped table of ggx_albedo_iso_table when alpha is in [1e-3, 2], unskewed anisotropic ones their 33 x 33 from
+ * that of ggx_albedo_aniso_table when both alphas are in [1e-2, 2]). Cost, on one core: microseconds for shapes read
+ * from a shipped table (0.02 to 0.07 s for isotropic ones and 1 to 2 s for anisotropic ones outside), 5 to 7 s for
+ * skewed ones (docs/energy.md has the measured times); build tables once per material, at scene setup. Thread-safe. Errors: GGX_ERR_NULL (s or out NULL), GGX_ERR_MEMORY; *out is NULL then. */
 ggx_status ggx_energy_create(const ggx_shape *s, ggx_energy **out);
 /* Frees e (NULL is allowed). */
 void ggx_energy_free(ggx_energy *e);

@@ -33,7 +33,8 @@ __all__ = [
     "Shape", "Fresnel", "Energy", "SamplerInfo", "BrdfSample", "DirectionSample", "samplers", "status_message",
     "ndf", "ndf_spherical", "p22", "gaussian_curvature", "projected_area", "lune_area", "lambda_", "g1", "g1_smith",
     "g2", "pdf_ndf", "pdf_vndf", "brdf", "bsdf", "albedo", "albedo_avg", "bsdf_albedo", "albedo_iso_table",
-    "albedo_avg_iso_table", "bsdf_albedo_iso_table", "sample", "pdf", "sample_inverse", "sample_ndf", "sample_vndf", "sample_brdf",
+    "albedo_avg_iso_table", "bsdf_albedo_iso_table", "albedo_aniso_table",
+    "sample", "pdf", "sample_inverse", "sample_ndf", "sample_vndf", "sample_brdf",
     "pdf_brdf", "sample_bsdf", "pdf_bsdf", "reflect", "half_reflect", "batch_isa", "set_batch_threads",
 ]
 
@@ -85,6 +86,7 @@ _loop_fresnel = _proto("ggxpy_fresnel", None, _vp, _sz, _inp, _vp)
 _loop_vv_v = _proto("ggxpy_vv_v", None, _vp, _sz, _inp, _vp)
 _loop_iso_table = _proto("ggxpy_albedo_iso_table", None, _i, _sz, _inp, _vp)
 _loop_bsdf_iso_table = _proto("ggxpy_bsdf_albedo_iso_table", None, _sz, _inp, _vp)
+_loop_aniso_table = _proto("ggxpy_albedo_aniso_table", None, _sz, _inp, _vp)
 _loop_sampler_pdf = _proto("ggxpy_sampler_pdf", None, _i, _vp, _d, _sz, _inp, _vp)
 _loop_sample = _proto("ggxpy_sample", None, _i, _vp, _sz, _inp, _vp)
 _loop_inverse = _proto("ggxpy_inverse", None, _i, _vp, _sz, _inp, _vp)
@@ -607,6 +609,12 @@ def bsdf_albedo_iso_table(alpha, eta, mu, dtype=np.float64):
     """R + T of the isotropic rough dielectric from the shipped table (ggx_bsdf_albedo_iso_table); mu > 0: light
     from above, mu < 0: from below. Within 1e-3 for alpha >= 0.02 and |mu| >= 0.0175."""
     return _call(_loop_bsdf_iso_table, (), [(alpha, "alpha", 1), (eta, "eta", 1), (mu, "mu", 1)], dtype)
+
+
+def albedo_aniso_table(alpha_x, alpha_y, v, dtype=np.float64):
+    """E(v) of anisotropic GGX (separable G) from the shipped table (ggx_albedo_aniso_table), v in the shape's frame:
+    within 1e-3 for v.z >= 0.0175."""
+    return _call(_loop_aniso_table, (), [(alpha_x, "alpha_x", 1), (alpha_y, "alpha_y", 1), (v, "v", 3)], dtype)
 
 
 def albedo_avg_iso_table(alpha, masking="separable"):

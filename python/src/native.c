@@ -127,6 +127,11 @@ EXPORT void ggxpy_bsdf_albedo_iso_table(size_t n, const ggxpy_in *in, double *ou
     for (size_t i = 0; i < n; i++) out[i] = ggx_bsdf_albedo_iso_table(num(&in[0], i), num(&in[1], i), num(&in[2], i));
 }
 
+EXPORT void ggxpy_albedo_aniso_table(size_t n, const ggxpy_in *in, double *out)
+{
+    for (size_t i = 0; i < n; i++) out[i] = ggx_albedo_aniso_table(num(&in[0], i), num(&in[1], i), vec(&in[2], i));
+}
+
 /* --- Samplers, by registry id (the caller checks that the entry has the function it asks for) --- */
 
 /* NDF and VNDF: m = f(shape, v, u1, u2). Inputs v, u1, u2. */

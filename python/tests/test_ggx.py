@@ -56,7 +56,7 @@ def c():
         "ggx_sample_brdf": (Sample, P, P, Vec3, D, D), "ggx_sample_brdf_bounded": (Sample, P, P, Vec3, D, D),
         "ggx_sample_bsdf": (Sample, P, D, Vec3, D, D, D, I),
         "ggx_fresnel_eval": (D, P, D), "ggx_albedo_iso_table": (D, D, D, I),
-        "ggx_bsdf_albedo_iso_table": (D, D, D, D),
+        "ggx_bsdf_albedo_iso_table": (D, D, D, D), "ggx_albedo_aniso_table": (D, D, D, Vec3),
         "ggx_shape_ellipsoid": (I, P, D, D, D, D, D), "ggx_shape_matrix": (I, P, P),
         "ggx_fresnel_conductor": (I, P, D, D), "ggx_fresnel_one": (I, P),
         "ggx_energy_create": (I, P, ctypes.POINTER(P)), "ggx_energy_free": (None, P),
@@ -200,6 +200,10 @@ def test_albedo_matches_c(c):
     assert same(ggx.bsdf_albedo_iso_table(al, eta, mu),
                 [c.ggx_bsdf_albedo_iso_table(x, e, y) for x, e, y in zip(al, eta, mu)])
     assert ggx.bsdf_albedo_iso_table(0.3, 1.5, 0.0) == 0.0
+    # the anisotropic table, inside its range (alphas 1e-2 to 2), views of any length and side
+    ax, ay, v = r.uniform(1e-2, 2, N), r.uniform(1e-2, 2, N), r.normal(size=(N, 3))
+    assert same(ggx.albedo_aniso_table(ax, ay, v),
+                [c.ggx_albedo_aniso_table(x, y, Vec3(*map(float, w))) for x, y, w in zip(ax, ay, v)])
 
 
 def test_registry_is_the_librarys(c):

@@ -32,19 +32,25 @@ static double gl_x[16], gl_w[16];
 static pthread_once_t once = PTHREAD_ONCE_INIT;
 static void init_rules(void) { gq_nodes(16, gl_x, gl_w); }
 
-/* A node of the table: I = E / P of ggx_albedo, or for an isotropic shape in the shipped table's range its row
- * (y = i / 32 is the shipped table's row 2 i), instead of a quadrature. */
+/* A node of the table: I = E / P of ggx_albedo, or for a shape in a shipped table's range that table's value at the
+ * node instead of a quadrature: the isotropic table's row (y = i / 32 is its row 2 i), or the anisotropic table's
+ * node (the per-shape table's rows and its columns 0 to 32 are that table's), interpolated in the roughnesses. */
 typedef struct brdf_nodes {
     const ggx_shape *s;
-    int shipped;
+    int shipped; /* 1: the isotropic table, 2: the anisotropic table */
 } brdf_nodes;
 
 static double brdf_node(void *vc, ggx_vec3 v, double y)
 {
     const brdf_nodes *c = vc;
+    const ggx_shape *s = c->s;
     double i_value;
-    if (c->shipped && ggx_internal_iso_table_i(c->s->alpha_x, y, &i_value)) return i_value;
-    return ggx_internal_albedo(c->s, v, 0, TABLE_TOL) / ggx_internal_albedo_scale(c->s, v);
+    if (c->shipped == 1 && ggx_internal_iso_table_i(s->alpha_x, y, &i_value)) return i_value;
+    if (c->shipped == 2) {
+        double x = s->tangent_cos * v.x + s->tangent_sin * v.y, yy = s->tangent_cos * v.y - s->tangent_sin * v.x;
+        if (ggx_internal_aniso_table_i(s->alpha_x, s->alpha_y, y, atan2(fabs(yy), fabs(x)), &i_value)) return i_value;
+    }
+    return ggx_internal_albedo(s, v, 0, TABLE_TOL) / ggx_internal_albedo_scale(s, v);
 }
 
 GGX_API ggx_status ggx_energy_create(const ggx_shape *s, ggx_energy **out)
@@ -56,7 +62,11 @@ GGX_API ggx_status ggx_energy_create(const ggx_shape *s, ggx_energy **out)
     if (!e) return GGX_ERR_MEMORY;
     e->s = *s;
     double probe;
-    brdf_nodes c = {&e->s, ggx_internal_is_isotropic(s) && ggx_internal_iso_table_i(s->alpha_x, 1.0, &probe)};
+    brdf_nodes c = {&e->s, 0};
+    if (ggx_internal_is_isotropic(s) && ggx_internal_iso_table_i(s->alpha_x, 1.0, &probe))
+        c.shipped = 1;
+    else if (s->kind != GGX_SHAPE_SKEWED && ggx_internal_aniso_table_i(s->alpha_x, s->alpha_y, 1.0, 0.0, &probe))
+        c.shipped = 2;
     ggx_internal_etab_build(&e->t, &e->s, ROWS, COLUMNS, (double *)(e + 1), brdf_node, &c);
     *out = e;
     return GGX_OK;

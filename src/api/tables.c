@@ -146,3 +146,76 @@ GGX_API double ggx_bsdf_albedo_iso_table(double alpha, double eta, double mu)
     double e = ggx_internal_albedo_scale(&s, v) * i_value;
     return e > 0 ? (e < 1 ? e : 1) : 0;
 }
+
+/* The anisotropic table (src/tables/albedo_aniso.inc, grid src/tables/aniso_grid.h): Catmull-Rom in (y, phi,
+ * alpha_x, alpha_y) of I = E / P, times P. */
+#include "../common/albedo_rows.h"
+#include "../tables/albedo_aniso.inc"
+#include "../tables/aniso_grid.h"
+#include "energy_table.h"
+
+/* Node at roughness indices (ax, ay) in [-1, ANI_NA], row i and azimuth column p, with ghosts: beyond either end of
+ * the quarter turn a column continues mirrored (E is even about both tangent axes), past the pole a row continues
+ * mirrored (the view at phi + pi, which is the view at phi), below grazing linear extrapolation. Pairs with
+ * ax > ay are read from (ay, ax) at the complementary azimuth. */
+static double ani_node(int ax, int ay, int i, int p)
+{
+    if (p < 0) p = -p;
+    if (p > ANI_NP - 1) p = 2 * (ANI_NP - 1) - p;
+    if (ax > ay) {
+        int t = ax;
+        ax = ay;
+        ay = t;
+        p = ANI_NP - 1 - p;
+    }
+    if (i > ANI_NY - 1) i = 2 * (ANI_NY - 1) - i;
+    const float(*t)[ANI_NP] = aniso_albedo_tab[ani_pair(ax, ay)];
+    return i < 0 ? 2.0 * t[0][p] - t[1][p] : (double)t[i][p];
+}
+
+/* I at row coordinate y in [0, 1] and azimuth phi in [0, pi / 2] from the axis of alpha_x; 0 when a roughness is
+ * outside the table. */
+static int ani_i(double alpha_x, double alpha_y, double y, double phi, double *out)
+{
+    double xa = ani_index_of_alpha(alpha_x), xb = ani_index_of_alpha(alpha_y);
+    if (!(xa >= 0 && xa <= ANI_NA - 1 && xb >= 0 && xb <= ANI_NA - 1)) return 0;
+    int ja = (int)xa, jb = (int)xb, i, p;
+    if (ja > ANI_NA - 2) ja = ANI_NA - 2;
+    if (jb > ANI_NA - 2) jb = ANI_NA - 2;
+    double fa = xa - ja, fb = xb - jb, fy, fp;
+    i = cell(y, ANI_NY, &fy);
+    p = cell(phi * (2.0 / GGX_PI), ANI_NP, &fp);
+    double cb[4];
+    for (int db = -1; db <= 2; db++) {
+        double ca[4];
+        for (int da = -1; da <= 2; da++) {
+            double cp[4];
+            for (int dp = -1; dp <= 2; dp++) {
+                double q[4];
+                for (int di = -1; di <= 2; di++) q[di + 1] = ani_node(ja + da, jb + db, i + di, p + dp);
+                cp[dp + 1] = catmull_rom(q, fy);
+            }
+            ca[da + 1] = catmull_rom(cp, fp);
+        }
+        cb[db + 1] = catmull_rom(ca, fa);
+    }
+    *out = catmull_rom(cb, fb);
+    return 1;
+}
+
+int ggx_internal_aniso_table_i(double alpha_x, double alpha_y, double y, double phi, double *i_value)
+{
+    return ani_i(alpha_x, alpha_y, y, phi, i_value);
+}
+
+GGX_API double ggx_albedo_aniso_table(double alpha_x, double alpha_y, ggx_vec3 v)
+{
+    ggx_shape s;
+    ggx_vec3 u;
+    if (ggx_shape_aniso(&s, alpha_x, alpha_y) != GGX_OK || !ggx_internal_unit_up(v, &u)) return 0.0;
+    double st = sqrt(u.x * u.x + u.y * u.y), i_value;
+    double y = rows_y_of_theta(atan2(st, u.z)), phi = atan2(fabs(u.y), fabs(u.x));
+    if (!ani_i(alpha_x, alpha_y, y, phi, &i_value)) return ggx_albedo(&s, u);
+    double e = ggx_internal_albedo_scale(&s, u) * i_value;
+    return e > 0 ? (e < 1 ? e : 1) : 0;
+}
