@@ -5,6 +5,7 @@
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
+#include <string.h>
 
 #include "figure.h"
 #include "testlib.h"
@@ -252,6 +253,30 @@ static void grey_region(void **state)
     }
 }
 
+/* The furnace figure of an anisotropic shape adds the isotropic E at sqrt(alpha_x alpha_y) that renderers use, read
+ * from the shipped table; isotropic and skewed shapes have no such curve. */
+static void furnace_curves(void **state)
+{
+    (void)state;
+    static double x[400], y[400];
+    char label[96];
+    const shape_params P[3] = {{0.15, 0.5, 0, 0, 0}, {0.3, 0.3, 0, 0, 0}, {0.1, 0.4, 0.2, 0.1, 0}};
+    for (int k = 0; k < 3; k++) {
+        ggx_shape s;
+        make_shape(&s, P[k]);
+        figure_spec f = {FIG_FURNACE, &s, dir(0, 0), NULL, 0, 0, NAN, "", ""};
+        int nc = 0;
+        while (figure_curve(&f, nc, x, y, 400, label, sizeof label) > 0) nc++;
+        CHECK(nc == (k == 0 ? 5 : 4), "shape %d: %d curves", k, nc);
+        if (k != 0) continue;
+        int n = figure_curve(&f, 4, x, y, 400, label, sizeof label);
+        CHECK(strstr(label, "0.274") != NULL, "label '%s'", label);
+        for (int i = 0; i < n; i += 30)
+            CHECK_CLOSE(y[i], ggx_albedo_iso_table(sqrt(0.15 * 0.5), cos(x[i] * T_PI / 180), GGX_MASKING_SEPARABLE), 0,
+                        1e-12, "the isotropic curve at theta %g", x[i]);
+    }
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -259,6 +284,7 @@ int main(void)
         cmocka_unit_test(peak_pixel),
         cmocka_unit_test(side_views),
         cmocka_unit_test(grey_region),
+        cmocka_unit_test(furnace_curves),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

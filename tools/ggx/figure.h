@@ -51,6 +51,10 @@ int figure_has_grey(const figure_spec *f);
  * visible half is not a sliver (phi_v = 90 on the seeds' shape, narrow along x). */
 double figure_default_from(const figure_spec *f);
 
+/* Curve k of a line figure (FIG_G1 and after): its first max points into x, y and its legend into label (n bytes);
+ * returns the number of points written, or -1 when the figure has no curve k. Not thread-safe. */
+int figure_curve(const figure_spec *f, int k, double *x, double *y, int max, char *label, size_t n);
+
 /* Draws the figure into the rectangle (x, y, w, h) of cr; *proj (may be NULL) receives the hemisphere's
  * projection (hemisphere figures). */
 void figure_draw(cairo_t *cr, const theme *th, double x, double y, double w, double h, const figure_spec *f,

@@ -705,8 +705,34 @@ static int line_series(const figure_spec *f, series *sr, const char **xlabel, co
                 if (i % 4 == 0 || i == 179) e->x[e->n] = th, e->y[e->n++] = ggx_albedo(f->s, v);
             }
         }
+        /* an anisotropic shape: the isotropic E at sqrt(alpha_x alpha_y), which renderers use in its place */
+        const ggx_shape *s = f->s;
+        if (s->kind != GGX_SHAPE_SKEWED && fabs(s->alpha_x - s->alpha_y) > 1e-12 * s->alpha_y) {
+            double a = sqrt(s->alpha_x * s->alpha_y);
+            series *r = &sr[ns++];
+            r->n = 0;
+            snprintf(r->label, sizeof r->label, "isotropic E at √(αx αy) = %.3g", a);
+            for (int i = 0; i <= 179; i++) {
+                double th = fmin(0.5 * i, 89.9);
+                r->x[r->n] = th, r->y[r->n++] = ggx_albedo_iso_table(a, cos(th * DEG), GGX_MASKING_SEPARABLE);
+            }
+        }
     }
     return ns;
+}
+
+int figure_curve(const figure_spec *f, int k, double *x, double *y, int max, char *label, size_t n)
+{
+    static series sr[8];
+    const char *xlabel, *ylabel;
+    int logy;
+    if (f->kind < FIG_G1) return -1;
+    int ns = line_series(f, sr, &xlabel, &ylabel, &logy);
+    if (k < 0 || k >= ns) return -1;
+    int m = sr[k].n < max ? sr[k].n : max;
+    for (int i = 0; i < m; i++) x[i] = sr[k].x[i], y[i] = sr[k].y[i];
+    if (label && n) snprintf(label, n, "%s", sr[k].label);
+    return m;
 }
 
 static void draw_lines(cairo_t *cr, const theme *th, double x, double y, double w, double h, const figure_spec *f)
