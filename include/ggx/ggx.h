@@ -556,14 +556,14 @@ double ggx_albedo_aniso_table(double alpha_x, double alpha_y, ggx_vec3 v);
  * threads may use one at once.
  * ------------------------------------------------------------------------------------------------------------ */
 
-/* A shape's albedo table (opaque; about 100 KB for anisotropic and skewed shapes, 0.8 KB for isotropic ones). */
+/* A shape's albedo table (opaque; about 100 KB for anisotropic and skewed shapes, 1.6 KB for isotropic ones). */
 typedef struct ggx_energy ggx_energy;
 
 /* Builds the table of shape s (copied; s may be freed after): 33 x 128 albedos by ggx_albedo's quadrature (a quarter
- * of the columns for unskewed shapes, whose E is even about the tangent axes; isotropic shapes read their 33 from the
- * shipped table of ggx_albedo_iso_table when alpha is in [1e-3, 2], unskewed anisotropic ones their 33 x 33 from
+ * of the columns for unskewed shapes, whose E is even about the tangent axes; isotropic shapes have 65 x 1 and read
+ * them from the shipped table of ggx_albedo_iso_table when alpha is in [1e-3, 2], unskewed anisotropic ones their 33 x 33 from
  * that of ggx_albedo_aniso_table when both alphas are in [1e-2, 2]). Cost, on one core: microseconds for shapes read
- * from a shipped table (0.02 to 0.07 s for isotropic ones and 1 to 2 s for anisotropic ones outside), 5 to 7 s for
+ * from a shipped table (0.02 to 0.15 s for isotropic ones and 1 to 2 s for anisotropic ones outside), 5 to 7 s for
  * skewed ones (docs/energy.md has the measured times); build tables once per material, at scene setup. Thread-safe. Errors: GGX_ERR_NULL (s or out NULL), GGX_ERR_MEMORY; *out is NULL then. */
 ggx_status ggx_energy_create(const ggx_shape *s, ggx_energy **out);
 /* Frees e (NULL is allowed). */

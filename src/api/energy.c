@@ -13,12 +13,14 @@
 #include "../common/gauss.h"
 #include "energy_table.h"
 
-/* Table size: 33 rows in y (y = i / 32: every second row of the shipped isotropic table), 128 columns on a full turn.
- * E of anisotropic shapes has sharp features in the azimuth at grazing (alpha(phi) changes fast near the axis of the
- * smaller alpha): 64 columns left errors of 1.6e-3 to 3.8e-3 at 89 degrees, 128 columns 1.5e-4 to 4e-4
- * (docs/energy.md). The nodes are computed to TABLE_TOL, well below the interpolation error. */
+/* Table size: 33 rows in y (y = i / 32: every second row of the shipped isotropic table, and the anisotropic table's
+ * rows), 128 columns on a full turn. E of anisotropic shapes has sharp features in the azimuth at grazing (alpha(phi)
+ * changes fast near the axis of the smaller alpha): 64 columns left errors of 1.6e-3 to 3.8e-3 at 89 degrees, 128
+ * columns 1.5e-4 to 4e-4 (docs/energy.md). Isotropic shapes, one column, take 65 rows (the shipped isotropic
+ * table's): with 33, alpha 0.025 erred by 8.5e-4 at 89 degrees. The nodes are computed to TABLE_TOL, well below the
+ * interpolation error. */
 #define TABLE_TOL 1e-4
-enum { ROWS = 33, COLUMNS = 128 };
+enum { ROWS = 33, ISO_ROWS = 65, COLUMNS = 128 };
 
 struct ggx_energy {
     ggx_shape s;
@@ -33,7 +35,7 @@ static pthread_once_t once = PTHREAD_ONCE_INIT;
 static void init_rules(void) { gq_nodes(16, gl_x, gl_w); }
 
 /* A node of the table: I = E / P of ggx_albedo, or for a shape in a shipped table's range that table's value at the
- * node instead of a quadrature: the isotropic table's row (y = i / 32 is its row 2 i), or the anisotropic table's
+ * node instead of a quadrature: the isotropic table's row (the same rows), or the anisotropic table's
  * node (the per-shape table's rows and its columns 0 to 32 are that table's), interpolated in the roughnesses. */
 typedef struct brdf_nodes {
     const ggx_shape *s;
@@ -58,7 +60,8 @@ GGX_API ggx_status ggx_energy_create(const ggx_shape *s, ggx_energy **out)
     if (!out) return GGX_ERR_NULL;
     *out = NULL;
     if (!s) return GGX_ERR_NULL;
-    ggx_energy *e = malloc(sizeof *e + sizeof(double) * ggx_internal_etab_size(s, ROWS, COLUMNS));
+    int rows = ggx_internal_is_isotropic(s) ? ISO_ROWS : ROWS;
+    ggx_energy *e = malloc(sizeof *e + sizeof(double) * ggx_internal_etab_size(s, rows, COLUMNS));
     if (!e) return GGX_ERR_MEMORY;
     e->s = *s;
     double probe;
@@ -67,7 +70,7 @@ GGX_API ggx_status ggx_energy_create(const ggx_shape *s, ggx_energy **out)
         c.shipped = 1;
     else if (s->kind != GGX_SHAPE_SKEWED && ggx_internal_aniso_table_i(s->alpha_x, s->alpha_y, 1.0, 0.0, &probe))
         c.shipped = 2;
-    ggx_internal_etab_build(&e->t, &e->s, ROWS, COLUMNS, (double *)(e + 1), brdf_node, &c);
+    ggx_internal_etab_build(&e->t, &e->s, rows, COLUMNS, (double *)(e + 1), brdf_node, &c);
     *out = e;
     return GGX_OK;
 }
