@@ -523,19 +523,22 @@ double ggx_albedo_avg_iso_table(double alpha, ggx_masking g);
  * light arriving along a direction with cos theta = mu: mu > 0 from above, mu < 0 from below; eta as for
  * ggx_bsdf_albedo. Read from a shipped table of 65 views x 33 roughnesses (1e-2 to 2) x 48 relative indices (the
  * index the light meets, eta from above and 1 / eta from below, in [1.05, 3] and [1 / 3, 1 / 1.05]), by tricubic
- * interpolation, about 0.3 microsecond: within 1e-3 absolute of ggx_bsdf_albedo for |mu| >= 0.0175 (89 degrees); the
- * largest error measured over random (alpha, eta, mu) is in docs/energy.md. Outside the table's range (but accepted
- * by ggx_shape_iso and ggx_bsdf_albedo) it computes the quadrature instead (milliseconds). mu = 0, NaN, eta outside
- * (0, 1e300] or an alpha that ggx_shape_iso rejects: 0; |mu| > 1 reads as 1. In [0, 1]. Thread-safe. */
+ * interpolation, about 0.3 microsecond: within 1e-3 absolute of ggx_bsdf_albedo for |mu| >= 0.0175 (89 degrees) and
+ * alpha >= 0.025; below that, near the critical angle of light meeting the denser side with eta_r near 1 / 1.05,
+ * errors up to 1.2e-3 were measured (docs/energy.md has the largest errors found). Outside the table's range (but
+ * accepted by ggx_shape_iso and ggx_bsdf_albedo) it computes the quadrature instead (milliseconds). mu = 0, NaN,
+ * eta outside (0, 1e300] or an alpha that ggx_shape_iso rejects: 0; |mu| > 1 reads as 1. In [0, 1]. Thread-safe. */
 double ggx_bsdf_albedo_iso_table(double alpha, double eta, double mu);
 /* E(v) of anisotropic GGX (ggx_shape_aniso(alpha_x, alpha_y): ggx_albedo, separable G) at a view v in the shape's
  * frame (x along alpha_x; v need not be unit; a rotated shape's view is first turned into its frame). Read from a
  * shipped table of 33 views x 33 azimuths (a quarter turn: E is even about both tangent axes) x 21 x 21 roughnesses
  * (1e-2 to 2, the pairs alpha_x <= alpha_y stored) by interpolation in all four, about 0.5 microsecond:
- * within 1e-3 absolute of ggx_albedo for v.z >= 0.0175 (89 degrees) and alpha_x / alpha_y in [1/20, 20] (errors
- * up to 3.8e-3 measured beyond, at grazing near the axis of the smaller alpha); the largest errors measured are in
- * docs/energy.md (9.7e-4 at alphas near 0.02 at 89 degrees). A roughness outside [1e-2, 2] (but accepted by
- * ggx_shape_aniso): the quadrature instead (milliseconds). v.z <= 0, a zero or non-finite v, or alphas that
+ * within 1e-3 absolute of ggx_albedo for v.z >= 0.0175 (89 degrees) and alpha_x / alpha_y in [1/4, 4]; within
+ * 3e-3 for ratios to 20. The large errors are at grazing, near the axis of the smaller alpha when it is below
+ * about 0.05, where E changes faster with the azimuth and the elevation than 33 nodes follow: 9.8e-4 measured at
+ * ratio 4, 2.8e-3 at ratio 20, 3.8e-3 beyond (docs/energy.md). Per-shape tables (ggx_energy_create) share the
+ * layout and these errors. A roughness outside [1e-2, 2] (but accepted by ggx_shape_aniso): the quadrature
+ * instead (milliseconds). v.z <= 0, a zero or non-finite v, or alphas that
  * ggx_shape_aniso rejects: 0. In [0, 1]. Thread-safe. */
 double ggx_albedo_aniso_table(double alpha_x, double alpha_y, ggx_vec3 v);
 
@@ -549,8 +552,10 @@ double ggx_albedo_aniso_table(double alpha_x, double alpha_y, ggx_vec3 v);
  * table of ggx_albedo (separable G, the library's BRDF) built by ggx_energy_create, read by interpolation, and E_avg
  * is the table's own average, so the compensated albedo is 1 - (E - E_table)(wi): within 1e-3 of 1 for every shape
  * and view with wi.z >= 0.0175 (89 degrees) that tests/test_energy.c tries (isotropic alpha 0.01 to 1, anisotropic
- * to 1:10, rotated, skewed to 0.5 rad; the largest error measured is in docs/energy.md). F_avg is the cosine-weighted
- * average of F (ggx_fresnel_avg): one channel, one wavelength, as everywhere in this API.
+ * to 1:10, rotated, skewed to 0.5 rad; the largest error measured is in docs/energy.md). Not everywhere: an
+ * anisotropic shape whose smaller alpha is below about 0.05, with a ratio above 4, errs by up to 2.8e-3 (ratio 20)
+ * at grazing views near the axis of the smaller alpha (the table's error; see ggx_albedo_aniso_table). F_avg is the
+ * cosine-weighted average of F (ggx_fresnel_avg): one channel, one wavelength, as everywhere in this API.
  * A NULL ggx_fresnel means F = 1. Directions need not be unit (they are normalised); wi.z <= 0 or wo.z <= 0, zero or
  * non-finite vectors give 0 or an invalid sample. An energy object is read-only after creation: any number of
  * threads may use one at once.
@@ -561,18 +566,20 @@ typedef struct ggx_energy ggx_energy;
 
 /* Builds the table of shape s (copied; s may be freed after): 33 x 128 albedos by ggx_albedo's quadrature (a quarter
  * of the columns for unskewed shapes, whose E is even about the tangent axes; isotropic shapes have 65 x 1 and read
- * them from the shipped table of ggx_albedo_iso_table when alpha is in [1e-3, 2], unskewed anisotropic ones their 33 x 33 from
- * that of ggx_albedo_aniso_table when both alphas are in [1e-2, 2]). Cost, on one core: microseconds for shapes read
- * from a shipped table (0.02 to 0.15 s for isotropic ones and 1 to 2 s for anisotropic ones outside), 5 to 7 s for
- * skewed ones (docs/energy.md has the measured times); build tables once per material, at scene setup. Thread-safe. Errors: GGX_ERR_NULL (s or out NULL), GGX_ERR_MEMORY; *out is NULL then. */
+ * them from the shipped table of ggx_albedo_iso_table when alpha is in [1e-3, 2], unskewed anisotropic ones their
+ * 33 x 33 from that of ggx_albedo_aniso_table when both alphas are in [1e-2, 2]). Cost, on one core: microseconds for
+ * shapes read from a shipped table (0.02 to 0.15 s for isotropic ones and 1 to 2 s for anisotropic ones outside), 5 to
+ * 7 s for skewed ones (docs/energy.md has the measured times); build tables once per material, at scene setup.
+ * Thread-safe. Errors: GGX_ERR_NULL (s or out NULL), GGX_ERR_MEMORY; *out is NULL then. */
 ggx_status ggx_energy_create(const ggx_shape *s, ggx_energy **out);
 /* Frees e (NULL is allowed). */
 void ggx_energy_free(ggx_energy *e);
 /* The shape e was built for; NULL for e NULL. */
 const ggx_shape *ggx_energy_shape(const ggx_energy *e);
 
-/* E(v) from the table: ggx_albedo(s, v) within 1e-3 absolute (the tests measure it over random views), in [0, 1];
- * about 100 ns. v.z <= 0: 0. */
+/* E(v) from the table: ggx_albedo(s, v) within 1e-3 absolute (the tests measure it over random views; for
+ * anisotropic shapes with ratios above 4 and a smaller alpha below about 0.05, up to 2.8e-3 at grazing: see the
+ * section's head), in [0, 1]; about 100 ns. v.z <= 0: 0. */
 double ggx_energy_albedo(const ggx_energy *e, ggx_vec3 v);
 /* E_avg of the table: (1 / pi) int E(v) v.z dv of its interpolant, within 1e-3 of ggx_albedo_avg. */
 double ggx_energy_albedo_avg(const ggx_energy *e);

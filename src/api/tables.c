@@ -109,9 +109,11 @@ static double bsdf_node(int h, int k, int j, int i)
 /* I at row coordinate y in [0, 1], alpha and eta_r; 0 when (alpha, eta_r) is outside the table. */
 static int bsdf_i(double alpha, double eta_r, double y, double *out)
 {
+    if (!(alpha >= BSDF_AMIN && alpha <= BSDF_AMAX && bsdf_eta_in(eta_r))) return 0;
     int h;
     double z = bsdf_z_of_eta(eta_r, &h), x = bsdf_x_of_alpha(alpha);
-    if (!(z >= 0 && z <= 1 && x >= 0 && x <= 1 && eta_r != 1.0)) return 0;
+    z = z > 0 ? (z < 1 ? z : 1) : 0; /* at the ends, within rounding */
+    x = x > 0 ? (x < 1 ? x : 1) : 0;
     double fy, fx, fz;
     int i = cell(y, BSDF_NY, &fy), j = cell(x, BSDF_NA, &fx), k = cell(z, BSDF_NE, &fz);
     double ce[4];
@@ -177,8 +179,10 @@ static double ani_node(int ax, int ay, int i, int p)
  * outside the table. */
 static int ani_i(double alpha_x, double alpha_y, double y, double phi, double *out)
 {
+    if (!(alpha_x >= ANI_AMIN && alpha_x <= ANI_AMAX && alpha_y >= ANI_AMIN && alpha_y <= ANI_AMAX)) return 0;
     double xa = ani_index_of_alpha(alpha_x), xb = ani_index_of_alpha(alpha_y);
-    if (!(xa >= 0 && xa <= ANI_NA - 1 && xb >= 0 && xb <= ANI_NA - 1)) return 0;
+    xa = xa > 0 ? (xa < ANI_NA - 1 ? xa : ANI_NA - 1) : 0; /* at the ends, within rounding */
+    xb = xb > 0 ? (xb < ANI_NA - 1 ? xb : ANI_NA - 1) : 0;
     int ja = (int)xa, jb = (int)xb, i, p;
     if (ja > ANI_NA - 2) ja = ANI_NA - 2;
     if (jb > ANI_NA - 2) jb = ANI_NA - 2;

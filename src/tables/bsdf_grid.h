@@ -25,8 +25,10 @@
 enum { BSDF_NY = ISO_NY, BSDF_NA = 33, BSDF_NE = 24 };
 #define BSDF_AMIN 1e-2
 #define BSDF_AMAX 2.0
-#define BSDF_S0 (0.05 / 2.05) /* eta_r = 1.05 */
-#define BSDF_S1 0.5           /* eta_r = 3 */
+#define BSDF_ETA0 1.05
+#define BSDF_ETA1 3.0
+#define BSDF_S0 (0.05 / 2.05) /* eta_r = BSDF_ETA0 */
+#define BSDF_S1 0.5           /* eta_r = BSDF_ETA1 */
 
 static inline double bsdf_alpha_of_x(double x) { return BSDF_AMIN * pow(BSDF_AMAX / BSDF_AMIN, x); }
 static inline double bsdf_x_of_alpha(double a) { return log(a / BSDF_AMIN) / log(BSDF_AMAX / BSDF_AMIN); }
@@ -37,6 +39,12 @@ static inline double bsdf_eta_of_z(int h, double z)
     double q0 = sqrt(sqrt(BSDF_S0)), q = q0 + (sqrt(sqrt(BSDF_S1)) - q0) * z, s = (q * q) * (q * q);
     double e = (1.0 + s) / (1.0 - s);
     return h ? 1.0 / e : e;
+}
+/* Whether eta_r is in the table: [BSDF_ETA0, BSDF_ETA1] or its inverse, tested on eta_r itself (z, computed with
+ * rounding, could read a node a few ulps outside). */
+static inline int bsdf_eta_in(double eta_r)
+{
+    return (eta_r >= BSDF_ETA0 && eta_r <= BSDF_ETA1) || (eta_r * BSDF_ETA0 <= 1.0 && eta_r * BSDF_ETA1 >= 1.0);
 }
 /* The half and the coordinate z of eta_r > 0, eta_r != 1 (z outside [0, 1] beyond the table's range). */
 static inline double bsdf_z_of_eta(double eta_r, int *h)
