@@ -533,11 +533,11 @@ double ggx_bsdf_albedo_iso_table(double alpha, double eta, double mu);
  * frame (x along alpha_x; v need not be unit; a rotated shape's view is first turned into its frame). Read from a
  * shipped table of 33 views x 33 azimuths (a quarter turn: E is even about both tangent axes) x 21 x 21 roughnesses
  * (1e-2 to 2, the pairs alpha_x <= alpha_y stored) by interpolation in all four, about 0.5 microsecond:
- * within 1e-3 absolute of ggx_albedo for v.z >= 0.0175 (89 degrees) and alpha_x / alpha_y in [1/4, 4]; within
- * 3e-3 for ratios to 20. The large errors are at grazing, near the axis of the smaller alpha when it is below
- * about 0.05, where E changes faster with the azimuth and the elevation than 33 nodes follow: 9.8e-4 measured at
- * ratio 4, 2.8e-3 at ratio 20, 3.8e-3 beyond (docs/energy.md). Per-shape tables (ggx_energy_create) share the
- * layout and these errors. A roughness outside [1e-2, 2] (but accepted by ggx_shape_aniso): the quadrature
+ * within 1e-3 absolute of ggx_albedo for v.z >= 0.0175 (89 degrees) and alpha_x / alpha_y in [1/20, 20]. The
+ * largest errors are at 89 degrees with alphas near 0.02, where E changes faster with the elevation than 33 rows
+ * follow: 9.84e-4 found by a search of every ratio (docs/energy.md); 5.2e-4 measured at ratios 20 to 50. The
+ * azimuths are warped towards the tangent axes (common/albedo_rows.h); per-shape tables (ggx_energy_create) share
+ * the layout and these errors. A roughness outside [1e-2, 2] (but accepted by ggx_shape_aniso): the quadrature
  * instead (milliseconds). v.z <= 0, a zero or non-finite v, or alphas that
  * ggx_shape_aniso rejects: 0. In [0, 1]. Thread-safe. */
 double ggx_albedo_aniso_table(double alpha_x, double alpha_y, ggx_vec3 v);
@@ -552,10 +552,9 @@ double ggx_albedo_aniso_table(double alpha_x, double alpha_y, ggx_vec3 v);
  * table of ggx_albedo (separable G, the library's BRDF) built by ggx_energy_create, read by interpolation, and E_avg
  * is the table's own average, so the compensated albedo is 1 - (E - E_table)(wi): within 1e-3 of 1 for every shape
  * and view with wi.z >= 0.0175 (89 degrees) that tests/test_energy.c tries (isotropic alpha 0.01 to 1, anisotropic
- * to 1:10, rotated, skewed to 0.5 rad; the largest error measured is in docs/energy.md). Not everywhere: an
- * anisotropic shape whose smaller alpha is below about 0.05, with a ratio above 4, errs by up to 2.8e-3 (ratio 20)
- * at grazing views near the axis of the smaller alpha (the table's error; see ggx_albedo_aniso_table). F_avg is the
- * cosine-weighted average of F (ggx_fresnel_avg): one channel, one wavelength, as everywhere in this API.
+ * to 1:10, rotated, skewed to 0.5 rad; the largest error measured is in docs/energy.md); for unskewed anisotropic
+ * shapes the table's error is that of ggx_albedo_aniso_table (within 1e-3 to 1:20). F_avg is the cosine-weighted
+ * average of F (ggx_fresnel_avg): one channel, one wavelength, as everywhere in this API.
  * A NULL ggx_fresnel means F = 1. Directions need not be unit (they are normalised); wi.z <= 0 or wo.z <= 0, zero or
  * non-finite vectors give 0 or an invalid sample. An energy object is read-only after creation: any number of
  * threads may use one at once.
@@ -577,9 +576,9 @@ void ggx_energy_free(ggx_energy *e);
 /* The shape e was built for; NULL for e NULL. */
 const ggx_shape *ggx_energy_shape(const ggx_energy *e);
 
-/* E(v) from the table: ggx_albedo(s, v) within 1e-3 absolute (the tests measure it over random views; for
- * anisotropic shapes with ratios above 4 and a smaller alpha below about 0.05, up to 2.8e-3 at grazing: see the
- * section's head), in [0, 1]; about 100 ns. v.z <= 0: 0. */
+/* E(v) from the table: ggx_albedo(s, v) within 1e-3 absolute (the tests measure it over random views and, for
+ * unskewed anisotropic shapes, on the slices where ggx_albedo_aniso_table errs most), in [0, 1]; about 100 ns.
+ * v.z <= 0: 0. */
 double ggx_energy_albedo(const ggx_energy *e, ggx_vec3 v);
 /* E_avg of the table: (1 / pi) int E(v) v.z dv of its interpolant, within 1e-3 of ggx_albedo_avg. */
 double ggx_energy_albedo_avg(const ggx_energy *e);

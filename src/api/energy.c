@@ -10,6 +10,7 @@
 #include <pthread.h>
 #include <stdlib.h>
 
+#include "../common/albedo_rows.h"
 #include "../common/gauss.h"
 #include "energy_table.h"
 
@@ -50,7 +51,8 @@ static double brdf_node(void *vc, ggx_vec3 v, double y)
     if (c->shipped == 1 && ggx_internal_iso_table_i(s->alpha_x, y, &i_value)) return i_value;
     if (c->shipped == 2) {
         double x = s->tangent_cos * v.x + s->tangent_sin * v.y, yy = s->tangent_cos * v.y - s->tangent_sin * v.x;
-        if (ggx_internal_aniso_table_i(s->alpha_x, s->alpha_y, y, atan2(fabs(yy), fabs(x)), &i_value)) return i_value;
+        if (ggx_internal_aniso_table_i(s->alpha_x, s->alpha_y, y, cols_psi_of_xy(fabs(x), fabs(yy), COLS_WARP_K), &i_value))
+            return i_value;
     }
     return ggx_internal_albedo(s, v, 0, TABLE_TOL) / ggx_internal_albedo_scale(s, v);
 }
@@ -70,7 +72,7 @@ GGX_API ggx_status ggx_energy_create(const ggx_shape *s, ggx_energy **out)
         c.shipped = 1;
     else if (s->kind != GGX_SHAPE_SKEWED && ggx_internal_aniso_table_i(s->alpha_x, s->alpha_y, 1.0, 0.0, &probe))
         c.shipped = 2;
-    ggx_internal_etab_build(&e->t, &e->s, rows, COLUMNS, (double *)(e + 1), brdf_node, &c);
+    ggx_internal_etab_build(&e->t, &e->s, rows, COLUMNS, COLS_WARP_K, (double *)(e + 1), brdf_node, &c);
     *out = e;
     return GGX_OK;
 }

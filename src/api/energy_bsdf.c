@@ -61,7 +61,9 @@ static double bsdf_node(void *vc, ggx_vec3 v, double y)
 static void *build_side(void *vc)
 {
     bsdf_nodes *c = vc;
-    ggx_internal_etab_build(&c->e->side[c->sgn > 0 ? 0 : 1], &c->e->s, ROWS, COLUMNS, c->storage, bsdf_node, c);
+    /* uniform azimuths: the warp that serves the conductor (denser at the axes) left 4.0e-3 here from below, for
+     * (0.1, 1) rotated, eta 1.5, at 86 degrees, where the uniform columns leave 3.9e-4 */
+    ggx_internal_etab_build(&c->e->side[c->sgn > 0 ? 0 : 1], &c->e->s, ROWS, COLUMNS, 1.0, c->storage, bsdf_node, c);
     return NULL;
 }
 

@@ -5,7 +5,9 @@
  * of Walter's min through n for skewed shapes; the table holds I at nodes
  *   mu = sin(pi y^2 / 2), y = i / (t->nm - 1)        (theta = (pi / 2)(1 - y^2): dense towards grazing, and linear in
  *                                                  theta at the pole, where I is smooth in the view's components)
- *   phi = phi0 + 2 pi j / np                      (phi0: the axis of alpha_x for unskewed shapes)
+ *   phi = phi0 + W(2 pi j / np)                   (phi0: the axis of alpha_x for unskewed shapes; W the columns'
+ *                                                  warp of common/albedo_rows.h, denser at the tangent axes, for
+ *                                                  the conductor's unskewed shapes, else the identity)
  * and is read by Catmull-Rom interpolation in (y, phi). Across the pole a column continues as the opposite column
  * (the view at (y, phi) beyond y = 1 is the view at (2 - y, phi + pi)), so the pole needs no special case; below
  * y = 0 the rows are extrapolated. Isotropic shapes need one column, unskewed ones a quarter turn (E is even about
@@ -32,6 +34,13 @@ static pthread_once_t once = PTHREAD_ONCE_INIT;
 static void init_rule(void) { gq_nodes(CELL_GL, cell_x, cell_w); }
 
 static double mu_of_y(double y) { return sin(0.5 * GGX_PI * y * y); }
+
+/* The azimuth of column coordinate q (in columns, any real): phi0 + W(2 pi q / np). */
+static double phi_of_col(const energy_table *t, double q)
+{
+    double psi = 2.0 * GGX_PI * q / t->np;
+    return t->phi0 + (t->warp == 1.0 ? psi : cols_phi_of_psi(psi, t->warp));
+}
 
 static ggx_vec3 view_at(double y, double phi)
 {
@@ -66,7 +75,9 @@ static void table_cell(const energy_table *t, ggx_vec3 w, int *i, double *fy, in
     *j = 0;
     *fp = 0.0;
     if (t->np == 1) return;
-    double p = (atan2(w.y, w.x) - t->phi0) * (t->np / (2.0 * GGX_PI));
+    double x = t->cos0 * w.x + t->sin0 * w.y, yy = t->cos0 * w.y - t->sin0 * w.x; /* in the frame of phi0 */
+    double psi = t->warp == 1.0 ? atan2(yy, x) : cols_psi_of_xy(x, yy, t->warp);
+    double p = psi * (t->np / (2.0 * GGX_PI));
     p -= t->np * floor(p / t->np);
     *j = (int)p;
     if (*j > t->np - 1) *j = t->np - 1;
@@ -115,8 +126,8 @@ size_t ggx_internal_etab_size(const ggx_shape *s, int nm, int np_full)
     return (size_t)nm * np + (size_t)(nm + 2) * pw + (size_t)(nm - 1) * np + 1;
 }
 
-void ggx_internal_etab_build(energy_table *t, const ggx_shape *s, int nm, int np_full, double *storage, energy_node_fn fn,
-                        void *ctx)
+void ggx_internal_etab_build(energy_table *t, const ggx_shape *s, int nm, int np_full, double warp, double *storage,
+                             energy_node_fn fn, void *ctx)
 {
     pthread_once(&once, init_rule);
     int np = columns(s, np_full), pw = np == 1 ? 1 : np + 3;
@@ -124,6 +135,9 @@ void ggx_internal_etab_build(energy_table *t, const ggx_shape *s, int nm, int np
     t->nm = nm;
     t->np = np;
     t->phi0 = s->kind == GGX_SHAPE_SKEWED ? 0.0 : atan2(s->tangent_sin, s->tangent_cos);
+    t->cos0 = cos(t->phi0);
+    t->sin0 = sin(t->phi0);
+    t->warp = s->kind == GGX_SHAPE_SKEWED ? 1.0 : warp;
     t->tab = storage;
     t->pad = t->tab + (size_t)t->nm * np;
     t->pw = pw;
@@ -134,7 +148,7 @@ void ggx_internal_etab_build(energy_table *t, const ggx_shape *s, int nm, int np
     for (int i = 1; i < t->nm; i++) {
         double y = (double)i / (t->nm - 1);
         for (int j = 0; j <= jmax; j++) {
-            ggx_vec3 v = view_at(y, t->phi0 + 2.0 * GGX_PI * j / np);
+            ggx_vec3 v = view_at(y, phi_of_col(t, j));
             if (i == t->nm - 1) v.x = v.y = 0.0, v.z = 1.0; /* the pole, every column the same */
             t->tab[(size_t)i * np + j] = (i == t->nm - 1 && j > 0) ? t->tab[(size_t)i * np] : fn(ctx, v, y);
         }
@@ -158,17 +172,17 @@ void ggx_internal_etab_build(energy_table *t, const ggx_shape *s, int nm, int np
         for (int c = 0; c < pw; c++) t->pad[(size_t)r * pw + c] = node(t, r - 1, c - 1);
     }
 
-    /* Cell weights int (1 - E) dt dphi, t = mu^2: dt = 2 mu mu'(y) dy. */
-    double dphi = 2.0 * GGX_PI / np, sum = 0.0;
+    /* Cell weights int (1 - E) dt dphi, t = mu^2: dt = 2 mu mu'(y) dy; the cell spans [phi_j, phi_j+1]. */
+    double sum = 0.0;
     t->cdf[0] = 0.0;
     for (int i = 0; i < t->nm - 1; i++)
         for (int j = 0; j < np; j++) {
-            double w = 0.0;
+            double w = 0.0, pa = phi_of_col(t, j), dphi = np == 1 ? 2.0 * GGX_PI : phi_of_col(t, j + 1) - pa;
             for (int a = 0; a < CELL_GL; a++) {
                 double y = (i + 0.5 + 0.5 * cell_x[a]) / (t->nm - 1);
                 double mu = mu_of_y(y), dmu = cos(0.5 * GGX_PI * y * y) * GGX_PI * y;
                 for (int b = 0; b < CELL_GL; b++) {
-                    double phi = t->phi0 + dphi * (j + 0.5 + 0.5 * cell_x[b]);
+                    double phi = pa + dphi * (0.5 + 0.5 * cell_x[b]);
                     double ev = mu > 0 ? ggx_internal_etab_albedo(t, view_at(y, phi)) : 0.0;
                     w += cell_w[a] * cell_w[b] * (1.0 - ev) * 2.0 * mu * dmu;
                 }
@@ -191,7 +205,7 @@ static int cell_of(const energy_table *t, ggx_vec3 w, double *area)
     double fy, fp;
     table_cell(t, w, &i, &fy, &j, &fp);
     double m0 = mu_of_y((double)i / (t->nm - 1)), m1 = mu_of_y((double)(i + 1) / (t->nm - 1));
-    *area = (m1 * m1 - m0 * m0) * (2.0 * GGX_PI / t->np);
+    *area = (m1 * m1 - m0 * m0) * (t->np == 1 ? 2.0 * GGX_PI : phi_of_col(t, j + 1) - phi_of_col(t, j));
     return i * t->np + j;
 }
 
@@ -226,7 +240,8 @@ ggx_vec3 ggx_internal_etab_sample(const energy_table *t, double u1, double u2)
     int i = lo / t->np, j = lo % t->np;
     double m0 = mu_of_y((double)i / (t->nm - 1)), m1 = mu_of_y((double)(i + 1) / (t->nm - 1));
     double tt = m0 * m0 + f * (m1 * m1 - m0 * m0);
-    double phi = t->phi0 + (j + ggx_internal_clamp01(u2)) * (2.0 * GGX_PI / t->np);
+    double pa = phi_of_col(t, j), pb = t->np == 1 ? pa + 2.0 * GGX_PI : phi_of_col(t, j + 1);
+    double phi = pa + ggx_internal_clamp01(u2) * (pb - pa);
     double st = sqrt(fmax(0.0, 1.0 - tt));
     ggx_vec3 w = {st * cos(phi), st * sin(phi), sqrt(tt)};
     return w;

@@ -15,6 +15,8 @@ typedef struct energy_table {
     int nm;             /* rows */
     int np;             /* columns: 1 (isotropic) or a full turn */
     double phi0;        /* azimuth of column 0 */
+    double cos0, sin0;  /* cos phi0, sin phi0 */
+    double warp;        /* the columns' warp k (common/albedo_rows.h); 1: uniform azimuths */
     double e_avg;       /* (1 / pi) int E w.z dw of the interpolant */
     double total;       /* sum of the cell weights int (1 - E) dt dphi = 2 pi (1 - e_avg) */
     double *tab;        /* nm x np values of I, row-major */
@@ -32,9 +34,9 @@ typedef double (*energy_node_fn)(void *ctx, ggx_vec3 v, double y);
 size_t ggx_internal_etab_size(const ggx_shape *s, int nm, int np_full);
 /* Fills t for shape s (kept by pointer: it must outlive t) with nm rows and np_full columns in storage of
  * ggx_internal_etab_size(s, nm, np_full) doubles, calling node once per distinct node (the symmetries of unskewed shapes
- * fill the rest). */
-void ggx_internal_etab_build(energy_table *t, const ggx_shape *s, int nm, int np_full, double *storage,
-                        energy_node_fn node, void *ctx);
+ * fill the rest). warp: the columns' warp k for an unskewed s (1: uniform azimuths; skewed shapes always have 1). */
+void ggx_internal_etab_build(energy_table *t, const ggx_shape *s, int nm, int np_full, double warp, double *storage,
+                             energy_node_fn node, void *ctx);
 /* E at a unit v with v.z > 0, in [0, 1]. */
 double ggx_internal_etab_albedo(const energy_table *t, ggx_vec3 v);
 /* The piecewise-constant density, per solid angle, that follows (1 - E(w)) w.z over the table's cells, at a unit w

@@ -49,8 +49,8 @@ int ggx_internal_iso_table_i(double alpha, double y, double *i_value);
  * (and writes nothing) outside the table's range. */
 int ggx_internal_bsdf_iso_table_i(double alpha, double eta_r, double y, double *i_value);
 /* From src/api/tables.c: I = E / P of the shipped anisotropic table (separable G) of the diagonal shape
- * (alpha_x, alpha_y) at row coordinate y and azimuth phi in [0, pi / 2] from the axis of alpha_x; returns 0 (and
- * writes nothing) for a roughness outside the table's range. */
-int ggx_internal_aniso_table_i(double alpha_x, double alpha_y, double y, double phi, double *i_value);
+ * (alpha_x, alpha_y) at row coordinate y and warped azimuth psi in [0, pi / 2] from the axis of alpha_x
+ * (cols_psi_of_xy, common/albedo_rows.h); returns 0 (and writes nothing) for a roughness outside the table's range. */
+int ggx_internal_aniso_table_i(double alpha_x, double alpha_y, double y, double psi, double *i_value);
 
 #endif

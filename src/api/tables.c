@@ -175,9 +175,9 @@ static double ani_node(int ax, int ay, int i, int p)
     return i < 0 ? 2.0 * t[0][p] - t[1][p] : (double)t[i][p];
 }
 
-/* I at row coordinate y in [0, 1] and azimuth phi in [0, pi / 2] from the axis of alpha_x; 0 when a roughness is
- * outside the table. */
-static int ani_i(double alpha_x, double alpha_y, double y, double phi, double *out)
+/* I at row coordinate y in [0, 1] and warped azimuth psi in [0, pi / 2] from the axis of alpha_x (common/
+ * albedo_rows.h); 0 when a roughness is outside the table. */
+static int ani_i(double alpha_x, double alpha_y, double y, double psi, double *out)
 {
     if (!(alpha_x >= ANI_AMIN && alpha_x <= ANI_AMAX && alpha_y >= ANI_AMIN && alpha_y <= ANI_AMAX)) return 0;
     double xa = ani_index_of_alpha(alpha_x), xb = ani_index_of_alpha(alpha_y);
@@ -188,7 +188,7 @@ static int ani_i(double alpha_x, double alpha_y, double y, double phi, double *o
     if (jb > ANI_NA - 2) jb = ANI_NA - 2;
     double fa = xa - ja, fb = xb - jb, fy, fp;
     i = cell(y, ANI_NY, &fy);
-    p = cell(phi * (2.0 / GGX_PI), ANI_NP, &fp);
+    p = cell(psi * (2.0 / GGX_PI), ANI_NP, &fp);
     double cb[4];
     for (int db = -1; db <= 2; db++) {
         double ca[4];
@@ -207,9 +207,9 @@ static int ani_i(double alpha_x, double alpha_y, double y, double phi, double *o
     return 1;
 }
 
-int ggx_internal_aniso_table_i(double alpha_x, double alpha_y, double y, double phi, double *i_value)
+int ggx_internal_aniso_table_i(double alpha_x, double alpha_y, double y, double psi, double *i_value)
 {
-    return ani_i(alpha_x, alpha_y, y, phi, i_value);
+    return ani_i(alpha_x, alpha_y, y, psi, i_value);
 }
 
 GGX_API double ggx_albedo_aniso_table(double alpha_x, double alpha_y, ggx_vec3 v)
@@ -218,8 +218,8 @@ GGX_API double ggx_albedo_aniso_table(double alpha_x, double alpha_y, ggx_vec3 v
     ggx_vec3 u;
     if (ggx_shape_aniso(&s, alpha_x, alpha_y) != GGX_OK || !ggx_internal_unit_up(v, &u)) return 0.0;
     double st = sqrt(u.x * u.x + u.y * u.y), i_value;
-    double y = rows_y_of_theta(atan2(st, u.z)), phi = atan2(fabs(u.y), fabs(u.x));
-    if (!ani_i(alpha_x, alpha_y, y, phi, &i_value)) return ggx_albedo(&s, u);
+    double y = rows_y_of_theta(atan2(st, u.z)), psi = cols_psi_of_xy(fabs(u.x), fabs(u.y), COLS_WARP_K);
+    if (!ani_i(alpha_x, alpha_y, y, psi, &i_value)) return ggx_albedo(&s, u);
     double e = ggx_internal_albedo_scale(&s, u) * i_value;
     return e > 0 ? (e < 1 ? e : 1) : 0;
 }

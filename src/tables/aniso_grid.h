@@ -4,8 +4,9 @@
  *
  * E(v) of ggx_albedo (separable G) for the diagonal shape (alpha_x, alpha_y), v in the shape's frame.
  * - Rows: the per-shape tables' 33 views at theta = (pi / 2)(1 - y^2), y = i / 32 (common/albedo_rows.h).
- * - Columns: 33 azimuths phi = (pi / 2) p / 32 from the axis of alpha_x. E is even about both tangent axes, so a
- *   quarter turn holds every view; these are the per-shape tables' columns 0 to 32 of 128.
+ * - Columns: 33 azimuths phi = W(psi), psi = (pi / 2) p / 32, from the axis of alpha_x, W the columns' warp
+ *   (common/albedo_rows.h: denser at both axes). E is even about both tangent axes, so a quarter turn holds every
+ *   view; these are the per-shape tables' columns 0 to 32 of 128.
  * - Roughnesses: ANI_NA values from ANI_AMIN to ANI_AMAX uniform in u = ln alpha + ANI_C alpha, and one more beyond
  *   each end (computed, not extrapolated: extrapolated ends left 2.3e-3 in the last cell), so index a in
  *   [-1, ANI_NA]. u is log-uniform at small alpha and denser towards alpha = 2, where E bends most: with 17 nodes

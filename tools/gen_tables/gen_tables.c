@@ -145,7 +145,7 @@ static void ani_line(int pair, float *out)
     for (int i = 1; i < ANI_NY; i++) {
         double th = rows_theta_of_y((double)i / (ANI_NY - 1));
         for (int p = 0; p < ANI_NP; p++) {
-            double phi = 0.5 * GGX_PI * p / (ANI_NP - 1);
+            double phi = cols_phi_of_psi(0.5 * GGX_PI * p / (ANI_NP - 1), COLS_WARP_K);
             ggx_vec3 v = {sin(th) * cos(phi), sin(th) * sin(phi), cos(th)};
             if (i == ANI_NY - 1) v.x = v.y = 0.0, v.z = 1.0; /* the pole, every column the same */
             val[i][p] = (i == ANI_NY - 1 && p > 0) ? val[i][0]
