@@ -636,7 +636,7 @@ typedef struct ggx_bsdf_energy ggx_bsdf_energy;
 
 /* Builds the tables of shape s (copied) and eta for both sides: 2 x 65 x 128 values of ggx_bsdf_albedo's R + T by
  * quadrature (65 for each side of isotropic shapes, a quarter of the columns for unskewed ones), the two sides on
- * two threads; isotropic shapes with alpha in [1e-2, 2] and eta or 1 / eta in [1.05, 3] read their 65 from the
+ * two threads; isotropic shapes with alpha in [0.025, 2] and eta or 1 / eta in [1.05, 3] read their 65 from the
  * shipped table of ggx_bsdf_albedo_iso_table instead. Cost, measured on this project's 2-core machine
  * (docs/energy.md): microseconds for isotropic shapes in the shipped table's range (0.1 to 0.2 s outside it), about
  * 4 s for anisotropic ones and 16 to 18 s (some 28 s of CPU) for skewed ones; build them once per material, at scene

@@ -24,6 +24,9 @@
 
 enum { BSDF_NY = ISO_NY, BSDF_NA = 33, BSDF_NE = 24 };
 #define BSDF_AMIN 1e-2
+/* The table keeps within 1e-3 of the quadrature from this alpha; below it, near the critical angle of the denser
+ * side, up to 1.2e-3 was found (docs/energy.md). */
+#define BSDF_PROMISE_AMIN 0.025
 #define BSDF_AMAX 2.0
 #define BSDF_ETA0 1.05
 #define BSDF_ETA1 3.0
