@@ -106,8 +106,8 @@ static double bsdf_node(int h, int k, int j, int i)
     return i < 0 ? 2.0 * r[0] - r[1] : (double)r[i];
 }
 
-/* I at row coordinate y in [0, 1], alpha and eta_r; 0 when (alpha, eta_r) is outside the table. */
-static int bsdf_i(double alpha, double eta_r, double y, double *out)
+/* I at row coordinate y in [0, 1], alpha and eta_r; 0 when (alpha, eta_r) is outside the table (internal.h). */
+int ggx_internal_bsdf_iso_table_i(double alpha, double eta_r, double y, double *out)
 {
     if (!(alpha >= BSDF_AMIN && alpha <= BSDF_AMAX && bsdf_eta_in(eta_r))) return 0;
     int h;
@@ -130,18 +130,13 @@ static int bsdf_i(double alpha, double eta_r, double y, double *out)
     return 1;
 }
 
-int ggx_internal_bsdf_iso_table_i(double alpha, double eta_r, double y, double *i_value)
-{
-    return bsdf_i(alpha, eta_r, y, i_value);
-}
-
 GGX_API double ggx_bsdf_albedo_iso_table(double alpha, double eta, double mu)
 {
     ggx_shape s;
     if (!(mu != 0) || mu != mu || ggx_shape_iso(&s, alpha) != GGX_OK || !(eta > 0 && eta <= 1e300)) return 0.0;
     double a = fabs(mu) < 1 ? fabs(mu) : 1.0, eta_r = mu > 0 ? eta : 1.0 / eta, i_value;
     ggx_vec3 v = {sqrt(fmax(0.0, 1.0 - a * a)), 0.0, a};
-    if (!bsdf_i(alpha, eta_r, iso_y_of_mu(a), &i_value)) {
+    if (!ggx_internal_bsdf_iso_table_i(alpha, eta_r, iso_y_of_mu(a), &i_value)) {
         if (mu < 0) v.z = -v.z;
         return ggx_bsdf_albedo(&s, eta, v, NULL, NULL);
     }
@@ -176,8 +171,8 @@ static double ani_node(int ax, int ay, int i, int p)
 }
 
 /* I at row coordinate y in [0, 1] and warped azimuth psi in [0, pi / 2] from the axis of alpha_x (common/
- * albedo_rows.h); 0 when a roughness is outside the table. */
-static int ani_i(double alpha_x, double alpha_y, double y, double psi, double *out)
+ * albedo_rows.h); 0 when a roughness is outside the table (internal.h). */
+int ggx_internal_aniso_table_i(double alpha_x, double alpha_y, double y, double psi, double *out)
 {
     if (!(alpha_x >= ANI_AMIN && alpha_x <= ANI_AMAX && alpha_y >= ANI_AMIN && alpha_y <= ANI_AMAX)) return 0;
     double xa = ani_index_of_alpha(alpha_x), xb = ani_index_of_alpha(alpha_y);
@@ -207,11 +202,6 @@ static int ani_i(double alpha_x, double alpha_y, double y, double psi, double *o
     return 1;
 }
 
-int ggx_internal_aniso_table_i(double alpha_x, double alpha_y, double y, double psi, double *i_value)
-{
-    return ani_i(alpha_x, alpha_y, y, psi, i_value);
-}
-
 GGX_API double ggx_albedo_aniso_table(double alpha_x, double alpha_y, ggx_vec3 v)
 {
     ggx_shape s;
@@ -219,7 +209,7 @@ GGX_API double ggx_albedo_aniso_table(double alpha_x, double alpha_y, ggx_vec3 v
     if (ggx_shape_aniso(&s, alpha_x, alpha_y) != GGX_OK || !ggx_internal_unit_up(v, &u)) return 0.0;
     double st = sqrt(u.x * u.x + u.y * u.y), i_value;
     double y = rows_y_of_theta(atan2(st, u.z)), psi = cols_psi_of_xy(fabs(u.x), fabs(u.y), COLS_WARP_K);
-    if (!ani_i(alpha_x, alpha_y, y, psi, &i_value)) return ggx_albedo(&s, u);
+    if (!ggx_internal_aniso_table_i(alpha_x, alpha_y, y, psi, &i_value)) return ggx_albedo(&s, u);
     double e = ggx_internal_albedo_scale(&s, u) * i_value;
     return e > 0 ? (e < 1 ? e : 1) : 0;
 }
