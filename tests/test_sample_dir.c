@@ -27,7 +27,8 @@ static double dir_eval(const dir_ctx *c, ggx_vec3 w)
 {
     switch (c->info->id) {
     case GGX_SAMPLER_BRDF:
-    case GGX_SAMPLER_BRDF_BOUNDED: return ggx_brdf_eval(c->s, &c->f, c->v, w);
+    case GGX_SAMPLER_BRDF_BOUNDED:
+    case GGX_SAMPLER_BRDF_BOUNDED_AZIMUTH: return ggx_brdf_eval(c->s, &c->f, c->v, w);
     case GGX_SAMPLER_BSDF: return ggx_bsdf_eval(c->s, c->eta, w, c->v, GGX_RADIANCE);
     default: CHECK(0, "direction sampler %s: no evaluation known to this test", c->info->name); return 0.0;
     }
@@ -197,18 +198,21 @@ static void dielectric_sweep(void **state)
  * from the shape's matrix, not by the sampler. kappa is scale-free in A (1e-5 A and 1e5 A give the same). Negative
  * control: for alpha = 1 (plain, rotated and skewed: A A^T = I, where the bound is exact), a band raised by 1% of
  * the rest of the cap removes points that reflect above the horizon, which the check finds. */
-static double removed_band_max_z(const ggx_shape *s, ggx_vec3 v, double raise, rng *r, int draws)
+static double removed_band_max_z(const ggx_shape *s, ggx_vec3 v, double raise, rng *r, int draws, int azimuth)
 {
-    double kappa = ggx_k_bound_kappa_d(s, v), worst = -INFINITY;
+    double kappa = ggx_k_bound_kappa_d(s, v), worst = -INFINITY, sigma2 = ggx_k_bound_sigma2_d(s);
     ggx_vec3 av = {s->a[0][0] * v.x + s->a[0][1] * v.y + s->a[0][2] * v.z,
                    s->a[1][0] * v.x + s->a[1][1] * v.y + s->a[1][2] * v.z,
                    s->a[2][0] * v.x + s->a[2][1] * v.y + s->a[2][2] * v.z};
     ggx_vec3 vs = t_scale(av, 1.0 / sqrt(t_dot(av, av)));
-    double b = 1.0 - kappa * (1.0 + vs.z);
-    b += raise * (1.0 - b);
-    if (!(b > -vs.z)) return worst; /* nothing removed */
     for (int k = 0; k < draws; k++) {
-        double cz = -vs.z + (b + vs.z) * rng_uniform(r), phi = 2.0 * T_PI * rng_uniform(r);
+        /* the per-azimuth bound: the meridian 2 pi u1 and its own kappa */
+        double u1 = rng_uniform(r), phi = 2.0 * T_PI * u1;
+        if (azimuth) kappa = ggx_k_bound_kappa_u_d(s, v, sigma2, u1);
+        double b = 1.0 - kappa * (1.0 + vs.z);
+        b += raise * (1.0 - b);
+        if (!(b > -vs.z)) continue; /* nothing removed */
+        double cz = -vs.z + (b + vs.z) * rng_uniform(r);
         double sr = sqrt(fmax(0.0, 1.0 - cz * cz));
         ggx_vec3 h = t_vec(vs.x + sr * cos(phi), vs.y + sr * sin(phi), vs.z + cz), mu;
         mu.x = s->a[0][0] * h.x + s->a[1][0] * h.y + s->a[2][0] * h.z;
@@ -227,15 +231,33 @@ static void bounded_removes_only_below_horizon(void **state)
 {
     (void)state;
     rng r = {4242};
-    double worst = -INFINITY, kappa_min = 1.0;
+    double worst = -INFINITY, worst_az = -INFINITY, kappa_min = 1.0, kappa_az_dev = 0.0;
     int shapes = (int)(4000 * test_scale()) + 50;
     for (int i = 0; i < shapes; i++) {
         ggx_shape s;
         make_shape(&s, random_shape(&r, 0.5));
         ggx_vec3 v = i % 10 == 0 ? t_vec(0, 0, 1) : random_view(&r);
-        double w = removed_band_max_z(&s, v, 0.0, &r, 200);
+        double w = removed_band_max_z(&s, v, 0.0, &r, 200, 0);
         CHECK(w <= 1e-9, "shape %d: a removed cap point reflects above the horizon, wo.z = %.3g", i, w);
         if (w > worst) worst = w;
+        /* the per-azimuth bound: 1000 points on 1000 meridians */
+        w = removed_band_max_z(&s, v, 0.0, &r, 1000, 1);
+        CHECK(w <= 1e-9, "shape %d: the per-azimuth bound removes a point above the horizon, wo.z = %.3g", i, w);
+        if (w > worst_az) worst_az = w;
+        for (int k = 0; k < 8; k++) { /* never above the plane bound's kappa: it starts there */
+            double u1 = rng_uniform(&r), ka = ggx_k_bound_kappa_u_d(&s, v, ggx_k_bound_sigma2_d(&s), u1);
+            double kp = ggx_k_bound_kappa_d(&s, v);
+            CHECK(ka > 0 && ka <= kp * (1 + 1e-12), "per-azimuth kappa %.17g, plane %.17g", ka, kp);
+            for (int e = -5; e <= 5; e += 10) { /* scale-free, up to its conditioning (docs/bounded-vndf.md) */
+                double t = pow(10.0, e), M[3][3];
+                for (int a = 0; a < 3; a++)
+                    for (int b = 0; b < 3; b++) M[a][b] = t * s.a[a][b];
+                ggx_shape sc;
+                CHECK(ggx_shape_matrix(&sc, (const double(*)[3])M) == GGX_OK, "scaled shape");
+                double d = fabs(ggx_k_bound_kappa_u_d(&sc, v, ggx_k_bound_sigma2_d(&sc), u1) / ka - 1);
+                if (d > kappa_az_dev) kappa_az_dev = d;
+            }
+        }
         double kappa = ggx_k_bound_kappa_d(&s, v);
         CHECK(kappa > 0 && kappa <= 1, "kappa %.17g", kappa);
         if (kappa < kappa_min) kappa_min = kappa;
@@ -250,6 +272,9 @@ static void bounded_removes_only_below_horizon(void **state)
     }
     printf("bounded: %d shapes, removed cap points reflect to wo.z <= %.3g, smallest kappa %.4f\n", shapes, worst,
            kappa_min);
+    printf("bounded per azimuth: removed cap points reflect to wo.z <= %.3g; kappa at scales 1e-5 and 1e5 within "
+           "%.2g relative\n", worst_az, kappa_az_dev);
+    CHECK(kappa_az_dev <= 1e-6, "per-azimuth kappa not scale-free: %.3g", kappa_az_dev);
     /* negative control of the chi-square test: the bounded sampler against the unbounded pdf (kappa left out) */
     ggx_sampler_info wrong = *ggx_sampler_get(GGX_SAMPLER_BRDF_BOUNDED);
     wrong.pdf_direction = ggx_sampler_get(GGX_SAMPLER_BRDF)->pdf_direction;
@@ -269,11 +294,20 @@ static void bounded_removes_only_below_horizon(void **state)
     for (int i = 0; i < 3; i++) {
         ggx_shape s;
         make_shape(&s, (shape_params){ones[i][0], ones[i][1], ones[i][2], ones[i][3], ones[i][4]});
-        double w = removed_band_max_z(&s, sweep_view(30.0), 0.01, &r, 2000);
-        CHECK(w > 1e-6, "control %d: a bound raised by 1%% went unnoticed (wo.z <= %.3g)", i, w);
-        printf("negative control, alpha = 1 shape %d, bound raised 1%%: a removed point reflects to wo.z = %.3g\n", i,
-               w);
+        for (int az = 0; az < 2; az++) {
+            double w = removed_band_max_z(&s, sweep_view(30.0), 0.01, &r, 2000, az);
+            CHECK(w > 1e-6, "control %d: a bound raised by 1%% went unnoticed (wo.z <= %.3g)", i, w);
+            printf("negative control, alpha = 1 shape %d, %s bound raised 1%%: a removed point reflects to wo.z = "
+                   "%.3g\n", i, az ? "per-azimuth" : "plane", w);
+        }
     }
+    /* and where only the per-azimuth bound is tight: aniso 0.15:0.5 at n, where it removes the whole waste */
+    ggx_shape sa;
+    make_shape(&sa, (shape_params){0.15, 0.5, 0, 0, 0});
+    double w = removed_band_max_z(&sa, t_vec(0, 0, 1), 0.01, &r, 2000, 1);
+    CHECK(w > 1e-6, "control aniso 0.15:0.5: a per-azimuth bound raised by 1%% went unnoticed (wo.z <= %.3g)", w);
+    printf("negative control, aniso 0.15:0.5 at n, per-azimuth bound raised 1%%: a removed point reflects to wo.z = "
+           "%.3g\n", w);
 }
 
 /* Unbiasedness of bounded reflection sampling: (1) its pdf is > 0 wherever f_r > 0, at random pairs over random
@@ -298,10 +332,11 @@ static void bounded_unbiased(void **state)
         ggx_vec3 wi = random_view(&r), wo = random_view(&r);
         if (ggx_brdf_eval(&s, &one, wi, wo) > 0) {
             CHECK(ggx_pdf_brdf_bounded(&s, wi, wo) > 0, "pdf 0 where f_r > 0: pair %d", i);
+            CHECK(ggx_pdf_brdf_bounded_azimuth(&s, wi, wo) > 0, "per-azimuth pdf 0 where f_r > 0: pair %d", i);
             pairs++;
         }
     }
-    double worst_z = 0.0;
+    double worst_z[2] = {0.0, 0.0};
     long n = (long)(200000 * test_scale()) + 10000;
     for (int i = 0; i < SWEEP_NSHAPES; i++) {
         ggx_shape s;
@@ -309,30 +344,37 @@ static void bounded_unbiased(void **state)
         for (int j = 0; j < 3; j++) {
             static const double deg[3] = {0.0, 45.0, 80.0};
             ggx_vec3 v = sweep_view(deg[j]);
-            double mean[2], var[2], var_se2[2];
-            for (int q = 0; q < 2; q++) {
-                long nq = q ? 4 * n : n;
+            /* q = 0: plain (4 n samples), 1: bounded, 2: bounded per azimuth */
+            double mean[3], var[3], var_se2[3];
+            for (int q = 0; q < 3; q++) {
+                long nq = q ? n : 4 * n;
                 double sum = 0, sum2 = 0, sum4 = 0;
                 for (long k = 0; k < nq; k++) {
                     double u1 = rng_uniform(&r), u2 = rng_uniform(&r);
-                    double w = q ? ggx_sample_brdf(&s, &one, v, u1, u2).weight
-                                 : ggx_sample_brdf_bounded(&s, &one, v, u1, u2).weight;
+                    double w = q == 0   ? ggx_sample_brdf(&s, &one, v, u1, u2).weight
+                               : q == 1 ? ggx_sample_brdf_bounded(&s, &one, v, u1, u2).weight
+                                        : ggx_sample_brdf_bounded_azimuth(&s, &one, v, u1, u2).weight;
                     sum += w, sum2 += w * w, sum4 += w * w * w * w;
                 }
                 mean[q] = sum / (double)nq, var[q] = sum2 / (double)nq - mean[q] * mean[q];
                 /* the squared standard error of the variance estimate, (E w^4 - (E w^2)^2) / n: an upper bound */
                 var_se2[q] = fmax(sum4 / (double)nq - (sum2 / (double)nq) * (sum2 / (double)nq), 0.0) / (double)nq;
             }
-            double z = fabs(mean[0] - mean[1]) / sqrt(var[0] / (double)n + var[1] / (4.0 * (double)n) + 1e-30);
-            CHECK(z <= 4.5, "%s, view %g: bounded albedo %.6f, plain %.6f (%.1f standard errors)", SWEEP_SHAPES[i].name,
-                  deg[j], mean[0], mean[1], z);
-            CHECK(var[0] <= var[1] + 4.5 * sqrt(var_se2[0] + var_se2[1]) + 1e-15,
-                  "%s, view %g: variance %.6g above plain %.6g", SWEEP_SHAPES[i].name, deg[j], var[0], var[1]);
-            if (z > worst_z) worst_z = z;
+            for (int q = 1; q < 3; q++) {
+                const char *what = q == 1 ? "bounded" : "per-azimuth";
+                double z = fabs(mean[q] - mean[0]) / sqrt(var[q] / (double)n + var[0] / (4.0 * (double)n) + 1e-30);
+                CHECK(z <= 4.5, "%s, view %g: %s albedo %.6f, plain %.6f (%.1f standard errors)", SWEEP_SHAPES[i].name,
+                      deg[j], what, mean[q], mean[0], z);
+                CHECK(var[q] <= var[0] + 4.5 * sqrt(var_se2[q] + var_se2[0]) + 1e-15,
+                      "%s, view %g: %s variance %.6g above plain %.6g", SWEEP_SHAPES[i].name, deg[j], what, var[q],
+                      var[0]);
+                if (z > worst_z[q - 1]) worst_z[q - 1] = z;
+            }
         }
     }
-    printf("bounded: pdf > 0 at all %ld random pairs with f_r > 0; albedo within %.2f standard errors of plain "
-           "reflection sampling's (27 cases, %ld and %ld samples)\n", pairs, worst_z, n, 4 * n);
+    printf("bounded: pdf > 0 at all %ld random pairs with f_r > 0 (both bounds); albedo within %.2f (plane bound) "
+           "and %.2f (per azimuth) standard errors of plain reflection sampling's (27 cases, %ld and %ld samples)\n",
+           pairs, worst_z[0], worst_z[1], n, 4 * n);
 }
 
 /* The inline float sampler ggx_sample_brdf_bounded_f (ggx_inline.h; the same kernel in float) follows the double one

@@ -78,12 +78,16 @@ static ggx_vec3 key_dir(double ct, double phi)
 }
 
 /* Integral of the density over [c0, c1] x [p0, p1] in (cos theta, phi) with sub x sub panels of 4 x 4 nodes;
- * *mixed is set when some nodes are zero and others not. */
+ * *mixed is set when some nodes are zero and others not, or when the nonzero nodes differ by more than a factor
+ * GGX_CHI2_JUMP (a jump of the density inside the cell, as the bound per azimuth of bounded reflection sampling
+ * makes, which a 4 x 4 rule integrates with an error of the order of the jump). */
+#define GGX_CHI2_JUMP 1.5
 static double cell_integral(const chi2_problem *p, int region, double c0, double c1, double p0, double p1, int sub,
                             int *mixed)
 {
     double sum = 0.0;
     int zeros = 0, nonzeros = 0;
+    double fmin = INFINITY, fmax = 0.0;
     double dc = (c1 - c0) / sub, dp = (p1 - p0) / sub;
     for (int i = 0; i < sub; i++) {
         for (int j = 0; j < sub; j++) {
@@ -91,14 +95,19 @@ static double cell_integral(const chi2_problem *p, int region, double c0, double
             for (int a = 0; a < 4; a++) {
                 for (int b = 0; b < 4; b++) {
                     double f = p->density(p->ctx, region, key_dir(cc + 0.5 * dc * g4x[a], pc + 0.5 * dp * g4x[b]));
-                    if (f > 0.0) nonzeros++;
-                    else zeros++;
+                    if (f > 0.0) {
+                        nonzeros++;
+                        fmin = f < fmin ? f : fmin;
+                        fmax = f > fmax ? f : fmax;
+                    } else {
+                        zeros++;
+                    }
                     sum += g4w[a] * g4w[b] * f;
                 }
             }
         }
     }
-    if (mixed) *mixed = zeros > 0 && nonzeros > 0;
+    if (mixed) *mixed = (zeros > 0 && nonzeros > 0) || fmax > GGX_CHI2_JUMP * fmin;
     return sum * 0.25 * dc * dp;
 }
 

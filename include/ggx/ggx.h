@@ -486,6 +486,23 @@ ggx_sample ggx_sample_brdf_bounded(const ggx_shape *s, const ggx_fresnel *f, ggx
  * below the horizon; 0 unless wi.z > 0 and wo.z > 0. Relative accuracy as ggx_pdf_brdf. */
 double ggx_pdf_brdf_bounded(const ggx_shape *s, ggx_vec3 wi, ggx_vec3 wo);
 
+/* Bounded reflection sampling with a bound per azimuth of the cap point, for any shape (docs/bounded-vndf.md, "A
+ * bound per azimuth"): as ggx_sample_brdf_bounded, but the cap's lower end b(phi) depends on the azimuth phi = 2 pi u1
+ * of the cap point: from the plane bound of ggx_sample_brdf_bounded, one tangent (or chord) step of the unit circle
+ * on that meridian moves it up to where the reflection may reach the horizon. It removes most of what
+ * ggx_sample_brdf_bounded leaves for anisotropic shapes (the whole waste of any unskewed shape at wi = n), at about
+ * 1.4 times its cost. pdf = ggx_pdf_brdf / kappa(phi) with kappa(phi) = (1 - b(phi)) / (1 + vs.z) in (0, 1], weight =
+ * kappa(phi) x ggx_sample_brdf's weight (<= 1), so the variance is never above ggx_sample_brdf's. b(phi) is
+ * discontinuous where a meridian touches the boundary of the region that reflects above the horizon, and near such
+ * azimuths, and near the pole of the cap (where phi is ill-conditioned), the pdf of a direction changes fast: a float
+ * evaluation can differ from the double one by more than rounding there (measured in docs/bounded-vndf.md). Same
+ * domain, invalid samples and contract as ggx_sample_brdf; u1, u2 in [0, 1) (clamped). */
+ggx_sample ggx_sample_brdf_bounded_azimuth(const ggx_shape *s, const ggx_fresnel *f, ggx_vec3 wi, double u1,
+                                           double u2);
+/* The pdf of ggx_sample_brdf_bounded_azimuth for a given pair: ggx_pdf_brdf / kappa(phi), phi the azimuth of the cap
+ * point of wo's half vector (phi = 0 at the pole, a single point); 0 unless wi.z > 0 and wo.z > 0. */
+double ggx_pdf_brdf_bounded_azimuth(const ggx_shape *s, ggx_vec3 wi, ggx_vec3 wo);
+
 /* Rough-dielectric sampling (Walter 2007 section 5.3): from the known direction v (either side), m from the VNDF
  * of sgn(v.z) v, then reflection with probability F(|v.m|) (u3 < F) or refraction otherwise (total internal
  * reflection always reflects). pdf = D_v(m) (F / (4 |v.m|) or (1 - F) eta_w^2 |w.m| / (eta_v v.m + eta_w w.m)^2).

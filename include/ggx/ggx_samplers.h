@@ -43,6 +43,8 @@ extern "C" {
     X(BRDF, "brdf", sample_brdf, DIRECTION, ANY, 0, 1, "directions: reflection sampling (eq 47-50), view = wi")    \
     X(BRDF_BOUNDED, "brdf-bounded", sample_brdf_bounded, DIRECTION, ANY, 0, 1,                                   \
       "directions: bounded reflection sampling (caps from the horizon bound), view = wi")                         \
+    X(BRDF_BOUNDED_AZIMUTH, "brdf-bounded-azimuth", sample_brdf_bounded_azimuth, DIRECTION, ANY, 0, 0,           \
+      "directions: bounded reflection sampling, bound per azimuth of the cap point, view = wi")                   \
     X(BSDF, "bsdf", sample_bsdf, DIRECTION, ANY, 0, 0,                                                             \
       "directions: rough dielectric (Walter 2007), view = known direction, --eta")
 

@@ -51,6 +51,7 @@ static double pdf_ndf(const ggx_shape *s, ggx_vec3 v, ggx_vec3 m)
     }
 DIR_REFLECTION(brdf)
 DIR_REFLECTION(brdf_bounded)
+DIR_REFLECTION(brdf_bounded_azimuth)
 static ggx_sample dir_sample_bsdf(const ggx_shape *s, const ggx_fresnel *f, double eta, ggx_vec3 v, double u1,
                                   double u2, double u3, ggx_transport mode)
 {

@@ -87,6 +87,15 @@ GGX_API GGX_HOT double ggx_pdf_brdf_bounded(const ggx_shape *s, ggx_vec3 wi, ggx
 {
     return ggx_pdf_brdf_bounded_d(s, wi, wo);
 }
+GGX_API GGX_HOT ggx_sample ggx_sample_brdf_bounded_azimuth(const ggx_shape *s, const ggx_fresnel *f, ggx_vec3 wi,
+                                                           double u1, double u2)
+{
+    return ggx_sample_brdf_bounded_azimuth_d(s, f, wi, u1, u2);
+}
+GGX_API GGX_HOT double ggx_pdf_brdf_bounded_azimuth(const ggx_shape *s, ggx_vec3 wi, ggx_vec3 wo)
+{
+    return ggx_pdf_brdf_bounded_azimuth_d(s, wi, wo);
+}
 GGX_API GGX_HOT ggx_sample ggx_sample_bsdf(const ggx_shape *s, double eta, ggx_vec3 v, double u1, double u2, double u3,
                                    ggx_transport mode)
 {

@@ -36,8 +36,12 @@ const ggx_sampler_info *find_sampler(const char *name)
 
 void print_samplers(FILE *f)
 {
+    int w = 15; /* the column fits the longest name, with two spaces after it */
+    for (int i = 0; i < cli_sampler_count(); i++)
+        if ((int)strlen(cli_sampler(i)->name) > w) w = (int)strlen(cli_sampler(i)->name);
     fprintf(f, "samplers:\n");
-    for (int i = 0; i < cli_sampler_count(); i++) fprintf(f, "  %-15s %s\n", cli_sampler(i)->name, cli_sampler(i)->help);
+    for (int i = 0; i < cli_sampler_count(); i++)
+        fprintf(f, "  %-*s  %s\n", w, cli_sampler(i)->name, cli_sampler(i)->help);
 }
 
 int sampler_applies(const ggx_sampler_info *smp, const ggx_shape *s)

@@ -131,3 +131,8 @@
  * 2^-20 relative: far above the rounding of its Newton step near a simple root (a few units in the last place of
  * double, relative to lambda_min over the gap to the next root). */
 #define GGX_BOUND_SAFETY 9.5367431640625e-07
+/* The per-azimuth bound's tolerance for a root at the start of its piece (k_bound_first): 2^-40. */
+#define GGX_BOUND_TOL 9.094947017729282e-13
+/* The per-azimuth bound's margin (k_bound_kappa_az): a point is removed only where the bound is below 2^-40 times
+ * the sum of its terms' sizes, some 2^12 times their rounding. */
+#define GGX_BOUND_MARGIN 9.094947017729282e-13
