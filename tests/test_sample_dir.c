@@ -386,7 +386,8 @@ static void bounded_float_follows_double(void **state)
 {
     (void)state;
     rng r = {515};
-    double worst[2][3] = {{0}}; /* bounded, plain: direction, pdf, weight */
+    double worst[2][3] = {{0}}, az_worst[3] = {0, 0, 0}; /* bounded, plain: direction, pdf, weight */
+    long az_off = 0, az_compared = 0;
     int compared = 0, n = (int)(200000 * test_scale()) + 1000;
     ggx_fresnel cond;
     ggx_fresnel_conductor(&cond, 0.2, 3.9);
@@ -402,14 +403,25 @@ static void bounded_float_follows_double(void **state)
         ggx_vec3 v = random_view(&r);
         ggx_vec3f vf = {(float)v.x, (float)v.y, (float)v.z};
         v = t_vec(vf.x, vf.y, vf.z);
-        for (int k = 0; k < 2; k++) {
-            ggx_sample d = k ? ggx_sample_brdf(&s, &cond, v, u1, u2) : ggx_sample_brdf_bounded(&s, &cond, v, u1, u2);
+        for (int k = 0; k < 3; k++) {
+            ggx_sample d = k == 1   ? ggx_sample_brdf(&s, &cond, v, u1, u2)
+                           : k == 0 ? ggx_sample_brdf_bounded(&s, &cond, v, u1, u2)
+                                    : ggx_sample_brdf_bounded_azimuth(&s, &cond, v, u1, u2);
             if (d.event == GGX_EVENT_INVALID || d.w.z < 1e-4) continue;
-            ggx_samplef f = k ? ggx_sample_brdf_f(&sf, &ff, vf, u1, u2) : ggx_sample_brdf_bounded_f(&sf, &ff, vf, u1, u2);
-            CHECK(f.event == GGX_EVENT_REFLECT, "float invalid where double is valid, sample %d (%s)", i,
-                  k ? "plain" : "bounded");
+            ggx_samplef f = k == 1   ? ggx_sample_brdf_f(&sf, &ff, vf, u1, u2)
+                            : k == 0 ? ggx_sample_brdf_bounded_f(&sf, &ff, vf, u1, u2)
+                                     : ggx_sample_brdf_bounded_azimuth_f(&sf, &ff, vf, u1, u2);
             double e[3] = {fmax(fabs(f.w.x - d.w.x), fmax(fabs(f.w.y - d.w.y), fabs(f.w.z - d.w.z))),
                            fabs(f.pdf - d.pdf) / d.pdf, fabs(f.weight - d.weight)};
+            if (k == 2) { /* the per-azimuth bound: counted, see below */
+                int off = f.event != GGX_EVENT_REFLECT || !(e[0] <= 1e-4 && e[1] <= 2e-4 && e[2] <= 4e-4);
+                az_off += off, az_compared++;
+                if (!off)
+                    for (int j = 0; j < 3; j++) az_worst[j] = fmax(az_worst[j], e[j]);
+                continue;
+            }
+            CHECK(f.event == GGX_EVENT_REFLECT, "float invalid where double is valid, sample %d (%s)", i,
+                  k ? "plain" : "bounded");
             for (int j = 0; j < 3; j++) worst[k][j] = fmax(worst[k][j], e[j]);
             compared += k == 0;
         }
@@ -419,6 +431,13 @@ static void bounded_float_follows_double(void **state)
            worst[1][0], worst[1][1], worst[1][2]);
     CHECK(worst[0][0] <= 1e-4 && worst[0][1] <= 2e-4 && worst[0][2] <= 4e-4, "float bounded sampler off: %.3g %.3g %.3g",
           worst[0][0], worst[0][1], worst[0][2]);
+    /* The per-azimuth bound jumps at some azimuths and its azimuth is ill-conditioned near the cap's pole, so float
+     * and double may take different bounds there (ggx.h): the promise is for all but a fraction 1e-3 of samples. */
+    printf("bounded per azimuth, float against double: %ld samples, %ld (%.2g) beyond 1e-4 / 2e-4 / 4e-4; the rest "
+           "within direction %.2g, pdf %.2g relative, weight %.2g\n", az_compared, az_off,
+           (double)az_off / (double)(az_compared + 1), az_worst[0], az_worst[1], az_worst[2]);
+    CHECK((double)az_off <= 1e-3 * (double)az_compared, "per-azimuth float sampler off in %ld of %ld samples", az_off,
+          az_compared);
 }
 
 /* Every registered direction sampler of the part that ran got chi-square runs. ctest runs the program in two parts

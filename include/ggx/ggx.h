@@ -490,13 +490,15 @@ double ggx_pdf_brdf_bounded(const ggx_shape *s, ggx_vec3 wi, ggx_vec3 wo);
  * bound per azimuth"): as ggx_sample_brdf_bounded, but the cap's lower end b(phi) depends on the azimuth phi = 2 pi u1
  * of the cap point: from the plane bound of ggx_sample_brdf_bounded, one tangent (or chord) step of the unit circle
  * on that meridian moves it up to where the reflection may reach the horizon. It removes most of what
- * ggx_sample_brdf_bounded leaves for anisotropic shapes (the whole waste of any unskewed shape at wi = n), at about
- * 1.4 times its cost. pdf = ggx_pdf_brdf / kappa(phi) with kappa(phi) = (1 - b(phi)) / (1 + vs.z) in (0, 1], weight =
- * kappa(phi) x ggx_sample_brdf's weight (<= 1), so the variance is never above ggx_sample_brdf's. b(phi) is
- * discontinuous where a meridian touches the boundary of the region that reflects above the horizon, and near such
- * azimuths, and near the pole of the cap (where phi is ill-conditioned), the pdf of a direction changes fast: a float
- * evaluation can differ from the double one by more than rounding there (measured in docs/bounded-vndf.md). Same
- * domain, invalid samples and contract as ggx_sample_brdf; u1, u2 in [0, 1) (clamped). */
+ * ggx_sample_brdf_bounded leaves for anisotropic shapes (all of the waste of any unskewed shape at wi = n), at about
+ * 1.6 times its cost (1.8 to 2 times ggx_sample_brdf's). pdf = ggx_pdf_brdf / kappa(phi) with kappa(phi) =
+ * (1 - b(phi)) / (1 + vs.z) in (0, ggx_sample_brdf_bounded's kappa], weight = kappa(phi) x ggx_sample_brdf's weight
+ * (<= 1), so the variance is never above ggx_sample_brdf's. b(phi) jumps where a meridian touches the boundary of the
+ * region that reflects above the horizon, so the pdf jumps across some curves of directions; near them, and near the
+ * pole of the cap (where phi is ill-conditioned), the float sampler (ggx_inline.h) may take another bound than the
+ * double one: it agrees within 1e-4 per direction component, 2e-4 relative in pdf and 4e-4 in weight for all but a
+ * fraction 1e-3 of samples (tests: none of 188 948 random samples missed). Same domain, invalid samples and contract
+ * as ggx_sample_brdf; u1, u2 in [0, 1) (clamped). */
 ggx_sample ggx_sample_brdf_bounded_azimuth(const ggx_shape *s, const ggx_fresnel *f, ggx_vec3 wi, double u1,
                                            double u2);
 /* The pdf of ggx_sample_brdf_bounded_azimuth for a given pair: ggx_pdf_brdf / kappa(phi), phi the azimuth of the cap
