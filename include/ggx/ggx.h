@@ -502,7 +502,11 @@ double ggx_pdf_brdf_bounded(const ggx_shape *s, ggx_vec3 wi, ggx_vec3 wo);
 ggx_sample ggx_sample_brdf_bounded_azimuth(const ggx_shape *s, const ggx_fresnel *f, ggx_vec3 wi, double u1,
                                            double u2);
 /* The pdf of ggx_sample_brdf_bounded_azimuth for a given pair: ggx_pdf_brdf / kappa(phi), phi the azimuth of the cap
- * point of wo's half vector (phi = 0 at the pole, a single point); 0 unless wi.z > 0 and wo.z > 0. */
+ * point of wo's half vector (phi = 0 at the pole, a single point); 0 unless wi.z > 0 and wo.z > 0. At a direction
+ * the sampler drew, it agrees with the sample's pdf within 1e-6 relative for u2 >= 1e-3 (tests: 2.4e-10 over 93 950
+ * random samples of alphas 0.02 to 2, ratios to 1:10, skews to 0.5 rad; a hostile test found 1.4e-7 for alphas
+ * from 0.01 and skews to 1.2 rad). Near the pole of the cap (u2 kappa -> 0) the recovered azimuth is ill-conditioned:
+ * up to 2e-5 there, and up to a few percent for shapes whose alphas differ by a factor 1e5 or more. */
 double ggx_pdf_brdf_bounded_azimuth(const ggx_shape *s, ggx_vec3 wi, ggx_vec3 wo);
 
 /* Rough-dielectric sampling (Walter 2007 section 5.3): from the known direction v (either side), m from the VNDF
