@@ -76,6 +76,29 @@ static double time_it(bench_fn fn, void *ctx, long n, double *instr)
     return t[4];
 }
 
+/* A library function against its reference: the two are timed alternately, 9 rounds, and the ratio is the median
+ * of the per-round ratios, so that a drift of the machine's speed between the two timings (a shared host) does not
+ * enter the ratio. *tr and *tl get the medians of each. */
+static double time_pair(bench_fn ref, const ggx_shape *ref_s, bench_fn lib, const ggx_shape *lib_s, const ggx_shape **slot,
+                        void *ctx,
+                        long n, double *tr, double *tl)
+{
+    double a[9], b[9], q[9];
+    *slot = ref_s, ref(ctx, n);
+    *slot = lib_s, lib(ctx, n);
+    for (int r = 0; r < 9; r++) {
+        double t0 = now();
+        *slot = ref_s, ref(ctx, n);
+        double t1 = now();
+        *slot = lib_s, lib(ctx, n);
+        double t2 = now();
+        a[r] = (t1 - t0) / n * 1e9, b[r] = (t2 - t1) / n * 1e9, q[r] = b[r] / a[r];
+    }
+    qsort(a, 9, sizeof a[0], cmp), qsort(b, 9, sizeof b[0], cmp), qsort(q, 9, sizeof q[0], cmp);
+    *tr = a[4], *tl = b[4];
+    return q[4];
+}
+
 /* ---------------------------------------------------------------- scalar double */
 
 enum { NS = 4096 };
@@ -457,6 +480,7 @@ int main(int argc, char **argv)
 
     /* Each reference is timed right after the library function it transcribes, on the same shape and inputs. */
     printf("\nreference transcriptions (same run; bench/reference.c), ns per call\n");
+    printf("timed alternately, 9 rounds; the ratio is the median of the per-round ratios\n");
     printf("%-32s %8s   %-28s %8s   %s\n", "reference", "ns/call", "library", "ns/call", "library/reference");
     struct {
         const char *name, *lib_name;
@@ -479,15 +503,13 @@ int main(int argc, char **argv)
         if ((rb[k].ref == r_caps_f_v3) && !bench_v3_supported()) continue;
 #endif
         sc.s = rb[k].s;
-        double tr = time_it(rb[k].ref, &sc, ns, NULL);
         if (!rb[k].lib) {
-            printf("%-32s %8.2f   %-28s %8s   %s\n", rb[k].name, tr, "-", "-", "-");
+            printf("%-32s %8.2f   %-28s %8s   %s\n", rb[k].name, time_it(rb[k].ref, &sc, ns, NULL), "-", "-", "-");
             continue;
         }
-        sc.s = rb[k].lib_s;
-        ggx_shapef_from(&sc.sf, sc.s);
-        double tl = time_it(rb[k].lib, &sc, ns, NULL);
-        printf("%-32s %8.2f   %-28s %8.2f   %.2f\n", rb[k].name, tr, rb[k].lib_name, tl, tl / tr);
+        ggx_shapef_from(&sc.sf, rb[k].lib_s); /* the float references read ax, ay, not sf */
+        double tr, tl, q = time_pair(rb[k].ref, rb[k].s, rb[k].lib, rb[k].lib_s, &sc.s, &sc, ns, &tr, &tl);
+        printf("%-32s %8.2f   %-28s %8.2f   %.2f\n", rb[k].name, tr, rb[k].lib_name, tl, q);
     }
     reference_checks(&sc, &diag, &skew);
 
