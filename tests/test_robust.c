@@ -279,7 +279,7 @@ static void proof_premise_d(const ggx_shape *s, ggx_vec3 v, double u1, double u2
 {
     ggx_vec3 av = ggx_k_amul_d(s, v), sv;
     double k, f2 = 0, l2 = av.x * av.x + av.y * av.y + av.z * av.z;
-    ggx_vec3 p = ggx_k_lune_point_scaled_d(GGX_SAMPLER_CAPS, av, ggx_k_len_d(av), u1, u2, &k, &sv);
+    ggx_vec3 p = ggx_k_lune_point_scaled_d(GGX_SAMPLER_CAPS, av, ggx_k_len_d(av), u1, u2, 1 - u2, &k, &sv);
     for (int i = 0; i < 3; i++)
         for (int j = 0; j < 3; j++) f2 += s->a[i][j] * s->a[i][j];
     double K = proof_k(ldexp(1.0, -53), ldexp(1.0, -48));
@@ -292,7 +292,7 @@ static void proof_premise_f(const ggx_shapef *sf, ggx_vec3f v, float u1, float u
 {
     ggx_vec3f av = ggx_k_amul_f(sf, v), sv;
     float k;
-    ggx_vec3f p = ggx_k_lune_point_scaled_f(GGX_SAMPLER_CAPS, av, ggx_k_len_f(av), u1, u2, &k, &sv);
+    ggx_vec3f p = ggx_k_lune_point_scaled_f(GGX_SAMPLER_CAPS, av, ggx_k_len_f(av), u1, u2, 1 - u2, &k, &sv);
     double f2 = 0, l2 = 0;
     for (int i = 0; i < 3; i++) {
         double ai = 0;

@@ -476,8 +476,10 @@ double ggx_pdf_brdf(const ggx_shape *s, ggx_vec3 wi, ggx_vec3 wo);
 
 /* Bounded reflection sampling, for any shape (docs/bounded-vndf.md; after Eto & Tokuyoshi 2023, with a bound derived
  * for every A): as ggx_sample_brdf, but the spherical cap of the caps sampler starts at the height b below which
- * every cap point reflects wi below the horizon, so fewer samples are invalid (none at all for isotropic alpha = 1)
- * and the distribution of valid directions is the same up to the factor kappa = (1 - b) / (1 + vs.z) in (0, 1]:
+ * every cap point reflects wi below the horizon, so fewer samples are invalid (for isotropic shapes b is the lowest
+ * cap point that reflects above it, Eto and Tokuyoshi's exact bound: none are invalid at wi = n, nor at any view for
+ * alpha = 1) and the distribution of valid directions is the same up to the factor kappa = (1 - b) / (1 + vs.z) in
+ * (0, 1]:
  * pdf = ggx_pdf_brdf / kappa (the removed cap points all reflect below the horizon: proved in the document and by
  * tests/test_sample_dir.c), weight = kappa x ggx_sample_brdf's weight (<= 1, eq 52).
  * Same domain, invalid samples and contract as ggx_sample_brdf; u1, u2 in [0, 1) (clamped). */

@@ -131,12 +131,13 @@
  * 2^-20 relative: far above the rounding of its Newton step near a simple root (a few units in the last place of
  * double, relative to lambda_min over the gap to the next root). */
 #define GGX_BOUND_SAFETY 9.5367431640625e-07
-/* The bounded samplers' kappa is raised by 2^-50 before use (k_bound_kappa_sigma2, k_bound_kappa_az): the cap's start
- * b = 1 - kappa (1 + vs.z) moves down by 8 ulps of 1, above the rounding of kappa and of the cap's height
- * 1 - u2 kappa (1 + vs.z) in double, which put b 1 to 2 ulps above a plane bound exact to its last bit (a hostile
- * test: alpha (2.5e-4, 8.3e3) skewed by pi/2, wi = n). Both precisions compute kappa in double; the float kernels then
- * round it to float, as they round the cap point. */
-#define GGX_KAPPA_SLACK 8.881784197001252e-16
+/* The bounded samplers' kappa is raised by 2^-46 before use (k_bound_kappa_sigma2, k_bound_kappa_az): the cap's start
+ * b = 1 - kappa (1 + vs.z) moves down by 128 ulps of 1, above the rounding of kappa (the unskewed plane's closed form
+ * takes some 12 roundings) and of the cap's height 1 - u2 kappa (1 + vs.z) in double. 2^-50 was the first value: a
+ * hostile test found b 1 to 2 ulps above a plane bound exact to its last bit (alpha (2.5e-4, 8.3e3) skewed by pi/2,
+ * wi = n). Both precisions compute kappa in double; the float kernels then round it to float, as they round the cap
+ * point. */
+#define GGX_KAPPA_SLACK 1.4210854715202004e-14
 /* The per-azimuth bound's tolerance for a root at the start of its piece (k_bound_first): 2^-40. */
 #define GGX_BOUND_TOL 9.094947017729282e-13
 /* The per-azimuth bound's margin (k_bound_kappa_az): a point is removed only where the bound is below 2^-40 times
