@@ -266,7 +266,8 @@ static void bounded_table(long n)
         }
     }
     printf("largest variance ratio bounded / plain: %.3f; waste halved by the per-azimuth bound in %d of %d cases "
-           "where plain wastes more than 5%%, by the plane bound in %d\n", worst_var, cases - misses, cases, plane_halved);
+           "where plain wastes more than 5%%, by the plane bound in %d\n",
+           worst_var, cases - misses, cases, plane_halved);
 }
 
 /* The inline float sampler of ggx_inline.h behind one call, as the float reference is (a renderer would inline
