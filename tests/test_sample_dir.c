@@ -366,6 +366,84 @@ static void bounded_plane_closed_forms(void **state)
            "shapes at n within %.2g of 1 / (1 + a^2)\n", n, worst_iso, n, worst_n);
 }
 
+#if defined(__SIZEOF_FLOAT128__)
+/* The band's top lies next to the cap's apex c = -vs for grazing views, where h = vs + c cancels to ~1e-13: the
+ * reflection is computed in __float128 (basic arithmetic only; square roots by Newton steps from long double). */
+typedef __float128 q128;
+static q128 q_sqrt(q128 x)
+{
+    if (!(x > 0)) return 0;
+    q128 y = sqrtl((long double)x);
+    for (int k = 0; k < 2; k++) y = (y + x / y) / 2;
+    return y;
+}
+/* The largest wo.z of cap points just below the plane bound's lower end b (distances 9e-1 to 9e-13 of the band's
+ * width, 360 azimuths and the view's own and opposite meridians), with the unskewed closed form used or not
+ * (unskewed), for the unit view v; the sign of wo.z from 2 (v.mu) mu.z - v.z |mu|^2, mu = A'^T h. */
+static double band_top_max_z(const ggx_shape *s, ggx_vec3 v, int unskewed)
+{
+    q128 av[3], vs[3], w[3] = {v.x, v.y, v.z}, l = 0, worst = -1;
+    for (int i = 0; i < 3; i++) av[i] = (q128)s->a[i][0] * w[0] + (q128)s->a[i][1] * w[1] + (q128)s->a[i][2] * w[2];
+    for (int i = 0; i < 3; i++) l += av[i] * av[i];
+    l = q_sqrt(l);
+    for (int i = 0; i < 3; i++) vs[i] = av[i] / l;
+    double omk;
+    ggx_k_bound_kappa_om_d(s, v, ggx_k_bound_sigma2_d(s), unskewed, &omk);
+    if (!(omk > 0)) return -1;
+    q128 width = omk * (1 + vs[2]), b = width - vs[2];
+    long double phv = atan2l((long double)vs[1], (long double)vs[0]);
+    for (int ia = 0; ia < 362; ia++) {
+        long double phi = ia < 360 ? 2 * (long double)T_PI * ia / 360 : phv + (ia == 360 ? 0 : (long double)T_PI);
+        q128 ec = cosl(phi), es = sinl(phi), el = q_sqrt(ec * ec + es * es);
+        ec /= el, es /= el;
+        for (int k = 1; k <= 13; k++) {
+            q128 cz = b - 9 * width * (q128)powl(10, -k), sr = q_sqrt(1 - cz * cz), h[3], mu[3], n = 0, d = 0;
+            h[0] = vs[0] + sr * ec, h[1] = vs[1] + sr * es, h[2] = vs[2] + cz;
+            for (int j = 0; j < 3; j++) {
+                mu[j] = (q128)s->a[0][j] * h[0] + (q128)s->a[1][j] * h[1] + (q128)s->a[2][j] * h[2];
+                n += mu[j] * mu[j], d += w[j] * mu[j];
+            }
+            if (!(n > 0)) continue;
+            q128 woz = (2 * d * mu[2] - w[2] * n) / n;
+            if (woz > worst) worst = woz;
+        }
+    }
+    return (double)worst;
+}
+#endif
+
+/* A matrix whose skew ggx_shape_matrix counts as unskewed (below 1e-14 of its scale) takes the general form of the
+ * bound: for it (A' wi).z is not ||A n|| wi.z, and a grazing view let the unskewed closed form remove points that
+ * reflect to wo.z = 2.6e-10 (a hostile test). Checked at the band's top, with the closed form forced as the negative
+ * control; and the same check for an exactly unskewed shape, where the closed form is used. */
+static void bounded_tiny_skew(void **state)
+{
+    (void)state;
+#if !defined(__SIZEOF_FLOAT128__)
+    printf("bounded, tiny skew: skipped (no __float128 on this compiler)\n");
+#else
+    const double A[3][3] = {{10000, 0, 0}, {0, 30000, 0}, {3.9960998999999998e-10, 0, 1}};
+    const ggx_vec3 views[] = {{0.99999999499999992, 0, 0.0001}, {1, 0, 9.9999999999999998e-13}, {0.6, 0.8, 1e-8}};
+    ggx_shape s, d;
+    CHECK(ggx_shape_matrix(&s, A) == GGX_OK && s.kind != GGX_SHAPE_SKEWED, "the tiny skew counts as unskewed");
+    CHECK(ggx_shape_aniso(&d, 0.3, 0.9) == GGX_OK, "aniso");
+    CHECK(!ggx_k_bound_is_unskewed_d(&s) && ggx_k_bound_is_unskewed_d(&d), "the bound's choice of form");
+    double worst = -1, forced = -1, exact = -1;
+    for (unsigned i = 0; i < sizeof views / sizeof views[0]; i++) {
+        ggx_vec3 v = t_normalize(views[i]);
+        worst = fmax(worst, band_top_max_z(&s, v, ggx_k_bound_is_unskewed_d(&s)));
+        forced = fmax(forced, band_top_max_z(&s, v, 1));
+        exact = fmax(exact, band_top_max_z(&d, v, 1));
+    }
+    exact = fmax(exact, band_top_max_z(&d, t_vec(0, 0, 1), 1));
+    printf("bounded, tiny skew: band top reflects to wo.z <= %.3g (the unskewed form forced: %.3g); an exactly "
+           "unskewed shape: %.3g\n", worst, forced, exact);
+    CHECK(worst <= 1e-13, "tiny skew: a removed point reflects to wo.z = %.3g", worst);
+    CHECK(exact <= 1e-13, "aniso 0.3:0.9: a removed point reflects to wo.z = %.3g", exact);
+    CHECK(forced > 1e-11, "negative control: the unskewed form on the tiny skew went unnoticed (%.3g)", forced);
+#endif
+}
+
 /* Unbiasedness of bounded reflection sampling: (1) its pdf is > 0 wherever f_r > 0, at random pairs over random
  * shapes (skews too) and views; (2) the albedo estimated with its weights (F = 1) equals the one estimated by plain
  * reflection sampling (chi-square tested above; independent random numbers, 4 times the samples) within 4.5
@@ -538,13 +616,14 @@ int main(int argc, char **argv)
     part = argc > 1 ? atoi(argv[1]) : 0;
     const struct CMUnitTest all[] = {cmocka_unit_test(reflection_sweep), cmocka_unit_test(dielectric_sweep),
                                      cmocka_unit_test(bounded_removes_only_below_horizon),
-                                     cmocka_unit_test(bounded_plane_closed_forms),
+                                     cmocka_unit_test(bounded_plane_closed_forms), cmocka_unit_test(bounded_tiny_skew),
                                      cmocka_unit_test(bounded_unbiased), cmocka_unit_test(bounded_float_follows_double),
                                      cmocka_unit_test(dir_coverage)};
     const struct CMUnitTest first[] = {cmocka_unit_test(reflection_sweep), cmocka_unit_test(dir_coverage)};
     const struct CMUnitTest second[] = {cmocka_unit_test(dielectric_sweep),
                                         cmocka_unit_test(bounded_removes_only_below_horizon),
                                         cmocka_unit_test(bounded_plane_closed_forms),
+                                        cmocka_unit_test(bounded_tiny_skew),
                                         cmocka_unit_test(bounded_unbiased),
                                         cmocka_unit_test(bounded_float_follows_double), cmocka_unit_test(dir_coverage)};
     int rc = part == 1   ? cmocka_run_group_tests_name("reflection", first, NULL, NULL)
