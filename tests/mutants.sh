@@ -94,9 +94,9 @@ mutate include/ggx/ggx_inline.h "double k = 1.0 / s->an_len, det = s->det * k * 
     "double k = 1.0, det = s->det * k * k * k;" "float shape not normalised by ||A n|| (ggx_shapef_from)"
 mutate src/api/registry.c "return ggx_pdf_ndf(s, m);" "return ggx_pdf_vndf(s, v, m);" \
     "registry claiming the VNDF pdf for the NDF samplers (equal at v = n, where the NDF sweep runs)"
-mutate $K/traits.h "#define GGX_PROOF_C 5.551115123125783e-17 /* 2^-54 */" \
-    "#define GGX_PROOF_C 5.421010862427522e-20 /* 2^-64 */" \
-    "double caps proof's C term 1024 times too small (its premise fails for views along A's most contracted direction)"
+mutate $K/traits.h "#define GGX_PROOF_C GGX_C(1.52587890625e-05) /* 2^-16 */" \
+    "#define GGX_PROOF_C GGX_C(2.384185791015625e-07) /* 2^-22 */" \
+    "float caps proof's C term 64 times too small (its premise fails for views along A's most contracted direction)"
 mutate $K/sample.inc "(p.z >= GGX_PROOF_T * k)" "(p.z >= 0)" \
     "scalar caps sampler's proof without the rim bound (returns unchecked normals at the rim)"
 mutate $K/sample.inc "*q = 1 - u1; /* exact for u1 >= 1/2 */" "*q = 1 - r * r * (c * c + sn * sn);" \

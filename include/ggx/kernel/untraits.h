@@ -24,14 +24,17 @@
 #undef GGX_RIM_TRIES
 #undef GGX_L2_MIN
 #undef GGX_L2_MAX
-#undef GGX_MU2_MIN
+#undef GGX_BAR_MIN
+#undef GGX_CAPS_PROOF
 #undef GGX_SIN_POLY
 #undef GGX_COS_POLY
 #undef ggx_rw
 #undef GGX_H2_MIN
+#ifdef GGX_PROOF_T
 #undef GGX_PROOF_T
 #undef GGX_PROOF_C
 #undef GGX_FROB2
+#endif
 #undef GGX_A33
 #undef GGX_B33
 #undef GGX_SLOW_WIDE
