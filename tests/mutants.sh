@@ -97,6 +97,8 @@ mutate src/api/registry.c "return ggx_pdf_ndf(s, m);" "return ggx_pdf_vndf(s, v,
 mutate $K/traits.h "#define GGX_PROOF_C GGX_C(1.52587890625e-05) /* 2^-16 */" \
     "#define GGX_PROOF_C GGX_C(2.384185791015625e-07) /* 2^-22 */" \
     "float caps proof's C term 64 times too small (its premise fails for views along A's most contracted direction)"
+mutate $K/sample.inc "ggx_rw b = GGX_BOUND_DIVIDE ? 1 : (ggx_rw)GGX_B33(s), b2 = b * b;" "ggx_rw b = 1, b2 = 1;" \
+    "bounded plane's fraction in double without its scale (scaled shapes fall to the slow path's u2 kappa at the rim)"
 mutate $K/sample.inc "(p.z >= GGX_PROOF_T * k)" "(p.z >= 0)" \
     "scalar caps sampler's proof without the rim bound (returns unchecked normals at the rim)"
 mutate $K/sample.inc "*q = 1 - u1; /* exact for u1 >= 1/2 */" "*q = 1 - r * r * (c * c + sn * sn);" \

@@ -26,6 +26,7 @@
 #undef GGX_L2_MAX
 #undef GGX_BAR_MIN
 #undef GGX_CAPS_PROOF
+#undef GGX_BOUND_DIVIDE
 #undef GGX_SIN_POLY
 #undef GGX_COS_POLY
 #undef ggx_rw
