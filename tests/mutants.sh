@@ -75,7 +75,7 @@ mutate $K/fresnel.inc "ggx_r rp = (eta * ci - ct) / (eta * ci + ct);" "ggx_r rp 
 mutate $K/ndf.inc "GGX_FN(k_finite0)(GGX_FN(ndf)(s, m) * mv * d / w)" \
     "GGX_FN(k_finite0)(GGX_FN(ndf)(s, m) * mv / v.z)" \
     "VNDF pdf with G1 dropped"
-mutate $K/sample.inc "ggx_r pz = (1 - u2) * opz;" "ggx_r pz = (1 - u2) * opz + GGX_C(0.1) * av.z;" \
+mutate $K/sample.inc "ggx_r pz = w * opz;" "ggx_r pz = w * opz + GGX_C(0.1) * av.z;" \
     "spherical cap with the wrong lower bound"
 mutate $K/sample.inc "sc = GGX_C(0.5) * opz," "sc = GGX_C(0.5) * (1 + vs.z * vs.z)," \
     "crescent factor s squared"
@@ -99,6 +99,8 @@ mutate $K/traits.h "#define GGX_PROOF_C GGX_C(1.52587890625e-05) /* 2^-16 */" \
     "float caps proof's C term 64 times too small (its premise fails for views along A's most contracted direction)"
 mutate $K/sample.inc "ggx_rw b = GGX_BOUND_DIVIDE ? 1 : (ggx_rw)GGX_B33(s), b2 = b * b;" "ggx_rw b = 1, b2 = 1;" \
     "bounded plane's fraction in double without its scale (scaled shapes fall to the slow path's u2 kappa at the rim)"
+mutate $K/traits.h "#define GGX_FACE_FLOOR(bar, mu2) ((mu2) >= 1e-250)" "#define GGX_FACE_FLOOR(bar, mu2) ((bar) >= 1e-78)" \
+    "double facing check's floor on bar instead of mu.mu (small matrices leave the fast path)"
 mutate $K/sample.inc "(p.z >= GGX_PROOF_T * k)" "(p.z >= 0)" \
     "scalar caps sampler's proof without the rim bound (returns unchecked normals at the rim)"
 mutate $K/sample.inc "*q = 1 - u1; /* exact for u1 >= 1/2 */" "*q = 1 - r * r * (c * c + sn * sn);" \

@@ -249,7 +249,7 @@ static void registry_entry_points(void **state)
  * unit view, within the batch bound, on every instruction set and every batch sampler of normals, for the shapes whose
  * products underflow soonest: alpha 1e-4 (skewed too) and a matrix scaled to 1e-49 (normalised by ggx_shapef_from).
  * (In float these elements reach the slow path through the other checks even without the mu.mu bound of
- * GGX_BAR_MIN: measured with GGX_MU2_MIN, its predecessor, set to 0. The test guards the contract, not that
+ * GGX_FACE_FLOOR: measured with GGX_MU2_MIN, its predecessor, set to 0. The test guards the contract, not that
  * constant.) */
 static void short_views(void **state)
 {

@@ -38,11 +38,13 @@
  * ||A v||^2 stays below FLT_MAX; anything else is rescaled first. */
 #define GGX_L2_MIN GGX_C(1e-20)
 #define GGX_L2_MAX GGX_C(1e4)
-/* The smallest bar = margin^2 |v|^2 mu.mu of the fast path's facing check (k_lune_core_pk): a normal number (float's
+/* The caps fast path's shortest views (k_lune_core_pk): as the others (GGX_L2_MIN). */
+#define GGX_L2_FAST GGX_L2_MIN
+/* The floor of the fast path's facing check (k_lune_core_pk), on bar = margin^2 |v|^2 mu.mu: a normal number (float's
  * smallest is 1.2e-38), and with |v|^2 <= GGX_L2_MAX it keeps mu.mu >= 1e-37 / (2^-40 1e4) = 1.1e-29, 1e9 times
- * float's smallest normal, so that mu's components lose no precision to subnormals. Views shorter than about 1e-6
- * (for |A| ~ 1) take the slow path. */
-#define GGX_BAR_MIN GGX_C(1e-37)
+ * float's smallest normal, so that mu's components lose no precision to subnormals. (The float shape is normalised,
+ * ||A n|| = 1: an absolute floor is scale-free.) Views shorter than about 1e-6 (for |A| ~ 1) take the slow path. */
+#define GGX_FACE_FLOOR(bar, mu2) ((bar) >= GGX_C(1e-37))
 /* sin and cos of x in [-pi/4, pi/4] by minimax polynomials of degree 7 and 8 (fitted to the absolute error on a
  * grid of 2e4 points by reweighted least squares, coefficients rounded to float): approximation errors 1.8e-9 and
  * 5.4e-11, so the float evaluation is within 6.9e-8 of sin and cos, the same as the Taylor series to x^9 and x^10
@@ -108,10 +110,12 @@
  * ||A|| <= 1e50); others are rescaled by their largest component first. */
 #define GGX_L2_MIN 1e-200
 #define GGX_L2_MAX 1e200
-/* As in float: a normal number that keeps mu.mu >= 1e-78 / (2^-96 1e200) = 7.9e-250, 1e58 times double's smallest
- * normal (mu.mu of a matrix scaled to 1e-50 and a view of length 1e-100 underflows). Views shorter than about 1e-12
- * (for |A| ~ 1) take the slow path. */
-#define GGX_BAR_MIN 1e-78
+/* The double shape is not normalised (matrices are accepted at any scale), so the facing check's floor is on mu.mu
+ * itself: 1e58 times double's smallest normal (mu.mu of a matrix scaled to 1e-50 and a view of length 1e-100
+ * underflows), and the caps fast path takes views from |v|^2 = 1e-28 (GGX_L2_FAST), so that bar >= 2^-96 1e-28
+ * 1e-250 = 1.3e-307 is a normal number. Shorter views take the slow path. */
+#define GGX_L2_FAST 1e-28
+#define GGX_FACE_FLOOR(bar, mu2) ((mu2) >= 1e-250)
 /* Taylor series to x^15 and x^16 on [-pi/4, pi/4]: remainders below 7e-17, under double rounding. */
 #define GGX_SIN_POLY(x, x2)                                                                                       \
     ((x) * (1.0 + (x2) * (-1.0 / 6 + (x2) * (1.0 / 120 + (x2) * (-1.0 / 5040 + (x2) * (1.0 / 362880 +            \

@@ -24,7 +24,8 @@
 #undef GGX_RIM_TRIES
 #undef GGX_L2_MIN
 #undef GGX_L2_MAX
-#undef GGX_BAR_MIN
+#undef GGX_L2_FAST
+#undef GGX_FACE_FLOOR
 #undef GGX_CAPS_PROOF
 #undef GGX_BOUND_DIVIDE
 #undef GGX_SIN_POLY
