@@ -111,6 +111,41 @@ static double cell_integral(const chi2_problem *p, int region, double c0, double
     return sum * 0.25 * dc * dp;
 }
 
+/* The integral of a cell by adaptive subdivision: a panel is split 2 x 2 where its 4 x 4 nodes are mixed (zero
+ * and nonzero, or a jump: cell_integral) or where the four 4 x 4 rules of its quarters differ from its own by more
+ * than GGX_CHI2_REL of it (a feature smaller than the panel that no node of its own rule sees: the bound per azimuth
+ * of bounded reflection sampling, whose kappa(phi) jumps along meridians of the cap that meet at the image of the
+ * cap's pole, leaves a small region of 6 times the density between the nodes of the cells around it), to depth
+ * levels. v is the panel's own rule (computed by the caller). *fine is the integral; *coarse the same to one level
+ * less (its error estimate). */
+#define GGX_CHI2_DEPTH 4
+#define GGX_CHI2_REL 1e-3
+static void cell_adaptive(const chi2_problem *p, int region, double c0, double c1, double p0, double p1, double v,
+                          int mixed, int depth, double *fine, double *coarse)
+{
+    double cm = 0.5 * (c0 + c1), pm = 0.5 * (p0 + p1), q[4], sum = 0.0;
+    int mq[4], any = mixed;
+    const double cs[3] = {c0, cm, c1}, ps[3] = {p0, pm, p1};
+    for (int a = 0; a < 2; a++)
+        for (int b = 0; b < 2; b++) {
+            q[2 * a + b] = cell_integral(p, region, cs[a], cs[a + 1], ps[b], ps[b + 1], 1, &mq[2 * a + b]);
+            sum += q[2 * a + b];
+            any |= mq[2 * a + b];
+        }
+    *coarse = v;
+    *fine = sum;
+    if (depth <= 1 || !(any || fabs(sum - v) > GGX_CHI2_REL * fabs(sum))) return;
+    double f = 0.0, c = 0.0, fi, ci;
+    for (int a = 0; a < 2; a++)
+        for (int b = 0; b < 2; b++) {
+            cell_adaptive(p, region, cs[a], cs[a + 1], ps[b], ps[b + 1], q[2 * a + b], mq[2 * a + b], depth - 1, &fi,
+                          &ci);
+            f += fi, c += ci;
+        }
+    *fine = f;
+    *coarse = c;
+}
+
 /* The histogram of observed and expected counts, for a failing run. */
 static void write_failure(const chi2_problem *p, int ntheta, int nphi, const long *obs, const double *expd,
                           const chi2_result *res)
@@ -164,14 +199,11 @@ static chi2_result run(const chi2_problem *p, long n, int ntheta, int nphi, uint
                 double p0 = 2.0 * T_PI * ip / nphi, p1 = 2.0 * T_PI * (ip + 1) / nphi;
                 long idx = ((long)reg * ntheta + it) * nphi + ip;
                 int mixed;
-                double v = cell_integral(p, reg, c0, c1, p0, p1, 1, &mixed);
-                if (mixed) {
-                    /* a jump of the density in the cell (a horizon, a bound): the finer rule, and the difference
-                     * from the coarser one as its error estimate */
-                    double v4 = cell_integral(p, reg, c0, c1, p0, p1, 4, NULL);
-                    v = cell_integral(p, reg, c0, c1, p0, p1, 8, NULL);
-                    quad_err += fabs(v - v4);
-                }
+                double v1 = cell_integral(p, reg, c0, c1, p0, p1, 1, &mixed), v, vc;
+                /* adaptive subdivision where the density jumps (a horizon, a bound) or has a feature its nodes
+                 * miss, with the difference from one level less as the error estimate */
+                cell_adaptive(p, reg, c0, c1, p0, p1, v1, mixed, GGX_CHI2_DEPTH, &v, &vc);
+                quad_err += fabs(v - vc);
                 if (v == 0.0 && obs[idx] > 0) v = cell_integral(p, reg, c0, c1, p0, p1, 8, NULL); /* a sliver */
                 expd[idx] = v * (double)n;
                 mass += v;
