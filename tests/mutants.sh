@@ -105,5 +105,9 @@ mutate $K/sample.inc "(p.z >= GGX_PROOF_T * k)" "(p.z >= 0)" \
     "scalar caps sampler's proof without the rim bound (returns unchecked normals at the rim)"
 mutate $K/sample.inc "*q = 1 - u1; /* exact for u1 >= 1/2 */" "*q = 1 - r * r * (c * c + sn * sn);" \
     "polar disk's 1 - |d|^2 by cancellation (float crescent-polar, Heitz and ellipse samplers off near the rim)"
+mutate $K/sample.inc "    return rt < rc ? rt : rc;" "    return rt < rc ? rc : rt;" \
+    "per-azimuth bound stopping at the later of its two quadratics' roots (removes points only one of them bounds)"
+mutate $K/sample.inc "    cur = two & (ra >= h1) ? rb : ra;" "    cur = two ? rb : ra;" \
+    "per-azimuth bound's second stage taken where the first stopped below the equator"
 echo "$killed mutant(s) killed, $survived survived"
 [ "$survived" -eq 0 ]
