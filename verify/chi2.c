@@ -146,6 +146,32 @@ static void cell_adaptive(const chi2_problem *p, int region, double c0, double c
     *coarse = c;
 }
 
+/* The cells of the first and last rows are wedges that meet at a pole of the key (cos theta = +-1), where their
+ * 4 x 4 nodes lie far from the pole in angle (cos theta is uniform in area: the innermost node of a row of 0.065
+ * in cos theta is 5.4 degrees from the pole) and a small feature around it (the bound per azimuth's jumps meet at
+ * the image of the cap's pole, which lies near the key's pole for views whose sphere-space view is near n) is not
+ * seen by any of them: such a cell is split towards its pole GGX_CHI2_POLAR times, halving its extent in cos theta
+ * each time, and each part is integrated by cell_adaptive. */
+#define GGX_CHI2_POLAR 6
+static void cell_polar(const chi2_problem *p, int region, double c0, double c1, double p0, double p1, double *fine,
+                       double *coarse)
+{
+    double f = 0.0, c = 0.0, fi, ci;
+    int top = c1 >= 1.0, mixed;
+    for (int k = 0; k <= GGX_CHI2_POLAR; k++) {
+        double cm = 0.5 * (c0 + c1);
+        /* the half away from the pole, or at the end the rest */
+        double a0 = k == GGX_CHI2_POLAR ? c0 : (top ? c0 : cm), a1 = k == GGX_CHI2_POLAR ? c1 : (top ? cm : c1);
+        double v = cell_integral(p, region, a0, a1, p0, p1, 1, &mixed);
+        cell_adaptive(p, region, a0, a1, p0, p1, v, mixed, GGX_CHI2_DEPTH, &fi, &ci);
+        f += fi, c += ci;
+        if (top) c0 = cm;
+        else c1 = cm;
+    }
+    *fine = f;
+    *coarse = c;
+}
+
 /* The histogram of observed and expected counts, for a failing run. */
 static void write_failure(const chi2_problem *p, int ntheta, int nphi, const long *obs, const double *expd,
                           const chi2_result *res)
@@ -202,7 +228,10 @@ static chi2_result run(const chi2_problem *p, long n, int ntheta, int nphi, uint
                 double v1 = cell_integral(p, reg, c0, c1, p0, p1, 1, &mixed), v, vc;
                 /* adaptive subdivision where the density jumps (a horizon, a bound) or has a feature its nodes
                  * miss, with the difference from one level less as the error estimate */
-                cell_adaptive(p, reg, c0, c1, p0, p1, v1, mixed, GGX_CHI2_DEPTH, &v, &vc);
+                if (it == 0 || it == ntheta - 1)
+                    cell_polar(p, reg, c0, c1, p0, p1, &v, &vc);
+                else
+                    cell_adaptive(p, reg, c0, c1, p0, p1, v1, mixed, GGX_CHI2_DEPTH, &v, &vc);
                 quad_err += fabs(v - vc);
                 if (v == 0.0 && obs[idx] > 0) v = cell_integral(p, reg, c0, c1, p0, p1, 8, NULL); /* a sliver */
                 expd[idx] = v * (double)n;
