@@ -109,5 +109,11 @@ mutate $K/sample.inc "    return rt < rc ? rt : rc;" "    return rt < rc ? rc : 
     "per-azimuth bound stopping at the later of its two quadratics' roots (removes points only one of them bounds)"
 mutate $K/sample.inc "    cur = two & (ra >= h1) ? rb : ra;" "    cur = two ? rb : ra;" \
     "per-azimuth bound's second stage taken where the first stopped below the equator"
+mutate $K/sample.inc "    int ok = (wn.z > 0) & (b > start) & (num > 0) & (num < den);" \
+    "    int ok = (wn.z > 0) & (b > start - 2) & (num > 0) & (num < den);" \
+    "per-azimuth bound in absolute z where the stages leave the plane bound (kappa above the plane's)"
+mutate $K/sample.inc "    ggx_rw P = 1 - t * y, Q = (dy3 - 2 * t * y) + 3;" \
+    "    ggx_rw d = (ggx_rw)s->det * (ggx_rw)s->det, P = 1 - t * y, Q = (d * y * y * y + 0 * dy3 - 2 * t * y) + 3;" \
+    "sigma2's Newton step from det^2 (subnormal for ill-conditioned matrices near 1e-50)"
 echo "$killed mutant(s) killed, $survived survived"
 [ "$survived" -eq 0 ]
