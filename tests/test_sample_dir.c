@@ -377,43 +377,10 @@ static q128 q_sqrt(q128 x)
     for (int k = 0; k < 2; k++) y = (y + x / y) / 2;
     return y;
 }
-/* The largest wo.z of cap points just below the plane bound's lower end b (distances 9e-1 to 9e-13 of the band's
- * width, 360 azimuths and the view's own and opposite meridians), with the unskewed closed form used or not
- * (unskewed), for the unit view v; the sign of wo.z from 2 (v.mu) mu.z - v.z |mu|^2, mu = A'^T h. */
-static double band_top_max_z(const ggx_shape *s, ggx_vec3 v, int unskewed)
-{
-    q128 av[3], vs[3], w[3] = {v.x, v.y, v.z}, l = 0, worst = -1;
-    for (int i = 0; i < 3; i++) av[i] = (q128)s->a[i][0] * w[0] + (q128)s->a[i][1] * w[1] + (q128)s->a[i][2] * w[2];
-    for (int i = 0; i < 3; i++) l += av[i] * av[i];
-    l = q_sqrt(l);
-    for (int i = 0; i < 3; i++) vs[i] = av[i] / l;
-    double omk;
-    ggx_k_bound_kappa_om_d(s, v, ggx_k_bound_sigma2_d(s), unskewed, &omk);
-    if (!(omk > 0)) return -1;
-    q128 width = omk * (1 + vs[2]), b = width - vs[2];
-    long double phv = atan2l((long double)vs[1], (long double)vs[0]);
-    for (int ia = 0; ia < 362; ia++) {
-        long double phi = ia < 360 ? 2 * (long double)T_PI * ia / 360 : phv + (ia == 360 ? 0 : (long double)T_PI);
-        q128 ec = cosl(phi), es = sinl(phi), el = q_sqrt(ec * ec + es * es);
-        ec /= el, es /= el;
-        for (int k = 1; k <= 13; k++) {
-            q128 cz = b - 9 * width * (q128)powl(10, -k), sr = q_sqrt(1 - cz * cz), h[3], mu[3], n = 0, d = 0;
-            h[0] = vs[0] + sr * ec, h[1] = vs[1] + sr * es, h[2] = vs[2] + cz;
-            for (int j = 0; j < 3; j++) {
-                mu[j] = (q128)s->a[0][j] * h[0] + (q128)s->a[1][j] * h[1] + (q128)s->a[2][j] * h[2];
-                n += mu[j] * mu[j], d += w[j] * mu[j];
-            }
-            if (!(n > 0)) continue;
-            q128 woz = (2 * d * mu[2] - w[2] * n) / n;
-            if (woz > worst) worst = woz;
-        }
-    }
-    return (double)worst;
-}
-
-/* The largest wo.z of cap points below the lower end b = omk (1 + vs.z) - vs.z of the meridian 2 pi u1 (distances
- * 9e-1 to 9e-16 of the band's width), in __float128 as band_top_max_z. */
-static double meridian_band_max_z(const ggx_shape *s, ggx_vec3 v, double u1, double omk)
+/* The largest wo.z of cap points below the lower end b = omk (1 + vs.z) - vs.z of the meridian of azimuth phi, at
+ * distances 9e-1 to 9 10^-kmax of the band's width, for the unit view v; the sign of wo.z from
+ * 2 (v.mu) mu.z - v.z |mu|^2, mu = A'^T h. */
+static double meridian_band_max_z(const ggx_shape *s, ggx_vec3 v, long double phi, double omk, int kmax)
 {
     q128 av[3], vs[3], w[3] = {v.x, v.y, v.z}, l = 0, worst = -1;
     for (int i = 0; i < 3; i++) av[i] = (q128)s->a[i][0] * w[0] + (q128)s->a[i][1] * w[1] + (q128)s->a[i][2] * w[2];
@@ -421,10 +388,9 @@ static double meridian_band_max_z(const ggx_shape *s, ggx_vec3 v, double u1, dou
     l = q_sqrt(l);
     for (int i = 0; i < 3; i++) vs[i] = av[i] / l;
     q128 width = omk * (1 + vs[2]), b = width - vs[2];
-    long double phi = 2 * (long double)T_PI * u1;
     q128 ec = cosl(phi), es = sinl(phi), el = q_sqrt(ec * ec + es * es);
     ec /= el, es /= el;
-    for (int k = 1; k <= 16; k++) {
+    for (int k = 1; k <= kmax; k++) {
         q128 cz = b - 9 * width * (q128)powl(10, -k), sr = q_sqrt(1 - cz * cz), h[3], mu[3], n = 0, d = 0;
         h[0] = vs[0] + sr * ec, h[1] = vs[1] + sr * es, h[2] = vs[2] + cz;
         for (int j = 0; j < 3; j++) {
@@ -436,6 +402,22 @@ static double meridian_band_max_z(const ggx_shape *s, ggx_vec3 v, double u1, dou
         if (woz > worst) worst = woz;
     }
     return (double)worst;
+}
+/* The same just below the plane bound's lower end (to 9e-13 of the band's width) on 360 azimuths and the view's own
+ * and opposite meridians, with the unskewed closed form used or not (unskewed). */
+static double band_top_max_z(const ggx_shape *s, ggx_vec3 v, int unskewed)
+{
+    double omk, worst = -1;
+    ggx_k_bound_kappa_om_d(s, v, ggx_k_bound_sigma2_d(s), unskewed, &omk);
+    if (!(omk > 0)) return -1;
+    long double ax = (long double)s->a[0][0] * v.x + (long double)s->a[0][1] * v.y + (long double)s->a[0][2] * v.z;
+    long double ay = (long double)s->a[1][0] * v.x + (long double)s->a[1][1] * v.y + (long double)s->a[1][2] * v.z;
+    long double phv = atan2l(ay, ax);
+    for (int ia = 0; ia < 362; ia++) {
+        long double phi = ia < 360 ? 2 * (long double)T_PI * ia / 360 : phv + (ia == 360 ? 0 : (long double)T_PI);
+        worst = fmax(worst, meridian_band_max_z(s, v, phi, omk, 13));
+    }
+    return worst;
 }
 #endif
 
@@ -468,14 +450,15 @@ static void bounded_azimuth_grazing(void **state)
         ggx_vec3 v = t_normalize(cases[i].v);
         double sigma2 = ggx_k_bound_sigma2_d(&s), omk, omp;
         ggx_k_bound_kappa_u_om_d(&s, v, sigma2, cases[i].u1, &omk);
-        worst = fmax(worst, meridian_band_max_z(&s, v, cases[i].u1, omk));
+        worst = fmax(worst, meridian_band_max_z(&s, v, 2 * (long double)T_PI * cases[i].u1, omk, 16));
         /* the control: 1 - kappa from the plane bound placed in absolute z (b = omp (1 + vz) - vz in double) */
         ggx_k_bound_kappa_om_d(&s, v, sigma2, ggx_k_bound_is_unskewed_d(&s), &omp);
         ggx_vec3 av = {s.a[0][0] * v.x + s.a[0][1] * v.y + s.a[0][2] * v.z,
                        s.a[1][0] * v.x + s.a[1][1] * v.y + s.a[1][2] * v.z,
                        s.a[2][0] * v.x + s.a[2][1] * v.y + s.a[2][2] * v.z};
         double vz = av.z / sqrt(t_dot(av, av)), b = omp * (1 + vz) - vz;
-        control = fmax(control, meridian_band_max_z(&s, v, cases[i].u1, 1 - (1 - b) / (1 + vz)));
+        control = fmax(control,
+                       meridian_band_max_z(&s, v, 2 * (long double)T_PI * cases[i].u1, 1 - (1 - b) / (1 + vz), 16));
     }
     printf("bounded per azimuth, grazing views with 1 + vs.z near 1e-6: removed points reflect to wo.z <= %.3g (the "
            "plane bound placed in absolute z: %.3g)\n", worst, control);
