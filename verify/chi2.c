@@ -224,14 +224,16 @@ static chi2_result run(const chi2_problem *p, long n, int ntheta, int nphi, uint
             for (int ip = 0; ip < nphi; ip++) {
                 double p0 = 2.0 * T_PI * ip / nphi, p1 = 2.0 * T_PI * (ip + 1) / nphi;
                 long idx = ((long)reg * ntheta + it) * nphi + ip;
-                int mixed;
-                double v1 = cell_integral(p, reg, c0, c1, p0, p1, 1, &mixed), v, vc;
+                double v, vc;
                 /* adaptive subdivision where the density jumps (a horizon, a bound) or has a feature its nodes
                  * miss, with the difference from one level less as the error estimate */
-                if (it == 0 || it == ntheta - 1)
+                if (it == 0 || it == ntheta - 1) {
                     cell_polar(p, reg, c0, c1, p0, p1, &v, &vc);
-                else
+                } else {
+                    int mixed;
+                    double v1 = cell_integral(p, reg, c0, c1, p0, p1, 1, &mixed);
                     cell_adaptive(p, reg, c0, c1, p0, p1, v1, mixed, GGX_CHI2_DEPTH, &v, &vc);
+                }
                 quad_err += fabs(v - vc);
                 if (v == 0.0 && obs[idx] > 0) v = cell_integral(p, reg, c0, c1, p0, p1, 8, NULL); /* a sliver */
                 expd[idx] = v * (double)n;
