@@ -5,7 +5,7 @@ PREFIX ?= /usr/local
 JOBS ?= 2
 MAKEFLAGS += --no-print-directory
 
-.PHONY: all deps deps-run deps-dev configure configure-run build run example bench bench-python test test-long sanitize tsan tables \
+.PHONY: all deps deps-run deps-dev configure configure-run build run example bench bench-python test test-long test-clang sanitize tsan tables \
         valgrind fuzz fuzz-ci install clean
 
 all: build
@@ -14,7 +14,7 @@ all: build
 # header's C++ test, make for the install test, xmllint and poppler (pdfinfo) for the figures, groff for the man page,
 # Python with numpy, pytest and matplotlib for the Python package's tests and its example).
 RUN_PKGS = cmake make gcc libc6-dev pkg-config libcairo2-dev fonts-dejavu-core
-TEST_PKGS = $(RUN_PKGS) g++ libcmocka-dev libxml2-utils poppler-utils groff-base python3 python3-numpy python3-pytest \
+TEST_PKGS = $(RUN_PKGS) g++ clang libcmocka-dev libxml2-utils poppler-utils groff-base python3 python3-numpy python3-pytest \
             python3-matplotlib
 
 deps:
@@ -95,6 +95,13 @@ tsan: deps
 	  -DCMAKE_SHARED_LINKER_FLAGS="$(TSAN_FLAGS)" >/dev/null
 	@cmake --build build-tsan -j $(JOBS) --target test_batch test_batch_threads
 	@cd build-tsan && GGX_TEST_SCALE=0.1 TSAN_OPTIONS=halt_on_error=1 ctest --output-on-failure -R '^batch'
+
+# The whole build (library, command, tests, Python module) with clang and clang++, and the suite at a tenth of its
+# sample counts: clang is a first-class compiler (the default build is gcc's).
+test-clang: deps
+	@CC=clang CXX=clang++ cmake -S . -B build-clang $(CMAKE_CONFIG) -DGGX_BUILD_TESTS=ON >/dev/null
+	@cmake --build build-clang -j $(JOBS)
+	@cd build-clang && GGX_REQUIRE_CLANG=1 GGX_TEST_SCALE=0.1 GGX_CLI_QUICK=1 ctest --output-on-failure -j $(JOBS) -E install
 
 # The CLI tests with every ggx run under valgrind (memcheck, leak check); any error fails the test.
 valgrind: deps-dev build

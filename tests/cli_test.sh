@@ -244,6 +244,30 @@ echo old > target.csv && ln -s target.csv link.csv && "$GGX" sample -n 3 --out l
     [ "$(wc -l < target.csv)" -eq 4 ] && ok || bad "--out symlink"
 ln -s made.csv dangling.csv && "$GGX" sample -n 3 --out dangling.csv && [ -L dangling.csv ] && [ "$(wc -l < made.csv)" -eq 4 ] && ok || bad "--out dangling symlink"
 echo old > private.csv && chmod 600 private.csv && "$GGX" sample -n 2 --out private.csv && [ "$(stat -c %a private.csv)" = 600 ] && ok || bad "--out keeps permissions: $(stat -c %a private.csv)"
+# --out as a redirect: a file the user may not write is an error (exit 2, untouched); a replaced file keeps its
+# owner where the user could give it, else it is written in place. As an unprivileged user where the test runs as
+# root (CI), else as the user running it (the read-only case only).
+echo keep > ro.csv && chmod 444 ro.csv
+if [ "$(id -u)" = 0 ] && command -v setpriv >/dev/null 2>&1 && id nobody >/dev/null 2>&1; then
+    AS="setpriv --reuid=nobody --regid=$(id -g nobody) --clear-groups"
+    mkdir perm && chmod 755 . && chown nobody perm && chown nobody ro.csv && mv ro.csv perm/
+    echo root > perm/rootfile && chmod 644 perm/rootfile
+    echo shared > perm/shared && chmod 666 perm/shared
+    echo theirs > perm/theirs && chown nobody perm/theirs && chmod 600 perm/theirs
+    one_line "--out onto another user's file" "cannot write 'perm/rootfile': Permission denied" 2 $AS "$GGX_BIN" sample -n 2 --out perm/rootfile
+    [ "$(cat perm/rootfile)" = root ] && [ "$(stat -c %U perm/rootfile)" = root ] && ok || bad "another user's file was replaced"
+    one_line "--out onto the user's read-only file" "Permission denied" 2 $AS "$GGX_BIN" sample -n 2 --out perm/ro.csv
+    [ "$(cat perm/ro.csv)" = keep ] && ok || bad "a read-only file was replaced"
+    $AS "$GGX_BIN" sample -n 2 --out perm/shared && [ "$(stat -c '%U %a' perm/shared)" = "root 666" ] &&
+        [ "$(wc -l < perm/shared)" -eq 3 ] && ok || bad "--out onto a writable file of another user: $(stat -c '%U %a' perm/shared)"
+    "$GGX" sample -n 2 --out perm/theirs && [ "$(stat -c '%U %a' perm/theirs)" = "nobody 600" ] && ok ||
+        bad "root replacing a user's file changed its owner: $(stat -c '%U %a' perm/theirs)"
+    rm -rf perm
+elif [ "$(id -u)" != 0 ]; then
+    one_line "--out onto a read-only file" "Permission denied" 2 "$GGX" sample -n 2 --out ro.csv
+    [ "$(cat ro.csv)" = keep ] && ok || bad "a read-only file was replaced"
+fi
+rm -f ro.csv
 (umask 027 && "$GGX" sample -n 2 --out fresh.csv) && [ "$(stat -c %a fresh.csv)" = 640 ] && ok || bad "new file mode follows umask: $(stat -c %a fresh.csv)"
 # signals: the temporary goes, the signal's status comes back (SIGINT through perl: a background job ignores it)
 for sig in TERM HUP INT; do
@@ -269,6 +293,14 @@ mkdir -p "$deep" && "$GGX" plot --figure grid --out "$deep/grid.svg" 2>/dev/null
 "$GGX" -V | grep -q "^ggx [0-9]" && ok || bad "ggx -V"
 one_line "skew out of range, in degrees" "within \[-90, 90\] degrees" 2 "$GGX" eval --skew 95,0
 one_line "flag with a value" "takes no value" 2 "$GGX" plot --log=1
+# messages that say what is wrong with the value given
+"$GGX" sample -n 1 --view 1e300,1e300,1e300 > big.csv && [ "$(wc -l < big.csv)" -eq 2 ] && ok || bad "--view with huge components"
+one_line "zero direction" "is the zero vector" 2 "$GGX" sample -n 1 --view 0,0,0
+one_line "skew just past 90" "(90.0000001 given)" 2 "$GGX" eval --skew 90.0000001,0
+"$GGX" sample -n 1 --seed 9007199254740992 > seed.csv && "$GGX" sample -n 1 --seed 18446744073709551615 > seed2.csv &&
+    ! cmp -s seed.csv seed2.csv && ok || bad "--seed above 2^53 refused or ignored"
+one_line "seed above 2^64" "larger than the largest seed" 2 "$GGX" sample -n 1 --seed 18446744073709551616
+one_line "eta above 1e300" "must be in (0, 1e300]" 2 "$GGX" albedo --eta 1e301
 "$GGX" eval --alpha 0.00001 > /dev/null 2> err.txt && grep -q "raised to the smallest" err.txt && ok || bad "alpha below the minimum: no note"
 one_line "sampler outside its domain" "unskewed shapes only" 2 "$GGX" sample --sampler inversion --skew 20,0 -n 2
 one_line "too few samples for chi-square" "needs at least 10000 samples" 2 "$GGX" check -n 10

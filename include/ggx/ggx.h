@@ -87,7 +87,7 @@ typedef enum ggx_status {
     GGX_ERR_ALPHA,       /* a roughness is <= 0 or > GGX_ALPHA_MAX */
     GGX_ERR_ANGLE,       /* |theta_x| or |theta_y| > GGX_SKEW_MAX */
     GGX_ERR_SINGULAR,    /* the shape matrix is singular or too close to singular */
-    GGX_ERR_ETA,         /* an index of refraction is <= 0 */
+    GGX_ERR_ETA,         /* an index of refraction is <= 0 or above 1e300 (or 1 where a function refuses it) */
     GGX_ERR_RANGE,       /* a parameter is outside its documented range (e.g. Schlick f0 outside [0, 1]) */
     GGX_ERR_MEMORY       /* memory could not be allocated (ggx_energy_create) */
 } ggx_status;

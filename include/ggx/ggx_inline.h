@@ -35,12 +35,19 @@
 
 /* GGX_HD qualifies every kernel. A program may define it before including this header (the library defines it to
  * force inlining in its own loops, so that they vectorise). */
+/* GGX_UNUSED: nvcc's host pass hands static inline functions to the host compiler in a form that clang reports as
+ * unused (-Wunused-function); the attribute keeps a program that uses a few kernels warning-free. */
+#if defined(__GNUC__) || defined(__clang__)
+#define GGX_UNUSED __attribute__((unused))
+#else
+#define GGX_UNUSED
+#endif
 #if defined(__CUDACC__)
 #ifndef GGX_HD
-#define GGX_HD static inline __host__ __device__
+#define GGX_HD static inline __host__ __device__ GGX_UNUSED
 #endif
-#define GGX_COLD static inline __host__ __device__ __noinline__
-#define GGX_HDI static __host__ __device__ __forceinline__
+#define GGX_COLD static inline __host__ __device__ __noinline__ GGX_UNUSED
+#define GGX_HDI static __host__ __device__ __forceinline__ GGX_UNUSED
 #elif defined(__GNUC__)
 #ifndef GGX_HD
 #define GGX_HD static inline
@@ -101,7 +108,7 @@ typedef struct ggx_samplef {
 
 /* The float shape of s (from a successful ggx_shape_* call). Normalised in double before rounding to float: for
  * every shape the double API accepts, every field is finite and nonzero where the double one is. */
-static inline void ggx_shapef_from(ggx_shapef *out, const ggx_shape *s)
+static inline GGX_UNUSED void ggx_shapef_from(ggx_shapef *out, const ggx_shape *s)
 {
     double k = 1.0 / s->an_len, det = s->det * k * k * k;
     for (int i = 0; i < 3; i++) {
@@ -127,7 +134,7 @@ static inline void ggx_shapef_from(ggx_shapef *out, const ggx_shape *s)
 }
 
 /* The float Fresnel term of f. */
-static inline void ggx_fresnelf_from(ggx_fresnelf *out, const ggx_fresnel *f)
+static inline GGX_UNUSED void ggx_fresnelf_from(ggx_fresnelf *out, const ggx_fresnel *f)
 {
     out->kind = f->kind;
     out->eta = (float)f->eta, out->k = (float)f->k, out->f0 = (float)f->f0;

@@ -12,7 +12,9 @@ GGX_API const char *ggx_status_str(ggx_status status)
     case GGX_ERR_SINGULAR:
         return "the shape matrix is singular or too ill-conditioned (|det A| <= 1e-12 ||A||_F^3, e.g. roughnesses "
                "1e-4 and 1e4 together)";
-    case GGX_ERR_ETA: return "an index of refraction must be finite and > 0 (and k >= 0)";
+    case GGX_ERR_ETA:
+        return "an index of refraction must be in (0, 1e300] (and k >= 0), and not exactly 1 for a rough "
+               "dielectric's energy tables";
     case GGX_ERR_RANGE: return "a parameter is outside its documented range";
     case GGX_ERR_MEMORY: return "memory could not be allocated";
     }

@@ -74,8 +74,11 @@ int parse_direction(const char *text, ggx_vec3 *v)
         return 1;
     }
     if (n != 3) die("direction '%s': give theta,phi in degrees or x,y,z", text);
+    /* scaled by the largest component first, so that components near the largest double do not overflow */
+    double m = fmax(fabs(x[0]), fmax(fabs(x[1]), fabs(x[2])));
+    if (!(m > 0.0)) die("direction '%s' is the zero vector", text);
+    for (int k = 0; k < 3; k++) x[k] /= m;
     double l = sqrt(x[0] * x[0] + x[1] * x[1] + x[2] * x[2]);
-    if (!(l > 0.0) || !isfinite(l)) die("direction '%s' is the zero vector", text);
     v->x = x[0] / l, v->y = x[1] / l, v->z = x[2] / l;
     return 1;
 }
@@ -155,10 +158,21 @@ void parse_options(int argc, char **argv, int first, options *o, const char *all
             if (!(v >= 1 && v <= 1e10) || v != floor(v)) die("%s: '%s' is not a count between 1 and 1e10", a, val);
             o->n = (long)v;
         } else if (strcmp(key, "seed") == 0) {
-            double v;
-            parse_list(a, val, &v, 1);
-            if (!(v >= 0 && v < 9e15) || v != floor(v)) die("%s: '%s' is not a non-negative integer", a, val);
-            o->seed = (unsigned long long)v;
+            /* any unsigned 64-bit integer in decimal digits; other numerals (1e3) as a double, integers below 2^53 */
+            char *end;
+            errno = 0;
+            unsigned long long u = strtoull(val, &end, 10);
+            if (val[0] >= '0' && val[0] <= '9' && *end == '\0') {
+                if (errno == ERANGE) die("%s: '%s' is larger than the largest seed, 18446744073709551615", a, val);
+                o->seed = u;
+            } else {
+                double v;
+                parse_list(a, val, &v, 1);
+                if (!(v >= 0) || v != floor(v)) die("%s: '%s' is not a non-negative integer", a, val);
+                if (!(v < 9007199254740992.0))
+                    die("%s: '%s' is too large as a number with an exponent (write it in digits)", a, val);
+                o->seed = (unsigned long long)v;
+            }
         } else if (strcmp(key, "size") == 0) {
             /* W or WxH, each a whole number of pixels (points in SVG and PDF) from 64 to 4096 */
             char wbuf[64];
@@ -183,7 +197,8 @@ void parse_options(int argc, char **argv, int first, options *o, const char *all
             if (!(fabs(o->from) <= 360)) die("%s: '%s' is not an azimuth in degrees in [-360, 360]", a, val);
         } else if (strcmp(key, "eta") == 0) {
             parse_list(a, val, &o->eta, 1);
-            if (!(o->eta > 0)) die("%s: the relative index of refraction must be > 0", a);
+            if (!(o->eta > 0 && o->eta <= 1e300))
+                die("%s: the relative index of refraction must be in (0, 1e300] ('%s' given)", a, val);
             o->have_eta = 1;
         } else if (strcmp(key, "out") == 0) {
             o->out = val;
@@ -203,6 +218,17 @@ void parse_options(int argc, char **argv, int first, options *o, const char *all
     }
 }
 
+/* The shortest decimal that reads back as v (90.0000001, not 90), in a static buffer. */
+static const char *shortest(double v)
+{
+    static char buf[32];
+    for (int p = 1; p <= 17; p++) {
+        snprintf(buf, sizeof buf, "%.*g", p, v);
+        if (strtod(buf, NULL) == v) break;
+    }
+    return buf;
+}
+
 void shape_from_options(const options *o, ggx_shape *s)
 {
     ggx_status st;
@@ -210,7 +236,7 @@ void shape_from_options(const options *o, ggx_shape *s)
     if (!o->have_matrix) {
         for (int i = 0; i < 2; i++)
             if (!(fabs(o->skew[i]) <= GGX_SKEW_MAX / DEG + 1e-9))
-                die("invalid shape: --skew angles must be within [-90, 90] degrees (%g given)", o->skew[i]);
+                die("invalid shape: --skew angles must be within [-90, 90] degrees (%s given)", shortest(o->skew[i]));
     }
     if (o->have_matrix) st = ggx_shape_matrix(s, (const double(*)[3])o->matrix);
     else st = ggx_shape_ellipsoid(s, o->alpha[0], o->alpha[1], o->skew[0] * DEG, o->skew[1] * DEG, o->rotate * DEG);

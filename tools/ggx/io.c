@@ -10,11 +10,12 @@
 
 void ensure_dir(const char *dir)
 {
+    /* mkdir first: a folder that another process makes between a check and mkdir (EEXIST) is success */
     struct stat st;
-    if (stat(dir, &st) == 0) {
+    if (mkdir(dir, 0777) != 0) {
+        int e = errno;
+        if (stat(dir, &st) != 0) die("cannot create output folder '%s': %s", dir, strerror(e));
         if (!S_ISDIR(st.st_mode)) die("output folder '%s' is not a folder", dir);
-    } else if (mkdir(dir, 0777) != 0) {
-        die("cannot create output folder '%s': %s", dir, strerror(errno));
     }
     if (access(dir, W_OK) != 0) die("output folder '%s' is not writable", dir);
 }
@@ -146,12 +147,16 @@ void out_open(out_file *o, const char *path)
     const char *target = path;
     char *resolved = NULL;
     mode_t mode;
+    int have_old = 0;
     if (stat(path, &st) == 0) {
+        have_old = 1;
         if (S_ISDIR(st.st_mode)) die("cannot write '%s': it is a folder", path);
         if (!S_ISREG(st.st_mode)) {
             open_in_place(o, path); /* a device, a FIFO, a socket (or a link to one): never replaced */
             return;
         }
+        /* as a redirect: a file the user may not write is an error, and stays as it was */
+        if (access(path, W_OK) != 0) die("cannot write '%s': %s", path, strerror(errno));
         mode = st.st_mode & 07777;
         if (lstat(path, &lst) == 0 && S_ISLNK(lst.st_mode)) {
             /* a link to a regular file: its target is replaced, the link kept */
@@ -186,6 +191,17 @@ void out_open(out_file *o, const char *path)
     if (fd < 0) {
         free(tmp);
         die("cannot write '%s': %s", path, strerror(e));
+    }
+    /* The replacement keeps the file's owner and group; where the user cannot give it them (another user's file
+     * in a folder of theirs), the file is written in place, as a redirect writes it. */
+    if (have_old && (st.st_uid != geteuid() || st.st_gid != getegid()) && fchown(fd, st.st_uid, st.st_gid) != 0) {
+        close(fd);
+        unlink(tmp);
+        drop_pending(o->slot);
+        free(o->path);
+        o->slot = -1;
+        open_in_place(o, path);
+        return;
     }
     o->f = fdopen(fd, "wb");
     if (!o->f) die("cannot write '%s': %s", path, strerror(errno));
