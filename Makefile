@@ -126,7 +126,7 @@ fuzz-ci:
 # not (cmake/install_loader.cmake). A configured build is only brought up to date (its options kept).
 install:
 	@if [ -f $(BUILD)/CMakeCache.txt ]; then cmake --build $(BUILD) -j $(JOBS); else $(MAKE) build; fi
-	@cmake --install $(BUILD) --prefix $(PREFIX)
+	@cmake --install "$(BUILD)" --prefix "$(PREFIX)"
 
 clean:
 	rm -rf $(BUILD)

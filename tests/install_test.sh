@@ -73,4 +73,28 @@ if [ -f "$build/python/ggx/_ggx_native.so" ]; then
   echo "$d" | tail -n 1 | awk '{exit !($1 > 3.53677 && $1 < 3.53678)}' || { echo "install: ggx.ndf gave $d" >&2; exit 1; }
   echo "Python package: $pypath/ggx"
 fi
-echo "install test: make install PREFIX=..., the README example, a find_package consumer and the Python package built and ran"
+# A prefix with a space: make install takes it, ggx.pc escapes it (pkg-config keeps each path one argument), the
+# notes quote what they ask to export, and the README's example builds with the eval form the note gives.
+sp="$tmp/pre fix"
+make -s -C "$src" install BUILD="$build" PREFIX="$sp" >"$tmp/install-sp.log" 2>&1 || { cat "$tmp/install-sp.log"; exit 1; }
+grep -q "export PKG_CONFIG_PATH='$sp/lib.*/pkgconfig'" "$tmp/install-sp.log" ||
+  { cat "$tmp/install-sp.log"; echo "install: PKG_CONFIG_PATH note for a prefix with a space not quoted" >&2; exit 1; }
+grep -q 'build with eval "cc prog.c $(pkg-config --cflags --libs ggx)"' "$tmp/install-sp.log" ||
+  { cat "$tmp/install-sp.log"; echo "install: no eval note for a prefix with a space" >&2; exit 1; }
+splib=$(ls -d "$sp"/lib*/pkgconfig | head -n 1)
+(cd "$tmp" && rm -f a.out && PKG_CONFIG_PATH="$splib" sh -c 'eval "cc prog.c $(pkg-config --cflags --libs ggx)"') ||
+  { echo "install: the eval build failed for a prefix with a space" >&2; exit 1; }
+[ "$(cd "$tmp" && env -u LD_LIBRARY_PATH ./a.out)" = "$out" ] || { echo "install: prefix with a space: other output" >&2; exit 1; }
+ldd "$tmp/a.out" | grep -q "libggx.so.0 => $sp/" || { ldd "$tmp/a.out"; echo "install: not linked to $sp" >&2; exit 1; }
+rm -rf "$tmp/consumer/build"
+cmake -S "$tmp/consumer" -B "$tmp/consumer/build" -DCMAKE_PREFIX_PATH="$sp" >/dev/null
+cmake --build "$tmp/consumer/build" >/dev/null
+[ "$(env -u LD_LIBRARY_PATH "$tmp/consumer/build/prog")" = "$out" ] ||
+  { echo "install: the find_package consumer of a prefix with a space printed another line" >&2; exit 1; }
+if [ -f "$build/python/ggx/_ggx_native.so" ]; then
+  # the printed line, run by a shell, sets the folder that holds the package
+  export_line=$(sed -n "s/.*\(export PYTHONPATH=.*\)$/\1/p" "$tmp/install-sp.log")
+  spy=$(sh -c "$export_line; echo \"\$PYTHONPATH\"")
+  test -f "$spy/ggx/__init__.py" || { echo "install: the printed PYTHONPATH line gives '$spy'" >&2; exit 1; }
+fi
+echo "install test: make install PREFIX=... (also with a space), the README example, a find_package consumer and the Python package built and ran"
