@@ -3,6 +3,8 @@
 #include <math.h>
 #include <string.h>
 
+#include "ggx/ggx_batch.h"
+#include "ggx/ggx_samplers.h"
 #include "testlib.h"
 
 static void shape_statuses(void **state)
@@ -196,6 +198,86 @@ static void fresnel_statuses(void **state)
     CHECK(ggx_fresnel_schlick(&f, NAN) == GGX_ERR_NONFINITE && ggx_fresnel_schlick(&f, 1.5) == GGX_ERR_RANGE, "s");
 }
 
+/* One rule for the whole API: a NULL Fresnel term is F = 1, bit for bit the result with ggx_fresnel_one, in every
+ * exported and batch function that takes one (on 660888d ggx_fresnel_eval, ggx_brdf_eval and the reflection
+ * samplers crashed). */
+#define SAME_SAMPLE(a, b) ((a).w.x == (b).w.x && (a).w.y == (b).w.y && (a).w.z == (b).w.z && (a).pdf == (b).pdf && \
+                           (a).weight == (b).weight && (a).event == (b).event)
+static void null_fresnel_is_one(void **state)
+{
+    (void)state;
+    ggx_fresnel one;
+    ggx_fresnel_one(&one);
+    ggx_shape shapes[2];
+    ggx_shape_iso(&shapes[0], 0.3);
+    ggx_shape_ellipsoid(&shapes[1], 0.2, 0.5, 0.3, -0.2, 0.4);
+    ggx_vec3 wi = t_vec(0.5, 0.1, 0.86), wo = t_vec(-0.3, 0.2, 0.93);
+    wi = t_scale(wi, 1.0 / sqrt(t_dot(wi, wi)));
+    wo = t_scale(wo, 1.0 / sqrt(t_dot(wo, wo)));
+    for (double c = 0.0; c <= 1.0; c += 0.25)
+        CHECK(ggx_fresnel_eval(NULL, c) == ggx_fresnel_eval(&one, c) && ggx_fresnel_eval(NULL, c) == 1.0, "F(%g)", c);
+    CHECK(ggx_fresnel_avg(NULL) == ggx_fresnel_avg(&one), "F_avg");
+    for (int k = 0; k < 2; k++) {
+        const ggx_shape *s = &shapes[k];
+        CHECK(ggx_brdf_eval(s, NULL, wi, wo) == ggx_brdf_eval(s, &one, wi, wo), "brdf_eval, shape %d", k);
+        for (double u = 0.05; u < 1.0; u += 0.3) {
+            ggx_sample a = ggx_sample_brdf(s, NULL, wi, u, 1 - u), b = ggx_sample_brdf(s, &one, wi, u, 1 - u);
+            CHECK(SAME_SAMPLE(a, b), "sample_brdf, shape %d", k);
+            a = ggx_sample_brdf_bounded(s, NULL, wi, u, 1 - u), b = ggx_sample_brdf_bounded(s, &one, wi, u, 1 - u);
+            CHECK(SAME_SAMPLE(a, b), "sample_brdf_bounded, shape %d", k);
+            a = ggx_sample_brdf_bounded_azimuth(s, NULL, wi, u, 1 - u);
+            b = ggx_sample_brdf_bounded_azimuth(s, &one, wi, u, 1 - u);
+            CHECK(SAME_SAMPLE(a, b), "sample_brdf_bounded_azimuth, shape %d", k);
+        }
+        for (int i = 0; i < GGX_SAMPLER_COUNT; i++) {
+            const ggx_sampler_info *inf = ggx_sampler_get((ggx_sampler_id)i);
+            if (inf->family != GGX_FAMILY_DIRECTION) continue;
+            ggx_sample a = inf->sample_direction(s, NULL, 1.5, wi, 0.3, 0.6, 0.2, GGX_RADIANCE);
+            ggx_sample b = inf->sample_direction(s, &one, 1.5, wi, 0.3, 0.6, 0.2, GGX_RADIANCE);
+            CHECK(SAME_SAMPLE(a, b), "registry %s, shape %d", inf->name, k);
+        }
+        float x[1] = {(float)wi.x}, y[1] = {(float)wi.y}, z[1] = {(float)wi.z};
+        float ox[1] = {(float)wo.x}, oy[1] = {(float)wo.y}, oz[1] = {(float)wo.z}, u1[1] = {0.3f}, u2[1] = {0.6f};
+        float fa[1], fb[1], r[2][5];
+        ggx_batch_brdf(fa, 1, s, NULL, x, y, z, ox, oy, oz);
+        ggx_batch_brdf(fb, 1, s, &one, x, y, z, ox, oy, oz);
+        CHECK(fa[0] == fb[0] && fa[0] > 0, "batch_brdf, shape %d", k);
+        for (int j = 0; j < 2; j++)
+            ggx_batch_sample_brdf(&r[j][0], &r[j][1], &r[j][2], &r[j][3], &r[j][4], 1, s, j ? &one : NULL, x, y, z, u1, u2);
+        CHECK(memcmp(r[0], r[1], sizeof r[0]) == 0, "batch_sample_brdf, shape %d", k);
+        for (int j = 0; j < 2; j++)
+            ggx_batch_sample_directions(GGX_SAMPLER_BRDF_BOUNDED, &r[j][0], &r[j][1], &r[j][2], &r[j][3], &r[j][4], 1, s,
+                                        j ? &one : NULL, x, y, z, u1, u2);
+        CHECK(memcmp(r[0], r[1], sizeof r[0]) == 0, "batch_sample_directions, shape %d", k);
+    }
+    ggx_energy *e;
+    CHECK(ggx_energy_create(&shapes[0], &e) == GGX_OK, "energy");
+    CHECK(ggx_brdf_ms_eval(e, NULL, wi, wo) == ggx_brdf_ms_eval(e, &one, wi, wo), "ms_eval");
+    CHECK(ggx_brdf_compensated_eval(e, NULL, wi, wo) == ggx_brdf_compensated_eval(e, &one, wi, wo), "comp eval");
+    CHECK(ggx_pdf_brdf_compensated(e, NULL, wi, wo) == ggx_pdf_brdf_compensated(e, &one, wi, wo), "comp pdf");
+    ggx_sample a = ggx_sample_brdf_ms(e, NULL, wi, 0.3, 0.6), b = ggx_sample_brdf_ms(e, &one, wi, 0.3, 0.6);
+    CHECK(SAME_SAMPLE(a, b), "sample_brdf_ms");
+    a = ggx_sample_brdf_compensated(e, NULL, wi, 0.3, 0.6, 0.9), b = ggx_sample_brdf_compensated(e, &one, wi, 0.3, 0.6, 0.9);
+    CHECK(SAME_SAMPLE(a, b), "sample_brdf_compensated");
+    ggx_energy_free(e);
+}
+
+/* The energy objects' create functions set *out to NULL on every error (the headers' promise). */
+static void energy_create_null(void **state)
+{
+    (void)state;
+    ggx_energy *e = (ggx_energy *)&e;
+    CHECK(ggx_energy_create(NULL, &e) == GGX_ERR_NULL && e == NULL, "ggx_energy_create(NULL, &e)");
+    ggx_bsdf_energy *b = (ggx_bsdf_energy *)&b;
+    CHECK(ggx_bsdf_energy_create(NULL, 1.5, &b) == GGX_ERR_NULL && b == NULL, "ggx_bsdf_energy_create(NULL, ...)");
+    ggx_shape s;
+    ggx_shape_iso(&s, 0.3);
+    b = (ggx_bsdf_energy *)&b;
+    CHECK(ggx_bsdf_energy_create(&s, 1.0, &b) == GGX_ERR_ETA && b == NULL, "eta = 1");
+    CHECK(strstr(ggx_status_str(GGX_ERR_ETA), "not exactly 1") != NULL, "GGX_ERR_ETA's message names eta = 1");
+    CHECK(ggx_energy_create(&s, NULL) == GGX_ERR_NULL, "out NULL");
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -204,6 +286,8 @@ int main(void)
         cmocka_unit_test(clamps_and_signs),
         cmocka_unit_test(hot_functions_outside_domain),
         cmocka_unit_test(fresnel_statuses),
+        cmocka_unit_test(null_fresnel_is_one),
+        cmocka_unit_test(energy_create_null),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

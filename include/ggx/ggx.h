@@ -15,6 +15,8 @@
  *   (its peak moves away from n).
  * - The ellipsoid size constant is Ce = 1 (Walter eq 30) wherever an absolute area or curvature is returned.
  * - Angles are in radians in this API.
+ * - A NULL const ggx_fresnel * means F = 1 (GGX_FRESNEL_ONE) in every function of ggx.h and ggx_batch.h that takes
+ *   one. The inline kernels of ggx_inline.h take a valid pointer (ggx_fresnelf_from needs one).
  * - "Unskewed" means that A^T A n is parallel to n (theta_x = theta_y = 0 for ggx_shape_ellipsoid). For unskewed
  *   shapes the Smith identities of GGX hold; for skewed shapes the ellipsoid forms of Walter are used throughout.
  *
@@ -577,7 +579,7 @@ double ggx_albedo_aniso_table(double alpha_x, double alpha_y, ggx_vec3 v);
  *   f_ms(wi, wo) = F_ms (1 - E(wi)) (1 - E(wo)) / (pi (1 - E_avg)),  F_ms = F_avg^2 E_avg / (1 - F_avg (1 - E_avg)),
  * which is reciprocal, and with F = 1 makes the albedo of f_r + f_ms exactly 1 when E is exact. Here E is a per-shape
  * table of ggx_albedo (separable G, the library's BRDF) built by ggx_energy_create, read by interpolation, and E_avg
- * is the table's own average, so the compensated albedo is 1 - (E - E_table)(wi): within 1e-3 of 1 for every shape
+ * is the table's own average, so the compensated albedo is 1 + (E - E_table)(wi): within 1e-3 of 1 for every shape
  * and view with wi.z >= 0.0175 (89 degrees) that tests/test_energy.c tries (isotropic alpha 0.01 to 1, anisotropic
  * to 1:10, rotated, skewed to 0.5 rad; the largest error measured is in docs/energy.md); for unskewed anisotropic
  * shapes the table's error is that of ggx_albedo_aniso_table (within 1.1e-3 to 1:20). F_avg is the cosine-weighted
@@ -647,7 +649,7 @@ double ggx_pdf_brdf_compensated(const ggx_energy *e, const ggx_fresnel *f, ggx_v
  * ggx_bsdf_eval). (1) and (2) leave one free number, the transmitted shares: x_a <= 1 - F_avg,a (the average Fresnel
  * transmittance from side a), with equality on the side that loses more (the derivation is in docs/energy.md).
  * E_a is a per-(shape, eta) table of ggx_bsdf_albedo for each side, built by ggx_bsdf_energy_create and read by
- * interpolation, so that a non-absorbing interface keeps R + T = 1 - (E_a - E_a,table)(wi): within 1e-3 of 1 from
+ * interpolation, so that a non-absorbing interface keeps R + T = 1 + (E_a - E_a,table)(wi): within 1e-3 of 1 from
  * both sides for every shape, eta and view with |wi.z| >= 0.0175 (89 degrees) that tests/test_energy_bsdf.c tries
  * (isotropic alpha 0.05 to 1, anisotropic to 1:10, rotated, skewed to 0.5 rad; eta 1.001 to 2 and below 1; the
  * largest error measured is in docs/energy.md).

@@ -4,7 +4,7 @@
  *
  * The lobe. f_ms(wi, wo) = F_ms (1 - E(wi)) (1 - E(wo)) / (pi (1 - E_avg)) with E the table's interpolant and
  * E_avg = (1 / pi) int E(w) w.z dw computed from the same interpolant, so that int f_ms(wi, wo) wo.z dwo is exactly
- * 1 - E(wi) (up to the quadrature of the table's cells): the compensated albedo is 1 - (E - E_table)(wi) with
+ * 1 - E(wi) (up to the quadrature of the table's cells): the compensated albedo is 1 + (E - E_table)(wi) with
  * F = 1. */
 #include <math.h>
 #include <pthread.h>
@@ -27,9 +27,6 @@ struct ggx_energy {
     ggx_shape s;
     energy_table t;
 };
-
-/* F = 1, for a NULL ggx_fresnel. */
-static const ggx_fresnel fresnel_one = {GGX_FRESNEL_ONE, 0, 0, 0};
 
 static double gl_x[16], gl_w[16];
 static pthread_once_t once = PTHREAD_ONCE_INIT;
@@ -170,7 +167,7 @@ static double ms_lobe(const ggx_energy *e, double fms, ggx_vec3 wi, ggx_vec3 wo)
 
 GGX_API double ggx_brdf_ms_eval(const ggx_energy *e, const ggx_fresnel *f, ggx_vec3 wi, ggx_vec3 wo)
 {
-    if (!f) f = &fresnel_one;
+    f = GGX_FRESNEL_OR_ONE(f);
     ggx_vec3 a, b;
     if (!e || !ggx_internal_unit_up(wi, &a) || !ggx_internal_unit_up(wo, &b)) return 0.0;
     return ms_lobe(e, ms_fresnel(e, f), a, b);
@@ -185,7 +182,7 @@ GGX_API double ggx_pdf_brdf_ms(const ggx_energy *e, ggx_vec3 wi, ggx_vec3 wo)
 
 GGX_API ggx_sample ggx_sample_brdf_ms(const ggx_energy *e, const ggx_fresnel *f, ggx_vec3 wi, double u1, double u2)
 {
-    if (!f) f = &fresnel_one;
+    f = GGX_FRESNEL_OR_ONE(f);
     ggx_vec3 a;
     if (!e || !ggx_internal_unit_up(wi, &a)) return ggx_internal_invalid_sample();
     ggx_vec3 w = ggx_internal_etab_sample(&e->t, u1, u2);
@@ -209,7 +206,7 @@ static double ss_share(const ggx_energy *e, const ggx_fresnel *f, ggx_vec3 wi, d
 
 GGX_API double ggx_brdf_compensated_eval(const ggx_energy *e, const ggx_fresnel *f, ggx_vec3 wi, ggx_vec3 wo)
 {
-    if (!f) f = &fresnel_one;
+    f = GGX_FRESNEL_OR_ONE(f);
     ggx_vec3 a, b;
     if (!e || !ggx_internal_unit_up(wi, &a) || !ggx_internal_unit_up(wo, &b)) return 0.0;
     return ggx_brdf_eval_d(&e->s, f, a, b) + ms_lobe(e, ms_fresnel(e, f), a, b);
@@ -217,7 +214,7 @@ GGX_API double ggx_brdf_compensated_eval(const ggx_energy *e, const ggx_fresnel 
 
 GGX_API double ggx_pdf_brdf_compensated(const ggx_energy *e, const ggx_fresnel *f, ggx_vec3 wi, ggx_vec3 wo)
 {
-    if (!f) f = &fresnel_one;
+    f = GGX_FRESNEL_OR_ONE(f);
     ggx_vec3 a, b;
     if (!e || !ggx_internal_unit_up(wi, &a) || !ggx_internal_unit_up(wo, &b)) return 0.0;
     double ew, fms, p = ss_share(e, f, a, &ew, &fms);
@@ -227,7 +224,7 @@ GGX_API double ggx_pdf_brdf_compensated(const ggx_energy *e, const ggx_fresnel *
 GGX_API ggx_sample ggx_sample_brdf_compensated(const ggx_energy *e, const ggx_fresnel *f, ggx_vec3 wi, double u1,
                                                double u2, double u3)
 {
-    if (!f) f = &fresnel_one;
+    f = GGX_FRESNEL_OR_ONE(f);
     ggx_vec3 a;
     if (!e || !ggx_internal_unit_up(wi, &a)) return ggx_internal_invalid_sample();
     double ew, fms, p = ss_share(e, f, a, &ew, &fms);

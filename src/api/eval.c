@@ -34,7 +34,7 @@ GGX_API GGX_HOT int ggx_refract(ggx_vec3 w, ggx_vec3 m, double eta, ggx_vec3 *ou
 
 GGX_API GGX_HOT double ggx_brdf_eval(const ggx_shape *s, const ggx_fresnel *f, ggx_vec3 wi, ggx_vec3 wo)
 {
-    return ggx_brdf_eval_d(s, f, wi, wo);
+    return ggx_brdf_eval_d(s, GGX_FRESNEL_OR_ONE(f), wi, wo);
 }
 GGX_API GGX_HOT double ggx_bsdf_eval(const ggx_shape *s, double eta, ggx_vec3 wi, ggx_vec3 wo, ggx_transport mode)
 {

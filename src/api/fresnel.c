@@ -7,7 +7,12 @@ GGX_API GGX_HOT double ggx_fresnel_conductor_eval(double cos_i, double eta, doub
     return ggx_fresnel_conductor_eval_d(cos_i, eta, k);
 }
 GGX_API GGX_HOT double ggx_fresnel_schlick_eval(double cos_i, double f0) { return ggx_fresnel_schlick_eval_d(cos_i, f0); }
-GGX_API GGX_HOT double ggx_fresnel_eval(const ggx_fresnel *f, double cos_i) { return ggx_fresnel_eval_d(f, cos_i); }
+const ggx_fresnel ggx_internal_fresnel_one = {GGX_FRESNEL_ONE, 1.0, 0.0, 1.0};
+
+GGX_API GGX_HOT double ggx_fresnel_eval(const ggx_fresnel *f, double cos_i)
+{
+    return ggx_fresnel_eval_d(GGX_FRESNEL_OR_ONE(f), cos_i);
+}
 
 static ggx_status set(ggx_fresnel *f, ggx_fresnel_kind kind, double eta, double k, double f0)
 {
@@ -19,7 +24,8 @@ static ggx_status set(ggx_fresnel *f, ggx_fresnel_kind kind, double eta, double 
 GGX_API GGX_HOT ggx_status ggx_fresnel_one(ggx_fresnel *f)
 {
     if (!f) return GGX_ERR_NULL;
-    return set(f, GGX_FRESNEL_ONE, 1.0, 0.0, 1.0);
+    *f = ggx_internal_fresnel_one;
+    return GGX_OK;
 }
 
 GGX_API GGX_HOT ggx_status ggx_fresnel_dielectric(ggx_fresnel *f, double eta)

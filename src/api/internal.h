@@ -32,6 +32,11 @@
 #define GGX_HOT
 #endif
 
+/* F = 1, what a NULL const ggx_fresnel * means in every exported function that takes one (ggx.h, "Conventions");
+ * the value ggx_fresnel_one sets. From src/api/fresnel.c. */
+extern const ggx_fresnel ggx_internal_fresnel_one;
+#define GGX_FRESNEL_OR_ONE(f) ((f) ? (f) : &ggx_internal_fresnel_one)
+
 /* From src/api/albedo.c, for the energy tables (src/api/energy.c): E(v) of a unit v with v.z > 0 to an absolute
  * error of about tol (hc: height-correlated G2), and the separable factor of ggx_albedo's E,
  * P(v) = ||A v|| G1(v) / (v.z ||A n||), which carries E's steepest dependence on the view: E = P(v) I(v) with I

@@ -75,13 +75,13 @@ GGX_API GGX_HOT ggx_vec3 ggx_sample_vndf_walter_v2(const ggx_shape *s, ggx_vec3 
 
 GGX_API GGX_HOT ggx_sample ggx_sample_brdf(const ggx_shape *s, const ggx_fresnel *f, ggx_vec3 wi, double u1, double u2)
 {
-    return ggx_sample_brdf_d(s, f, wi, u1, u2);
+    return ggx_sample_brdf_d(s, GGX_FRESNEL_OR_ONE(f), wi, u1, u2);
 }
 GGX_API GGX_HOT double ggx_pdf_brdf(const ggx_shape *s, ggx_vec3 wi, ggx_vec3 wo) { return ggx_pdf_brdf_d(s, wi, wo); }
 GGX_API GGX_HOT ggx_sample ggx_sample_brdf_bounded(const ggx_shape *s, const ggx_fresnel *f, ggx_vec3 wi, double u1,
                                                    double u2)
 {
-    return ggx_sample_brdf_bounded_d(s, f, wi, u1, u2);
+    return ggx_sample_brdf_bounded_d(s, GGX_FRESNEL_OR_ONE(f), wi, u1, u2);
 }
 GGX_API GGX_HOT double ggx_pdf_brdf_bounded(const ggx_shape *s, ggx_vec3 wi, ggx_vec3 wo)
 {
@@ -90,7 +90,7 @@ GGX_API GGX_HOT double ggx_pdf_brdf_bounded(const ggx_shape *s, ggx_vec3 wi, ggx
 GGX_API GGX_HOT ggx_sample ggx_sample_brdf_bounded_azimuth(const ggx_shape *s, const ggx_fresnel *f, ggx_vec3 wi,
                                                            double u1, double u2)
 {
-    return ggx_sample_brdf_bounded_azimuth_d(s, f, wi, u1, u2);
+    return ggx_sample_brdf_bounded_azimuth_d(s, GGX_FRESNEL_OR_ONE(f), wi, u1, u2);
 }
 GGX_API GGX_HOT double ggx_pdf_brdf_bounded_azimuth(const ggx_shape *s, ggx_vec3 wi, ggx_vec3 wo)
 {

@@ -134,8 +134,7 @@ static batch_args args(const ggx_shapef *sf, const ggx_fresnel *f)
     batch_args a;
     memset(&a, 0, sizeof a);
     a.s = sf;
-    ggx_fresnel one = {GGX_FRESNEL_ONE, 1.0, 0.0, 1.0};
-    ggx_fresnelf_from(&a.f, f ? f : &one);
+    ggx_fresnelf_from(&a.f, GGX_FRESNEL_OR_ONE(f));
     return a;
 }
 
