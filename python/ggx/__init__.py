@@ -9,7 +9,8 @@ dimensions of all inputs broadcast together and give the result's shape (a direc
 Inputs are converted to float64. Results are float64 and, element by element, bit for bit what the C function
 returns (each function names it). ``dtype=np.float32`` uses the float batch API (include/ggx/ggx_batch.h, SIMD) where
 it has the function (ndf, g1, pdf_vndf, brdf, sample_ndf and sample_vndf with a batch sampler, sample_brdf), within
-the accuracy that header states; elsewhere float32 results are the float64 ones rounded.
+the accuracy that header states; elsewhere float32 results are the float64 ones rounded, and a result beyond
+float32's range (an absolute area or curvature of a matrix far from unit scale) raises ValueError, never inf.
 
 Errors raise ValueError: a shape or Fresnel term the library refuses (with its status message), inputs that do not
 broadcast, a direction array whose last axis is not 3, a complex, non-numeric or masked input, an unknown sampler or
@@ -479,7 +480,13 @@ def _as(x, dtype):
     if isinstance(x, tuple):
         items = [_as(e, dtype) if np.asarray(e).dtype == np.float64 else e for e in x]
         return type(x)(*items) if hasattr(x, "_fields") else tuple(items)
-    return _scalar(np.asarray(x).astype(np.float32))
+    a = np.asarray(x)
+    if a.dtype == np.float64:
+        big = np.abs(a[np.isfinite(a)])
+        if big.size and big.max() > np.finfo(np.float32).max:
+            raise ValueError(f"a result ({big.max():.6g}) is beyond float32's range (absolute areas and curvatures "
+                             "scale with A): use dtype=np.float64")
+    return _scalar(a.astype(np.float32))
 
 
 def _batch_eval(batch, shape, dt, cname, *specs, pre=()):

@@ -442,6 +442,26 @@ def test_broadcasting_and_layouts():
     assert same(big, before)
 
 
+def test_float32_range():
+    # absolute areas and curvatures scale with A: beyond float32's range they raise, never inf or a warning
+    import warnings
+    for scale, fine in ((1e-20, False), (1e20, True), (1e-3, True)):
+        s = ggx.Shape.matrix(np.eye(3) * scale)
+        for f, args in ((ggx.projected_area, ([0, 0, 1],)), (ggx.lune_area, ([0, 0, 1], [0, 0.6, 0.8])),
+                        (ggx.gaussian_curvature, ([0, 0, 1],))):
+            hi = f(s, *args)
+            with warnings.catch_warnings():
+                warnings.simplefilter("error")
+                if hi <= np.finfo(np.float32).max:
+                    lo = f(s, *args, dtype=np.float32)
+                    # rounded: relative 2^-24 for normal floats, within half the smallest subnormal below them
+                    assert np.isfinite(lo) and abs(lo - hi) <= max(6e-8 * hi, 7.1e-46), f.__name__
+                else:
+                    with pytest.raises(ValueError, match="beyond float32's range"):
+                        f(s, *args, dtype=np.float32)
+        assert fine or ggx.projected_area(s, [0, 0, 1]) > 1e38  # the case of the report is among them
+
+
 def test_float32_batch_path():
     r = rng(8)
     for p in SHAPES:
