@@ -19,7 +19,11 @@
  *   double API's result.
  * - Accuracy against the double API with the same (float) inputs, for alpha >= 0.05, skews to 0.5 rad and
  *   directions with z >= 0.02 (tests/test_float_regress.c, every sampler of the registry): the bounds of
- *   ggx_batch.h. The _d kernels agree with the double API to 1e-12 (it may run an FMA build of the same source).
+ *   ggx_batch.h. The _d kernels agree with the double API (which may run an FMA build of the same source) to
+ *   1e-14 kappa^2, kappa the condition number of A (max / min of alpha_x, alpha_y and 1 for ggx_shape_ellipsoid):
+ *   per component of a sampled normal, and relative for D, the VNDF pdf and the BRDF where the normal is at least
+ *   0.01 from the horizon and from edge-on to the view (a dot product near 0 keeps only an absolute accuracy). So
+ *   1e-12 for kappa <= 10; rounding differences grow with kappa^2 near the rim (1.6e-9 at kappa = 1e4).
  * - Rim steps, margins and view-length ranges are those of kernel/traits.h for float.
  * Names beginning ggx_k_ are internal steps of the kernels, not API.
  * All functions are reentrant and thread-safe (they only read their arguments).
