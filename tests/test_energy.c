@@ -330,6 +330,27 @@ static void iso_tables(void **state)
             if (fabs(got - want) > worst_avg[hc]) worst_avg[hc] = fabs(got - want);
         }
     }
+    /* the end cells in alpha, where the interpolation reads ghost nodes past the table (the table's 97 log-uniform
+     * alphas from 1e-3 to 2): on 660888d the last cell of E_avg erred by 1.9e-4 at alpha 1.95 */
+    for (int k = 0; k < 8; k++) {
+        double x = (k < 4 ? 0.25 + 0.25 * k : 95.0 + 0.25 * (k - 4)) / 96.0, a = 1e-3 * pow(2e3, x);
+        if (k == 7) a = 1.95;
+        ggx_shape s;
+        make_shape(&s, (shape_params){a, a, 0, 0, 0});
+        for (int hc = 0; hc < 2; hc++) {
+            double want = hc ? ggx_albedo_avg_height_correlated(&s) : ggx_albedo_avg(&s);
+            double got = ggx_albedo_avg_iso_table(a, hc ? GGX_MASKING_HEIGHT_CORRELATED : GGX_MASKING_SEPARABLE);
+            CHECK_CLOSE(got, want, 0, 1e-5, "iso E_avg table in an end cell, alpha %.6g masking %d", a, hc);
+            if (fabs(got - want) > worst_avg[hc]) worst_avg[hc] = fabs(got - want);
+            for (int i = 0; i < 4; i++) {
+                double mu = MU_MIN + (1 - MU_MIN) * i / 3.0;
+                want = hc ? ggx_albedo_height_correlated(&s, view_mu(mu, 0)) : ggx_albedo(&s, view_mu(mu, 0));
+                got = ggx_albedo_iso_table(a, mu, hc ? GGX_MASKING_HEIGHT_CORRELATED : GGX_MASKING_SEPARABLE);
+                CHECK_CLOSE(got, want, 0, TABLE_PROMISE, "iso table in an end cell, alpha %.6g mu %.4g", a, mu);
+                if (fabs(got - want) > worst[hc]) worst[hc] = fabs(got - want);
+            }
+        }
+    }
     printf("iso tables: largest |E_table - E| %.2e (separable), %.2e (height-correlated); E_avg %.2e, %.2e\n",
            worst[0], worst[1], worst_avg[0], worst_avg[1]);
     /* outside [1e-3, 2]: the quadrature, exactly */
