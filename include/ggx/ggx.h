@@ -90,7 +90,8 @@ typedef enum ggx_status {
     GGX_ERR_ANGLE,       /* |theta_x| or |theta_y| > GGX_SKEW_MAX */
     GGX_ERR_SINGULAR,    /* the shape matrix is singular or too close to singular */
     GGX_ERR_ETA,         /* an index of refraction is <= 0 or above 1e300 (or 1 where a function refuses it) */
-    GGX_ERR_RANGE,       /* a parameter is outside its documented range (e.g. Schlick f0 outside [0, 1]) */
+    GGX_ERR_RANGE,       /* a parameter is outside its documented range (e.g. Schlick f0 outside [0, 1]), or an
+                          * energy table would not meet its promise (ggx_energy_create) */
     GGX_ERR_MEMORY       /* memory could not be allocated (ggx_energy_create) */
 } ggx_status;
 
@@ -563,11 +564,10 @@ double ggx_bsdf_albedo_iso_table(double alpha, double eta, double mu);
  * (1e-2 to 2, the pairs alpha_x <= alpha_y stored) by interpolation in all four, about 0.5 microsecond:
  * within 1.1e-3 absolute of ggx_albedo for v.z >= 0.0175 (89 degrees) and alpha_x / alpha_y in [1/20, 20]. The
  * largest errors are at 89 degrees with alphas near 0.02, where E changes faster with the elevation than 33 rows
- * follow: 1.03e-3 found by a hostile search at ratio 17.5, 0.016 rad from the axis of the smaller alpha 0.023,
- * 9.84e-4 by a scan of every ratio (docs/energy.md); 5.2e-4 measured at ratios 20 to 50. The
- * azimuths are warped towards the tangent axes (common/albedo_rows.h); per-shape tables (ggx_energy_create) share
- * the layout and these errors. A roughness outside [1e-2, 2] (but accepted by ggx_shape_aniso): the quadrature
- * instead (milliseconds). v.z <= 0, a zero or non-finite v, or alphas that
+ * follow (docs/energy.md has the largest found). The azimuths are warped towards the tangent axes
+ * (common/albedo_rows.h); per-shape tables (ggx_energy_create) share the layout and these errors. A roughness
+ * outside [1e-2, 2] or an anisotropy beyond 1:20 (but accepted by ggx_shape_aniso): the quadrature instead
+ * (milliseconds). v.z <= 0, a zero or non-finite v, or alphas that
  * ggx_shape_aniso rejects: 0. In [0, 1]. Thread-safe. */
 double ggx_albedo_aniso_table(double alpha_x, double alpha_y, ggx_vec3 v);
 
@@ -579,11 +579,15 @@ double ggx_albedo_aniso_table(double alpha_x, double alpha_y, ggx_vec3 v);
  *   f_ms(wi, wo) = F_ms (1 - E(wi)) (1 - E(wo)) / (pi (1 - E_avg)),  F_ms = F_avg^2 E_avg / (1 - F_avg (1 - E_avg)),
  * which is reciprocal, and with F = 1 makes the albedo of f_r + f_ms exactly 1 when E is exact. Here E is a per-shape
  * table of ggx_albedo (separable G, the library's BRDF) built by ggx_energy_create, read by interpolation, and E_avg
- * is the table's own average, so the compensated albedo is 1 + (E - E_table)(wi): within 1e-3 of 1 for every shape
- * and view with wi.z >= 0.0175 (89 degrees) that tests/test_energy.c tries (isotropic alpha 0.01 to 1, anisotropic
- * to 1:10, rotated, skewed to 0.5 rad; the largest error measured is in docs/energy.md); for unskewed anisotropic
- * shapes the table's error is that of ggx_albedo_aniso_table (within 1.1e-3 to 1:20). F_avg is the cosine-weighted
- * average of F (ggx_fresnel_avg): one channel, one wavelength, as everywhere in this API.
+ * is the table's own average, so the compensated albedo is 1 + (E - E_table)(wi): within 1e-3 of 1 (and so never
+ * more than 1 + 1e-3) for views with wi.z >= 0.0175 (89 degrees) and every shape that ggx_energy_create accepts
+ * (tests/test_energy.c, tests/test_energy_domain.c: the reproducers of a hostile report and a random search from
+ * alpha 1e-4 to 2, anisotropy to 1:200, skews to 1.2 rad; docs/energy.md has the largest errors measured); for
+ * unskewed anisotropic shapes read from the shipped table, within that table's 1.1e-3. A shape whose E has a feature
+ * narrower than the table's nodes resolve (the mirror horizon of a sharp skewed lobe: docs/energy.md) is refused, so
+ * that no table underestimates E by more than that. Beyond 89 degrees the table is not promised (errors up to
+ * 1.8e-3 measured at 89.5 to 89.9 degrees for alpha 0.002 to 0.004). F_avg is the cosine-weighted average of F
+ * (ggx_fresnel_avg): one channel, one wavelength, as everywhere in this API.
  * A NULL ggx_fresnel means F = 1. Directions need not be unit (they are normalised); wi.z <= 0 or wo.z <= 0, zero or
  * non-finite vectors give 0 or an invalid sample. An energy object is read-only after creation: any number of
  * threads may use one at once.
@@ -592,22 +596,28 @@ double ggx_albedo_aniso_table(double alpha_x, double alpha_y, ggx_vec3 v);
 /* A shape's albedo table (opaque; about 100 KB for anisotropic and skewed shapes, 1.6 KB for isotropic ones). */
 typedef struct ggx_energy ggx_energy;
 
-/* Builds the table of shape s (copied; s may be freed after): 33 x 128 albedos by ggx_albedo's quadrature (a quarter
- * of the columns for unskewed shapes, whose E is even about the tangent axes; isotropic shapes have 65 x 1 and read
- * them from the shipped table of ggx_albedo_iso_table when alpha is in [1e-3, 2], unskewed anisotropic ones their
- * 33 x 33 from that of ggx_albedo_aniso_table when both alphas are in [1e-2, 2]). Cost, on one core: microseconds for
- * shapes read from a shipped table (0.02 to 0.15 s for isotropic ones and 1 to 2 s for anisotropic ones outside), 5 to
- * 7 s for skewed ones (docs/energy.md has the measured times); build tables once per material, at scene setup.
- * Thread-safe. Errors: GGX_ERR_NULL (s or out NULL), GGX_ERR_MEMORY; *out is NULL then. */
+/* Builds the table of shape s (copied; s may be freed after). Isotropic shapes: 65 x 1 albedos, read from the shipped
+ * table of ggx_albedo_iso_table when alpha is in [1e-3, 2]; unskewed anisotropic ones with both alphas in [1e-2, 2]
+ * and anisotropy to 1:20: 33 x 128 read from the shipped table of ggx_albedo_aniso_table. The others: 65 x 128 by
+ * ggx_albedo's quadrature (a quarter of the columns for unskewed shapes, whose E is even about the tangent axes),
+ * then the check of the interpolation (docs/energy.md): where it finds the table more than 1e-3 off ggx_albedo, a
+ * 65 x 256 table, and where that is off too, GGX_ERR_RANGE. Measured: skewed isotropic lobes are accepted from
+ * alpha 0.15 at every skew to 1 rad, from 0.1 to 1 rad, and below at skews of 0.1 rad; refused below alpha 0.1 at
+ * skews of 0.3 rad and more; unskewed shapes to 1:50 at alpha 0.01 (refused at 1:50 with alpha 0.02 and at 1:200).
+ * Cost, on one core: microseconds for shapes read from a shipped table, 0.02 to 0.15 s for other isotropic ones, 3
+ * to 7 s for other unskewed ones, 7 to 14 s for skewed ones (30 s where the finer table is needed; docs/energy.md
+ * has the measured times); build tables once per material, at scene setup. Thread-safe.
+ * Errors: GGX_ERR_NULL (s or out NULL), GGX_ERR_RANGE (E has a feature narrower than the table resolves: render
+ * without compensation, which loses the multiple scattering but adds no energy), GGX_ERR_MEMORY; *out is NULL then. */
 ggx_status ggx_energy_create(const ggx_shape *s, ggx_energy **out);
 /* Frees e (NULL is allowed). */
 void ggx_energy_free(ggx_energy *e);
 /* The shape e was built for; NULL for e NULL. */
 const ggx_shape *ggx_energy_shape(const ggx_energy *e);
 
-/* E(v) from the table: ggx_albedo(s, v) within 1e-3 absolute, 1.1e-3 for unskewed anisotropic shapes (their nodes
- * and errors are ggx_albedo_aniso_table's; the tests measure it over random views and on the slices where that table
- * errs most), in [0, 1]; about 100 ns. v.z <= 0: 0. */
+/* E(v) from the table: ggx_albedo(s, v) within 1e-3 absolute for v.z >= 0.0175 (89 degrees), 1.1e-3 for unskewed
+ * anisotropic shapes read from the shipped table (their nodes and errors are ggx_albedo_aniso_table's; the tests
+ * measure it over random views and on the slices where that table errs most), in [0, 1]; about 100 ns. v.z <= 0: 0. */
 double ggx_energy_albedo(const ggx_energy *e, ggx_vec3 v);
 /* E_avg of the table: (1 / pi) int E(v) v.z dv of its interpolant, within 1e-3 of ggx_albedo_avg. */
 double ggx_energy_albedo_avg(const ggx_energy *e);
@@ -650,9 +660,10 @@ double ggx_pdf_brdf_compensated(const ggx_energy *e, const ggx_fresnel *f, ggx_v
  * transmittance from side a), with equality on the side that loses more (the derivation is in docs/energy.md).
  * E_a is a per-(shape, eta) table of ggx_bsdf_albedo for each side, built by ggx_bsdf_energy_create and read by
  * interpolation, so that a non-absorbing interface keeps R + T = 1 + (E_a - E_a,table)(wi): within 1e-3 of 1 from
- * both sides for every shape, eta and view with |wi.z| >= 0.0175 (89 degrees) that tests/test_energy_bsdf.c tries
- * (isotropic alpha 0.05 to 1, anisotropic to 1:10, rotated, skewed to 0.5 rad; eta 1.001 to 2 and below 1; the
- * largest error measured is in docs/energy.md).
+ * both sides for views with |wi.z| >= 0.0175 (89 degrees), every (shape, eta) that ggx_bsdf_energy_create accepts
+ * and that tests/test_energy_bsdf.c and tests/test_energy_domain.c try (isotropic alpha 0.05 to 1, anisotropic to
+ * 1:10, rotated, skewed to 0.5 rad; eta 1.001 to 2 and below 1; the largest error measured is in docs/energy.md).
+ * Tables whose nodes are computed are checked as the conductor's are, and refused where the check fails.
  * Sides, directions and modes as for ggx_bsdf_eval: eta = eta_below / eta_above, directions point away from the
  * surface on either side, GGX_IMPORTANCE gives the adjoint f(wo, wi). Directions need not be unit (they are
  * normalised); w.z = 0, zero or non-finite vectors give 0 or an invalid sample; e NULL gives 0 or an invalid sample.
@@ -671,8 +682,9 @@ typedef struct ggx_bsdf_energy ggx_bsdf_energy;
  * 4 s for anisotropic ones and 16 to 18 s (some 28 s of CPU) for skewed ones; build them once per material, at scene
  * setup. Thread-safe.
  * Errors: GGX_ERR_NULL (s or out NULL), GGX_ERR_NONFINITE (eta NaN or infinite), GGX_ERR_ETA (eta <= 0, above 1e300,
- * or exactly 1, where the transmission is a delta that ggx_bsdf_eval does not represent), GGX_ERR_MEMORY; *out is
- * NULL then. */
+ * or exactly 1, where the transmission is a delta that ggx_bsdf_eval does not represent), GGX_ERR_RANGE (the check
+ * of the interpolation finds either side's table more than 1e-3 off ggx_bsdf_albedo: sharp skewed lobes, as for
+ * ggx_energy_create), GGX_ERR_MEMORY; *out is NULL then. */
 ggx_status ggx_bsdf_energy_create(const ggx_shape *s, double eta, ggx_bsdf_energy **out);
 /* Frees e (NULL is allowed). */
 void ggx_bsdf_energy_free(ggx_bsdf_energy *e);

@@ -840,9 +840,10 @@ def half_reflect(wi, wo, dtype=np.float64):
 class Energy:
     """A shape's albedo table and Kulla-Conty energy compensation (ggx_energy_create; docs/energy.md).
 
-    Building it takes microseconds for isotropic shapes, 1 to 2 s for anisotropic and 5 to 7 s for skewed ones;
-    it is immutable after that and safe to share between threads. Directions need not be unit; fresnel None means
-    F = 1.
+    Building it takes microseconds for shapes read from the shipped tables, 3 to 7 s for other unskewed shapes and
+    7 to 30 s for skewed ones; it is immutable after that and safe to share between threads. A shape whose albedo has
+    a feature finer than the table resolves (a sharp skewed lobe) raises ValueError (GGX_ERR_RANGE): render it
+    without compensation. Directions need not be unit; fresnel None means F = 1.
     """
 
     __slots__ = ("_handle", "_shape", "_finalizer", "__weakref__")

@@ -14,15 +14,18 @@
 #include "../common/gauss.h"
 #include "energy_table.h"
 
-/* Table size: 33 rows in y (y = i / 32: every second row of the shipped isotropic table, and the anisotropic table's
- * rows), 128 columns on a full turn. E of anisotropic shapes has sharp features in the azimuth at grazing (alpha(phi)
- * changes fast near the axis of the smaller alpha): 64 columns left errors of 1.6e-3 to 3.8e-3 at 89 degrees, 128
- * columns 1.5e-4 to 4e-4 (docs/energy.md). Isotropic shapes, one column, take 65 rows (the shipped isotropic
- * table's): with 33, alpha 0.025 erred by 8.5e-4 at 89 degrees. The nodes are computed to TABLE_TOL, well below the
- * interpolation error. */
+/* Table size. Shapes whose nodes come from a shipped table take its rows: isotropic ones 65 rows and one column,
+ * unskewed anisotropic ones 33 rows (y = i / 32, the anisotropic table's) and 128 columns on a full turn (E of
+ * anisotropic shapes has sharp features in the azimuth at grazing: 64 columns left errors of 1.6e-3 to 3.8e-3 at
+ * 89 degrees, 128 columns 1.5e-4 to 4e-4; docs/energy.md). The others (skewed shapes, roughnesses or anisotropy
+ * outside the shipped tables) compute their nodes by quadrature, to TABLE_TOL, on 65 rows (with 33, skewed lobes of
+ * alpha 0.05 erred by 1e-2 near grazing, with 65 by 1.6e-3) and 128 columns, then CHECK_COLUMNS where the check of
+ * the interpolation (energy_table.c) finds more than TABLE_PROMISE; a shape that the finer table does not meet
+ * either is refused (GGX_ERR_RANGE): its E has a feature narrower than the nodes (the lobe's mirror horizon, for
+ * sharp skewed lobes), where an interpolated E would be off by up to the feature's height, in either direction. */
 #define TABLE_TOL 1e-4
-enum { ROWS = 33, ISO_ROWS = 65, COLUMNS = 128 };
-
+#define TABLE_PROMISE 1e-3
+enum { ROWS = 33, FINE_ROWS = 65, COLUMNS = 128, CHECK_COLUMNS = 256 };
 struct ggx_energy {
     ggx_shape s;
     energy_table t;
@@ -54,22 +57,42 @@ static double brdf_node(void *vc, ggx_vec3 v, double y)
     return ggx_internal_albedo(s, v, 0, TABLE_TOL) / ggx_internal_albedo_scale(s, v);
 }
 
+/* A table of s with rows x columns, its nodes from the shipped tables (shipped 1 or 2) or by quadrature (0, and
+ * then checked); NULL when out of memory. */
+static ggx_energy *build(const ggx_shape *s, int shipped, int rows, int columns)
+{
+    ggx_energy *e = malloc(sizeof *e + sizeof(double) * ggx_internal_etab_size(s, rows, columns));
+    if (!e) return NULL;
+    e->s = *s;
+    brdf_nodes c = {&e->s, shipped};
+    ggx_internal_etab_build(&e->t, &e->s, rows, columns, COLS_WARP_K, shipped == 0, (double *)(e + 1), brdf_node,
+                            &c);
+    return e;
+}
+
 GGX_API ggx_status ggx_energy_create(const ggx_shape *s, ggx_energy **out)
 {
     if (!out) return GGX_ERR_NULL;
     *out = NULL;
     if (!s) return GGX_ERR_NULL;
-    int rows = ggx_internal_is_isotropic(s) ? ISO_ROWS : ROWS;
-    ggx_energy *e = malloc(sizeof *e + sizeof(double) * ggx_internal_etab_size(s, rows, COLUMNS));
-    if (!e) return GGX_ERR_MEMORY;
-    e->s = *s;
     double probe;
-    brdf_nodes c = {&e->s, 0};
-    if (ggx_internal_is_isotropic(s) && ggx_internal_iso_table_i(s->alpha_x, 1.0, &probe))
-        c.shipped = 1;
-    else if (s->kind != GGX_SHAPE_SKEWED && ggx_internal_aniso_table_i(s->alpha_x, s->alpha_y, 1.0, 0.0, &probe))
-        c.shipped = 2;
-    ggx_internal_etab_build(&e->t, &e->s, rows, COLUMNS, COLS_WARP_K, (double *)(e + 1), brdf_node, &c);
+    int iso = ggx_internal_is_isotropic(s), shipped = 0;
+    if (iso && ggx_internal_iso_table_i(s->alpha_x, 1.0, &probe))
+        shipped = 1;
+    else if (s->kind != GGX_SHAPE_SKEWED && ggx_internal_aniso_table_serves(s->alpha_x, s->alpha_y))
+        shipped = 2;
+    ggx_energy *e = build(s, shipped, shipped == 2 ? ROWS : FINE_ROWS, COLUMNS);
+    if (!e) return GGX_ERR_MEMORY;
+    /* a finer table where the check finds the interpolation off, unless it is off by more than twice columns
+     * could mend (a narrower feature: the error falls about as the spacing) */
+    if (e->t.check_err > TABLE_PROMISE && !iso && e->t.check_err <= 3 * TABLE_PROMISE) {
+        ggx_energy_free(e);
+        if (!(e = build(s, 0, FINE_ROWS, CHECK_COLUMNS))) return GGX_ERR_MEMORY;
+    }
+    if (e->t.check_err > TABLE_PROMISE) {
+        ggx_energy_free(e);
+        return GGX_ERR_RANGE;
+    }
     *out = e;
     return GGX_OK;
 }

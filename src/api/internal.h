@@ -59,5 +59,8 @@ int ggx_internal_bsdf_iso_table_i(double alpha, double eta_r, double y, double *
  * (alpha_x, alpha_y) at row coordinate y and warped azimuth psi in [0, pi / 2] from the axis of alpha_x
  * (cols_psi_of_xy, common/albedo_rows.h); returns 0 (and writes nothing) for a roughness outside the table's range. */
 int ggx_internal_aniso_table_i(double alpha_x, double alpha_y, double y, double psi, double *i_value);
+/* From src/api/tables.c: whether the shipped anisotropic table serves (alpha_x, alpha_y): both in its roughness
+ * range and the anisotropy within its promise (1:20). */
+int ggx_internal_aniso_table_serves(double alpha_x, double alpha_y);
 
 #endif
