@@ -83,8 +83,8 @@ GGX_API ggx_status ggx_energy_create(const ggx_shape *s, ggx_energy **out)
         shipped = 2;
     ggx_energy *e = build(s, shipped, shipped == 2 ? ROWS : FINE_ROWS, COLUMNS);
     if (!e) return GGX_ERR_MEMORY;
-    /* a finer table where the check finds the interpolation off, unless it is off by more than twice columns
-     * could mend (a narrower feature: the error falls about as the spacing) */
+    /* a finer table where the check finds the interpolation off by at most 3e-3 (twice the columns divide the
+     * error by about 2 to 3; a larger error is a narrower feature, which they would not mend) */
     if (e->t.check_err > TABLE_PROMISE && !iso && e->t.check_err <= 3 * TABLE_PROMISE) {
         ggx_energy_free(e);
         if (!(e = build(s, 0, FINE_ROWS, CHECK_COLUMNS))) return GGX_ERR_MEMORY;
