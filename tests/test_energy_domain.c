@@ -25,37 +25,30 @@ static ggx_vec3 view_deg(double theta_deg, double phi)
     return t_vec(sin(t) * cos(phi), sin(t) * sin(phi), cos(t));
 }
 
-/* The white furnace of the compensated BRDF at wi: the average weight of ggx_sample_brdf_compensated with F = 1
- * over an n x n stratified grid of (u1, u2), u3 random (a golden-ratio sequence for u3 correlated with the strata:
- * 5.7 sigma off at n = 300 for one view), and its standard error from the spread of the weights (an upper bound
- * for a stratified estimate). */
-static double furnace_brdf(const ggx_energy *e, ggx_vec3 wi, int n, double *sigma)
+/* The compensated samplers in one signature: the BRDF with F = 1, the BSDF in GGX_IMPORTANCE mode. */
+typedef ggx_sample (*draw_fn)(const void *e, ggx_vec3 v, double u1, double u2, double u3);
+static ggx_sample draw_brdf(const void *e, ggx_vec3 v, double u1, double u2, double u3)
 {
-    double sum = 0, sum2 = 0;
-    int k = 0;
-    rng r = {(uint64_t)n * 7919u + (uint64_t)(1e6 * fabs(wi.x + 2 * wi.y))};
-    for (int a = 0; a < n; a++)
-        for (int b = 0; b < n; b++, k++) {
-            double u3 = rng_uniform(&r);
-            ggx_sample s = ggx_sample_brdf_compensated(e, NULL, wi, (a + 0.5) / n, (b + 0.5) / n, u3);
-            double w = s.event == GGX_EVENT_INVALID ? 0.0 : s.weight;
-            sum += w;
-            sum2 += w * w;
-        }
-    double mean = sum / k;
-    *sigma = sqrt(fmax(0.0, sum2 / k - mean * mean) / k);
-    return mean;
+    return ggx_sample_brdf_compensated(e, NULL, v, u1, u2, u3);
+}
+static ggx_sample draw_bsdf(const void *e, ggx_vec3 v, double u1, double u2, double u3)
+{
+    return ggx_sample_bsdf_compensated(e, v, u1, u2, u3, GGX_IMPORTANCE);
 }
 
-static double furnace_bsdf(const ggx_bsdf_energy *e, ggx_vec3 v, int n, double *sigma)
+/* The white furnace at v: the average weight of a compensated sampler over an n x n stratified grid of (u1, u2), u3
+ * random (a golden-ratio sequence for u3 correlated with the strata: 5.7 sigma off at n = 300 for one view), and its
+ * standard error from the spread of the weights (an upper bound for a stratified estimate). seed: the stream's
+ * multiplier of n. */
+static double furnace(draw_fn draw, const void *e, ggx_vec3 v, int n, uint64_t seed, double *sigma)
 {
     double sum = 0, sum2 = 0;
     int k = 0;
-    rng r = {(uint64_t)n * 104729u + (uint64_t)(1e6 * fabs(v.x + 2 * v.y))};
+    rng r = {(uint64_t)n * seed + (uint64_t)(1e6 * fabs(v.x + 2 * v.y))};
     for (int a = 0; a < n; a++)
         for (int b = 0; b < n; b++, k++) {
             double u3 = rng_uniform(&r);
-            ggx_sample s = ggx_sample_bsdf_compensated(e, v, (a + 0.5) / n, (b + 0.5) / n, u3, GGX_IMPORTANCE);
+            ggx_sample s = draw(e, v, (a + 0.5) / n, (b + 0.5) / n, u3);
             double w = s.event == GGX_EVENT_INVALID ? 0.0 : s.weight;
             sum += w;
             sum2 += w * w;
@@ -128,7 +121,7 @@ static void brdf_shape(const char *name, shape_params p, view_case vc, int nphi,
     double fmax_dev = 0;
     for (int q = 0; q < KEEP && q < nfurnace; q++) {
         if (!(worst[q].v.z > 0)) continue;
-        double sigma, f = furnace_brdf(e, worst[q].v, 400, &sigma);
+        double sigma, f = furnace(draw_brdf, e, worst[q].v, 400, 7919u, &sigma);
         char what[160];
         snprintf(what, sizeof what, "%s at (%.5f, %.5f, %.5f)", name, worst[q].v.x, worst[q].v.y, worst[q].v.z);
         check_furnace(what, f, sigma, ggx_albedo(&s, worst[q].v), ggx_energy_albedo(e, worst[q].v));
@@ -210,7 +203,7 @@ static void bsdf_shape(const char *name, shape_params p, double eta, double thet
                   name, got, want, v.x, v.y, v.z);
             if (fabs(got - want) > worst) worst = fabs(got - want);
             if (k % (nphi_ / 4) == 0) {
-                double sigma, f = furnace_bsdf(e, v, 600, &sigma);
+                double sigma, f = furnace(draw_bsdf, e, v, 600, 104729u, &sigma);
                 char what[160];
                 snprintf(what, sizeof what, "%s, side %d, phi %.3f", name, side, 2 * T_PI * (k + 0.37) / nphi_);
                 check_furnace(what, f, sigma, want, got);

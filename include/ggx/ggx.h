@@ -496,8 +496,8 @@ double ggx_pdf_brdf_bounded(const ggx_shape *s, ggx_vec3 wi, ggx_vec3 wo);
  * of the cap point: from the plane bound of ggx_sample_brdf_bounded, a tangent and a chord of the unit circle on that
  * meridian (in two stages, below and above the cap's equator) move it up to where the reflection may reach the
  * horizon. It removes most of what
- * ggx_sample_brdf_bounded leaves for anisotropic shapes (all of the waste of any unskewed shape at wi = n), at about
- * about 1.6 times its cost (1.78 to 1.86 times ggx_sample_brdf's, Xeon, 2026-12-01). pdf = ggx_pdf_brdf / kappa(phi) with kappa(phi) =
+ * ggx_sample_brdf_bounded leaves for anisotropic shapes (all of the waste of any unskewed shape at wi = n), at
+ * about twice ggx_sample_brdf's cost (docs/performance.md). pdf = ggx_pdf_brdf / kappa(phi) with kappa(phi) =
  * (1 - b(phi)) / (1 + vs.z) in (0, ggx_sample_brdf_bounded's kappa], weight = kappa(phi) x ggx_sample_brdf's weight
  * (<= 1), so the variance is never above ggx_sample_brdf's. b(phi) jumps where a meridian touches the boundary of the
  * region that reflects above the horizon, so the pdf jumps across some curves of directions; near them, and near the
