@@ -1,48 +1,13 @@
 /* SPDX-License-Identifier: MIT */
 #include "chi2.h"
 
+#include "../src/common/chi2_tail.h"
+
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
 
-/* Regularised lower incomplete gamma P(a, x) by its series, for x < a + 1. */
-static double gamma_p_series(double a, double x)
-{
-    double term = 1.0 / a, sum = term;
-    for (int n = 1; n < 100000; n++) {
-        term *= x / (a + n);
-        sum += term;
-        if (fabs(term) < 1e-16 * fabs(sum)) break;
-    }
-    return sum * exp(-x + a * log(x) - lgamma(a));
-}
-
-/* Regularised upper incomplete gamma Q(a, x) by its continued fraction (modified Lentz), for x >= a + 1. */
-static double gamma_q_cf(double a, double x)
-{
-    const double tiny = 1e-300;
-    double b = x + 1.0 - a, c = 1.0 / tiny, d = 1.0 / b, h = d;
-    for (int i = 1; i < 100000; i++) {
-        double an = -i * (i - a);
-        b += 2.0;
-        d = an * d + b;
-        if (fabs(d) < tiny) d = tiny;
-        c = b + an / c;
-        if (fabs(c) < tiny) c = tiny;
-        d = 1.0 / d;
-        double del = d * c;
-        h *= del;
-        if (fabs(del - 1.0) < 1e-16) break;
-    }
-    return exp(-x + a * log(x) - lgamma(a)) * h;
-}
-
-double chi2_pvalue(double x, int dof)
-{
-    if (!(x > 0.0)) return 1.0;
-    double a = 0.5 * dof, y = 0.5 * x;
-    return y < a + 1.0 ? 1.0 - gamma_p_series(a, y) : gamma_q_cf(a, y);
-}
+double chi2_pvalue(double x, int dof) { return ggx_chi2_upper(x, dof); }
 
 int normal_keys_key(void *ctx, ggx_vec3 m, int *region, ggx_vec3 *k)
 {

@@ -161,6 +161,43 @@ ggx_status ggx_ellipsoid_matrix(double A[3][3], double alpha_x, double alpha_y, 
  * (||A||_F outside [1 / GGX_MATRIX_SCALE_MAX, GGX_MATRIX_SCALE_MAX]). */
 ggx_status ggx_shape_matrix(ggx_shape *s, const double A[3][3]);
 
+/* The ellipsoid as a distribution of slopes (docs/design/slopes.md). With the slope of a normal m (m.z > 0) written
+ * x~ = (-m.x / m.z, -m.y / m.z), normals drawn with density D(m) (m.n) have slopes distributed as GGX's P22 with a
+ * location t and a scale Sigma, a bivariate Student t with 2 degrees of freedom:
+ *   P22(x~) = 1 / (pi sqrt(det Sigma) (1 + (x~ - t)^T Sigma^-1 (x~ - t))^2),
+ * where t is the slope of the mean normal A^T A n and Sigma = alpha^2 I for isotropic GGX. For the canonical
+ * A' = [B 0; b^T a33] (ggx_shape.a): t = -b / a33 and Sigma = B^T B / a33^2. t = 0 exactly when the shape is
+ * unskewed. Every (t, Sigma) with Sigma positive definite is a shape, and every shape is one (t, Sigma).
+ *
+ * ggx_shape_slopes writes t = (t_x, t_y) and sigma = (Sigma_xx, Sigma_xy, Sigma_yy), each within a few ulp of
+ * the products of the stored A'. Rounded to doubles, the three entries carry det Sigma to about 1e-16 cond(Sigma)
+ * relative, so D rebuilt from (t, Sigma) by the form above matches ggx_ndf to 1e-12 + 2e-15 kappa(A)^2 relative,
+ * kappa(A) = max(ax, ay, 1) / min(ax, ay, 1) for ggx_shape_ellipsoid (tested on 10^4 random shapes with alphas
+ * from 1e-3 to 10 and skews to GGX_SKEW_MAX). Errors: GGX_ERR_NULL (any pointer NULL). */
+ggx_status ggx_shape_slopes(const ggx_shape *s, double t[2], double sigma[3]);
+
+/* The shape whose slopes have location (tx, ty) and scale Sigma = [sxx sxy; sxy syy]: A = [B 0; -t^T 1] with
+ * B = Sigma^(1/2), the symmetric square root, so that ggx_shape_slopes gives back (t, Sigma) to rounding. An
+ * eigenvalue of Sigma below GGX_ALPHA_MIN^2 is raised to it (the counterpart of the alpha clamp of ggx_shape_iso;
+ * its eigenvector is kept). Errors: GGX_ERR_NULL; GGX_ERR_NONFINITE (an argument NaN or infinite);
+ * GGX_ERR_ALPHA (Sigma not positive semi-definite: sxx < 0, syy < 0 or sxx syy < sxy^2 beyond rounding, or an
+ * eigenvalue above GGX_ALPHA_MAX^2); GGX_ERR_SINGULAR and GGX_ERR_RANGE as for ggx_shape_matrix (|t| or the
+ * eigenvalues' ratio too large). s is unchanged on error. */
+ggx_status ggx_shape_from_slopes(ggx_shape *s, double tx, double ty, double sxx, double sxy, double syy);
+
+/* The parameters of ggx_shape_ellipsoid that give the same distribution as s: D from ggx_shape_ellipsoid of the
+ * outputs equals ggx_ndf(s, .) to 1e-12 relative times kappa(A) = max(ax, ay, 1) / min(ax, ay, 1) (tested on random
+ * shapes).
+ * Of the equivalent parameter sets it returns the one whose third axis (the row of R with eigenvalue 1 of A^T A)
+ * is the principal axis of A^T A nearest to n, so |theta_x|, |theta_y| < pi / 2 strictly, and of the four quarter
+ * turns about that axis the one with the smallest |theta_z| (below pi / 2); for alpha_x = alpha_y (to 1e-12
+ * relative), theta_z = 0. A shape made by ggx_shape_ellipsoid whose parameters are that choice gives them back to
+ * about 1e-13 kappa(A)^2 (e.g. |theta_x|, |theta_y| <= 0.45 with |theta_z| <= 0.5, tested). alpha_x or
+ * alpha_y may be below GGX_ALPHA_MIN for a shape from ggx_shape_matrix. Any output pointer may be NULL.
+ * Errors: GGX_ERR_NULL (s NULL). */
+ggx_status ggx_shape_ellipsoid_params(const ggx_shape *s, double *alpha_x, double *alpha_y, double *theta_x,
+                                      double *theta_y, double *theta_z);
+
 /* ------------------------------------------------------------------------------------------------------------
  * The distribution of normals
  * ------------------------------------------------------------------------------------------------------------ */

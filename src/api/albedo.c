@@ -17,6 +17,7 @@
 #include <math.h>
 #include <pthread.h>
 
+#include "../common/eig3.h"
 #include "../common/gauss.h"
 #include "internal.h"
 
@@ -33,40 +34,6 @@ static double adapt(fn1 f, void *ctx, const double *br, int nb, double abs_tol)
 {
     gq_panel ps[MAX_PANELS];
     return gq_adapt(&rule, f, ctx, br, nb, abs_tol, ps, MAX_PANELS);
-}
-
-/* Eigen-decomposition of a symmetric 3x3 matrix by cyclic Jacobi rotations: a[i][i] become the eigenvalues and
- * row i of vec the unit eigenvector of eigenvalue i. */
-static void jacobi3(double a[3][3], double vec[3][3])
-{
-    double v[3][3] = {{1, 0, 0}, {0, 1, 0}, {0, 0, 1}};
-    for (int sweep = 0; sweep < 64; sweep++) {
-        double off = fabs(a[0][1]) + fabs(a[0][2]) + fabs(a[1][2]);
-        double diag = fabs(a[0][0]) + fabs(a[1][1]) + fabs(a[2][2]);
-        if (!(off > 1e-300 * diag) || off <= 0x1p-60 * diag) break;
-        for (int p = 0; p < 2; p++)
-            for (int q = p + 1; q < 3; q++) {
-                if (a[p][q] == 0) continue;
-                double th = 0.5 * atan2(2 * a[p][q], a[q][q] - a[p][p]), c = cos(th), s = sin(th);
-                for (int k = 0; k < 3; k++) {
-                    double kp = a[k][p], kq = a[k][q];
-                    a[k][p] = c * kp - s * kq;
-                    a[k][q] = s * kp + c * kq;
-                }
-                for (int k = 0; k < 3; k++) {
-                    double pk = a[p][k], qk = a[q][k];
-                    a[p][k] = c * pk - s * qk;
-                    a[q][k] = s * pk + c * qk;
-                }
-                for (int k = 0; k < 3; k++) {
-                    double kp = v[k][p], kq = v[k][q];
-                    v[k][p] = c * kp - s * kq;
-                    v[k][q] = s * kp + c * kq;
-                }
-            }
-    }
-    for (int i = 0; i < 3; i++)
-        for (int k = 0; k < 3; k++) vec[i][k] = v[k][i];
 }
 
 /* The cone of the reflection's horizon in sphere space: Q = A M A^T with h^T M h = 2 (v.h) h.z - v.z |h|^2, so that
@@ -205,7 +172,7 @@ static double albedo(const ggx_shape *s, ggx_vec3 v, int hc, double tol)
 
     double Q[3][3], E[3][3];
     horizon_cone(s, v, Q);
-    jacobi3(Q, E);
+    ggx_eig3(Q, E);
     int ip = 0;
     for (int i = 1; i < 3; i++)
         if (Q[i][i] > Q[ip][ip]) ip = i;
