@@ -13,7 +13,7 @@ nm -D --defined-only "$so" | awk '$2 ~ /[TDBRWi]/ {print $3}' | grep -v '^_' | s
 grep -v '\.resolver$' "$tmp/all" >"$tmp/exported" || true
 grep '\.resolver$' "$tmp/all" | sed 's/\.resolver$//' >"$tmp/resolved" || true
 # Declarations of exported functions: "ggx_name(" in the non-inline headers (types are never followed by "(").
-cat "$inc"/ggx/ggx.h "$inc"/ggx/ggx_batch.h "$inc"/ggx/ggx_samplers.h |
+ls "$inc"/ggx/*.h | grep -v '/ggx_inline\.h$' | xargs cat |
   grep -oE 'ggx_[a-z0-9_]+\(' | tr -d '(' | sort -u >"$tmp/declared"
 status=0
 extra=$(comm -23 "$tmp/exported" "$tmp/declared")

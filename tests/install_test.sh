@@ -16,7 +16,7 @@ grep -q "export PKG_CONFIG_PATH=$prefix/lib.*/pkgconfig" "$tmp/install.log" ||
 grep -q "rpath" "$tmp/install.log" || { cat "$tmp/install.log"; echo "install: no rpath note" >&2; exit 1; }
 libdir=$(ls -d "$prefix"/lib*/pkgconfig | head -n 1)
 libdir=${libdir%/pkgconfig}
-for f in include/ggx/ggx.h include/ggx/ggx_inline.h include/ggx/ggx_batch.h include/ggx/ggx_samplers.h \
+for f in include/ggx/ggx.h include/ggx/ggx_inline.h include/ggx/ggx_batch.h include/ggx/ggx_samplers.h include/ggx/ggx_fit.h \
          bin/ggx share/man/man1/ggx.1; do
   test -f "$prefix/$f" || { echo "install: $f missing" >&2; exit 1; }
 done

@@ -92,7 +92,9 @@ typedef enum ggx_status {
     GGX_ERR_ETA,         /* an index of refraction is <= 0 or above 1e300 (or 1 where a function refuses it) */
     GGX_ERR_RANGE,       /* a parameter is outside its documented range (e.g. Schlick f0 outside [0, 1]), or an
                           * energy table would not meet its promise (ggx_energy_create) */
-    GGX_ERR_MEMORY       /* memory could not be allocated (ggx_energy_create) */
+    GGX_ERR_MEMORY,      /* memory could not be allocated (ggx_energy_create) */
+    GGX_ERR_DATA         /* too few usable samples to fit (ggx_fit.h: fewer than 5 normals above the horizon with
+                          * finite components and a positive weight) */
 } ggx_status;
 
 /* One-line English description of a status ("ok" for GGX_OK); never NULL, also for unknown values. */

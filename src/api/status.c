@@ -19,6 +19,9 @@ GGX_API const char *ggx_status_str(ggx_status status)
         return "a parameter is outside its documented range (for an energy table: the shape's albedo has a feature "
                "finer than the table resolves)";
     case GGX_ERR_MEMORY: return "memory could not be allocated";
+    case GGX_ERR_DATA:
+        return "too few usable samples to fit: fewer than 5 normals above the horizon with finite components and a "
+               "positive weight";
     }
     return "unknown status";
 }

@@ -22,3 +22,17 @@ int user_kernels(const ggx_shape *s, const ggx_fresnel *f, float *out)
     out[3] = ggx_ndf_f(&sf, vf);
     return a.event == GGX_EVENT_REFLECT;
 }
+
+/* The fit's header beside it: its types and declarations in every language mode. */
+#include "ggx/ggx_fit.h"
+
+int user_fit(ggx_shape *out, const ggx_vec3 *m, size_t n);
+
+int user_fit(ggx_shape *out, const ggx_vec3 *m, size_t n)
+{
+    ggx_fit_options opt = {GGX_FIT_ANISOTROPIC, 100, 1e-6, 1, NULL, NULL};
+    ggx_fit_info info;
+    ggx_heightfield_options hopt = {0, 2};
+    (void)hopt;
+    return ggx_fit_normals(out, m, NULL, n, &opt, &info) == GGX_OK && info.best == GGX_FIT_ELLIPSOID;
+}

@@ -1,0 +1,142 @@
+/*
+ * libggx fits: the shape A of measured normals and height fields, by maximum likelihood.
+ *
+ * SPDX-License-Identifier: MIT
+ *
+ * Every fit works in slope space (ggx.h, ggx_shape_slopes): the slopes x~ = (-m.x / m.z, -m.y / m.z) of normals
+ * drawn with density D(m) (m.n) follow P22(x~) = 1 / (pi sqrt(det Sigma) (1 + (x~ - t)^T Sigma^-1 (x~ - t))^2),
+ * a Student t with 2 degrees of freedom, so fitting A is fitting the location t and the scale Sigma
+ * (docs/design/fit.md). Each normal is a sample of D(m) (m.n): a facet of a height field, a texel of a normal map,
+ * with a weight proportional to its projected area (m.n times its area). Normals need not be unit length (only the
+ * direction is used).
+ *
+ * Likelihoods are of the normals' density over solid angle, D(m) (m.n) = P22(x~) / cos^3 theta_m, averaged over the
+ * samples with their weights ("per sample"). Weights are relative: a fit scales them to sum to Kish's effective
+ * sample size n_eff = (sum w)^2 / sum w^2 (n for equal weights), which sets the standard errors and the BIC.
+ * Standard errors and the goodness of fit assume independent samples: the facets of a height field are correlated
+ * over its correlation length, so there they are lower bounds.
+ *
+ * Threads: every function may be called from any number of threads at once. Results do not depend on
+ * ggx_fit_options.threads (the sums run over fixed blocks, added in one order).
+ */
+#ifndef GGX_GGX_FIT_H
+#define GGX_GGX_FIT_H
+
+#include <stddef.h>
+
+#include "ggx/ggx.h"
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+/* The models a fit compares. The first three are shapes (ellipsoid NDFs); Beckmann is not. */
+typedef enum ggx_fit_model {
+    GGX_FIT_ELLIPSOID = 0,   /* the full ellipsoid: t and Sigma, 5 parameters */
+    GGX_FIT_ANISOTROPIC = 1, /* rotated anisotropic GGX: t = 0, Sigma any, 3 parameters */
+    GGX_FIT_ISOTROPIC = 2,   /* isotropic GGX: t = 0, Sigma = alpha^2 I, 1 parameter */
+    GGX_FIT_BECKMANN = 3,    /* Gaussian slopes with a mean and a covariance (Beckmann's NDF, rotated, anisotropic
+                              * and located), 5 parameters */
+    GGX_FIT_MODELS = 4
+} ggx_fit_model;
+
+/* Called after each EM iteration with the iteration's number (from 1) and the log-likelihood per sample of the
+ * iterate it started from; a nonzero return stops the fit (ggx_fit_info.converged is then 0). */
+typedef int (*ggx_fit_progress_fn)(void *ctx, int iteration, double log_likelihood);
+
+/* Options; a zeroed struct (or NULL) means every default. */
+typedef struct ggx_fit_options {
+    ggx_fit_model model;         /* the family of `out`: GGX_FIT_ELLIPSOID (default), _ANISOTROPIC or _ISOTROPIC */
+    int max_iterations;          /* EM iterations at most per model; 0: 1000 */
+    double tolerance;            /* stop when the Newton decrement of the total log-likelihood is below it: one more
+                                  * Newton step would move the parameters by about that many standard errors and
+                                  * raise log L by about half its square; 0: 1e-6 */
+    int threads;                 /* POSIX threads for the passes over the samples; 0: 1 */
+    ggx_fit_progress_fn progress; /* may be NULL */
+    void *progress_ctx;
+} ggx_fit_options;
+
+/* One model of the comparison, fitted to the same samples. */
+typedef struct ggx_fit_model_result {
+    double log_likelihood; /* per sample, at the fitted parameters */
+    double bic;            /* -2 n_eff log_likelihood + parameters ln n_eff: lower is better supported */
+    int parameters;        /* free parameters: 5, 3, 1, 5 */
+    int iterations;        /* EM iterations (0 for Beckmann, whose fit is closed-form) */
+    double t[2], sigma[3]; /* the fitted location and scale (Sigma_xx, Sigma_xy, Sigma_yy); for Beckmann the slopes'
+                            * mean and covariance (alpha_x^2 / 2 etc. for Beckmann's alphas) */
+} ggx_fit_model_result;
+
+typedef struct ggx_fit_info {
+    int iterations;        /* EM iterations of the model of `out` */
+    int converged;         /* 1 when the closing iterate met the tolerance */
+    double stationarity;   /* the Newton decrement sqrt(g^T (-H)^-1 g) of the total log-likelihood at the closing
+                            * iterate (g, H its gradient and Hessian in the model's free parameters) */
+    double log_likelihood; /* per sample, of `out` */
+    double t[2], sigma[3]; /* `out` in slope space (ggx_shape_slopes of it) */
+    /* Standard errors of t_x, t_y, Sigma_xx, Sigma_xy, Sigma_yy from the observed information (the inverse of -H at
+     * the fit, H scaled to n_eff); 0 for parameters the model fixes, and all 0 when `clamped`. covariance is the
+     * full 5 x 5 matrix in the same order. */
+    double std_error[5];
+    double covariance[5][5];
+    /* Goodness of fit of `out`: the slopes standardised by the fit, z = L^-1 (x~ - t) with Sigma = L L^T, have
+     * u = |z|^2 / (1 + |z|^2) and the angle of z uniform and independent exactly when the model holds; a
+     * cells x cells grid of equal-probability cells in (u, angle) (cells = floor(sqrt(n_eff / 20)), at most 16,
+     * so each cell expects at least 20), Pearson's statistic on the weighted counts scaled to n_eff, and its
+     * chi-square p-value with cells^2 - 1 - parameters degrees of freedom. gof_pvalue is NaN (and gof_dof 0)
+     * when n_eff is too small for that many degrees of freedom to be at least 1 (n_eff < 180 for the ellipsoid). */
+    double gof_chi2, gof_pvalue;
+    int gof_cells, gof_dof;
+    size_t used;              /* samples used */
+    size_t ignored_horizon;   /* m.z <= 0: no slope (below or on the horizon, the zero vector) */
+    size_t ignored_nonfinite; /* a component or the weight NaN or infinite */
+    size_t ignored_weight;    /* weight 0 */
+    double effective_n;       /* n_eff */
+    int clamped;              /* an eigenvalue of Sigma was held at GGX_ALPHA_MIN^2 (e.g. all normals equal) */
+    ggx_fit_model_result models[GGX_FIT_MODELS]; /* every model fitted to the same samples, indexed by ggx_fit_model */
+    ggx_fit_model best;       /* the model of least BIC */
+} ggx_fit_info;
+
+/* Fits the shape of n normals m (weights `weight`, or all 1 when NULL) by maximum likelihood in the family
+ * opt->model, by EM (PX-EM: the Student t's weights 2 / (1 + delta_i), delta_i = (x~_i - t)^T Sigma^-1 (x~_i - t),
+ * and the scale's update divided by their sum, Liu, Rubin and Wu 1998; the likelihood never decreases), until the
+ * Newton decrement is below opt->tolerance or opt->max_iterations. Samples below the horizon, non-finite or of
+ * weight 0 are ignored and counted. info (may be NULL) receives the fit's statistics and the comparison of all four
+ * models. Sigma's eigenvalues are held at GGX_ALPHA_MIN^2 or above (info->clamped says when that binds).
+ * Errors: GGX_ERR_NULL (out NULL, or m NULL with n > 0); GGX_ERR_RANGE (a negative weight; opt->model Beckmann or
+ * unknown; opt->threads outside [0, 256] or max_iterations, tolerance negative); GGX_ERR_DATA (fewer than 5 usable
+ * samples); GGX_ERR_MEMORY; GGX_ERR_SINGULAR (|t| so large that the shape is refused, as ggx_shape_from_slopes).
+ * On error out is unchanged and info is zeroed (its ignored counts filled). Never NaN in out. */
+ggx_status ggx_fit_normals(ggx_shape *out, const ggx_vec3 *m, const double *weight, size_t n,
+                           const ggx_fit_options *opt, ggx_fit_info *info);
+
+/* The log-likelihood per sample of n normals (weights as in ggx_fit_normals) under the shape s: the weighted mean of
+ * log(D(m) (m.n)) over the usable samples, -HUGE_VAL when there are none. Errors as ggx_fit_normals, through *ll
+ * (s, m or ll NULL: GGX_ERR_NULL). */
+ggx_status ggx_fit_log_likelihood(const ggx_shape *s, const ggx_vec3 *m, const double *weight, size_t n, double *ll);
+
+/* Height fields: heights h[j * nx + i] at (i dx, j dy) on a regular nx x ny grid (nx, ny >= 2). */
+typedef struct ggx_heightfield_options {
+    int keep_tilt;  /* 0 (default): the least-squares plane is removed first (levelling, as surface metrology does),
+                     * so the fit's t is the surface's skew about its mean plane (0 for a stationary random surface);
+                     * 1: the heights are used as given, and a tilt becomes t */
+    int downsample; /* k >= 2: heights averaged over k x k blocks first (spacing k dx, k dy; trailing rows and
+                     * columns that do not fill a block are dropped), since a measured NDF depends on the scale at
+                     * which the slopes are taken; 0 or 1: none */
+} ggx_heightfield_options;
+
+/* Fits the shape of the facets of the height field. The surface is piecewise linear over each cell's two triangles;
+ * both triangulations are used (the two diagonals), each triangle weighted by its projected area, dx dy / 4: the four
+ * facet slopes of a cell are then the four pairs of its x and y differences, ((h10 - h00) or (h11 - h01)) / dx with
+ * ((h01 - h00) or (h11 - h10)) / dy, and no diagonal is preferred (one triangulation alone would tie the NDF's
+ * anisotropy to its diagonal). Cells with a non-finite height are ignored (counted in ignored_nonfinite); levelling
+ * uses the finite heights. opt and info as in ggx_fit_normals; hopt may be NULL.
+ * Errors: GGX_ERR_NULL; GGX_ERR_RANGE (nx or ny below 2, nx * ny overflowing, dx or dy not positive, downsample
+ * negative or leaving fewer than 2 x 2 heights); GGX_ERR_NONFINITE (dx or dy NaN or infinite); as ggx_fit_normals. */
+ggx_status ggx_fit_heightfield(ggx_shape *out, const double *h, size_t nx, size_t ny, double dx, double dy,
+                               const ggx_heightfield_options *hopt, const ggx_fit_options *opt, ggx_fit_info *info);
+
+#ifdef __cplusplus
+}
+#endif
+
+#endif

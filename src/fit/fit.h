@@ -1,0 +1,88 @@
+/* The fits' internals: a source of slopes, the passes over it (src/fit/fit_pass.c), EM for the Student-t models
+ * (src/fit/fit_em.c) and the observed information (src/fit/fit_information.c). SPDX-License-Identifier: MIT */
+#ifndef GGX_FIT_INTERNAL_H
+#define GGX_FIT_INTERNAL_H
+
+#include <stddef.h>
+
+#include "../api/internal.h"
+#include "ggx/ggx_fit.h"
+
+/* Samples are read in chunks of FIT_CHUNK into the pass's buffers; the sums are taken over units of FIT_UNIT samples
+ * and the units' sums added in order, so results do not depend on the thread count. */
+enum { FIT_CHUNK = 1024, FIT_UNIT = 65536, FIT_MAX_CELLS = 16 };
+
+/* A source of slope samples: fill writes the slopes (x, y), the weight w (0 for a sample to skip) and, when lc is not
+ * NULL, log cos theta of the normal for samples [i0, i0 + k), k <= FIT_CHUNK. */
+typedef struct fit_source {
+    void (*fill)(const void *ctx, size_t i0, size_t k, double *x, double *y, double *w, double *lc);
+    const void *ctx;
+    size_t n;
+} fit_source;
+
+typedef enum fit_pass_kind {
+    FIT_PASS_MOMENTS, /* about c = at->t: W, sum w r (2), sum w r r^T (3), sum w lc, sum w^2 */
+    FIT_PASS_ESTEP,   /* at (t, P = Sigma^-1), with c_i = 1 / (1 + delta_i): W, sum w c, sum w c r (2), sum w c r r^T
+                       * (3), sum w log(1 + delta) */
+    FIT_PASS_HESSIAN, /* at (t, P): the sums of fit_information.c (FIT_HESSIAN_SUMS) */
+    FIT_PASS_CELLS    /* at (t, L^-1): the weighted counts of the cells x cells grid of ggx_fit_info's goodness of fit */
+} fit_pass_kind;
+
+enum { FIT_MOMENT_SUMS = 8, FIT_ESTEP_SUMS = 8, FIT_HESSIAN_SUMS = 23 };
+
+typedef struct fit_point {
+    double t[2];
+    double p[3];    /* Sigma^-1 (xx, xy, yy) for ESTEP and HESSIAN */
+    double linv[3]; /* L^-1 (lower triangular: 00, 10, 11) with Sigma = L L^T, for CELLS */
+    int cells;
+} fit_point;
+
+/* Runs a pass; sums must hold the pass's count (cells^2 for CELLS). GGX_ERR_MEMORY or GGX_OK. */
+ggx_status fit_pass(const fit_source *src, int threads, fit_pass_kind kind, const fit_point *at, double *sums);
+
+/* What every model's fit shares: the samples and their constants. */
+typedef struct fit_data {
+    const fit_source *src;
+    int threads;
+    double w_sum;   /* W */
+    double n_eff;   /* W^2 / sum w^2 */
+    double mean_lc; /* sum w lc / W */
+    int max_iterations;
+    double tolerance;
+    ggx_fit_progress_fn progress;
+    void *progress_ctx;
+} fit_data;
+
+/* One fitted Student-t model. */
+typedef struct fit_result {
+    double t[2], sigma[3];
+    double log_likelihood; /* per sample */
+    double stationarity;
+    double cov[5][5];
+    int iterations, converged, clamped;
+} fit_result;
+
+/* The free parameters of a model: 5, 3 or 1 (Beckmann: 5). */
+int fit_model_parameters(ggx_fit_model model);
+/* Raises Sigma's eigenvalues to floor (eigenvectors kept); returns whether it changed Sigma. */
+int fit_clamp_sigma(double sigma[3], double floor);
+/* Sigma^-1 of (xx, xy, yy); 0 when not positive definite. */
+int fit_inverse(const double sigma[3], double p[3]);
+
+/* EM for the Student-t models (ELLIPSOID, ANISOTROPIC, ISOTROPIC), from (t0, sigma0). */
+ggx_status fit_em(const fit_data *d, ggx_fit_model model, const double t0[2], const double sigma0[3], fit_result *r);
+
+/* The observed information at (t, sigma) for the model's free parameters: the log-likelihood per sample, the Newton
+ * decrement of the total log-likelihood (scaled to n_eff) and the covariance of the five parameters (zero rows for
+ * fixed ones). The decrement is HUGE_VAL where -H is not positive definite. */
+ggx_status fit_information(const fit_data *d, ggx_fit_model model, const double t[2], const double sigma[3],
+                           double *log_likelihood, double *decrement, double cov[5][5]);
+
+/* Validates opt (NULL: defaults) into d's settings; GGX_ERR_RANGE for a bad option. */
+ggx_status fit_settings(const ggx_fit_options *opt, fit_data *d, ggx_fit_model *model);
+
+/* The fit and the model comparison on a source whose ignored counts the caller has put in *info (info not NULL; its
+ * other fields are written here). */
+ggx_status fit_run(const fit_source *src, const ggx_fit_options *opt, ggx_shape *out, ggx_fit_info *info);
+
+#endif

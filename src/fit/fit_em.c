@@ -1,0 +1,92 @@
+/* EM for the Student-t models of slopes (nu = 2): PX-EM with the scale's update divided by the sum of the weights
+ * (docs/design/fit.md), with Sigma's eigenvalues held at a floor; stopped by the Newton decrement.
+ * SPDX-License-Identifier: MIT */
+#include <string.h>
+
+#include "fit.h"
+
+int fit_clamp_sigma(double s[3], double floor)
+{
+    double half = 0.5 * (s[0] - s[2]), rad = hypot(half, s[1]), mean = 0.5 * (s[0] + s[2]);
+    double l1 = mean + rad, l2 = mean - rad;
+    if (l2 >= floor && isfinite(l1)) return 0;
+    double phi = 0.5 * atan2(2.0 * s[1], s[0] - s[2]), c = cos(phi), sn = sin(phi);
+    if (!(l1 >= floor)) l1 = floor;
+    if (!(l2 >= floor)) l2 = floor;
+    s[0] = l1 * c * c + l2 * sn * sn;
+    s[1] = (l1 - l2) * c * sn;
+    s[2] = l1 * sn * sn + l2 * c * c;
+    return 1;
+}
+
+/* The largest change from (t, s) to (tn, sn) in the scale of s: |dt_i| / sqrt(s_ii), |ds_ij| / sqrt(s_ii s_jj). */
+static double change(const double t[2], const double s[3], const double tn[2], const double sn[3])
+{
+    double ex = sqrt(s[0]), ey = sqrt(s[2]);
+    double c = fmax(fabs(tn[0] - t[0]) / ex, fabs(tn[1] - t[1]) / ey);
+    c = fmax(c, fabs(sn[0] - s[0]) / s[0]);
+    c = fmax(c, fabs(sn[1] - s[1]) / (ex * ey));
+    return fmax(c, fabs(sn[2] - s[2]) / s[2]);
+}
+
+ggx_status fit_em(const fit_data *d, ggx_fit_model model, const double t0[2], const double sigma0[3], fit_result *r)
+{
+    const double floor = GGX_ALPHA_MIN * GGX_ALPHA_MIN;
+    memset(r, 0, sizeof *r);
+    double t[2] = {t0[0], t0[1]}, s[3] = {sigma0[0], sigma0[1], sigma0[2]};
+    if (model != GGX_FIT_ELLIPSOID) t[0] = t[1] = 0.0;
+    if (model == GGX_FIT_ISOTROPIC) s[0] = s[2] = 0.5 * (s[0] + s[2]), s[1] = 0.0;
+    r->clamped = fit_clamp_sigma(s, floor);
+    double check_below = 1e-9; /* the parameter change under which the decrement is computed */
+    for (int it = 1;; it++) {
+        fit_point at = {{t[0], t[1]}, {0, 0, 0}, {0, 0, 0}, 0};
+        fit_inverse(s, at.p);
+        double a[FIT_ESTEP_SUMS];
+        ggx_status st = fit_pass(d->src, d->threads, FIT_PASS_ESTEP, &at, a);
+        if (st != GGX_OK) return st;
+        double ll = -log(GGX_PI) - 0.5 * log(s[0] * s[2] - s[1] * s[1]) - 2.0 * a[7] / a[0] - 3.0 * d->mean_lc;
+        r->iterations = it;
+        if (d->progress && d->progress(d->progress_ctx, it, ll)) break;
+        /* M step: t' = t + sum w c r / sum w c; Sigma' = 2 sum w c (r - dt)(r - dt)^T / sum w c. */
+        double tn[2] = {t[0], t[1]}, sn[3], dt[2] = {0.0, 0.0};
+        if (model == GGX_FIT_ELLIPSOID) {
+            dt[0] = a[2] / a[1], dt[1] = a[3] / a[1];
+            tn[0] = t[0] + dt[0], tn[1] = t[1] + dt[1];
+        }
+        sn[0] = 2.0 * (a[4] / a[1] - dt[0] * dt[0]);
+        sn[1] = 2.0 * (a[5] / a[1] - dt[0] * dt[1]);
+        sn[2] = 2.0 * (a[6] / a[1] - dt[1] * dt[1]);
+        if (model == GGX_FIT_ISOTROPIC) sn[0] = sn[2] = 0.5 * (sn[0] + sn[2]), sn[1] = 0.0;
+        int clamped = fit_clamp_sigma(sn, floor);
+        double ch = change(t, s, tn, sn);
+        memcpy(t, tn, sizeof t);
+        memcpy(s, sn, sizeof s);
+        r->clamped = clamped;
+        if (clamped && ch <= 1e-12) {
+            r->converged = 1; /* held at the floor: no free direction left to measure */
+            break;
+        }
+        if (ch <= check_below || it >= d->max_iterations) {
+            double dec;
+            st = fit_information(d, model, t, s, &r->log_likelihood, &dec, r->cov);
+            if (st != GGX_OK) return st;
+            r->stationarity = dec;
+            if (dec <= d->tolerance) {
+                r->converged = 1;
+                break;
+            }
+            if (it >= d->max_iterations) break;
+            check_below = ch * 0.1;
+        }
+    }
+    memcpy(r->t, t, sizeof t);
+    memcpy(r->sigma, s, sizeof s);
+    if (r->clamped || !r->converged) { /* the closing iterate's likelihood and information */
+        double dec;
+        ggx_status st = fit_information(d, model, t, s, &r->log_likelihood, &dec, r->cov);
+        if (st != GGX_OK) return st;
+        r->stationarity = r->clamped ? 0.0 : dec;
+        if (r->clamped) memset(r->cov, 0, sizeof r->cov);
+    }
+    return GGX_OK;
+}

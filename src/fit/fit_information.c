@@ -1,0 +1,141 @@
+/* The observed information of the Student-t models: the gradient and Hessian of the log-likelihood in
+ * (t_x, t_y, Sigma_xx, Sigma_xy, Sigma_yy), in closed form from one pass (docs/design/fit.md), restricted to a
+ * model's free parameters; from them the Newton decrement and the covariance. SPDX-License-Identifier: MIT */
+#include <string.h>
+
+#include "fit.h"
+
+int fit_model_parameters(ggx_fit_model model)
+{
+    return model == GGX_FIT_ANISOTROPIC ? 3 : model == GGX_FIT_ISOTROPIC ? 1 : 5;
+}
+
+int fit_inverse(const double s[3], double p[3])
+{
+    double det = s[0] * s[2] - s[1] * s[1];
+    if (!(det > 0.0) || !(s[0] > 0.0)) return 0;
+    p[0] = s[2] / det, p[1] = -s[1] / det, p[2] = s[0] / det;
+    return 1;
+}
+
+/* The model's free parameters as columns of J (5 x k). */
+static int free_directions(ggx_fit_model model, double J[5][5])
+{
+    memset(J, 0, sizeof(double) * 25);
+    if (model == GGX_FIT_ISOTROPIC) {
+        J[2][0] = J[4][0] = 1.0; /* Sigma = s I */
+        return 1;
+    }
+    int k = 0;
+    for (int i = model == GGX_FIT_ANISOTROPIC ? 2 : 0; i < 5; i++) J[i][k++] = 1.0;
+    return k;
+}
+
+/* Inverse of a symmetric positive definite k x k matrix by Cholesky; 0 when not positive definite. */
+static int spd_inverse(int k, double a[5][5], double inv[5][5])
+{
+    double l[5][5] = {{0}};
+    for (int j = 0; j < k; j++) {
+        double d = a[j][j];
+        for (int m = 0; m < j; m++) d -= l[j][m] * l[j][m];
+        if (!(d > 0.0)) return 0;
+        l[j][j] = sqrt(d);
+        for (int i = j + 1; i < k; i++) {
+            double v = a[i][j];
+            for (int m = 0; m < j; m++) v -= l[i][m] * l[j][m];
+            l[i][j] = v / l[j][j];
+        }
+    }
+    for (int c = 0; c < k; c++) { /* solve L L^T x = e_c */
+        double y[5], x[5];
+        for (int i = 0; i < k; i++) {
+            double v = i == c;
+            for (int m = 0; m < i; m++) v -= l[i][m] * y[m];
+            y[i] = v / l[i][i];
+        }
+        for (int i = k - 1; i >= 0; i--) {
+            double v = y[i];
+            for (int m = i + 1; m < k; m++) v -= l[m][i] * x[m];
+            x[i] = v / l[i][i];
+        }
+        for (int i = 0; i < k; i++) inv[i][c] = x[i];
+    }
+    return 1;
+}
+
+ggx_status fit_information(const fit_data *d, ggx_fit_model model, const double t[2], const double sigma[3],
+                           double *log_likelihood, double *decrement, double cov[5][5])
+{
+    fit_point at = {{t[0], t[1]}, {0, 0, 0}, {0, 0, 0}, 0};
+    memset(cov, 0, sizeof(double) * 25);
+    *decrement = HUGE_VAL;
+    if (!fit_inverse(sigma, at.p)) return GGX_ERR_SINGULAR;
+    double a[FIT_HESSIAN_SUMS];
+    ggx_status st = fit_pass(d->src, d->threads, FIT_PASS_HESSIAN, &at, a);
+    if (st != GGX_OK) return st;
+    const double W = a[0], C1 = a[1], Cq[2] = {a[2], a[3]};
+    const double Cqq[2][2] = {{a[4], a[5]}, {a[5], a[6]}}, C2qq[2][2] = {{a[7], a[8]}, {a[8], a[9]}};
+    const double C2qe[2][3] = {{a[10], a[11], a[12]}, {a[13], a[14], a[15]}};
+    const double C2ee[3][3] = {{a[16], a[17], a[18]}, {a[17], a[19], a[20]}, {a[18], a[20], a[21]}};
+    const double ce[3] = {a[4], 2.0 * a[5], a[6]}; /* sum w c e */
+    const double P[2][2] = {{at.p[0], at.p[1]}, {at.p[1], at.p[2]}};
+    const double E[3][2][2] = {{{1, 0}, {0, 0}}, {{0, 1}, {1, 0}}, {{0, 0}, {0, 1}}};
+    double det = sigma[0] * sigma[2] - sigma[1] * sigma[1];
+    *log_likelihood = -log(GGX_PI) - 0.5 * log(det) - 2.0 * a[22] / W - 3.0 * d->mean_lc;
+
+    /* Gradient and Hessian of sum w log p (docs/design/fit.md, "Observed information"). */
+    double g[5], H[5][5];
+    double PE[3][2][2]; /* P E_ab */
+    for (int ab = 0; ab < 3; ab++)
+        for (int i = 0; i < 2; i++)
+            for (int j = 0; j < 2; j++) PE[ab][i][j] = P[i][0] * E[ab][0][j] + P[i][1] * E[ab][1][j];
+    const double trPE[3] = {P[0][0], 2.0 * P[0][1], P[1][1]};
+    for (int i = 0; i < 2; i++) {
+        g[i] = 4.0 * Cq[i];
+        for (int j = 0; j < 2; j++) H[i][j] = 8.0 * C2qq[i][j] - 4.0 * C1 * P[i][j];
+        for (int ab = 0; ab < 3; ab++) {
+            double pq = PE[ab][i][0] * Cq[0] + PE[ab][i][1] * Cq[1];
+            H[i][2 + ab] = H[2 + ab][i] = 4.0 * C2qe[i][ab] - 4.0 * pq;
+        }
+    }
+    for (int ab = 0; ab < 3; ab++) {
+        g[2 + ab] = -0.5 * W * trPE[ab] + 2.0 * ce[ab];
+        for (int cd = 0; cd < 3; cd++) {
+            double tr_pp = 0.0, tr_q = 0.0; /* tr(P E_cd P E_ab), tr(E_ab P E_cd Cqq) */
+            for (int i = 0; i < 2; i++)
+                for (int j = 0; j < 2; j++) {
+                    tr_pp += PE[cd][i][j] * PE[ab][j][i];
+                    double m = 0.0; /* (E_ab P E_cd)[i][j] */
+                    for (int k = 0; k < 2; k++) m += E[ab][i][k] * PE[cd][k][j];
+                    tr_q += m * Cqq[j][i];
+                }
+            H[2 + ab][2 + cd] = 0.5 * W * tr_pp + 2.0 * C2ee[ab][cd] - 4.0 * tr_q;
+        }
+    }
+    /* In the model's free parameters, scaled from W to n_eff. */
+    double J[5][5], nh[5][5], gf[5], inv[5][5], scale = d->n_eff / W;
+    int k = free_directions(model, J);
+    for (int p = 0; p < k; p++) {
+        gf[p] = 0.0;
+        for (int i = 0; i < 5; i++) gf[p] += J[i][p] * g[i] * scale;
+        for (int q = 0; q < k; q++) {
+            double v = 0.0;
+            for (int i = 0; i < 5; i++)
+                for (int j = 0; j < 5; j++) v += J[i][p] * H[i][j] * J[j][q];
+            nh[p][q] = -v * scale;
+        }
+    }
+    if (!spd_inverse(k, nh, inv)) return GGX_OK;
+    double lam2 = 0.0;
+    for (int p = 0; p < k; p++)
+        for (int q = 0; q < k; q++) lam2 += gf[p] * inv[p][q] * gf[q];
+    *decrement = sqrt(fmax(lam2, 0.0));
+    for (int i = 0; i < 5; i++)
+        for (int j = 0; j < 5; j++) {
+            double v = 0.0;
+            for (int p = 0; p < k; p++)
+                for (int q = 0; q < k; q++) v += J[i][p] * inv[p][q] * J[j][q];
+            cov[i][j] = v;
+        }
+    return GGX_OK;
+}

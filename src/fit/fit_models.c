@@ -1,0 +1,126 @@
+/* The fit of a source of slopes: the four models of ggx_fit_info fitted to the same samples, their BIC, and the
+ * goodness of fit of the chosen one. SPDX-License-Identifier: MIT */
+#include <string.h>
+
+#include "../common/chi2_tail.h"
+#include "fit.h"
+
+ggx_status fit_settings(const ggx_fit_options *opt, fit_data *d, ggx_fit_model *model)
+{
+    ggx_fit_options o;
+    memset(&o, 0, sizeof o);
+    if (opt) o = *opt;
+    if (o.model != GGX_FIT_ELLIPSOID && o.model != GGX_FIT_ANISOTROPIC && o.model != GGX_FIT_ISOTROPIC)
+        return GGX_ERR_RANGE;
+    if (o.threads < 0 || o.threads > 256 || o.max_iterations < 0 || !(o.tolerance >= 0.0)) return GGX_ERR_RANGE;
+    d->threads = o.threads ? o.threads : 1;
+    d->max_iterations = o.max_iterations ? o.max_iterations : 1000;
+    d->tolerance = o.tolerance > 0.0 ? o.tolerance : 1e-6;
+    d->progress = o.progress;
+    d->progress_ctx = o.progress_ctx;
+    *model = o.model;
+    return GGX_OK;
+}
+
+/* The Gaussian (Beckmann) fit: the weighted mean and covariance, the moments taken about the mean in a second pass so
+ * that a large mean slope costs no accuracy; its log-likelihood per sample. */
+static ggx_status fit_gaussian(const fit_data *d, double mean[2], double cov[3], double *ll)
+{
+    fit_point at = {{0, 0}, {0, 0, 0}, {0, 0, 0}, 0};
+    double a[FIT_MOMENT_SUMS];
+    for (int pass = 0; pass < 2; pass++) {
+        ggx_status st = fit_pass(d->src, d->threads, FIT_PASS_MOMENTS, &at, a);
+        if (st != GGX_OK) return st;
+        at.t[0] += a[1] / a[0], at.t[1] += a[2] / a[0];
+    }
+    double dx = a[1] / a[0], dy = a[2] / a[0];
+    mean[0] = at.t[0], mean[1] = at.t[1];
+    double s[3] = {a[3] / a[0] - dx * dx, a[4] / a[0] - dx * dy, a[5] / a[0] - dy * dy}; /* about the mean */
+    memcpy(cov, s, sizeof s);
+    fit_clamp_sigma(cov, 0.5 * GGX_ALPHA_MIN * GGX_ALPHA_MIN);
+    double p[3];
+    fit_inverse(cov, p);
+    double quad = p[0] * s[0] + 2.0 * p[1] * s[1] + p[2] * s[2]; /* E[r^T C^-1 r] = tr(C^-1 S) */
+    *ll = -log(2.0 * GGX_PI) - 0.5 * log(cov[0] * cov[2] - cov[1] * cov[1]) - 0.5 * quad - 3.0 * d->mean_lc;
+    return GGX_OK;
+}
+
+/* Pearson's statistic of the chosen fit on equal-probability cells of the standardised slopes (ggx_fit.h). */
+static ggx_status goodness_of_fit(const fit_data *d, const fit_result *r, int parameters, ggx_fit_info *info)
+{
+    int K = (int)floor(sqrt(d->n_eff / 20.0));
+    if (K > FIT_MAX_CELLS) K = FIT_MAX_CELLS;
+    int dof = K * K - 1 - parameters;
+    info->gof_cells = K;
+    info->gof_dof = dof > 0 ? dof : 0;
+    info->gof_chi2 = info->gof_pvalue = NAN;
+    if (dof < 1) return GGX_OK;
+    double l00 = sqrt(r->sigma[0]), l10 = r->sigma[1] / l00, l11 = sqrt(fmax(r->sigma[2] - l10 * l10, 0.0));
+    if (!(l11 > 0.0)) return GGX_OK;
+    fit_point at = {{r->t[0], r->t[1]}, {0, 0, 0}, {1.0 / l00, -l10 / (l00 * l11), 1.0 / l11}, K};
+    double cells[FIT_MAX_CELLS * FIT_MAX_CELLS];
+    ggx_status st = fit_pass(d->src, d->threads, FIT_PASS_CELLS, &at, cells);
+    if (st != GGX_OK) return st;
+    double e = d->n_eff / (K * K), x2 = 0.0, scale = d->n_eff / d->w_sum;
+    for (int i = 0; i < K * K; i++) x2 += (cells[i] * scale - e) * (cells[i] * scale - e) / e;
+    info->gof_chi2 = x2;
+    info->gof_pvalue = ggx_chi2_upper(x2, dof);
+    return GGX_OK;
+}
+
+ggx_status fit_run(const fit_source *src, const ggx_fit_options *opt, ggx_shape *out, ggx_fit_info *info)
+{
+    fit_data d;
+    memset(&d, 0, sizeof d);
+    ggx_fit_model model;
+    ggx_status st = fit_settings(opt, &d, &model);
+    if (st != GGX_OK) return st;
+    d.src = src;
+    fit_point zero = {{0, 0}, {0, 0, 0}, {0, 0, 0}, 0};
+    double a[FIT_MOMENT_SUMS];
+    if ((st = fit_pass(src, d.threads, FIT_PASS_MOMENTS, &zero, a)) != GGX_OK) return st;
+    if (info->used < 5 || !(a[0] > 0.0)) return GGX_ERR_DATA;
+    d.w_sum = a[0];
+    d.n_eff = a[0] * a[0] / a[7];
+    d.mean_lc = a[6] / a[0];
+    info->effective_n = d.n_eff;
+
+    double mean[2], cov[3], gll;
+    if ((st = fit_gaussian(&d, mean, cov, &gll)) != GGX_OK) return st;
+    ggx_fit_model_result *mr = info->models;
+    mr[GGX_FIT_BECKMANN] = (ggx_fit_model_result){gll, 0.0, 5, 0, {mean[0], mean[1]}, {cov[0], cov[1], cov[2]}};
+
+    /* The three Student-t models: the ellipsoid from the Gaussian's mean and covariance, the others (t = 0) from the
+     * second moments about 0. */
+    double m2[3] = {cov[0] + mean[0] * mean[0], cov[1] + mean[0] * mean[1], cov[2] + mean[1] * mean[1]};
+    fit_result fr[3];
+    for (int k = 0; k < 3; k++) {
+        ggx_fit_model mk = (ggx_fit_model)k;
+        fit_data dk = d;
+        if (mk != model) dk.progress = NULL;
+        if ((st = fit_em(&dk, mk, mean, mk == GGX_FIT_ELLIPSOID ? cov : m2, &fr[k])) != GGX_OK) return st;
+        mr[k] = (ggx_fit_model_result){fr[k].log_likelihood, 0.0, fit_model_parameters(mk), fr[k].iterations,
+                                       {fr[k].t[0], fr[k].t[1]}, {fr[k].sigma[0], fr[k].sigma[1], fr[k].sigma[2]}};
+    }
+    info->best = GGX_FIT_ELLIPSOID;
+    for (int k = 0; k < GGX_FIT_MODELS; k++) {
+        mr[k].bic = -2.0 * d.n_eff * mr[k].log_likelihood + mr[k].parameters * log(d.n_eff);
+        if (mr[k].bic < mr[info->best].bic) info->best = (ggx_fit_model)k;
+    }
+
+    const fit_result *r = &fr[model];
+    ggx_shape s;
+    if ((st = ggx_shape_from_slopes(&s, r->t[0], r->t[1], r->sigma[0], r->sigma[1], r->sigma[2])) != GGX_OK) return st;
+    info->iterations = r->iterations;
+    info->converged = r->converged;
+    info->stationarity = r->stationarity;
+    info->log_likelihood = r->log_likelihood;
+    info->clamped = r->clamped;
+    memcpy(info->t, r->t, sizeof info->t);
+    memcpy(info->sigma, r->sigma, sizeof info->sigma);
+    memcpy(info->covariance, r->cov, sizeof info->covariance);
+    for (int i = 0; i < 5; i++) info->std_error[i] = sqrt(fmax(r->cov[i][i], 0.0));
+    if ((st = goodness_of_fit(&d, r, fit_model_parameters(model), info)) != GGX_OK) return st;
+    *out = s;
+    return GGX_OK;
+}
