@@ -1,0 +1,125 @@
+/* ggx_fit_heightfield: the facets of a piecewise-linear height field as a source of slopes, levelled by the
+ * least-squares plane and optionally downsampled. SPDX-License-Identifier: MIT */
+#include <stdint.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "fit.h"
+
+typedef struct grid {
+    const double *h;
+    size_t nx, ny;
+    double dx, dy;
+    double px, py; /* the plane's gradient, removed from every slope */
+} grid;
+
+static int cell_finite(const grid *g, size_t i, size_t j)
+{
+    const double *r0 = g->h + j * g->nx + i, *r1 = r0 + g->nx;
+    return isfinite(r0[0]) && isfinite(r0[1]) && isfinite(r1[0]) && isfinite(r1[1]);
+}
+
+/* Sample k is facet k % 4 of cell k / 4 (cells row by row): the four pairs of the cell's x differences
+ * a = (h10 - h00) / dx, b = (h11 - h01) / dx with its y differences c = (h01 - h00) / dy, d = (h11 - h10) / dy:
+ * (a, c) and (b, d) are the triangles of the diagonal 00-11, (a, d) and (b, c) those of 10-01. */
+static void fill_grid(const void *ctx, size_t i0, size_t k, double *x, double *y, double *w, double *lc)
+{
+    const grid *g = ctx;
+    size_t cx = g->nx - 1;
+    for (size_t s = 0; s < k; s++) {
+        size_t idx = i0 + s, cell = idx / 4, i = cell % cx, j = cell / cx;
+        int f = (int)(idx % 4);
+        const double *r0 = g->h + j * g->nx + i, *r1 = r0 + g->nx;
+        double a = (r0[1] - r0[0]) / g->dx, b = (r1[1] - r1[0]) / g->dx;
+        double c = (r1[0] - r0[0]) / g->dy, d = (r1[1] - r0[1]) / g->dy;
+        double sx = (f == 0 || f == 2 ? a : b) - g->px, sy = (f == 0 || f == 3 ? c : d) - g->py;
+        int ok = isfinite(sx) && isfinite(sy);
+        x[s] = ok ? sx : 0.0, y[s] = ok ? sy : 0.0, w[s] = ok ? 1.0 : 0.0;
+        if (lc) lc[s] = ok ? -0.5 * log1p(sx * sx + sy * sy) : 0.0;
+    }
+}
+
+/* The gradient of the least-squares plane through the finite heights (centred sums, so a large mean height or
+ * offset grid costs no accuracy); 0 when the finite heights do not determine a plane. */
+static void plane_gradient(const grid *g, double *px, double *py)
+{
+    double n = 0, sx = 0, sy = 0, sh = 0;
+    for (size_t j = 0; j < g->ny; j++)
+        for (size_t i = 0; i < g->nx; i++) {
+            double h = g->h[j * g->nx + i];
+            if (!isfinite(h)) continue;
+            n += 1.0, sx += (double)i, sy += (double)j, sh += h;
+        }
+    *px = *py = 0.0;
+    if (n < 3.0) return;
+    double mx = sx / n, my = sy / n, mh = sh / n, cxx = 0, cxy = 0, cyy = 0, cxh = 0, cyh = 0;
+    for (size_t j = 0; j < g->ny; j++)
+        for (size_t i = 0; i < g->nx; i++) {
+            double h = g->h[j * g->nx + i];
+            if (!isfinite(h)) continue;
+            double u = (double)i - mx, v = (double)j - my, e = h - mh;
+            cxx += u * u, cxy += u * v, cyy += v * v, cxh += u * e, cyh += v * e;
+        }
+    double det = cxx * cyy - cxy * cxy;
+    if (!(det > 1e-12 * cxx * cyy)) return;
+    *px = (cyy * cxh - cxy * cyh) / det / g->dx; /* per grid step, then per unit length */
+    *py = (cxx * cyh - cxy * cxh) / det / g->dy;
+}
+
+GGX_API ggx_status ggx_fit_heightfield(ggx_shape *out, const double *h, size_t nx, size_t ny, double dx, double dy,
+                                       const ggx_heightfield_options *hopt, const ggx_fit_options *opt,
+                                       ggx_fit_info *info)
+{
+    ggx_fit_info local;
+    ggx_fit_info *inf = info ? info : &local;
+    memset(inf, 0, sizeof *inf);
+    if (!out || !h) return GGX_ERR_NULL;
+    if (!isfinite(dx) || !isfinite(dy)) return GGX_ERR_NONFINITE;
+    if (nx < 2 || ny < 2 || !(dx > 0.0) || !(dy > 0.0) || nx > SIZE_MAX / 4 / ny) return GGX_ERR_RANGE;
+    ggx_heightfield_options ho = {0, 0};
+    if (hopt) ho = *hopt;
+    if (ho.downsample < 0) return GGX_ERR_RANGE;
+    fit_data check;
+    ggx_fit_model model;
+    ggx_status st = fit_settings(opt, &check, &model);
+    if (st != GGX_OK) return st;
+
+    grid g = {h, nx, ny, dx, dy, 0.0, 0.0};
+    double *coarse = NULL;
+    if (ho.downsample >= 2) {
+        size_t k = (size_t)ho.downsample, cnx = nx / k, cny = ny / k;
+        if (cnx < 2 || cny < 2) return GGX_ERR_RANGE;
+        coarse = malloc(cnx * cny * sizeof *coarse);
+        if (!coarse) return GGX_ERR_MEMORY;
+        for (size_t j = 0; j < cny; j++)
+            for (size_t i = 0; i < cnx; i++) {
+                double s = 0.0;
+                for (size_t b = 0; b < k; b++)
+                    for (size_t a = 0; a < k; a++) s += h[(j * k + b) * nx + i * k + a];
+                coarse[j * cnx + i] = s / (double)(k * k); /* NaN when any height of the block is */
+            }
+        g = (grid){coarse, cnx, cny, dx * (double)k, dy * (double)k, 0.0, 0.0};
+    }
+    if (!ho.keep_tilt) plane_gradient(&g, &g.px, &g.py);
+    for (size_t j = 0; j + 1 < g.ny; j++)
+        for (size_t i = 0; i + 1 < g.nx; i++) {
+            if (cell_finite(&g, i, j))
+                inf->used += 4;
+            else
+                inf->ignored_nonfinite += 4;
+        }
+    st = GGX_ERR_DATA;
+    if (inf->used >= 5) {
+        fit_source src = {fill_grid, &g, 4 * (g.nx - 1) * (g.ny - 1)};
+        ggx_shape s;
+        st = fit_run(&src, opt, &s, inf);
+        if (st == GGX_OK) *out = s;
+    }
+    if (st != GGX_OK) {
+        size_t used = inf->used, bad = inf->ignored_nonfinite;
+        memset(inf, 0, sizeof *inf);
+        inf->used = used, inf->ignored_nonfinite = bad;
+    }
+    free(coarse);
+    return st;
+}
