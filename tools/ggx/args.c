@@ -123,8 +123,12 @@ void parse_options(int argc, char **argv, int first, options *o, const char *all
         if (!key[0] || !allowed_has(allowed, key) || strcmp(key, "help") == 0)
             die("unknown option '%s' (see --help)", a);
         /* flags */
-        int flag = strcmp(key, "log") == 0 || strcmp(key, "progress") == 0 || strcmp(key, "no-progress") == 0;
+        int flag = strcmp(key, "log") == 0 || strcmp(key, "progress") == 0 || strcmp(key, "no-progress") == 0 ||
+                   strcmp(key, "keep-tilt") == 0 || strcmp(key, "y-down") == 0 || strcmp(key, "no-dequantise") == 0;
         if (flag && inline_val) die("option '%s' takes no value", a);
+        if (strcmp(key, "keep-tilt") == 0) { o->keep_tilt = 1; continue; }
+        if (strcmp(key, "y-down") == 0) { o->y_down = 1; continue; }
+        if (strcmp(key, "no-dequantise") == 0) { o->no_dequantise = 1; continue; }
         if (strcmp(key, "log") == 0) { o->log_scale = 1; continue; }
         if (strcmp(key, "progress") == 0) { o->progress = 1; continue; }
         if (strcmp(key, "no-progress") == 0) { o->progress = 0; continue; }
@@ -212,6 +216,28 @@ void parse_options(int argc, char **argv, int first, options *o, const char *all
             o->fresnel = val;
         } else if (strcmp(key, "claim") == 0) {
             o->claim = val;
+        } else if (strcmp(key, "heightfield") == 0) {
+            o->heightfield = val;
+        } else if (strcmp(key, "normal-map") == 0) {
+            o->normal_map = val;
+        } else if (strcmp(key, "normals") == 0) {
+            o->normals = val;
+        } else if (strcmp(key, "model") == 0) {
+            o->model = val;
+        } else if (strcmp(key, "spacing") == 0) {
+            if (parse_list(a, val, o->spacing, -2) == 1) o->spacing[1] = o->spacing[0];
+            if (!(o->spacing[0] > 0 && o->spacing[1] > 0)) die("%s: the spacing must be positive ('%s' given)", a, val);
+            o->have_spacing = 1;
+        } else if (strcmp(key, "z-scale") == 0) {
+            parse_list(a, val, &o->z_scale, 1);
+            if (!(o->z_scale > 0)) die("%s: the z scale must be positive ('%s' given)", a, val);
+            o->have_z_scale = 1;
+        } else if (strcmp(key, "downsample") == 0 || strcmp(key, "threads") == 0) {
+            double v;
+            parse_list(a, val, &v, 1);
+            if (!(v >= 1 && v <= 256) || v != floor(v)) die("%s: '%s' is not a whole number from 1 to 256", a, val);
+            if (key[0] == 'd') o->downsample = (int)v;
+            else o->threads = (int)v;
         } else {
             die("unknown option '%s' (see --help)", a);
         }

@@ -35,6 +35,10 @@ typedef struct options {
     double eta;
     int have_eta, log_scale, size, size_h, dark, help, progress; /* size_h: 0 unless --size W x H */
     double from; /* --from (degrees), NAN when not given */
+    /* ggx fit */
+    const char *heightfield, *normal_map, *normals, *model;
+    double spacing[2], z_scale;
+    int have_spacing, have_z_scale, keep_tilt, downsample, y_down, no_dequantise, threads;
 } options;
 
 /* Parses argv[first..] into o (defaults first); unknown options and malformed values die(). */
@@ -117,6 +121,7 @@ int cmd_sample(int argc, char **argv);
 int cmd_plot(int argc, char **argv);
 int cmd_check(int argc, char **argv);
 int cmd_audit(int argc, char **argv);
+int cmd_fit(int argc, char **argv);
 
 /* ---- checks (also used by demo) ---- */
 typedef struct check_result {

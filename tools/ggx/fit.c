@@ -1,0 +1,222 @@
+/* ggx fit: the shape of a measured surface (a height field, a normal map or a list of normals) by maximum likelihood
+ * (ggx_fit.h), printed in the command's own shape syntax with its standard errors, the model comparison and the
+ * goodness of fit, as Markdown, CSV or JSON. SPDX-License-Identifier: MIT */
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "cli.h"
+#include "ggx/ggx_fit.h"
+#include "surface.h"
+
+static const char *const MODEL_NAMES[GGX_FIT_MODELS] = {"ellipsoid", "anisotropic", "isotropic", "beckmann"};
+static const char *const MODEL_WORDS[GGX_FIT_MODELS] = {
+    "full ellipsoid (skewed GGX: t and Sigma)", "rotated anisotropic GGX (t = 0)", "isotropic GGX (t = 0, Sigma = a^2 I)",
+    "Beckmann (Gaussian slopes, mean and covariance)"};
+static const char *const PARAM_NAMES[5] = {"t_x", "t_y", "sigma_xx", "sigma_xy", "sigma_yy"};
+
+static int show_progress(void *ctx, int it, double ll)
+{
+    (void)ll;
+    if (*(int *)ctx) progress_show("fit", it < 199 ? it : 199, 200);
+    return 0;
+}
+
+static void usage(void)
+{
+    printf("usage: ggx fit (--heightfield FILE | --normal-map FILE | --normals FILE.csv) [--spacing DX[,DY]]\n"
+           "               [--z-scale Z] [--keep-tilt] [--downsample K] [--y-down] [--no-dequantise]\n"
+           "               [--model ellipsoid|anisotropic|isotropic] [--threads N] [--format md|csv|json] [--out FILE]\n"
+           "\n"
+           "Fits the ellipsoid NDF to a measured surface by maximum likelihood: the slopes of its micro-normals follow\n"
+           "GGX's P22 with a location t (the skew) and a scale Sigma (docs/design/fit.md). Prints the shape in the\n"
+           "command's syntax (--alpha AX,AY --skew TX,TY --rotate TZ, to paste into every other command), the matrix\n"
+           "A, t and Sigma with standard errors (observed information; lower bounds for a height field, whose facets\n"
+           "are correlated), the comparison of isotropic GGX, anisotropic GGX, the full ellipsoid and Beckmann by BIC,\n"
+           "and a chi-square goodness of fit.\n"
+           "\n"
+           "inputs (the format from the file's first bytes, else its extension):\n"
+           "  --heightfield FILE   heights on a regular grid: .x3p (ISO 25178-72), .gsf (Gwyddion), .txt/.asc (a\n"
+           "                       matrix, one row per line; Gwyddion's text header gives the widths and units), .xyz\n"
+           "                       (x y z points of a grid), grey .png (8 or 16 bit levels), .exr (one float channel).\n"
+           "                       The facets of both triangulations of each cell, weighted by projected area.\n"
+           "  --normal-map FILE    a tangent-space normal map: .png (RGB, 8 or 16 bit: n = 2 c / max - 1; grey+alpha\n"
+           "                       or blue 0 everywhere: two channels, z rebuilt) or .exr (R, G[, B] in [-1, 1])\n"
+           "  --normals FILE.csv   x,y,z[,weight] per line (a header line of names is skipped)\n"
+           "options:\n"
+           "  --spacing DX[,DY]    grid spacing, where the file has none (x3p, gsf, xyz and Gwyddion text have it)\n"
+           "  --z-scale Z          height per unit of the file's values where it has no units (PNG: per level)\n"
+           "  --keep-tilt          keep the height field's mean plane (its tilt becomes the skew t); by default the\n"
+           "                       least-squares plane is removed first, as surface metrology does\n"
+           "  --downsample K       average the heights over K x K blocks first (the NDF depends on the scale)\n"
+           "  --y-down             the normal map's green channel points down (DirectX); default up (OpenGL)\n"
+           "  --no-dequantise      take 8- and 16-bit texels at their levels; by default each texel is spread over\n"
+           "                       its quantisation cell (deterministic jitter), since a level stands for a cell of\n"
+           "                       slopes: without it an 8-bit map of a smooth surface fits a lobe made of the levels\n"
+           "  --model M            the family of the printed shape (default ellipsoid); all four are compared\n"
+           "  --threads N          threads for the fit's passes (results do not depend on N)\n"
+           "  --format md|csv|json (default md)\n");
+}
+
+/* The samples of the input, fitted. */
+static void fit_input(const options *o, const surface *s, const ggx_fit_options *fo, ggx_shape *out,
+                      ggx_fit_info *info, const char **what, double *spacing_used)
+{
+    ggx_status st;
+    if (s->kind == SURFACE_NORMALS) {
+        st = ggx_fit_normals(out, s->m, s->w, s->nx * s->ny, fo, info);
+        *what = s->ny > 1 ? "normal-map texels" : "normals";
+    } else {
+        double dx = o->have_spacing ? o->spacing[0] : s->dx, dy = o->have_spacing ? o->spacing[1] : s->dy;
+        double zs = o->have_z_scale ? o->z_scale : s->z_scale;
+        if (!(dx > 0 && dy > 0))
+            die("--heightfield: the file gives no grid spacing: give --spacing DX[,DY] (in the heights' unit)");
+        if (!(zs > 0))
+            die("--heightfield: the file gives no height unit: give --z-scale Z (the height of one unit of its "
+                "values, in the spacing's unit)");
+        size_t n = s->nx * s->ny;
+        double *h = malloc(n * sizeof *h);
+        if (!h) die("out of memory");
+        for (size_t i = 0; i < n; i++) h[i] = s->h[i] * zs;
+        ggx_heightfield_options ho = {o->keep_tilt, o->downsample};
+        st = ggx_fit_heightfield(out, h, s->nx, s->ny, dx, dy, &ho, fo, info);
+        free(h);
+        *what = "facets";
+        spacing_used[0] = dx, spacing_used[1] = dy;
+    }
+    if (st != GGX_OK) die("fit: %s", ggx_status_str(st));
+}
+
+int cmd_fit(int argc, char **argv)
+{
+    options o;
+    parse_options(argc, argv, 2,
+                  &o, "heightfield,normal-map,normals,spacing,z-scale,keep-tilt,downsample,y-down,no-dequantise,"
+                      "model,threads,format,out,progress,no-progress");
+    if (o.help) {
+        usage();
+        return 0;
+    }
+    int inputs = (o.heightfield != NULL) + (o.normal_map != NULL) + (o.normals != NULL);
+    if (inputs != 1) die("give one of --heightfield, --normal-map or --normals (see ggx fit --help)");
+    const char *fmt = o.format ? o.format : "md";
+    if (strcmp(fmt, "md") != 0 && strcmp(fmt, "csv") != 0 && strcmp(fmt, "json") != 0)
+        die("--format: '%s' is not md, csv or json", fmt);
+    ggx_fit_options fo;
+    memset(&fo, 0, sizeof fo);
+    if (o.model) {
+        int k = 0;
+        while (k < 3 && strcmp(o.model, MODEL_NAMES[k]) != 0) k++;
+        if (k == 3) die("--model: '%s' is not ellipsoid, anisotropic or isotropic", o.model);
+        fo.model = (ggx_fit_model)k;
+    }
+    if ((o.keep_tilt || o.downsample || o.have_z_scale) && !o.heightfield)
+        die("--keep-tilt, --downsample and --z-scale apply to --heightfield");
+    if ((o.y_down || o.no_dequantise) && !o.normal_map) die("--y-down and --no-dequantise apply to --normal-map");
+    fo.threads = o.threads;
+    int bar = progress_wanted(o.progress);
+    fo.progress = show_progress;
+    fo.progress_ctx = &bar;
+
+    const char *path = o.heightfield ? o.heightfield : o.normal_map ? o.normal_map : o.normals;
+    surface_read_options ro = {o.heightfield ? SURFACE_HEIGHTS : SURFACE_NORMALS, o.y_down, !o.no_dequantise};
+    surface s;
+    char err[512];
+    if (bar) progress_show("read", 0, 1);
+    if (surface_read(path, &ro, &s, err, sizeof err) != 0) die("%s", err);
+    if (o.normals && s.ny != 1) die("--normals: '%s' is not a CSV list of normals", path);
+    if (o.normal_map && s.ny == 1) die("--normal-map: '%s' is a list of normals (use --normals)", path);
+    ggx_shape fit;
+    ggx_fit_info info;
+    const char *what = "";
+    double spacing[2] = {0, 0};
+    fit_input(&o, &s, &fo, &fit, &info, &what, spacing);
+    if (bar) progress_end("fit", 200);
+
+    double ax, ay, tx, ty, tz, A[3][3];
+    ggx_shape_ellipsoid_params(&fit, &ax, &ay, &tx, &ty, &tz);
+    ggx_ellipsoid_matrix(A, ax, ay, tx, ty, tz);
+    char shape[200];
+    snprintf(shape, sizeof shape, "--alpha %.6g,%.6g --skew %.6g,%.6g --rotate %.6g", ax, ay, tx / DEG, ty / DEG,
+             tz / DEG);
+    const double val[5] = {info.t[0], info.t[1], info.sigma[0], info.sigma[1], info.sigma[2]};
+    const ggx_fit_model_result *mr = info.models;
+    double best_bic = mr[info.best].bic;
+    size_t ignored = info.ignored_horizon + info.ignored_nonfinite + info.ignored_weight;
+
+    out_file out;
+    out_open(&out, o.out);
+    FILE *f = out.f;
+    if (strcmp(fmt, "md") == 0) {
+        fprintf(f, "# ggx fit: %s\n\n", path);
+        fprintf(f, "%s, %zu x %zu; %zu %s used", surface_format_name(surface_format_of(path, NULL, 0)), s.nx, s.ny,
+                info.used, what);
+        if (ignored)
+            fprintf(f, ", %zu ignored (%zu at or below the horizon, %zu not finite, %zu of weight 0)", ignored,
+                    info.ignored_horizon, info.ignored_nonfinite, info.ignored_weight);
+        if (spacing[0] > 0) fprintf(f, "; spacing %.6g x %.6g%s", spacing[0], spacing[1], o.keep_tilt ? "" : "; levelled");
+        fprintf(f, "\n\nshape: `%s`\n\n", shape);
+        fprintf(f, "A = [[%.6g, %.6g, %.6g], [%.6g, %.6g, %.6g], [%.6g, %.6g, %.6g]]\n\n", A[0][0], A[0][1], A[0][2],
+                A[1][0], A[1][1], A[1][2], A[2][0], A[2][1], A[2][2]);
+        fprintf(f, "| parameter | value | standard error |\n|---|---|---|\n");
+        for (int i = 0; i < 5; i++)
+            fprintf(f, "| %s | %.6g | %s%.3g |\n", PARAM_NAMES[i], val[i], info.std_error[i] > 0 ? "" : "fixed ",
+                    info.std_error[i]);
+        fprintf(f, "\n| model | parameters | log-likelihood per sample | BIC | BIC - best |\n|---|---|---|---|---|\n");
+        for (int k = 0; k < GGX_FIT_MODELS; k++)
+            fprintf(f, "| %s%s | %d | %.6f | %.1f | %.1f |\n", MODEL_WORDS[k], k == (int)info.best ? " **best**" : "",
+                    mr[k].parameters, mr[k].log_likelihood, mr[k].bic, mr[k].bic - best_bic);
+        fprintf(f, "\ngoodness of fit (%s): ", MODEL_NAMES[fo.model]);
+        if (info.gof_dof > 0)
+            fprintf(f, "chi-square %.1f on %d x %d equal-probability cells, %d degrees of freedom, p = %.3g\n",
+                    info.gof_chi2, info.gof_cells, info.gof_cells, info.gof_dof, info.gof_pvalue);
+        else
+            fprintf(f, "too few samples for the cells (n_eff %.0f)\n", info.effective_n);
+        fprintf(f, "\nEM: %d iterations, %s (Newton decrement %.2g); effective sample size %.0f%s\n", info.iterations,
+                info.converged ? "converged" : "NOT converged", info.stationarity, info.effective_n,
+                info.clamped ? "; Sigma held at the smallest roughness (all slopes nearly equal)" : "");
+    } else if (strcmp(fmt, "csv") == 0) {
+        fprintf(f, "quantity,value,std_error\n");
+        fprintf(f, "alpha_x,%.10g,\nalpha_y,%.10g,\nskew_x_deg,%.10g,\nskew_y_deg,%.10g,\nrotate_deg,%.10g,\n", ax, ay,
+                tx / DEG, ty / DEG, tz / DEG);
+        for (int i = 0; i < 5; i++) fprintf(f, "%s,%.10g,%.10g\n", PARAM_NAMES[i], val[i], info.std_error[i]);
+        for (int k = 0; k < GGX_FIT_MODELS; k++)
+            fprintf(f, "log_likelihood_%s,%.10g,\nbic_%s,%.10g,\n", MODEL_NAMES[k], mr[k].log_likelihood,
+                    MODEL_NAMES[k], mr[k].bic);
+        fprintf(f, "best_model_index,%d,\ngof_chi2,%.10g,\ngof_dof,%d,\ngof_pvalue,%.10g,\nused,%zu,\nignored,%zu,\n"
+                   "effective_n,%.10g,\niterations,%d,\nconverged,%d,\nclamped,%d,\n",
+                (int)info.best, info.gof_chi2, info.gof_dof, info.gof_pvalue, info.used, ignored, info.effective_n,
+                info.iterations, info.converged, info.clamped);
+    } else {
+        fprintf(f, "{\n  \"input\": \"");
+        for (const char *p = path; *p; p++) {
+            if (*p == '"' || *p == '\\') fputc('\\', f);
+            if ((unsigned char)*p < 0x20) fprintf(f, "\\u%04x", *p);
+            else fputc(*p, f);
+        }
+        fprintf(f, "\",\n  \"shape\": {\"alpha\": [%.10g, %.10g], \"skew_deg\": [%.10g, %.10g], \"rotate_deg\": %.10g},\n",
+                ax, ay, tx / DEG, ty / DEG, tz / DEG);
+        fprintf(f, "  \"matrix\": [[%.10g, %.10g, %.10g], [%.10g, %.10g, %.10g], [%.10g, %.10g, %.10g]],\n", A[0][0],
+                A[0][1], A[0][2], A[1][0], A[1][1], A[1][2], A[2][0], A[2][1], A[2][2]);
+        fprintf(f, "  \"t\": [%.10g, %.10g], \"sigma\": [%.10g, %.10g, %.10g],\n", val[0], val[1], val[2], val[3], val[4]);
+        fprintf(f, "  \"std_error\": [%.6g, %.6g, %.6g, %.6g, %.6g],\n", info.std_error[0], info.std_error[1],
+                info.std_error[2], info.std_error[3], info.std_error[4]);
+        fprintf(f, "  \"models\": {");
+        for (int k = 0; k < GGX_FIT_MODELS; k++)
+            fprintf(f, "%s\"%s\": {\"parameters\": %d, \"log_likelihood\": %.10g, \"bic\": %.10g}", k ? ", " : "",
+                    MODEL_NAMES[k], mr[k].parameters, mr[k].log_likelihood, mr[k].bic);
+        fprintf(f, "},\n  \"best\": \"%s\",\n", MODEL_NAMES[info.best]);
+        if (info.gof_dof > 0)
+            fprintf(f, "  \"gof\": {\"chi2\": %.10g, \"dof\": %d, \"pvalue\": %.6g},\n", info.gof_chi2, info.gof_dof,
+                    info.gof_pvalue);
+        else
+            fprintf(f, "  \"gof\": null,\n");
+        fprintf(f, "  \"used\": %zu, \"ignored\": %zu, \"effective_n\": %.10g, \"iterations\": %d, \"converged\": %s, "
+                   "\"clamped\": %s\n}\n",
+                info.used, ignored, info.effective_n, info.iterations, info.converged ? "true" : "false",
+                info.clamped ? "true" : "false");
+    }
+    out_close(&out);
+    surface_free(&s);
+    return 0;
+}

@@ -1,0 +1,83 @@
+/* Measured surfaces for ggx fit: height fields and normals read from the formats of surface metrology and texture
+ * tools, each parsed from bytes in memory (so the fuzz target feeds the same code), and written back for round trips.
+ * SPDX-License-Identifier: MIT */
+#ifndef GGX_TOOL_SURFACE_H
+#define GGX_TOOL_SURFACE_H
+
+#include <stddef.h>
+
+#include "ggx/ggx.h"
+
+typedef enum surface_kind { SURFACE_HEIGHTS, SURFACE_NORMALS } surface_kind;
+
+typedef enum surface_format {
+    SURFACE_CSV,   /* normals: x,y,z[,weight] per line, an optional header line of names */
+    SURFACE_ASCII, /* heights: a matrix of numbers, one row per line (Gwyddion's and MountainsMap's text export) */
+    SURFACE_XYZ,   /* heights: x y z per line on a regular grid, in any order */
+    SURFACE_GSF,   /* heights: Gwyddion Simple Field (.gsf) */
+    SURFACE_PNG,   /* heights (grey) or a tangent-space normal map (RGB, or grey + alpha / two channels), 8 or 16 bit */
+    SURFACE_EXR,   /* heights (one channel: Y, Z or the first) or a normal map (R, G[, B]) in float */
+    SURFACE_X3P,   /* heights: ISO 25178-72 / ISO 5436-2 .x3p (a zip of main.xml and the binary points) */
+    SURFACE_UNKNOWN
+} surface_format;
+
+typedef struct surface {
+    surface_kind kind;
+    size_t nx, ny;  /* the grid (heights and normal maps); a list of normals has ny = 1 */
+    double *h;      /* heights, nx * ny, x fastest; NaN where the file marks a point invalid */
+    ggx_vec3 *m;    /* normals, nx * ny */
+    double *w;      /* the normals' weights (CSV), or NULL */
+    double dx, dy;  /* spacing from the file (x3p, gsf, XYZ, a Gwyddion text header), 0 where it has none */
+    double z_scale; /* what brings a height into the unit of dx, dy where the file says both (x3p, gsf, XYZ and a
+                     * text header with units: 1e-6 for heights in micrometres beside metres), else 0 */
+    int bits;       /* 8 or 16 for PNG, 0 for float data */
+    int channels;   /* channels of a normal map: 2 (z rebuilt) or 3 */
+} surface;
+
+typedef struct surface_read_options {
+    surface_kind want; /* heights or normals */
+    int y_down;        /* normal maps: the green channel points down (DirectX), so y is negated */
+    int dequantise;    /* normal maps of 8 or 16 bits: each texel's components jittered uniformly over its
+                        * quantisation cell (deterministic), since a texel stands for a cell of slopes, not a point */
+} surface_read_options;
+
+/* The format of a file from its first bytes (PNG, EXR, zip, "Gwyddion Simple Field") or else its name's extension. */
+surface_format surface_format_of(const char *name, const unsigned char *data, size_t n);
+const char *surface_format_name(surface_format f);
+
+/* Parses data (n bytes) in the given format into s. Returns 0 on success; on failure frees what it allocated, writes
+ * a one-line reason to err and returns -1. Formats not built in (no libpng, OpenEXR, libzip + libxml2) fail with
+ * a reason that says so. */
+int surface_parse(surface_format f, const unsigned char *data, size_t n, const surface_read_options *o, surface *s,
+                  char *err, size_t errn);
+/* Reads a whole file and parses it (the format from surface_format_of); -1 with err on failure. */
+int surface_read(const char *path, const surface_read_options *o, surface *s, char *err, size_t errn);
+void surface_free(surface *s);
+
+/* Writers, for round trips (tests) and for surfaces the command makes: heights (kind HEIGHTS) or normals. PNG
+ * heights are scaled to the full range of `bits` (the scale returned in *z_scale, height per level); normals are
+ * encoded as (n + 1) / 2. Return 0, or -1 with err. */
+int surface_write(const char *path, surface_format f, const surface *s, int bits, double *z_scale, char *err,
+                  size_t errn);
+
+/* Per format, in its own file. */
+int surface_parse_text(surface_format f, const unsigned char *data, size_t n, surface *s, char *err, size_t errn);
+int surface_parse_gsf(const unsigned char *data, size_t n, surface *s, char *err, size_t errn);
+int surface_parse_png(const unsigned char *data, size_t n, const surface_read_options *o, surface *s, char *err,
+                      size_t errn);
+int surface_parse_exr(const unsigned char *data, size_t n, const surface_read_options *o, surface *s, char *err,
+                      size_t errn);
+int surface_parse_x3p(const unsigned char *data, size_t n, surface *s, char *err, size_t errn);
+int surface_write_text(const char *path, surface_format f, const surface *s, char *err, size_t errn);
+int surface_write_gsf(const char *path, const surface *s, char *err, size_t errn);
+int surface_write_png(const char *path, const surface *s, int bits, double *z_scale, char *err, size_t errn);
+int surface_write_exr(const char *path, const surface *s, char *err, size_t errn);
+int surface_write_x3p(const char *path, const surface *s, char *err, size_t errn);
+
+/* Shared by the parsers: a formatted reason into err (returns -1), and the normal of a map's texel. */
+int surface_fail(char *err, size_t errn, const char *fmt, ...) __attribute__((format(printf, 3, 4)));
+/* The normal of a texel whose components are c[0..channels) in [-1, 1]: two channels rebuild z = sqrt(1 - x^2 - y^2)
+ * (clamped at 0); y negated for y_down. Returns the zero vector (ignored by the fit) for NaN or zero-length. */
+ggx_vec3 surface_texel_normal(const double *c, int channels, int y_down);
+
+#endif

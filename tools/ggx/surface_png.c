@@ -1,0 +1,182 @@
+/* PNG surfaces through libpng: grey height maps (8 or 16 bit, raw levels) and tangent-space normal maps (RGB or RGBA;
+ * an RGB map whose blue is 0 everywhere, or grey + alpha, as two channels with z rebuilt). SPDX-License-Identifier: MIT */
+#include <math.h>
+#include <setjmp.h>
+#include <stdint.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "surface.h"
+
+#ifdef GGX_HAVE_PNG
+#include <png.h>
+
+typedef struct mem {
+    const unsigned char *p;
+    size_t n, at;
+} mem;
+
+static void mem_read(png_structp png, png_bytep out, png_size_t len)
+{
+    mem *m = png_get_io_ptr(png);
+    if (len > m->n - m->at) png_error(png, "truncated");
+    memcpy(out, m->p + m->at, len);
+    m->at += len;
+}
+
+static void quiet(png_structp png, png_const_charp msg) { (void)png, (void)msg; }
+
+/* A uniform number in [0, 1) from a texel index and a channel (a hash: the same every run). */
+static double jitter(size_t i, int c)
+{
+    uint64_t x = (uint64_t)i * 0x9E3779B97F4A7C15u + (uint64_t)c * 0xD1B54A32D192ED03u + 0x2545F4914F6CDD1Du;
+    x ^= x >> 31, x *= 0xBF58476D1CE4E5B9u, x ^= x >> 29, x *= 0x94D049BB133111EBu, x ^= x >> 32;
+    return (double)(x >> 11) * 0x1p-53;
+}
+
+int surface_parse_png(const unsigned char *data, size_t n, const surface_read_options *o, surface *s, char *err,
+                      size_t errn)
+{
+    png_structp png = png_create_read_struct(PNG_LIBPNG_VER_STRING, NULL, quiet, quiet);
+    png_infop info = png ? png_create_info_struct(png) : NULL;
+    if (!info) {
+        png_destroy_read_struct(&png, NULL, NULL);
+        return surface_fail(err, errn, "out of memory");
+    }
+    mem m = {data, n, 0};
+    unsigned char *volatile pixels = NULL;
+    png_bytep *volatile rows = NULL;
+    if (setjmp(png_jmpbuf(png))) {
+        png_destroy_read_struct(&png, &info, NULL);
+        free(pixels), free(rows);
+        free(s->h), free(s->m);
+        s->h = NULL, s->m = NULL;
+        return surface_fail(err, errn, "not a readable PNG (corrupt or truncated)");
+    }
+    png_set_read_fn(png, &m, mem_read);
+    png_set_user_limits(png, 65536, 65536);
+    png_read_info(png, info);
+    png_uint_32 w = png_get_image_width(png, info), h = png_get_image_height(png, info);
+    int depth = png_get_bit_depth(png, info), type = png_get_color_type(png, info);
+    if (type == PNG_COLOR_TYPE_PALETTE) png_set_palette_to_rgb(png);
+    if (type == PNG_COLOR_TYPE_GRAY && depth < 8) png_set_expand_gray_1_2_4_to_8(png);
+    if (png_get_valid(png, info, PNG_INFO_tRNS)) png_set_tRNS_to_alpha(png);
+    png_read_update_info(png, info);
+    depth = png_get_bit_depth(png, info);
+    int ch = png_get_channels(png, info);
+    size_t stride = png_get_rowbytes(png, info);
+    if (w < 2 || h < 2) {
+        png_destroy_read_struct(&png, &info, NULL);
+        return surface_fail(err, errn, "%u x %u pixels: a surface needs at least 2 x 2", (unsigned)w, (unsigned)h);
+    }
+    pixels = malloc(stride * h);
+    rows = malloc(h * sizeof *rows);
+    if (!pixels || !rows) png_error(png, "memory");
+    for (png_uint_32 y = 0; y < h; y++) rows[y] = pixels + y * stride;
+    png_read_image(png, rows);
+    png_read_end(png, NULL);
+    png_destroy_read_struct(&png, &info, NULL);
+    size_t count = (size_t)w * h;
+    const double max = depth == 16 ? 65535.0 : 255.0;
+#define LEVEL(i, c) (depth == 16 ? (double)(pixels[2 * ((i) * ch + (c))] << 8 | pixels[2 * ((i) * ch + (c)) + 1]) \
+                                 : (double)pixels[(i) * ch + (c)])
+    /* rows have no padding beyond ch * depth / 8 bytes per pixel: stride = w * ch * depth / 8 */
+    int rc = 0;
+    s->nx = w, s->ny = h, s->bits = depth;
+    if (o->want == SURFACE_HEIGHTS || ch == 1) {
+        if (ch > 2) {
+            rc = surface_fail(err, errn, "a colour PNG is not a height map (give a grey PNG)");
+        } else if (!(s->h = malloc(count * sizeof *s->h))) {
+            rc = surface_fail(err, errn, "out of memory");
+        } else {
+            for (size_t i = 0; i < count; i++) s->h[i] = LEVEL(i, 0);
+            s->kind = SURFACE_HEIGHTS;
+        }
+    } else {
+        int two = ch == 2;
+        if (!two) { /* an RGB map with blue 0 everywhere carries x and y only */
+            two = 1;
+            for (size_t i = 0; i < count && two; i++) two = LEVEL(i, 2) == 0.0;
+        }
+        s->channels = two ? 2 : 3;
+        if (!(s->m = malloc(count * sizeof *s->m))) {
+            rc = surface_fail(err, errn, "out of memory");
+        } else {
+            for (size_t i = 0; i < count; i++) {
+                double c[3];
+                for (int k = 0; k < s->channels; k++) {
+                    double l = LEVEL(i, k) + (o->dequantise ? jitter(i, k) - 0.5 : 0.0);
+                    c[k] = 2.0 * l / max - 1.0;
+                }
+                s->m[i] = surface_texel_normal(c, s->channels, o->y_down);
+            }
+            s->kind = SURFACE_NORMALS;
+        }
+    }
+#undef LEVEL
+    free(pixels), free(rows);
+    return rc;
+}
+
+int surface_write_png(const char *path, const surface *s, int bits, double *z_scale, char *err, size_t errn)
+{
+    FILE *f = fopen(path, "wb");
+    if (!f) return surface_fail(err, errn, "cannot write '%s'", path);
+    png_structp png = png_create_write_struct(PNG_LIBPNG_VER_STRING, NULL, quiet, quiet);
+    png_infop info = png ? png_create_info_struct(png) : NULL;
+    unsigned char *volatile row = NULL;
+    if (!info || setjmp(png_jmpbuf(png))) {
+        png_destroy_write_struct(&png, &info);
+        free(row);
+        fclose(f);
+        return surface_fail(err, errn, "cannot write '%s'", path);
+    }
+    png_init_io(png, f);
+    int heights = s->kind == SURFACE_HEIGHTS, ch = heights ? 1 : 3, bpc = bits == 16 ? 2 : 1;
+    double max = bits == 16 ? 65535.0 : 255.0, lo = 0.0, hi = 1.0;
+    if (heights) {
+        lo = HUGE_VAL, hi = -HUGE_VAL;
+        for (size_t i = 0; i < s->nx * s->ny; i++) lo = fmin(lo, s->h[i]), hi = fmax(hi, s->h[i]);
+        if (!(hi > lo)) hi = lo + 1.0;
+        if (z_scale) *z_scale = (hi - lo) / max;
+    }
+    png_set_IHDR(png, info, (png_uint_32)s->nx, (png_uint_32)s->ny, bits == 16 ? 16 : 8,
+                 heights ? PNG_COLOR_TYPE_GRAY : PNG_COLOR_TYPE_RGB, PNG_INTERLACE_NONE, PNG_COMPRESSION_TYPE_DEFAULT,
+                 PNG_FILTER_TYPE_DEFAULT);
+    png_write_info(png, info);
+    row = malloc(s->nx * (size_t)(ch * bpc));
+    if (!row) png_error(png, "memory");
+    for (size_t y = 0; y < s->ny; y++) {
+        for (size_t x = 0; x < s->nx; x++) {
+            size_t i = y * s->nx + x;
+            double c[3] = {s->m ? s->m[i].x : 0, s->m ? s->m[i].y : 0, s->m ? s->m[i].z : 0};
+            for (int k = 0; k < ch; k++) {
+                double v = heights ? (s->h[i] - lo) / (hi - lo) : 0.5 * (c[k] + 1.0);
+                unsigned l = (unsigned)lround(fmin(fmax(v, 0.0), 1.0) * max);
+                unsigned char *p = row + (x * (size_t)ch + (size_t)k) * (size_t)bpc;
+                if (bpc == 2) p[0] = (unsigned char)(l >> 8), p[1] = (unsigned char)l;
+                else p[0] = (unsigned char)l;
+            }
+        }
+        png_write_row(png, row);
+    }
+    png_write_end(png, NULL);
+    png_destroy_write_struct(&png, &info);
+    free(row);
+    if (fclose(f) != 0) return surface_fail(err, errn, "cannot write '%s'", path);
+    return 0;
+}
+#else
+int surface_parse_png(const unsigned char *data, size_t n, const surface_read_options *o, surface *s, char *err,
+                      size_t errn)
+{
+    (void)data, (void)n, (void)o, (void)s;
+    return surface_fail(err, errn, "PNG support was not built (libpng missing: apt-get install libpng-dev)");
+}
+int surface_write_png(const char *path, const surface *s, int bits, double *z_scale, char *err, size_t errn)
+{
+    (void)path, (void)s, (void)bits, (void)z_scale;
+    return surface_fail(err, errn, "PNG support was not built (libpng missing: apt-get install libpng-dev)");
+}
+#endif
