@@ -26,6 +26,12 @@ static void mem_read(png_structp png, png_bytep out, png_size_t len)
 }
 
 static void quiet(png_structp png, png_const_charp msg) { (void)png, (void)msg; }
+/* libpng's errors end in its jump buffer without printing (the caller says what failed, in one line) */
+static void fail_jump(png_structp png, png_const_charp msg)
+{
+    (void)msg;
+    png_longjmp(png, 1);
+}
 
 /* A uniform number in [0, 1) from a texel index and a channel (a hash: the same every run). */
 static double jitter(size_t i, int c)
@@ -38,7 +44,7 @@ static double jitter(size_t i, int c)
 int surface_parse_png(const unsigned char *data, size_t n, const surface_read_options *o, surface *s, char *err,
                       size_t errn)
 {
-    png_structp png = png_create_read_struct(PNG_LIBPNG_VER_STRING, NULL, quiet, quiet);
+    png_structp png = png_create_read_struct(PNG_LIBPNG_VER_STRING, NULL, fail_jump, quiet);
     png_infop info = png ? png_create_info_struct(png) : NULL;
     if (!info) {
         png_destroy_read_struct(&png, NULL, NULL);
@@ -123,7 +129,7 @@ int surface_write_png(const char *path, const surface *s, int bits, double *z_sc
 {
     FILE *f = fopen(path, "wb");
     if (!f) return surface_fail(err, errn, "cannot write '%s'", path);
-    png_structp png = png_create_write_struct(PNG_LIBPNG_VER_STRING, NULL, quiet, quiet);
+    png_structp png = png_create_write_struct(PNG_LIBPNG_VER_STRING, NULL, fail_jump, quiet);
     png_infop info = png ? png_create_info_struct(png) : NULL;
     unsigned char *volatile row = NULL;
     if (!info || setjmp(png_jmpbuf(png))) {

@@ -1,0 +1,258 @@
+/* The readers of measured surfaces (tools/ggx/surface*.c): every format written and read back, the normal maps'
+ * conventions, and every malformed case refused with a reason and nothing left allocated. SPDX-License-Identifier: MIT */
+#define _POSIX_C_SOURCE 200809L
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <unistd.h>
+
+#include "surface.h"
+#include "testlib.h"
+
+static char dir[64];
+
+static const char *tmp(const char *name)
+{
+    static char p[128];
+    snprintf(p, sizeof p, "%s/%s", dir, name);
+    return p;
+}
+
+/* A 7 x 5 height field with rough values, spacing 2e-6 x 3e-6 m, heights in metres. */
+static surface heights(void)
+{
+    surface s;
+    memset(&s, 0, sizeof s);
+    s.kind = SURFACE_HEIGHTS, s.nx = 7, s.ny = 5, s.dx = 2e-6, s.dy = 3e-6, s.z_scale = 1.0;
+    s.h = malloc(35 * sizeof *s.h);
+    rng r = {5};
+    for (int i = 0; i < 35; i++) s.h[i] = 1e-7 * rng_range(&r, -1.0, 1.0) + 3e-7 * i;
+    return s;
+}
+
+static surface normals(size_t nx, size_t ny)
+{
+    surface s;
+    memset(&s, 0, sizeof s);
+    s.kind = SURFACE_NORMALS, s.nx = nx, s.ny = ny;
+    s.m = malloc(nx * ny * sizeof *s.m);
+    rng r = {6};
+    for (size_t i = 0; i < nx * ny; i++) {
+        double x = rng_range(&r, -0.6, 0.6), y = rng_range(&r, -0.6, 0.6), l = sqrt(1 + x * x + y * y);
+        s.m[i] = (ggx_vec3){x / l, y / l, 1 / l};
+    }
+    return s;
+}
+
+static void read_ok(const char *path, surface_kind want, surface *s, int y_down, int dequantise)
+{
+    surface_read_options o = {want, y_down, dequantise};
+    char err[512] = "";
+    int rc = surface_read(path, &o, s, err, sizeof err);
+    CHECK(rc == 0, "%s: %s", path, err);
+}
+
+/* Heights through every height format: text exactly (%.17g), gsf to float, x3p exactly, PNG to half a level of
+ * 16 bits; spacing and units come back where the format has them. */
+static void height_round_trips(void **state)
+{
+    (void)state;
+    surface s = heights();
+    const struct {
+        surface_format f;
+        const char *name;
+        double tol; /* relative to the range of heights */
+        int spacing;
+    } cases[] = {{SURFACE_ASCII, "h.txt", 1e-15, 1}, {SURFACE_XYZ, "h.xyz", 1e-15, 1}, {SURFACE_GSF, "h.gsf", 1e-6, 1},
+                 {SURFACE_X3P, "h.x3p", 0.0, 1},     {SURFACE_PNG, "h.png", 0.51 / 65535, 0}};
+    for (unsigned c = 0; c < sizeof cases / sizeof cases[0]; c++) {
+        char err[256] = "";
+        double zs = 0.0;
+        int rc = surface_write(tmp(cases[c].name), cases[c].f, &s, 16, &zs, err, sizeof err);
+        CHECK(rc == 0, "write %s: %s", cases[c].name, err);
+        surface b;
+        read_ok(tmp(cases[c].name), SURFACE_HEIGHTS, &b, 0, 0);
+        CHECK(b.nx == 7 && b.ny == 5, "%s: %zu x %zu", cases[c].name, b.nx, b.ny);
+        double lo = HUGE_VAL, hi = -HUGE_VAL, worst = 0.0;
+        for (int i = 0; i < 35; i++) lo = fmin(lo, s.h[i]), hi = fmax(hi, s.h[i]);
+        for (int i = 0; i < 35; i++) {
+            double got = cases[c].f == SURFACE_PNG ? lo + b.h[i] * zs : b.h[i] * b.z_scale;
+            worst = fmax(worst, fabs(got - s.h[i]) / (hi - lo));
+        }
+        CHECK(worst <= cases[c].tol + 1e-16, "%s: heights off by %g of the range", cases[c].name, worst);
+        if (cases[c].spacing) {
+            CHECK_CLOSE(b.dx, 2e-6, 1e-12, 0.0, "%s dx", cases[c].name);
+            CHECK_CLOSE(b.dy, 3e-6, 1e-12, 0.0, "%s dy", cases[c].name);
+            CHECK(b.z_scale > 0, "%s: no height unit", cases[c].name);
+        } else {
+            CHECK(b.dx == 0 && b.z_scale == 0 && b.bits == 16, "%s: spacing or units invented", cases[c].name);
+        }
+        printf("heights %s: largest error %.3g of the range\n", cases[c].name, worst);
+        surface_free(&b);
+    }
+    surface_free(&s);
+}
+
+/* Normals: CSV exactly (with and without weights); PNG normal maps of 8 and 16 bits within half a level per
+ * component at their levels, within a level when dequantised; y_down negates y; a map whose blue is 0 rebuilds z. */
+static void normal_round_trips(void **state)
+{
+    (void)state;
+    surface s = normals(9, 1);
+    char err[256] = "";
+    CHECK(surface_write(tmp("n.csv"), SURFACE_CSV, &s, 0, NULL, err, sizeof err) == 0, "%s", err);
+    surface b;
+    read_ok(tmp("n.csv"), SURFACE_NORMALS, &b, 0, 0);
+    CHECK(b.nx == 9 && b.ny == 1 && !b.w && memcmp(b.m, s.m, 9 * sizeof *s.m) == 0, "CSV normals differ");
+    surface_free(&b);
+    s.w = malloc(9 * sizeof *s.w);
+    for (int i = 0; i < 9; i++) s.w[i] = 0.5 + i;
+    CHECK(surface_write(tmp("nw.csv"), SURFACE_CSV, &s, 0, NULL, err, sizeof err) == 0, "%s", err);
+    read_ok(tmp("nw.csv"), SURFACE_NORMALS, &b, 0, 0);
+    CHECK(b.w && memcmp(b.w, s.w, 9 * sizeof *s.w) == 0, "CSV weights differ");
+    surface_free(&b);
+    surface_free(&s);
+
+    s = normals(6, 4);
+    for (int bits = 8; bits <= 16; bits += 8) {
+        const char *name = bits == 8 ? "n8.png" : "n16.png";
+        CHECK(surface_write(tmp(name), SURFACE_PNG, &s, bits, NULL, err, sizeof err) == 0, "%s", err);
+        double level = 2.0 / (bits == 8 ? 255.0 : 65535.0);
+        for (int mode = 0; mode < 3; mode++) { /* at the levels, dequantised, y down */
+            read_ok(tmp(name), SURFACE_NORMALS, &b, mode == 2, mode == 1);
+            CHECK(b.nx == 6 && b.ny == 4 && b.channels == 3 && b.bits == bits, "%s: %zu x %zu", name, b.nx, b.ny);
+            double worst = 0.0;
+            for (int i = 0; i < 24; i++) {
+                /* the stored components were (n + 1) / 2 of the unit normal; read back, normalised again */
+                double y = mode == 2 ? -b.m[i].y : b.m[i].y;
+                worst = fmax(worst, fmax(fabs(b.m[i].x - s.m[i].x), fabs(y - s.m[i].y)));
+            }
+            double tol = (mode == 1 ? 1.0 : 0.5) * level * 2.5; /* a level per component, then normalised */
+            CHECK(worst <= tol, "%s mode %d: off by %g (tolerance %g)", name, mode, worst, tol);
+            surface_free(&b);
+        }
+    }
+    /* Two channels: blue 0 everywhere, z rebuilt from x and y. */
+    surface two = normals(6, 4);
+    for (int i = 0; i < 24; i++) two.m[i].z = -1.0; /* (z + 1) / 2 = 0: blue 0 */
+    CHECK(surface_write(tmp("n2.png"), SURFACE_PNG, &two, 16, NULL, err, sizeof err) == 0, "%s", err);
+    read_ok(tmp("n2.png"), SURFACE_NORMALS, &b, 0, 0);
+    CHECK(b.channels == 2, "two channels not recognised: %d", b.channels);
+    for (int i = 0; i < 24; i++)
+        CHECK_CLOSE(b.m[i].z, sqrt(1 - s.m[i].x * s.m[i].x - s.m[i].y * s.m[i].y), 0.0, 1e-4, "rebuilt z %d", i);
+    surface_free(&b);
+    surface_free(&two);
+    /* A normal map read as heights, and heights read as a normal map: refused with a reason. */
+    surface_read_options ho = {SURFACE_HEIGHTS, 0, 0};
+    CHECK(surface_read(tmp("n8.png"), &ho, &b, err, sizeof err) != 0 && strstr(err, "colour"), "%s", err);
+    surface_read_options no = {SURFACE_NORMALS, 0, 0};
+    CHECK(surface_read(tmp("h.gsf"), &no, &b, err, sizeof err) != 0 && strstr(err, "heights"), "%s", err);
+    surface_free(&s);
+}
+
+/* Malformed input: every case returns -1 with a reason and leaves s empty. */
+static void refuse(surface_format f, const char *data, size_t n, surface_kind want, const char *expect)
+{
+    surface s;
+    surface_read_options o = {want, 0, 0};
+    char err[256] = "";
+    int rc = surface_parse(f, (const unsigned char *)data, n, &o, &s, err, sizeof err);
+    CHECK(rc == -1, "%s accepted: %.60s", surface_format_name(f), data);
+    CHECK(strstr(err, expect) != NULL, "%s: reason '%s', expected '%s'", surface_format_name(f), err, expect);
+    CHECK(s.h == NULL && s.m == NULL && s.w == NULL, "memory left after a refusal");
+}
+
+static char *slurp(const char *path, size_t *n)
+{
+    FILE *f = fopen(path, "rb");
+    *n = 0;
+    if (!f) return NULL;
+    fseek(f, 0, SEEK_END);
+    long len = ftell(f);
+    fseek(f, 0, SEEK_SET);
+    char *b = malloc((size_t)len + 1);
+    *n = fread(b, 1, (size_t)len, f);
+    fclose(f);
+    return b;
+}
+
+static void malformed(void **state)
+{
+    (void)state;
+    const surface_kind H = SURFACE_HEIGHTS, N = SURFACE_NORMALS;
+    refuse(SURFACE_CSV, "x,y,z\n0.1,0.2\n", 14, N, "not x,y,z");
+    refuse(SURFACE_CSV, "", 0, N, "no normals");
+    refuse(SURFACE_CSV, "0,0,1\n0,0,nan\n", 14, N, "not a finite number");
+    refuse(SURFACE_CSV, "0,0,1\n0,0,1,2\n", 14, N, "weight on some lines");
+    refuse(SURFACE_ASCII, "1 2 3\n4 5\n", 10, H, "the first row has 3");
+    refuse(SURFACE_ASCII, "1\n", 2, H, "at least 2 x 2");
+    refuse(SURFACE_ASCII, "1 2\n3 inf\n", 10, H, "not a finite number");
+    refuse(SURFACE_ASCII, "1 2\n3 4\0", 8, H, "NUL byte");
+    refuse(SURFACE_XYZ, "0 0 1\n1 0 2\n0 1 3\n", 18, H, "not a regular grid");
+    refuse(SURFACE_XYZ, "0 0 1\n1 0 2\n0 1 3\n1 1\n", 22, H, "not x y z");
+    refuse(SURFACE_XYZ, "0 0 1\n1 0 2\n0 1 3\n3 1 4\n", 24, H, "not a regular grid");
+    refuse(SURFACE_GSF, "Gwyddion Simple Field 1.0\nXRes = 2\nYRes = 2\n", 44, H, "does not end");
+    refuse(SURFACE_GSF, "Gwyddion Simple Field 1.0\nXRes = 1\nYRes = 2\n\0\0\0", 47, H, "from 2 to");
+    refuse(SURFACE_GSF, "Gwyddion Simple Field 1.0\nXRes = 2\nYRes = 2\nXReal = 0\n\0\0", 55, H, "positive");
+    refuse(SURFACE_GSF, "Gwyddion Simple Field 1.0\nXRes = 2\nYRes = 2\n\0\0\0\0\0\0\0", 51, H, "truncated");
+    refuse(SURFACE_GSF, "Gwyddion", 8, H, "header");
+    refuse(SURFACE_PNG, "\x89PNG\r\n\x1a\n\0\0\0\rIHDR", 16, H, "PNG");
+    refuse(SURFACE_X3P, "PK\x05\x06\0\0\0\0\0\0\0\0\0\0\0\0\0\0\0\0\0\0", 22, H, "main.xml"); /* an empty zip */
+    refuse(SURFACE_X3P, "PK\x03\x04garbage", 11, H, "zip");
+    refuse(SURFACE_UNKNOWN, "abc", 3, H, "unknown format");
+    /* A PNG of 1 x 1 pixel, a truncated PNG, x3p with bad XML and with short data. */
+    surface s = heights();
+    s.nx = 1, s.ny = 1;
+    char err[256];
+    CHECK(surface_write(tmp("one.png"), SURFACE_PNG, &s, 8, NULL, err, sizeof err) == 0, "%s", err);
+    size_t n = 0;
+    char *b = slurp(tmp("one.png"), &n);
+    refuse(SURFACE_PNG, b, n, H, "at least 2 x 2");
+    free(b);
+    s.nx = 7, s.ny = 5;
+    CHECK(surface_write(tmp("t.png"), SURFACE_PNG, &s, 16, NULL, err, sizeof err) == 0, "%s", err);
+    b = slurp(tmp("t.png"), &n);
+    refuse(SURFACE_PNG, b, n - 20, H, "corrupt or truncated");
+    free(b);
+    CHECK(surface_write(tmp("t.x3p"), SURFACE_X3P, &s, 0, NULL, err, sizeof err) == 0, "%s", err);
+    b = slurp(tmp("t.x3p"), &n);
+    refuse(SURFACE_X3P, b, n - 30, H, "zip");
+    free(b);
+    surface_free(&s);
+    /* empty and missing files */
+    FILE *f = fopen(tmp("empty.gsf"), "w");
+    fclose(f);
+    surface_read_options o = {H, 0, 0};
+    CHECK(surface_read(tmp("empty.gsf"), &o, &s, err, sizeof err) != 0 && strstr(err, "empty"), "%s", err);
+    CHECK(surface_read(tmp("missing.gsf"), &o, &s, err, sizeof err) != 0 && strstr(err, "cannot read"), "%s", err);
+}
+
+/* Gwyddion's text export header: widths and the value unit give spacing in metres and heights' scale. */
+static void gwyddion_text_header(void **state)
+{
+    (void)state;
+    const char *t = "# Channel: Height\n# Width: 4.000 \xc2\xb5m\n# Height: 2.000 \xc2\xb5m\n# Value units: nm\n"
+                    "1 2 3 4\n5 6 7 8\n";
+    surface s;
+    surface_read_options o = {SURFACE_HEIGHTS, 0, 0};
+    char err[128];
+    CHECK(surface_parse(SURFACE_ASCII, (const unsigned char *)t, strlen(t), &o, &s, err, sizeof err) == 0, "%s", err);
+    CHECK_CLOSE(s.dx, 1e-6, 1e-12, 0.0, "dx");
+    CHECK_CLOSE(s.dy, 1e-6, 1e-12, 0.0, "dy");
+    CHECK_CLOSE(s.z_scale, 1e-9, 1e-12, 0.0, "nm heights");
+    surface_free(&s);
+}
+
+int main(void)
+{
+    snprintf(dir, sizeof dir, "/tmp/ggx-surface-XXXXXX");
+    if (!mkdtemp(dir)) return 1;
+    const struct CMUnitTest tests[] = {cmocka_unit_test(height_round_trips), cmocka_unit_test(normal_round_trips),
+                                       cmocka_unit_test(malformed), cmocka_unit_test(gwyddion_text_header)};
+    int rc = cmocka_run_group_tests(tests, NULL, NULL);
+    char cmd[96];
+    snprintf(cmd, sizeof cmd, "rm -rf '%s'", dir);
+    if (system(cmd) != 0) rc = 1;
+    return rc;
+}
