@@ -74,6 +74,8 @@ static void fit_input(const options *o, const surface *s, const ggx_fit_options 
         if (!(zs > 0))
             die("--heightfield: the file gives no height unit: give --z-scale Z (the height of one unit of its "
                 "values, in the spacing's unit)");
+        if (o->downsample >= 2 && (s->nx / (size_t)o->downsample < 2 || s->ny / (size_t)o->downsample < 2))
+            die("--downsample %d leaves fewer than 2 x 2 heights of the %zu x %zu", o->downsample, s->nx, s->ny);
         size_t n = s->nx * s->ny;
         double *h = malloc(n * sizeof *h);
         if (!h) die("out of memory");

@@ -1,0 +1,92 @@
+#!/bin/sh
+# ggx fit from the command line: a fit of sampled normals recovers the shape, its printed shape syntax runs in another
+# command, height fields in text formats, the three output formats, and every malformed input: exit status 2, one
+# line on stderr, no output file. Usage: fit_cli_test.sh GGX
+# SPDX-License-Identifier: MIT
+set -u
+GGX_BIN=$(command -v "$1") || GGX_BIN=$1
+case $GGX_BIN in /*) ;; *) GGX_BIN=$(pwd)/$GGX_BIN ;; esac
+GGX="ggx_run"
+ggx_run() { ${GGX_WRAP:-} "$GGX_BIN" "$@"; }
+tmp=$(mktemp -d)
+trap 'rm -rf "$tmp"' EXIT
+cd "$tmp" || exit 1
+pass=0
+fail=0
+ok() { pass=$((pass + 1)); }
+bad() { fail=$((fail + 1)); echo "FAIL: $*"; }
+near() { awk -v a="$1" -v b="$2" -v t="$3" 'BEGIN { d = a - b; if (d < 0) d = -d; exit !(d <= t) }'; }
+
+"$GGX" fit --help > h.txt && grep -q "usage: ggx fit" h.txt && ok || bad "ggx fit --help"
+
+# --- normals of a skewed shape, sampled by the command itself, fitted back
+"$GGX" sample --sampler stretch -n 20000 --alpha 0.3,0.1 --skew 20,-10 --rotate 40 --seed 7 | cut -d, -f1-3 > n.csv
+"$GGX" fit --normals n.csv --format json > fit.json && ok || bad "fit --normals"
+a=$(sed -n 's/.*"alpha": \[\([^,]*\), \([^]]*\)\].*/\1 \2/p' fit.json)
+s=$(sed -n 's/.*"skew_deg": \[\([^,]*\), \([^]]*\)\].*/\1 \2/p' fit.json)
+r=$(sed -n 's/.*"rotate_deg": \([^}]*\)}.*/\1/p' fit.json)
+set -- $a $s $r
+[ $# -eq 5 ] && near "$1" 0.3 0.01 && near "$2" 0.1 0.004 && near "$3" 20 1 && near "$4" -10 1 && near "$5" 40 1.5 &&
+    ok || bad "recovered shape: alpha $a skew $s rotate $r (want 0.3 0.1, 20 -10, 40)"
+grep -q '"best": "ellipsoid"' fit.json && ok || bad "skewed normals: best model $(grep best fit.json)"
+# the Markdown's shape line is the command's syntax: it runs as is
+"$GGX" fit --normals n.csv > fit.md && ok || bad "fit md"
+shape=$(sed -n 's/^shape: `\(.*\)`$/\1/p' fit.md)
+[ -n "$shape" ] && "$GGX" eval $shape --wi 30,0 --wo 30,180 > eval.csv && ok || bad "pasting '$shape' into ggx eval"
+grep -q "| full ellipsoid (skewed GGX: t and Sigma) \*\*best\*\*" fit.md && ok || bad "md model table"
+grep -q "p = " fit.md && ok || bad "md goodness of fit"
+"$GGX" fit --normals n.csv --format csv --model isotropic --out fit.csv && ok || bad "fit csv --out"
+head -1 fit.csv | grep -q "^quantity,value,std_error$" && grep -q "^sigma_xy,0,0$" fit.csv && ok ||
+    bad "csv: $(head -3 fit.csv)"
+
+# --- a height field as a Gwyddion text export: separable Gaussian random walks (Gaussian slopes: Beckmann)
+awk 'BEGIN { srand(3); n = 120; pi = 3.141592653589793
+  for (i = 0; i < n; i++) { F[i] = (i ? F[i-1] : 0) + 0.2 * sqrt(-2 * log(1 - rand())) * cos(2 * pi * rand()) }
+  for (j = 0; j < n; j++) { G[j] = (j ? G[j-1] : 0) + 0.1 * sqrt(-2 * log(1 - rand())) * cos(2 * pi * rand()) }
+  printf "# Channel: Height\n# Width: 120 um\n# Height: 120 um\n# Value units: um\n"
+  for (j = 0; j < n; j++) { for (i = 0; i < n; i++) printf "%s%.9g", (i ? " " : ""), F[i] + G[j]; printf "\n" } }' > h.txt
+"$GGX" fit --heightfield h.txt --format json > hf.json && ok || bad "fit --heightfield h.txt"
+grep -q '"best": "beckmann"' hf.json && ok || bad "Gaussian slopes: $(grep best hf.json)"
+grep -q '"used": 56644' hf.json && ok || bad "facets: $(grep used hf.json)"
+# the same heights without the header need --spacing (and then take heights in the spacing's unit)
+grep -v '^#' h.txt > plain.txt
+"$GGX" fit --heightfield plain.txt --spacing 1 --z-scale 1 --format json > plain.json && ok || bad "plain text"
+[ "$(grep '"t"' plain.json)" = "$(grep '"t"' hf.json)" ] && ok || bad "header units differ from --spacing 1e-6 and --z-scale 1e-6"
+
+# --- bad input: exit 2, exactly one line on stderr starting with "ggx: ", no output file
+expect2() { # description, expected-substring, command...
+    desc=$1; want=$2; shift 2
+    rm -f err.txt res.md
+    "$@" --out res.md > /dev/null 2> err.txt
+    rc=$?
+    if [ $rc -eq 2 ] && [ "$(wc -l < err.txt)" -eq 1 ] && grep -q "^ggx: .*$want" err.txt && [ ! -e res.md ]; then ok
+    else bad "$desc: rc $rc, stderr: $(cat err.txt), res.md $(ls res.md 2>/dev/null)"; fi
+}
+: > empty.gsf
+printf 'Gwyddion Simple Field 1.0\nXRes = 4\nYRes = 4\n\0\0\0\0' > trunc.gsf
+printf 'PK\005\006\0\0\0\0\0\0\0\0\0\0\0\0\0\0\0\0\0\0' > empty.x3p
+printf '1 2\n3 nan\n' > nan.txt
+printf '5\n' > one.txt
+printf '0,0,1\n0,0,1\n0,0,1\n0,0,1\n' > four.csv
+printf 'x,y,z\n0,0\n' > short.csv
+expect2 "no input" "give one of" "$GGX" fit
+expect2 "two inputs" "give one of" "$GGX" fit --normals n.csv --heightfield h.txt
+expect2 "missing file" "cannot read" "$GGX" fit --normals missing.csv
+expect2 "empty file" "is empty" "$GGX" fit --heightfield empty.gsf
+expect2 "truncated gsf" "truncated" "$GGX" fit --heightfield trunc.gsf
+expect2 "empty zip" "main.xml" "$GGX" fit --heightfield empty.x3p
+expect2 "NaN height" "not a finite number" "$GGX" fit --heightfield nan.txt --spacing 1 --z-scale 1
+expect2 "1 x 1 heights" "at least 2 x 2" "$GGX" fit --heightfield one.txt --spacing 1 --z-scale 1
+expect2 "no spacing" "no grid spacing" "$GGX" fit --heightfield plain.txt
+expect2 "no height unit" "no height unit" "$GGX" fit --heightfield plain.txt --spacing 1
+expect2 "zero spacing" "must be positive" "$GGX" fit --heightfield plain.txt --spacing 0 --z-scale 1
+expect2 "four normals" "too few usable samples" "$GGX" fit --normals four.csv
+expect2 "short CSV line" "not x,y,z" "$GGX" fit --normals short.csv
+expect2 "unknown model" "is not ellipsoid" "$GGX" fit --normals n.csv --model beckmann
+expect2 "tilt for normals" "apply to --heightfield" "$GGX" fit --normals n.csv --keep-tilt
+expect2 "normals as heights" "holds normals" "$GGX" fit --heightfield n.csv
+expect2 "bad format" "is not md, csv or json" "$GGX" fit --normals n.csv --format xml
+expect2 "downsample too far" "fewer than 2 x 2" "$GGX" fit --heightfield h.txt --downsample 100
+
+echo "fit CLI: $pass passed, $fail failed"
+[ $fail -eq 0 ]
