@@ -72,7 +72,8 @@ typedef struct ggx_fit_info {
     double stationarity;   /* the Newton decrement sqrt(g^T (-H)^-1 g) of the total log-likelihood at the closing
                             * iterate (g, H its gradient and Hessian in the model's free parameters) */
     double log_likelihood; /* per sample, of `out` */
-    double t[2], sigma[3]; /* `out` in slope space (ggx_shape_slopes of it) */
+    double t[2], sigma[3]; /* the fit in slope space: out = ggx_shape_from_slopes of them (ggx_shape_slopes(out)
+                            * gives them back to rounding) */
     /* Standard errors of t_x, t_y, Sigma_xx, Sigma_xy, Sigma_yy from the observed information (the inverse of -H at
      * the fit, H scaled to n_eff); 0 for parameters the model fixes, and all 0 when `clamped`. covariance is the
      * full 5 x 5 matrix in the same order. */

@@ -8,6 +8,7 @@
  * one direction or one number costs no copy. Outputs are contiguous. SPDX-License-Identifier: MIT */
 #include <stddef.h>
 #include <stdint.h>
+#include <stdio.h>
 #include <string.h>
 
 #include "ggx/ggx.h"
@@ -222,4 +223,116 @@ EXPORT void ggxpy_energy_sample(int compensated, const ggx_energy *e, const ggx_
         put(w, i, r.w);
         pdf[i] = r.pdf, weight[i] = r.weight, event[i] = (int8_t)r.event;
     }
+}
+
+/* ---- fits (ggx/ggx_fit.h) and measured surfaces (tools/ggx/surface.h) ----
+ * ggx_fit_info reaches Python as one flat array of doubles whose fields are listed once, here: FIT_FIELDS gives each
+ * field's name and length, ggxpy_fit_fields() the names as "name:length,..." for the Python side to unpack. */
+#include <stdlib.h>
+
+#include "ggx/ggx_fit.h"
+#include "surface.h"
+
+#define FIT_FIELDS(X)                                                                                               \
+    X(iterations, 1, (double)i->iterations)                                                                         \
+    X(converged, 1, (double)i->converged)                                                                           \
+    X(stationarity, 1, i->stationarity)                                                                             \
+    X(log_likelihood, 1, i->log_likelihood)                                                                         \
+    X(t, 2, i->t[k])                                                                                                \
+    X(sigma, 3, i->sigma[k])                                                                                        \
+    X(std_error, 5, i->std_error[k])                                                                                \
+    X(covariance, 25, i->covariance[k / 5][k % 5])                                                                  \
+    X(gof_chi2, 1, i->gof_chi2)                                                                                     \
+    X(gof_pvalue, 1, i->gof_pvalue)                                                                                 \
+    X(gof_cells, 1, (double)i->gof_cells)                                                                           \
+    X(gof_dof, 1, (double)i->gof_dof)                                                                               \
+    X(used, 1, (double)i->used)                                                                                     \
+    X(ignored_horizon, 1, (double)i->ignored_horizon)                                                               \
+    X(ignored_nonfinite, 1, (double)i->ignored_nonfinite)                                                           \
+    X(ignored_weight, 1, (double)i->ignored_weight)                                                                 \
+    X(effective_n, 1, i->effective_n)                                                                               \
+    X(clamped, 1, (double)i->clamped)                                                                               \
+    X(best, 1, (double)i->best)                                                                                     \
+    X(model_log_likelihood, 4, i->models[k].log_likelihood)                                                         \
+    X(model_bic, 4, i->models[k].bic)                                                                               \
+    X(model_parameters, 4, (double)i->models[k].parameters)                                                         \
+    X(model_iterations, 4, (double)i->models[k].iterations)                                                         \
+    X(model_t, 8, i->models[k / 2].t[k % 2])                                                                        \
+    X(model_sigma, 12, i->models[k / 3].sigma[k % 3])
+
+EXPORT const char *ggxpy_fit_fields(void)
+{
+#define NAME(f, len, e) #f ":" #len ","
+    return FIT_FIELDS(NAME);
+#undef NAME
+}
+
+static void flatten(const ggx_fit_info *i, double *out)
+{
+#define PUT(f, len, e) for (int k = 0; k < len; k++) *out++ = (e);
+    FIT_FIELDS(PUT)
+#undef PUT
+}
+
+EXPORT int ggxpy_fit_normals(ggx_shape *out, const double *m, const double *w, size_t n, int model, int threads,
+                             int max_iterations, double tolerance, double *info)
+{
+    ggx_fit_options o = {(ggx_fit_model)model, max_iterations, tolerance, threads, NULL, NULL};
+    ggx_fit_info fi;
+    int st = ggx_fit_normals(out, (const ggx_vec3 *)m, w, n, &o, &fi);
+    flatten(&fi, info);
+    return st;
+}
+
+EXPORT int ggxpy_fit_heightfield(ggx_shape *out, const double *h, size_t nx, size_t ny, double dx, double dy,
+                                 int keep_tilt, int downsample, int model, int threads, int max_iterations,
+                                 double tolerance, double *info)
+{
+    ggx_fit_options o = {(ggx_fit_model)model, max_iterations, tolerance, threads, NULL, NULL};
+    ggx_heightfield_options ho = {keep_tilt, downsample};
+    ggx_fit_info fi;
+    int st = ggx_fit_heightfield(out, h, nx, ny, dx, dy, &ho, &o, &fi);
+    flatten(&fi, info);
+    return st;
+}
+
+EXPORT size_t ggxpy_sizeof_vec3(void) { return sizeof(ggx_vec3); }
+
+/* A surface read by the readers of the command, held for the Python side to copy: ggxpy_surface_read returns it (or
+ * NULL with err), meta = nx, ny, dx, dy, z_scale, bits, channels, is_normals, has_weights; ggxpy_surface_copy fills
+ * arrays of nx * ny heights, or 3 nx * ny normal components and nx * ny weights; ggxpy_surface_close frees it. */
+EXPORT void *ggxpy_surface_read(const char *path, int normals, int y_down, int dequantise, double meta[9], char *err,
+                                size_t errn)
+{
+    surface *s = malloc(sizeof *s);
+    if (!s) {
+        snprintf(err, errn, "out of memory");
+        return NULL;
+    }
+    surface_read_options o = {normals ? SURFACE_NORMALS : SURFACE_HEIGHTS, y_down, dequantise};
+    if (surface_read(path, &o, s, err, errn) != 0) {
+        free(s);
+        return NULL;
+    }
+    const double v[9] = {(double)s->nx, (double)s->ny, s->dx, s->dy, s->z_scale, s->bits, s->channels,
+                         s->kind == SURFACE_NORMALS, s->w != NULL};
+    memcpy(meta, v, sizeof v);
+    return s;
+}
+
+EXPORT void ggxpy_surface_copy(const void *handle, double *values, double *weights)
+{
+    const surface *s = handle;
+    size_t n = s->nx * s->ny;
+    if (s->kind == SURFACE_HEIGHTS) memcpy(values, s->h, n * sizeof *values);
+    else
+        for (size_t i = 0; i < n; i++) values[3 * i] = s->m[i].x, values[3 * i + 1] = s->m[i].y, values[3 * i + 2] = s->m[i].z;
+    if (weights && s->w) memcpy(weights, s->w, n * sizeof *weights);
+}
+
+EXPORT void ggxpy_surface_close(void *handle)
+{
+    if (!handle) return;
+    surface_free(handle);
+    free(handle);
 }
