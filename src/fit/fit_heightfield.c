@@ -25,17 +25,24 @@ static int cell_finite(const grid *g, size_t i, size_t j)
 static void fill_grid(const void *ctx, size_t i0, size_t k, double *x, double *y, double *w, double *lc)
 {
     const grid *g = ctx;
-    size_t cx = g->nx - 1;
+    size_t cx = g->nx - 1, cell = i0 / 4, i = cell % cx, j = cell / cx;
+    int f = (int)(i0 % 4);
+    const double idx = 1.0 / g->dx, idy = 1.0 / g->dy;
+    double a = 0, b = 0, c = 0, d = 0;
     for (size_t s = 0; s < k; s++) {
-        size_t idx = i0 + s, cell = idx / 4, i = cell % cx, j = cell / cx;
-        int f = (int)(idx % 4);
-        const double *r0 = g->h + j * g->nx + i, *r1 = r0 + g->nx;
-        double a = (r0[1] - r0[0]) / g->dx, b = (r1[1] - r1[0]) / g->dx;
-        double c = (r1[0] - r0[0]) / g->dy, d = (r1[1] - r0[1]) / g->dy;
-        double sx = (f == 0 || f == 2 ? a : b) - g->px, sy = (f == 0 || f == 3 ? c : d) - g->py;
+        if (s == 0 || f == 0) { /* a new cell: its four differences */
+            const double *r0 = g->h + j * g->nx + i, *r1 = r0 + g->nx;
+            a = (r0[1] - r0[0]) * idx - g->px, b = (r1[1] - r1[0]) * idx - g->px;
+            c = (r1[0] - r0[0]) * idy - g->py, d = (r1[1] - r0[1]) * idy - g->py;
+        }
+        double sx = f == 0 || f == 2 ? a : b, sy = f == 0 || f == 3 ? c : d;
         int ok = isfinite(sx) && isfinite(sy);
         x[s] = ok ? sx : 0.0, y[s] = ok ? sy : 0.0, w[s] = ok ? 1.0 : 0.0;
         if (lc) lc[s] = ok ? -0.5 * log1p(sx * sx + sy * sy) : 0.0;
+        if (++f == 4) {
+            f = 0;
+            if (++i == cx) i = 0, j++;
+        }
     }
 }
 

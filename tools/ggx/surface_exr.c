@@ -1,15 +1,385 @@
-/* OpenEXR surfaces: not yet read (a later step adds the OpenEXR library's reader). SPDX-License-Identifier: MIT */
+/* OpenEXR surfaces through the OpenEXR C core library (OpenEXRCore): part 0 of a scanline or tiled file (level 0 of
+ * a mipmap or ripmap), any compression the library decodes, channels of type HALF, FLOAT or UINT. Heights are the
+ * channel "Y", else "Z", else the file's first channel; a normal map is R, G and optionally B, components stored
+ * directly in [-1, 1]. Written as a scanline file with ZIP compression (16 lines a chunk) in FLOAT: heights in one
+ * channel "Y" (times z_scale where it is set), normals in R, G, B. SPDX-License-Identifier: MIT */
+#include <math.h>
+#include <stdint.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
 #include "surface.h"
+
+#ifdef GGX_HAVE_EXR
+#include <openexr.h>
+
+#define EXR_MAX_SIDE 65536
+/* a chunk that decompresses to more than this is refused before the library allocates it */
+#define EXR_MAX_CHUNK_BYTES ((uint64_t)1 << 30)
+#define EXR_UNREADABLE "not a readable OpenEXR file (corrupt or truncated)"
+
+typedef struct exr_mem {
+    const unsigned char *p;
+    size_t n;
+} exr_mem;
+
+static int64_t exr_mem_read(exr_const_context_t ctx, void *user, void *buf, uint64_t sz, uint64_t off,
+                            exr_stream_error_func_ptr_t error_cb)
+{
+    (void)ctx, (void)error_cb;
+    const exr_mem *m = user;
+    if (off >= (uint64_t)m->n) return 0;
+    uint64_t left = (uint64_t)m->n - off;
+    if (sz > left) sz = left;
+    memcpy(buf, m->p + off, (size_t)sz);
+    return (int64_t)sz;
+}
+
+static int64_t exr_mem_size(exr_const_context_t ctx, void *user)
+{
+    (void)ctx;
+    const exr_mem *m = user;
+    return m->n > (size_t)INT64_MAX ? -1 : (int64_t)m->n;
+}
+
+/* the library's errors are not printed: the caller says what failed, in one line */
+static void exr_quiet(exr_const_context_t ctx, exr_result_t code, const char *msg) { (void)ctx, (void)code, (void)msg; }
+
+typedef struct exr_reader {
+    exr_context_t ctx;
+    exr_decode_pipeline_t dec;
+    int dec_ready;
+    int nwant;            /* channels wanted: 1 (heights), 2 or 3 (normals) */
+    int want[3];          /* their indices in the part's channel list */
+    uint8_t *buf[3];      /* one chunk of each, 4 bytes a value (FLOAT, or UINT for UINT channels) */
+    size_t buf_bytes;     /* the size of each buffer */
+    size_t nx, ny;        /* the data window */
+    size_t rows_alloc;    /* rows held by s->h or s->m so far */
+    const surface_read_options *o;
+    surface *s;
+} exr_reader;
+
+static int exr_find_channel(const exr_attr_chlist_t *cl, const char *name)
+{
+    for (int i = 0; i < cl->num_channels; i++)
+        if (cl->entries[i].name.str && strcmp(cl->entries[i].name.str, name) == 0) return i;
+    return -1;
+}
+
+/* Grows s->h or s->m to hold at least `rows` rows (geometrically, capped at ny): memory follows the data actually
+ * decoded, so a header that claims a huge image over a few bytes costs nothing. */
+static int exr_grow(exr_reader *r, size_t rows)
+{
+    if (rows <= r->rows_alloc) return 0;
+    size_t want = r->rows_alloc * 2;
+    if (want < rows) want = rows;
+    if (want < 64) want = 64;
+    if (want > r->ny) want = r->ny;
+    size_t elem = r->s->kind == SURFACE_HEIGHTS ? sizeof *r->s->h : sizeof *r->s->m;
+    if (want > SIZE_MAX / elem / r->nx) return -1;
+    if (r->s->kind == SURFACE_HEIGHTS) {
+        double *p = realloc(r->s->h, want * r->nx * elem);
+        if (!p) return -1;
+        r->s->h = p;
+    } else {
+        ggx_vec3 *p = realloc(r->s->m, want * r->nx * elem);
+        if (!p) return -1;
+        r->s->m = p;
+    }
+    r->rows_alloc = want;
+    return 0;
+}
+
+static double exr_value(const exr_reader *r, int k, size_t at)
+{
+    const uint8_t *p = r->buf[k] + at * 4;
+    if (r->dec.channels[r->want[k]].data_type == EXR_PIXEL_UINT) {
+        uint32_t u;
+        memcpy(&u, p, 4);
+        return (double)u;
+    }
+    float f;
+    memcpy(&f, p, 4);
+    return (double)f;
+}
+
+/* Decodes one chunk into s: its top-left pixel is (px, py) within the data window and it must cover w x h pixels
+ * from there. Returns 0, or -1 with err. */
+static int exr_decode_chunk(exr_reader *r, const exr_chunk_info_t *ci, size_t px, size_t py, size_t w, size_t h,
+                            char *err, size_t errn)
+{
+    if (ci->width <= 0 || ci->height <= 0 || px >= r->nx || py >= r->ny || w < 1 || h < 1 || w > r->nx - px ||
+        h > r->ny - py)
+        return surface_fail(err, errn, EXR_UNREADABLE);
+    if (ci->unpacked_size > EXR_MAX_CHUNK_BYTES)
+        return surface_fail(err, errn, "an OpenEXR chunk of %llu bytes: too large",
+                            (unsigned long long)ci->unpacked_size);
+    exr_result_t rv = r->dec_ready ? exr_decoding_update(r->ctx, 0, ci, &r->dec)
+                                   : exr_decoding_initialize(r->ctx, 0, ci, &r->dec);
+    if (rv != EXR_ERR_SUCCESS) return surface_fail(err, errn, EXR_UNREADABLE);
+    r->dec_ready = 1;
+    for (int k = 0; k < r->nwant; k++)
+        if (r->want[k] < 0 || r->want[k] >= r->dec.channel_count) return surface_fail(err, errn, EXR_UNREADABLE);
+    const exr_coding_channel_info_t *c0 = &r->dec.channels[r->want[0]];
+    if (c0->width <= 0 || c0->height <= 0) return surface_fail(err, errn, EXR_UNREADABLE);
+    size_t cw = (size_t)c0->width, chh = (size_t)c0->height;
+    if (cw < w || chh < h || cw > (size_t)INT32_MAX / 4 || chh > SIZE_MAX / 4 / cw || cw * chh * 4 > EXR_MAX_CHUNK_BYTES)
+        return surface_fail(err, errn, EXR_UNREADABLE);
+    size_t bytes = cw * chh * 4;
+    if (bytes > r->buf_bytes) {
+        for (int k = 0; k < r->nwant; k++) {
+            free(r->buf[k]);
+            if (!(r->buf[k] = malloc(bytes))) {
+                r->buf_bytes = 0;
+                return surface_fail(err, errn, "out of memory");
+            }
+        }
+        r->buf_bytes = bytes;
+    }
+    for (int i = 0; i < r->dec.channel_count; i++) r->dec.channels[i].decode_to_ptr = NULL;
+    for (int k = 0; k < r->nwant; k++) {
+        exr_coding_channel_info_t *c = &r->dec.channels[r->want[k]];
+        if (c->width != c0->width || c->height != c0->height) return surface_fail(err, errn, EXR_UNREADABLE);
+        c->decode_to_ptr = r->buf[k];
+        c->user_pixel_stride = 4;
+        c->user_line_stride = (int32_t)(cw * 4);
+        c->user_bytes_per_element = 4;
+        c->user_data_type = c->data_type == EXR_PIXEL_UINT ? EXR_PIXEL_UINT : EXR_PIXEL_FLOAT;
+    }
+    if (exr_decoding_choose_default_routines(r->ctx, 0, &r->dec) != EXR_ERR_SUCCESS ||
+        exr_decoding_run(r->ctx, 0, &r->dec) != EXR_ERR_SUCCESS)
+        return surface_fail(err, errn, EXR_UNREADABLE);
+    if (exr_grow(r, py + h) != 0) return surface_fail(err, errn, "out of memory");
+    for (size_t y = 0; y < h; y++) {
+        for (size_t x = 0; x < w; x++) {
+            size_t at = y * cw + x, i = (py + y) * r->nx + px + x;
+            if (r->s->kind == SURFACE_HEIGHTS) {
+                r->s->h[i] = exr_value(r, 0, at);
+            } else {
+                double c[3];
+                for (int k = 0; k < r->nwant; k++) c[k] = exr_value(r, k, at);
+                r->s->m[i] = surface_texel_normal(c, r->nwant, r->o->y_down);
+            }
+        }
+    }
+    return 0;
+}
+
+static int exr_read_scanlines(exr_reader *r, const exr_attr_box2i_t *dw, char *err, size_t errn)
+{
+    int64_t y = dw->min.y, end = (int64_t)dw->max.y + 1;
+    while (y < end) {
+        exr_chunk_info_t ci;
+        if (exr_read_scanline_chunk_info(r->ctx, 0, (int)y, &ci) != EXR_ERR_SUCCESS)
+            return surface_fail(err, errn, EXR_UNREADABLE);
+        int64_t first = ci.start_y, next = (int64_t)ci.start_y + ci.height;
+        if (ci.height <= 0 || first > y || next <= y || first < dw->min.y) return surface_fail(err, errn, EXR_UNREADABLE);
+        size_t py = (size_t)(first - dw->min.y), rows = (size_t)(next - first);
+        if (rows > r->ny - py) rows = r->ny - py;
+        if (exr_decode_chunk(r, &ci, 0, py, r->nx, rows, err, errn) != 0) return -1;
+        y = next;
+    }
+    return 0;
+}
+
+static int exr_read_tiles(exr_reader *r, char *err, size_t errn)
+{
+    int32_t tw = 0, th = 0, lw = 0, lh = 0;
+    if (exr_get_tile_sizes(r->ctx, 0, 0, 0, &tw, &th) != EXR_ERR_SUCCESS ||
+        exr_get_level_sizes(r->ctx, 0, 0, 0, &lw, &lh) != EXR_ERR_SUCCESS || tw <= 0 || th <= 0)
+        return surface_fail(err, errn, EXR_UNREADABLE);
+    if ((size_t)lw != r->nx || (size_t)lh != r->ny) return surface_fail(err, errn, EXR_UNREADABLE);
+    size_t ntx = (r->nx + (size_t)tw - 1) / (size_t)tw, nty = (r->ny + (size_t)th - 1) / (size_t)th;
+    for (size_t ty = 0; ty < nty; ty++) {
+        for (size_t tx = 0; tx < ntx; tx++) {
+            exr_chunk_info_t ci;
+            if (exr_read_tile_chunk_info(r->ctx, 0, (int)tx, (int)ty, 0, 0, &ci) != EXR_ERR_SUCCESS)
+                return surface_fail(err, errn, EXR_UNREADABLE);
+            size_t px = tx * (size_t)tw, py = ty * (size_t)th;
+            size_t w = r->nx - px < (size_t)tw ? r->nx - px : (size_t)tw;
+            size_t h = r->ny - py < (size_t)th ? r->ny - py : (size_t)th;
+            if (exr_decode_chunk(r, &ci, px, py, w, h, err, errn) != 0) return -1;
+        }
+    }
+    return 0;
+}
+
+/* Everything after the context is open: the part's layout, the channels wanted, then the chunks. */
+static int exr_parse_part(exr_reader *r, size_t n, char *err, size_t errn)
+{
+    int parts = 0;
+    exr_storage_t storage;
+    exr_attr_box2i_t dw;
+    const exr_attr_chlist_t *cl = NULL;
+    int32_t chunks = 0;
+    if (exr_get_count(r->ctx, &parts) != EXR_ERR_SUCCESS || parts < 1 ||
+        exr_get_storage(r->ctx, 0, &storage) != EXR_ERR_SUCCESS ||
+        exr_get_data_window(r->ctx, 0, &dw) != EXR_ERR_SUCCESS ||
+        exr_get_channels(r->ctx, 0, &cl) != EXR_ERR_SUCCESS || !cl || cl->num_channels < 1 || !cl->entries)
+        return surface_fail(err, errn, EXR_UNREADABLE);
+    if (storage == EXR_STORAGE_DEEP_SCANLINE || storage == EXR_STORAGE_DEEP_TILED)
+        return surface_fail(err, errn, "a deep OpenEXR image is not a surface");
+    if (storage != EXR_STORAGE_SCANLINE && storage != EXR_STORAGE_TILED)
+        return surface_fail(err, errn, EXR_UNREADABLE);
+    int64_t w = (int64_t)dw.max.x - dw.min.x + 1, h = (int64_t)dw.max.y - dw.min.y + 1;
+    if (w < 2 || h < 2)
+        return surface_fail(err, errn, "%lld x %lld pixels: a surface needs at least 2 x 2", (long long)w,
+                            (long long)h);
+    if (w > EXR_MAX_SIDE || h > EXR_MAX_SIDE)
+        return surface_fail(err, errn, "%lld x %lld pixels: too large (at most %d a side)", (long long)w,
+                            (long long)h, EXR_MAX_SIDE);
+    r->nx = (size_t)w, r->ny = (size_t)h;
+    if (r->nx > SIZE_MAX / r->ny || r->nx * r->ny > SIZE_MAX / sizeof(ggx_vec3))
+        return surface_fail(err, errn, "%lld x %lld pixels: too large", (long long)w, (long long)h);
+    /* each chunk has an 8-byte entry in the offset table: more chunks than that fits are a truncated file */
+    if (exr_get_chunk_count(r->ctx, 0, &chunks) != EXR_ERR_SUCCESS || chunks < 1 || (uint64_t)chunks > n / 8)
+        return surface_fail(err, errn, EXR_UNREADABLE);
+    if (r->o->want == SURFACE_HEIGHTS) {
+        int k = exr_find_channel(cl, "Y");
+        if (k < 0) k = exr_find_channel(cl, "Z");
+        if (k < 0) k = 0;
+        r->want[0] = k, r->nwant = 1;
+        r->s->kind = SURFACE_HEIGHTS;
+    } else {
+        r->want[0] = exr_find_channel(cl, "R"), r->want[1] = exr_find_channel(cl, "G");
+        r->want[2] = exr_find_channel(cl, "B");
+        if (r->want[0] < 0 || r->want[1] < 0) return surface_fail(err, errn, "no R and G channels for a normal map");
+        r->nwant = r->want[2] < 0 ? 2 : 3;
+        r->s->kind = SURFACE_NORMALS;
+        r->s->channels = r->nwant;
+    }
+    for (int k = 0; k < r->nwant; k++) {
+        const exr_attr_chlist_entry_t *e = &cl->entries[r->want[k]];
+        if (e->pixel_type != EXR_PIXEL_HALF && e->pixel_type != EXR_PIXEL_FLOAT && e->pixel_type != EXR_PIXEL_UINT)
+            return surface_fail(err, errn, EXR_UNREADABLE);
+        if (e->x_sampling != 1 || e->y_sampling != 1)
+            return surface_fail(err, errn, "OpenEXR channel '%s' is subsampled (not supported)",
+                                e->name.str ? e->name.str : "");
+    }
+    int rc = storage == EXR_STORAGE_SCANLINE ? exr_read_scanlines(r, &dw, err, errn) : exr_read_tiles(r, err, errn);
+    if (rc == 0 && r->rows_alloc != r->ny) rc = surface_fail(err, errn, EXR_UNREADABLE);
+    return rc;
+}
 
 int surface_parse_exr(const unsigned char *data, size_t n, const surface_read_options *o, surface *s, char *err,
                       size_t errn)
 {
-    (void)data, (void)n, (void)o, (void)s;
-    return surface_fail(err, errn, "OpenEXR surfaces are not supported yet");
+    exr_mem m = {data, n};
+    exr_context_initializer_t init = EXR_DEFAULT_CONTEXT_INITIALIZER;
+    init.error_handler_fn = exr_quiet;
+    init.user_data = &m;
+    init.read_fn = exr_mem_read;
+    init.size_fn = exr_mem_size;
+    init.flags = EXR_CONTEXT_FLAG_SILENT_HEADER_PARSE | EXR_CONTEXT_FLAG_DISABLE_CHUNK_RECONSTRUCTION;
+    exr_reader r;
+    memset(&r, 0, sizeof r);
+    r.o = o, r.s = s;
+    s->h = NULL, s->m = NULL;
+    s->nx = s->ny = 0;
+    s->dx = s->dy = 0, s->z_scale = 0, s->bits = 0, s->channels = 0;
+    if (!data || n < 4 || exr_start_read(&r.ctx, "<memory>", &init) != EXR_ERR_SUCCESS) {
+        if (r.ctx) exr_finish(&r.ctx);
+        return surface_fail(err, errn, EXR_UNREADABLE);
+    }
+    int rc = exr_parse_part(&r, n, err, errn);
+    if (r.dec_ready) exr_decoding_destroy(r.ctx, &r.dec);
+    exr_finish(&r.ctx);
+    for (int k = 0; k < 3; k++) free(r.buf[k]);
+    if (rc != 0) {
+        free(s->h), free(s->m);
+        s->h = NULL, s->m = NULL;
+        s->nx = s->ny = 0;
+        return -1;
+    }
+    s->nx = r.nx, s->ny = r.ny;
+    return 0;
 }
 
 int surface_write_exr(const char *path, const surface *s, char *err, size_t errn)
 {
-    (void)path, (void)s;
-    return surface_fail(err, errn, "OpenEXR surfaces are not supported yet");
+    int heights = s->kind == SURFACE_HEIGHTS, nch = heights ? 1 : 3;
+    if (s->nx < 1 || s->ny < 1 || s->nx > INT32_MAX || s->ny > INT32_MAX || s->nx > SIZE_MAX / s->ny ||
+        s->nx * s->ny > SIZE_MAX / sizeof(float) / 3 || (heights ? !s->h : !s->m))
+        return surface_fail(err, errn, "cannot write '%s' (no surface, or too large for OpenEXR)", path);
+    size_t count = s->nx * s->ny;
+    static const char *const names[3] = {"R", "G", "B"};
+    float *plane[3] = {NULL, NULL, NULL};
+    for (int k = 0; k < nch; k++)
+        if (!(plane[k] = malloc(count * sizeof(float)))) {
+            for (int j = 0; j < k; j++) free(plane[j]);
+            return surface_fail(err, errn, "out of memory");
+        }
+    double scale = s->z_scale > 0 ? s->z_scale : 1.0;
+    for (size_t i = 0; i < count; i++) {
+        if (heights) {
+            plane[0][i] = (float)(s->h[i] * scale);
+        } else {
+            plane[0][i] = (float)s->m[i].x, plane[1][i] = (float)s->m[i].y, plane[2][i] = (float)s->m[i].z;
+        }
+    }
+    exr_context_initializer_t init = EXR_DEFAULT_CONTEXT_INITIALIZER;
+    init.error_handler_fn = exr_quiet;
+    exr_context_t ctx = NULL;
+    exr_encode_pipeline_t enc;
+    memset(&enc, 0, sizeof enc);
+    int enc_ready = 0, part = 0, started = 0;
+    int32_t lines = 0;
+    exr_result_t rv = exr_start_write(&ctx, path, EXR_WRITE_FILE_DIRECTLY, &init);
+    if (rv == EXR_ERR_SUCCESS) started = 1;
+    if (rv == EXR_ERR_SUCCESS) rv = exr_add_part(ctx, NULL, EXR_STORAGE_SCANLINE, &part);
+    if (rv == EXR_ERR_SUCCESS)
+        rv = exr_initialize_required_attr_simple(ctx, part, (int32_t)s->nx, (int32_t)s->ny, EXR_COMPRESSION_ZIP);
+    for (int k = 0; k < nch && rv == EXR_ERR_SUCCESS; k++)
+        rv = exr_add_channel(ctx, part, heights ? "Y" : names[k], EXR_PIXEL_FLOAT, EXR_PERCEPTUALLY_LINEAR, 1, 1);
+    if (rv == EXR_ERR_SUCCESS) rv = exr_write_header(ctx);
+    if (rv == EXR_ERR_SUCCESS) rv = exr_get_scanlines_per_chunk(ctx, part, &lines);
+    if (rv == EXR_ERR_SUCCESS && lines < 1) rv = EXR_ERR_UNKNOWN;
+    for (size_t y = 0; y < s->ny && rv == EXR_ERR_SUCCESS; y += (size_t)lines) {
+        exr_chunk_info_t ci;
+        rv = exr_write_scanline_chunk_info(ctx, part, (int)y, &ci);
+        if (rv != EXR_ERR_SUCCESS) break;
+        rv = enc_ready ? exr_encoding_update(ctx, part, &ci, &enc) : exr_encoding_initialize(ctx, part, &ci, &enc);
+        if (rv != EXR_ERR_SUCCESS) break;
+        enc_ready = 1;
+        for (int c = 0; c < enc.channel_count && rv == EXR_ERR_SUCCESS; c++) {
+            exr_coding_channel_info_t *ch = &enc.channels[c];
+            int k = -1;
+            for (int j = 0; j < nch; j++)
+                if (ch->channel_name && strcmp(ch->channel_name, heights ? "Y" : names[j]) == 0) k = j;
+            if (k < 0) {
+                rv = EXR_ERR_UNKNOWN;
+                break;
+            }
+            ch->encode_from_ptr = (const uint8_t *)(plane[k] + y * s->nx);
+            ch->user_pixel_stride = (int32_t)sizeof(float);
+            ch->user_line_stride = (int32_t)(s->nx * sizeof(float));
+            ch->user_bytes_per_element = (int16_t)sizeof(float);
+            ch->user_data_type = EXR_PIXEL_FLOAT;
+        }
+        if (rv == EXR_ERR_SUCCESS) rv = exr_encoding_choose_default_routines(ctx, part, &enc);
+        if (rv == EXR_ERR_SUCCESS) rv = exr_encoding_run(ctx, part, &enc);
+    }
+    if (enc_ready) exr_encoding_destroy(ctx, &enc);
+    for (int k = 0; k < nch; k++) free(plane[k]);
+    exr_result_t fin = started ? exr_finish(&ctx) : EXR_ERR_SUCCESS;
+    if (rv == EXR_ERR_SUCCESS) rv = fin;
+    if (rv != EXR_ERR_SUCCESS) {
+        if (started) remove(path);
+        return surface_fail(err, errn, "cannot write '%s' (%s)", path, exr_get_error_code_as_string(rv));
+    }
+    return 0;
 }
+#else
+int surface_parse_exr(const unsigned char *data, size_t n, const surface_read_options *o, surface *s, char *err,
+                      size_t errn)
+{
+    (void)data, (void)n, (void)o, (void)s;
+    return surface_fail(err, errn, "OpenEXR support was not built (OpenEXR missing: apt-get install libopenexr-dev)");
+}
+int surface_write_exr(const char *path, const surface *s, char *err, size_t errn)
+{
+    (void)path, (void)s;
+    return surface_fail(err, errn, "OpenEXR support was not built (OpenEXR missing: apt-get install libopenexr-dev)");
+}
+#endif
