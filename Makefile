@@ -56,6 +56,7 @@ run: configure-run
 # Benchmarks: ns per call of every scalar function and batch kernel, ratios, and the machine's floors.
 bench: build
 	@$(BUILD)/ggx_bench
+	@$(BUILD)/ggx_bench_fit
 
 # The Python package's overhead: ns per element and microseconds per call against its bare native loops.
 bench-python: build

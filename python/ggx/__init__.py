@@ -977,7 +977,7 @@ def set_batch_threads(threads):
 
 _fit_normals = _proto("ggxpy_fit_normals", _i, _vp, _vp, _vp, _sz, _i, _i, _i, _d, _vp)
 _fit_heightfield = _proto("ggxpy_fit_heightfield", _i, _vp, _vp, _sz, _sz, _d, _d, _i, _i, _i, _i, _i, _d, _vp)
-_surface_read = _proto("ggxpy_surface_read", _vp, ctypes.c_char_p, _i, _i, _i, _vp, ctypes.c_char_p, _sz)
+_surface_read = _proto("ggxpy_surface_read", _vp, ctypes.c_char_p, _i, _i, _vp, ctypes.c_char_p, _sz)
 _surface_copy = _proto("ggxpy_surface_copy", None, _vp, _vp, _vp)
 _surface_close = _proto("ggxpy_surface_close", None, _vp)
 # the flat layout of ggx_fit_info, as the native module lists it (python/src/native.c, FIT_FIELDS)
@@ -1107,15 +1107,15 @@ file's heights into the spacing's unit, where the file says (else None); weights
 8 or 16 for PNG, else 0."""
 
 
-def read_surface(path, kind="heights", y_down=False, dequantise=True):
+def read_surface(path, kind="heights", y_down=False):
     """A height field or normals from a file, by the readers of the ggx command (.x3p, .gsf, .txt/.asc, .xyz, .png,
     .exr; normals from .png/.exr normal maps or .csv lists): kind "heights" or "normals"; y_down for DirectX normal
-    maps; dequantise spreads each 8- or 16-bit texel over its quantisation cell. A malformed or unreadable file
+    maps (each texel at its level: bits says the quantisation). A malformed or unreadable file
     raises ValueError with the reader's one-line reason."""
     want = _choice(kind, {"heights": 0, "normals": 1}, "kind")
     meta = np.zeros(9)
     err = ctypes.create_string_buffer(600)
-    h = _surface_read(os.fsencode(os.fspath(path)), want, int(bool(y_down)), int(bool(dequantise)),
+    h = _surface_read(os.fsencode(os.fspath(path)), want, int(bool(y_down)),
                       meta.ctypes.data, err, 600)
     if not h:
         raise ValueError(err.value.decode(errors="replace"))

@@ -301,7 +301,7 @@ EXPORT size_t ggxpy_sizeof_vec3(void) { return sizeof(ggx_vec3); }
 /* A surface read by the readers of the command, held for the Python side to copy: ggxpy_surface_read returns it (or
  * NULL with err), meta = nx, ny, dx, dy, z_scale, bits, channels, is_normals, has_weights; ggxpy_surface_copy fills
  * arrays of nx * ny heights, or 3 nx * ny normal components and nx * ny weights; ggxpy_surface_close frees it. */
-EXPORT void *ggxpy_surface_read(const char *path, int normals, int y_down, int dequantise, double meta[9], char *err,
+EXPORT void *ggxpy_surface_read(const char *path, int normals, int y_down, double meta[9], char *err,
                                 size_t errn)
 {
     surface *s = malloc(sizeof *s);
@@ -309,7 +309,7 @@ EXPORT void *ggxpy_surface_read(const char *path, int normals, int y_down, int d
         snprintf(err, errn, "out of memory");
         return NULL;
     }
-    surface_read_options o = {normals ? SURFACE_NORMALS : SURFACE_HEIGHTS, y_down, dequantise};
+    surface_read_options o = {normals ? SURFACE_NORMALS : SURFACE_HEIGHTS, y_down};
     if (surface_read(path, &o, s, err, errn) != 0) {
         free(s);
         return NULL;

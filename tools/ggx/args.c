@@ -124,11 +124,10 @@ void parse_options(int argc, char **argv, int first, options *o, const char *all
             die("unknown option '%s' (see --help)", a);
         /* flags */
         int flag = strcmp(key, "log") == 0 || strcmp(key, "progress") == 0 || strcmp(key, "no-progress") == 0 ||
-                   strcmp(key, "keep-tilt") == 0 || strcmp(key, "y-down") == 0 || strcmp(key, "no-dequantise") == 0;
+                   strcmp(key, "keep-tilt") == 0 || strcmp(key, "y-down") == 0;
         if (flag && inline_val) die("option '%s' takes no value", a);
         if (strcmp(key, "keep-tilt") == 0) { o->keep_tilt = 1; continue; }
         if (strcmp(key, "y-down") == 0) { o->y_down = 1; continue; }
-        if (strcmp(key, "no-dequantise") == 0) { o->no_dequantise = 1; continue; }
         if (strcmp(key, "log") == 0) { o->log_scale = 1; continue; }
         if (strcmp(key, "progress") == 0) { o->progress = 1; continue; }
         if (strcmp(key, "no-progress") == 0) { o->progress = 0; continue; }

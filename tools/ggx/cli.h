@@ -38,7 +38,7 @@ typedef struct options {
     /* ggx fit */
     const char *heightfield, *normal_map, *normals, *model;
     double spacing[2], z_scale;
-    int have_spacing, have_z_scale, keep_tilt, downsample, y_down, no_dequantise, threads;
+    int have_spacing, have_z_scale, keep_tilt, downsample, y_down, threads;
 } options;
 
 /* Parses argv[first..] into o (defaults first); unknown options and malformed values die(). */

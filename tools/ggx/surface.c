@@ -72,7 +72,7 @@ ggx_vec3 surface_texel_normal(const double *c, int channels, int y_down)
 int surface_parse(surface_format f, const unsigned char *data, size_t n, const surface_read_options *o, surface *s,
                   char *err, size_t errn)
 {
-    surface_read_options d = {SURFACE_HEIGHTS, 0, 0};
+    surface_read_options d = {SURFACE_HEIGHTS, 0};
     if (!o) o = &d;
     memset(s, 0, sizeof *s);
     int rc;

@@ -37,8 +37,6 @@ typedef struct surface {
 typedef struct surface_read_options {
     surface_kind want; /* heights or normals */
     int y_down;        /* normal maps: the green channel points down (DirectX), so y is negated */
-    int dequantise;    /* normal maps of 8 or 16 bits: each texel's components jittered uniformly over its
-                        * quantisation cell (deterministic), since a texel stands for a cell of slopes, not a point */
 } surface_read_options;
 
 /* The format of a file from its first bytes (PNG, EXR, zip, "Gwyddion Simple Field") or else its name's extension. */

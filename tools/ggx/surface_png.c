@@ -33,14 +33,6 @@ static void fail_jump(png_structp png, png_const_charp msg)
     png_longjmp(png, 1);
 }
 
-/* A uniform number in [0, 1) from a texel index and a channel (a hash: the same every run). */
-static double jitter(size_t i, int c)
-{
-    uint64_t x = (uint64_t)i * 0x9E3779B97F4A7C15u + (uint64_t)c * 0xD1B54A32D192ED03u + 0x2545F4914F6CDD1Du;
-    x ^= x >> 31, x *= 0xBF58476D1CE4E5B9u, x ^= x >> 29, x *= 0x94D049BB133111EBu, x ^= x >> 32;
-    return (double)(x >> 11) * 0x1p-53;
-}
-
 int surface_parse_png(const unsigned char *data, size_t n, const surface_read_options *o, surface *s, char *err,
                       size_t errn)
 {
@@ -112,8 +104,7 @@ int surface_parse_png(const unsigned char *data, size_t n, const surface_read_op
             for (size_t i = 0; i < count; i++) {
                 double c[3];
                 for (int k = 0; k < s->channels; k++) {
-                    double l = LEVEL(i, k) + (o->dequantise ? jitter(i, k) - 0.5 : 0.0);
-                    c[k] = 2.0 * l / max - 1.0;
+                    c[k] = 2.0 * LEVEL(i, k) / max - 1.0;
                 }
                 s->m[i] = surface_texel_normal(c, s->channels, o->y_down);
             }
