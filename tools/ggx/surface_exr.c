@@ -50,14 +50,14 @@ typedef struct exr_reader {
     exr_context_t ctx;
     exr_decode_pipeline_t dec;
     int dec_ready;
-    int nwant;            /* channels wanted: 1 (heights), 2 or 3 (normals) */
-    int want[3];          /* their indices in the part's channel list */
-    uint8_t *buf[3];      /* one chunk of each, 4 bytes a value (FLOAT, or UINT for UINT channels) */
-    size_t buf_bytes;     /* the size of each buffer */
-    size_t nx, ny;        /* the data window */
-    size_t rows_alloc;    /* rows held by s->h or s->m so far */
+    exr_compression_t comp;
+    int nwant;         /* channels wanted: 1 (heights), 2 or 3 (normals) */
+    int want[3];       /* their indices in the part's channel list */
+    size_t nx, ny;     /* the data window */
+    size_t rows_alloc; /* rows held by s->h or s->m so far */
     const surface_read_options *o;
     surface *s;
+    uint8_t dummy[16];
 } exr_reader;
 
 static int exr_find_channel(const exr_attr_chlist_t *cl, const char *name)
@@ -91,76 +91,100 @@ static int exr_grow(exr_reader *r, size_t rows)
     return 0;
 }
 
-static double exr_value(const exr_reader *r, int k, size_t at)
+static double exr_half(uint16_t h)
 {
-    const uint8_t *p = r->buf[k] + at * 4;
-    if (r->dec.channels[r->want[k]].data_type == EXR_PIXEL_UINT) {
-        uint32_t u;
-        memcpy(&u, p, 4);
-        return (double)u;
-    }
+    int e = (h >> 10) & 31, m = h & 1023;
+    double v = e == 0 ? ldexp((double)m, -24) : e == 31 ? (m ? NAN : INFINITY) : ldexp((double)(m + 1024), e - 25);
+    return h & 0x8000 ? -v : v;
+}
+
+/* One sample as stored in the file (little-endian) */
+static double exr_sample(const uint8_t *p, int type)
+{
+    if (type == EXR_PIXEL_HALF) return exr_half((uint16_t)(p[0] | p[1] << 8));
+    uint32_t u = (uint32_t)p[0] | (uint32_t)p[1] << 8 | (uint32_t)p[2] << 16 | (uint32_t)p[3] << 24;
+    if (type == EXR_PIXEL_UINT) return (double)u;
     float f;
-    memcpy(&f, p, 4);
+    memcpy(&f, &u, sizeof f);
     return (double)f;
 }
 
+static const char *exr_compression_name(exr_compression_t c)
+{
+    static const char *const names[] = {"none", "RLE", "ZIPS", "ZIP", "PIZ", "PXR24", "B44", "B44A", "DWAA", "DWAB"};
+    return (unsigned)c < sizeof names / sizeof *names ? names[c] : "unknown";
+}
+
+static int exr_type_bytes(int type) { return type == EXR_PIXEL_HALF ? 2 : 4; }
+
 /* Decodes one chunk into s: its top-left pixel is (px, py) within the data window and it must cover w x h pixels
- * from there. Returns 0, or -1 with err. */
+ * from there. The library reads and decompresses the chunk; its samples are then taken from the decompressed block
+ * (per line, each channel's samples in the channel list's order) with every offset checked against the block's
+ * size. (The library's own unpacking is not used: OpenEXRCore 3.1 writes through the pointer of a skipped channel
+ * when it converts half to float.) Returns 0, or -1 with err. */
 static int exr_decode_chunk(exr_reader *r, const exr_chunk_info_t *ci, size_t px, size_t py, size_t w, size_t h,
                             char *err, size_t errn)
 {
     if (ci->width <= 0 || ci->height <= 0 || px >= r->nx || py >= r->ny || w < 1 || h < 1 || w > r->nx - px ||
-        h > r->ny - py)
+        h > r->ny - py || h > (size_t)ci->height || ci->packed_size == 0 || ci->unpacked_size == 0 ||
+        (r->comp == EXR_COMPRESSION_NONE && ci->packed_size != ci->unpacked_size))
         return surface_fail(err, errn, EXR_UNREADABLE);
-    if (ci->unpacked_size > EXR_MAX_CHUNK_BYTES)
+    if (ci->unpacked_size > EXR_MAX_CHUNK_BYTES || ci->packed_size > EXR_MAX_CHUNK_BYTES)
         return surface_fail(err, errn, "an OpenEXR chunk of %llu bytes: too large",
                             (unsigned long long)ci->unpacked_size);
     exr_result_t rv = r->dec_ready ? exr_decoding_update(r->ctx, 0, ci, &r->dec)
                                    : exr_decoding_initialize(r->ctx, 0, ci, &r->dec);
     if (rv != EXR_ERR_SUCCESS) return surface_fail(err, errn, EXR_UNREADABLE);
     r->dec_ready = 1;
+    exr_decode_pipeline_t *d = &r->dec;
+    if (d->channel_count < 1 || !d->channels) return surface_fail(err, errn, EXR_UNREADABLE);
     for (int k = 0; k < r->nwant; k++)
-        if (r->want[k] < 0 || r->want[k] >= r->dec.channel_count) return surface_fail(err, errn, EXR_UNREADABLE);
-    const exr_coding_channel_info_t *c0 = &r->dec.channels[r->want[0]];
-    if (c0->width <= 0 || c0->height <= 0) return surface_fail(err, errn, EXR_UNREADABLE);
-    size_t cw = (size_t)c0->width, chh = (size_t)c0->height;
-    if (cw < w || chh < h || cw > (size_t)INT32_MAX / 4 || chh > SIZE_MAX / 4 / cw || cw * chh * 4 > EXR_MAX_CHUNK_BYTES)
-        return surface_fail(err, errn, EXR_UNREADABLE);
-    size_t bytes = cw * chh * 4;
-    if (bytes > r->buf_bytes) {
-        for (int k = 0; k < r->nwant; k++) {
-            free(r->buf[k]);
-            if (!(r->buf[k] = malloc(bytes))) {
-                r->buf_bytes = 0;
-                return surface_fail(err, errn, "out of memory");
-            }
-        }
-        r->buf_bytes = bytes;
-    }
-    for (int i = 0; i < r->dec.channel_count; i++) r->dec.channels[i].decode_to_ptr = NULL;
-    for (int k = 0; k < r->nwant; k++) {
-        exr_coding_channel_info_t *c = &r->dec.channels[r->want[k]];
-        if (c->width != c0->width || c->height != c0->height) return surface_fail(err, errn, EXR_UNREADABLE);
-        c->decode_to_ptr = r->buf[k];
-        c->user_pixel_stride = 4;
-        c->user_line_stride = (int32_t)(cw * 4);
-        c->user_bytes_per_element = 4;
-        c->user_data_type = c->data_type == EXR_PIXEL_UINT ? EXR_PIXEL_UINT : EXR_PIXEL_FLOAT;
-    }
-    if (exr_decoding_choose_default_routines(r->ctx, 0, &r->dec) != EXR_ERR_SUCCESS ||
-        exr_decoding_run(r->ctx, 0, &r->dec) != EXR_ERR_SUCCESS)
-        return surface_fail(err, errn, EXR_UNREADABLE);
+        if (r->want[k] >= d->channel_count || d->channels[r->want[k]].width < 0 ||
+            (size_t)d->channels[r->want[k]].width < w)
+            return surface_fail(err, errn, EXR_UNREADABLE);
+    /* the default routines give the read and decompress steps; one channel is marked for output with a pixel stride
+     * that rules out the library's direct read (which would bypass the decompressed block), then unpacking is off */
+    for (int i = 0; i < d->channel_count; i++) d->channels[i].decode_to_ptr = NULL;
+    exr_coding_channel_info_t *c0 = &d->channels[r->want[0]];
+    c0->decode_to_ptr = r->dummy;
+    c0->user_data_type = c0->data_type;
+    c0->user_bytes_per_element = (int16_t)exr_type_bytes(c0->data_type);
+    c0->user_pixel_stride = 2 * c0->user_bytes_per_element;
+    c0->user_line_stride = 0;
+    rv = exr_decoding_choose_default_routines(r->ctx, 0, d);
+    c0->decode_to_ptr = NULL;
+    if (rv != EXR_ERR_SUCCESS || !d->read_fn) return surface_fail(err, errn, EXR_UNREADABLE);
+    d->unpack_and_convert_fn = NULL;
+    rv = exr_decoding_run(r->ctx, 0, d);
+    if (rv == EXR_ERR_FEATURE_NOT_IMPLEMENTED)
+        return surface_fail(err, errn, "this OpenEXR library does not decode the file's compression (%s)",
+                            exr_compression_name(r->comp));
+    if (rv != EXR_ERR_SUCCESS || !d->unpacked_buffer) return surface_fail(err, errn, EXR_UNREADABLE);
     if (exr_grow(r, py + h) != 0) return surface_fail(err, errn, "out of memory");
-    for (size_t y = 0; y < h; y++) {
+    const uint8_t *block = d->unpacked_buffer;
+    uint64_t size = ci->unpacked_size, off = 0;
+    for (int32_t line = 0; line < ci->height; line++) {
+        int64_t y = (int64_t)ci->start_y + line; /* (tiled files carry no subsampled channels) */
+        uint64_t at[3] = {0, 0, 0};
+        for (int c = 0; c < d->channel_count; c++) {
+            const exr_coding_channel_info_t *ch = &d->channels[c];
+            if (ch->y_samples > 1 && y % ch->y_samples != 0) continue;
+            for (int k = 0; k < r->nwant; k++)
+                if (r->want[k] == c) at[k] = off;
+            if (ch->width < 0) return surface_fail(err, errn, EXR_UNREADABLE);
+            off += (uint64_t)ch->width * (uint64_t)exr_type_bytes(ch->data_type);
+            if (off > size) return surface_fail(err, errn, EXR_UNREADABLE);
+        }
+        if ((size_t)line >= h) continue;
         for (size_t x = 0; x < w; x++) {
-            size_t at = y * cw + x, i = (py + y) * r->nx + px + x;
-            if (r->s->kind == SURFACE_HEIGHTS) {
-                r->s->h[i] = exr_value(r, 0, at);
-            } else {
-                double c[3];
-                for (int k = 0; k < r->nwant; k++) c[k] = exr_value(r, k, at);
-                r->s->m[i] = surface_texel_normal(c, r->nwant, r->o->y_down);
+            size_t i = (py + (size_t)line) * r->nx + px + x;
+            double v[3];
+            for (int k = 0; k < r->nwant; k++) {
+                int type = d->channels[r->want[k]].data_type;
+                v[k] = exr_sample(block + at[k] + x * (size_t)exr_type_bytes(type), type);
             }
+            if (r->s->kind == SURFACE_HEIGHTS) r->s->h[i] = v[0];
+            else r->s->m[i] = surface_texel_normal(v, r->nwant, r->o->y_down);
         }
     }
     return 0;
@@ -216,7 +240,8 @@ static int exr_parse_part(exr_reader *r, size_t n, char *err, size_t errn)
     if (exr_get_count(r->ctx, &parts) != EXR_ERR_SUCCESS || parts < 1 ||
         exr_get_storage(r->ctx, 0, &storage) != EXR_ERR_SUCCESS ||
         exr_get_data_window(r->ctx, 0, &dw) != EXR_ERR_SUCCESS ||
-        exr_get_channels(r->ctx, 0, &cl) != EXR_ERR_SUCCESS || !cl || cl->num_channels < 1 || !cl->entries)
+        exr_get_channels(r->ctx, 0, &cl) != EXR_ERR_SUCCESS || !cl || cl->num_channels < 1 || !cl->entries ||
+        exr_get_compression(r->ctx, 0, &r->comp) != EXR_ERR_SUCCESS)
         return surface_fail(err, errn, EXR_UNREADABLE);
     if (storage == EXR_STORAGE_DEEP_SCANLINE || storage == EXR_STORAGE_DEEP_TILED)
         return surface_fail(err, errn, "a deep OpenEXR image is not a surface");
@@ -257,6 +282,10 @@ static int exr_parse_part(exr_reader *r, size_t n, char *err, size_t errn)
             return surface_fail(err, errn, "OpenEXR channel '%s' is subsampled (not supported)",
                                 e->name.str ? e->name.str : "");
     }
+    if (storage == EXR_STORAGE_TILED)
+        for (int i = 0; i < cl->num_channels; i++)
+            if (cl->entries[i].x_sampling != 1 || cl->entries[i].y_sampling != 1)
+                return surface_fail(err, errn, "a tiled OpenEXR file with subsampled channels (not valid)");
     int rc = storage == EXR_STORAGE_SCANLINE ? exr_read_scanlines(r, &dw, err, errn) : exr_read_tiles(r, err, errn);
     if (rc == 0 && r->rows_alloc != r->ny) rc = surface_fail(err, errn, EXR_UNREADABLE);
     return rc;
@@ -285,7 +314,6 @@ int surface_parse_exr(const unsigned char *data, size_t n, const surface_read_op
     int rc = exr_parse_part(&r, n, err, errn);
     if (r.dec_ready) exr_decoding_destroy(r.ctx, &r.dec);
     exr_finish(&r.ctx);
-    for (int k = 0; k < 3; k++) free(r.buf[k]);
     if (rc != 0) {
         free(s->h), free(s->m);
         s->h = NULL, s->m = NULL;
