@@ -481,6 +481,50 @@ static void bad_input(void **state)
     CHECK(ll == -HUGE_VAL, "no samples: %g", ll);
 }
 
+/* Above 2^22 samples: EM on a subsample, then Newton on all (the default) gives the fit of EM on all samples
+ * (full_em): every parameter within 1e-3 standard errors, the same log-likelihood to 1e-12 relative and the same
+ * standard errors to 1e-4, both converged; the progress callback sees the EM iterations and the Newton steps. */
+typedef struct stage_trace {
+    double ll[2000];
+    int n;
+} stage_trace;
+
+static int record_stage(void *ctx, int it, double ll)
+{
+    stage_trace *t = ctx;
+    if (t->n < 2000) t->ll[t->n++] = ll;
+    return it < 0;
+}
+
+static void two_stage(void **state)
+{
+    (void)state;
+    rng r = {42};
+    ggx_shape s;
+    make_shape(&s, (shape_params){0.2, 0.05, 0.5, -0.3, 1.0});
+    size_t n = (1u << 22) + 100000;
+    ggx_vec3 *m = draw(&s, n, 1, &r);
+    ggx_shape a, b;
+    ggx_fit_info ia, ib;
+    ggx_fit_options o = {0};
+    stage_trace tr = {{0}, 0};
+    o.progress = record_stage, o.progress_ctx = &tr, o.threads = 2;
+    fit_ok(&a, m, NULL, n, &o, &ia);
+    o.full_em = 1, o.progress = NULL;
+    fit_ok(&b, m, NULL, n, &o, &ib);
+    const double va[5] = {ia.t[0], ia.t[1], ia.sigma[0], ia.sigma[1], ia.sigma[2]};
+    const double vb[5] = {ib.t[0], ib.t[1], ib.sigma[0], ib.sigma[1], ib.sigma[2]};
+    double worst = 0.0;
+    for (int i = 0; i < 5; i++) worst = fmax(worst, fabs(va[i] - vb[i]) / ib.std_error[i]);
+    CHECK(worst <= 1e-3, "two stages differ from EM on all samples by %g standard errors", worst);
+    CHECK_CLOSE(ia.log_likelihood, ib.log_likelihood, 1e-12, 0.0, "log-likelihood");
+    for (int i = 0; i < 5; i++) CHECK_CLOSE(ia.std_error[i], ib.std_error[i], 1e-4, 0.0, "standard error %d", i);
+    CHECK(tr.n == ia.iterations, "%d calls for %d iterations", tr.n, ia.iterations);
+    printf("two_stage: %d iterations (EM on 2^20, then Newton on %zu) vs %d of EM on all: %.2g standard errors apart\n",
+           ia.iterations, n, ib.iterations, worst);
+    free(m);
+}
+
 /* ---- height fields ---- */
 
 /* h(i, j) = F(i) + G(j) with F, G random walks of Gaussian steps: every facet's slope pairs an x step with a y step,
@@ -572,6 +616,7 @@ int main(void)
         cmocka_unit_test(weights_and_threads),
         cmocka_unit_test(bad_input),
         cmocka_unit_test(heightfield),
+        cmocka_unit_test(two_stage),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

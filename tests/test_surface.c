@@ -262,7 +262,7 @@ static void quantisation(void **state)
         m.kind = SURFACE_NORMALS, m.nx = m.ny = 256;
         m.m = malloc(65536 * sizeof *m.m);
         for (int i = 0; i < 65536; i++) m.m[i] = ggx_sample_ndf(&sh, rng_uniform(&r), rng_uniform(&r));
-        ggx_fit_options o = {GGX_FIT_ISOTROPIC, 0, 0, 0, NULL, NULL};
+        ggx_fit_options o = {GGX_FIT_ISOTROPIC, 0, 0, 0, NULL, NULL, 0};
         ggx_shape f;
         ggx_fit_info info;
         assert_int_equal(ggx_fit_normals(&f, m.m, NULL, 65536, &o, &info), GGX_OK);

@@ -41,7 +41,9 @@ typedef enum ggx_fit_model {
 } ggx_fit_model;
 
 /* Called after each EM iteration with the iteration's number (from 1) and the log-likelihood per sample of the
- * iterate it started from; a nonzero return stops the fit (ggx_fit_info.converged is then 0). */
+ * iterate it started from (of the subsample, in the first stage of a large fit: ggx_fit_options.full_em), and after
+ * each Newton step of the second stage with the log-likelihood of all samples at the new iterate; a nonzero return
+ * stops the fit (ggx_fit_info.converged is then 0). */
 typedef int (*ggx_fit_progress_fn)(void *ctx, int iteration, double log_likelihood);
 
 /* Options; a zeroed struct (or NULL) means every default. */
@@ -54,6 +56,10 @@ typedef struct ggx_fit_options {
     int threads;                 /* POSIX threads for the passes over the samples; 0: 1 */
     ggx_fit_progress_fn progress; /* may be NULL */
     void *progress_ctx;
+    int full_em;                 /* 0 (default): above 2^22 samples, EM runs on 2^20 of them (blocks of 1024 spread
+                                  * evenly over the data) and Newton steps on all samples finish the fit (each
+                                  * accepted step raises the likelihood; the decrement is measured on all samples);
+                                  * 1: EM on all samples throughout */
 } ggx_fit_options;
 
 /* One model of the comparison, fitted to the same samples. */
@@ -100,7 +106,8 @@ typedef struct ggx_fit_info {
 /* Fits the shape of n normals m (weights `weight`, or all 1 when NULL) by maximum likelihood in the family
  * opt->model, by EM (PX-EM: the Student t's weights 2 / (1 + delta_i), delta_i = (x~_i - t)^T Sigma^-1 (x~_i - t),
  * and the scale's update divided by their sum, Liu, Rubin and Wu 1998; the likelihood never decreases), until the
- * Newton decrement is below opt->tolerance or opt->max_iterations. Samples below the horizon, non-finite or of
+ * Newton decrement is below opt->tolerance or opt->max_iterations (above 2^22 samples, EM on a subsample and then
+ * Newton steps that each raise the likelihood of all samples: ggx_fit_options.full_em). Samples below the horizon, non-finite or of
  * weight 0 are ignored and counted. info (may be NULL) receives the fit's statistics and the comparison of all four
  * models. Sigma's eigenvalues are held at GGX_ALPHA_MIN^2 or above (info->clamped says when that binds).
  * Errors: GGX_ERR_NULL (out NULL, or m NULL with n > 0); GGX_ERR_RANGE (a negative weight; opt->model Beckmann or

@@ -277,7 +277,7 @@ static void flatten(const ggx_fit_info *i, double *out)
 EXPORT int ggxpy_fit_normals(ggx_shape *out, const double *m, const double *w, size_t n, int model, int threads,
                              int max_iterations, double tolerance, double *info)
 {
-    ggx_fit_options o = {(ggx_fit_model)model, max_iterations, tolerance, threads, NULL, NULL};
+    ggx_fit_options o = {(ggx_fit_model)model, max_iterations, tolerance, threads, NULL, NULL, 0};
     ggx_fit_info fi;
     int st = ggx_fit_normals(out, (const ggx_vec3 *)m, w, n, &o, &fi);
     flatten(&fi, info);
@@ -288,7 +288,7 @@ EXPORT int ggxpy_fit_heightfield(ggx_shape *out, const double *h, size_t nx, siz
                                  int keep_tilt, int downsample, int model, int threads, int max_iterations,
                                  double tolerance, double *info)
 {
-    ggx_fit_options o = {(ggx_fit_model)model, max_iterations, tolerance, threads, NULL, NULL};
+    ggx_fit_options o = {(ggx_fit_model)model, max_iterations, tolerance, threads, NULL, NULL, 0};
     ggx_heightfield_options ho = {keep_tilt, downsample};
     ggx_fit_info fi;
     int st = ggx_fit_heightfield(out, h, nx, ny, dx, dy, &ho, &o, &fi);

@@ -51,6 +51,7 @@ typedef struct fit_data {
     double tolerance;
     ggx_fit_progress_fn progress;
     void *progress_ctx;
+    int full_em; /* ggx_fit_options.full_em */
 } fit_data;
 
 /* One fitted Student-t model. */
@@ -76,7 +77,15 @@ ggx_status fit_em(const fit_data *d, ggx_fit_model model, const double t0[2], co
  * decrement of the total log-likelihood (scaled to n_eff) and the covariance of the five parameters (zero rows for
  * fixed ones). The decrement is HUGE_VAL where -H is not positive definite. */
 ggx_status fit_information(const fit_data *d, ggx_fit_model model, const double t[2], const double sigma[3],
-                           double *log_likelihood, double *decrement, double cov[5][5]);
+                           double *log_likelihood, double *decrement, double cov[5][5], double step[5]);
+
+/* Newton steps with backtracking on d's samples from the fit r of a subsample: each accepted step raises the
+ * log-likelihood; stops at the tolerance or after max_iterations steps. r->iterations counts the steps too. */
+ggx_status fit_newton(const fit_data *d, ggx_fit_model model, fit_result *r);
+
+/* Above FIT_SUBSAMPLE_MIN samples the models are fitted by EM on FIT_SUBSAMPLE_N of them (blocks of FIT_CHUNK spread
+ * evenly over the data), then polished by fit_newton on all of them. */
+enum { FIT_SUBSAMPLE_MIN = 1 << 22, FIT_SUBSAMPLE_N = 1 << 20 };
 
 /* Validates opt (NULL: defaults) into d's settings; GGX_ERR_RANGE for a bad option. */
 ggx_status fit_settings(const ggx_fit_options *opt, fit_data *d, ggx_fit_model *model);

@@ -68,7 +68,7 @@ ggx_status fit_em(const fit_data *d, ggx_fit_model model, const double t0[2], co
         }
         if (ch <= check_below || it >= d->max_iterations) {
             double dec;
-            st = fit_information(d, model, t, s, &r->log_likelihood, &dec, r->cov);
+            st = fit_information(d, model, t, s, &r->log_likelihood, &dec, r->cov, NULL);
             if (st != GGX_OK) return st;
             r->stationarity = dec;
             if (dec <= d->tolerance) {
@@ -83,10 +83,51 @@ ggx_status fit_em(const fit_data *d, ggx_fit_model model, const double t0[2], co
     memcpy(r->sigma, s, sizeof s);
     if (r->clamped || !r->converged) { /* the closing iterate's likelihood and information */
         double dec;
-        ggx_status st = fit_information(d, model, t, s, &r->log_likelihood, &dec, r->cov);
+        ggx_status st = fit_information(d, model, t, s, &r->log_likelihood, &dec, r->cov, NULL);
         if (st != GGX_OK) return st;
         r->stationarity = r->clamped ? 0.0 : dec;
         if (r->clamped) memset(r->cov, 0, sizeof r->cov);
     }
+    return GGX_OK;
+}
+
+ggx_status fit_newton(const fit_data *d, ggx_fit_model model, fit_result *r)
+{
+    const double floor = GGX_ALPHA_MIN * GGX_ALPHA_MIN;
+    double ll, dec, cov[5][5], step[5];
+    ggx_status st = fit_information(d, model, r->t, r->sigma, &ll, &dec, cov, step);
+    if (st != GGX_OK) return st;
+    r->converged = 0;
+    for (int it = 0; it < d->max_iterations; it++) {
+        if (dec <= d->tolerance) {
+            r->converged = 1;
+            break;
+        }
+        if (!isfinite(dec)) break; /* -H not positive definite: no Newton step */
+        double lam = 1.0, tn[2], sn[3], lln = -HUGE_VAL, decn = HUGE_VAL, covn[5][5], stepn[5];
+        int accepted = 0;
+        for (int half = 0; half < 30 && !accepted; half++, lam *= 0.5) {
+            tn[0] = r->t[0] + lam * step[0], tn[1] = r->t[1] + lam * step[1];
+            sn[0] = r->sigma[0] + lam * step[2], sn[1] = r->sigma[1] + lam * step[3], sn[2] = r->sigma[2] + lam * step[4];
+            double pinv[3];
+            if (!fit_inverse(sn, pinv) || fit_clamp_sigma(sn, floor)) continue; /* outside the cone: shorter */
+            st = fit_information(d, model, tn, sn, &lln, &decn, covn, stepn);
+            if (st != GGX_OK) return st;
+            accepted = lln >= ll;
+        }
+        if (!accepted) break; /* no step raises log L: at the optimum to rounding */
+        r->iterations++;
+        if (d->progress && d->progress(d->progress_ctx, r->iterations, lln)) {
+            memcpy(r->t, tn, sizeof tn), memcpy(r->sigma, sn, sizeof sn);
+            ll = lln, dec = decn, memcpy(cov, covn, sizeof cov);
+            break;
+        }
+        memcpy(r->t, tn, sizeof tn), memcpy(r->sigma, sn, sizeof sn);
+        ll = lln, dec = decn, memcpy(cov, covn, sizeof cov), memcpy(step, stepn, sizeof step);
+    }
+    if (dec <= d->tolerance) r->converged = 1;
+    r->log_likelihood = ll;
+    r->stationarity = dec;
+    memcpy(r->cov, cov, sizeof cov);
     return GGX_OK;
 }

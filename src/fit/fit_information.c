@@ -64,8 +64,9 @@ static int spd_inverse(int k, double a[5][5], double inv[5][5])
 }
 
 ggx_status fit_information(const fit_data *d, ggx_fit_model model, const double t[2], const double sigma[3],
-                           double *log_likelihood, double *decrement, double cov[5][5])
+                           double *log_likelihood, double *decrement, double cov[5][5], double step[5])
 {
+    if (step) memset(step, 0, 5 * sizeof *step);
     fit_point at = {{t[0], t[1]}, {0, 0, 0}, {0, 0, 0}, 0};
     memset(cov, 0, sizeof(double) * 25);
     *decrement = HUGE_VAL;
@@ -136,6 +137,13 @@ ggx_status fit_information(const fit_data *d, ggx_fit_model model, const double 
             for (int p = 0; p < k; p++)
                 for (int q = 0; q < k; q++) v += J[i][p] * inv[p][q] * J[j][q];
             cov[i][j] = v;
+        }
+    if (step) /* (-H)^-1 g in the free parameters, mapped to the five */
+        for (int i = 0; i < 5; i++) {
+            double v = 0.0;
+            for (int p = 0; p < k; p++)
+                for (int q = 0; q < k; q++) v += J[i][p] * inv[p][q] * gf[q];
+            step[i] = v;
         }
     return GGX_OK;
 }

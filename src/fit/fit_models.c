@@ -18,6 +18,7 @@ ggx_status fit_settings(const ggx_fit_options *opt, fit_data *d, ggx_fit_model *
     d->tolerance = o.tolerance > 0.0 ? o.tolerance : 1e-6;
     d->progress = o.progress;
     d->progress_ctx = o.progress_ctx;
+    d->full_em = o.full_em != 0;
     *model = o.model;
     return GGX_OK;
 }
@@ -68,6 +69,34 @@ static ggx_status goodness_of_fit(const fit_data *d, const fit_result *r, int pa
     return GGX_OK;
 }
 
+/* A subsample of a source: sub-block b is the parent's block b * stride (blocks of FIT_CHUNK samples). The passes
+ * read chunks aligned on FIT_CHUNK, so each fill stays within one block. */
+typedef struct subsample {
+    const fit_source *parent;
+    size_t stride;
+} subsample;
+
+static void fill_subsample(const void *ctx, size_t i0, size_t k, double *x, double *y, double *w, double *lc)
+{
+    const subsample *c = ctx;
+    size_t b = i0 / FIT_CHUNK, off = i0 % FIT_CHUNK;
+    c->parent->fill(c->parent->ctx, b * c->stride * FIT_CHUNK + off, k, x, y, w, lc);
+}
+
+/* W, n_eff and the mean log cos theta of a source's samples (one moments pass about 0). */
+static ggx_status fit_constants(fit_data *d)
+{
+    fit_point zero = {{0, 0}, {0, 0, 0}, {0, 0, 0}, 0};
+    double a[FIT_MOMENT_SUMS];
+    ggx_status st = fit_pass(d->src, d->threads, FIT_PASS_MOMENTS, &zero, a);
+    if (st != GGX_OK) return st;
+    if (!(a[0] > 0.0)) return GGX_ERR_DATA;
+    d->w_sum = a[0];
+    d->n_eff = a[0] * a[0] / a[7];
+    d->mean_lc = a[6] / a[0];
+    return GGX_OK;
+}
+
 ggx_status fit_run(const fit_source *src, const ggx_fit_options *opt, ggx_shape *out, ggx_fit_info *info)
 {
     fit_data d;
@@ -76,14 +105,18 @@ ggx_status fit_run(const fit_source *src, const ggx_fit_options *opt, ggx_shape 
     ggx_status st = fit_settings(opt, &d, &model);
     if (st != GGX_OK) return st;
     d.src = src;
-    fit_point zero = {{0, 0}, {0, 0, 0}, {0, 0, 0}, 0};
-    double a[FIT_MOMENT_SUMS];
-    if ((st = fit_pass(src, d.threads, FIT_PASS_MOMENTS, &zero, a)) != GGX_OK) return st;
-    if (info->used < 5 || !(a[0] > 0.0)) return GGX_ERR_DATA;
-    d.w_sum = a[0];
-    d.n_eff = a[0] * a[0] / a[7];
-    d.mean_lc = a[6] / a[0];
+    if (info->used < 5) return GGX_ERR_DATA;
+    if ((st = fit_constants(&d)) != GGX_OK) return st;
     info->effective_n = d.n_eff;
+    /* Large inputs: EM on a subsample, Newton on all samples (ggx_fit_options.full_em). */
+    subsample sc = {src, src->n / FIT_CHUNK / (FIT_SUBSAMPLE_N / FIT_CHUNK)};
+    fit_source sub_src = {fill_subsample, &sc, FIT_SUBSAMPLE_N};
+    fit_data ds = d;
+    int two_stage = !d.full_em && src->n > FIT_SUBSAMPLE_MIN;
+    if (two_stage) {
+        ds.src = &sub_src;
+        if ((st = fit_constants(&ds)) != GGX_OK) two_stage = 0; /* a subsample of skipped samples only */
+    }
 
     double mean[2], cov[3], gll;
     if ((st = fit_gaussian(&d, mean, cov, &gll)) != GGX_OK) return st;
@@ -96,9 +129,19 @@ ggx_status fit_run(const fit_source *src, const ggx_fit_options *opt, ggx_shape 
     fit_result fr[3];
     for (int k = 0; k < 3; k++) {
         ggx_fit_model mk = (ggx_fit_model)k;
-        fit_data dk = d;
+        fit_data dk = two_stage ? ds : d;
         if (mk != model) dk.progress = NULL;
         if ((st = fit_em(&dk, mk, mean, mk == GGX_FIT_ELLIPSOID ? cov : m2, &fr[k])) != GGX_OK) return st;
+        if (two_stage && !fr[k].clamped) {
+            fit_data dn = d;
+            if (mk != model) dn.progress = NULL;
+            if ((st = fit_newton(&dn, mk, &fr[k])) != GGX_OK) return st;
+        } else if (two_stage) { /* held at the floor: the full samples' likelihood and information there */
+            double dec;
+            if ((st = fit_information(&d, mk, fr[k].t, fr[k].sigma, &fr[k].log_likelihood, &dec, fr[k].cov, NULL)))
+                return st;
+            memset(fr[k].cov, 0, sizeof fr[k].cov);
+        }
         mr[k] = (ggx_fit_model_result){fr[k].log_likelihood, 0.0, fit_model_parameters(mk), fr[k].iterations,
                                        {fr[k].t[0], fr[k].t[1]}, {fr[k].sigma[0], fr[k].sigma[1], fr[k].sigma[2]}};
     }

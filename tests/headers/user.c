@@ -30,7 +30,7 @@ int user_fit(ggx_shape *out, const ggx_vec3 *m, size_t n);
 
 int user_fit(ggx_shape *out, const ggx_vec3 *m, size_t n)
 {
-    ggx_fit_options opt = {GGX_FIT_ANISOTROPIC, 100, 1e-6, 1, NULL, NULL};
+    ggx_fit_options opt = {GGX_FIT_ANISOTROPIC, 100, 1e-6, 1, NULL, NULL, 0};
     ggx_fit_info info;
     ggx_heightfield_options hopt = {0, 2};
     (void)hopt;

@@ -282,10 +282,17 @@ static int exr_parse_part(exr_reader *r, size_t n, char *err, size_t errn)
             return surface_fail(err, errn, "OpenEXR channel '%s' is subsampled (not supported)",
                                 e->name.str ? e->name.str : "");
     }
-    if (storage == EXR_STORAGE_TILED)
-        for (int i = 0; i < cl->num_channels; i++)
-            if (cl->entries[i].x_sampling != 1 || cl->entries[i].y_sampling != 1)
-                return surface_fail(err, errn, "a tiled OpenEXR file with subsampled channels (not valid)");
+    /* subsampled channels: not valid in tiled files, and only taken with the compressions that treat a chunk as
+     * bytes (OpenEXRCore 3.1's B44 reads past its buffer on them; PIZ, PXR24 and DWA also work per channel) */
+    for (int i = 0; i < cl->num_channels; i++) {
+        if (cl->entries[i].x_sampling == 1 && cl->entries[i].y_sampling == 1) continue;
+        if (storage == EXR_STORAGE_TILED)
+            return surface_fail(err, errn, "a tiled OpenEXR file with subsampled channels (not valid)");
+        if (r->comp != EXR_COMPRESSION_NONE && r->comp != EXR_COMPRESSION_RLE && r->comp != EXR_COMPRESSION_ZIPS &&
+            r->comp != EXR_COMPRESSION_ZIP)
+            return surface_fail(err, errn, "an OpenEXR file with subsampled channels in %s compression (not supported)",
+                                exr_compression_name(r->comp));
+    }
     int rc = storage == EXR_STORAGE_SCANLINE ? exr_read_scanlines(r, &dw, err, errn) : exr_read_tiles(r, err, errn);
     if (rc == 0 && r->rows_alloc != r->ny) rc = surface_fail(err, errn, EXR_UNREADABLE);
     return rc;
