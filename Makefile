@@ -10,10 +10,11 @@ MAKEFLAGS += --no-print-directory
 
 all: build
 
-# Debian packages: what `make run` needs (compiler, CMake, cairo and a font for the figures), and what the test suite adds (cmocka, g++ for the
+# Debian packages: what `make run` needs (compiler, CMake, cairo and a font for the figures; libpng, libzip, libxml2 and OpenEXR for the surfaces `ggx fit` reads), and what the test suite adds (cmocka, g++ for the
 # header's C++ test, make for the install test, xmllint and poppler (pdfinfo) for the figures, groff for the man page,
 # Python with numpy, pytest and matplotlib for the Python package's tests and its example).
-RUN_PKGS = cmake make gcc libc6-dev pkg-config libcairo2-dev fonts-dejavu-core
+RUN_PKGS = cmake make gcc libc6-dev pkg-config libcairo2-dev fonts-dejavu-core libpng-dev libzip-dev libxml2-dev \
+           libopenexr-dev
 TEST_PKGS = $(RUN_PKGS) g++ clang libcmocka-dev libxml2-utils poppler-utils groff-base python3 python3-numpy python3-pytest \
             python3-matplotlib
 
@@ -115,7 +116,7 @@ FUZZ_SECONDS ?= 60
 fuzz: deps-dev
 	@CC=clang cmake -S . -B build-fuzz -DCMAKE_BUILD_TYPE=RelWithDebInfo -DGGX_FUZZ=ON -DGGX_BUILD_TESTS=OFF \
 	  -DGGX_BUILD_TOOL=OFF -DGGX_BUILD_EXAMPLES=OFF >/dev/null
-	@cmake --build build-fuzz -j $(JOBS) --target fuzz_api fuzz_cli
+	@cmake --build build-fuzz -j $(JOBS) --target fuzz_api fuzz_cli fuzz_surface
 	@sh tests/fuzz/run.sh build-fuzz $(FUZZ_SECONDS)
 
 # CI: each target briefly.

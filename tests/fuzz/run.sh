@@ -5,7 +5,7 @@ set -u
 dir=$1
 secs=$2
 status=0
-for t in fuzz_api fuzz_cli; do
+for t in fuzz_api fuzz_cli fuzz_surface; do
     mkdir -p "$dir/corpus-$t" "$dir/artifacts"
     log="$dir/$t.log"
     if "$dir/$t" -max_total_time="$secs" -print_final_stats=1 -artifact_prefix="$dir/artifacts/" \

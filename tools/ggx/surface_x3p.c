@@ -42,21 +42,36 @@ static int text_of(xmlNode *root, const char *const *path, char *out, size_t n)
     return 1;
 }
 
-/* A member of the archive into memory (at most limit bytes); NULL on failure. */
-static unsigned char *member(zip_t *z, const char *name, size_t limit, size_t *len)
+/* A member of the archive into memory, of exactly `want` bytes when want > 0 (else at most limit); NULL on failure.
+ * The buffer grows with the bytes actually decompressed, so an archive that claims a huge member costs no more
+ * memory than its data inflate to (deflate expands at most about 1000 to 1). */
+static unsigned char *member(zip_t *z, const char *name, size_t want, size_t limit, size_t *len)
 {
     zip_stat_t st;
-    if (zip_stat(z, name, 0, &st) != 0 || !(st.valid & ZIP_STAT_SIZE) || st.size > limit) return NULL;
+    if (zip_stat(z, name, 0, &st) != 0 || !(st.valid & ZIP_STAT_SIZE)) return NULL;
+    if (want ? st.size != want : st.size > limit) return NULL;
     zip_file_t *f = zip_fopen(z, name, 0);
     if (!f) return NULL;
-    unsigned char *buf = malloc(st.size ? st.size : 1);
-    zip_int64_t got = buf ? zip_fread(f, buf, st.size) : -1;
+    size_t cap = 0, n = 0, total = (size_t)st.size;
+    unsigned char *buf = NULL;
+    while (n < total) {
+        if (n == cap) {
+            size_t c = cap ? 2 * cap : 1 << 16;
+            if (c > total) c = total;
+            unsigned char *nb = realloc(buf, c);
+            if (!nb) break;
+            buf = nb, cap = c;
+        }
+        zip_int64_t got = zip_fread(f, buf + n, cap - n);
+        if (got <= 0) break;
+        n += (size_t)got;
+    }
     zip_fclose(f);
-    if (got < 0 || (zip_uint64_t)got != st.size) {
+    if (n != total || (total == 0 && !(buf = malloc(1)))) {
         free(buf);
         return NULL;
     }
-    *len = st.size;
+    *len = n;
     return buf;
 }
 
@@ -74,7 +89,7 @@ int surface_parse_x3p(const unsigned char *data, size_t n, surface *s, char *err
     zip_error_fini(&ze);
     int rc = 0;
     size_t xl = 0, dl = 0, vl = 0;
-    unsigned char *xml = member(z, "main.xml", 1 << 24, &xl), *bin = NULL, *valid = NULL;
+    unsigned char *xml = member(z, "main.xml", 0, 1 << 24, &xl), *bin = NULL, *valid = NULL;
     xmlDoc *doc = NULL;
     if (!xml) {
         rc = surface_fail(err, errn, "no main.xml in the archive");
@@ -128,16 +143,12 @@ int surface_parse_x3p(const unsigned char *data, size_t n, surface *s, char *err
         goto done;
     }
     size_t nx = (size_t)nxd, ny = (size_t)nyd, count = nx * ny;
-    if (!link[0] || !(bin = member(z, link, (size_t)1 << 36, &dl))) {
-        rc = surface_fail(err, errn, "the point data '%s' is not in the archive", link);
+    if (!link[0] || !(bin = member(z, link, count * (size_t)size, 0, &dl))) {
+        rc = surface_fail(err, errn, "the point data '%s' is not in the archive, or is not %zu x %zu points of type %s "
+                          "(%zu bytes) once inflated", link, nx, ny, ztype, count * (size_t)size);
         goto done;
     }
-    if (dl != count * (size_t)size) {
-        rc = surface_fail(err, errn, "'%s' has %zu bytes; %zu x %zu points of type %s need %zu", link, dl, nx, ny,
-                          ztype, count * (size_t)size);
-        goto done;
-    }
-    if (vlink[0] && (!(valid = member(z, vlink, (size_t)1 << 33, &vl)) || vl < (count + 7) / 8)) {
+    if (vlink[0] && (!(valid = member(z, vlink, (count + 7) / 8, 0, &vl)))) {
         rc = surface_fail(err, errn, "the valid-points array '%s' is missing or short", vlink);
         goto done;
     }
