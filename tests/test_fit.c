@@ -564,6 +564,25 @@ static void heightfield(void **state)
     CHECK(fabs(b->sigma[1]) <= 4.0 * sx * sy / sqrt(200), "Beckmann sigma_xy %g", b->sigma[1]);
     printf("heightfield: Gaussian slopes (%.3g, %.3g): Beckmann covariance (%.4g, %.4g, %.4g)\n", sx * sx, sy * sy,
            b->sigma[0], b->sigma[1], b->sigma[2]);
+    /* ggx_heightfield_facets gives the facets the fit takes: their normals fitted by ggx_fit_normals give the same
+     * (t, Sigma) bit for bit up to the order of the sums (1e-12), and the four facets of the first cell are its
+     * four pairs of differences. */
+    size_t total = 0;
+    assert_int_equal(ggx_heightfield_facets(NULL, 0, 0, h, nx, ny, dx, dy, &ho, &total), GGX_OK);
+    CHECK(total == 4 * 300 * 200, "facets %zu", total);
+    double *sl = malloc(2 * total * sizeof *sl);
+    assert_int_equal(ggx_heightfield_facets(sl, 0, total, h, nx, ny, dx, dy, &ho, NULL), GGX_OK);
+    double a = (h[1] - h[0]) / dx, b2 = (h[nx + 1] - h[nx]) / dx, c = (h[nx] - h[0]) / dy, d = (h[nx + 1] - h[1]) / dy;
+    CHECK(sl[0] == a && sl[1] == c && sl[2] == b2 && sl[3] == d && sl[4] == a && sl[5] == d && sl[6] == b2 && sl[7] == c,
+          "the first cell's facets");
+    ggx_vec3 *fm = malloc(total * sizeof *fm);
+    for (size_t i = 0; i < total; i++) fm[i] = normal_of_slope(sl[2 * i], sl[2 * i + 1]);
+    ggx_fit_info viaf;
+    ggx_shape f2;
+    fit_ok(&f2, fm, NULL, total, NULL, &viaf);
+    for (int i = 0; i < 3; i++) CHECK_CLOSE(viaf.sigma[i], info.sigma[i], 1e-9, 1e-15, "facets' fit sigma %d", i);
+    assert_int_equal(ggx_heightfield_facets(sl, total - 1, 2, h, nx, ny, dx, dy, &ho, NULL), GGX_ERR_RANGE);
+    free(fm), free(sl);
     free(h);
     /* A tilted plane plus noise. */
     h = walk_surface(&r, nx, ny, dx, dy, 0.05, 0.05, 0.3, -0.2);

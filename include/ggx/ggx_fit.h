@@ -143,6 +143,14 @@ typedef struct ggx_heightfield_options {
 ggx_status ggx_fit_heightfield(ggx_shape *out, const double *h, size_t nx, size_t ny, double dx, double dy,
                                const ggx_heightfield_options *hopt, const ggx_fit_options *opt, ggx_fit_info *info);
 
+/* The slopes (x~, y~) of facets [first, first + count) of the height field, as ggx_fit_heightfield takes them
+ * (facet k % 4 of cell k / 4, cells row by row; levelled or downsampled by hopt), into slopes[2 k], slopes[2 k + 1];
+ * NaN for a cell with a non-finite height. *total (may be NULL) receives the number of facets,
+ * 4 (nx' - 1)(ny' - 1) for the grid after downsampling. Costs a pass over the heights for the levelling plane on
+ * every call, so read large ranges. Errors: as ggx_fit_heightfield; GGX_ERR_RANGE for a range past *total. */
+ggx_status ggx_heightfield_facets(double *slopes, size_t first, size_t count, const double *h, size_t nx, size_t ny,
+                                  double dx, double dy, const ggx_heightfield_options *hopt, size_t *total);
+
 #ifdef __cplusplus
 }
 #endif

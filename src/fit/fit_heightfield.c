@@ -73,6 +73,37 @@ static void plane_gradient(const grid *g, double *px, double *py)
     *py = (cxx * cyh - cxy * cxh) / det / g->dy;
 }
 
+/* The grid the facets come from: validated, downsampled (into *coarse, freed by the caller) and levelled. */
+static ggx_status grid_setup(grid *g, double **coarse, const double *h, size_t nx, size_t ny, double dx, double dy,
+                             const ggx_heightfield_options *hopt)
+{
+    *coarse = NULL;
+    if (!h) return GGX_ERR_NULL;
+    if (!isfinite(dx) || !isfinite(dy)) return GGX_ERR_NONFINITE;
+    if (nx < 2 || ny < 2 || !(dx > 0.0) || !(dy > 0.0) || nx > SIZE_MAX / 4 / ny) return GGX_ERR_RANGE;
+    ggx_heightfield_options ho = {0, 0};
+    if (hopt) ho = *hopt;
+    if (ho.downsample < 0) return GGX_ERR_RANGE;
+    *g = (grid){h, nx, ny, dx, dy, 0.0, 0.0};
+    if (ho.downsample >= 2) {
+        size_t k = (size_t)ho.downsample, cnx = nx / k, cny = ny / k;
+        if (cnx < 2 || cny < 2) return GGX_ERR_RANGE;
+        double *c = malloc(cnx * cny * sizeof *c);
+        if (!c) return GGX_ERR_MEMORY;
+        for (size_t j = 0; j < cny; j++)
+            for (size_t i = 0; i < cnx; i++) {
+                double sum = 0.0;
+                for (size_t b = 0; b < k; b++)
+                    for (size_t a = 0; a < k; a++) sum += h[(j * k + b) * nx + i * k + a];
+                c[j * cnx + i] = sum / (double)(k * k); /* NaN when any height of the block is */
+            }
+        *g = (grid){c, cnx, cny, dx * (double)k, dy * (double)k, 0.0, 0.0};
+        *coarse = c;
+    }
+    if (!ho.keep_tilt) plane_gradient(g, &g->px, &g->py);
+    return GGX_OK;
+}
+
 GGX_API ggx_status ggx_fit_heightfield(ggx_shape *out, const double *h, size_t nx, size_t ny, double dx, double dy,
                                        const ggx_heightfield_options *hopt, const ggx_fit_options *opt,
                                        ggx_fit_info *info)
@@ -80,34 +111,17 @@ GGX_API ggx_status ggx_fit_heightfield(ggx_shape *out, const double *h, size_t n
     ggx_fit_info local;
     ggx_fit_info *inf = info ? info : &local;
     memset(inf, 0, sizeof *inf);
-    if (!out || !h) return GGX_ERR_NULL;
-    if (!isfinite(dx) || !isfinite(dy)) return GGX_ERR_NONFINITE;
-    if (nx < 2 || ny < 2 || !(dx > 0.0) || !(dy > 0.0) || nx > SIZE_MAX / 4 / ny) return GGX_ERR_RANGE;
-    ggx_heightfield_options ho = {0, 0};
-    if (hopt) ho = *hopt;
-    if (ho.downsample < 0) return GGX_ERR_RANGE;
+    if (!out) return GGX_ERR_NULL;
     fit_data check;
     ggx_fit_model model;
-    ggx_status st = fit_settings(opt, &check, &model);
-    if (st != GGX_OK) return st;
-
-    grid g = {h, nx, ny, dx, dy, 0.0, 0.0};
-    double *coarse = NULL;
-    if (ho.downsample >= 2) {
-        size_t k = (size_t)ho.downsample, cnx = nx / k, cny = ny / k;
-        if (cnx < 2 || cny < 2) return GGX_ERR_RANGE;
-        coarse = malloc(cnx * cny * sizeof *coarse);
-        if (!coarse) return GGX_ERR_MEMORY;
-        for (size_t j = 0; j < cny; j++)
-            for (size_t i = 0; i < cnx; i++) {
-                double s = 0.0;
-                for (size_t b = 0; b < k; b++)
-                    for (size_t a = 0; a < k; a++) s += h[(j * k + b) * nx + i * k + a];
-                coarse[j * cnx + i] = s / (double)(k * k); /* NaN when any height of the block is */
-            }
-        g = (grid){coarse, cnx, cny, dx * (double)k, dy * (double)k, 0.0, 0.0};
+    grid g;
+    double *coarse;
+    ggx_status st = grid_setup(&g, &coarse, h, nx, ny, dx, dy, hopt);
+    if (st == GGX_OK) st = fit_settings(opt, &check, &model);
+    if (st != GGX_OK) {
+        free(coarse);
+        return st;
     }
-    if (!ho.keep_tilt) plane_gradient(&g, &g.px, &g.py);
     for (size_t j = 0; j + 1 < g.ny; j++)
         for (size_t i = 0; i + 1 < g.nx; i++) {
             if (cell_finite(&g, i, j))
@@ -129,4 +143,35 @@ GGX_API ggx_status ggx_fit_heightfield(ggx_shape *out, const double *h, size_t n
     }
     free(coarse);
     return st;
+}
+
+GGX_API ggx_status ggx_heightfield_facets(double *slopes, size_t first, size_t count, const double *h, size_t nx,
+                                          size_t ny, double dx, double dy, const ggx_heightfield_options *hopt,
+                                          size_t *total)
+{
+    if (!slopes && count > 0) return GGX_ERR_NULL;
+    grid g;
+    double *coarse;
+    ggx_status st = grid_setup(&g, &coarse, h, nx, ny, dx, dy, hopt);
+    if (st != GGX_OK) {
+        free(coarse);
+        return st;
+    }
+    size_t n = 4 * (g.nx - 1) * (g.ny - 1);
+    if (total) *total = n;
+    if (first > n || count > n - first) {
+        free(coarse);
+        return GGX_ERR_RANGE;
+    }
+    double x[FIT_CHUNK], y[FIT_CHUNK], w[FIT_CHUNK];
+    for (size_t at = 0; at < count; at += FIT_CHUNK) {
+        size_t k = count - at < FIT_CHUNK ? count - at : FIT_CHUNK;
+        fill_grid(&g, first + at, k, x, y, w, NULL);
+        for (size_t i = 0; i < k; i++) {
+            slopes[2 * (at + i)] = w[i] != 0.0 ? x[i] : NAN;
+            slopes[2 * (at + i) + 1] = w[i] != 0.0 ? y[i] : NAN;
+        }
+    }
+    free(coarse);
+    return GGX_OK;
 }
