@@ -18,6 +18,7 @@ bad() { fail=$((fail + 1)); echo "FAIL: $*"; }
 near() { awk -v a="$1" -v b="$2" -v t="$3" 'BEGIN { d = a - b; if (d < 0) d = -d; exit !(d <= t) }'; }
 
 "$GGX" fit --help > h.txt && grep -q "usage: ggx fit" h.txt && ok || bad "ggx fit --help"
+printf 'x,y,z\n0,0\n' > short.csv
 
 # --- normals of a skewed shape, sampled by the command itself, fitted back
 "$GGX" sample --sampler stretch -n 20000 --alpha 0.3,0.1 --skew 20,-10 --rotate 40 --seed 7 | cut -d, -f1-3 > n.csv
@@ -38,6 +39,13 @@ grep -q "p = " fit.md && ok || bad "md goodness of fit"
 "$GGX" fit --normals n.csv --format csv --model isotropic --out fit.csv && ok || bad "fit csv --out"
 head -1 fit.csv | grep -q "^quantity,value,std_error$" && grep -q "^sigma_xy,0,0$" fit.csv && ok ||
     bad "csv: $(head -3 fit.csv)"
+
+# --figure: a PNG (or SVG) beside the report, both or neither
+"$GGX" fit --normals n.csv --out rep.md --figure fig.png && [ -s rep.md ] &&
+    [ "$(head -c 8 fig.png | od -An -c | tr -d ' ')" = "211PNG\r\n032\n" ] && ok || bad "--figure PNG"
+"$GGX" fit --normals n.csv --figure fig.svg > /dev/null && grep -q "<svg" fig.svg && ok || bad "--figure SVG"
+rm -f fig2.png
+"$GGX" fit --normals short.csv --figure fig2.png > /dev/null 2>&1; [ ! -e fig2.png ] && ok || bad "figure left by a failure"
 
 # --- a height field as a Gwyddion text export: separable Gaussian random walks (Gaussian slopes: Beckmann)
 awk 'BEGIN { srand(3); n = 120; pi = 3.141592653589793
@@ -68,7 +76,6 @@ printf 'PK\005\006\0\0\0\0\0\0\0\0\0\0\0\0\0\0\0\0\0\0' > empty.x3p
 printf '1 2\n3 nan\n' > nan.txt
 printf '5\n' > one.txt
 printf '0,0,1\n0,0,1\n0,0,1\n0,0,1\n' > four.csv
-printf 'x,y,z\n0,0\n' > short.csv
 expect2 "no input" "give one of" "$GGX" fit
 expect2 "two inputs" "give one of" "$GGX" fit --normals n.csv --heightfield h.txt
 expect2 "missing file" "cannot read" "$GGX" fit --normals missing.csv

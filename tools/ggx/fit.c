@@ -6,8 +6,46 @@
 #include <string.h>
 
 #include "cli.h"
+#include "canvas.h"
+#include "fit_figure.h"
 #include "ggx/ggx_fit.h"
 #include "surface.h"
+
+/* The samples of the figure: normals as slopes, or the height field's facets through the library. */
+typedef struct figure_ctx {
+    const surface *s;
+    const double *h;
+    double dx, dy;
+    ggx_heightfield_options ho;
+} figure_ctx;
+
+static void read_samples(const void *ctx, size_t at, size_t k, double *x, double *y, double *w)
+{
+    const figure_ctx *c = ctx;
+    if (c->s->kind == SURFACE_NORMALS) {
+        for (size_t i = 0; i < k; i++) {
+            ggx_vec3 m = c->s->m[at + i];
+            int ok = m.z > 0 && isfinite(m.x) && isfinite(m.y);
+            x[i] = ok ? -m.x / m.z : 0.0, y[i] = ok ? -m.y / m.z : 0.0;
+            w[i] = ok ? (c->s->w ? c->s->w[at + i] : 1.0) : 0.0;
+        }
+        return;
+    }
+    /* facets read in blocks of 2^20 (each call levels the whole grid again) */
+    enum { BLOCK = 1 << 20 };
+    static double *block;
+    static size_t first = (size_t)-1, len;
+    if (at < first || at + k > first + len) {
+        size_t total;
+        ggx_heightfield_facets(NULL, 0, 0, c->h, c->s->nx, c->s->ny, c->dx, c->dy, &c->ho, &total);
+        first = at, len = total - at < BLOCK ? total - at : BLOCK;
+        if (!block && !(block = malloc(2 * BLOCK * sizeof *block))) die("out of memory");
+        if (ggx_heightfield_facets(block, first, len, c->h, c->s->nx, c->s->ny, c->dx, c->dy, &c->ho, NULL) != GGX_OK)
+            die("--figure: the facets could not be read");
+    }
+    const double *sl = block + 2 * (at - first);
+    for (size_t i = 0; i < k; i++) x[i] = sl[2 * i], y[i] = sl[2 * i + 1], w[i] = isnan(sl[2 * i]) ? 0.0 : 1.0;
+}
 
 static const char *const MODEL_NAMES[GGX_FIT_MODELS] = {"ellipsoid", "anisotropic", "isotropic", "beckmann"};
 static const char *const MODEL_WORDS[GGX_FIT_MODELS] = {
@@ -52,12 +90,15 @@ static void usage(void)
            "  --y-down             the normal map's green channel points down (DirectX); default up (OpenGL)\n"
            "  --model M            the family of the printed shape (default ellipsoid); all four are compared\n"
            "  --threads N          threads for the fit's passes (results do not depend on N)\n"
-           "  --format md|csv|json (default md)\n");
+           "  --format md|csv|json (default md)\n"
+           "  --figure FILE        also draw the measured NDF beside the fitted one (top views, one colour scale) with\n"
+           "                       their difference, and the slopes' histogram with the fitted contours (.png, .svg,\n"
+           "                       .pdf); a height field's facets are read back in blocks, once per block\n");
 }
 
 /* The samples of the input, fitted. */
 static void fit_input(const options *o, const surface *s, const ggx_fit_options *fo, ggx_shape *out,
-                      ggx_fit_info *info, const char **what, double *spacing_used)
+                      ggx_fit_info *info, const char **what, double *spacing_used, double **heights)
 {
     ggx_status st;
     if (s->kind == SURFACE_NORMALS) {
@@ -79,7 +120,7 @@ static void fit_input(const options *o, const surface *s, const ggx_fit_options 
         for (size_t i = 0; i < n; i++) h[i] = s->h[i] * zs;
         ggx_heightfield_options ho = {o->keep_tilt, o->downsample};
         st = ggx_fit_heightfield(out, h, s->nx, s->ny, dx, dy, &ho, fo, info);
-        free(h);
+        *heights = h; /* the caller's, for the figure */
         *what = "facets";
         spacing_used[0] = dx, spacing_used[1] = dy;
     }
@@ -91,7 +132,7 @@ int cmd_fit(int argc, char **argv)
     options o;
     parse_options(argc, argv, 2,
                   &o, "heightfield,normal-map,normals,spacing,z-scale,keep-tilt,downsample,y-down,"
-                      "model,threads,format,out,progress,no-progress");
+                      "model,threads,format,out,figure,progress,no-progress");
     if (o.help) {
         usage();
         return 0;
@@ -129,7 +170,8 @@ int cmd_fit(int argc, char **argv)
     ggx_fit_info info;
     const char *what = "";
     double spacing[2] = {0, 0};
-    fit_input(&o, &s, &fo, &fit, &info, &what, spacing);
+    double *heights = NULL;
+    fit_input(&o, &s, &fo, &fit, &info, &what, spacing, &heights);
     if (bar) progress_end("fit", 200);
     /* A quantised map's levels are 2 / (2^bits - 1) apart in each component, about that in slope near n: a lobe
      * narrower than a few levels is not resolved (docs/design/fit.md, "Quantised normal maps"). */
@@ -151,8 +193,8 @@ int cmd_fit(int argc, char **argv)
     ggx_shape_ellipsoid_params(&fit, &ax, &ay, &tx, &ty, &tz);
     ggx_ellipsoid_matrix(A, ax, ay, tx, ty, tz);
     char shape[200];
-    snprintf(shape, sizeof shape, "--alpha %.6g,%.6g --skew %.6g,%.6g --rotate %.6g", ax, ay, tx / DEG, ty / DEG,
-             tz / DEG);
+    tx = tx / DEG + 0.0, ty = ty / DEG + 0.0, tz = tz / DEG + 0.0; /* degrees; + 0.0 turns -0 into 0 */
+    snprintf(shape, sizeof shape, "--alpha %.6g,%.6g --skew %.6g,%.6g --rotate %.6g", ax, ay, tx, ty, tz);
     const double val[5] = {info.t[0], info.t[1], info.sigma[0], info.sigma[1], info.sigma[2]};
     const ggx_fit_model_result *mr = info.models;
     double best_bic = mr[info.best].bic;
@@ -193,7 +235,7 @@ int cmd_fit(int argc, char **argv)
     } else if (strcmp(fmt, "csv") == 0) {
         fprintf(f, "quantity,value,std_error\n");
         fprintf(f, "alpha_x,%.10g,\nalpha_y,%.10g,\nskew_x_deg,%.10g,\nskew_y_deg,%.10g,\nrotate_deg,%.10g,\n", ax, ay,
-                tx / DEG, ty / DEG, tz / DEG);
+                tx, ty, tz);
         for (int i = 0; i < 5; i++) fprintf(f, "%s,%.10g,%.10g\n", PARAM_NAMES[i], val[i], info.std_error[i]);
         for (int k = 0; k < GGX_FIT_MODELS; k++)
             fprintf(f, "log_likelihood_%s,%.10g,\nbic_%s,%.10g,\n", MODEL_NAMES[k], mr[k].log_likelihood,
@@ -210,7 +252,7 @@ int cmd_fit(int argc, char **argv)
             else fputc(*p, f);
         }
         fprintf(f, "\",\n  \"shape\": {\"alpha\": [%.10g, %.10g], \"skew_deg\": [%.10g, %.10g], \"rotate_deg\": %.10g},\n",
-                ax, ay, tx / DEG, ty / DEG, tz / DEG);
+                ax, ay, tx, ty, tz);
         fprintf(f, "  \"matrix\": [[%.10g, %.10g, %.10g], [%.10g, %.10g, %.10g], [%.10g, %.10g, %.10g]],\n", A[0][0],
                 A[0][1], A[0][2], A[1][0], A[1][1], A[1][2], A[2][0], A[2][1], A[2][2]);
         fprintf(f, "  \"t\": [%.10g, %.10g], \"sigma\": [%.10g, %.10g, %.10g],\n", val[0], val[1], val[2], val[3], val[4]);
@@ -232,7 +274,20 @@ int cmd_fit(int argc, char **argv)
                 info.used, ignored, info.effective_n, info.iterations, info.converged ? "true" : "false",
                 info.clamped ? "true" : "false");
     }
+    if (o.figure) out_begin_set(); /* the report and the figure appear together or not at all */
     out_close(&out);
+    if (o.figure) {
+        figure_ctx fc = {&s, heights, spacing[0], spacing[1], {o.keep_tilt, o.downsample}};
+        size_t nsamp = s.nx * s.ny;
+        if (s.kind == SURFACE_HEIGHTS)
+            ggx_heightfield_facets(NULL, 0, 0, heights, s.nx, s.ny, spacing[0], spacing[1], &fc.ho, &nsamp);
+        fit_samples fs = {read_samples, &fc, nsamp};
+        char title[300];
+        snprintf(title, sizeof title, "ggx fit: %s", path);
+        fit_figure_write(o.figure, &fs, &fit, &info, MODEL_WORDS[fo.model], title);
+        out_commit_set();
+    }
+    free(heights);
     surface_free(&s);
     return 0;
 }
