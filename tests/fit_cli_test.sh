@@ -8,6 +8,7 @@ GGX_BIN=$(command -v "$1") || GGX_BIN=$1
 case $GGX_BIN in /*) ;; *) GGX_BIN=$(pwd)/$GGX_BIN ;; esac
 GGX="ggx_run"
 ggx_run() { ${GGX_WRAP:-} "$GGX_BIN" "$@"; }
+ROOT=$(cd "$(dirname "$0")/.." && pwd) # for the README
 tmp=$(mktemp -d)
 trap 'rm -rf "$tmp"' EXIT
 cd "$tmp" || exit 1
@@ -94,6 +95,15 @@ expect2 "tilt for normals" "apply to --heightfield" "$GGX" fit --normals n.csv -
 expect2 "normals as heights" "holds normals" "$GGX" fit --heightfield n.csv
 expect2 "bad format" "is not md, csv or json" "$GGX" fit --normals n.csv --format xml
 expect2 "downsample too far" "fewer than 2 x 2" "$GGX" fit --heightfield h.txt --downsample 100
+
+# the README's fitting commands, run as written (the ```sh block of "Fitting a measured surface")
+sed -n '/^## Fitting a measured surface/,/^## /p' "$ROOT/README.md" | sed -n '/^```sh/,/^```/p' | grep '^ggx ' > cmds.txt
+[ "$(wc -l < cmds.txt)" -ge 3 ] && ok || bad "README fit commands not found"
+while IFS= read -r line; do
+    cmd=$(printf '%s\n' "$line" | sed 's/  *#.*//; s/^ggx /"$GGX" /')
+    eval "$cmd" > readme_out.txt 2>&1 && ok || bad "README line '$line': $(tail -2 readme_out.txt)"
+done < cmds.txt
+[ -s fit.png ] && grep -q "ellipsoid" readme_out.txt && ok || bad "README fit: no figure or no report"
 
 echo "fit CLI: $pass passed, $fail failed"
 [ $fail -eq 0 ]
