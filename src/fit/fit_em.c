@@ -106,14 +106,17 @@ ggx_status fit_newton(const fit_data *d, ggx_fit_model model, fit_result *r)
         if (!isfinite(dec)) break; /* -H not positive definite: no Newton step */
         double lam = 1.0, tn[2], sn[3], lln = -HUGE_VAL, decn = HUGE_VAL, covn[5][5], stepn[5];
         int accepted = 0;
-        for (int half = 0; half < 30 && !accepted; half++, lam *= 0.5) {
+        /* a step is accepted when it does not lower log L beyond the rounding of the per-sample mean (near the
+         * optimum a Newton step's gain, about decrement^2 / (2 n_eff) per sample, is far below it) */
+        double slack = 1e-13 * fmax(1.0, fabs(ll));
+        for (int half = 0; half < 8 && !accepted; half++, lam *= 0.5) {
             tn[0] = r->t[0] + lam * step[0], tn[1] = r->t[1] + lam * step[1];
             sn[0] = r->sigma[0] + lam * step[2], sn[1] = r->sigma[1] + lam * step[3], sn[2] = r->sigma[2] + lam * step[4];
             double pinv[3];
             if (!fit_inverse(sn, pinv) || fit_clamp_sigma(sn, floor)) continue; /* outside the cone: shorter */
             st = fit_information(d, model, tn, sn, &lln, &decn, covn, stepn);
             if (st != GGX_OK) return st;
-            accepted = lln >= ll;
+            accepted = lln >= ll - slack;
         }
         if (!accepted) break; /* no step raises log L: at the optimum to rounding */
         r->iterations++;

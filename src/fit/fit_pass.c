@@ -44,6 +44,15 @@ static double sum_log(const double *q, size_t k)
     return sum + (double)e * 0.69314718055994530942 + log(acc);
 }
 
+/* sum w_i log(1 + delta_i) from q_i = 1 + w_i delta_i: by sum_log when every weight is 0 or 1, else per sample. */
+static double weighted_log_sum(const double *q, const double *w, size_t k, int general)
+{
+    if (!general) return sum_log(q, k);
+    double l = 0.0;
+    for (size_t i = 0; i < k; i++) l += w[i] != 0.0 ? w[i] * log1p((q[i] - 1.0) / w[i]) : 0.0;
+    return l;
+}
+
 /* The sums of samples [i0, i1) into s (zeroed by the caller). Every loop is free of branches (a skipped sample has
  * w = 0 and finite slopes, so it adds zeros) and vectorises; the x86-64-v3 clone runs them 4 wide. */
 GGX_HOT static void unit_sums(const fit_source *src, fit_pass_kind kind, const fit_point *at, size_t i0, size_t i1,
@@ -75,20 +84,15 @@ GGX_HOT static void unit_sums(const fit_source *src, fit_pass_kind kind, const f
                 q[i] = 1.0 + wi * delta;         /* (1 + delta)^w for w in {0, 1} */
                 unit += wi != 0.0 && wi != 1.0; /* a weight other than 0 and 1 */
             }
-            double lsum = 0.0;
-            if (unit == 0.0) {
-                lsum = sum_log(q, k);
-            } else {
-                for (size_t i = 0; i < k; i++) lsum += w[i] * log(1.0 + (q[i] - 1.0) / (w[i] != 0.0 ? w[i] : 1.0));
-            }
+            double lsum = weighted_log_sum(q, w, k, unit != 0.0);
             s[0] += a0, s[1] += a1, s[2] += a2, s[3] += a3, s[4] += a4, s[5] += a5, s[6] += a6, s[7] += lsum;
         } else if (kind == FIT_PASS_HESSIAN) {
             /* With q = P r, c = 1 / (1 + delta) and e = (qx^2, 2 qx qy, qy^2): W, sum w c, sum w c q (2),
              * sum w c q q^T (3), sum w c^2 q q^T (3), sum w c^2 q e^T (2 x 3), sum w c^2 e e^T (6), sum w log(1 + delta). */
-            double a[FIT_HESSIAN_SUMS] = {0};
+            double a[FIT_HESSIAN_SUMS - 1] = {0}, unit = 0.0; /* the last sum, of the logs, after the loop */
+#pragma omp simd reduction(+ : a, unit)
             for (size_t i = 0; i < k; i++) {
                 double wi = w[i], rx = x[i] - t0, ry = y[i] - t1;
-                if (wi == 0.0) continue; /* once per fit and model: kept simple */
                 double qx = p0 * rx + p1 * ry, qy = p1 * rx + p2 * ry, delta = qx * rx + qy * ry;
                 double c = 1.0 / (1.0 + delta), wc = wi * c, wc2 = wc * c;
                 double e0 = qx * qx, e1 = 2.0 * qx * qy, e2 = qy * qy;
@@ -99,9 +103,11 @@ GGX_HOT static void unit_sums(const fit_source *src, fit_pass_kind kind, const f
                 a[13] += wc2 * qy * e0, a[14] += wc2 * qy * e1, a[15] += wc2 * qy * e2;
                 a[16] += wc2 * e0 * e0, a[17] += wc2 * e0 * e1, a[18] += wc2 * e0 * e2;
                 a[19] += wc2 * e1 * e1, a[20] += wc2 * e1 * e2, a[21] += wc2 * e2 * e2;
-                a[22] += wi * log1p(delta);
+                q[i] = 1.0 + wi * delta;
+                unit += wi != 0.0 && wi != 1.0;
             }
-            for (int j = 0; j < FIT_HESSIAN_SUMS; j++) s[j] += a[j];
+            for (int j = 0; j < FIT_HESSIAN_SUMS - 1; j++) s[j] += a[j];
+            s[FIT_HESSIAN_SUMS - 1] += weighted_log_sum(q, w, k, unit != 0.0);
         } else {
             const int K = at->cells;
             const double l0 = at->linv[0], l1 = at->linv[1], l2 = at->linv[2];

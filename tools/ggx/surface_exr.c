@@ -1,8 +1,10 @@
 /* OpenEXR surfaces through the OpenEXR C core library (OpenEXRCore): part 0 of a scanline or tiled file (level 0 of
- * a mipmap or ripmap), any compression the library decodes, channels of type HALF, FLOAT or UINT. Heights are the
- * channel "Y", else "Z", else the file's first channel; a normal map is R, G and optionally B, components stored
- * directly in [-1, 1]. Written as a scanline file with ZIP compression (16 lines a chunk) in FLOAT: heights in one
- * channel "Y" (times z_scale where it is set), normals in R, G, B. SPDX-License-Identifier: MIT */
+ * a mipmap or ripmap), any compression the library decodes (OpenEXRCore 3.1 decodes none, RLE, ZIPS, ZIP, PIZ, PXR24,
+ * B44 and B44A, not DWAA or DWAB), channels of type HALF, FLOAT or UINT. Heights are the channel "Y", else "Z", else
+ * the file's first channel; a normal map is R, G and optionally B, components stored directly in [-1, 1]. Subsampled
+ * channels are skipped over in files compressed as bytes (none, RLE, ZIP) and refused elsewhere. Written as a
+ * scanline file with ZIP compression (16 lines a chunk) in FLOAT: heights in one channel "Y" (times z_scale where it
+ * is set), normals in R, G, B. SPDX-License-Identifier: MIT */
 #include <math.h>
 #include <stdint.h>
 #include <stdio.h>
