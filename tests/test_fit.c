@@ -572,9 +572,16 @@ static void heightfield(void **state)
     CHECK(total == 4 * 300 * 200, "facets %zu", total);
     double *sl = malloc(2 * total * sizeof *sl);
     assert_int_equal(ggx_heightfield_facets(sl, 0, total, h, nx, ny, dx, dy, &ho, NULL), GGX_OK);
-    double a = (h[1] - h[0]) / dx, b2 = (h[nx + 1] - h[nx]) / dx, c = (h[nx] - h[0]) / dy, d = (h[nx + 1] - h[1]) / dy;
-    CHECK(sl[0] == a && sl[1] == c && sl[2] == b2 && sl[3] == d && sl[4] == a && sl[5] == d && sl[6] == b2 && sl[7] == c,
-          "the first cell's facets");
+    {   /* a cell of four unrelated heights (this walk surface is separable: its cells have equal opposite sides) */
+        const double q[4] = {0.3, 1.1, -0.4, 0.9}; /* h00, h10, h01, h11 on a 2 x 2 grid */
+        double fs[8];
+        assert_int_equal(ggx_heightfield_facets(fs, 0, 4, q, 2, 2, 0.5, 0.25, &ho, NULL), GGX_OK);
+        double a = (q[1] - q[0]) / 0.5, b2 = (q[3] - q[2]) / 0.5, c = (q[2] - q[0]) / 0.25, d = (q[3] - q[1]) / 0.25;
+        CHECK(fs[0] == a && fs[1] == c && fs[2] == b2 && fs[3] == d && fs[4] == a && fs[5] == d && fs[6] == b2 &&
+                  fs[7] == c,
+              "the cell's facets: (%g, %g) (%g, %g) (%g, %g) (%g, %g)", fs[0], fs[1], fs[2], fs[3], fs[4], fs[5], fs[6],
+              fs[7]);
+    }
     ggx_vec3 *fm = malloc(total * sizeof *fm);
     for (size_t i = 0; i < total; i++) fm[i] = normal_of_slope(sl[2 * i], sl[2 * i + 1]);
     ggx_fit_info viaf;

@@ -66,7 +66,8 @@ static void height_round_trips(void **state)
         double tol; /* relative to the range of heights */
         int spacing;
     } cases[] = {{SURFACE_ASCII, "h.txt", 1e-15, 1}, {SURFACE_XYZ, "h.xyz", 1e-15, 1}, {SURFACE_GSF, "h.gsf", 1e-6, 1},
-                 {SURFACE_X3P, "h.x3p", 0.0, 1},     {SURFACE_PNG, "h.png", 0.51 / 65535, 0}};
+                 {SURFACE_X3P, "h.x3p", 0.0, 1},     {SURFACE_PNG, "h.png", 0.51 / 65535, 0},
+                 {SURFACE_EXR, "h.exr", 1e-6, 0}};
     for (unsigned c = 0; c < sizeof cases / sizeof cases[0]; c++) {
         char err[256] = "";
         double zs = 0.0;
@@ -78,7 +79,9 @@ static void height_round_trips(void **state)
         double lo = HUGE_VAL, hi = -HUGE_VAL, worst = 0.0;
         for (int i = 0; i < 35; i++) lo = fmin(lo, s.h[i]), hi = fmax(hi, s.h[i]);
         for (int i = 0; i < 35; i++) {
-            double got = cases[c].f == SURFACE_PNG ? lo + b.h[i] * zs : b.h[i] * b.z_scale;
+            double got = cases[c].f == SURFACE_PNG ? lo + b.h[i] * zs
+                         : cases[c].f == SURFACE_EXR ? b.h[i] /* no units in EXR: the values as written */
+                                                     : b.h[i] * b.z_scale;
             worst = fmax(worst, fabs(got - s.h[i]) / (hi - lo));
         }
         CHECK(worst <= cases[c].tol + 1e-16, "%s: heights off by %g of the range", cases[c].name, worst);
@@ -87,7 +90,8 @@ static void height_round_trips(void **state)
             CHECK_CLOSE(b.dy, 3e-6, 1e-12, 0.0, "%s dy", cases[c].name);
             CHECK(b.z_scale > 0, "%s: no height unit", cases[c].name);
         } else {
-            CHECK(b.dx == 0 && b.z_scale == 0 && b.bits == 16, "%s: spacing or units invented", cases[c].name);
+            CHECK(b.dx == 0 && b.z_scale == 0 && b.bits == (cases[c].f == SURFACE_PNG ? 16 : 0),
+                  "%s: spacing or units invented", cases[c].name);
         }
         printf("heights %s: largest error %.3g of the range\n", cases[c].name, worst);
         surface_free(&b);
@@ -133,6 +137,17 @@ static void normal_round_trips(void **state)
             CHECK(worst <= tol, "%s mode %d: off by %g (tolerance %g)", name, mode, worst, tol);
             surface_free(&b);
         }
+    }
+    /* OpenEXR normal maps: float components, y down too. */
+    CHECK(surface_write(tmp("n.exr"), SURFACE_EXR, &s, 0, NULL, err, sizeof err) == 0, "%s", err);
+    for (int mode = 0; mode < 2; mode++) {
+        read_ok(tmp("n.exr"), SURFACE_NORMALS, &b, mode);
+        CHECK(b.nx == 6 && b.ny == 4 && b.channels == 3 && b.bits == 0, "n.exr: %zu x %zu", b.nx, b.ny);
+        for (int i = 0; i < 24; i++) {
+            CHECK_CLOSE(b.m[i].x, s.m[i].x, 0.0, 1e-7, "exr normal %d x", i);
+            CHECK_CLOSE(mode ? -b.m[i].y : b.m[i].y, s.m[i].y, 0.0, 1e-7, "exr normal %d y", i);
+        }
+        surface_free(&b);
     }
     /* Two channels: blue 0 everywhere, z rebuilt from x and y. */
     surface two = normals(6, 4);
@@ -201,6 +216,7 @@ static void malformed(void **state)
     refuse(SURFACE_PNG, "\x89PNG\r\n\x1a\n\0\0\0\rIHDR", 16, H, "PNG");
     refuse(SURFACE_X3P, "PK\x05\x06\0\0\0\0\0\0\0\0\0\0\0\0\0\0\0\0\0\0", 22, H, "main.xml"); /* an empty zip */
     refuse(SURFACE_X3P, "PK\x03\x04garbage", 11, H, "zip");
+    refuse(SURFACE_EXR, "\x76\x2f\x31\x01\x02\0\0\0garbage", 15, H, "OpenEXR");
     refuse(SURFACE_UNKNOWN, "abc", 3, H, "unknown format");
     /* A PNG of 1 x 1 pixel, a truncated PNG, x3p with bad XML and with short data. */
     surface s = heights();
@@ -215,6 +231,11 @@ static void malformed(void **state)
     CHECK(surface_write(tmp("t.png"), SURFACE_PNG, &s, 16, NULL, err, sizeof err) == 0, "%s", err);
     b = slurp(tmp("t.png"), &n);
     refuse(SURFACE_PNG, b, n - 20, H, "corrupt or truncated");
+    free(b);
+    CHECK(surface_write(tmp("t.exr"), SURFACE_EXR, &s, 0, NULL, err, sizeof err) == 0, "%s", err);
+    b = slurp(tmp("t.exr"), &n);
+    refuse(SURFACE_EXR, b, n - 20, H, "corrupt or truncated");
+    refuse(SURFACE_EXR, b, n / 2, H, "corrupt or truncated");
     free(b);
     CHECK(surface_write(tmp("t.x3p"), SURFACE_X3P, &s, 0, NULL, err, sizeof err) == 0, "%s", err);
     b = slurp(tmp("t.x3p"), &n);
