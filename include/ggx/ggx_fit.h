@@ -58,7 +58,9 @@ typedef struct ggx_fit_options {
     void *progress_ctx;
     int full_em;                 /* 0 (default): above 2^22 samples, EM runs on 2^20 of them (blocks of 1024 spread
                                   * evenly over the data) and Newton steps on all samples finish the fit (each
-                                  * accepted step raises the likelihood; the decrement is measured on all samples);
+                                  * accepted step keeps the likelihood within rounding; the decrement is measured on
+                                  * all samples; the other models of the comparison to a decrement of 1e-3, their
+                                  * total log-likelihood within 5e-7 of its maximum);
                                   * 1: EM on all samples throughout */
 } ggx_fit_options;
 

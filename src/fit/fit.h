@@ -12,16 +12,17 @@
  * and the units' sums added in order, so results do not depend on the thread count. */
 enum { FIT_CHUNK = 1024, FIT_UNIT = 65536, FIT_MAX_CELLS = 16 };
 
-/* A source of slope samples: fill writes the slopes (x, y), the weight w (0 for a sample to skip) and, when lc is not
- * NULL, log cos theta of the normal for samples [i0, i0 + k), k <= FIT_CHUNK. */
+/* A source of slope samples: fill writes the slopes (x, y) and the weight w (0 for a sample to skip, with finite
+ * slopes) of samples [i0, i0 + k), k <= FIT_CHUNK. (The normal's cos theta is 1 / sqrt(1 + x^2 + y^2).) */
 typedef struct fit_source {
-    void (*fill)(const void *ctx, size_t i0, size_t k, double *x, double *y, double *w, double *lc);
+    void (*fill)(const void *ctx, size_t i0, size_t k, double *x, double *y, double *w);
     const void *ctx;
     size_t n;
 } fit_source;
 
 typedef enum fit_pass_kind {
-    FIT_PASS_MOMENTS, /* about c = at->t: W, sum w r (2), sum w r r^T (3), sum w lc, sum w^2 */
+    FIT_PASS_MOMENTS, /* about c = at->t: W, sum w r (2), sum w r r^T (3), sum w log cos theta (0 unless at->cells
+                       * is 1), sum w^2 */
     FIT_PASS_ESTEP,   /* at (t, P = Sigma^-1), with c_i = 1 / (1 + delta_i): W, sum w c, sum w c r (2), sum w c r r^T
                        * (3), sum w log(1 + delta) */
     FIT_PASS_HESSIAN, /* at (t, P): the sums of fit_information.c (FIT_HESSIAN_SUMS) */
@@ -79,9 +80,17 @@ ggx_status fit_em(const fit_data *d, ggx_fit_model model, const double t0[2], co
 ggx_status fit_information(const fit_data *d, ggx_fit_model model, const double t[2], const double sigma[3],
                            double *log_likelihood, double *decrement, double cov[5][5], double step[5]);
 
-/* Newton steps with backtracking on d's samples from the fit r of a subsample: each accepted step raises the
- * log-likelihood; stops at the tolerance or after max_iterations steps. r->iterations counts the steps too. */
-ggx_status fit_newton(const fit_data *d, ggx_fit_model model, fit_result *r);
+/* The gradient of the total log-likelihood (scaled to n_eff) at (t, sigma) and the log-likelihood per sample, from
+ * one E-step pass (cheaper than the information pass). */
+ggx_status fit_gradient(const fit_data *d, const double t[2], const double sigma[3], double *log_likelihood,
+                        double g[5]);
+
+/* Steps on all of d's samples from the fit r of a subsample (whose covariance, scaled by the ratio of the effective
+ * sizes, stands for the inverse Hessian: quasi-Newton steps, one E-step pass each), with backtracking so that each
+ * accepted step keeps the log-likelihood within rounding of the last; then, when exact is set, the information pass
+ * at the closing iterate and exact Newton steps until the decrement meets the tolerance. r->iterations counts the
+ * steps too; without exact, r->cov and r->stationarity are the approximate ones. */
+ggx_status fit_newton(const fit_data *d, const fit_data *sub, ggx_fit_model model, fit_result *r, int exact);
 
 /* Above FIT_SUBSAMPLE_MIN samples the models are fitted by EM on FIT_SUBSAMPLE_N of them (blocks of FIT_CHUNK spread
  * evenly over the data), then polished by fit_newton on all of them. */

@@ -91,46 +91,69 @@ ggx_status fit_em(const fit_data *d, ggx_fit_model model, const double t0[2], co
     return GGX_OK;
 }
 
-ggx_status fit_newton(const fit_data *d, ggx_fit_model model, fit_result *r)
+/* One accepted step from (t, s) along dir, halving up to 8 times; 0 when none keeps log L (within rounding). */
+static int line_step(const fit_data *d, double t[2], double s[3], const double dir[5], double *ll, double g[5])
 {
     const double floor = GGX_ALPHA_MIN * GGX_ALPHA_MIN;
-    double ll, dec, cov[5][5], step[5];
-    ggx_status st = fit_information(d, model, r->t, r->sigma, &ll, &dec, cov, step);
+    /* near the optimum a step's gain, about decrement^2 / (2 n_eff) per sample, is far below the rounding of the
+     * per-sample mean: accept within that rounding */
+    double slack = 1e-13 * fmax(1.0, fabs(*ll)), lam = 1.0;
+    for (int half = 0; half < 8; half++, lam *= 0.5) {
+        double tn[2] = {t[0] + lam * dir[0], t[1] + lam * dir[1]};
+        double sn[3] = {s[0] + lam * dir[2], s[1] + lam * dir[3], s[2] + lam * dir[4]}, pinv[3], lln, gn[5];
+        if (!fit_inverse(sn, pinv) || fit_clamp_sigma(sn, floor)) continue; /* outside the cone: shorter */
+        if (fit_gradient(d, tn, sn, &lln, gn) != GGX_OK) return 0;
+        if (lln >= *ll - slack) {
+            memcpy(t, tn, sizeof tn), memcpy(s, sn, sizeof sn), memcpy(g, gn, 5 * sizeof *g);
+            *ll = lln;
+            return 1;
+        }
+    }
+    return 0;
+}
+
+ggx_status fit_newton(const fit_data *d, const fit_data *sub, ggx_fit_model model, fit_result *r, int exact)
+{
+    double ll, g[5], C[5][5], ratio = sub->n_eff / d->n_eff;
+    for (int i = 0; i < 5; i++)
+        for (int j = 0; j < 5; j++) C[i][j] = r->cov[i][j] * ratio; /* the subsample's (-H)^-1 at the full size */
+    ggx_status st = fit_gradient(d, r->t, r->sigma, &ll, g);
     if (st != GGX_OK) return st;
+    double dec = HUGE_VAL;
     r->converged = 0;
     for (int it = 0; it < d->max_iterations; it++) {
-        if (dec <= d->tolerance) {
-            r->converged = 1;
-            break;
+        double dir[5], lam2 = 0.0;
+        for (int i = 0; i < 5; i++) {
+            dir[i] = 0.0;
+            for (int j = 0; j < 5; j++) dir[i] += C[i][j] * g[j];
+            lam2 += g[i] * dir[i];
         }
-        if (!isfinite(dec)) break; /* -H not positive definite: no Newton step */
-        double lam = 1.0, tn[2], sn[3], lln = -HUGE_VAL, decn = HUGE_VAL, covn[5][5], stepn[5];
-        int accepted = 0;
-        /* a step is accepted when it does not lower log L beyond the rounding of the per-sample mean (near the
-         * optimum a Newton step's gain, about decrement^2 / (2 n_eff) per sample, is far below it) */
-        double slack = 1e-13 * fmax(1.0, fabs(ll));
-        for (int half = 0; half < 8 && !accepted; half++, lam *= 0.5) {
-            tn[0] = r->t[0] + lam * step[0], tn[1] = r->t[1] + lam * step[1];
-            sn[0] = r->sigma[0] + lam * step[2], sn[1] = r->sigma[1] + lam * step[3], sn[2] = r->sigma[2] + lam * step[4];
-            double pinv[3];
-            if (!fit_inverse(sn, pinv) || fit_clamp_sigma(sn, floor)) continue; /* outside the cone: shorter */
-            st = fit_information(d, model, tn, sn, &lln, &decn, covn, stepn);
-            if (st != GGX_OK) return st;
-            accepted = lln >= ll - slack;
-        }
-        if (!accepted) break; /* no step raises log L: at the optimum to rounding */
+        dec = sqrt(fmax(lam2, 0.0));
+        if (dec <= d->tolerance) break;
+        if (!line_step(d, r->t, r->sigma, dir, &ll, g)) break;
         r->iterations++;
-        if (d->progress && d->progress(d->progress_ctx, r->iterations, lln)) {
-            memcpy(r->t, tn, sizeof tn), memcpy(r->sigma, sn, sizeof sn);
-            ll = lln, dec = decn, memcpy(cov, covn, sizeof cov);
-            break;
-        }
-        memcpy(r->t, tn, sizeof tn), memcpy(r->sigma, sn, sizeof sn);
-        ll = lln, dec = decn, memcpy(cov, covn, sizeof cov), memcpy(step, stepn, sizeof step);
+        if (d->progress && d->progress(d->progress_ctx, r->iterations, ll)) return GGX_OK;
     }
-    if (dec <= d->tolerance) r->converged = 1;
     r->log_likelihood = ll;
     r->stationarity = dec;
-    memcpy(r->cov, cov, sizeof cov);
+    for (int i = 0; i < 5; i++)
+        for (int j = 0; j < 5; j++) r->cov[i][j] = C[i][j];
+    if (!exact) {
+        r->converged = dec <= d->tolerance;
+        return GGX_OK;
+    }
+    /* the exact information at the closing iterate; exact Newton steps while it says the tolerance is not met */
+    double step[5];
+    for (int it = 0; it < 20; it++) {
+        st = fit_information(d, model, r->t, r->sigma, &r->log_likelihood, &dec, r->cov, step);
+        if (st != GGX_OK) return st;
+        r->stationarity = dec;
+        if (dec <= d->tolerance || !isfinite(dec)) break;
+        ll = r->log_likelihood;
+        if (!line_step(d, r->t, r->sigma, step, &ll, g)) break;
+        r->iterations++;
+        if (d->progress && d->progress(d->progress_ctx, r->iterations, ll)) break;
+    }
+    r->converged = dec <= d->tolerance;
     return GGX_OK;
 }

@@ -22,23 +22,38 @@ static int cell_finite(const grid *g, size_t i, size_t j)
 /* Sample k is facet k % 4 of cell k / 4 (cells row by row): the four pairs of the cell's x differences
  * a = (h10 - h00) / dx, b = (h11 - h01) / dx with its y differences c = (h01 - h00) / dy, d = (h11 - h10) / dy:
  * (a, c) and (b, d) are the triangles of the diagonal 00-11, (a, d) and (b, c) those of 10-01. */
-static void fill_grid(const void *ctx, size_t i0, size_t k, double *x, double *y, double *w, double *lc)
+static void fill_grid(const void *ctx, size_t i0, size_t k, double *x, double *y, double *w)
 {
     const grid *g = ctx;
     size_t cx = g->nx - 1, cell = i0 / 4, i = cell % cx, j = cell / cx;
     int f = (int)(i0 % 4);
     const double idx = 1.0 / g->dx, idy = 1.0 / g->dy;
+    size_t s = 0;
+    /* whole cells, four facets each (the passes read chunks aligned on 4) */
+    if (f == 0) {
+        for (; s + 4 <= k; s += 4) {
+            const double *r0 = g->h + j * g->nx + i, *r1 = r0 + g->nx;
+            double a = (r0[1] - r0[0]) * idx - g->px, b = (r1[1] - r1[0]) * idx - g->px;
+            double c = (r1[0] - r0[0]) * idy - g->py, d = (r1[1] - r0[1]) * idy - g->py;
+            double ok = isfinite(a + b + c + d) ? 1.0 : 0.0; /* a NaN or infinite height spoils the sum */
+            a *= ok, b *= ok, c *= ok, d *= ok;
+            if (!(ok > 0)) a = b = c = d = 0.0;
+            x[s] = a, y[s] = c, x[s + 1] = b, y[s + 1] = d, x[s + 2] = a, y[s + 2] = d, x[s + 3] = b, y[s + 3] = c;
+            w[s] = w[s + 1] = w[s + 2] = w[s + 3] = ok;
+            if (++i == cx) i = 0, j++;
+        }
+    }
+    /* the rest facet by facet (a range that starts or ends inside a cell: ggx_heightfield_facets) */
     double a = 0, b = 0, c = 0, d = 0;
-    for (size_t s = 0; s < k; s++) {
-        if (s == 0 || f == 0) { /* a new cell: its four differences */
+    for (size_t t = s; t < k; t++) {
+        if (t == s || f == 0) {
             const double *r0 = g->h + j * g->nx + i, *r1 = r0 + g->nx;
             a = (r0[1] - r0[0]) * idx - g->px, b = (r1[1] - r1[0]) * idx - g->px;
             c = (r1[0] - r0[0]) * idy - g->py, d = (r1[1] - r0[1]) * idy - g->py;
         }
         double sx = f == 0 || f == 2 ? a : b, sy = f == 0 || f == 3 ? c : d;
-        int ok = isfinite(sx) && isfinite(sy);
-        x[s] = ok ? sx : 0.0, y[s] = ok ? sy : 0.0, w[s] = ok ? 1.0 : 0.0;
-        if (lc) lc[s] = ok ? -0.5 * log1p(sx * sx + sy * sy) : 0.0;
+        int ok = isfinite(a + b + c + d);
+        x[t] = ok ? sx : 0.0, y[t] = ok ? sy : 0.0, w[t] = ok ? 1.0 : 0.0;
         if (++f == 4) {
             f = 0;
             if (++i == cx) i = 0, j++;
@@ -166,7 +181,7 @@ GGX_API ggx_status ggx_heightfield_facets(double *slopes, size_t first, size_t c
     double x[FIT_CHUNK], y[FIT_CHUNK], w[FIT_CHUNK];
     for (size_t at = 0; at < count; at += FIT_CHUNK) {
         size_t k = count - at < FIT_CHUNK ? count - at : FIT_CHUNK;
-        fill_grid(&g, first + at, k, x, y, w, NULL);
+        fill_grid(&g, first + at, k, x, y, w);
         for (size_t i = 0; i < k; i++) {
             slopes[2 * (at + i)] = w[i] != 0.0 ? x[i] : NAN;
             slopes[2 * (at + i) + 1] = w[i] != 0.0 ? y[i] : NAN;

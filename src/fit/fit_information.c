@@ -63,6 +63,38 @@ static int spd_inverse(int k, double a[5][5], double inv[5][5])
     return 1;
 }
 
+/* The gradient of sum w log p from W, Cq = sum w c q and ce = sum w c e (docs/design/fit.md), written once for the
+ * information pass and the gradient pass. */
+static void gradient(double W, const double Cq[2], const double ce[3], const double p[3], double g[5])
+{
+    const double trPE[3] = {p[0], 2.0 * p[1], p[2]};
+    g[0] = 4.0 * Cq[0], g[1] = 4.0 * Cq[1];
+    for (int ab = 0; ab < 3; ab++) g[2 + ab] = -0.5 * W * trPE[ab] + 2.0 * ce[ab];
+}
+
+ggx_status fit_gradient(const fit_data *d, const double t[2], const double sigma[3], double *log_likelihood,
+                        double g[5])
+{
+    fit_point at = {{t[0], t[1]}, {0, 0, 0}, {0, 0, 0}, 0};
+    if (!fit_inverse(sigma, at.p)) return GGX_ERR_SINGULAR;
+    double a[FIT_ESTEP_SUMS];
+    ggx_status st = fit_pass(d->src, d->threads, FIT_PASS_ESTEP, &at, a);
+    if (st != GGX_OK) return st;
+    /* from the E step's sums about t: sum w c q = P sum w c r, sum w c q q^T = P (sum w c r r^T) P */
+    const double *p = at.p, S[3] = {a[4], a[5], a[6]};
+    double Cq[2] = {p[0] * a[2] + p[1] * a[3], p[1] * a[2] + p[2] * a[3]};
+    double ps00 = p[0] * S[0] + p[1] * S[1], ps01 = p[0] * S[1] + p[1] * S[2];
+    double ps10 = p[1] * S[0] + p[2] * S[1], ps11 = p[1] * S[1] + p[2] * S[2];
+    double q00 = ps00 * p[0] + ps01 * p[1], q01 = ps00 * p[1] + ps01 * p[2], q11 = ps10 * p[1] + ps11 * p[2];
+    double ce[3] = {q00, 2.0 * q01, q11};
+    gradient(a[0], Cq, ce, p, g);
+    double scale = d->n_eff / a[0];
+    for (int i = 0; i < 5; i++) g[i] *= scale;
+    double det = sigma[0] * sigma[2] - sigma[1] * sigma[1];
+    *log_likelihood = -log(GGX_PI) - 0.5 * log(det) - 2.0 * a[7] / a[0] - 3.0 * d->mean_lc;
+    return GGX_OK;
+}
+
 ggx_status fit_information(const fit_data *d, ggx_fit_model model, const double t[2], const double sigma[3],
                            double *log_likelihood, double *decrement, double cov[5][5], double step[5])
 {
@@ -90,9 +122,8 @@ ggx_status fit_information(const fit_data *d, ggx_fit_model model, const double 
     for (int ab = 0; ab < 3; ab++)
         for (int i = 0; i < 2; i++)
             for (int j = 0; j < 2; j++) PE[ab][i][j] = P[i][0] * E[ab][0][j] + P[i][1] * E[ab][1][j];
-    const double trPE[3] = {P[0][0], 2.0 * P[0][1], P[1][1]};
+    gradient(W, Cq, ce, at.p, g);
     for (int i = 0; i < 2; i++) {
-        g[i] = 4.0 * Cq[i];
         for (int j = 0; j < 2; j++) H[i][j] = 8.0 * C2qq[i][j] - 4.0 * C1 * P[i][j];
         for (int ab = 0; ab < 3; ab++) {
             double pq = PE[ab][i][0] * Cq[0] + PE[ab][i][1] * Cq[1];
@@ -100,7 +131,6 @@ ggx_status fit_information(const fit_data *d, ggx_fit_model model, const double 
         }
     }
     for (int ab = 0; ab < 3; ab++) {
-        g[2 + ab] = -0.5 * W * trPE[ab] + 2.0 * ce[ab];
         for (int cd = 0; cd < 3; cd++) {
             double tr_pp = 0.0, tr_q = 0.0; /* tr(P E_cd P E_ab), tr(E_ab P E_cd Cqq) */
             for (int i = 0; i < 2; i++)

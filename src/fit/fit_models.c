@@ -76,17 +76,17 @@ typedef struct subsample {
     size_t stride;
 } subsample;
 
-static void fill_subsample(const void *ctx, size_t i0, size_t k, double *x, double *y, double *w, double *lc)
+static void fill_subsample(const void *ctx, size_t i0, size_t k, double *x, double *y, double *w)
 {
     const subsample *c = ctx;
     size_t b = i0 / FIT_CHUNK, off = i0 % FIT_CHUNK;
-    c->parent->fill(c->parent->ctx, b * c->stride * FIT_CHUNK + off, k, x, y, w, lc);
+    c->parent->fill(c->parent->ctx, b * c->stride * FIT_CHUNK + off, k, x, y, w);
 }
 
 /* W, n_eff and the mean log cos theta of a source's samples (one moments pass about 0). */
 static ggx_status fit_constants(fit_data *d)
 {
-    fit_point zero = {{0, 0}, {0, 0, 0}, {0, 0, 0}, 0};
+    fit_point zero = {{0, 0}, {0, 0, 0}, {0, 0, 0}, 1}; /* cells = 1: with the log cos theta */
     double a[FIT_MOMENT_SUMS];
     ggx_status st = fit_pass(d->src, d->threads, FIT_PASS_MOMENTS, &zero, a);
     if (st != GGX_OK) return st;
@@ -134,8 +134,10 @@ ggx_status fit_run(const fit_source *src, const ggx_fit_options *opt, ggx_shape 
         if ((st = fit_em(&dk, mk, mean, mk == GGX_FIT_ELLIPSOID ? cov : m2, &fr[k])) != GGX_OK) return st;
         if (two_stage && !fr[k].clamped) {
             fit_data dn = d;
-            if (mk != model) dn.progress = NULL;
-            if ((st = fit_newton(&dn, mk, &fr[k])) != GGX_OK) return st;
+            /* the models compared need their likelihood only, to within decrement^2 / 2 <= 5e-7 of its maximum's
+             * total (far below the BIC's differences); the fitted one its exact information too */
+            if (mk != model) dn.progress = NULL, dn.tolerance = fmax(d.tolerance, 1e-3);
+            if ((st = fit_newton(&dn, &ds, mk, &fr[k], mk == model)) != GGX_OK) return st;
         } else if (two_stage) { /* held at the floor: the full samples' likelihood and information there */
             double dec;
             if ((st = fit_information(&d, mk, fr[k].t, fr[k].sigma, &fr[k].log_likelihood, &dec, fr[k].cov, NULL)))

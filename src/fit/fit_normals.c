@@ -23,19 +23,11 @@ static int reason(const normals *c, size_t i, double *x, double *y, double *w)
     return 0;
 }
 
-static void fill_normals(const void *ctx, size_t i0, size_t k, double *x, double *y, double *w, double *lc)
+static void fill_normals(const void *ctx, size_t i0, size_t k, double *x, double *y, double *w)
 {
     const normals *c = ctx;
-    for (size_t i = 0; i < k; i++) {
-        x[i] = y[i] = w[i] = 0.0;
-        if (reason(c, i0 + i, &x[i], &y[i], &w[i]) != 0) {
-            x[i] = y[i] = w[i] = 0.0;
-            if (lc) lc[i] = 0.0;
-        } else if (lc) {
-            /* cos theta = 1 / sqrt(1 + |x~|^2), without forming |m| (which may overflow for huge vectors) */
-            lc[i] = -0.5 * log1p(x[i] * x[i] + y[i] * y[i]);
-        }
-    }
+    for (size_t i = 0; i < k; i++)
+        if (reason(c, i0 + i, &x[i], &y[i], &w[i]) != 0) x[i] = y[i] = w[i] = 0.0;
 }
 
 /* Counts the samples by reason into info; GGX_ERR_RANGE at the first negative weight. */

@@ -58,20 +58,24 @@ static double weighted_log_sum(const double *q, const double *w, size_t k, int g
 GGX_HOT static void unit_sums(const fit_source *src, fit_pass_kind kind, const fit_point *at, size_t i0, size_t i1,
                               double *s)
 {
-    double x[FIT_CHUNK], y[FIT_CHUNK], w[FIT_CHUNK], lc[FIT_CHUNK], q[FIT_CHUNK];
+    double x[FIT_CHUNK], y[FIT_CHUNK], w[FIT_CHUNK], q[FIT_CHUNK];
     const double t0 = at->t[0], t1 = at->t[1], p0 = at->p[0], p1 = at->p[1], p2 = at->p[2];
     for (size_t at0 = i0; at0 < i1; at0 += FIT_CHUNK) {
         size_t k = i1 - at0 < FIT_CHUNK ? i1 - at0 : FIT_CHUNK;
-        src->fill(src->ctx, at0, k, x, y, w, kind == FIT_PASS_MOMENTS ? lc : NULL);
+        src->fill(src->ctx, at0, k, x, y, w);
         if (kind == FIT_PASS_MOMENTS) {
-            double a0 = 0, a1 = 0, a2 = 0, a3 = 0, a4 = 0, a5 = 0, a6 = 0, a7 = 0;
-#pragma omp simd reduction(+ : a0, a1, a2, a3, a4, a5, a6, a7)
+            /* log cos theta = -log(1 + |x~|^2) / 2, summed through sum_log (a log per chunk) when asked */
+            double a0 = 0, a1 = 0, a2 = 0, a3 = 0, a4 = 0, a5 = 0, a7 = 0, unit = 0;
+#pragma omp simd reduction(+ : a0, a1, a2, a3, a4, a5, a7, unit)
             for (size_t i = 0; i < k; i++) {
                 double wi = w[i], rx = x[i] - t0, ry = y[i] - t1;
                 a0 += wi, a1 += wi * rx, a2 += wi * ry;
                 a3 += wi * rx * rx, a4 += wi * rx * ry, a5 += wi * ry * ry;
-                a6 += wi * lc[i], a7 += wi * wi;
+                a7 += wi * wi;
+                q[i] = 1.0 + wi * (x[i] * x[i] + y[i] * y[i]);
+                unit += wi != 0.0 && wi != 1.0;
             }
+            double a6 = at->cells == 1 ? -0.5 * weighted_log_sum(q, w, k, unit != 0.0) : 0.0;
             s[0] += a0, s[1] += a1, s[2] += a2, s[3] += a3, s[4] += a4, s[5] += a5, s[6] += a6, s[7] += a7;
         } else if (kind == FIT_PASS_ESTEP) {
             double a0 = 0, a1 = 0, a2 = 0, a3 = 0, a4 = 0, a5 = 0, a6 = 0, unit = 0;
