@@ -525,6 +525,64 @@ static void two_stage(void **state)
     free(m);
 }
 
+/* Found by review: weights of any scale give the fit of weights 1 (the likelihood and BIC too); a normal whose slope's
+ * square overflows is at the horizon; one slope near the horizon neither stalls EM nor overflows the isotropic model;
+ * slopes all near the horizon are rougher than any shape; a negative weight still counts every sample; a spike in a
+ * height field that overflows its slopes is counted as ignored. */
+static void review_cases(void **state)
+{
+    (void)state;
+    rng r = {44};
+    ggx_shape s, f;
+    make_shape(&s, (shape_params){0.3, 0.1, 0.3, 0.2, 0.4});
+    size_t n = 5000;
+    ggx_vec3 *m = draw(&s, n, 1, &r);
+    double *w = malloc(n * sizeof *w);
+    ggx_fit_info ref, info;
+    fit_ok(&f, m, NULL, n, NULL, &ref);
+    const double scales[] = {1e-30, 1e-200, 1e200, 0.5};
+    for (int k = 0; k < 4; k++) {
+        for (size_t i = 0; i < n; i++) w[i] = scales[k];
+        fit_ok(&f, m, w, n, NULL, &info);
+        CHECK_CLOSE(info.log_likelihood, ref.log_likelihood, 1e-12, 0.0, "weights %g: log L", scales[k]);
+        CHECK_CLOSE(info.models[0].bic, ref.models[0].bic, 1e-12, 0.0, "weights %g: BIC", scales[k]);
+        CHECK_CLOSE(info.effective_n, (double)n, 1e-12, 0.0, "weights %g: n_eff", scales[k]);
+    }
+    ggx_vec3 keep = m[0];
+    m[0] = (ggx_vec3){1.0, 0.0, 1e-156}; /* slope 1e156: its square overflows */
+    fit_ok(&f, m, NULL, n, NULL, &info);
+    CHECK(info.ignored_horizon == 1 && info.used == n - 1, "overflowing slope: %zu at the horizon", info.ignored_horizon);
+    m[0] = (ggx_vec3){1.0, 0.0, 1e-100}; /* slope 1e100: finite, an outlier */
+    ggx_fit_options o = {0};
+    o.model = GGX_FIT_ISOTROPIC;
+    fit_ok(&f, m, NULL, n, &o, &info);
+    CHECK(info.iterations < 60 && isfinite(info.log_likelihood) && isfinite(info.models[3].log_likelihood),
+          "outlier: %d iterations, log L %g, Beckmann %g", info.iterations, info.log_likelihood,
+          info.models[3].log_likelihood);
+    m[0] = keep;
+    for (size_t i = 0; i < n; i++) {
+        double ph = 6.283185307179586 * (double)i / (double)n;
+        m[i] = (ggx_vec3){cos(ph), sin(ph), 1e-5};
+    }
+    CHECK(ggx_fit_normals(&f, m, NULL, n, NULL, &info) == GGX_ERR_ALPHA, "slopes of 1e5 all round: not ALPHA");
+    for (size_t i = 0; i < n; i++) w[i] = i == n / 2 ? -1.0 : 1.0;
+    CHECK(ggx_fit_normals(&f, m, w, n, NULL, &info) == GGX_ERR_RANGE, "negative weight");
+    CHECK(info.used == n - 1, "a negative weight counts every other sample: %zu", info.used);
+    free(m), free(w);
+    /* a height field with one spike of 1e305 over heights of 1e-7 at spacing 1e-6: its cells' slopes overflow */
+    size_t nx = 37, ny = 23;
+    double *h = malloc(nx * ny * sizeof *h);
+    for (size_t i = 0; i < nx * ny; i++) h[i] = 1e-7 * rng_range(&r, -1.0, 1.0);
+    h[10 * nx + 10] = 1e305;
+    ggx_heightfield_options ho = {1, 0};
+    ggx_status st = ggx_fit_heightfield(&f, h, nx, ny, 1e-6, 1e-6, &ho, NULL, &info);
+    CHECK(st == GGX_OK && info.ignored_nonfinite == 16 && info.used == 4 * 36 * 22 - 16 &&
+              info.effective_n == (double)info.used,
+          "spike: status %d, used %zu, ignored %zu, n_eff %g", (int)st, info.used, info.ignored_nonfinite,
+          info.effective_n);
+    free(h);
+}
+
 /* ---- height fields ---- */
 
 /* h(i, j) = F(i) + G(j) with F, G random walks of Gaussian steps: every facet's slope pairs an x step with a y step,
@@ -642,6 +700,7 @@ int main(void)
         cmocka_unit_test(weights_and_threads),
         cmocka_unit_test(bad_input),
         cmocka_unit_test(heightfield),
+        cmocka_unit_test(review_cases),
         cmocka_unit_test(two_stage),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);

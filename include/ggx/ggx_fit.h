@@ -114,8 +114,11 @@ typedef struct ggx_fit_info {
  * models. Sigma's eigenvalues are held at GGX_ALPHA_MIN^2 or above (info->clamped says when that binds).
  * Errors: GGX_ERR_NULL (out NULL, or m NULL with n > 0); GGX_ERR_RANGE (a negative weight; opt->model Beckmann or
  * unknown; opt->threads outside [0, 256] or max_iterations, tolerance negative); GGX_ERR_DATA (fewer than 5 usable
- * samples); GGX_ERR_MEMORY; GGX_ERR_SINGULAR (|t| so large that the shape is refused, as ggx_shape_from_slopes).
- * On error out is unchanged and info is zeroed (its ignored counts filled). Never NaN in out. */
+ * samples); GGX_ERR_MEMORY; GGX_ERR_ALPHA (the fitted Sigma has an eigenvalue above GGX_ALPHA_MAX^2: slopes
+ * near the horizon, rougher than any shape); GGX_ERR_SINGULAR (|t| so large that the shape is refused, as
+ * ggx_shape_from_slopes).
+ * On error out is unchanged and info is zeroed (its used and ignored counts filled, of all n samples). Never NaN in
+ * out. */
 ggx_status ggx_fit_normals(ggx_shape *out, const ggx_vec3 *m, const double *weight, size_t n,
                            const ggx_fit_options *opt, ggx_fit_info *info);
 
@@ -138,8 +141,8 @@ typedef struct ggx_heightfield_options {
  * both triangulations are used (the two diagonals), each triangle weighted by its projected area, dx dy / 4: the four
  * facet slopes of a cell are then the four pairs of its x and y differences, ((h10 - h00) or (h11 - h01)) / dx with
  * ((h01 - h00) or (h11 - h10)) / dy, and no diagonal is preferred (one triangulation alone would tie the NDF's
- * anisotropy to its diagonal). Cells with a non-finite height are ignored (counted in ignored_nonfinite); levelling
- * uses the finite heights. opt and info as in ggx_fit_normals; hopt may be NULL.
+ * anisotropy to its diagonal). Cells with a non-finite height, or whose levelled slopes' squares overflow, are
+ * ignored (counted in ignored_nonfinite); levelling uses the finite heights. opt and info as in ggx_fit_normals; hopt may be NULL.
  * Errors: GGX_ERR_NULL; GGX_ERR_RANGE (nx or ny below 2, nx * ny overflowing, dx or dy not positive, downsample
  * negative or leaving fewer than 2 x 2 heights); GGX_ERR_NONFINITE (dx or dy NaN or infinite); as ggx_fit_normals. */
 ggx_status ggx_fit_heightfield(ggx_shape *out, const double *h, size_t nx, size_t ny, double dx, double dy,

@@ -70,6 +70,8 @@ int fit_model_parameters(ggx_fit_model model);
 int fit_clamp_sigma(double sigma[3], double floor);
 /* Sigma^-1 of (xx, xy, yy); 0 when not positive definite. */
 int fit_inverse(const double sigma[3], double p[3]);
+/* log det Sigma without overflow, for a positive definite Sigma. */
+double fit_log_det(const double sigma[3]);
 
 /* EM for the Student-t models (ELLIPSOID, ANISOTROPIC, ISOTROPIC), from (t0, sigma0). */
 ggx_status fit_em(const fit_data *d, ggx_fit_model model, const double t0[2], const double sigma0[3], fit_result *r);

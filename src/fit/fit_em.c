@@ -44,7 +44,7 @@ ggx_status fit_em(const fit_data *d, ggx_fit_model model, const double t0[2], co
         double a[FIT_ESTEP_SUMS];
         ggx_status st = fit_pass(d->src, d->threads, FIT_PASS_ESTEP, &at, a);
         if (st != GGX_OK) return st;
-        double ll = -log(GGX_PI) - 0.5 * log(s[0] * s[2] - s[1] * s[1]) - 2.0 * a[7] / a[0] - 3.0 * d->mean_lc;
+        double ll = -log(GGX_PI) - 0.5 * fit_log_det(s) - 2.0 * a[7] / a[0] - 3.0 * d->mean_lc;
         r->iterations = it;
         if (d->progress && d->progress(d->progress_ctx, it, ll)) break;
         /* M step: t' = t + sum w c r / sum w c; Sigma' = 2 sum w c (r - dt)(r - dt)^T / sum w c. */
@@ -120,8 +120,12 @@ ggx_status fit_newton(const fit_data *d, const fit_data *sub, ggx_fit_model mode
     ggx_status st = fit_gradient(d, r->t, r->sigma, &ll, g);
     if (st != GGX_OK) return st;
     double dec = HUGE_VAL;
+    int stopped = 0;
     r->converged = 0;
-    for (int it = 0; it < d->max_iterations; it++) {
+    int have_c = 0; /* the subsample's information was positive definite */
+    for (int i = 0; i < 5; i++) have_c |= C[i][i] > 0.0;
+    if (!have_c) exact = 1; /* no stand-in for the Hessian: measure it */
+    for (int it = 0; have_c && it < d->max_iterations; it++) {
         double dir[5], lam2 = 0.0;
         for (int i = 0; i < 5; i++) {
             dir[i] = 0.0;
@@ -132,14 +136,21 @@ ggx_status fit_newton(const fit_data *d, const fit_data *sub, ggx_fit_model mode
         if (dec <= d->tolerance) break;
         if (!line_step(d, r->t, r->sigma, dir, &ll, g)) break;
         r->iterations++;
-        if (d->progress && d->progress(d->progress_ctx, r->iterations, ll)) return GGX_OK;
+        if (d->progress && d->progress(d->progress_ctx, r->iterations, ll)) {
+            stopped = 1;
+            break;
+        }
     }
     r->log_likelihood = ll;
     r->stationarity = dec;
     for (int i = 0; i < 5; i++)
         for (int j = 0; j < 5; j++) r->cov[i][j] = C[i][j];
-    if (!exact) {
-        r->converged = dec <= d->tolerance;
+    if (!exact || stopped) {
+        r->converged = !stopped && dec <= d->tolerance;
+        if (stopped) { /* the closing iterate's likelihood and information, as every stopped fit reports */
+            st = fit_information(d, model, r->t, r->sigma, &r->log_likelihood, &r->stationarity, r->cov, NULL);
+            if (st != GGX_OK) return st;
+        }
         return GGX_OK;
     }
     /* the exact information at the closing iterate; exact Newton steps while it says the tolerance is not met */
@@ -152,7 +163,12 @@ ggx_status fit_newton(const fit_data *d, const fit_data *sub, ggx_fit_model mode
         ll = r->log_likelihood;
         if (!line_step(d, r->t, r->sigma, step, &ll, g)) break;
         r->iterations++;
-        if (d->progress && d->progress(d->progress_ctx, r->iterations, ll)) break;
+        if (d->progress && d->progress(d->progress_ctx, r->iterations, ll)) {
+            st = fit_information(d, model, r->t, r->sigma, &r->log_likelihood, &dec, r->cov, NULL);
+            r->stationarity = dec;
+            r->converged = 0;
+            return st;
+        }
     }
     r->converged = dec <= d->tolerance;
     return GGX_OK;

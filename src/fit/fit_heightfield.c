@@ -13,10 +13,18 @@ typedef struct grid {
     double px, py; /* the plane's gradient, removed from every slope */
 } grid;
 
-static int cell_finite(const grid *g, size_t i, size_t j)
+/* The levelled differences of cell (i, j): a = (h10 - h00) / dx, b = (h11 - h01) / dx, c = (h01 - h00) / dy,
+ * d = (h11 - h10) / dy, less the plane's gradient. Returns 0 (and zeros) when a height is not finite or a slope's
+ * square overflows: the cell's four facets are skipped, and counted so, by one rule for the fit and its counts. */
+static int cell_diffs(const grid *g, size_t i, size_t j, double *a, double *b, double *c, double *d)
 {
     const double *r0 = g->h + j * g->nx + i, *r1 = r0 + g->nx;
-    return isfinite(r0[0]) && isfinite(r0[1]) && isfinite(r1[0]) && isfinite(r1[1]);
+    const double idx = 1.0 / g->dx, idy = 1.0 / g->dy;
+    *a = (r0[1] - r0[0]) * idx - g->px, *b = (r1[1] - r1[0]) * idx - g->px;
+    *c = (r1[0] - r0[0]) * idy - g->py, *d = (r1[1] - r0[1]) * idy - g->py;
+    if (isfinite(*a * *a + *b * *b + *c * *c + *d * *d)) return 1;
+    *a = *b = *c = *d = 0.0;
+    return 0;
 }
 
 /* Sample k is facet k % 4 of cell k / 4 (cells row by row): the four pairs of the cell's x differences
@@ -27,33 +35,22 @@ static void fill_grid(const void *ctx, size_t i0, size_t k, double *x, double *y
     const grid *g = ctx;
     size_t cx = g->nx - 1, cell = i0 / 4, i = cell % cx, j = cell / cx;
     int f = (int)(i0 % 4);
-    const double idx = 1.0 / g->dx, idy = 1.0 / g->dy;
     size_t s = 0;
+    double a, b, c, d, ok;
     /* whole cells, four facets each (the passes read chunks aligned on 4) */
     if (f == 0) {
         for (; s + 4 <= k; s += 4) {
-            const double *r0 = g->h + j * g->nx + i, *r1 = r0 + g->nx;
-            double a = (r0[1] - r0[0]) * idx - g->px, b = (r1[1] - r1[0]) * idx - g->px;
-            double c = (r1[0] - r0[0]) * idy - g->py, d = (r1[1] - r0[1]) * idy - g->py;
-            double ok = isfinite(a + b + c + d) ? 1.0 : 0.0; /* a NaN or infinite height spoils the sum */
-            a *= ok, b *= ok, c *= ok, d *= ok;
-            if (!(ok > 0)) a = b = c = d = 0.0;
+            ok = cell_diffs(g, i, j, &a, &b, &c, &d);
             x[s] = a, y[s] = c, x[s + 1] = b, y[s + 1] = d, x[s + 2] = a, y[s + 2] = d, x[s + 3] = b, y[s + 3] = c;
             w[s] = w[s + 1] = w[s + 2] = w[s + 3] = ok;
             if (++i == cx) i = 0, j++;
         }
     }
     /* the rest facet by facet (a range that starts or ends inside a cell: ggx_heightfield_facets) */
-    double a = 0, b = 0, c = 0, d = 0;
+    ok = a = b = c = d = 0.0;
     for (size_t t = s; t < k; t++) {
-        if (t == s || f == 0) {
-            const double *r0 = g->h + j * g->nx + i, *r1 = r0 + g->nx;
-            a = (r0[1] - r0[0]) * idx - g->px, b = (r1[1] - r1[0]) * idx - g->px;
-            c = (r1[0] - r0[0]) * idy - g->py, d = (r1[1] - r0[1]) * idy - g->py;
-        }
-        double sx = f == 0 || f == 2 ? a : b, sy = f == 0 || f == 3 ? c : d;
-        int ok = isfinite(a + b + c + d);
-        x[t] = ok ? sx : 0.0, y[t] = ok ? sy : 0.0, w[t] = ok ? 1.0 : 0.0;
+        if (t == s || f == 0) ok = cell_diffs(g, i, j, &a, &b, &c, &d);
+        x[t] = f == 0 || f == 2 ? a : b, y[t] = f == 0 || f == 3 ? c : d, w[t] = ok;
         if (++f == 4) {
             f = 0;
             if (++i == cx) i = 0, j++;
@@ -139,7 +136,8 @@ GGX_API ggx_status ggx_fit_heightfield(ggx_shape *out, const double *h, size_t n
     }
     for (size_t j = 0; j + 1 < g.ny; j++)
         for (size_t i = 0; i + 1 < g.nx; i++) {
-            if (cell_finite(&g, i, j))
+            double a, b, c, d;
+            if (cell_diffs(&g, i, j, &a, &b, &c, &d))
                 inf->used += 4;
             else
                 inf->ignored_nonfinite += 4;

@@ -10,12 +10,23 @@ int fit_model_parameters(ggx_fit_model model)
     return model == GGX_FIT_ANISOTROPIC ? 3 : model == GGX_FIT_ISOTROPIC ? 1 : 5;
 }
 
+/* Sigma scaled by its largest diagonal entry first, so that neither the determinant nor the inverse overflows or
+ * underflows for any finite Sigma (a Gaussian's covariance with an outlier may reach 1e300). */
 int fit_inverse(const double s[3], double p[3])
 {
-    double det = s[0] * s[2] - s[1] * s[1];
-    if (!(det > 0.0) || !(s[0] > 0.0)) return 0;
-    p[0] = s[2] / det, p[1] = -s[1] / det, p[2] = s[0] / det;
+    double m = fmax(fabs(s[0]), fabs(s[2]));
+    if (!(m > 0.0) || !(m < HUGE_VAL)) return 0;
+    double a = s[0] / m, b = s[1] / m, c = s[2] / m, det = a * c - b * b;
+    if (!(det > 0.0) || !(a > 0.0)) return 0;
+    p[0] = c / det / m, p[1] = -b / det / m, p[2] = a / det / m;
     return 1;
+}
+
+double fit_log_det(const double s[3])
+{
+    double m = fmax(fabs(s[0]), fabs(s[2]));
+    double a = s[0] / m, b = s[1] / m, c = s[2] / m;
+    return 2.0 * log(m) + log(a * c - b * b);
 }
 
 /* The model's free parameters as columns of J (5 x k). */
@@ -90,8 +101,7 @@ ggx_status fit_gradient(const fit_data *d, const double t[2], const double sigma
     gradient(a[0], Cq, ce, p, g);
     double scale = d->n_eff / a[0];
     for (int i = 0; i < 5; i++) g[i] *= scale;
-    double det = sigma[0] * sigma[2] - sigma[1] * sigma[1];
-    *log_likelihood = -log(GGX_PI) - 0.5 * log(det) - 2.0 * a[7] / a[0] - 3.0 * d->mean_lc;
+    *log_likelihood = -log(GGX_PI) - 0.5 * fit_log_det(sigma) - 2.0 * a[7] / a[0] - 3.0 * d->mean_lc;
     return GGX_OK;
 }
 
@@ -113,8 +123,7 @@ ggx_status fit_information(const fit_data *d, ggx_fit_model model, const double 
     const double ce[3] = {a[4], 2.0 * a[5], a[6]}; /* sum w c e */
     const double P[2][2] = {{at.p[0], at.p[1]}, {at.p[1], at.p[2]}};
     const double E[3][2][2] = {{{1, 0}, {0, 0}}, {{0, 1}, {1, 0}}, {{0, 0}, {0, 1}}};
-    double det = sigma[0] * sigma[2] - sigma[1] * sigma[1];
-    *log_likelihood = -log(GGX_PI) - 0.5 * log(det) - 2.0 * a[22] / W - 3.0 * d->mean_lc;
+    *log_likelihood = -log(GGX_PI) - 0.5 * fit_log_det(sigma) - 2.0 * a[22] / W - 3.0 * d->mean_lc;
 
     /* Gradient and Hessian of sum w log p (docs/design/fit.md, "Observed information"). */
     double g[5], H[5][5];

@@ -42,7 +42,7 @@ static ggx_status fit_gaussian(const fit_data *d, double mean[2], double cov[3],
     double p[3];
     fit_inverse(cov, p);
     double quad = p[0] * s[0] + 2.0 * p[1] * s[1] + p[2] * s[2]; /* E[r^T C^-1 r] = tr(C^-1 S) */
-    *ll = -log(2.0 * GGX_PI) - 0.5 * log(cov[0] * cov[2] - cov[1] * cov[1]) - 0.5 * quad - 3.0 * d->mean_lc;
+    *ll = -log(2.0 * GGX_PI) - 0.5 * fit_log_det(cov) - 0.5 * quad - 3.0 * d->mean_lc;
     return GGX_OK;
 }
 
@@ -69,18 +69,20 @@ static ggx_status goodness_of_fit(const fit_data *d, const fit_result *r, int pa
     return GGX_OK;
 }
 
-/* A subsample of a source: sub-block b is the parent's block b * stride (blocks of FIT_CHUNK samples). The passes
- * read chunks aligned on FIT_CHUNK, so each fill stays within one block. */
+/* A subsample of a source: sub-block b of FIT_SUBSAMPLE_N / FIT_CHUNK is the parent's whole block
+ * floor(b * blocks / sub_blocks) of FIT_CHUNK samples, spread evenly from the first to the last. The passes read
+ * chunks aligned on FIT_CHUNK, so each fill stays within one block. */
 typedef struct subsample {
     const fit_source *parent;
-    size_t stride;
+    size_t blocks; /* the parent's whole blocks */
 } subsample;
 
 static void fill_subsample(const void *ctx, size_t i0, size_t k, double *x, double *y, double *w)
 {
     const subsample *c = ctx;
-    size_t b = i0 / FIT_CHUNK, off = i0 % FIT_CHUNK;
-    c->parent->fill(c->parent->ctx, b * c->stride * FIT_CHUNK + off, k, x, y, w);
+    size_t b = i0 / FIT_CHUNK, off = i0 % FIT_CHUNK, nb = FIT_SUBSAMPLE_N / FIT_CHUNK;
+    size_t pb = (size_t)((double)b * (double)c->blocks / (double)nb);
+    c->parent->fill(c->parent->ctx, pb * FIT_CHUNK + off, k, x, y, w);
 }
 
 /* W, n_eff and the mean log cos theta of a source's samples (one moments pass about 0). */
@@ -109,7 +111,7 @@ ggx_status fit_run(const fit_source *src, const ggx_fit_options *opt, ggx_shape 
     if ((st = fit_constants(&d)) != GGX_OK) return st;
     info->effective_n = d.n_eff;
     /* Large inputs: EM on a subsample, Newton on all samples (ggx_fit_options.full_em). */
-    subsample sc = {src, src->n / FIT_CHUNK / (FIT_SUBSAMPLE_N / FIT_CHUNK)};
+    subsample sc = {src, src->n / FIT_CHUNK};
     fit_source sub_src = {fill_subsample, &sc, FIT_SUBSAMPLE_N};
     fit_data ds = d;
     int two_stage = !d.full_em && src->n > FIT_SUBSAMPLE_MIN;
@@ -123,15 +125,17 @@ ggx_status fit_run(const fit_source *src, const ggx_fit_options *opt, ggx_shape 
     ggx_fit_model_result *mr = info->models;
     mr[GGX_FIT_BECKMANN] = (ggx_fit_model_result){gll, 0.0, 5, 0, {mean[0], mean[1]}, {cov[0], cov[1], cov[2]}};
 
-    /* The three Student-t models: the ellipsoid from the Gaussian's mean and covariance, the others (t = 0) from the
-     * second moments about 0. */
-    double m2[3] = {cov[0] + mean[0] * mean[0], cov[1] + mean[0] * mean[1], cov[2] + mean[1] * mean[1]};
+    /* The three Student-t models start at t = 0 and Sigma = GGX_ALPHA_MIN^2 I, a start no outlier can move: there
+     * every delta is large, the first M step weights each slope by about 1 / |x~|^2 and lands on a robust scale
+     * (a start at the Gaussian's covariance, which one slope near the horizon can make 1e196, took hundreds of
+     * iterations or overflowed). */
+    const double t0[2] = {0.0, 0.0}, s0[3] = {GGX_ALPHA_MIN * GGX_ALPHA_MIN, 0.0, GGX_ALPHA_MIN * GGX_ALPHA_MIN};
     fit_result fr[3];
     for (int k = 0; k < 3; k++) {
         ggx_fit_model mk = (ggx_fit_model)k;
         fit_data dk = two_stage ? ds : d;
         if (mk != model) dk.progress = NULL;
-        if ((st = fit_em(&dk, mk, mean, mk == GGX_FIT_ELLIPSOID ? cov : m2, &fr[k])) != GGX_OK) return st;
+        if ((st = fit_em(&dk, mk, t0, s0, &fr[k])) != GGX_OK) return st;
         if (two_stage && !fr[k].clamped) {
             fit_data dn = d;
             /* the models compared need their likelihood only, to within decrement^2 / 2 <= 5e-7 of its maximum's

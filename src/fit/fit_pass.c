@@ -44,12 +44,13 @@ static double sum_log(const double *q, size_t k)
     return sum + (double)e * 0.69314718055994530942 + log(acc);
 }
 
-/* sum w_i log(1 + delta_i) from q_i = 1 + w_i delta_i: by sum_log when every weight is 0 or 1, else per sample. */
-static double weighted_log_sum(const double *q, const double *w, size_t k, int general)
+/* sum w_i log(1 + d_i): by sum_log of q_i = 1 + w_i d_i when every weight is 0 or 1 (then q_i = (1 + d_i)^w_i),
+ * else a log1p per sample. */
+static double weighted_log_sum(const double *q, const double *d, const double *w, size_t k, int general)
 {
     if (!general) return sum_log(q, k);
     double l = 0.0;
-    for (size_t i = 0; i < k; i++) l += w[i] != 0.0 ? w[i] * log1p((q[i] - 1.0) / w[i]) : 0.0;
+    for (size_t i = 0; i < k; i++) l += w[i] != 0.0 ? w[i] * log1p(d[i]) : 0.0;
     return l;
 }
 
@@ -58,7 +59,7 @@ static double weighted_log_sum(const double *q, const double *w, size_t k, int g
 GGX_HOT static void unit_sums(const fit_source *src, fit_pass_kind kind, const fit_point *at, size_t i0, size_t i1,
                               double *s)
 {
-    double x[FIT_CHUNK], y[FIT_CHUNK], w[FIT_CHUNK], q[FIT_CHUNK];
+    double x[FIT_CHUNK], y[FIT_CHUNK], w[FIT_CHUNK], q[FIT_CHUNK], dl[FIT_CHUNK];
     const double t0 = at->t[0], t1 = at->t[1], p0 = at->p[0], p1 = at->p[1], p2 = at->p[2];
     for (size_t at0 = i0; at0 < i1; at0 += FIT_CHUNK) {
         size_t k = i1 - at0 < FIT_CHUNK ? i1 - at0 : FIT_CHUNK;
@@ -72,10 +73,11 @@ GGX_HOT static void unit_sums(const fit_source *src, fit_pass_kind kind, const f
                 a0 += wi, a1 += wi * rx, a2 += wi * ry;
                 a3 += wi * rx * rx, a4 += wi * rx * ry, a5 += wi * ry * ry;
                 a7 += wi * wi;
-                q[i] = 1.0 + wi * (x[i] * x[i] + y[i] * y[i]);
+                dl[i] = x[i] * x[i] + y[i] * y[i];
+                q[i] = 1.0 + wi * dl[i];
                 unit += wi != 0.0 && wi != 1.0;
             }
-            double a6 = at->cells == 1 ? -0.5 * weighted_log_sum(q, w, k, unit != 0.0) : 0.0;
+            double a6 = at->cells == 1 ? -0.5 * weighted_log_sum(q, dl, w, k, unit != 0.0) : 0.0;
             s[0] += a0, s[1] += a1, s[2] += a2, s[3] += a3, s[4] += a4, s[5] += a5, s[6] += a6, s[7] += a7;
         } else if (kind == FIT_PASS_ESTEP) {
             double a0 = 0, a1 = 0, a2 = 0, a3 = 0, a4 = 0, a5 = 0, a6 = 0, unit = 0;
@@ -85,10 +87,11 @@ GGX_HOT static void unit_sums(const fit_source *src, fit_pass_kind kind, const f
                 double delta = p0 * rx * rx + 2.0 * p1 * rx * ry + p2 * ry * ry, wc = wi / (1.0 + delta);
                 a0 += wi, a1 += wc, a2 += wc * rx, a3 += wc * ry;
                 a4 += wc * rx * rx, a5 += wc * rx * ry, a6 += wc * ry * ry;
-                q[i] = 1.0 + wi * delta;         /* (1 + delta)^w for w in {0, 1} */
+                dl[i] = delta;
+                q[i] = 1.0 + wi * delta; /* (1 + delta)^w for w in {0, 1} */
                 unit += wi != 0.0 && wi != 1.0; /* a weight other than 0 and 1 */
             }
-            double lsum = weighted_log_sum(q, w, k, unit != 0.0);
+            double lsum = weighted_log_sum(q, dl, w, k, unit != 0.0);
             s[0] += a0, s[1] += a1, s[2] += a2, s[3] += a3, s[4] += a4, s[5] += a5, s[6] += a6, s[7] += lsum;
         } else if (kind == FIT_PASS_HESSIAN) {
             /* With q = P r, c = 1 / (1 + delta) and e = (qx^2, 2 qx qy, qy^2): W, sum w c, sum w c q (2),
@@ -107,11 +110,12 @@ GGX_HOT static void unit_sums(const fit_source *src, fit_pass_kind kind, const f
                 a[13] += wc2 * qy * e0, a[14] += wc2 * qy * e1, a[15] += wc2 * qy * e2;
                 a[16] += wc2 * e0 * e0, a[17] += wc2 * e0 * e1, a[18] += wc2 * e0 * e2;
                 a[19] += wc2 * e1 * e1, a[20] += wc2 * e1 * e2, a[21] += wc2 * e2 * e2;
+                dl[i] = delta;
                 q[i] = 1.0 + wi * delta;
                 unit += wi != 0.0 && wi != 1.0;
             }
             for (int j = 0; j < FIT_HESSIAN_SUMS - 1; j++) s[j] += a[j];
-            s[FIT_HESSIAN_SUMS - 1] += weighted_log_sum(q, w, k, unit != 0.0);
+            s[FIT_HESSIAN_SUMS - 1] += weighted_log_sum(q, dl, w, k, unit != 0.0);
         } else {
             const int K = at->cells;
             const double l0 = at->linv[0], l1 = at->linv[1], l2 = at->linv[2];
@@ -119,7 +123,7 @@ GGX_HOT static void unit_sums(const fit_source *src, fit_pass_kind kind, const f
                 double wi = w[i], rx = x[i] - t0, ry = y[i] - t1;
                 if (wi == 0.0) continue;
                 double z0 = l0 * rx, z1 = l1 * rx + l2 * ry, r2 = z0 * z0 + z1 * z1;
-                double u = r2 / (1.0 + r2), ang = atan2(z1, z0) * (0.5 / GGX_PI) + 0.5;
+                double u = r2 < 1e300 ? r2 / (1.0 + r2) : 1.0, ang = atan2(z1, z0) * (0.5 / GGX_PI) + 0.5;
                 int iu = (int)(u * K), ia = (int)(ang * K);
                 iu = iu < 0 ? 0 : iu >= K ? K - 1 : iu;
                 ia = ia < 0 ? 0 : ia >= K ? K - 1 : ia;

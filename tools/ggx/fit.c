@@ -53,6 +53,18 @@ static const char *const MODEL_WORDS[GGX_FIT_MODELS] = {
     "Beckmann (Gaussian slopes, mean and covariance)"};
 static const char *const PARAM_NAMES[5] = {"t_x", "t_y", "sigma_xx", "sigma_xy", "sigma_yy"};
 
+/* A number for JSON, which has no NaN or infinity: null for them. The text lives in one of 32 buffers used in turn,
+ * enough for every number of one fprintf. */
+static const char *json_number(double v)
+{
+    static char bufs[32][32];
+    static int next;
+    char *buf = bufs[next++ % 32];
+    if (isfinite(v)) snprintf(buf, 32, "%.10g", v);
+    else snprintf(buf, 32, "null");
+    return buf;
+}
+
 static int show_progress(void *ctx, int it, double ll)
 {
     (void)ll;
@@ -205,7 +217,7 @@ int cmd_fit(int argc, char **argv)
     FILE *f = out.f;
     if (strcmp(fmt, "md") == 0) {
         fprintf(f, "# ggx fit: %s\n\n", path);
-        fprintf(f, "%s, %zu x %zu; %zu %s used", surface_format_name(surface_format_of(path, NULL, 0)), s.nx, s.ny,
+        fprintf(f, "%s, %zu x %zu; %zu %s used", surface_format_name(s.format), s.nx, s.ny,
                 info.used, what);
         if (ignored)
             fprintf(f, ", %zu ignored (%zu at or below the horizon, %zu not finite, %zu of weight 0)", ignored,
@@ -245,34 +257,36 @@ int cmd_fit(int argc, char **argv)
                 (int)info.best, info.gof_chi2, info.gof_dof, info.gof_pvalue, info.used, ignored, info.effective_n,
                 info.iterations, info.converged, info.clamped);
     } else {
+#define J(v) json_number(v)
         fprintf(f, "{\n  \"input\": \"");
         for (const char *p = path; *p; p++) {
             if (*p == '"' || *p == '\\') fputc('\\', f);
             if ((unsigned char)*p < 0x20) fprintf(f, "\\u%04x", *p);
             else fputc(*p, f);
         }
-        fprintf(f, "\",\n  \"shape\": {\"alpha\": [%.10g, %.10g], \"skew_deg\": [%.10g, %.10g], \"rotate_deg\": %.10g},\n",
-                ax, ay, tx, ty, tz);
-        fprintf(f, "  \"matrix\": [[%.10g, %.10g, %.10g], [%.10g, %.10g, %.10g], [%.10g, %.10g, %.10g]],\n", A[0][0],
-                A[0][1], A[0][2], A[1][0], A[1][1], A[1][2], A[2][0], A[2][1], A[2][2]);
-        fprintf(f, "  \"t\": [%.10g, %.10g], \"sigma\": [%.10g, %.10g, %.10g],\n", val[0], val[1], val[2], val[3], val[4]);
-        fprintf(f, "  \"std_error\": [%.6g, %.6g, %.6g, %.6g, %.6g],\n", info.std_error[0], info.std_error[1],
-                info.std_error[2], info.std_error[3], info.std_error[4]);
+        fprintf(f, "\",\n  \"shape\": {\"alpha\": [%s, %s], \"skew_deg\": [%s, %s], \"rotate_deg\": %s},\n", J(ax), J(ay),
+                J(tx), J(ty), J(tz));
+        fprintf(f, "  \"matrix\": [[%s, %s, %s], [%s, %s, %s], [%s, %s, %s]],\n", J(A[0][0]), J(A[0][1]), J(A[0][2]),
+                J(A[1][0]), J(A[1][1]), J(A[1][2]), J(A[2][0]), J(A[2][1]), J(A[2][2]));
+        fprintf(f, "  \"t\": [%s, %s], \"sigma\": [%s, %s, %s],\n", J(val[0]), J(val[1]), J(val[2]), J(val[3]), J(val[4]));
+        fprintf(f, "  \"std_error\": [%s, %s, %s, %s, %s],\n", J(info.std_error[0]), J(info.std_error[1]),
+                J(info.std_error[2]), J(info.std_error[3]), J(info.std_error[4]));
         fprintf(f, "  \"models\": {");
         for (int k = 0; k < GGX_FIT_MODELS; k++)
-            fprintf(f, "%s\"%s\": {\"parameters\": %d, \"log_likelihood\": %.10g, \"bic\": %.10g}", k ? ", " : "",
-                    MODEL_NAMES[k], mr[k].parameters, mr[k].log_likelihood, mr[k].bic);
+            fprintf(f, "%s\"%s\": {\"parameters\": %d, \"log_likelihood\": %s, \"bic\": %s}", k ? ", " : "",
+                    MODEL_NAMES[k], mr[k].parameters, J(mr[k].log_likelihood), J(mr[k].bic));
         fprintf(f, "},\n  \"best\": \"%s\",\n", MODEL_NAMES[info.best]);
         fprintf(f, qnote[0] ? "  \"quantisation_note\": \"%s\",\n" : "%s", qnote);
         if (info.gof_dof > 0)
-            fprintf(f, "  \"gof\": {\"chi2\": %.10g, \"dof\": %d, \"pvalue\": %.6g},\n", info.gof_chi2, info.gof_dof,
-                    info.gof_pvalue);
+            fprintf(f, "  \"gof\": {\"chi2\": %s, \"dof\": %d, \"pvalue\": %s},\n", J(info.gof_chi2), info.gof_dof,
+                    J(info.gof_pvalue));
         else
             fprintf(f, "  \"gof\": null,\n");
-        fprintf(f, "  \"used\": %zu, \"ignored\": %zu, \"effective_n\": %.10g, \"iterations\": %d, \"converged\": %s, "
+        fprintf(f, "  \"used\": %zu, \"ignored\": %zu, \"effective_n\": %s, \"iterations\": %d, \"converged\": %s, "
                    "\"clamped\": %s\n}\n",
-                info.used, ignored, info.effective_n, info.iterations, info.converged ? "true" : "false",
+                info.used, ignored, J(info.effective_n), info.iterations, info.converged ? "true" : "false",
                 info.clamped ? "true" : "false");
+#undef J
     }
     if (o.figure) out_begin_set(); /* the report and the figure appear together or not at all */
     out_close(&out);

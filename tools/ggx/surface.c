@@ -90,6 +90,7 @@ int surface_parse(surface_format f, const unsigned char *data, size_t n, const s
         surface_free(s);
         return -1;
     }
+    s->format = f;
     if (s->kind != o->want) {
         const char *had = s->kind == SURFACE_HEIGHTS ? "heights" : "normals";
         surface_free(s);

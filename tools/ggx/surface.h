@@ -32,6 +32,7 @@ typedef struct surface {
                      * text header with units: 1e-6 for heights in micrometres beside metres), else 0 */
     int bits;       /* 8 or 16 for PNG, 0 for float data */
     int channels;   /* channels of a normal map: 2 (z rebuilt) or 3 */
+    surface_format format; /* what the file was read as */
 } surface;
 
 typedef struct surface_read_options {

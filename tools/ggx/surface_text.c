@@ -71,13 +71,16 @@ static int cmp_double(const void *a, const void *b)
     return x < y ? -1 : x > y;
 }
 
-/* The regular grid of sorted values v[0..n): its distinct values within 1e-6 of the step; 0 if not regular. */
+/* The regular grid of sorted values v[0..n): its distinct values (values within 1e-9 of the range of each other are
+ * one: a coordinate written as 0.3 on one line and 0.30000000000000004 on another), each within 1e-6 of the step
+ * from the first; 0 if not regular. */
 static size_t grid_axis(double *v, size_t n, double *lo, double *step)
 {
     qsort(v, n, sizeof *v, cmp_double);
+    double tol = 1e-9 * (v[n - 1] - v[0]);
     size_t k = 0;
     for (size_t i = 0; i < n; i++)
-        if (k == 0 || v[i] != v[k - 1]) v[k++] = v[i];
+        if (k == 0 || v[i] - v[k - 1] > tol) v[k++] = v[i];
     *lo = v[0];
     *step = k > 1 ? (v[k - 1] - v[0]) / (double)(k - 1) : 0.0;
     for (size_t i = 0; i < k; i++)
