@@ -110,7 +110,7 @@ static void usage(void)
 
 /* The samples of the input, fitted. */
 static void fit_input(const options *o, const surface *s, const ggx_fit_options *fo, ggx_shape *out,
-                      ggx_fit_info *info, const char **what, double *spacing_used, double **heights)
+                      ggx_fit_info *info, const char **what, double *spacing_used, const double **heights)
 {
     ggx_status st;
     if (s->kind == SURFACE_NORMALS) {
@@ -126,15 +126,12 @@ static void fit_input(const options *o, const surface *s, const ggx_fit_options 
                 "values, in the spacing's unit)");
         if (o->downsample >= 2 && (s->nx / (size_t)o->downsample < 2 || s->ny / (size_t)o->downsample < 2))
             die("--downsample %d leaves fewer than 2 x 2 heights of the %zu x %zu", o->downsample, s->nx, s->ny);
-        size_t n = s->nx * s->ny;
-        double *h = malloc(n * sizeof *h);
-        if (!h) die("out of memory");
-        for (size_t i = 0; i < n; i++) h[i] = s->h[i] * zs;
+        /* slopes are z_scale h / dx: the file's heights with the spacing divided by z_scale, no copy */
         ggx_heightfield_options ho = {o->keep_tilt, o->downsample};
-        st = ggx_fit_heightfield(out, h, s->nx, s->ny, dx, dy, &ho, fo, info);
-        *heights = h; /* the caller's, for the figure */
+        st = ggx_fit_heightfield(out, s->h, s->nx, s->ny, dx / zs, dy / zs, &ho, fo, info);
+        *heights = s->h;
         *what = "facets";
-        spacing_used[0] = dx, spacing_used[1] = dy;
+        spacing_used[0] = dx, spacing_used[1] = dy, spacing_used[2] = dx / zs, spacing_used[3] = dy / zs;
     }
     if (st != GGX_OK) die("fit: %s", ggx_status_str(st));
 }
@@ -181,8 +178,8 @@ int cmd_fit(int argc, char **argv)
     ggx_shape fit;
     ggx_fit_info info;
     const char *what = "";
-    double spacing[2] = {0, 0};
-    double *heights = NULL;
+    double spacing[4] = {0, 0, 0, 0}; /* the grid's spacing; the spacing the fit took (over z_scale) */
+    const double *heights = NULL;
     fit_input(&o, &s, &fo, &fit, &info, &what, spacing, &heights);
     if (bar) progress_end("fit", 200);
     /* A quantised map's levels are 2 / (2^bits - 1) apart in each component, about that in slope near n: a lobe
@@ -291,17 +288,16 @@ int cmd_fit(int argc, char **argv)
     if (o.figure) out_begin_set(); /* the report and the figure appear together or not at all */
     out_close(&out);
     if (o.figure) {
-        figure_ctx fc = {&s, heights, spacing[0], spacing[1], {o.keep_tilt, o.downsample}};
+        figure_ctx fc = {&s, heights, spacing[2], spacing[3], {o.keep_tilt, o.downsample}};
         size_t nsamp = s.nx * s.ny;
         if (s.kind == SURFACE_HEIGHTS)
-            ggx_heightfield_facets(NULL, 0, 0, heights, s.nx, s.ny, spacing[0], spacing[1], &fc.ho, &nsamp);
+            ggx_heightfield_facets(NULL, 0, 0, heights, s.nx, s.ny, spacing[2], spacing[3], &fc.ho, &nsamp);
         fit_samples fs = {read_samples, &fc, nsamp};
         char title[300];
         snprintf(title, sizeof title, "ggx fit: %s", path);
         fit_figure_write(o.figure, &fs, &fit, &info, MODEL_WORDS[fo.model], title);
         out_commit_set();
     }
-    free(heights);
     surface_free(&s);
     return 0;
 }
