@@ -47,7 +47,8 @@ typedef struct fit_data {
     int threads;
     double w_sum;   /* W */
     double n_eff;   /* W^2 / sum w^2 */
-    double mean_lc; /* sum w lc / W */
+    double mean_lc; /* sum w log cos theta / W */
+    double mean0[2]; /* the mean slope, from the same pass (about 0) */
     int max_iterations;
     double tolerance;
     ggx_fit_progress_fn progress;

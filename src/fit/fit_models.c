@@ -27,13 +27,13 @@ ggx_status fit_settings(const ggx_fit_options *opt, fit_data *d, ggx_fit_model *
  * that a large mean slope costs no accuracy; its log-likelihood per sample. */
 static ggx_status fit_gaussian(const fit_data *d, double mean[2], double cov[3], double *ll)
 {
-    fit_point at = {{0, 0}, {0, 0, 0}, {0, 0, 0}, 0};
+    /* about the mean of fit_constants' pass; the second-order sums of this pass give the covariance, and the
+     * remaining shift of the mean (zero to rounding) is taken out */
+    fit_point at = {{d->mean0[0], d->mean0[1]}, {0, 0, 0}, {0, 0, 0}, 0};
     double a[FIT_MOMENT_SUMS];
-    for (int pass = 0; pass < 2; pass++) {
-        ggx_status st = fit_pass(d->src, d->threads, FIT_PASS_MOMENTS, &at, a);
-        if (st != GGX_OK) return st;
-        at.t[0] += a[1] / a[0], at.t[1] += a[2] / a[0];
-    }
+    ggx_status st = fit_pass(d->src, d->threads, FIT_PASS_MOMENTS, &at, a);
+    if (st != GGX_OK) return st;
+    at.t[0] += a[1] / a[0], at.t[1] += a[2] / a[0];
     double dx = a[1] / a[0], dy = a[2] / a[0];
     mean[0] = at.t[0], mean[1] = at.t[1];
     double s[3] = {a[3] / a[0] - dx * dx, a[4] / a[0] - dx * dy, a[5] / a[0] - dy * dy}; /* about the mean */
@@ -96,6 +96,7 @@ static ggx_status fit_constants(fit_data *d)
     d->w_sum = a[0];
     d->n_eff = a[0] * a[0] / a[7];
     d->mean_lc = a[6] / a[0];
+    d->mean0[0] = a[1] / a[0], d->mean0[1] = a[2] / a[0];
     return GGX_OK;
 }
 
