@@ -4,21 +4,11 @@
 # 2, one line on stderr naming the problem, no partial file. Usage: cli_test.sh GGX PNG_INFO
 # GGX_WRAP runs every ggx under a wrapper (make valgrind); GGX_CLI_QUICK=1 uses small sample counts there.
 set -u
-GGX_BIN=$(command -v "$1") || GGX_BIN=$1
-case $GGX_BIN in /*) ;; *) GGX_BIN=$(pwd)/$GGX_BIN ;; esac
 PNG_INFO=$(cd "$(dirname "$2")" && pwd)/$(basename "$2")
 ROOT=$(cd "$(dirname "$0")/.." && pwd) # for include/ggx/ggx_samplers.h, the sampler registry
-GGX="ggx_run"
-ggx_run() { ${GGX_WRAP:-} "$GGX_BIN" "$@"; }
 N=""
 [ "${GGX_CLI_QUICK:-0}" = 1 ] && N="-n 20000"
-tmp=$(mktemp -d)
-trap 'rm -rf "$tmp"' EXIT
-cd "$tmp" || exit 1
-pass=0
-fail=0
-ok() { pass=$((pass + 1)); }
-bad() { fail=$((fail + 1)); echo "FAIL: $*"; }
+. "$ROOT/tests/cli_common.sh"
 
 # --- every subcommand on defaults
 "$GGX" --help > help.txt && grep -q "commands:" help.txt && ok || bad "ggx --help"
@@ -104,10 +94,10 @@ if [ "${GGX_CLI_QUICK:-0}" = 1 ]; then # 16 chi-square runs of 10^6 samples: min
     "$GGX" audit --help > audit.txt && ok || bad "audit --help"
 else
     # docs/audit.md is the command's output on its defaults, byte for byte
-    # (the number of claims is the README's; tests/test_audit.c lists them)
-    CLAIMS=$(sed -n 's/.*the seed audit (\[docs\/audit.md\](docs\/audit.md), which is `ggx audit`.s output, compared byte for byte): \([0-9]*\) claims.*/\1/p' "$ROOT/README.md")
+    # (the number of claims is docs/testing.md's; tests/test_audit.c lists them)
+    CLAIMS=$(sed -n 's/.*the seed audit (\[docs\/audit.md\](audit.md), which is `ggx audit`.s output, compared byte for byte): \([0-9]*\) claims.*/\1/p' "$ROOT/docs/testing.md")
     "$GGX" audit > audit.md && [ -n "$CLAIMS" ] && [ "$(grep -c '^| [0-9]' audit.md)" -eq "$CLAIMS" ] && grep -q 'fails' audit.md &&
-        cmp -s audit.md "$ROOT/docs/audit.md" && ok || bad "audit: docs/audit.md is not ggx audit's output or not the README's $CLAIMS claims: $(diff audit.md "$ROOT/docs/audit.md" | head -5)"
+        cmp -s audit.md "$ROOT/docs/audit.md" && ok || bad "audit: docs/audit.md is not ggx audit's output or not the $CLAIMS claims of docs/testing.md: $(diff audit.md "$ROOT/docs/audit.md" | head -5)"
     # JSON: a list of the claims, each naming its seed file and giving three verdicts from the vocabulary
     "$GGX" audit --format json --rotate 10 > audit.json && CLAIMS=$CLAIMS /usr/bin/python3 -c '
 import json, os

@@ -4,18 +4,8 @@
 # line on stderr, no output file. Usage: fit_cli_test.sh GGX
 # SPDX-License-Identifier: MIT
 set -u
-GGX_BIN=$(command -v "$1") || GGX_BIN=$1
-case $GGX_BIN in /*) ;; *) GGX_BIN=$(pwd)/$GGX_BIN ;; esac
-GGX="ggx_run"
-ggx_run() { ${GGX_WRAP:-} "$GGX_BIN" "$@"; }
 ROOT=$(cd "$(dirname "$0")/.." && pwd) # for the README
-tmp=$(mktemp -d)
-trap 'rm -rf "$tmp"' EXIT
-cd "$tmp" || exit 1
-pass=0
-fail=0
-ok() { pass=$((pass + 1)); }
-bad() { fail=$((fail + 1)); echo "FAIL: $*"; }
+. "$ROOT/tests/cli_common.sh"
 near() { awk -v a="$1" -v b="$2" -v t="$3" 'BEGIN { d = a - b; if (d < 0) d = -d; exit !(d <= t) }'; }
 
 "$GGX" fit --help > h.txt && grep -q "usage: ggx fit" h.txt && ok || bad "ggx fit --help"
