@@ -295,7 +295,7 @@ int cmd_fit(int argc, char **argv)
         fit_samples fs = {read_samples, &fc, nsamp};
         char title[300];
         snprintf(title, sizeof title, "ggx fit: %s", path);
-        fit_figure_write(o.figure, &fs, &fit, &info, MODEL_WORDS[fo.model], title);
+        fit_figure_write(o.figure, &fs, &fit, &info, MODEL_NAMES[fo.model], title);
         out_commit_set();
     }
     surface_free(&s);
