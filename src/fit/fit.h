@@ -9,15 +9,19 @@
 #include "ggx/ggx_fit.h"
 
 /* Samples are read in chunks of FIT_CHUNK into the pass's buffers; the sums are taken over units of FIT_UNIT samples
- * and the units' sums added in order, so results do not depend on the thread count. */
-enum { FIT_CHUNK = 1024, FIT_UNIT = 65536, FIT_MAX_CELLS = 16 };
+ * and the units' sums added in order, so results do not depend on the thread count. A subsample is made of pieces
+ * of FIT_PIECE samples. */
+enum { FIT_CHUNK = 1024, FIT_UNIT = 65536, FIT_PIECE = 64, FIT_MAX_CELLS = 16 };
 
 /* A source of slope samples: fill writes the slopes (x, y) and the weight w (0 for a sample to skip, with finite
- * slopes) of samples [i0, i0 + k), k <= FIT_CHUNK. (The normal's cos theta is 1 / sqrt(1 + x^2 + y^2).) */
+ * slopes) of samples [i0, i0 + k), k <= FIT_CHUNK, in any order fixed by (i0, k) (every sum is over a whole range).
+ * i0 is a multiple of FIT_PIECE. (The normal's cos theta is 1 / sqrt(1 + x^2 + y^2).) unit_weights: every weight is
+ * 0 or 1 and the source's samples are counted by fit_run (used = W, the others ignored as non-finite). */
 typedef struct fit_source {
     void (*fill)(const void *ctx, size_t i0, size_t k, double *x, double *y, double *w);
     const void *ctx;
     size_t n;
+    int unit_weights;
 } fit_source;
 
 typedef enum fit_pass_kind {
@@ -95,7 +99,7 @@ ggx_status fit_gradient(const fit_data *d, const double t[2], const double sigma
  * steps too; without exact, r->cov and r->stationarity are the approximate ones. */
 ggx_status fit_newton(const fit_data *d, const fit_data *sub, ggx_fit_model model, fit_result *r, int exact);
 
-/* Above FIT_SUBSAMPLE_MIN samples the models are fitted by EM on FIT_SUBSAMPLE_N of them (blocks of FIT_CHUNK spread
+/* Above FIT_SUBSAMPLE_MIN samples the models are fitted by EM on FIT_SUBSAMPLE_N of them (pieces of FIT_PIECE spread
  * evenly over the data), then polished by fit_newton on all of them. */
 enum { FIT_SUBSAMPLE_MIN = 1 << 22, FIT_SUBSAMPLE_N = 1 << 20 };
 

@@ -37,7 +37,9 @@ ggx_status fit_em(const fit_data *d, ggx_fit_model model, const double t0[2], co
     if (model != GGX_FIT_ELLIPSOID) t[0] = t[1] = 0.0;
     if (model == GGX_FIT_ISOTROPIC) s[0] = s[2] = 0.5 * (s[0] + s[2]), s[1] = 0.0;
     r->clamped = fit_clamp_sigma(s, floor);
-    double check_below = 1e-9; /* the parameter change under which the decrement is computed */
+    /* the parameter change under which the decrement is computed: an EM step moves the parameters by a fraction of
+     * their distance to the maximum, which is about decrement / sqrt(n_eff) in their own scale */
+    double check_below = 0.5 * d->tolerance / sqrt(fmax(d->n_eff, 1.0));
     for (int it = 1;; it++) {
         fit_point at = {{t[0], t[1]}, {0, 0, 0}, {0, 0, 0}, 0};
         fit_inverse(s, at.p);

@@ -1,5 +1,6 @@
 /* ggx_fit_heightfield: the facets of a piecewise-linear height field as a source of slopes, levelled by the
  * least-squares plane and optionally downsampled. SPDX-License-Identifier: MIT */
+#include <float.h>
 #include <stdint.h>
 #include <stdlib.h>
 #include <string.h>
@@ -13,49 +14,39 @@ typedef struct grid {
     double px, py; /* the plane's gradient, removed from every slope */
 } grid;
 
-/* The levelled differences of cell (i, j): a = (h10 - h00) / dx, b = (h11 - h01) / dx, c = (h01 - h00) / dy,
- * d = (h11 - h10) / dy, less the plane's gradient. Returns 0 (and zeros) when a height is not finite or a slope's
- * square overflows: the cell's four facets are skipped, and counted so, by one rule for the fit and its counts. */
-static int cell_diffs(const grid *g, size_t i, size_t j, double *a, double *b, double *c, double *d)
+/* The facets of cells [c0, c0 + nc) (cells row by row), planar: x[f nc + m], y[f nc + m] and w[f nc + m] are facet f
+ * of cell c0 + m. A cell's levelled differences are a = (h10 - h00) / dx, b = (h11 - h01) / dx, c = (h01 - h00) / dy,
+ * d = (h11 - h10) / dy, less the plane's gradient; its facets pair them as (a, c) and (b, d), the triangles of the
+ * diagonal 00-11, and (a, d) and (b, c), those of 10-01. A cell with a non-finite height, or whose slopes' squares
+ * overflow, gets zero slopes and weight 0 (one rule for the fit and its counts). */
+GGX_HOT static void cells_fill(const grid *g, size_t c0, size_t nc, double *x, double *y, double *w)
 {
-    const double *r0 = g->h + j * g->nx + i, *r1 = r0 + g->nx;
-    const double idx = 1.0 / g->dx, idy = 1.0 / g->dy;
-    *a = (r0[1] - r0[0]) * idx - g->px, *b = (r1[1] - r1[0]) * idx - g->px;
-    *c = (r1[0] - r0[0]) * idy - g->py, *d = (r1[1] - r0[1]) * idy - g->py;
-    if (isfinite(*a * *a + *b * *b + *c * *c + *d * *d)) return 1;
-    *a = *b = *c = *d = 0.0;
-    return 0;
+    const size_t cx = g->nx - 1;
+    const double idx = 1.0 / g->dx, idy = 1.0 / g->dy, px = g->px, py = g->py;
+    for (size_t m = 0; m < nc;) {
+        size_t cell = c0 + m, i0 = cell % cx, run = cx - i0 < nc - m ? cx - i0 : nc - m;
+        const double *r0 = g->h + (cell / cx) * g->nx + i0, *r1 = r0 + g->nx;
+        double *x0 = x + m, *x1 = x0 + nc, *x2 = x1 + nc, *x3 = x2 + nc;
+        double *y0 = y + m, *y1 = y0 + nc, *y2 = y1 + nc, *y3 = y2 + nc;
+        double *w0 = w + m, *w1 = w0 + nc, *w2 = w1 + nc, *w3 = w2 + nc;
+#pragma omp simd
+        for (size_t i = 0; i < run; i++) {
+            double a = (r0[i + 1] - r0[i]) * idx - px, b = (r1[i + 1] - r1[i]) * idx - px;
+            double c = (r1[i] - r0[i]) * idy - py, d = (r1[i + 1] - r0[i + 1]) * idy - py;
+            int ok = a * a + b * b + c * c + d * d <= DBL_MAX; /* false for NaN and infinity */
+            a = ok ? a : 0.0, b = ok ? b : 0.0, c = ok ? c : 0.0, d = ok ? d : 0.0;
+            x0[i] = a, y0[i] = c, x1[i] = b, y1[i] = d, x2[i] = a, y2[i] = d, x3[i] = b, y3[i] = c;
+            w0[i] = w1[i] = w2[i] = w3[i] = ok ? 1.0 : 0.0;
+        }
+        m += run;
+    }
 }
 
-/* Sample k is facet k % 4 of cell k / 4 (cells row by row): the four pairs of the cell's x differences
- * a = (h10 - h00) / dx, b = (h11 - h01) / dx with its y differences c = (h01 - h00) / dy, d = (h11 - h10) / dy:
- * (a, c) and (b, d) are the triangles of the diagonal 00-11, (a, d) and (b, c) those of 10-01. */
+/* The fit's source: samples [i0, i0 + k) are cells [i0 / 4, (i0 + k) / 4), facets planar (cells_fill). The passes
+ * and the subsample read ranges aligned on FIT_PIECE, and n is a multiple of 4, so i0 and k are multiples of 4. */
 static void fill_grid(const void *ctx, size_t i0, size_t k, double *x, double *y, double *w)
 {
-    const grid *g = ctx;
-    size_t cx = g->nx - 1, cell = i0 / 4, i = cell % cx, j = cell / cx;
-    int f = (int)(i0 % 4);
-    size_t s = 0;
-    double a, b, c, d, ok;
-    /* whole cells, four facets each (the passes read chunks aligned on 4) */
-    if (f == 0) {
-        for (; s + 4 <= k; s += 4) {
-            ok = cell_diffs(g, i, j, &a, &b, &c, &d);
-            x[s] = a, y[s] = c, x[s + 1] = b, y[s + 1] = d, x[s + 2] = a, y[s + 2] = d, x[s + 3] = b, y[s + 3] = c;
-            w[s] = w[s + 1] = w[s + 2] = w[s + 3] = ok;
-            if (++i == cx) i = 0, j++;
-        }
-    }
-    /* the rest facet by facet (a range that starts or ends inside a cell: ggx_heightfield_facets) */
-    ok = a = b = c = d = 0.0;
-    for (size_t t = s; t < k; t++) {
-        if (t == s || f == 0) ok = cell_diffs(g, i, j, &a, &b, &c, &d);
-        x[t] = f == 0 || f == 2 ? a : b, y[t] = f == 0 || f == 3 ? c : d, w[t] = ok;
-        if (++f == 4) {
-            f = 0;
-            if (++i == cx) i = 0, j++;
-        }
-    }
+    cells_fill(ctx, i0 / 4, k / 4, x, y, w);
 }
 
 /* The gradient of the least-squares plane through the finite heights (centred sums, so a large mean height or
@@ -134,21 +125,10 @@ GGX_API ggx_status ggx_fit_heightfield(ggx_shape *out, const double *h, size_t n
         free(coarse);
         return st;
     }
-    for (size_t j = 0; j + 1 < g.ny; j++)
-        for (size_t i = 0; i + 1 < g.nx; i++) {
-            double a, b, c, d;
-            if (cell_diffs(&g, i, j, &a, &b, &c, &d))
-                inf->used += 4;
-            else
-                inf->ignored_nonfinite += 4;
-        }
-    st = GGX_ERR_DATA;
-    if (inf->used >= 5) {
-        fit_source src = {fill_grid, &g, 4 * (g.nx - 1) * (g.ny - 1)};
-        ggx_shape s;
-        st = fit_run(&src, opt, &s, inf);
-        if (st == GGX_OK) *out = s;
-    }
+    fit_source src = {fill_grid, &g, 4 * (g.nx - 1) * (g.ny - 1), 1}; /* used and ignored counted by fit_run */
+    ggx_shape s;
+    st = fit_run(&src, opt, &s, inf);
+    if (st == GGX_OK) *out = s;
     if (st != GGX_OK) {
         size_t used = inf->used, bad = inf->ignored_nonfinite;
         memset(inf, 0, sizeof *inf);
@@ -176,13 +156,16 @@ GGX_API ggx_status ggx_heightfield_facets(double *slopes, size_t first, size_t c
         free(coarse);
         return GGX_ERR_RANGE;
     }
+    /* the cells that hold the range, FIT_CHUNK / 4 at a time, put in the order facet k % 4 of cell k / 4 */
     double x[FIT_CHUNK], y[FIT_CHUNK], w[FIT_CHUNK];
-    for (size_t at = 0; at < count; at += FIT_CHUNK) {
-        size_t k = count - at < FIT_CHUNK ? count - at : FIT_CHUNK;
-        fill_grid(&g, first + at, k, x, y, w);
-        for (size_t i = 0; i < k; i++) {
-            slopes[2 * (at + i)] = w[i] != 0.0 ? x[i] : NAN;
-            slopes[2 * (at + i) + 1] = w[i] != 0.0 ? y[i] : NAN;
+    for (size_t k = first; k < first + count;) {
+        size_t c0 = k / 4, nc = (first + count - 1) / 4 - c0 + 1;
+        nc = nc < FIT_CHUNK / 4 ? nc : FIT_CHUNK / 4;
+        cells_fill(&g, c0, nc, x, y, w);
+        for (; k < first + count && k / 4 < c0 + nc; k++) {
+            size_t at = (k % 4) * nc + (k / 4 - c0);
+            slopes[2 * (k - first)] = w[at] != 0.0 ? x[at] : NAN;
+            slopes[2 * (k - first) + 1] = w[at] != 0.0 ? y[at] : NAN;
         }
     }
     free(coarse);

@@ -23,19 +23,13 @@ ggx_status fit_settings(const ggx_fit_options *opt, fit_data *d, ggx_fit_model *
     return GGX_OK;
 }
 
-/* The Gaussian (Beckmann) fit: the weighted mean and covariance, the moments taken about the mean in a second pass so
- * that a large mean slope costs no accuracy; its log-likelihood per sample. */
-static ggx_status fit_gaussian(const fit_data *d, double mean[2], double cov[3], double *ll)
+/* The Gaussian (Beckmann) fit from the sums a of a moments pass about c (near the mean, so that a large mean slope
+ * costs no accuracy): the weighted mean and covariance and the log-likelihood per sample. */
+static void fit_gaussian(const fit_data *d, const double a[FIT_MOMENT_SUMS], const double c[2], double mean[2],
+                         double cov[3], double *ll)
 {
-    /* about the mean of fit_constants' pass; the second-order sums of this pass give the covariance, and the
-     * remaining shift of the mean (zero to rounding) is taken out */
-    fit_point at = {{d->mean0[0], d->mean0[1]}, {0, 0, 0}, {0, 0, 0}, 0};
-    double a[FIT_MOMENT_SUMS];
-    ggx_status st = fit_pass(d->src, d->threads, FIT_PASS_MOMENTS, &at, a);
-    if (st != GGX_OK) return st;
-    at.t[0] += a[1] / a[0], at.t[1] += a[2] / a[0];
-    double dx = a[1] / a[0], dy = a[2] / a[0];
-    mean[0] = at.t[0], mean[1] = at.t[1];
+    double dx = a[1] / a[0], dy = a[2] / a[0]; /* the mean less c */
+    mean[0] = c[0] + dx, mean[1] = c[1] + dy;
     double s[3] = {a[3] / a[0] - dx * dx, a[4] / a[0] - dx * dy, a[5] / a[0] - dy * dy}; /* about the mean */
     memcpy(cov, s, sizeof s);
     fit_clamp_sigma(cov, 0.5 * GGX_ALPHA_MIN * GGX_ALPHA_MIN);
@@ -43,7 +37,6 @@ static ggx_status fit_gaussian(const fit_data *d, double mean[2], double cov[3],
     fit_inverse(cov, p);
     double quad = p[0] * s[0] + 2.0 * p[1] * s[1] + p[2] * s[2]; /* E[r^T C^-1 r] = tr(C^-1 S) */
     *ll = -log(2.0 * GGX_PI) - 0.5 * fit_log_det(cov) - 0.5 * quad - 3.0 * d->mean_lc;
-    return GGX_OK;
 }
 
 /* Pearson's statistic of the chosen fit on equal-probability cells of the standardised slopes (ggx_fit.h). */
@@ -69,34 +62,37 @@ static ggx_status goodness_of_fit(const fit_data *d, const fit_result *r, int pa
     return GGX_OK;
 }
 
-/* A subsample of a source: sub-block b of FIT_SUBSAMPLE_N / FIT_CHUNK is the parent's whole block
- * floor(b * blocks / sub_blocks) of FIT_CHUNK samples, spread evenly from the first to the last. The passes read
- * chunks aligned on FIT_CHUNK, so each fill stays within one block. */
+/* A subsample of a source: piece b of the FIT_SUBSAMPLE_N / FIT_PIECE is the parent's whole piece
+ * floor(b * pieces / sub_pieces) of FIT_PIECE samples, spread evenly from the first to the last (over a height
+ * field's rows, every row's cells in turn). The passes read chunks aligned on FIT_CHUNK, a whole number of pieces. */
 typedef struct subsample {
     const fit_source *parent;
-    size_t blocks; /* the parent's whole blocks */
+    size_t pieces; /* the parent's whole pieces */
 } subsample;
 
 static void fill_subsample(const void *ctx, size_t i0, size_t k, double *x, double *y, double *w)
 {
     const subsample *c = ctx;
-    size_t b = i0 / FIT_CHUNK, off = i0 % FIT_CHUNK, nb = FIT_SUBSAMPLE_N / FIT_CHUNK;
-    size_t pb = (size_t)((double)b * (double)c->blocks / (double)nb);
-    c->parent->fill(c->parent->ctx, pb * FIT_CHUNK + off, k, x, y, w);
+    const size_t np = FIT_SUBSAMPLE_N / FIT_PIECE;
+    for (size_t at = 0; at < k; at += FIT_PIECE) {
+        size_t b = (i0 + at) / FIT_PIECE, pb = (size_t)((double)b * (double)c->pieces / (double)np);
+        size_t kk = k - at < FIT_PIECE ? k - at : FIT_PIECE;
+        c->parent->fill(c->parent->ctx, pb * FIT_PIECE, kk, x + at, y + at, w + at);
+    }
 }
 
-/* W, n_eff and the mean log cos theta of a source's samples (one moments pass about 0). */
-static ggx_status fit_constants(fit_data *d)
+/* W, n_eff, the mean log cos theta and the mean slope of a source's samples, from one moments pass about c, whose
+ * sums go to a. */
+static ggx_status fit_constants(fit_data *d, const double c[2], double a[FIT_MOMENT_SUMS])
 {
-    fit_point zero = {{0, 0}, {0, 0, 0}, {0, 0, 0}, 1}; /* cells = 1: with the log cos theta */
-    double a[FIT_MOMENT_SUMS];
-    ggx_status st = fit_pass(d->src, d->threads, FIT_PASS_MOMENTS, &zero, a);
+    fit_point at = {{c[0], c[1]}, {0, 0, 0}, {0, 0, 0}, 1}; /* cells = 1: with the log cos theta */
+    ggx_status st = fit_pass(d->src, d->threads, FIT_PASS_MOMENTS, &at, a);
     if (st != GGX_OK) return st;
     if (!(a[0] > 0.0)) return GGX_ERR_DATA;
     d->w_sum = a[0];
     d->n_eff = a[0] * a[0] / a[7];
     d->mean_lc = a[6] / a[0];
-    d->mean0[0] = a[1] / a[0], d->mean0[1] = a[2] / a[0];
+    d->mean0[0] = c[0] + a[1] / a[0], d->mean0[1] = c[1] + a[2] / a[0];
     return GGX_OK;
 }
 
@@ -108,21 +104,38 @@ ggx_status fit_run(const fit_source *src, const ggx_fit_options *opt, ggx_shape 
     ggx_status st = fit_settings(opt, &d, &model);
     if (st != GGX_OK) return st;
     d.src = src;
-    if (info->used < 5) return GGX_ERR_DATA;
-    if ((st = fit_constants(&d)) != GGX_OK) return st;
-    info->effective_n = d.n_eff;
-    /* Large inputs: EM on a subsample, Newton on all samples (ggx_fit_options.full_em). */
-    subsample sc = {src, src->n / FIT_CHUNK};
-    fit_source sub_src = {fill_subsample, &sc, FIT_SUBSAMPLE_N};
+    if (!src->unit_weights && info->used < 5) return GGX_ERR_DATA;
+    /* Large inputs: EM on a subsample, Newton on all samples (ggx_fit_options.full_em). The subsample's moments come
+     * first: its mean is the centre of the full moments pass, which then gives the Gaussian fit too. */
+    subsample sc = {src, src->n / FIT_PIECE};
+    fit_source sub_src = {fill_subsample, &sc, FIT_SUBSAMPLE_N, 0};
     fit_data ds = d;
+    ds.src = &sub_src;
+    ds.tolerance = fmax(d.tolerance, 1e-2); /* the steps on all samples finish the fit */
+    double a[FIT_MOMENT_SUMS], zero[2] = {0.0, 0.0};
     int two_stage = !d.full_em && src->n > FIT_SUBSAMPLE_MIN;
     if (two_stage) {
-        ds.src = &sub_src;
-        if ((st = fit_constants(&ds)) != GGX_OK) two_stage = 0; /* a subsample of skipped samples only */
+        st = fit_constants(&ds, zero, a);
+        if (st == GGX_ERR_DATA) two_stage = 0; /* a subsample of skipped samples only */
+        else if (st != GGX_OK) return st;
     }
+    double centre[2] = {two_stage ? ds.mean0[0] : 0.0, two_stage ? ds.mean0[1] : 0.0};
+    st = fit_constants(&d, centre, a);
+    if (src->unit_weights) { /* the count from the first pass: W samples of weight 1 */
+        info->used = st == GGX_OK ? (size_t)d.w_sum : 0;
+        info->ignored_nonfinite = src->n - info->used;
+        if (st == GGX_OK && info->used < 5) st = GGX_ERR_DATA;
+    }
+    if (st != GGX_OK) return st;
+    info->effective_n = d.n_eff;
 
     double mean[2], cov[3], gll;
-    if ((st = fit_gaussian(&d, mean, cov, &gll)) != GGX_OK) return st;
+    if (!two_stage) { /* a second pass about the mean */
+        fit_point at = {{d.mean0[0], d.mean0[1]}, {0, 0, 0}, {0, 0, 0}, 0};
+        if ((st = fit_pass(src, d.threads, FIT_PASS_MOMENTS, &at, a)) != GGX_OK) return st;
+        centre[0] = d.mean0[0], centre[1] = d.mean0[1];
+    }
+    fit_gaussian(&d, a, centre, mean, cov, &gll);
     ggx_fit_model_result *mr = info->models;
     mr[GGX_FIT_BECKMANN] = (ggx_fit_model_result){gll, 0.0, 5, 0, {mean[0], mean[1]}, {cov[0], cov[1], cov[2]}};
 
@@ -139,9 +152,9 @@ ggx_status fit_run(const fit_source *src, const ggx_fit_options *opt, ggx_shape 
         if ((st = fit_em(&dk, mk, t0, s0, &fr[k])) != GGX_OK) return st;
         if (two_stage && !fr[k].clamped) {
             fit_data dn = d;
-            /* the models compared need their likelihood only, to within decrement^2 / 2 <= 5e-7 of its maximum's
+            /* the models compared need their likelihood only, to within decrement^2 / 2 <= 5e-5 of its maximum's
              * total (far below the BIC's differences); the fitted one its exact information too */
-            if (mk != model) dn.progress = NULL, dn.tolerance = fmax(d.tolerance, 1e-3);
+            if (mk != model) dn.progress = NULL, dn.tolerance = fmax(d.tolerance, 1e-2);
             if ((st = fit_newton(&dn, &ds, mk, &fr[k], mk == model)) != GGX_OK) return st;
         } else if (two_stage) { /* held at the floor: the full samples' likelihood and information there */
             double dec;

@@ -67,7 +67,7 @@ GGX_API ggx_status ggx_fit_normals(ggx_shape *out, const ggx_vec3 *m, const doub
     normals c = {m, weight, 1.0};
     if ((st = count(&c, n, inf)) != GGX_OK) return st;
     if (inf->used < 5) return GGX_ERR_DATA;
-    fit_source src = {fill_normals, &c, n};
+    fit_source src = {fill_normals, &c, n, 0};
     ggx_shape s;
     st = fit_run(&src, opt, &s, inf);
     if (st != GGX_OK) {
