@@ -56,11 +56,11 @@ typedef struct ggx_fit_options {
     int threads;                 /* POSIX threads for the passes over the samples; 0: 1 */
     ggx_fit_progress_fn progress; /* may be NULL */
     void *progress_ctx;
-    int full_em;                 /* 0 (default): above 2^22 samples, EM runs on 2^20 of them (blocks of 1024 spread
+    int full_em;                 /* 0 (default): above 2^22 samples, EM runs on 2^20 of them (pieces of 64 spread
                                   * evenly over the data) and Newton steps on all samples finish the fit (each
                                   * accepted step keeps the likelihood within rounding; the decrement is measured on
-                                  * all samples; the other models of the comparison to a decrement of 1e-3, their
-                                  * total log-likelihood within 5e-7 of its maximum);
+                                  * all samples; the other models of the comparison to a decrement of 1e-2, their
+                                  * total log-likelihood within 5e-5 of its maximum);
                                   * 1: EM on all samples throughout */
 } ggx_fit_options;
 
