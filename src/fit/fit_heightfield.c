@@ -19,7 +19,7 @@ typedef struct grid {
  * d = (h11 - h10) / dy, less the plane's gradient; its facets pair them as (a, c) and (b, d), the triangles of the
  * diagonal 00-11, and (a, d) and (b, c), those of 10-01. A cell with a non-finite height, or whose slopes' squares
  * overflow, gets zero slopes and weight 0 (one rule for the fit and its counts). */
-GGX_HOT static void cells_fill(const grid *g, size_t c0, size_t nc, double *x, double *y, double *w)
+GGX_HOT_WIDE static void cells_fill(const grid *g, size_t c0, size_t nc, double *x, double *y, double *w)
 {
     const size_t cx = g->nx - 1;
     const double idx = 1.0 / g->dx, idy = 1.0 / g->dy, px = g->px, py = g->py;
@@ -51,25 +51,34 @@ static void fill_grid(const void *ctx, size_t i0, size_t k, double *x, double *y
 
 /* The gradient of the least-squares plane through the finite heights (centred sums, so a large mean height or
  * offset grid costs no accuracy); 0 when the finite heights do not determine a plane. */
-static void plane_gradient(const grid *g, double *px, double *py)
+GGX_HOT_WIDE static void plane_gradient(const grid *g, double *px, double *py)
 {
     double n = 0, sx = 0, sy = 0, sh = 0;
-    for (size_t j = 0; j < g->ny; j++)
+    for (size_t j = 0; j < g->ny; j++) {
+        const double *r = g->h + j * g->nx;
+        double rn = 0, rx = 0, rh = 0;
+#pragma omp simd reduction(+ : rn, rx, rh)
         for (size_t i = 0; i < g->nx; i++) {
-            double h = g->h[j * g->nx + i];
-            if (!isfinite(h)) continue;
-            n += 1.0, sx += (double)i, sy += (double)j, sh += h;
+            int ok = fabs(r[i]) <= DBL_MAX;
+            rn += ok ? 1.0 : 0.0, rx += ok ? (double)i : 0.0, rh += ok ? r[i] : 0.0;
         }
+        n += rn, sx += rx, sy += rn * (double)j, sh += rh;
+    }
     *px = *py = 0.0;
     if (n < 3.0) return;
     double mx = sx / n, my = sy / n, mh = sh / n, cxx = 0, cxy = 0, cyy = 0, cxh = 0, cyh = 0;
-    for (size_t j = 0; j < g->ny; j++)
+    for (size_t j = 0; j < g->ny; j++) {
+        const double *r = g->h + j * g->nx;
+        const double v = (double)j - my;
+        double rn = 0, ru = 0, ruu = 0, ruh = 0, reh = 0;
+#pragma omp simd reduction(+ : rn, ru, ruu, ruh, reh)
         for (size_t i = 0; i < g->nx; i++) {
-            double h = g->h[j * g->nx + i];
-            if (!isfinite(h)) continue;
-            double u = (double)i - mx, v = (double)j - my, e = h - mh;
-            cxx += u * u, cxy += u * v, cyy += v * v, cxh += u * e, cyh += v * e;
+            int ok = fabs(r[i]) <= DBL_MAX;
+            double u = ok ? (double)i - mx : 0.0, e = ok ? r[i] - mh : 0.0;
+            rn += ok ? 1.0 : 0.0, ru += u, ruu += u * u, ruh += u * e, reh += e;
         }
+        cxx += ruu, cxy += v * ru, cyy += v * v * rn, cxh += ruh, cyh += v * reh;
+    }
     double det = cxx * cyy - cxy * cxy;
     if (!(det > 1e-12 * cxx * cyy)) return;
     *px = (cyy * cxh - cxy * cyh) / det / g->dx; /* per grid step, then per unit length */

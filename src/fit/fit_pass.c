@@ -67,10 +67,10 @@ static double weighted_log_sum(const double *q, const double *d, const double *w
 
 /* The sums of samples [i0, i1) into s (zeroed by the caller). Every loop is free of branches (a skipped sample has
  * w = 0 and finite slopes, so it adds zeros) and vectorises; the x86-64-v3 clone runs them 4 wide. */
-GGX_HOT static void unit_sums(const fit_source *src, fit_pass_kind kind, const fit_point *at, size_t i0, size_t i1,
+GGX_HOT_WIDE static void unit_sums(const fit_source *src, fit_pass_kind kind, const fit_point *at, size_t i0, size_t i1,
                               double *s)
 {
-    double x[FIT_CHUNK], y[FIT_CHUNK], w[FIT_CHUNK], q[FIT_CHUNK], dl[FIT_CHUNK];
+    double x[FIT_CHUNK], y[FIT_CHUNK], w[FIT_CHUNK], q[FIT_CHUNK], dl[FIT_CHUNK], cb[FIT_CHUNK];
     const double t0 = at->t[0], t1 = at->t[1], p0 = at->p[0], p1 = at->p[1], p2 = at->p[2];
     for (size_t at0 = i0; at0 < i1; at0 += FIT_CHUNK) {
         size_t k = i1 - at0 < FIT_CHUNK ? i1 - at0 : FIT_CHUNK;
@@ -107,24 +107,40 @@ GGX_HOT static void unit_sums(const fit_source *src, fit_pass_kind kind, const f
         } else if (kind == FIT_PASS_HESSIAN) {
             /* With q = P r, c = 1 / (1 + delta) and e = (qx^2, 2 qx qy, qy^2): W, sum w c, sum w c q (2),
              * sum w c q q^T (3), sum w c^2 q q^T (3), sum w c^2 q e^T (2 x 3), sum w c^2 e e^T (6), sum w log(1 + delta). */
-            double a[FIT_HESSIAN_SUMS - 1] = {0}, unit = 0.0; /* the last sum, of the logs, after the loop */
-#pragma omp simd reduction(+ : a, unit)
+            /* three loops of at most nine sums each (one loop of 22 spilled them): the first keeps c, the others
+             * make q again */
+            double a0 = 0, a1 = 0, a2 = 0, a3 = 0, a4 = 0, a5 = 0, a6 = 0, unit = 0;
+#pragma omp simd reduction(+ : a0, a1, a2, a3, a4, a5, a6, unit)
             for (size_t i = 0; i < k; i++) {
                 double wi = w[i], rx = x[i] - t0, ry = y[i] - t1;
                 double qx = p0 * rx + p1 * ry, qy = p1 * rx + p2 * ry, delta = qx * rx + qy * ry;
-                double c = 1.0 / (1.0 + delta), wc = wi * c, wc2 = wc * c;
-                double e0 = qx * qx, e1 = 2.0 * qx * qy, e2 = qy * qy;
-                a[0] += wi, a[1] += wc, a[2] += wc * qx, a[3] += wc * qy;
-                a[4] += wc * e0, a[5] += wc * qx * qy, a[6] += wc * e2;
-                a[7] += wc2 * e0, a[8] += wc2 * qx * qy, a[9] += wc2 * e2;
-                a[10] += wc2 * qx * e0, a[11] += wc2 * qx * e1, a[12] += wc2 * qx * e2;
-                a[13] += wc2 * qy * e0, a[14] += wc2 * qy * e1, a[15] += wc2 * qy * e2;
-                a[16] += wc2 * e0 * e0, a[17] += wc2 * e0 * e1, a[18] += wc2 * e0 * e2;
-                a[19] += wc2 * e1 * e1, a[20] += wc2 * e1 * e2, a[21] += wc2 * e2 * e2;
+                double c = 1.0 / (1.0 + delta), wc = wi * c;
+                a0 += wi, a1 += wc, a2 += wc * qx, a3 += wc * qy;
+                a4 += wc * qx * qx, a5 += wc * qx * qy, a6 += wc * qy * qy;
+                cb[i] = c;
                 dl[i] = delta;
                 q[i] = 1.0 + wi * delta;
                 unit += wi != 0.0 && wi != 1.0;
             }
+            double b0 = 0, b1 = 0, b2 = 0, b3 = 0, b4 = 0, b5 = 0, b6 = 0, b7 = 0, b8 = 0;
+#pragma omp simd reduction(+ : b0, b1, b2, b3, b4, b5, b6, b7, b8)
+            for (size_t i = 0; i < k; i++) {
+                double rx = x[i] - t0, ry = y[i] - t1, qx = p0 * rx + p1 * ry, qy = p1 * rx + p2 * ry;
+                double wc2 = w[i] * cb[i] * cb[i], e0 = qx * qx, e1 = 2.0 * qx * qy, e2 = qy * qy;
+                b0 += wc2 * e0, b1 += wc2 * qx * qy, b2 += wc2 * e2;
+                b3 += wc2 * qx * e0, b4 += wc2 * qx * e1, b5 += wc2 * qx * e2;
+                b6 += wc2 * qy * e0, b7 += wc2 * qy * e1, b8 += wc2 * qy * e2;
+            }
+            double c0 = 0, c1 = 0, c2 = 0, c3 = 0, c4 = 0, c5 = 0;
+#pragma omp simd reduction(+ : c0, c1, c2, c3, c4, c5)
+            for (size_t i = 0; i < k; i++) {
+                double rx = x[i] - t0, ry = y[i] - t1, qx = p0 * rx + p1 * ry, qy = p1 * rx + p2 * ry;
+                double wc2 = w[i] * cb[i] * cb[i], e0 = qx * qx, e1 = 2.0 * qx * qy, e2 = qy * qy;
+                c0 += wc2 * e0 * e0, c1 += wc2 * e0 * e1, c2 += wc2 * e0 * e2;
+                c3 += wc2 * e1 * e1, c4 += wc2 * e1 * e2, c5 += wc2 * e2 * e2;
+            }
+            const double a[FIT_HESSIAN_SUMS - 1] = {a0, a1, a2, a3, a4, a5, a6, b0, b1, b2, b3,
+                                                    b4, b5, b6, b7, b8, c0, c1, c2, c3, c4, c5};
             for (int j = 0; j < FIT_HESSIAN_SUMS - 1; j++) s[j] += a[j];
             s[FIT_HESSIAN_SUMS - 1] += weighted_log_sum(q, dl, w, k, unit != 0.0);
         } else {
@@ -160,7 +176,15 @@ GGX_HOT static void unit_sums(const fit_source *src, fit_pass_kind kind, const f
                     cell[i] += z1[i] >= 0.0 ? (lo | ccw) : (lo & ccw);
                 }
             }
-            for (size_t i = 0; i < k; i++) s[cell[i]] += w[i]; /* a skipped sample adds its weight 0 */
+            /* four histograms in turn, so that neighbouring samples in one cell do not wait on each other's sums; a
+             * skipped sample adds its weight 0 */
+            double h4[4][FIT_MAX_CELLS * FIT_MAX_CELLS];
+            memset(h4, 0, sizeof h4);
+            size_t i = 0;
+            for (; i + 4 <= k; i += 4)
+                for (int j = 0; j < 4; j++) h4[j][cell[i + j]] += w[i + j];
+            for (; i < k; i++) h4[0][cell[i]] += w[i];
+            for (int c = 0; c < K * K; c++) s[c] += (h4[0][c] + h4[1][c]) + (h4[2][c] + h4[3][c]);
         }
     }
 }
