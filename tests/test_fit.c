@@ -689,6 +689,70 @@ static void heightfield(void **state)
     free(h);
 }
 
+/* The log-likelihoods a fit reports against ggx_fit_log_likelihood (ggx_pdf_ndf: independent of the passes' sums of
+ * logs) at the reported parameters, for every Student-t model, and Beckmann's against its Gaussian density written
+ * out here: on weighted normals, and on a height field of more than 2^22 facets (two stages; the facets through
+ * ggx_heightfield_facets, the fit's own through its passes). Within 1e-11 of |log L| + 1: the sums' rounding over a
+ * few million samples is about 1e-13. */
+static void check_log_likelihoods(const ggx_fit_info *info, const ggx_vec3 *m, const double *w, size_t n,
+                                  const char *what)
+{
+    for (int k = 0; k < GGX_FIT_BECKMANN; k++) {
+        const ggx_fit_model_result *mr = &info->models[k];
+        ggx_shape s;
+        double ll;
+        assert_int_equal(ggx_shape_from_slopes(&s, mr->t[0], mr->t[1], mr->sigma[0], mr->sigma[1], mr->sigma[2]),
+                         GGX_OK);
+        assert_int_equal(ggx_fit_log_likelihood(&s, m, w, n, &ll), GGX_OK);
+        CHECK_CLOSE(mr->log_likelihood, ll, 0.0, 1e-11 * (fabs(ll) + 1.0), "%s: model %d's log-likelihood", what, k);
+        if (k == GGX_FIT_ELLIPSOID) CHECK_CLOSE(info->log_likelihood, ll, 0.0, 1e-11 * (fabs(ll) + 1.0), "%s", what);
+    }
+    const ggx_fit_model_result *b = &info->models[GGX_FIT_BECKMANN];
+    double det = b->sigma[0] * b->sigma[2] - b->sigma[1] * b->sigma[1], sl = 0.0, sw = 0.0, wmax = 0.0;
+    for (size_t i = 0; i < n; i++) wmax = fmax(wmax, w ? w[i] : 1.0);
+    for (size_t i = 0; i < n; i++) {
+        double x = -m[i].x / m[i].z - b->t[0], y = -m[i].y / m[i].z - b->t[1], wi = (w ? w[i] : 1.0) / wmax;
+        double q = (b->sigma[2] * x * x - 2.0 * b->sigma[1] * x * y + b->sigma[0] * y * y) / det;
+        double x0 = x + b->t[0], y0 = y + b->t[1];
+        /* the density over solid angle: the slopes' Gaussian over cos^3 theta */
+        sl += wi * (-log(2.0 * acos(-1.0)) - 0.5 * log(det) - 0.5 * q + 1.5 * log1p(x0 * x0 + y0 * y0));
+        sw += wi;
+    }
+    CHECK_CLOSE(b->log_likelihood, sl / sw, 0.0, 1e-11 * (fabs(sl / sw) + 1.0), "%s: Beckmann's log-likelihood", what);
+}
+
+static void log_likelihoods(void **state)
+{
+    (void)state;
+    rng r = {43};
+    ggx_shape s;
+    make_shape(&s, (shape_params){0.3, 0.1, 0.4, -0.2, 0.7});
+    size_t n = 20000;
+    ggx_vec3 *m = draw(&s, n, 0, &r);
+    double *w = malloc(n * sizeof *w);
+    for (size_t i = 0; i < n; i++) w[i] = 0.5 + (double)(i % 7);
+    ggx_shape f;
+    ggx_fit_info info;
+    fit_ok(&f, m, w, n, NULL, &info);
+    check_log_likelihoods(&info, m, w, n, "weighted normals");
+    free(m), free(w);
+
+    size_t nx = 1100, ny = 1000; /* 4 x 1099 x 999 facets, above 2^22 */
+    double *h = walk_surface(&r, nx, ny, 1.0, 1.0, 0.2, 0.1, 0.05, -0.02);
+    ggx_fit_options o = {0};
+    o.threads = 2;
+    assert_int_equal(ggx_fit_heightfield(&f, h, nx, ny, 1.0, 1.0, NULL, &o, &info), GGX_OK);
+    size_t total;
+    assert_int_equal(ggx_heightfield_facets(NULL, 0, 0, h, nx, ny, 1.0, 1.0, NULL, &total), GGX_OK);
+    CHECK(total > (1u << 22) && info.used == total, "%zu facets, %zu used", total, info.used);
+    double *sl = malloc(2 * total * sizeof *sl);
+    ggx_vec3 *fm = malloc(total * sizeof *fm);
+    assert_int_equal(ggx_heightfield_facets(sl, 0, total, h, nx, ny, 1.0, 1.0, NULL, NULL), GGX_OK);
+    for (size_t i = 0; i < total; i++) fm[i] = normal_of_slope(sl[2 * i], sl[2 * i + 1]);
+    check_log_likelihoods(&info, fm, NULL, total, "height field");
+    free(h), free(sl), free(fm);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -702,6 +766,7 @@ int main(void)
         cmocka_unit_test(heightfield),
         cmocka_unit_test(review_cases),
         cmocka_unit_test(two_stage),
+        cmocka_unit_test(log_likelihoods),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }
