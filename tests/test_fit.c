@@ -200,19 +200,93 @@ static int stop_at_3(void *ctx, int it, double ll)
 
 /* ---- the observed information ---- */
 
-/* n_eff log L at (t, Sigma) through ggx_fit_log_likelihood (ggx_pdf_ndf: independent of the fit's slope form). */
-static double total_ll(const ggx_vec3 *m, size_t n, const double th[5])
+/* A total log-likelihood n_eff log L at (t, Sigma), computed independently of the fit. */
+typedef double (*total_ll_fn)(const void *ctx, const double th[5]);
+
+typedef struct normal_set {
+    const ggx_vec3 *m;
+    size_t n;
+} normal_set;
+
+/* Through ggx_fit_log_likelihood (ggx_pdf_ndf: independent of the fit's slope form). */
+static double total_ll(const void *ctx, const double th[5])
 {
+    const normal_set *ns = ctx;
     ggx_shape s;
     assert_int_equal(ggx_shape_from_slopes(&s, th[0], th[1], th[2], th[3], th[4]), GGX_OK);
     double ll;
-    assert_int_equal(ggx_fit_log_likelihood(&s, m, NULL, n, &ll), GGX_OK);
-    return ll * (double)n;
+    assert_int_equal(ggx_fit_log_likelihood(&s, ns->m, NULL, ns->n, &ll), GGX_OK);
+    return ll * (double)ns->n;
 }
 
 /* At the fit the gradient of log L vanishes (central differences: below 1e-3 per standard error), and the inverse of
  * the reported covariance is minus the Hessian by central differences of log L, entry by entry within 1e-3 of
- * sqrt(|H_ii H_jj|): the closed-form Hessian is checked entry by entry. */
+ * sqrt(|H_ii H_jj|): the information is checked entry by entry. */
+static void check_information(total_ll_fn ll, const void *ctx, const ggx_fit_info *info, const char *what)
+{
+    double th[5] = {info->t[0], info->t[1], info->sigma[0], info->sigma[1], info->sigma[2]};
+    double h[5], H[5][5];
+    for (int i = 0; i < 5; i++) h[i] = 1e-3 * info->std_error[i];
+    for (int i = 0; i < 5; i++) {
+        double a[5], b[5];
+        memcpy(a, th, sizeof a), memcpy(b, th, sizeof b);
+        a[i] += h[i], b[i] -= h[i];
+        double g = (ll(ctx, a) - ll(ctx, b)) / (2.0 * h[i]);
+        CHECK(fabs(g) * info->std_error[i] <= 1e-3, "%s: d log L / d theta_%d = %g (SE %g)", what, i, g,
+              info->std_error[i]);
+    }
+    /* Hessian with steps of 0.05 standard errors (the truncation error is ~1e-3 of an entry there). */
+    for (int i = 0; i < 5; i++) h[i] = 0.05 * info->std_error[i];
+    double l0 = ll(ctx, th);
+    for (int i = 0; i < 5; i++)
+        for (int j = i; j < 5; j++) {
+            double v[4];
+            for (int c = 0; c < 4; c++) {
+                double a[5];
+                memcpy(a, th, sizeof a);
+                a[i] += (c & 1 ? -1 : 1) * h[i];
+                a[j] += (c & 2 ? -1 : 1) * h[j];
+                v[c] = i == j ? 0.0 : ll(ctx, a);
+            }
+            if (i == j) {
+                double a[5], b[5];
+                memcpy(a, th, sizeof a), memcpy(b, th, sizeof b);
+                a[i] += h[i], b[i] -= h[i];
+                H[i][i] = (ll(ctx, a) - 2.0 * l0 + ll(ctx, b)) / (h[i] * h[i]);
+            } else {
+                H[i][j] = H[j][i] = (v[0] - v[1] - v[2] + v[3]) / (4.0 * h[i] * h[j]);
+            }
+        }
+    /* The reported covariance's inverse is -H: entry by entry, relative to sqrt(|H_ii H_jj|). */
+    double inv[5][10];
+    for (int i = 0; i < 5; i++)
+        for (int j = 0; j < 10; j++) inv[i][j] = j < 5 ? info->covariance[i][j] : (j - 5 == i);
+    for (int c = 0; c < 5; c++) { /* Gauss-Jordan with partial pivoting */
+        int pv = c;
+        for (int i = c + 1; i < 5; i++)
+            if (fabs(inv[i][c]) > fabs(inv[pv][c])) pv = i;
+        for (int j = 0; j < 10; j++) {
+            double t = inv[c][j];
+            inv[c][j] = inv[pv][j], inv[pv][j] = t;
+        }
+        double d = inv[c][c];
+        for (int j = 0; j < 10; j++) inv[c][j] /= d;
+        for (int i = 0; i < 5; i++)
+            if (i != c) {
+                double fc = inv[i][c];
+                for (int j = 0; j < 10; j++) inv[i][j] -= fc * inv[c][j];
+            }
+    }
+    double worst = 0.0;
+    for (int i = 0; i < 5; i++)
+        for (int j = 0; j < 5; j++) {
+            double e = fabs(-H[i][j] - inv[i][5 + j]) / sqrt(fabs(H[i][i] * H[j][j]));
+            if (e > worst) worst = e;
+        }
+    printf("information: %s, largest |H_fd + C^-1| / sqrt(|H_ii H_jj|) = %.2g\n", what, worst);
+    CHECK(worst <= 1e-3, "%s: %g", what, worst);
+}
+
 static void information_matches_differences(void **state)
 {
     (void)state;
@@ -228,67 +302,10 @@ static void information_matches_differences(void **state)
         ggx_shape f;
         ggx_fit_info info;
         fit_ok(&f, m, NULL, n, &o, &info);
-        double th[5] = {info.t[0], info.t[1], info.sigma[0], info.sigma[1], info.sigma[2]};
-        double h[5], H[5][5];
-        for (int i = 0; i < 5; i++) h[i] = 1e-3 * info.std_error[i];
-        for (int i = 0; i < 5; i++) {
-            double a[5], b[5];
-            memcpy(a, th, sizeof a), memcpy(b, th, sizeof b);
-            a[i] += h[i], b[i] -= h[i];
-            double g = (total_ll(m, n, a) - total_ll(m, n, b)) / (2.0 * h[i]);
-            CHECK(fabs(g) * info.std_error[i] <= 1e-3, "shape %d: d log L / d theta_%d = %g (SE %g)", k, i, g,
-                  info.std_error[i]);
-        }
-        /* Hessian with steps of 0.05 standard errors (the truncation error is ~1e-3 of an entry there). */
-        for (int i = 0; i < 5; i++) h[i] = 0.05 * info.std_error[i];
-        double l0 = total_ll(m, n, th);
-        for (int i = 0; i < 5; i++)
-            for (int j = i; j < 5; j++) {
-                double v[4];
-                for (int c = 0; c < 4; c++) {
-                    double a[5];
-                    memcpy(a, th, sizeof a);
-                    a[i] += (c & 1 ? -1 : 1) * h[i];
-                    a[j] += (c & 2 ? -1 : 1) * h[j];
-                    v[c] = i == j ? 0.0 : total_ll(m, n, a);
-                }
-                if (i == j) {
-                    double a[5], b[5];
-                    memcpy(a, th, sizeof a), memcpy(b, th, sizeof b);
-                    a[i] += h[i], b[i] -= h[i];
-                    H[i][i] = (total_ll(m, n, a) - 2.0 * l0 + total_ll(m, n, b)) / (h[i] * h[i]);
-                } else {
-                    H[i][j] = H[j][i] = (v[0] - v[1] - v[2] + v[3]) / (4.0 * h[i] * h[j]);
-                }
-            }
-        /* The reported covariance's inverse is -H: entry by entry, relative to sqrt(|H_ii H_jj|). */
-        double inv[5][10];
-        for (int i = 0; i < 5; i++)
-            for (int j = 0; j < 10; j++) inv[i][j] = j < 5 ? info.covariance[i][j] : (j - 5 == i);
-        for (int c = 0; c < 5; c++) { /* Gauss-Jordan with partial pivoting */
-            int pv = c;
-            for (int i = c + 1; i < 5; i++)
-                if (fabs(inv[i][c]) > fabs(inv[pv][c])) pv = i;
-            for (int j = 0; j < 10; j++) {
-                double t = inv[c][j];
-                inv[c][j] = inv[pv][j], inv[pv][j] = t;
-            }
-            double d = inv[c][c];
-            for (int j = 0; j < 10; j++) inv[c][j] /= d;
-            for (int i = 0; i < 5; i++)
-                if (i != c) {
-                    double fc = inv[i][c];
-                    for (int j = 0; j < 10; j++) inv[i][j] -= fc * inv[c][j];
-                }
-        }
-        double worst = 0.0;
-        for (int i = 0; i < 5; i++)
-            for (int j = 0; j < 5; j++) {
-                double e = fabs(-H[i][j] - inv[i][5 + j]) / sqrt(fabs(H[i][i] * H[j][j]));
-                if (e > worst) worst = e;
-            }
-        printf("information: shape %d, largest |H_fd + C^-1| / sqrt(|H_ii H_jj|) = %.2g\n", k, worst);
-        CHECK(worst <= 1e-3, "shape %d: %g", k, worst);
+        normal_set ns = {m, n};
+        char what[32];
+        snprintf(what, sizeof what, "shape %d", k);
+        check_information(total_ll, &ns, &info, what);
         free(m);
     }
 }
@@ -753,6 +770,216 @@ static void log_likelihoods(void **state)
     free(h), free(sl), free(fm);
 }
 
+/* ---- quantised normal maps: texels as cells (ggx_fit_normal_cells) ---- */
+
+/* The decoded red and green channels of an 8-bit map storing (n + 1) / 2: the centre of the normal's cell. */
+static void quantise(const ggx_vec3 *m, size_t n, double levels, double *uv)
+{
+    for (size_t i = 0; i < n; i++) {
+        uv[2 * i] = 2.0 * round((m[i].x + 1.0) * 0.5 * levels) / levels - 1.0;
+        uv[2 * i + 1] = 2.0 * round((m[i].y + 1.0) * 0.5 * levels) / levels - 1.0;
+    }
+}
+
+/* n_eff log L of the cells at (t, Sigma), independently of the fit: each texel's log P(cell), P(cell) the integral of
+ * D(m) over its square in (n_x, n_y) (D(m) (m.n) dw = D(m) dn_x dn_y) by a 24 x 24 Gauss-Legendre rule of ggx_ndf. */
+typedef struct cell_texels {
+    const double *uv;
+    size_t n;
+    double q;
+} cell_texels;
+
+static double gl_nodes[24], gl_weights[24];
+
+static void gl_init(void)
+{
+    for (int i = 0; i < 24; i++) { /* Newton on P_24 */
+        double x = cos(acos(-1.0) * (i + 0.75) / 24.5), dp = 1.0;
+        for (int it = 0; it < 100; it++) {
+            double p0 = 1.0, p1 = x;
+            for (int k = 2; k <= 24; k++) {
+                double p2 = ((2.0 * k - 1.0) * x * p1 - (k - 1.0) * p0) / k;
+                p0 = p1, p1 = p2;
+            }
+            dp = 24.0 * (x * p1 - p0) / (x * x - 1.0);
+            double dx = p1 / dp;
+            x -= dx;
+            if (fabs(dx) < 1e-16) break;
+        }
+        gl_nodes[i] = x, gl_weights[i] = 2.0 / ((1.0 - x * x) * dp * dp);
+    }
+}
+
+static double cell_probability(const ggx_shape *s, double u, double v, double q)
+{
+    double h = 0.5 * q, p = 0.0;
+    for (int i = 0; i < 24; i++)
+        for (int j = 0; j < 24; j++) {
+            double nx = u + h * gl_nodes[i], ny = v + h * gl_nodes[j], z2 = 1.0 - nx * nx - ny * ny;
+            if (z2 > 0.0) p += h * h * gl_weights[i] * gl_weights[j] * ggx_ndf(s, (ggx_vec3){nx, ny, sqrt(z2)});
+        }
+    return p;
+}
+
+static double cells_total_ll(const void *ctx, const double th[5])
+{
+    const cell_texels *c = ctx;
+    ggx_shape s;
+    assert_int_equal(ggx_shape_from_slopes(&s, th[0], th[1], th[2], th[3], th[4]), GGX_OK);
+    double sum = 0.0, last_u = NAN, last_v = NAN, last = 0.0;
+    for (size_t i = 0; i < c->n; i++) { /* texels sorted by cell by the caller */
+        if (c->uv[2 * i] != last_u || c->uv[2 * i + 1] != last_v)
+            last_u = c->uv[2 * i], last_v = c->uv[2 * i + 1], last = log(cell_probability(&s, last_u, last_v, c->q));
+        sum += last;
+    }
+    return sum;
+}
+
+static int cmp_uv(const void *a, const void *b)
+{
+    const double *x = a, *y = b;
+    return x[0] < y[0] ? -1 : x[0] > y[0] ? 1 : x[1] < y[1] ? -1 : x[1] > y[1];
+}
+
+static int record_cells(void *ctx, int it, double ll)
+{
+    stage_trace *t = ctx;
+    (void)it;
+    if (t->n < (int)(sizeof t->ll / sizeof t->ll[0])) t->ll[t->n] = ll;
+    t->n++;
+    return 0;
+}
+
+/* 8-bit maps of lobes near the levels' spacing q = 2 / 255: the cells' fit is unbiased (z-scores of mean about 0 and
+ * variance about 1 over repeated maps) where the fit of the cells' centres as normals is far off (the negative
+ * control: its alpha_y at 0.0045 inflated by over 20 standard errors); its log-likelihood is the mean log P(cell) by
+ * an independent quadrature; its information matches differences of that likelihood; EM never lowers it; a tiny q
+ * gives the fit of the normals; weights, threads and bad input. */
+static void quantised_cells(void **state)
+{
+    (void)state;
+    gl_init();
+    rng r = {44};
+    const double q = 2.0 / 255.0;
+    /* recovery: 24 maps of 20000 texels, a skewed shape with alpha (0.009, 0.0045) */
+    ggx_shape s;
+    make_shape(&s, (shape_params){0.009, 0.0045, 0.002, -0.003, 0.4});
+    double t[2], sg[3];
+    ggx_shape_slopes(&s, t, sg);
+    const size_t n = 20000;
+    const int maps = 24;
+    double *uv = malloc(2 * n * sizeof *uv), zs = 0.0, zz = 0.0, point_z = 0.0;
+    ggx_vec3 *c = malloc(n * sizeof *c);
+    int nz = 0;
+    for (int k = 0; k < maps; k++) {
+        ggx_vec3 *m = draw(&s, n, k % 2, &r);
+        quantise(m, n, 255.0, uv);
+        ggx_shape f;
+        ggx_fit_info info, pinfo;
+        assert_int_equal(ggx_fit_normal_cells(&f, uv, NULL, n, q, NULL, &info), GGX_OK);
+        CHECK(info.converged && !info.clamped && info.used == n, "map %d: converged %d clamped %d", k, info.converged,
+              info.clamped);
+        const double got[5] = {info.t[0], info.t[1], info.sigma[0], info.sigma[1], info.sigma[2]};
+        const double want[5] = {t[0], t[1], sg[0], sg[1], sg[2]};
+        for (int i = 0; i < 5; i++) {
+            double z = (got[i] - want[i]) / info.std_error[i];
+            zs += z, zz += z * z, nz++;
+        }
+        for (size_t i = 0; i < n; i++)
+            c[i] = (ggx_vec3){uv[2 * i], uv[2 * i + 1], sqrt(fmax(0.0, 1.0 - uv[2 * i] * uv[2 * i] -
+                                                               uv[2 * i + 1] * uv[2 * i + 1]))};
+        fit_ok(&f, c, NULL, n, NULL, &pinfo);
+        point_z += (pinfo.sigma[2] - sg[2]) / pinfo.std_error[4] / maps;
+        free(m);
+    }
+    double mean = zs / nz, var = zz / nz - mean * mean;
+    printf("quantised_cells: %d z-scores of the cells' fit: mean %.3f, variance %.3f; the centres' fit: Sigma_yy "
+           "%.1f standard errors off on average\n", nz, mean, var, point_z);
+    CHECK(fabs(mean) <= 4.0 / sqrt((double)nz), "z mean %g", mean);
+    CHECK(var >= 0.6 && var <= 1.5, "z variance %g over %d", var, nz); /* chi-square 99.9 % range for 119 dof */
+    CHECK(point_z >= 20.0, "the centres' fit is only %g standard errors off", point_z);
+
+    /* one map: the likelihood, the information, EM's monotone likelihood */
+    size_t n1 = 3000;
+    ggx_vec3 *m = draw(&s, n1, 1, &r);
+    quantise(m, n1, 255.0, uv);
+    qsort(uv, n1, 2 * sizeof *uv, cmp_uv);
+    ggx_shape f;
+    ggx_fit_info info;
+    ggx_fit_options o = {0};
+    stage_trace tr = {{0}, 0};
+    o.tolerance = 1e-9, o.progress = record_cells, o.progress_ctx = &tr;
+    assert_int_equal(ggx_fit_normal_cells(&f, uv, NULL, n1, q, &o, &info), GGX_OK);
+    cell_texels ct = {uv, n1, q};
+    const double th[5] = {info.t[0], info.t[1], info.sigma[0], info.sigma[1], info.sigma[2]};
+    double ref = cells_total_ll(&ct, th) / (double)n1;
+    CHECK_CLOSE(info.log_likelihood, ref, 0.0, 1e-7 * fabs(ref), "the mean log P(cell)");
+    CHECK(isnan(info.gof_pvalue) && info.gof_dof == 0, "a goodness of fit for cells");
+    int monotone = 1;
+    for (int i = 1; i < tr.n && i < (int)(sizeof tr.ll / sizeof tr.ll[0]); i++)
+        monotone &= tr.ll[i] >= tr.ll[i - 1] - 1e-13 * fabs(tr.ll[i - 1]);
+    CHECK(monotone && tr.n >= 3, "EM lowered the cells' likelihood (%d iterations)", tr.n);
+    check_information(cells_total_ll, &ct, &info, "cells");
+    for (int k = 0; k < GGX_FIT_BECKMANN; k++) { /* every Student-t model's likelihood, by the same quadrature */
+        const ggx_fit_model_result *mr = &info.models[k];
+        const double tk[5] = {mr->t[0], mr->t[1], mr->sigma[0], mr->sigma[1], mr->sigma[2]};
+        CHECK_CLOSE(mr->log_likelihood, cells_total_ll(&ct, tk) / (double)n1, 0.0, 1e-7 * fabs(ref), "model %d", k);
+    }
+
+    /* weights and threads: a texel twice is a texel of weight 2; threads change no bit */
+    double *w = malloc(n1 * sizeof *w), *uv2 = malloc(4 * n1 * sizeof *uv2);
+    size_t n2 = 0;
+    for (size_t i = 0; i < n1; i++) {
+        w[i] = 1.0 + (double)(i % 2);
+        for (int k = 0; k < (int)w[i]; k++) uv2[2 * n2] = uv[2 * i], uv2[2 * n2 + 1] = uv[2 * i + 1], n2++;
+    }
+    ggx_shape fa, fb;
+    ggx_fit_info ia, ib;
+    ggx_fit_options ot = {0};
+    ot.tolerance = 1e-9;
+    assert_int_equal(ggx_fit_normal_cells(&fa, uv, w, n1, q, &ot, &ia), GGX_OK);
+    assert_int_equal(ggx_fit_normal_cells(&fb, uv2, NULL, n2, q, &ot, &ib), GGX_OK);
+    const double scale = sqrt(ib.sigma[0] * ib.sigma[2]);
+    for (int i = 0; i < 3; i++) CHECK_CLOSE(ia.sigma[i], ib.sigma[i], 0.0, 1e-9 * scale, "weighted sigma[%d]", i);
+    ggx_fit_options o3 = ot;
+    o3.threads = 3;
+    assert_int_equal(ggx_fit_normal_cells(&fb, uv, w, n1, q, &o3, &ib), GGX_OK);
+    CHECK(memcmp(&ia, &ib, sizeof ia) == 0 && memcmp(&fa, &fb, sizeof fa) == 0, "3 threads differ");
+
+    /* a tiny q: the cells are points, the fit is ggx_fit_normals' */
+    ggx_shape wide;
+    make_shape(&wide, (shape_params){0.3, 0.15, 0.2, 0.1, 0.5});
+    ggx_vec3 *mw = draw(&wide, n1, 0, &r);
+    for (size_t i = 0; i < n1; i++) uv[2 * i] = mw[i].x, uv[2 * i + 1] = mw[i].y;
+    assert_int_equal(ggx_fit_normal_cells(&fa, uv, NULL, n1, 1e-7, NULL, &ia), GGX_OK);
+    fit_ok(&fb, mw, NULL, n1, NULL, &ib);
+    const double va[5] = {ia.t[0], ia.t[1], ia.sigma[0], ia.sigma[1], ia.sigma[2]};
+    const double vb[5] = {ib.t[0], ib.t[1], ib.sigma[0], ib.sigma[1], ib.sigma[2]};
+    for (int i = 0; i < 5; i++)
+        CHECK(fabs(va[i] - vb[i]) <= 1e-3 * ib.std_error[i], "q 1e-7: parameter %d %g vs %g", i, va[i], vb[i]);
+
+    /* bad input */
+    double bad[12] = {0.0, 0.0, 2.0, 0.0, NAN, 0.0, 0.01, 0.01, 0.0, 0.0, 0.0, 0.0};
+    double bw[6] = {1, 1, 1, 1, 0, 1};
+    assert_int_equal(ggx_fit_normal_cells(NULL, bad, NULL, 6, q, NULL, &info), GGX_ERR_NULL);
+    assert_int_equal(ggx_fit_normal_cells(&f, NULL, NULL, 6, q, NULL, &info), GGX_ERR_NULL);
+    assert_int_equal(ggx_fit_normal_cells(&f, bad, NULL, 6, 0.0, NULL, &info), GGX_ERR_RANGE);
+    assert_int_equal(ggx_fit_normal_cells(&f, bad, NULL, 6, 2.5, NULL, &info), GGX_ERR_RANGE);
+    assert_int_equal(ggx_fit_normal_cells(&f, bad, NULL, 6, NAN, NULL, &info), GGX_ERR_NONFINITE);
+    assert_int_equal(ggx_fit_normal_cells(&f, bad, bw, 6, q, NULL, &info), GGX_ERR_DATA); /* 3 usable texels */
+    CHECK(info.used == 3 && info.ignored_horizon == 1 && info.ignored_nonfinite == 1 && info.ignored_weight == 1,
+          "counts %zu %zu %zu %zu", info.used, info.ignored_horizon, info.ignored_nonfinite, info.ignored_weight);
+    bw[0] = -1.0;
+    assert_int_equal(ggx_fit_normal_cells(&f, bad, bw, 6, q, NULL, &info), GGX_ERR_RANGE);
+    CHECK(info.used == 2 && info.ignored_horizon == 1, "a negative weight: counts %zu %zu", info.used,
+          info.ignored_horizon);
+    for (size_t i = 0; i < 40; i++) uv[i] = i % 2 ? 0.0 : 1.0 / 255.0; /* 20 texels in one cell */
+    assert_int_equal(ggx_fit_normal_cells(&f, uv, NULL, 20, q, NULL, &info), GGX_OK);
+    CHECK(info.clamped && info.converged, "one cell: clamped %d converged %d", info.clamped, info.converged);
+    for (int i = 0; i < 3; i++) CHECK(isfinite(info.sigma[i]) && (info.sigma[i] >= 0.0 || i == 1), "sigma %d", i);
+    free(uv), free(c), free(m), free(w), free(uv2), free(mw);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -767,6 +994,7 @@ int main(void)
         cmocka_unit_test(review_cases),
         cmocka_unit_test(two_stage),
         cmocka_unit_test(log_likelihoods),
+        cmocka_unit_test(quantised_cells),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

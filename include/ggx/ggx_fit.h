@@ -127,6 +127,30 @@ ggx_status ggx_fit_normals(ggx_shape *out, const ggx_vec3 *m, const double *weig
  * (s, m or ll NULL: GGX_ERR_NULL). */
 ggx_status ggx_fit_log_likelihood(const ggx_shape *s, const ggx_vec3 *m, const double *weight, size_t n, double *ll);
 
+/* Fits the shape of normals known only to a cell of their components, the texels of a quantised normal map: texel
+ * i's unit normal has n_x in [uv[2 i] - q / 2, uv[2 i] + q / 2] and n_y in [uv[2 i + 1] - q / 2, uv[2 i + 1] + q / 2],
+ * and n_z = sqrt(1 - n_x^2 - n_y^2) (the part of the square outside the unit disk holds no normal). For a map that
+ * stores (n + 1) / 2 in b-bit integers, uv is the decoded 2 level / (2^b - 1) - 1 of the red and green channels
+ * (green negated for a map whose y points down) and q = 2 / (2^b - 1); a blue channel adds a constraint that is not
+ * used (the fit is then that of the red and green channels alone). The likelihood is that of the
+ * cells, the product over texels of P(cell) = the integral of D(m) dn_x dn_y over the texel's square, by an 8 x 8
+ * Gauss-Legendre rule in (n_x, n_y): unlike ggx_fit_normals on the cells' centres, it does not overestimate alpha
+ * when alpha is near q (docs/design/fit.md, "Quantised normal maps"). Sigma's eigenvalues are held at (0.4 q)^2 or
+ * above (info->clamped says when that binds), where the rule's relative error in P(cell) is 1e-4 (1e-5 at alpha = q / 2,
+ * 2e-9 at alpha = q; below the floor it grows without bound, as the rule's points do not see a lobe narrower than
+ * their spacing). The EM is that of the cells (each cell's points
+ * weighted by their shares of its probability), the decrement and covariance from central differences of the
+ * likelihood's exact gradient. Texels with the same (uv, q) share one cell, so the cost grows with the distinct cells
+ * (at most 65 536 for 8-bit maps), not the texels.
+ * info as in ggx_fit_normals, except: log_likelihood (and each model's) is the mean of log P(cell) over the texels,
+ * a probability, not the density of ggx_fit_normals; the goodness of fit is not computed (gof_chi2 and gof_pvalue
+ * NaN, gof_cells and gof_dof 0: a texel's cell straddles the test's cells); Beckmann's fit is its cells' likelihood
+ * too (EM). Texels whose square has no point inside the unit disk are ignored as at the horizon.
+ * Errors: as ggx_fit_normals (uv NULL with n > 0: GGX_ERR_NULL); GGX_ERR_RANGE for q not in (0, 2];
+ * GGX_ERR_NONFINITE for q NaN or infinite. */
+ggx_status ggx_fit_normal_cells(ggx_shape *out, const double *uv, const double *weight, size_t n, double q,
+                                const ggx_fit_options *opt, ggx_fit_info *info);
+
 /* Height fields: heights h[j * nx + i] at (i dx, j dy) on a regular nx x ny grid (nx, ny >= 2). */
 typedef struct ggx_heightfield_options {
     int keep_tilt;  /* 0 (default): the least-squares plane is removed first (levelling, as surface metrology does),

@@ -13,16 +13,32 @@
  * of FIT_PIECE samples. */
 enum { FIT_CHUNK = 1024, FIT_UNIT = 65536, FIT_PIECE = 64, FIT_MAX_CELLS = 16 };
 
+typedef struct fit_point fit_point;
+
 /* A source of slope samples: fill writes the slopes (x, y) and the weight w (0 for a sample to skip, with finite
  * slopes) of samples [i0, i0 + k), k <= FIT_CHUNK, in any order fixed by (i0, k) (every sum is over a whole range).
  * i0 is a multiple of FIT_PIECE. (The normal's cos theta is 1 / sqrt(1 + x^2 + y^2).) unit_weights: every weight is
- * 0 or 1 and the source's samples are counted by fit_run (used = W, the others ignored as non-finite). */
+ * 0 or 1 and the source's samples are counted by fit_run (used = W, the others ignored as non-finite).
+ *
+ * censored: the samples are the quadrature points of cells of slopes (src/fit/fit_cells.c), FIT_CELL_POINTS per
+ * cell, a cell never split between ranges. fill weights a cell's points by their shares of its probability under
+ * the density at `at` (the Student t of (at->t, at->p), or the Gaussian when at->gaussian), times the cell's weight,
+ * and returns that density's part of the log-likelihood of the range's cells: L = sum_c n_c log sum_k a_k f_k, with
+ * f_k = (1 + delta_k)^-2 (Student t) or exp(-delta_k / 2) (Gaussian). The passes put -L / 2 in the place of the sum
+ * of w log(1 + delta) (ESTEP, HESSIAN) and L in that of the sum of w log cos theta (MOMENTS), so that every formula
+ * of the likelihood holds with mean_lc = 0. n_eff is the cells' (from their weights). Other sources return 0. */
 typedef struct fit_source {
-    void (*fill)(const void *ctx, size_t i0, size_t k, double *x, double *y, double *w);
+    double (*fill)(const void *ctx, const fit_point *at, size_t i0, size_t k, double *x, double *y, double *w);
     const void *ctx;
     size_t n;
     int unit_weights;
+    int censored;
+    double n_eff; /* censored sources: (sum n_c)^2 / sum of the texels' squared weights */
+    double floor; /* Sigma's eigenvalues are held at or above the larger of this and GGX_ALPHA_MIN^2 (cells: the
+                   * narrowest lobe their quadrature resolves) */
 } fit_source;
+
+enum { FIT_CELL_POINTS = 64 };
 
 typedef enum fit_pass_kind {
     FIT_PASS_MOMENTS, /* about c = at->t: W, sum w r (2), sum w r r^T (3), sum w log cos theta (0 unless at->cells
@@ -35,12 +51,14 @@ typedef enum fit_pass_kind {
 
 enum { FIT_MOMENT_SUMS = 8, FIT_ESTEP_SUMS = 8, FIT_HESSIAN_SUMS = 23 };
 
-typedef struct fit_point {
+struct fit_point {
     double t[2];
     double p[3];    /* Sigma^-1 (xx, xy, yy) for ESTEP and HESSIAN */
     double linv[3]; /* L^-1 (lower triangular: 00, 10, 11) with Sigma = L L^T, for CELLS */
     int cells;
-} fit_point;
+    int gaussian;   /* censored sources: the density of the cells' shares is the Gaussian of mean t and inverse
+                     * covariance p (MOMENTS); else the Student t */
+};
 
 /* Runs a pass; sums must hold the pass's count (cells^2 for CELLS). GGX_ERR_MEMORY or GGX_OK. */
 ggx_status fit_pass(const fit_source *src, int threads, fit_pass_kind kind, const fit_point *at, double *sums);
@@ -58,6 +76,7 @@ typedef struct fit_data {
     ggx_fit_progress_fn progress;
     void *progress_ctx;
     int full_em; /* ggx_fit_options.full_em */
+    double floor; /* the least eigenvalue of Sigma: the source's floor, at least GGX_ALPHA_MIN^2 */
 } fit_data;
 
 /* One fitted Student-t model. */

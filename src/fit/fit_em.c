@@ -31,7 +31,7 @@ static double change(const double t[2], const double s[3], const double tn[2], c
 
 ggx_status fit_em(const fit_data *d, ggx_fit_model model, const double t0[2], const double sigma0[3], fit_result *r)
 {
-    const double floor = GGX_ALPHA_MIN * GGX_ALPHA_MIN;
+    const double floor = d->floor;
     memset(r, 0, sizeof *r);
     double t[2] = {t0[0], t0[1]}, s[3] = {sigma0[0], sigma0[1], sigma0[2]};
     if (model != GGX_FIT_ELLIPSOID) t[0] = t[1] = 0.0;
@@ -41,7 +41,7 @@ ggx_status fit_em(const fit_data *d, ggx_fit_model model, const double t0[2], co
      * their distance to the maximum, which is about decrement / sqrt(n_eff) in their own scale */
     double check_below = 0.5 * d->tolerance / sqrt(fmax(d->n_eff, 1.0));
     for (int it = 1;; it++) {
-        fit_point at = {{t[0], t[1]}, {0, 0, 0}, {0, 0, 0}, 0};
+        fit_point at = {{t[0], t[1]}, {0, 0, 0}, {0, 0, 0}, 0, 0};
         fit_inverse(s, at.p);
         double a[FIT_ESTEP_SUMS];
         ggx_status st = fit_pass(d->src, d->threads, FIT_PASS_ESTEP, &at, a);
@@ -96,7 +96,7 @@ ggx_status fit_em(const fit_data *d, ggx_fit_model model, const double t0[2], co
 /* One accepted step from (t, s) along dir, halving up to 8 times; 0 when none keeps log L (within rounding). */
 static int line_step(const fit_data *d, double t[2], double s[3], const double dir[5], double *ll, double g[5])
 {
-    const double floor = GGX_ALPHA_MIN * GGX_ALPHA_MIN;
+    const double floor = d->floor;
     /* near the optimum a step's gain, about decrement^2 / (2 n_eff) per sample, is far below the rounding of the
      * per-sample mean: accept within that rounding */
     double slack = 1e-13 * fmax(1.0, fabs(*ll)), lam = 1.0;

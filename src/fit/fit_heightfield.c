@@ -44,9 +44,11 @@ GGX_HOT_WIDE static void cells_fill(const grid *g, size_t c0, size_t nc, double 
 
 /* The fit's source: samples [i0, i0 + k) are cells [i0 / 4, (i0 + k) / 4), facets planar (cells_fill). The passes
  * and the subsample read ranges aligned on FIT_PIECE, and n is a multiple of 4, so i0 and k are multiples of 4. */
-static void fill_grid(const void *ctx, size_t i0, size_t k, double *x, double *y, double *w)
+static double fill_grid(const void *ctx, const fit_point *at, size_t i0, size_t k, double *x, double *y, double *w)
 {
+    (void)at;
     cells_fill(ctx, i0 / 4, k / 4, x, y, w);
+    return 0.0;
 }
 
 /* The gradient of the least-squares plane through the finite heights (centred sums, so a large mean height or
@@ -134,7 +136,7 @@ GGX_API ggx_status ggx_fit_heightfield(ggx_shape *out, const double *h, size_t n
         free(coarse);
         return st;
     }
-    fit_source src = {fill_grid, &g, 4 * (g.nx - 1) * (g.ny - 1), 1}; /* used and ignored counted by fit_run */
+    fit_source src = {fill_grid, &g, 4 * (g.nx - 1) * (g.ny - 1), 1, 0, 0.0, 0.0}; /* used and ignored counted by fit_run */
     ggx_shape s;
     st = fit_run(&src, opt, &s, inf);
     if (st == GGX_OK) *out = s;

@@ -86,7 +86,7 @@ static void gradient(double W, const double Cq[2], const double ce[3], const dou
 ggx_status fit_gradient(const fit_data *d, const double t[2], const double sigma[3], double *log_likelihood,
                         double g[5])
 {
-    fit_point at = {{t[0], t[1]}, {0, 0, 0}, {0, 0, 0}, 0};
+    fit_point at = {{t[0], t[1]}, {0, 0, 0}, {0, 0, 0}, 0, 0};
     if (!fit_inverse(sigma, at.p)) return GGX_ERR_SINGULAR;
     double a[FIT_ESTEP_SUMS];
     ggx_status st = fit_pass(d->src, d->threads, FIT_PASS_ESTEP, &at, a);
@@ -105,33 +105,29 @@ ggx_status fit_gradient(const fit_data *d, const double t[2], const double sigma
     return GGX_OK;
 }
 
-ggx_status fit_information(const fit_data *d, ggx_fit_model model, const double t[2], const double sigma[3],
-                           double *log_likelihood, double *decrement, double cov[5][5], double step[5])
+/* The point samples' gradient and Hessian of sum w log p in closed form from one pass at (t, P) (docs/design/fit.md,
+ * "Observed information"), in the units of W (*W receives it). */
+static ggx_status point_hessian(const fit_data *d, const fit_point *at, const double sigma[3], double *ll, double g[5],
+                                double H[5][5], double *Wout)
 {
-    if (step) memset(step, 0, 5 * sizeof *step);
-    fit_point at = {{t[0], t[1]}, {0, 0, 0}, {0, 0, 0}, 0};
-    memset(cov, 0, sizeof(double) * 25);
-    *decrement = HUGE_VAL;
-    if (!fit_inverse(sigma, at.p)) return GGX_ERR_SINGULAR;
     double a[FIT_HESSIAN_SUMS];
-    ggx_status st = fit_pass(d->src, d->threads, FIT_PASS_HESSIAN, &at, a);
+    ggx_status st = fit_pass(d->src, d->threads, FIT_PASS_HESSIAN, at, a);
     if (st != GGX_OK) return st;
     const double W = a[0], C1 = a[1], Cq[2] = {a[2], a[3]};
     const double Cqq[2][2] = {{a[4], a[5]}, {a[5], a[6]}}, C2qq[2][2] = {{a[7], a[8]}, {a[8], a[9]}};
     const double C2qe[2][3] = {{a[10], a[11], a[12]}, {a[13], a[14], a[15]}};
     const double C2ee[3][3] = {{a[16], a[17], a[18]}, {a[17], a[19], a[20]}, {a[18], a[20], a[21]}};
     const double ce[3] = {a[4], 2.0 * a[5], a[6]}; /* sum w c e */
-    const double P[2][2] = {{at.p[0], at.p[1]}, {at.p[1], at.p[2]}};
+    const double P[2][2] = {{at->p[0], at->p[1]}, {at->p[1], at->p[2]}};
     const double E[3][2][2] = {{{1, 0}, {0, 0}}, {{0, 1}, {1, 0}}, {{0, 0}, {0, 1}}};
-    *log_likelihood = -log(GGX_PI) - 0.5 * fit_log_det(sigma) - 2.0 * a[22] / W - 3.0 * d->mean_lc;
+    *ll = -log(GGX_PI) - 0.5 * fit_log_det(sigma) - 2.0 * a[22] / W - 3.0 * d->mean_lc;
 
     /* Gradient and Hessian of sum w log p (docs/design/fit.md, "Observed information"). */
-    double g[5], H[5][5];
     double PE[3][2][2]; /* P E_ab */
     for (int ab = 0; ab < 3; ab++)
         for (int i = 0; i < 2; i++)
             for (int j = 0; j < 2; j++) PE[ab][i][j] = P[i][0] * E[ab][0][j] + P[i][1] * E[ab][1][j];
-    gradient(W, Cq, ce, at.p, g);
+    gradient(W, Cq, ce, at->p, g);
     for (int i = 0; i < 2; i++) {
         for (int j = 0; j < 2; j++) H[i][j] = 8.0 * C2qq[i][j] - 4.0 * C1 * P[i][j];
         for (int ab = 0; ab < 3; ab++) {
@@ -152,8 +148,49 @@ ggx_status fit_information(const fit_data *d, ggx_fit_model model, const double 
             H[2 + ab][2 + cd] = 0.5 * W * tr_pp + 2.0 * C2ee[ab][cd] - 4.0 * tr_q;
         }
     }
+    *Wout = W;
+    return GGX_OK;
+}
+
+/* For cells (fit.h, "censored"): the gradient is exact (the cells' shares at (t, Sigma) make fit_gradient's the
+ * gradient of sum n_c log P(cell), Fisher's identity), and the Hessian its central differences, steps of 1e-4 of
+ * each parameter's scale (truncation about 1e-8 relative, rounding far below), symmetrised; scaled to n_eff. */
+static ggx_status cells_hessian(const fit_data *d, const double t[2], const double sigma[3], double *ll, double g[5],
+                                double H[5][5])
+{
+    ggx_status st = fit_gradient(d, t, sigma, ll, g);
+    if (st != GGX_OK) return st;
+    const double ex = sqrt(sigma[0]), ey = sqrt(sigma[2]);
+    const double h[5] = {1e-4 * ex, 1e-4 * ey, 1e-4 * sigma[0], 1e-4 * ex * ey, 1e-4 * sigma[2]};
+    double col[5][5];
+    for (int j = 0; j < 5; j++) {
+        double gp[5], gm[5], lp;
+        double th[2][5] = {{t[0], t[1], sigma[0], sigma[1], sigma[2]}, {t[0], t[1], sigma[0], sigma[1], sigma[2]}};
+        th[0][j] += h[j], th[1][j] -= h[j];
+        if ((st = fit_gradient(d, th[0], th[0] + 2, &lp, gp)) != GGX_OK) return st;
+        if ((st = fit_gradient(d, th[1], th[1] + 2, &lp, gm)) != GGX_OK) return st;
+        for (int i = 0; i < 5; i++) col[i][j] = (gp[i] - gm[i]) / (2.0 * h[j]);
+    }
+    for (int i = 0; i < 5; i++)
+        for (int j = 0; j < 5; j++) H[i][j] = 0.5 * (col[i][j] + col[j][i]);
+    return GGX_OK;
+}
+
+ggx_status fit_information(const fit_data *d, ggx_fit_model model, const double t[2], const double sigma[3],
+                           double *log_likelihood, double *decrement, double cov[5][5], double step[5])
+{
+    if (step) memset(step, 0, 5 * sizeof *step);
+    fit_point at = {{t[0], t[1]}, {0, 0, 0}, {0, 0, 0}, 0, 0};
+    memset(cov, 0, sizeof(double) * 25);
+    *decrement = HUGE_VAL;
+    if (!fit_inverse(sigma, at.p)) return GGX_ERR_SINGULAR;
+    double g[5], H[5][5], scale = 1.0, W = 1.0;
+    ggx_status st = d->src->censored ? cells_hessian(d, t, sigma, log_likelihood, g, H)
+                                     : point_hessian(d, &at, sigma, log_likelihood, g, H, &W);
+    if (st != GGX_OK) return st;
+    if (!d->src->censored) scale = d->n_eff / W;
     /* In the model's free parameters, scaled from W to n_eff. */
-    double J[5][5], nh[5][5], gf[5], inv[5][5], scale = d->n_eff / W;
+    double J[5][5], nh[5][5], gf[5], inv[5][5];
     int k = free_directions(model, J);
     for (int p = 0; p < k; p++) {
         gf[p] = 0.0;

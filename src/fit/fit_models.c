@@ -32,16 +32,43 @@ static void fit_gaussian(const fit_data *d, const double a[FIT_MOMENT_SUMS], con
     mean[0] = c[0] + dx, mean[1] = c[1] + dy;
     double s[3] = {a[3] / a[0] - dx * dx, a[4] / a[0] - dx * dy, a[5] / a[0] - dy * dy}; /* about the mean */
     memcpy(cov, s, sizeof s);
-    fit_clamp_sigma(cov, 0.5 * GGX_ALPHA_MIN * GGX_ALPHA_MIN);
+    fit_clamp_sigma(cov, 0.5 * d->floor);
     double p[3];
     fit_inverse(cov, p);
     double quad = p[0] * s[0] + 2.0 * p[1] * s[1] + p[2] * s[2]; /* E[r^T C^-1 r] = tr(C^-1 S) */
     *ll = -log(2.0 * GGX_PI) - 0.5 * fit_log_det(cov) - 0.5 * quad - 3.0 * d->mean_lc;
 }
 
+/* The Gaussian fit of cells (fit.h, "censored"): EM from the moments' fit (mean, cov), each pass weighting the
+ * cells' points by their shares under the current Gaussian, until the parameters move by less than 1e-10 of their
+ * scale (the iterate kept) or 1000 passes; its log-likelihood per sample, the mean log P(cell). */
+static ggx_status fit_gaussian_cells(const fit_data *d, double mean[2], double cov[3], double *ll)
+{
+    for (int it = 0; it < 1000; it++) {
+        fit_point at = {{mean[0], mean[1]}, {0, 0, 0}, {0, 0, 0}, 0, 1};
+        if (!fit_inverse(cov, at.p)) return GGX_ERR_SINGULAR;
+        double a[FIT_MOMENT_SUMS];
+        ggx_status st = fit_pass(d->src, d->threads, FIT_PASS_MOMENTS, &at, a);
+        if (st != GGX_OK) return st;
+        *ll = -log(2.0 * GGX_PI) - 0.5 * fit_log_det(cov) + a[6] / a[0]; /* at (mean, cov) */
+        double dx = a[1] / a[0], dy = a[2] / a[0];
+        double s[3] = {a[3] / a[0] - dx * dx, a[4] / a[0] - dx * dy, a[5] / a[0] - dy * dy};
+        fit_clamp_sigma(s, 0.5 * d->floor);
+        double ex = sqrt(cov[0]), ey = sqrt(cov[2]);
+        double ch = fmax(fmax(fabs(dx) / ex, fabs(dy) / ey), fmax(fabs(s[0] - cov[0]) / cov[0], fabs(s[2] - cov[2]) / cov[2]));
+        ch = fmax(ch, fabs(s[1] - cov[1]) / (ex * ey));
+        if (ch <= 1e-10 || it == 999) break; /* (mean, cov) and its likelihood kept */
+        mean[0] += dx, mean[1] += dy;
+        memcpy(cov, s, sizeof s);
+    }
+    return GGX_OK;
+}
+
 /* Pearson's statistic of the chosen fit on equal-probability cells of the standardised slopes (ggx_fit.h). */
 static ggx_status goodness_of_fit(const fit_data *d, const fit_result *r, int parameters, ggx_fit_info *info)
 {
+    info->gof_chi2 = info->gof_pvalue = NAN;
+    if (d->src->censored) return GGX_OK; /* no test of cells here: ggx_fit_normal_cells */
     int K = (int)floor(sqrt(d->n_eff / 20.0));
     if (K > FIT_MAX_CELLS) K = FIT_MAX_CELLS;
     int dof = K * K - 1 - parameters;
@@ -51,7 +78,7 @@ static ggx_status goodness_of_fit(const fit_data *d, const fit_result *r, int pa
     if (dof < 1) return GGX_OK;
     double l00 = sqrt(r->sigma[0]), l10 = r->sigma[1] / l00, l11 = sqrt(fmax(r->sigma[2] - l10 * l10, 0.0));
     if (!(l11 > 0.0)) return GGX_OK;
-    fit_point at = {{r->t[0], r->t[1]}, {0, 0, 0}, {1.0 / l00, -l10 / (l00 * l11), 1.0 / l11}, K};
+    fit_point at = {{r->t[0], r->t[1]}, {0, 0, 0}, {1.0 / l00, -l10 / (l00 * l11), 1.0 / l11}, K, 0};
     double cells[FIT_MAX_CELLS * FIT_MAX_CELLS];
     ggx_status st = fit_pass(d->src, d->threads, FIT_PASS_CELLS, &at, cells);
     if (st != GGX_OK) return st;
@@ -70,28 +97,31 @@ typedef struct subsample {
     size_t pieces; /* the parent's whole pieces */
 } subsample;
 
-static void fill_subsample(const void *ctx, size_t i0, size_t k, double *x, double *y, double *w)
+static double fill_subsample(const void *ctx, const fit_point *at, size_t i0, size_t k, double *x, double *y,
+                             double *w)
 {
     const subsample *c = ctx;
     const size_t np = FIT_SUBSAMPLE_N / FIT_PIECE;
-    for (size_t at = 0; at < k; at += FIT_PIECE) {
-        size_t b = (i0 + at) / FIT_PIECE, pb = (size_t)((double)b * (double)c->pieces / (double)np);
-        size_t kk = k - at < FIT_PIECE ? k - at : FIT_PIECE;
-        c->parent->fill(c->parent->ctx, pb * FIT_PIECE, kk, x + at, y + at, w + at);
+    double own = 0.0;
+    for (size_t a = 0; a < k; a += FIT_PIECE) {
+        size_t b = (i0 + a) / FIT_PIECE, pb = (size_t)((double)b * (double)c->pieces / (double)np);
+        size_t kk = k - a < FIT_PIECE ? k - a : FIT_PIECE;
+        own += c->parent->fill(c->parent->ctx, at, pb * FIT_PIECE, kk, x + a, y + a, w + a);
     }
+    return own;
 }
 
 /* W, n_eff, the mean log cos theta and the mean slope of a source's samples, from one moments pass about c, whose
  * sums go to a. */
 static ggx_status fit_constants(fit_data *d, const double c[2], double a[FIT_MOMENT_SUMS])
 {
-    fit_point at = {{c[0], c[1]}, {0, 0, 0}, {0, 0, 0}, 1}; /* cells = 1: with the log cos theta */
+    fit_point at = {{c[0], c[1]}, {0, 0, 0}, {0, 0, 0}, 1, 0}; /* cells = 1: with the log cos theta */
     ggx_status st = fit_pass(d->src, d->threads, FIT_PASS_MOMENTS, &at, a);
     if (st != GGX_OK) return st;
     if (!(a[0] > 0.0)) return GGX_ERR_DATA;
     d->w_sum = a[0];
-    d->n_eff = a[0] * a[0] / a[7];
-    d->mean_lc = a[6] / a[0];
+    d->n_eff = d->src->censored ? d->src->n_eff : a[0] * a[0] / a[7];
+    d->mean_lc = d->src->censored ? 0.0 : a[6] / a[0]; /* censored: the cells' probabilities need no Jacobian */
     d->mean0[0] = c[0] + a[1] / a[0], d->mean0[1] = c[1] + a[2] / a[0];
     return GGX_OK;
 }
@@ -104,11 +134,13 @@ ggx_status fit_run(const fit_source *src, const ggx_fit_options *opt, ggx_shape 
     ggx_status st = fit_settings(opt, &d, &model);
     if (st != GGX_OK) return st;
     d.src = src;
+    d.floor = fmax(src->floor, GGX_ALPHA_MIN * GGX_ALPHA_MIN);
     if (!src->unit_weights && info->used < 5) return GGX_ERR_DATA;
     /* Large inputs: EM on a subsample, Newton on all samples (ggx_fit_options.full_em). The subsample's moments come
      * first: its mean is the centre of the full moments pass, which then gives the Gaussian fit too. */
     subsample sc = {src, src->n / FIT_PIECE};
-    fit_source sub_src = {fill_subsample, &sc, FIT_SUBSAMPLE_N, 0};
+    fit_source sub_src = {fill_subsample, &sc, FIT_SUBSAMPLE_N, 0, src->censored,
+                          src->n_eff * (double)FIT_SUBSAMPLE_N / (double)src->n, src->floor};
     fit_data ds = d;
     ds.src = &sub_src;
     ds.tolerance = fmax(d.tolerance, 1e-2); /* the steps on all samples finish the fit */
@@ -131,19 +163,20 @@ ggx_status fit_run(const fit_source *src, const ggx_fit_options *opt, ggx_shape 
 
     double mean[2], cov[3], gll;
     if (!two_stage) { /* a second pass about the mean */
-        fit_point at = {{d.mean0[0], d.mean0[1]}, {0, 0, 0}, {0, 0, 0}, 0};
+        fit_point at = {{d.mean0[0], d.mean0[1]}, {0, 0, 0}, {0, 0, 0}, 0, 0};
         if ((st = fit_pass(src, d.threads, FIT_PASS_MOMENTS, &at, a)) != GGX_OK) return st;
         centre[0] = d.mean0[0], centre[1] = d.mean0[1];
     }
     fit_gaussian(&d, a, centre, mean, cov, &gll);
+    if (src->censored && (st = fit_gaussian_cells(&d, mean, cov, &gll)) != GGX_OK) return st;
     ggx_fit_model_result *mr = info->models;
     mr[GGX_FIT_BECKMANN] = (ggx_fit_model_result){gll, 0.0, 5, 0, {mean[0], mean[1]}, {cov[0], cov[1], cov[2]}};
 
-    /* The three Student-t models start at t = 0 and Sigma = GGX_ALPHA_MIN^2 I, a start no outlier can move: there
+    /* The three Student-t models start at t = 0 and Sigma = floor I (GGX_ALPHA_MIN^2), a start no outlier can move: there
      * every delta is large, the first M step weights each slope by about 1 / |x~|^2 and lands on a robust scale
      * (a start at the Gaussian's covariance, which one slope near the horizon can make 1e196, took hundreds of
      * iterations or overflowed). */
-    const double t0[2] = {0.0, 0.0}, s0[3] = {GGX_ALPHA_MIN * GGX_ALPHA_MIN, 0.0, GGX_ALPHA_MIN * GGX_ALPHA_MIN};
+    const double t0[2] = {0.0, 0.0}, s0[3] = {d.floor, 0.0, d.floor};
     fit_result fr[3];
     for (int k = 0; k < 3; k++) {
         ggx_fit_model mk = (ggx_fit_model)k;

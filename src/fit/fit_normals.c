@@ -24,12 +24,14 @@ static int reason(const normals *c, size_t i, double *x, double *y, double *w)
     return 0;
 }
 
-static void fill_normals(const void *ctx, size_t i0, size_t k, double *x, double *y, double *w)
+static double fill_normals(const void *ctx, const fit_point *at, size_t i0, size_t k, double *x, double *y, double *w)
 {
+    (void)at;
     const normals *c = ctx;
     for (size_t i = 0; i < k; i++)
         if (reason(c, i0 + i, &x[i], &y[i], &w[i]) != 0) x[i] = y[i] = w[i] = 0.0;
         else w[i] *= c->w_scale;
+    return 0.0;
 }
 
 /* Counts the samples by reason into info and sets the weights' scale; GGX_ERR_RANGE when a weight is negative (the
@@ -67,7 +69,7 @@ GGX_API ggx_status ggx_fit_normals(ggx_shape *out, const ggx_vec3 *m, const doub
     normals c = {m, weight, 1.0};
     if ((st = count(&c, n, inf)) != GGX_OK) return st;
     if (inf->used < 5) return GGX_ERR_DATA;
-    fit_source src = {fill_normals, &c, n, 0};
+    fit_source src = {fill_normals, &c, n, 0, 0, 0.0, 0.0};
     ggx_shape s;
     st = fit_run(&src, opt, &s, inf);
     if (st != GGX_OK) {

@@ -74,7 +74,7 @@ GGX_HOT_WIDE static void unit_sums(const fit_source *src, fit_pass_kind kind, co
     const double t0 = at->t[0], t1 = at->t[1], p0 = at->p[0], p1 = at->p[1], p2 = at->p[2];
     for (size_t at0 = i0; at0 < i1; at0 += FIT_CHUNK) {
         size_t k = i1 - at0 < FIT_CHUNK ? i1 - at0 : FIT_CHUNK;
-        src->fill(src->ctx, at0, k, x, y, w);
+        double own = src->fill(src->ctx, at, at0, k, x, y, w); /* censored sources: their log term */
         if (kind == FIT_PASS_MOMENTS) {
             /* log cos theta = -log(1 + |x~|^2) / 2, summed through sum_log (a log per chunk) when asked */
             double a0 = 0, a1 = 0, a2 = 0, a3 = 0, a4 = 0, a5 = 0, a7 = 0, unit = 0;
@@ -88,7 +88,7 @@ GGX_HOT_WIDE static void unit_sums(const fit_source *src, fit_pass_kind kind, co
                 q[i] = 1.0 + wi * dl[i];
                 unit += wi != 0.0 && wi != 1.0;
             }
-            double a6 = at->cells == 1 ? -0.5 * weighted_log_sum(q, dl, w, k, unit != 0.0) : 0.0;
+            double a6 = src->censored ? own : at->cells == 1 ? -0.5 * weighted_log_sum(q, dl, w, k, unit != 0.0) : 0.0;
             s[0] += a0, s[1] += a1, s[2] += a2, s[3] += a3, s[4] += a4, s[5] += a5, s[6] += a6, s[7] += a7;
         } else if (kind == FIT_PASS_ESTEP) {
             double a0 = 0, a1 = 0, a2 = 0, a3 = 0, a4 = 0, a5 = 0, a6 = 0, unit = 0;
@@ -102,7 +102,7 @@ GGX_HOT_WIDE static void unit_sums(const fit_source *src, fit_pass_kind kind, co
                 q[i] = 1.0 + wi * delta; /* (1 + delta)^w for w in {0, 1} */
                 unit += wi != 0.0 && wi != 1.0; /* a weight other than 0 and 1 */
             }
-            double lsum = weighted_log_sum(q, dl, w, k, unit != 0.0);
+            double lsum = src->censored ? -0.5 * own : weighted_log_sum(q, dl, w, k, unit != 0.0);
             s[0] += a0, s[1] += a1, s[2] += a2, s[3] += a3, s[4] += a4, s[5] += a5, s[6] += a6, s[7] += lsum;
         } else if (kind == FIT_PASS_HESSIAN) {
             /* With q = P r, c = 1 / (1 + delta) and e = (qx^2, 2 qx qy, qy^2): W, sum w c, sum w c q (2),
@@ -142,7 +142,7 @@ GGX_HOT_WIDE static void unit_sums(const fit_source *src, fit_pass_kind kind, co
             const double a[FIT_HESSIAN_SUMS - 1] = {a0, a1, a2, a3, a4, a5, a6, b0, b1, b2, b3,
                                                     b4, b5, b6, b7, b8, c0, c1, c2, c3, c4, c5};
             for (int j = 0; j < FIT_HESSIAN_SUMS - 1; j++) s[j] += a[j];
-            s[FIT_HESSIAN_SUMS - 1] += weighted_log_sum(q, dl, w, k, unit != 0.0);
+            s[FIT_HESSIAN_SUMS - 1] += src->censored ? -0.5 * own : weighted_log_sum(q, dl, w, k, unit != 0.0);
         } else {
             /* the cell of z = L^-1 r: the u band floor(K u) and the angle band floor(K (atan2(z1, z0) / 2 pi + 1/2))
              * (both clamped to K - 1), the latter counted without atan2: the band is the number of the boundaries
