@@ -821,6 +821,21 @@ static double cell_probability(const ggx_shape *s, double u, double v, double q)
     return p;
 }
 
+/* Beckmann's P(cell): the slopes' Gaussian (mean t, covariance c) over the square, dx~ dy~ = dn_x dn_y / n_z^4. */
+static double cell_probability_gauss(const double t[2], const double c[3], double u, double v, double q)
+{
+    double h = 0.5 * q, p = 0.0, det = c[0] * c[2] - c[1] * c[1];
+    for (int i = 0; i < 24; i++)
+        for (int j = 0; j < 24; j++) {
+            double nx = u + h * gl_nodes[i], ny = v + h * gl_nodes[j], z2 = 1.0 - nx * nx - ny * ny;
+            if (!(z2 > 0.0)) continue;
+            double nz = sqrt(z2), x = -nx / nz - t[0], y = -ny / nz - t[1];
+            double d = (c[2] * x * x - 2.0 * c[1] * x * y + c[0] * y * y) / det;
+            p += h * h * gl_weights[i] * gl_weights[j] * exp(-0.5 * d) / (2.0 * acos(-1.0) * sqrt(det) * z2 * z2);
+        }
+    return p;
+}
+
 static double cells_total_ll(const void *ctx, const double th[5])
 {
     const cell_texels *c = ctx;
@@ -925,6 +940,11 @@ static void quantised_cells(void **state)
         const double tk[5] = {mr->t[0], mr->t[1], mr->sigma[0], mr->sigma[1], mr->sigma[2]};
         CHECK_CLOSE(mr->log_likelihood, cells_total_ll(&ct, tk) / (double)n1, 0.0, 1e-7 * fabs(ref), "model %d", k);
     }
+
+    const ggx_fit_model_result *bk = &info.models[GGX_FIT_BECKMANN];
+    double bsum = 0.0;
+    for (size_t i = 0; i < n1; i++) bsum += log(cell_probability_gauss(bk->t, bk->sigma, uv[2 * i], uv[2 * i + 1], q));
+    CHECK_CLOSE(bk->log_likelihood, bsum / (double)n1, 0.0, 1e-7 * fabs(ref), "Beckmann's mean log P(cell)");
 
     /* weights and threads: a texel twice is a texel of weight 2; threads change no bit */
     double *w = malloc(n1 * sizeof *w), *uv2 = malloc(4 * n1 * sizeof *uv2);
