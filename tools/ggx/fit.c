@@ -113,7 +113,11 @@ static void fit_input(const options *o, const surface *s, const ggx_fit_options 
                       ggx_fit_info *info, const char **what, double *spacing_used, const double **heights)
 {
     ggx_status st;
-    if (s->kind == SURFACE_NORMALS) {
+    if (s->kind == SURFACE_NORMALS && s->uv && s->bits == 8) {
+        /* 8-bit levels are as coarse as a fine lobe: each texel is the cell of normals its levels stand for */
+        st = ggx_fit_normal_cells(out, s->uv, NULL, s->nx * s->ny, 2.0 / 255.0, fo, info);
+        *what = "normal-map texels (8-bit: each fitted as its cell of normals)";
+    } else if (s->kind == SURFACE_NORMALS) {
         st = ggx_fit_normals(out, s->m, s->w, s->nx * s->ny, fo, info);
         *what = s->ny > 1 ? "normal-map texels" : "normals";
     } else {
@@ -182,20 +186,14 @@ int cmd_fit(int argc, char **argv)
     const double *heights = NULL;
     fit_input(&o, &s, &fo, &fit, &info, &what, spacing, &heights);
     if (bar) progress_end("fit", 200);
-    /* A quantised map's levels are 2 / (2^bits - 1) apart in each component, about that in slope near n: a lobe
-     * narrower than a few levels is not resolved (docs/design/fit.md, "Quantised normal maps"). */
+    /* An 8-bit map is fitted as cells (fit_input), which holds Sigma at (0.4 q)^2: say so when that binds. */
+    const int cells = s.kind == SURFACE_NORMALS && s.uv && s.bits == 8;
     char qnote[400] = "";
-    if (s.kind == SURFACE_NORMALS && s.bits > 0) {
-        double q = 2.0 / (s.bits == 16 ? 65535.0 : 255.0);
-        double half = 0.5 * (info.sigma[0] - info.sigma[2]), amin2 = 0.5 * (info.sigma[0] + info.sigma[2]) -
-                                                                     sqrt(half * half + info.sigma[1] * info.sigma[1]);
-        double amin = sqrt(fmax(amin2, 0.0));
-        if (amin < 3.0 * q)
-            snprintf(qnote, sizeof qnote,
-                     "the map's %d-bit levels are %.2g apart in slope and its narrowest roughness is %.2g: the fit "
-                     "overestimates alpha at this scale (+1.2 %% at alpha 0.02, +6 %% at 0.01, +37 %% at 0.005 for 8 "
-                     "bits, measured); a 16-bit map resolves it", s.bits, q, amin);
-        if (qnote[0]) fprintf(stderr, "ggx: note: %s\n", qnote);
+    if (cells && info.clamped) {
+        snprintf(qnote, sizeof qnote,
+                 "the lobe is narrower than the map's 8-bit levels resolve: its narrowest alpha is held at %.2g "
+                 "(0.4 of the levels' spacing %.2g); a 16-bit map resolves it", 0.4 * 2.0 / 255.0, 2.0 / 255.0);
+        fprintf(stderr, "ggx: note: %s\n", qnote);
     }
 
     double ax, ay, tx, ty, tz, A[3][3];
@@ -235,12 +233,15 @@ int cmd_fit(int argc, char **argv)
         if (info.gof_dof > 0)
             fprintf(f, "chi-square %.1f on %d x %d equal-probability cells, %d degrees of freedom, p = %.3g\n",
                     info.gof_chi2, info.gof_cells, info.gof_cells, info.gof_dof, info.gof_pvalue);
+        else if (cells)
+            fprintf(f, "not computed for texels fitted as cells (a texel's cell straddles the test's cells)\n");
         else
             fprintf(f, "too few samples for the cells (n_eff %.0f)\n", info.effective_n);
         if (qnote[0]) fprintf(f, "\nquantisation: %s\n", qnote);
         fprintf(f, "\nEM: %d iterations, %s (Newton decrement %.2g); effective sample size %.0f%s\n", info.iterations,
                 info.converged ? "converged" : "NOT converged", info.stationarity, info.effective_n,
-                info.clamped ? "; Sigma held at the smallest roughness (all slopes nearly equal)" : "");
+                !info.clamped ? "" : cells ? "; Sigma held at the levels' floor" :
+                                             "; Sigma held at the smallest roughness (all slopes nearly equal)");
     } else if (strcmp(fmt, "csv") == 0) {
         fprintf(f, "quantity,value,std_error\n");
         fprintf(f, "alpha_x,%.10g,\nalpha_y,%.10g,\nskew_x_deg,%.10g,\nskew_y_deg,%.10g,\nrotate_deg,%.10g,\n", ax, ay,

@@ -54,6 +54,7 @@ void surface_free(surface *s)
     free(s->h);
     free(s->m);
     free(s->w);
+    free(s->uv);
     memset(s, 0, sizeof *s);
 }
 

@@ -27,6 +27,9 @@ typedef struct surface {
     double *h;      /* heights, nx * ny, x fastest; NaN where the file marks a point invalid */
     ggx_vec3 *m;    /* normals, nx * ny */
     double *w;      /* the normals' weights (CSV), or NULL */
+    double *uv;     /* normal maps of integer levels (PNG): each texel's decoded red and green, 2 level / (2^bits - 1)
+                     * - 1 (green negated with y_down), the centre of its cell of normals (ggx_fit_normal_cells,
+                     * q = 2 / (2^bits - 1)), 2 per texel; else NULL */
     double dx, dy;  /* spacing from the file (x3p, gsf, XYZ, a Gwyddion text header), 0 where it has none */
     double z_scale; /* what brings a height into the unit of dx, dy where the file says both (x3p, gsf, XYZ and a
                      * text header with units: 1e-6 for heights in micrometres beside metres), else 0 */

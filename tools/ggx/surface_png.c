@@ -98,7 +98,7 @@ int surface_parse_png(const unsigned char *data, size_t n, const surface_read_op
             for (size_t i = 0; i < count && two; i++) two = LEVEL(i, 2) == 0.0;
         }
         s->channels = two ? 2 : 3;
-        if (!(s->m = malloc(count * sizeof *s->m))) {
+        if (!(s->m = malloc(count * sizeof *s->m)) || !(s->uv = malloc(2 * count * sizeof *s->uv))) {
             rc = surface_fail(err, errn, "out of memory");
         } else {
             for (size_t i = 0; i < count; i++) {
@@ -107,6 +107,7 @@ int surface_parse_png(const unsigned char *data, size_t n, const surface_read_op
                     c[k] = 2.0 * LEVEL(i, k) / max - 1.0;
                 }
                 s->m[i] = surface_texel_normal(c, s->channels, o->y_down);
+                s->uv[2 * i] = c[0], s->uv[2 * i + 1] = o->y_down ? -c[1] : c[1];
             }
             s->kind = SURFACE_NORMALS;
         }
