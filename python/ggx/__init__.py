@@ -37,7 +37,7 @@ __all__ = [
     "albedo_avg_iso_table", "bsdf_albedo_iso_table", "albedo_aniso_table",
     "sample", "pdf", "sample_inverse", "sample_ndf", "sample_vndf", "sample_brdf",
     "pdf_brdf", "sample_bsdf", "pdf_bsdf", "reflect", "half_reflect", "batch_isa", "set_batch_threads",
-    "FitInfo", "Surface", "fit_normals", "fit_heightfield", "read_surface",
+    "FitInfo", "Surface", "fit_normals", "fit_normal_cells", "fit_heightfield", "read_surface",
 ]
 
 _lib = ctypes.CDLL(os.path.join(os.path.dirname(os.path.abspath(__file__)), "_ggx_native.so"))
@@ -976,6 +976,8 @@ def set_batch_threads(threads):
 # ---- fits (include/ggx/ggx_fit.h) and measured surfaces ----
 
 _fit_normals = _proto("ggxpy_fit_normals", _i, _vp, _vp, _vp, _sz, _i, _i, _i, _d, _vp)
+_fit_normal_cells = _proto("ggxpy_fit_normal_cells", _i, _vp, _vp, _vp, _sz, _d, _i, _i, _i, _d, _vp)
+_surface_uv = _proto("ggxpy_surface_uv", _i, _vp, _vp)
 _fit_heightfield = _proto("ggxpy_fit_heightfield", _i, _vp, _vp, _sz, _sz, _d, _d, _i, _i, _i, _i, _i, _d, _vp)
 _surface_read = _proto("ggxpy_surface_read", _vp, ctypes.c_char_p, _i, _i, _vp, ctypes.c_char_p, _sz)
 _surface_copy = _proto("ggxpy_surface_copy", None, _vp, _vp, _vp)
@@ -1074,6 +1076,31 @@ def fit_normals(m, weights=None, model="ellipsoid", threads=1, max_iterations=No
     return _fitted(st, buf, flat)
 
 
+def fit_normal_cells(uv, q, weights=None, model="ellipsoid", threads=1, max_iterations=None, tolerance=None):
+    """(shape, info): the shape of a quantised normal map whose texels are cells of normals (ggx_fit_normal_cells):
+    uv (array (..., 2)) each texel's decoded (n_x, n_y), the centre of a square of side q (2 / 255 for 8-bit maps,
+    whose levels read_surface gives as Surface.uv) holding its unit normal; the likelihood is that of the cells, so a
+    lobe near the levels' spacing is not overestimated as ggx.fit_normals of the centres does. info.log_likelihood is
+    the mean log P(cell); no goodness of fit (NaN). Weights, model and the rest as fit_normals."""
+    a = _array(uv, "uv")
+    if a.ndim < 1 or a.shape[-1] != 2:
+        raise ValueError(f"uv: expected an array of shape (..., 2), got shape {a.shape}")
+    a = np.ascontiguousarray(a.reshape(-1, 2))
+    w = None
+    if weights is not None:
+        w = _array(weights, "weights")
+        if w.size != a.shape[0]:
+            raise ValueError(f"weights: expected shape {np.shape(uv)[:-1]}, got {w.shape}")
+        w = np.ascontiguousarray(w.reshape(-1))
+    qq = _real(q, "q")
+    md, t, it, tol = _fit_settings(model, threads, max_iterations, tolerance)
+    buf = ctypes.create_string_buffer(_SHAPE_SIZE)
+    flat = np.zeros(_FIT_SIZE)
+    st = _fit_normal_cells(buf, a.ctypes.data, None if w is None else w.ctypes.data, a.shape[0], qq, md, t, it,
+                           tol, flat.ctypes.data)
+    return _fitted(st, buf, flat)
+
+
 def fit_heightfield(h, spacing=(1.0, 1.0), keep_tilt=False, downsample=0, model="ellipsoid", threads=1,
                     max_iterations=None, tolerance=None):
     """(shape, info): the shape of the facets of a height field h[y, x] (2D, at least 2 x 2; heights in the
@@ -1100,11 +1127,13 @@ def fit_heightfield(h, spacing=(1.0, 1.0), keep_tilt=False, downsample=0, model=
     return _fitted(st, buf, flat)
 
 
-Surface = collections.namedtuple("Surface", ["kind", "data", "spacing", "z_scale", "weights", "bits"])
+Surface = collections.namedtuple("Surface", ["kind", "data", "spacing", "z_scale", "weights", "bits", "uv"],
+                                 defaults=(None,))
 Surface.__doc__ = """A measured surface (read_surface): kind "heights" (data (ny, nx)) or "normals" (data (ny, nx, 3),
 or (n, 3) for a CSV list); spacing (dx, dy) where the file gives it, else None; z_scale, the factor that brings the
 file's heights into the spacing's unit, where the file says (else None); weights (n,) of a CSV list, else None; bits
-8 or 16 for PNG, else 0."""
+8 or 16 for PNG, else 0; uv (ny, nx, 2) for a PNG normal map, each texel's decoded red and green (the centre of its
+cell of normals for fit_normal_cells, q = 2 / (2**bits - 1)), else None."""
 
 
 def read_surface(path, kind="heights", y_down=False):
@@ -1125,10 +1154,13 @@ def read_surface(path, kind="heights", y_down=False):
         data = np.empty((ny, nx, 3) if normals else (ny, nx))
         w = np.empty(nx * ny) if meta[8] else None
         _surface_copy(h, data.ctypes.data, None if w is None else w.ctypes.data)
+        uv = np.empty((ny, nx, 2)) if _surface_uv(h, None) else None
+        if uv is not None:
+            _surface_uv(h, uv.ctypes.data)
     finally:
         _surface_close(h)
     if normals and ny == 1:
         data = data.reshape(nx, 3)
     spacing = (float(meta[2]), float(meta[3])) if meta[2] > 0 else None
     return Surface("normals" if normals else "heights", data, spacing, float(meta[4]) if meta[4] > 0 else None, w,
-                   int(meta[5]))
+                   int(meta[5]), uv)

@@ -284,6 +284,16 @@ EXPORT int ggxpy_fit_normals(ggx_shape *out, const double *m, const double *w, s
     return st;
 }
 
+EXPORT int ggxpy_fit_normal_cells(ggx_shape *out, const double *uv, const double *w, size_t n, double q, int model,
+                                  int threads, int max_iterations, double tolerance, double *info)
+{
+    ggx_fit_options o = {(ggx_fit_model)model, max_iterations, tolerance, threads, NULL, NULL, 0};
+    ggx_fit_info fi;
+    int st = ggx_fit_normal_cells(out, uv, w, n, q, &o, &fi);
+    flatten(&fi, info);
+    return st;
+}
+
 EXPORT int ggxpy_fit_heightfield(ggx_shape *out, const double *h, size_t nx, size_t ny, double dx, double dy,
                                  int keep_tilt, int downsample, int model, int threads, int max_iterations,
                                  double tolerance, double *info)
@@ -328,6 +338,15 @@ EXPORT void ggxpy_surface_copy(const void *handle, double *values, double *weigh
     else
         for (size_t i = 0; i < n; i++) values[3 * i] = s->m[i].x, values[3 * i + 1] = s->m[i].y, values[3 * i + 2] = s->m[i].z;
     if (weights && s->w) memcpy(weights, s->w, n * sizeof *weights);
+}
+
+/* Whether the surface has its texels' decoded red and green (surface.uv); copies them into uv (2 nx * ny) when not
+ * NULL. */
+EXPORT int ggxpy_surface_uv(const void *handle, double *uv)
+{
+    const surface *s = handle;
+    if (s->uv && uv) memcpy(uv, s->uv, 2 * s->nx * s->ny * sizeof *uv);
+    return s->uv != NULL;
 }
 
 EXPORT void ggxpy_surface_close(void *handle)

@@ -4,6 +4,7 @@ the promises of their docstrings and the C library's results."""
 import math
 import pickle
 import struct
+import zlib
 
 import numpy as np
 import pytest
@@ -127,3 +128,48 @@ def test_read_surface(tmp_path):
         ggx.read_surface(p, kind="normals")
     with pytest.raises(ValueError):
         ggx.read_surface(tmp_path / "missing.x3p")
+
+
+def _student_normals(rng, t, sigma, n):
+    """Normals whose slopes are the Student t of (t, sigma), independently of the library."""
+    L = np.linalg.cholesky(np.array([[sigma[0], sigma[1]], [sigma[1], sigma[2]]]))
+    g = rng.standard_normal((n, 2)) / np.sqrt(2.0 * rng.exponential(size=(n, 1)))
+    s = np.asarray(t) + g @ L.T
+    m = np.column_stack([-s[:, 0], -s[:, 1], np.ones(n)])
+    return m / np.linalg.norm(m, axis=1, keepdims=True)
+
+
+def test_fit_normal_cells_quantised_map(tmp_path):
+    rng = np.random.default_rng(8)
+    sigma = (0.006 ** 2, 0.2 * 0.006 * 0.004, 0.004 ** 2)
+    m = _student_normals(rng, (0.0, 0.0), sigma, 20000)
+    levels = np.clip(np.round((m + 1.0) / 2.0 * 255.0), 0, 255)
+    uv = 2.0 * levels[:, :2] / 255.0 - 1.0
+    shape, info = ggx.fit_normal_cells(uv, 2.0 / 255.0)
+    for i, k in ((0, 2), (1, 3), (2, 4)):
+        assert abs(info.sigma[i] - sigma[i]) <= 4.0 * info.std_error[k]
+    assert info.converged and math.isnan(info.gof_pvalue) and info.used == 20000
+    # the centres fitted as normals overestimate sigma_yy by many standard errors
+    c = np.column_stack([uv, np.sqrt(np.maximum(0.0, 1.0 - (uv ** 2).sum(axis=1)))])
+    _, pinfo = ggx.fit_normals(c)
+    assert (pinfo.sigma[2] - sigma[2]) / pinfo.std_error[4] > 10.0
+    # an RGB PNG of the same levels: read_surface gives its decoded red and green as uv, the same fit
+    w, h = 200, 100
+    raw = b"".join(b"\0" + levels[j * w:(j + 1) * w].astype(np.uint8).tobytes() for j in range(h))
+
+    def chunk(kind, body):
+        return struct.pack(">I", len(body)) + kind + body + struct.pack(">I", zlib.crc32(kind + body) & 0xFFFFFFFF)
+
+    p = tmp_path / "map.png"
+    p.write_bytes(b"\x89PNG\r\n\x1a\n" + chunk(b"IHDR", struct.pack(">IIBBBBB", w, h, 8, 2, 0, 0, 0)) +
+                  chunk(b"IDAT", zlib.compress(raw)) + chunk(b"IEND", b""))
+    s = ggx.read_surface(p, kind="normals")
+    assert s.bits == 8 and s.uv.shape == (h, w, 2) and np.array_equal(s.uv.reshape(-1, 2), uv)
+    _, again = ggx.fit_normal_cells(s.uv, 2.0 / 255.0)
+    assert again.sigma == pytest.approx(info.sigma, rel=1e-12)
+    down = ggx.read_surface(p, kind="normals", y_down=True)
+    assert np.array_equal(down.uv[..., 1], -s.uv[..., 1])
+    with pytest.raises(ValueError):
+        ggx.fit_normal_cells(uv, 0.0)
+    with pytest.raises(ValueError):
+        ggx.fit_normal_cells(uv[:, :1], 2.0 / 255.0)
