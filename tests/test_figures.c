@@ -76,7 +76,7 @@ static void peak_pixel(void **state)
         for (unsigned k = 0; k < sizeof KINDS / sizeof KINDS[0]; k++) {
             int nv = (KINDS[k] == FIG_VNDF || KINDS[k] == FIG_VNDF_SIDE) ? 3 : 1;
             for (int j = 0; j < nv; j++) {
-                figure_spec f = {KINDS[k], &s, dir(VIEWS[j][0], VIEWS[j][1]), NULL, 0, 0, NAN, "shape", ""};
+                figure_spec f = {KINDS[k], &s, dir(VIEWS[j][0], VIEWS[j][1]), NULL, 0, 0, NAN, "shape", "", 0.0};
                 int w = 720, h = (int)lround(w * figure_aspect(f.kind));
                 hemi_proj hp;
                 double bx, by, px, py;
@@ -115,7 +115,7 @@ static void peak_values(void **state)
     (void)state;
     ggx_shape s;
     make_shape(&s, SHAPES[0]);
-    figure_spec f = {FIG_NDF, &s, dir(75, 0), NULL, 0, 0, NAN, "", ""};
+    figure_spec f = {FIG_NDF, &s, dir(75, 0), NULL, 0, 0, NAN, "", "", 0.0};
     ggx_vec3 m;
     CHECK_CLOSE(figure_peak(&f, &m), 1 / (M_PI * 0.15 * 0.5), 1e-9, 0, "NDF peak");
     CHECK(m.z > 1 - 1e-12, "NDF peak at n: m.z = %.15g", m.z);
@@ -146,7 +146,7 @@ static void side_views(void **state)
     for (int i = 0; i < NSHAPES; i++) {
         ggx_shape s;
         make_shape(&s, SHAPES[i]);
-        figure_spec f = {FIG_VNDF_SIDE, &s, dir(60, 130), NULL, 0, 0, NAN, "", ""};
+        figure_spec f = {FIG_VNDF_SIDE, &s, dir(60, 130), NULL, 0, 0, NAN, "", "", 0.0};
         double from = figure_default_from(&f), across = cos(from) * f.view.x + sin(from) * f.view.y,
                right = -sin(from) * f.view.x + cos(from) * f.view.y;
         /* in profile, the view pointing right; or facing the view */
@@ -165,7 +165,7 @@ static void side_views(void **state)
      * narrow along x, so its profile would show a sliver) */
     ggx_shape s;
     make_shape(&s, SHAPES[0]);
-    figure_spec f = {FIG_VNDF_SIDE, &s, dir(75, 0), NULL, 0, 0, NAN, "", ""};
+    figure_spec f = {FIG_VNDF_SIDE, &s, dir(75, 0), NULL, 0, 0, NAN, "", "", 0.0};
     CHECK(fabs(figure_default_from(&f) + M_PI / 2) < 1e-12, "phi_v = 0: from %g", figure_default_from(&f));
     f.view = dir(75, 90);
     CHECK(fabs(figure_default_from(&f) - M_PI / 2) < 1e-12, "phi_v = 90: from %g", figure_default_from(&f));
@@ -264,7 +264,7 @@ static void furnace_curves(void **state)
     for (int k = 0; k < 3; k++) {
         ggx_shape s;
         make_shape(&s, P[k]);
-        figure_spec f = {FIG_FURNACE, &s, dir(0, 0), NULL, 0, 0, NAN, "", ""};
+        figure_spec f = {FIG_FURNACE, &s, dir(0, 0), NULL, 0, 0, NAN, "", "", 0.0};
         int nc = 0;
         while (figure_curve(&f, nc, x, y, 400, label, sizeof label) > 0) nc++;
         CHECK(nc == (k == 0 ? 5 : 4), "shape %d: %d curves", k, nc);
@@ -277,6 +277,43 @@ static void furnace_curves(void **state)
     }
 }
 
+/* The polar figure's curves are f |cos theta_o| of ggx_brdf_eval (F = 1) or ggx_bsdf_eval (radiance) at directions
+ * rebuilt here from the curve's angles: in the incidence plane (the mirror side at positive angles) and across it,
+ * for each incidence angle; 8 curves, the BRDF's over [-90, 90] and zero below the horizon, the BSDF's over
+ * [-180, 180]. */
+static void polar_curves(void **state)
+{
+    (void)state;
+    static double x[800], y[800];
+    char label[96];
+    ggx_shape s;
+    make_shape(&s, (shape_params){0.15, 0.4, 0.3, -0.2, 0.5});
+    const double phi_v = 35.0;
+    for (int bsdf = 0; bsdf < 2; bsdf++) {
+        figure_spec f = {FIG_POLAR, &s, dir(50, phi_v), NULL, 0, 0, NAN, "", "", bsdf ? 1.5 : 0.0};
+        int nc = 0;
+        while (figure_curve(&f, nc, x, y, 800, label, sizeof label) > 0) nc++;
+        CHECK(nc == 8, "%d curves", nc);
+        for (int k = 0; k < nc; k++) {
+            int n = figure_curve(&f, k, x, y, 800, label, sizeof label);
+            double ti = 20.0 * (k / 2 + 1);
+            CHECK(strstr(label, k % 2 ? "across" : "θi") != NULL, "label '%s'", label);
+            CHECK(x[0] == (bsdf ? -180.0 : -90.0) && x[n - 1] == (bsdf ? 180.0 : 90.0), "span %g %g", x[0], x[n - 1]);
+            ggx_vec3 wi = dir(ti, phi_v);
+            double peak = 0.0;
+            for (int i = 0; i < n; i += 7) {
+                double a = x[i] * T_PI / 180, az = (phi_v + (k % 2 ? 90.0 : 180.0)) * T_PI / 180;
+                ggx_vec3 wo = {sin(a) * cos(az), sin(a) * sin(az), cos(a)};
+                double want = bsdf ? ggx_bsdf_eval(&s, 1.5, wi, wo, GGX_RADIANCE) * fabs(wo.z)
+                                   : (wo.z > 0 ? ggx_brdf_eval(&s, NULL, wi, wo) * wo.z : 0.0);
+                CHECK_CLOSE(y[i], want, 1e-12, 1e-300, "curve %d at %g degrees", k, x[i]);
+                peak = fmax(peak, y[i]);
+            }
+            CHECK(peak > 0.0, "curve %d is empty", k);
+        }
+    }
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -285,6 +322,7 @@ int main(void)
         cmocka_unit_test(side_views),
         cmocka_unit_test(grey_region),
         cmocka_unit_test(furnace_curves),
+        cmocka_unit_test(polar_curves),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

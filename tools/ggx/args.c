@@ -10,8 +10,8 @@
 jmp_buf *cli_die_jump;
 
 static const char *const FIGURES[] = {"ndf", "ndf-side", "vndf", "vndf-side", "grid", "grid-side",
-                                      "g1", "lambda", "ndf-slice", "furnace"};
-const char FIGURE_NAMES[] = "ndf, ndf-side, vndf, vndf-side, grid, grid-side, g1, lambda, ndf-slice, furnace";
+                                      "g1", "lambda", "ndf-slice", "furnace", "polar"};
+const char FIGURE_NAMES[] = "ndf, ndf-side, vndf, vndf-side, grid, grid-side, g1, lambda, ndf-slice, furnace, polar";
 
 figure_kind figure_from_name(const char *name)
 {

@@ -106,7 +106,7 @@ void progress_end(const char *label, long total);
 /* ---- figures (drawn in figures.c, figure.h) ---- */
 typedef enum figure_kind {
     FIG_NDF, FIG_NDF_SIDE, FIG_VNDF, FIG_VNDF_SIDE, FIG_GRID, FIG_GRID_SIDE, /* the seeds' hemisphere figures */
-    FIG_G1, FIG_LAMBDA, FIG_NDF_SLICE, FIG_FURNACE                            /* line plots */
+    FIG_G1, FIG_LAMBDA, FIG_NDF_SLICE, FIG_FURNACE, FIG_POLAR                 /* line plots */
 } figure_kind;
 /* The figure named on the command line (dies on an unknown name, listing the names); figure_name is its inverse. */
 figure_kind figure_from_name(const char *name);

@@ -16,6 +16,7 @@ typedef struct figure_spec {
     double from;                      /* side views: the azimuth of the viewer (radians); NAN: the default */
     char shape_text[192];             /* the caption's shape, e.g. "αx 0.15, αy 0.5, θx 0°, θy 0°, θz 0°" */
     char note[192];                   /* one more caption line (the seed figure reproduced), or "" */
+    double eta;                       /* polar: 0 for the BRDF, else the BSDF's relative index of refraction */
 } figure_spec;
 
 /* The hemisphere's projection in a figure: from above (x right, y up) or from the side, seen from the horizontal
@@ -54,6 +55,17 @@ double figure_default_from(const figure_spec *f);
 /* Curve k of a line figure (FIG_G1 and after): its first max points into x, y and its legend into label (n bytes);
  * returns the number of points written, or -1 when the figure has no curve k. Not thread-safe. */
 int figure_curve(const figure_spec *f, int k, double *x, double *y, int max, char *label, size_t n);
+
+/* What the figures share (figures.c): the caption (returns its height; at most max_lines lines), the font size for a
+ * rectangle, and the curves' colour-blind-safe palette. */
+double figure_draw_caption(cairo_t *cr, const theme *th, double x, double y, double w, double F, const figure_spec *f,
+                           int max_lines);
+double figure_font(double w, double h);
+extern const double FIGURE_PALETTE[6][3];
+
+/* The polar figure (figure_polar.c): its curves, as figure_curve, and its drawing. */
+int polar_curve(const figure_spec *f, int k, double *x, double *y, int max, char *label, size_t n);
+void polar_draw(cairo_t *cr, const theme *th, double x, double y, double w, double h, const figure_spec *f);
 
 /* Draws the figure into the rectangle (x, y, w, h) of cr; *proj (may be NULL) receives the hemisphere's
  * projection (hemisphere figures). */

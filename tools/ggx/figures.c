@@ -26,7 +26,7 @@ static ggx_vec3 unit3(ggx_vec3 a)
 static int is_side(figure_kind k) { return k == FIG_NDF_SIDE || k == FIG_VNDF_SIDE || k == FIG_GRID_SIDE; }
 static int is_grid(figure_kind k) { return k == FIG_GRID || k == FIG_GRID_SIDE; }
 static int is_vndf(figure_kind k) { return k == FIG_VNDF || k == FIG_VNDF_SIDE; }
-static int is_line(figure_kind k) { return k == FIG_G1 || k == FIG_LAMBDA || k == FIG_NDF_SLICE || k == FIG_FURNACE; }
+static int is_line(figure_kind k) { return k >= FIG_G1; }
 
 /* ---------------------------------------------------------------------------------------------------------------
  * The hemisphere's projection
@@ -275,6 +275,10 @@ static int caption_lines(const figure_spec *f, char lines[CAPTION_LINES][400])
     case FIG_G1: what = "Masking G1(v) against the view's polar angle"; break;
     case FIG_LAMBDA: what = "Smith Λ(v) against the view's polar angle"; break;
     case FIG_NDF_SLICE: what = "D(m) along the principal planes through its peak"; break;
+    case FIG_POLAR:
+        what = f->eta > 0 ? "BSDF f |cos θo| in the incidence plane (solid) and across it (dashed), radiance"
+                          : "BRDF f cos θo (F = 1) in the incidence plane (solid) and across it (dashed)";
+        break;
     default: what = "Weak white furnace and directional albedo (F = 1)"; break;
     }
     int n = 0;
@@ -286,6 +290,7 @@ static int caption_lines(const figure_spec *f, char lines[CAPTION_LINES][400])
         snprintf(lines[n++], 400, "%s  ·  mapped by sampler '%s'%s%s", f->shape_text, f->sampler->name,
                  f->sampler->family == GGX_FAMILY_VNDF ? "  ·  " : "", f->sampler->family == GGX_FAMILY_VNDF ? view : "");
     else if (is_vndf(f->kind)) snprintf(lines[n++], 400, "%s  ·  %s", f->shape_text, view);
+    else if (f->kind == FIG_POLAR && f->eta > 0) snprintf(lines[n++], 400, "%s  ·  η %.4g", f->shape_text, f->eta);
     else snprintf(lines[n++], 400, "%s", f->shape_text);
     if (figure_has_grey(f))
         snprintf(lines[n++], 400, "%s: normals m that reflect v above the horizon (2 (m·v) m·n > v·n)%s",
@@ -296,7 +301,7 @@ static int caption_lines(const figure_spec *f, char lines[CAPTION_LINES][400])
 }
 
 /* Draws the caption at the top of the rectangle; returns its height. */
-static double draw_caption(cairo_t *cr, const theme *th, double x, double y, double w, double F, const figure_spec *f,
+double figure_draw_caption(cairo_t *cr, const theme *th, double x, double y, double w, double F, const figure_spec *f,
                            int max_lines)
 {
     char lines[CAPTION_LINES][400];
@@ -315,7 +320,7 @@ static double draw_caption(cairo_t *cr, const theme *th, double x, double y, dou
     return yy - y + 0.2 * F;
 }
 
-static double font_for(double w, double h) { return fmax(6.0, fmin(26.0, 0.021 * fmin(w, 1.6 * h))); }
+double figure_font(double w, double h) { return fmax(6.0, fmin(26.0, 0.021 * fmin(w, 1.6 * h))); }
 
 /* Text in the theme's colour on a halo of the background's, readable over the density and off it. */
 static void text_halo(cairo_t *cr, const theme *th, double x, double y, double ax, double ay, const char *s)
@@ -512,10 +517,10 @@ static void draw_grid(cairo_t *cr, const theme *th, const hemi_proj *hp, const f
 static void draw_hemisphere(cairo_t *cr, const theme *th, double x, double y, double w, double h, const figure_spec *f,
                             hemi_proj *out)
 {
-    double F = font_for(w, h);
+    double F = figure_font(w, h);
     /* a small figure (an icon, a thumbnail) keeps the picture, its marks and the title; the rest would be unreadable */
     int compact = w < 300 || h < 200;
-    double cap = draw_caption(cr, th, x, y, w, F, f, compact ? 1 : CAPTION_LINES);
+    double cap = figure_draw_caption(cr, th, x, y, w, F, f, compact ? 1 : CAPTION_LINES);
     int density = !is_grid(f->kind);
     double band = density && !compact ? 7.4 * F : 0.0, margin = 1.8 * F;
     double bx = x, by = y + cap, bw = w - band, bh = h - cap - 0.4 * F;
@@ -594,7 +599,7 @@ typedef struct series {
 } series;
 
 /* Okabe and Ito's colour-blind-safe palette, with dashes so that print in grey still tells the curves apart. */
-static const double PALETTE[6][3] = {{0.0, 0.447, 0.698}, {0.835, 0.369, 0.0}, {0.0, 0.62, 0.451},
+const double FIGURE_PALETTE[6][3] = {{0.0, 0.447, 0.698}, {0.835, 0.369, 0.0}, {0.0, 0.62, 0.451},
                                      {0.8, 0.475, 0.655}, {0.337, 0.706, 0.914}, {0.902, 0.624, 0.0}};
 
 static ggx_vec3 dir_deg(double theta, double phi)
@@ -727,6 +732,7 @@ int figure_curve(const figure_spec *f, int k, double *x, double *y, int max, cha
     const char *xlabel, *ylabel;
     int logy;
     if (f->kind < FIG_G1) return -1;
+    if (f->kind == FIG_POLAR) return polar_curve(f, k, x, y, max, label, n);
     int ns = line_series(f, sr, &xlabel, &ylabel, &logy);
     if (k < 0 || k >= ns) return -1;
     int m = sr[k].n < max ? sr[k].n : max;
@@ -740,8 +746,8 @@ static void draw_lines(cairo_t *cr, const theme *th, double x, double y, double 
     static series sr[8];
     const char *xlabel, *ylabel;
     int logy, ns = line_series(f, sr, &xlabel, &ylabel, &logy);
-    double F = font_for(w, h);
-    double cap = draw_caption(cr, th, x, y, w, F, f, CAPTION_LINES);
+    double F = figure_font(w, h);
+    double cap = figure_draw_caption(cr, th, x, y, w, F, f, CAPTION_LINES);
     double legend_w = 0;
     text_font(cr, 0.8 * F, 0);
     for (int i = 0; i < ns; i++) legend_w = fmax(legend_w, text_width(cr, sr[i].label));
@@ -805,7 +811,7 @@ static void draw_lines(cairo_t *cr, const theme *th, double x, double y, double 
     cairo_set_line_join(cr, CAIRO_LINE_JOIN_ROUND);
     for (int i = 0; i < ns; i++) {
         double dashes[2] = {0.7 * F * (i % 3), 0.35 * F};
-        set_rgb(cr, PALETTE[i % 6]);
+        set_rgb(cr, FIGURE_PALETTE[i % 6]);
         cairo_set_dash(cr, dashes, i % 3 ? 2 : 0, 0);
         for (int k = 0; k < sr[i].n; k++) {
             double Y = MAPY(logy ? log10(sr[i].y[k]) : sr[i].y[k]);
@@ -820,7 +826,7 @@ static void draw_lines(cairo_t *cr, const theme *th, double x, double y, double 
     for (int i = 0; i < ns; i++) {
         double lx = px + pw + 0.8 * F, ly = py + 0.6 * F + 1.4 * F * i;
         double dashes[2] = {0.7 * F * (i % 3), 0.35 * F};
-        set_rgb(cr, PALETTE[i % 6]);
+        set_rgb(cr, FIGURE_PALETTE[i % 6]);
         cairo_set_line_width(cr, fmax(1.0, 0.14 * F));
         cairo_set_dash(cr, dashes, i % 3 ? 2 : 0, 0);
         cairo_move_to(cr, lx, ly), cairo_line_to(cr, lx + 2.4 * F, ly), cairo_stroke(cr);
@@ -844,13 +850,15 @@ void figure_draw(cairo_t *cr, const theme *th, double x, double y, double w, dou
     cairo_save(cr);
     cairo_rectangle(cr, x, y, w, h);
     cairo_clip(cr);
-    if (is_line(f.kind)) draw_lines(cr, th, x, y, w, h, &f);
+    if (f.kind == FIG_POLAR) polar_draw(cr, th, x, y, w, h, &f);
+    else if (is_line(f.kind)) draw_lines(cr, th, x, y, w, h, &f);
     else draw_hemisphere(cr, th, x, y, w, h, &f, proj);
     cairo_restore(cr);
 }
 
 double figure_aspect(figure_kind k)
 {
+    if (k == FIG_POLAR) return 0.7;
     if (is_line(k)) return 0.62;
     if (is_side(k)) return is_grid(k) ? 0.68 : 0.62;
     return is_grid(k) ? 1.0 : 0.86;

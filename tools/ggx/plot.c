@@ -17,10 +17,10 @@ void shape_caption(const options *o, char *buf, size_t n)
 int cmd_plot(int argc, char **argv)
 {
     options o;
-    parse_options(argc, argv, 2, &o, SHAPE_OPTS ",figure,view,sampler,size,log,theme,from,out");
+    parse_options(argc, argv, 2, &o, SHAPE_OPTS ",figure,view,sampler,size,log,theme,from,eta,out");
     if (o.help) {
         printf("usage: ggx plot [shape] [--figure NAME] [--view DIR] [--sampler NAME] [--from DEG] [--size W[xH]]\n"
-               "                [--log] [--theme light|dark] [--out FILE]\n\n"
+               "                [--log] [--theme light|dark] [--eta E] [--out FILE]\n\n"
                "Figures (the seeds' hemisphere figures, then line plots):\n"
                "  ndf, ndf-side      the NDF pdf D(m) (m.n), from above / from the side, with a colour bar (sr^-1)\n"
                "  vndf, vndf-side    the visible-normal pdf for --view (default 75,0), with seed 004's grey region:\n"
@@ -31,7 +31,10 @@ int cmd_plot(int argc, char **argv)
                "  ndf-slice          D(m) along the two principal planes through its peak (log scale)\n"
                "  furnace            the weak white furnace G1(v) int D (m.v)+ / (v.n) dm and the albedo E(v); for\n"
                "                     an anisotropic shape also the isotropic E at sqrt(alpha_x alpha_y) that\n"
-               "                     renderers use in its place\n\n"
+               "                     renderers use in its place\n"
+               "  polar              f cos theta_o, the albedo's integrand over wo, in the incidence plane (at the\n"
+               "                     azimuth of --view) and across it, for incidence 20, 40, 60 and 80 degrees:\n"
+               "                     the BRDF with F = 1, or with --eta E the rough dielectric's BSDF (radiance)\n\n"
                "Side views look from the azimuth --from (degrees); by default they show the lobe, which leans toward\n"
                "the view (VNDF) or the NDF peak: in profile from the lean's azimuth - 90 (the view pointing right;\n"
                "from -y for phi_v = 0, as in the seeds), or facing it where the lobe is narrower across the profile\n"
@@ -66,7 +69,9 @@ int cmd_plot(int argc, char **argv)
     size_t pl = strlen(path);
     if (!path_is_stream(path) && (pl < 4 || strcmp(path + pl - 4, format_ext(fmt)) != 0))
         die("--out: '%s' does not name a format: end it in .png, .svg or .pdf (or give - for standard output)", path);
-    figure_spec f = {k, &s, o.view, smp, o.log_scale, o.dark, o.from * DEG, "", ""};
+    if (o.have_eta && k != FIG_POLAR) die("--eta is for --figure polar (the BSDF)");
+    if (k == FIG_POLAR && o.have_eta && o.eta == 1.0) die("--eta 1: no interface, no BSDF to plot");
+    figure_spec f = {k, &s, o.view, smp, o.log_scale, o.dark, o.from * DEG, "", "", o.have_eta ? o.eta : 0.0};
     shape_caption(&o, f.shape_text, sizeof f.shape_text);
     int w = o.size ? o.size : 640;
     int h = o.size_h ? o.size_h : figure_height(k, w);
