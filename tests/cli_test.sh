@@ -84,13 +84,14 @@ script -qec "$GGX_BIN sample -n $PN --no-progress --out /dev/null" /dev/null > t
 "$GGX" plot --figure vndf --size 300x500 --theme dark --out d.png 2>/dev/null && [ "$("$PNG_INFO" d.png)" = "300 500" ] && ok || bad "plot --size 300x500"
 "$GGX" plot --figure grid-side --size 333x222 --out gs.svg 2>/dev/null && [ "$(svg_size gs.svg)" = "333pt 222pt" ] && ok || bad "plot --size svg: $(svg_size gs.svg)"
 "$GGX" plot --figure g1 --size 500x300 --out g1.pdf 2>/dev/null && pdfinfo g1.pdf | grep -q "^Page size: *500 x 300 pts" && ok || bad "plot --size pdf"
-for fig in ndf ndf-side vndf vndf-side grid grid-side g1 lambda ndf-slice furnace polar; do
+for fig in ndf ndf-side vndf vndf-side grid grid-side g1 lambda ndf-slice furnace polar slice; do
     "$GGX" plot --figure $fig --skew 20,-10 --rotate 30 --size 200 --out "f-$fig.pdf" 2>/dev/null && pdfinfo "f-$fig.pdf" | grep -q "^Pages: *1$" &&
         ok || bad "plot --figure $fig as PDF"
 done
 "$GGX" plot --figure furnace 2>/dev/null && xmllint --noout furnace.svg && ok || bad "plot line figure defaults to SVG"
 "$GGX" plot --figure polar --eta 1.5 --size 500 --out pb.png 2>/dev/null && [ "$("$PNG_INFO" pb.png)" = "500 350" ] && ok ||
     bad "plot --figure polar --eta: $("$PNG_INFO" pb.png)"
+"$GGX" plot --figure slice --phi-d 45 2>/dev/null && [ "$("$PNG_INFO" slice.png)" = "640 525" ] && ok || bad "plot --figure slice defaults to PNG: $("$PNG_INFO" slice.png)"
 "$GGX" plot --figure ndf --eta 1.5 --out no.png 2>err.txt; [ $? -eq 2 ] && [ ! -e no.png ] && grep -q "eta is for --figure polar" err.txt &&
     ok || bad "plot --eta on another figure: $(cat err.txt)"
 "$GGX" check ${N:--n 200000} > check.txt && grep -q "all pass" check.txt && ok || bad "check defaults: $(cat check.txt)"

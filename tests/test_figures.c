@@ -76,7 +76,7 @@ static void peak_pixel(void **state)
         for (unsigned k = 0; k < sizeof KINDS / sizeof KINDS[0]; k++) {
             int nv = (KINDS[k] == FIG_VNDF || KINDS[k] == FIG_VNDF_SIDE) ? 3 : 1;
             for (int j = 0; j < nv; j++) {
-                figure_spec f = {KINDS[k], &s, dir(VIEWS[j][0], VIEWS[j][1]), NULL, 0, 0, NAN, "shape", "", 0.0};
+                figure_spec f = {KINDS[k], &s, dir(VIEWS[j][0], VIEWS[j][1]), NULL, 0, 0, NAN, "shape", "", 0.0, 0.0};
                 int w = 720, h = (int)lround(w * figure_aspect(f.kind));
                 hemi_proj hp;
                 double bx, by, px, py;
@@ -115,7 +115,7 @@ static void peak_values(void **state)
     (void)state;
     ggx_shape s;
     make_shape(&s, SHAPES[0]);
-    figure_spec f = {FIG_NDF, &s, dir(75, 0), NULL, 0, 0, NAN, "", "", 0.0};
+    figure_spec f = {FIG_NDF, &s, dir(75, 0), NULL, 0, 0, NAN, "", "", 0.0, 0.0};
     ggx_vec3 m;
     CHECK_CLOSE(figure_peak(&f, &m), 1 / (M_PI * 0.15 * 0.5), 1e-9, 0, "NDF peak");
     CHECK(m.z > 1 - 1e-12, "NDF peak at n: m.z = %.15g", m.z);
@@ -146,7 +146,7 @@ static void side_views(void **state)
     for (int i = 0; i < NSHAPES; i++) {
         ggx_shape s;
         make_shape(&s, SHAPES[i]);
-        figure_spec f = {FIG_VNDF_SIDE, &s, dir(60, 130), NULL, 0, 0, NAN, "", "", 0.0};
+        figure_spec f = {FIG_VNDF_SIDE, &s, dir(60, 130), NULL, 0, 0, NAN, "", "", 0.0, 0.0};
         double from = figure_default_from(&f), across = cos(from) * f.view.x + sin(from) * f.view.y,
                right = -sin(from) * f.view.x + cos(from) * f.view.y;
         /* in profile, the view pointing right; or facing the view */
@@ -165,7 +165,7 @@ static void side_views(void **state)
      * narrow along x, so its profile would show a sliver) */
     ggx_shape s;
     make_shape(&s, SHAPES[0]);
-    figure_spec f = {FIG_VNDF_SIDE, &s, dir(75, 0), NULL, 0, 0, NAN, "", "", 0.0};
+    figure_spec f = {FIG_VNDF_SIDE, &s, dir(75, 0), NULL, 0, 0, NAN, "", "", 0.0, 0.0};
     CHECK(fabs(figure_default_from(&f) + M_PI / 2) < 1e-12, "phi_v = 0: from %g", figure_default_from(&f));
     f.view = dir(75, 90);
     CHECK(fabs(figure_default_from(&f) - M_PI / 2) < 1e-12, "phi_v = 90: from %g", figure_default_from(&f));
@@ -264,7 +264,7 @@ static void furnace_curves(void **state)
     for (int k = 0; k < 3; k++) {
         ggx_shape s;
         make_shape(&s, P[k]);
-        figure_spec f = {FIG_FURNACE, &s, dir(0, 0), NULL, 0, 0, NAN, "", "", 0.0};
+        figure_spec f = {FIG_FURNACE, &s, dir(0, 0), NULL, 0, 0, NAN, "", "", 0.0, 0.0};
         int nc = 0;
         while (figure_curve(&f, nc, x, y, 400, label, sizeof label) > 0) nc++;
         CHECK(nc == (k == 0 ? 5 : 4), "shape %d: %d curves", k, nc);
@@ -290,7 +290,7 @@ static void polar_curves(void **state)
     make_shape(&s, (shape_params){0.15, 0.4, 0.3, -0.2, 0.5});
     const double phi_v = 35.0;
     for (int bsdf = 0; bsdf < 2; bsdf++) {
-        figure_spec f = {FIG_POLAR, &s, dir(50, phi_v), NULL, 0, 0, NAN, "", "", bsdf ? 1.5 : 0.0};
+        figure_spec f = {FIG_POLAR, &s, dir(50, phi_v), NULL, 0, 0, NAN, "", "", bsdf ? 1.5 : 0.0, 0.0};
         int nc = 0;
         while (figure_curve(&f, nc, x, y, 800, label, sizeof label) > 0) nc++;
         CHECK(nc == 8, "%d curves", nc);
@@ -314,6 +314,39 @@ static void polar_curves(void **state)
     }
 }
 
+/* The slice's directions are Rusinkiewicz's: (wi + wo) / |wi + wo| is the half vector at (theta_h, phi_h = 0) and
+ * wi.h = cos theta_d; its value is ggx_brdf_eval there (0 when a direction is below the horizon); and the slice at
+ * phi_d + 180 degrees equals the one at phi_d (wi and wo exchanged: reciprocity). */
+static void slice_values(void **state)
+{
+    (void)state;
+    ggx_shape s;
+    make_shape(&s, (shape_params){0.15, 0.4, 0.3, -0.2, 0.5});
+    const double pd[3] = {90.0, 45.0, -120.0};
+    int zeros = 0, checked = 0;
+    for (int p = 0; p < 3; p++) {
+        figure_spec f = {FIG_SLICE, &s, dir(0, 0), NULL, 0, 0, NAN, "", "", 0.0, pd[p] * T_PI / 180};
+        figure_spec g = f;
+        g.phi_d = (pd[p] + 180.0) * T_PI / 180;
+        for (int i = 0; i < 12; i++)
+            for (int j = 0; j < 12; j++) {
+                double th = (i + 0.3) * 7.5 * T_PI / 180, td = (j + 0.6) * 7.5 * T_PI / 180;
+                ggx_vec3 wi, wo;
+                slice_dirs(th, td, f.phi_d, &wi, &wo);
+                double hx = wi.x + wo.x, hy = wi.y + wo.y, hz = wi.z + wo.z, hl = sqrt(hx * hx + hy * hy + hz * hz);
+                CHECK(fabs(hx / hl - sin(th)) < 1e-12 && fabs(hy / hl) < 1e-12 && fabs(hz / hl - cos(th)) < 1e-12,
+                      "half vector at theta_h %g", th);
+                CHECK(fabs(wi.x * sin(th) + wi.z * cos(th) - cos(td)) < 1e-12, "theta_d %g", td);
+                double want = wi.z > 0 && wo.z > 0 ? ggx_brdf_eval(&s, NULL, wi, wo) : 0.0;
+                double got = slice_value(&f, th, td);
+                CHECK_CLOSE(got, want, 1e-12, 1e-300, "slice at (%g, %g)", th, td);
+                CHECK_CLOSE(slice_value(&g, th, td), got, 1e-12, 1e-300, "reciprocity at (%g, %g)", th, td);
+                zeros += got == 0.0, checked++;
+            }
+    }
+    CHECK(zeros > 0 && zeros < checked, "%d of %d points below the horizon", zeros, checked);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -323,6 +356,7 @@ int main(void)
         cmocka_unit_test(grey_region),
         cmocka_unit_test(furnace_curves),
         cmocka_unit_test(polar_curves),
+        cmocka_unit_test(slice_values),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

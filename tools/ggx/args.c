@@ -10,8 +10,8 @@
 jmp_buf *cli_die_jump;
 
 static const char *const FIGURES[] = {"ndf", "ndf-side", "vndf", "vndf-side", "grid", "grid-side",
-                                      "g1", "lambda", "ndf-slice", "furnace", "polar"};
-const char FIGURE_NAMES[] = "ndf, ndf-side, vndf, vndf-side, grid, grid-side, g1, lambda, ndf-slice, furnace, polar";
+                                      "g1", "lambda", "ndf-slice", "furnace", "polar", "slice"};
+const char FIGURE_NAMES[] = "ndf, ndf-side, vndf, vndf-side, grid, grid-side, g1, lambda, ndf-slice, furnace, polar, slice";
 
 figure_kind figure_from_name(const char *name)
 {
@@ -99,6 +99,7 @@ void parse_options(int argc, char **argv, int first, options *o, const char *all
     o->seed = 1;
     o->size = 0; /* not given: each command has its default */
     o->from = NAN;
+    o->phi_d = 90.0;
     o->eta = 1.5;
     o->progress = -1;
     for (int i = first; i < argc; i++) {
@@ -198,6 +199,9 @@ void parse_options(int argc, char **argv, int first, options *o, const char *all
         } else if (strcmp(key, "from") == 0) {
             parse_list(a, val, &o->from, 1);
             if (!(fabs(o->from) <= 360)) die("%s: '%s' is not an azimuth in degrees in [-360, 360]", a, val);
+        } else if (strcmp(key, "phi-d") == 0) {
+            parse_list(a, val, &o->phi_d, 1);
+            if (!(fabs(o->phi_d) <= 360)) die("%s: '%s' is not an azimuth in degrees in [-360, 360]", a, val);
         } else if (strcmp(key, "eta") == 0) {
             parse_list(a, val, &o->eta, 1);
             if (!(o->eta > 0 && o->eta <= 1e300))

@@ -35,6 +35,7 @@ typedef struct options {
     double eta;
     int have_eta, log_scale, size, size_h, dark, help, progress; /* size_h: 0 unless --size W x H */
     double from; /* --from (degrees), NAN when not given */
+    double phi_d; /* --phi-d (degrees), 90 when not given */
     /* ggx fit */
     const char *heightfield, *normal_map, *normals, *model;
     double spacing[2], z_scale;
@@ -106,7 +107,7 @@ void progress_end(const char *label, long total);
 /* ---- figures (drawn in figures.c, figure.h) ---- */
 typedef enum figure_kind {
     FIG_NDF, FIG_NDF_SIDE, FIG_VNDF, FIG_VNDF_SIDE, FIG_GRID, FIG_GRID_SIDE, /* the seeds' hemisphere figures */
-    FIG_G1, FIG_LAMBDA, FIG_NDF_SLICE, FIG_FURNACE, FIG_POLAR                 /* line plots */
+    FIG_G1, FIG_LAMBDA, FIG_NDF_SLICE, FIG_FURNACE, FIG_POLAR, FIG_SLICE      /* line plots, the polar plot, the slice */
 } figure_kind;
 /* The figure named on the command line (dies on an unknown name, listing the names); figure_name is its inverse. */
 figure_kind figure_from_name(const char *name);

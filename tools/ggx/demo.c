@@ -46,7 +46,7 @@ static const struct demo_shape {
 
 static figure_spec demo_spec(const struct demo_figure *d, const ggx_shape *s, int k, int dark)
 {
-    figure_spec f = {d->kind, s, {0, 0, 1}, ggx_sampler_get(GGX_SAMPLER_STRETCH), 0, dark, NAN, "", "", 0.0};
+    figure_spec f = {d->kind, s, {0, 0, 1}, ggx_sampler_get(GGX_SAMPLER_STRETCH), 0, dark, NAN, "", "", 0.0, 0.0};
     if (!isnan(d->phi_v)) /* theta_v = 75 degrees */
         f.view = (ggx_vec3){sin(75 * DEG) * cos(d->phi_v * DEG), sin(75 * DEG) * sin(d->phi_v * DEG), cos(75 * DEG)};
     if (d->vndf_sampler) f.sampler = ggx_sampler_get(GGX_SAMPLER_HEITZ);

@@ -17,6 +17,7 @@ typedef struct figure_spec {
     char shape_text[192];             /* the caption's shape, e.g. "αx 0.15, αy 0.5, θx 0°, θy 0°, θz 0°" */
     char note[192];                   /* one more caption line (the seed figure reproduced), or "" */
     double eta;                       /* polar: 0 for the BRDF, else the BSDF's relative index of refraction */
+    double phi_d;                     /* slice: the difference angle phi_d (radians) */
 } figure_spec;
 
 /* The hemisphere's projection in a figure: from above (x right, y up) or from the side, seen from the horizontal
@@ -66,6 +67,13 @@ extern const double FIGURE_PALETTE[6][3];
 /* The polar figure (figure_polar.c): its curves, as figure_curve, and its drawing. */
 int polar_curve(const figure_spec *f, int k, double *x, double *y, int max, char *label, size_t n);
 void polar_draw(cairo_t *cr, const theme *th, double x, double y, double w, double h, const figure_spec *f);
+
+/* The slice figure (figure_slice.c): f_r (F = 1) over the half-vector angle theta_h and the difference angle
+ * theta_d (Rusinkiewicz's coordinates, the half vector at phi_h = 0) at f->phi_d; 0 where wi or wo is below the
+ * horizon. slice_dirs gives the directions of a point. */
+double slice_value(const figure_spec *f, double theta_h, double theta_d);
+void slice_dirs(double theta_h, double theta_d, double phi_d, ggx_vec3 *wi, ggx_vec3 *wo);
+void slice_draw(cairo_t *cr, const theme *th, double x, double y, double w, double h, const figure_spec *f);
 
 /* Draws the figure into the rectangle (x, y, w, h) of cr; *proj (may be NULL) receives the hemisphere's
  * projection (hemisphere figures). */

@@ -279,6 +279,7 @@ static int caption_lines(const figure_spec *f, char lines[CAPTION_LINES][400])
         what = f->eta > 0 ? "BSDF f |cos θo| in the incidence plane (solid) and across it (dashed), radiance"
                           : "BRDF f cos θo (F = 1) in the incidence plane (solid) and across it (dashed)";
         break;
+    case FIG_SLICE: what = "BRDF f_r (F = 1) over (θh, θd), Rusinkiewicz's coordinates, log scale"; break;
     default: what = "Weak white furnace and directional albedo (F = 1)"; break;
     }
     int n = 0;
@@ -290,6 +291,8 @@ static int caption_lines(const figure_spec *f, char lines[CAPTION_LINES][400])
         snprintf(lines[n++], 400, "%s  ·  mapped by sampler '%s'%s%s", f->shape_text, f->sampler->name,
                  f->sampler->family == GGX_FAMILY_VNDF ? "  ·  " : "", f->sampler->family == GGX_FAMILY_VNDF ? view : "");
     else if (is_vndf(f->kind)) snprintf(lines[n++], 400, "%s  ·  %s", f->shape_text, view);
+    else if (f->kind == FIG_SLICE)
+        snprintf(lines[n++], 400, "%s  ·  φd %.4g°, half vector at φh 0°", f->shape_text, f->phi_d / DEG);
     else if (f->kind == FIG_POLAR && f->eta > 0) snprintf(lines[n++], 400, "%s  ·  η %.4g", f->shape_text, f->eta);
     else snprintf(lines[n++], 400, "%s", f->shape_text);
     if (figure_has_grey(f))
@@ -733,6 +736,7 @@ int figure_curve(const figure_spec *f, int k, double *x, double *y, int max, cha
     int logy;
     if (f->kind < FIG_G1) return -1;
     if (f->kind == FIG_POLAR) return polar_curve(f, k, x, y, max, label, n);
+    if (f->kind == FIG_SLICE) return -1;
     int ns = line_series(f, sr, &xlabel, &ylabel, &logy);
     if (k < 0 || k >= ns) return -1;
     int m = sr[k].n < max ? sr[k].n : max;
@@ -851,6 +855,7 @@ void figure_draw(cairo_t *cr, const theme *th, double x, double y, double w, dou
     cairo_rectangle(cr, x, y, w, h);
     cairo_clip(cr);
     if (f.kind == FIG_POLAR) polar_draw(cr, th, x, y, w, h, &f);
+    else if (f.kind == FIG_SLICE) slice_draw(cr, th, x, y, w, h, &f);
     else if (is_line(f.kind)) draw_lines(cr, th, x, y, w, h, &f);
     else draw_hemisphere(cr, th, x, y, w, h, &f, proj);
     cairo_restore(cr);
@@ -859,6 +864,7 @@ void figure_draw(cairo_t *cr, const theme *th, double x, double y, double w, dou
 double figure_aspect(figure_kind k)
 {
     if (k == FIG_POLAR) return 0.7;
+    if (k == FIG_SLICE) return 0.82;
     if (is_line(k)) return 0.62;
     if (is_side(k)) return is_grid(k) ? 0.68 : 0.62;
     return is_grid(k) ? 1.0 : 0.86;

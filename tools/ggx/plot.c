@@ -17,10 +17,10 @@ void shape_caption(const options *o, char *buf, size_t n)
 int cmd_plot(int argc, char **argv)
 {
     options o;
-    parse_options(argc, argv, 2, &o, SHAPE_OPTS ",figure,view,sampler,size,log,theme,from,eta,out");
+    parse_options(argc, argv, 2, &o, SHAPE_OPTS ",figure,view,sampler,size,log,theme,from,eta,phi-d,out");
     if (o.help) {
         printf("usage: ggx plot [shape] [--figure NAME] [--view DIR] [--sampler NAME] [--from DEG] [--size W[xH]]\n"
-               "                [--log] [--theme light|dark] [--eta E] [--out FILE]\n\n"
+               "                [--log] [--theme light|dark] [--eta E] [--phi-d DEG] [--out FILE]\n\n"
                "Figures (the seeds' hemisphere figures, then line plots):\n"
                "  ndf, ndf-side      the NDF pdf D(m) (m.n), from above / from the side, with a colour bar (sr^-1)\n"
                "  vndf, vndf-side    the visible-normal pdf for --view (default 75,0), with seed 004's grey region:\n"
@@ -34,7 +34,10 @@ int cmd_plot(int argc, char **argv)
                "                     renderers use in its place\n"
                "  polar              f cos theta_o, the albedo's integrand over wo, in the incidence plane (at the\n"
                "                     azimuth of --view) and across it, for incidence 20, 40, 60 and 80 degrees:\n"
-               "                     the BRDF with F = 1, or with --eta E the rough dielectric's BSDF (radiance)\n\n"
+               "                     the BRDF with F = 1, or with --eta E the rough dielectric's BSDF (radiance)\n"
+               "  slice              the BRDF (F = 1) over the half-vector and difference angles (theta_h, theta_d),\n"
+               "                     Rusinkiewicz's coordinates, at --phi-d DEG (default 90), the half vector at\n"
+               "                     phi_h 0 (--rotate turns the shape), log scale over four decades\n\n"
                "Side views look from the azimuth --from (degrees); by default they show the lobe, which leans toward\n"
                "the view (VNDF) or the NDF peak: in profile from the lean's azimuth - 90 (the view pointing right;\n"
                "from -y for phi_v = 0, as in the seeds), or facing it where the lobe is narrower across the profile\n"
@@ -43,14 +46,14 @@ int cmd_plot(int argc, char **argv)
                "--size W or WxH: the file's size, exactly, in pixels (PNG) or points (SVG, PDF); with W alone the\n"
                "height follows the figure's aspect. Default width 640. --theme: light (default, for print) or dark.\n"
                "--out FILE: its name says the format (.png, .svg, .pdf); default FIGURE.png for hemisphere figures\n"
-               "and FIGURE.svg for line plots; - writes the default format to standard output.\n\n%s",
+               "and the slice, FIGURE.svg for line plots and polar; - writes the default format to standard output.\n\n%s",
                SHAPE_HELP);
         return 0;
     }
     ggx_shape s;
     shape_from_options(&o, &s);
     figure_kind k = figure_from_name(o.figure ? o.figure : "ndf");
-    int line = k >= FIG_G1;
+    int line = k >= FIG_G1 && k != FIG_SLICE; /* line plots default to SVG, images to PNG */
     if (!o.have_view) parse_direction("75,0", &o.view);
     if ((k == FIG_VNDF || k == FIG_VNDF_SIDE) && !(o.view.z > 0)) die("--view must be above the horizon for a VNDF figure");
     const ggx_sampler_info *smp = o.sampler ? find_sampler(o.sampler) : ggx_sampler_get(GGX_SAMPLER_STRETCH);
@@ -71,7 +74,7 @@ int cmd_plot(int argc, char **argv)
         die("--out: '%s' does not name a format: end it in .png, .svg or .pdf (or give - for standard output)", path);
     if (o.have_eta && k != FIG_POLAR) die("--eta is for --figure polar (the BSDF)");
     if (k == FIG_POLAR && o.have_eta && o.eta == 1.0) die("--eta 1: no interface, no BSDF to plot");
-    figure_spec f = {k, &s, o.view, smp, o.log_scale, o.dark, o.from * DEG, "", "", o.have_eta ? o.eta : 0.0};
+    figure_spec f = {k, &s, o.view, smp, o.log_scale, o.dark, o.from * DEG, "", "", o.have_eta ? o.eta : 0.0, o.phi_d * DEG};
     shape_caption(&o, f.shape_text, sizeof f.shape_text);
     int w = o.size ? o.size : 640;
     int h = o.size_h ? o.size_h : figure_height(k, w);
