@@ -978,6 +978,17 @@ static void quantised_cells(void **state)
     for (int i = 0; i < 5; i++)
         CHECK(fabs(va[i] - vb[i]) <= 1e-3 * ib.std_error[i], "q 1e-7: parameter %d %g vs %g", i, va[i], vb[i]);
 
+    /* found by review: a strongly anisotropic, rotated lobe (brushed metal, 1:50 at 45 degrees) converges with
+     * positive standard errors (the differenced information once stepped out of the positive definite cone) */
+    ggx_shape brushed;
+    make_shape(&brushed, (shape_params){0.5, 0.01, 0.0, 0.0, 0.785398});
+    ggx_vec3 *mb = draw(&brushed, n1, 0, &r);
+    quantise(mb, n1, 255.0, uv);
+    assert_int_equal(ggx_fit_normal_cells(&fa, uv, NULL, n1, q, NULL, &ia), GGX_OK);
+    CHECK(ia.converged && !ia.clamped && ia.std_error[2] > 0.0 && ia.std_error[3] > 0.0,
+          "brushed: converged %d clamped %d decrement %g", ia.converged, ia.clamped, ia.stationarity);
+    free(mb);
+
     /* bad input */
     double bad[12] = {0.0, 0.0, 2.0, 0.0, NAN, 0.0, 0.01, 0.01, 0.0, 0.0, 0.0, 0.0};
     double bw[6] = {1, 1, 1, 1, 0, 1};

@@ -42,10 +42,10 @@ static int free_directions(ggx_fit_model model, double J[5][5])
     return k;
 }
 
-/* Inverse of a symmetric positive definite k x k matrix by Cholesky; 0 when not positive definite. */
-static int spd_inverse(int k, double a[5][5], double inv[5][5])
+/* The Cholesky factor L (lower triangular, a = L L^T) of a symmetric k x k matrix; 0 when not positive definite. */
+static int cholesky(int k, double a[5][5], double l[5][5])
 {
-    double l[5][5] = {{0}};
+    memset(l, 0, sizeof(double) * 25);
     for (int j = 0; j < k; j++) {
         double d = a[j][j];
         for (int m = 0; m < j; m++) d -= l[j][m] * l[j][m];
@@ -57,6 +57,14 @@ static int spd_inverse(int k, double a[5][5], double inv[5][5])
             l[i][j] = v / l[j][j];
         }
     }
+    return 1;
+}
+
+/* Inverse of a symmetric positive definite k x k matrix by Cholesky; 0 when not positive definite. */
+static int spd_inverse(int k, double a[5][5], double inv[5][5])
+{
+    double l[5][5];
+    if (!cholesky(k, a, l)) return 0;
     for (int c = 0; c < k; c++) { /* solve L L^T x = e_c */
         double y[5], x[5];
         for (int i = 0; i < k; i++) {
@@ -153,26 +161,50 @@ static ggx_status point_hessian(const fit_data *d, const fit_point *at, const do
 }
 
 /* For cells (fit.h, "censored"): the gradient is exact (the cells' shares at (t, Sigma) make fit_gradient's the
- * gradient of sum n_c log P(cell), Fisher's identity), and the Hessian its central differences, steps of 1e-4 of
- * each parameter's scale (truncation about 1e-8 relative, rounding far below), symmetrised; scaled to n_eff. */
-static ggx_status cells_hessian(const fit_data *d, const double t[2], const double sigma[3], double *ll, double g[5],
-                                double H[5][5])
+ * gradient of sum n_c log P(cell), Fisher's identity), and the Hessian its central differences along the columns of
+ * L, the Cholesky factor of the points' covariance with the same shares (the inverse of the first term of Louis's
+ * formula, which is larger than the cells' information): steps of 1e-2 of L e_k move the parameters by a hundredth of
+ * their uncertainty in whitened coordinates, inside the cone of positive definite Sigma however correlated it is
+ * (steps along Sigma_xy alone, relative to Sigma's diagonal, left it), truncation about 1e-4 relative. H L = D gives
+ * H = D L^-1, symmetrised; scaled to n_eff. Where the points' information is not positive definite: steps of 1e-4
+ * of each parameter's scale along the axes. */
+static ggx_status cells_hessian(const fit_data *d, const fit_point *at, const double t[2], const double sigma[3],
+                                double *ll, double g[5], double H[5][5])
 {
     ggx_status st = fit_gradient(d, t, sigma, ll, g);
     if (st != GGX_OK) return st;
-    const double ex = sqrt(sigma[0]), ey = sqrt(sigma[2]);
-    const double h[5] = {1e-4 * ex, 1e-4 * ey, 1e-4 * sigma[0], 1e-4 * ex * ey, 1e-4 * sigma[2]};
-    double col[5][5];
-    for (int j = 0; j < 5; j++) {
-        double gp[5], gm[5], lp;
-        double th[2][5] = {{t[0], t[1], sigma[0], sigma[1], sigma[2]}, {t[0], t[1], sigma[0], sigma[1], sigma[2]}};
-        th[0][j] += h[j], th[1][j] -= h[j];
+    double gp_[5], Hp[5][5], W, llp, nh[5][5], inv[5][5], L[5][5];
+    if ((st = point_hessian(d, at, sigma, &llp, gp_, Hp, &W)) != GGX_OK) return st;
+    for (int i = 0; i < 5; i++)
+        for (int j = 0; j < 5; j++) nh[i][j] = -Hp[i][j] * d->n_eff / W;
+    if (!spd_inverse(5, nh, inv) || !cholesky(5, inv, L)) {
+        const double ex = sqrt(sigma[0]), ey = sqrt(sigma[2]);
+        const double h[5] = {1e-4 * ex, 1e-4 * ey, 1e-4 * sigma[0], 1e-4 * ex * ey, 1e-4 * sigma[2]};
+        memset(L, 0, sizeof L);
+        for (int i = 0; i < 5; i++) L[i][i] = h[i] / 1e-2;
+    }
+    double D[5][5];
+    for (int k = 0; k < 5; k++) {
+        double th[2][5], gp[5], gm[5], lp, pinv[3], step = 1e-2;
+        for (int half = 0;; half++, step *= 0.5) {
+            const double th0[5] = {t[0], t[1], sigma[0], sigma[1], sigma[2]};
+            for (int i = 0; i < 5; i++) th[0][i] = th0[i] + step * L[i][k], th[1][i] = th0[i] - step * L[i][k];
+            if ((fit_inverse(th[0] + 2, pinv) && fit_inverse(th[1] + 2, pinv)) || half == 60) break;
+        }
         if ((st = fit_gradient(d, th[0], th[0] + 2, &lp, gp)) != GGX_OK) return st;
         if ((st = fit_gradient(d, th[1], th[1] + 2, &lp, gm)) != GGX_OK) return st;
-        for (int i = 0; i < 5; i++) col[i][j] = (gp[i] - gm[i]) / (2.0 * h[j]);
+        for (int i = 0; i < 5; i++) D[i][k] = (gp[i] - gm[i]) / (2.0 * step);
     }
+    /* H = D L^-1: solve X L = D row by row (L lower triangular: back substitution over the columns) */
+    double X[5][5];
     for (int i = 0; i < 5; i++)
-        for (int j = 0; j < 5; j++) H[i][j] = 0.5 * (col[i][j] + col[j][i]);
+        for (int c = 4; c >= 0; c--) {
+            double v = D[i][c];
+            for (int m = c + 1; m < 5; m++) v -= X[i][m] * L[m][c];
+            X[i][c] = v / L[c][c];
+        }
+    for (int i = 0; i < 5; i++)
+        for (int j = 0; j < 5; j++) H[i][j] = 0.5 * (X[i][j] + X[j][i]);
     return GGX_OK;
 }
 
@@ -185,7 +217,7 @@ ggx_status fit_information(const fit_data *d, ggx_fit_model model, const double 
     *decrement = HUGE_VAL;
     if (!fit_inverse(sigma, at.p)) return GGX_ERR_SINGULAR;
     double g[5], H[5][5], scale = 1.0, W = 1.0;
-    ggx_status st = d->src->censored ? cells_hessian(d, t, sigma, log_likelihood, g, H)
+    ggx_status st = d->src->censored ? cells_hessian(d, &at, t, sigma, log_likelihood, g, H)
                                      : point_hessian(d, &at, sigma, log_likelihood, g, H, &W);
     if (st != GGX_OK) return st;
     if (!d->src->censored) scale = d->n_eff / W;
