@@ -194,7 +194,8 @@ static void em_monotone(void **state)
 /* The progress callback stops the fit: converged 0, iterations as many as the calls. */
 static int stop_at_3(void *ctx, int it, double ll)
 {
-    (void)ctx, (void)ll;
+    (void)ll;
+    if (ctx) ++*(int *)ctx;
     return it >= 3;
 }
 
@@ -537,6 +538,12 @@ static void two_stage(void **state)
     CHECK_CLOSE(ia.log_likelihood, ib.log_likelihood, 1e-12, 0.0, "log-likelihood");
     for (int i = 0; i < 5; i++) CHECK_CLOSE(ia.std_error[i], ib.std_error[i], 1e-4, 0.0, "standard error %d", i);
     CHECK(tr.n == ia.iterations, "%d calls for %d iterations", tr.n, ia.iterations);
+    /* found by review: a stop in the first stage ends the fit (it went on to the second) */
+    int calls = 0;
+    o.progress = stop_at_3, o.progress_ctx = &calls, o.full_em = 0;
+    assert_int_equal(ggx_fit_normals(&b, m, NULL, n, &o, &ib), GGX_OK);
+    CHECK(calls == 3 && !ib.converged && isfinite(ib.log_likelihood), "stopped at 3: %d calls, converged %d", calls,
+          ib.converged);
     printf("two_stage: %d iterations (EM on 2^20, then Newton on %zu) vs %d of EM on all: %.2g standard errors apart\n",
            ia.iterations, n, ib.iterations, worst);
     free(m);

@@ -86,6 +86,7 @@ typedef struct fit_result {
     double stationarity;
     double cov[5][5];
     int iterations, converged, clamped;
+    int stopped; /* the progress callback stopped the fit */
 } fit_result;
 
 /* The free parameters of a model: 5, 3 or 1 (Beckmann: 5). */

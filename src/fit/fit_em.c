@@ -48,7 +48,10 @@ ggx_status fit_em(const fit_data *d, ggx_fit_model model, const double t0[2], co
         if (st != GGX_OK) return st;
         double ll = -log(GGX_PI) - 0.5 * fit_log_det(s) - 2.0 * a[7] / a[0] - 3.0 * d->mean_lc;
         r->iterations = it;
-        if (d->progress && d->progress(d->progress_ctx, it, ll)) break;
+        if (d->progress && d->progress(d->progress_ctx, it, ll)) {
+            r->stopped = 1;
+            break;
+        }
         /* M step: t' = t + sum w c r / sum w c; Sigma' = 2 sum w c (r - dt)(r - dt)^T / sum w c. */
         double tn[2] = {t[0], t[1]}, sn[3], dt[2] = {0.0, 0.0};
         if (model == GGX_FIT_ELLIPSOID) {

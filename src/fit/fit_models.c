@@ -183,7 +183,13 @@ ggx_status fit_run(const fit_source *src, const ggx_fit_options *opt, ggx_shape 
         fit_data dk = two_stage ? ds : d;
         if (mk != model) dk.progress = NULL;
         if ((st = fit_em(&dk, mk, t0, s0, &fr[k])) != GGX_OK) return st;
-        if (two_stage && !fr[k].clamped) {
+        if (two_stage && fr[k].stopped) { /* stopped in the first stage: the full samples' likelihood and
+                                            * information at the iterate, as every stopped fit reports */
+            double dec;
+            if ((st = fit_information(&d, mk, fr[k].t, fr[k].sigma, &fr[k].log_likelihood, &dec, fr[k].cov, NULL)))
+                return st;
+            fr[k].stationarity = dec, fr[k].converged = 0;
+        } else if (two_stage && !fr[k].clamped) {
             fit_data dn = d;
             /* the models compared need their likelihood only, to within decrement^2 / 2 <= 5e-5 of its maximum's
              * total (far below the BIC's differences); the fitted one its exact information too */
