@@ -996,6 +996,34 @@ static void quantised_cells(void **state)
           "brushed: converged %d clamped %d decrement %g", ia.converged, ia.clamped, ia.stationarity);
     free(mb);
 
+    /* found by review: far from n a square is a wider cell in slope. A lobe at |t| ~ 1.4 of alpha 0.03 fits within 4
+     * standard errors; one of alpha 0.005 at |t| ~ 2 is held at the floor there (it was fitted, biased by 6 standard
+     * errors); texels all in one cell near the rim have a log P(cell) below 0 (it was +5.8) */
+    const shape_params far[2] = {{0.03, 0.03, 0.9, 0.0, 0.3}, {0.005, 0.003, 1.1, 0.0, 0.3}};
+    for (int k = 0; k < 2; k++) {
+        ggx_shape sf;
+        make_shape(&sf, far[k]);
+        double tf[2], sgf[3];
+        ggx_shape_slopes(&sf, tf, sgf);
+        ggx_vec3 *mf = draw(&sf, n1, 1, &r);
+        quantise(mf, n1, 255.0, uv);
+        assert_int_equal(ggx_fit_normal_cells(&fa, uv, NULL, n1, q, NULL, &ia), GGX_OK);
+        if (k == 0) {
+            const double got[5] = {ia.t[0], ia.t[1], ia.sigma[0], ia.sigma[1], ia.sigma[2]};
+            const double want[5] = {tf[0], tf[1], sgf[0], sgf[1], sgf[2]};
+            CHECK(!ia.clamped, "|t| %g: clamped", hypot(tf[0], tf[1]));
+            for (int i = 0; i < 5; i++)
+                CHECK(fabs(got[i] - want[i]) <= 4.0 * ia.std_error[i], "|t| %g: parameter %d %g vs %g (SE %g)",
+                      hypot(tf[0], tf[1]), i, got[i], want[i], ia.std_error[i]);
+        } else {
+            CHECK(ia.clamped, "|t| %g, alpha 0.005: not held at the floor", hypot(tf[0], tf[1]));
+        }
+        free(mf);
+    }
+    for (int i = 0; i < 10; i++) uv[2 * i] = 2.0 * 253.0 / 255.0 - 1.0, uv[2 * i + 1] = 0.0;
+    assert_int_equal(ggx_fit_normal_cells(&fa, uv, NULL, 10, q, NULL, &ia), GGX_OK);
+    CHECK(ia.log_likelihood < 0.0, "one cell near the rim: log P(cell) %g", ia.log_likelihood);
+
     /* bad input */
     double bad[12] = {0.0, 0.0, 2.0, 0.0, NAN, 0.0, 0.01, 0.01, 0.0, 0.0, 0.0, 0.0};
     double bw[6] = {1, 1, 1, 1, 0, 1};

@@ -135,10 +135,12 @@ ggx_status ggx_fit_log_likelihood(const ggx_shape *s, const ggx_vec3 *m, const d
  * used (the fit is then that of the red and green channels alone). The likelihood is that of the
  * cells, the product over texels of P(cell) = the integral of D(m) dn_x dn_y over the texel's square, by an 8 x 8
  * Gauss-Legendre rule in (n_x, n_y): unlike ggx_fit_normals on the cells' centres, it does not overestimate alpha
- * when alpha is near q (docs/design/fit.md, "Quantised normal maps"). Sigma's eigenvalues are held at (0.4 q)^2 or
- * above (info->clamped says when that binds), where the rule's relative error in P(cell) is 1e-4 (1e-5 at alpha = q / 2,
- * 2e-9 at alpha = q; below the floor it grows without bound, as the rule's points do not see a lobe narrower than
- * their spacing). The EM is that of the cells (each cell's points
+ * when alpha is near q (docs/design/fit.md, "Quantised normal maps"). A square maps to a cell (1 + |x~|^2)^(3/2)
+ * times wider in slope at slope x~ than at n, so Sigma's eigenvalues are held at (0.4 q)^2 (1 + |t|^2)^3 or above
+ * (info->clamped says when that binds): there the rule's relative error in P(cell) is 1e-4 at every t (1e-5 at 1.25
+ * times the floor's alpha, 2e-9 at 2.5 times it; below the floor it grows without bound, as the rule's points do not
+ * see a lobe narrower than their spacing). A square counts as inside the disk when one of the rule's points is. The
+ * EM is that of the cells (each cell's points
  * weighted by their shares of its probability), the decrement and covariance from central differences of the
  * likelihood's exact gradient. Texels with the same (uv, q) share one cell, so the cost grows with the distinct cells
  * (at most 65 536 for 8-bit maps), not the texels.

@@ -89,6 +89,16 @@ typedef struct fit_result {
     int stopped; /* the progress callback stopped the fit */
 } fit_result;
 
+/* The least eigenvalue of Sigma for a lobe at t: d->floor, times (1 + |t|^2)^3 for cells (fit.h, "censored"), whose
+ * squares map to cells (1 + |t|^2)^(3/2) times wider in slope near t than near n (dx~ dy~ = dn_x dn_y / n_z^4 radially
+ * n_z^-3): their rule then resolves a lobe at the floor equally well at every t. */
+static inline double fit_floor(const fit_data *d, const double t[2])
+{
+    if (!d->src->censored) return d->floor;
+    double k = 1.0 + t[0] * t[0] + t[1] * t[1];
+    return d->floor * k * k * k;
+}
+
 /* The free parameters of a model: 5, 3 or 1 (Beckmann: 5). */
 int fit_model_parameters(ggx_fit_model model);
 /* Raises Sigma's eigenvalues to floor (eigenvectors kept); returns whether it changed Sigma. */

@@ -91,7 +91,8 @@ static ggx_status cells_build(cell_set *cs, const double *uv, const double *weig
     int negative = 0;
     for (size_t i = 0; i < n; i++) {
         double wi = weight ? weight[i] : 1.0;
-        if (isfinite(uv[2 * i]) && isfinite(uv[2 * i + 1]) && isfinite(wi) && wi > wmax) wmax = wi;
+        if (!isfinite(uv[2 * i]) || !isfinite(uv[2 * i + 1]) || !isfinite(wi)) continue; /* non-finite first */
+        if (wi > wmax) wmax = wi;
         negative |= wi < 0.0;
     }
     double wscale = wmax > 0.0 ? 1.0 / wmax : 1.0;

@@ -31,12 +31,11 @@ static double change(const double t[2], const double s[3], const double tn[2], c
 
 ggx_status fit_em(const fit_data *d, ggx_fit_model model, const double t0[2], const double sigma0[3], fit_result *r)
 {
-    const double floor = d->floor;
     memset(r, 0, sizeof *r);
     double t[2] = {t0[0], t0[1]}, s[3] = {sigma0[0], sigma0[1], sigma0[2]};
     if (model != GGX_FIT_ELLIPSOID) t[0] = t[1] = 0.0;
     if (model == GGX_FIT_ISOTROPIC) s[0] = s[2] = 0.5 * (s[0] + s[2]), s[1] = 0.0;
-    r->clamped = fit_clamp_sigma(s, floor);
+    r->clamped = fit_clamp_sigma(s, fit_floor(d, t));
     /* the parameter change under which the decrement is computed: an EM step moves the parameters by a fraction of
      * their distance to the maximum, which is about decrement / sqrt(n_eff) in their own scale */
     double check_below = 0.5 * d->tolerance / sqrt(fmax(d->n_eff, 1.0));
@@ -62,7 +61,7 @@ ggx_status fit_em(const fit_data *d, ggx_fit_model model, const double t0[2], co
         sn[1] = 2.0 * (a[5] / a[1] - dt[0] * dt[1]);
         sn[2] = 2.0 * (a[6] / a[1] - dt[1] * dt[1]);
         if (model == GGX_FIT_ISOTROPIC) sn[0] = sn[2] = 0.5 * (sn[0] + sn[2]), sn[1] = 0.0;
-        int clamped = fit_clamp_sigma(sn, floor);
+        int clamped = fit_clamp_sigma(sn, fit_floor(d, tn));
         double ch = change(t, s, tn, sn);
         memcpy(t, tn, sizeof t);
         memcpy(s, sn, sizeof s);
@@ -99,14 +98,13 @@ ggx_status fit_em(const fit_data *d, ggx_fit_model model, const double t0[2], co
 /* One accepted step from (t, s) along dir, halving up to 8 times; 0 when none keeps log L (within rounding). */
 static int line_step(const fit_data *d, double t[2], double s[3], const double dir[5], double *ll, double g[5])
 {
-    const double floor = d->floor;
     /* near the optimum a step's gain, about decrement^2 / (2 n_eff) per sample, is far below the rounding of the
      * per-sample mean: accept within that rounding */
     double slack = 1e-13 * fmax(1.0, fabs(*ll)), lam = 1.0;
     for (int half = 0; half < 8; half++, lam *= 0.5) {
         double tn[2] = {t[0] + lam * dir[0], t[1] + lam * dir[1]};
         double sn[3] = {s[0] + lam * dir[2], s[1] + lam * dir[3], s[2] + lam * dir[4]}, pinv[3], lln, gn[5];
-        if (!fit_inverse(sn, pinv) || fit_clamp_sigma(sn, floor)) continue; /* outside the cone: shorter */
+        if (!fit_inverse(sn, pinv) || fit_clamp_sigma(sn, fit_floor(d, tn))) continue; /* outside the cone: shorter */
         if (fit_gradient(d, tn, sn, &lln, gn) != GGX_OK) return 0;
         if (lln >= *ll - slack) {
             memcpy(t, tn, sizeof tn), memcpy(s, sn, sizeof sn), memcpy(g, gn, 5 * sizeof *g);

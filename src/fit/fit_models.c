@@ -32,7 +32,7 @@ static void fit_gaussian(const fit_data *d, const double a[FIT_MOMENT_SUMS], con
     mean[0] = c[0] + dx, mean[1] = c[1] + dy;
     double s[3] = {a[3] / a[0] - dx * dx, a[4] / a[0] - dx * dy, a[5] / a[0] - dy * dy}; /* about the mean */
     memcpy(cov, s, sizeof s);
-    fit_clamp_sigma(cov, 0.5 * d->floor);
+    fit_clamp_sigma(cov, 0.5 * fit_floor(d, mean));
     double p[3];
     fit_inverse(cov, p);
     double quad = p[0] * s[0] + 2.0 * p[1] * s[1] + p[2] * s[2]; /* E[r^T C^-1 r] = tr(C^-1 S) */
@@ -53,7 +53,8 @@ static ggx_status fit_gaussian_cells(const fit_data *d, double mean[2], double c
         *ll = -log(2.0 * GGX_PI) - 0.5 * fit_log_det(cov) + a[6] / a[0]; /* at (mean, cov) */
         double dx = a[1] / a[0], dy = a[2] / a[0];
         double s[3] = {a[3] / a[0] - dx * dx, a[4] / a[0] - dx * dy, a[5] / a[0] - dy * dy};
-        fit_clamp_sigma(s, 0.5 * d->floor);
+        const double at_mean[2] = {mean[0] + dx, mean[1] + dy};
+        fit_clamp_sigma(s, 0.5 * fit_floor(d, at_mean));
         double ex = sqrt(cov[0]), ey = sqrt(cov[2]);
         double ch = fmax(fmax(fabs(dx) / ex, fabs(dy) / ey), fmax(fabs(s[0] - cov[0]) / cov[0], fabs(s[2] - cov[2]) / cov[2]));
         ch = fmax(ch, fabs(s[1] - cov[1]) / (ex * ey));
