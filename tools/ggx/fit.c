@@ -187,13 +187,16 @@ int cmd_fit(int argc, char **argv)
     const double *heights = NULL;
     fit_input(&o, &s, &fo, &fit, &info, &what, spacing, &heights);
     if (bar) progress_end("fit", 200);
-    /* An 8-bit map is fitted as cells (fit_input), which holds Sigma at (0.4 q)^2: say so when that binds. */
+    /* An 8-bit map is fitted as cells (fit_input), which holds Sigma at (0.4 q)^2 (1 + |t|^2)^3: say so when that
+     * binds. */
     const int cells = s.kind == SURFACE_NORMALS && s.uv && s.bits == 8;
     char qnote[400] = "";
     if (cells && info.clamped) {
         snprintf(qnote, sizeof qnote,
                  "the lobe is narrower than the map's 8-bit levels resolve: its narrowest alpha is held at %.2g "
-                 "(0.4 of the levels' spacing %.2g); a 16-bit map resolves it", 0.4 * 2.0 / 255.0, 2.0 / 255.0);
+                 "(0.4 of the levels' spacing %.2g, times (1 + |t|^2)^1.5 for a lobe away from n); a 16-bit map "
+                 "resolves it", 0.4 * 2.0 / 255.0 * pow(1.0 + info.t[0] * info.t[0] + info.t[1] * info.t[1], 1.5),
+                 2.0 / 255.0);
         fprintf(stderr, "ggx: note: %s\n", qnote);
     }
 
