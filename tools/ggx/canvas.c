@@ -235,3 +235,16 @@ void arrow(cairo_t *cr, double x0, double y0, double x1, double y1, double head)
     cairo_close_path(cr);
     cairo_fill(cr);
 }
+
+void paint_image(cairo_t *cr, cairo_surface_t *img, double x, double y, double scale)
+{
+    cairo_surface_mark_dirty(img);
+    cairo_save(cr);
+    cairo_translate(cr, x, y);
+    cairo_scale(cr, scale, scale);
+    cairo_set_source_surface(cr, img, 0, 0);
+    cairo_pattern_set_filter(cairo_get_source(cr), CAIRO_FILTER_NEAREST);
+    cairo_paint(cr);
+    cairo_restore(cr);
+    cairo_surface_destroy(img);
+}

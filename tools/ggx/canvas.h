@@ -53,5 +53,8 @@ void format_tick(double v, char *buf, size_t n);
 void colour_bar(cairo_t *cr, const theme *th, double x, double y, double w, double h, double vmax, double vmin_log,
                 int log_scale, const char *label, double font);
 void arrow(cairo_t *cr, double x0, double y0, double x1, double y1, double head);
+/* Paints img (marked dirty here) with its top left at (x, y), each of its pixels scale canvas units wide, without
+ * smoothing (a cell stays a cell), and destroys it. */
+void paint_image(cairo_t *cr, cairo_surface_t *img, double x, double y, double scale);
 
 #endif

@@ -64,15 +64,7 @@ void slice_draw(cairo_t *cr, const theme *th, double x, double y, double w, doub
                      (unsigned)lround(255 * rgb[2]);
         }
     }
-    cairo_surface_mark_dirty(img);
-    cairo_save(cr);
-    cairo_translate(cr, px, py);
-    cairo_scale(cr, side / SLICE_CELLS, side / SLICE_CELLS);
-    cairo_set_source_surface(cr, img, 0, 0);
-    cairo_pattern_set_filter(cairo_get_source(cr), CAIRO_FILTER_NEAREST);
-    cairo_paint(cr);
-    cairo_restore(cr);
-    cairo_surface_destroy(img);
+    paint_image(cr, img, px, py, side / SLICE_CELLS);
     /* frame, ticks every 15 degrees, axis labels */
     set_rgb(cr, th->fg);
     cairo_set_line_width(cr, fmax(0.6, 0.07 * F));

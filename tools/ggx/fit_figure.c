@@ -55,15 +55,7 @@ static void draw_grid(cairo_t *cr, double x0, double y0, double size, double val
                          (uint32_t)(rgb[2] * 255 + 0.5);
             memcpy(px + (size_t)j * (size_t)stride + 4 * (size_t)i, &c, 4);
         }
-    cairo_surface_mark_dirty(img);
-    cairo_save(cr);
-    cairo_translate(cr, x0, y0);
-    cairo_scale(cr, size / RES, size / RES);
-    cairo_set_source_surface(cr, img, 0, 0);
-    cairo_pattern_set_filter(cairo_get_source(cr), CAIRO_FILTER_NEAREST);
-    cairo_paint(cr);
-    cairo_restore(cr);
-    cairo_surface_destroy(img);
+    paint_image(cr, img, x0, y0, size / RES);
 }
 
 void fit_figure_write(const char *path, const fit_samples *src, const ggx_shape *fit, const ggx_fit_info *info,
