@@ -1052,22 +1052,28 @@ def _fitted(status, buf, flat):
     return shape, info
 
 
+def _fit_samples(values, width, name, weights):
+    """values as a contiguous (n, width) array and weights as (n,) or None, for the fits."""
+    a = _array(values, name)
+    if a.ndim < 1 or a.shape[-1] != width:
+        raise ValueError(f"{name}: expected an array of shape (..., {width}), got shape {a.shape}")
+    a = np.ascontiguousarray(a.reshape(-1, width))
+    w = None
+    if weights is not None:
+        w = _array(weights, "weights")
+        if w.size != a.shape[0]:
+            raise ValueError(f"weights: expected shape {np.shape(values)[:-1]}, got {w.shape}")
+        w = np.ascontiguousarray(w.reshape(-1))
+    return a, w
+
+
 def fit_normals(m, weights=None, model="ellipsoid", threads=1, max_iterations=None, tolerance=None):
     """(shape, info): the maximum-likelihood shape of micro-normals m (array (..., 3), each a sample of D(m)(m.n);
     any length, only the direction counts) with optional weights (projected areas, shape (...)), in the family
     model ("ellipsoid", "anisotropic" or "isotropic"), by EM (ggx_fit_normals). Normals at or below the horizon,
     non-finite or of weight 0 are ignored and counted in info; a negative weight or fewer than 5 usable normals
     raise ValueError."""
-    mm = _array(m, "m")
-    if mm.ndim < 1 or mm.shape[-1] != 3:
-        raise ValueError(f"m: expected an array of shape (..., 3), got shape {mm.shape}")
-    mm = np.ascontiguousarray(mm.reshape(-1, 3))
-    w = None
-    if weights is not None:
-        w = _array(weights, "weights")
-        if w.shape != mm.shape[:-1] and w.size != mm.shape[0]:
-            raise ValueError(f"weights: expected shape {np.shape(m)[:-1]}, got {w.shape}")
-        w = np.ascontiguousarray(w.reshape(-1))
+    mm, w = _fit_samples(m, 3, "m", weights)
     md, t, it, tol = _fit_settings(model, threads, max_iterations, tolerance)
     buf = ctypes.create_string_buffer(_SHAPE_SIZE)
     flat = np.zeros(_FIT_SIZE)
@@ -1082,16 +1088,7 @@ def fit_normal_cells(uv, q, weights=None, model="ellipsoid", threads=1, max_iter
     whose levels read_surface gives as Surface.uv) holding its unit normal; the likelihood is that of the cells, so a
     lobe near the levels' spacing is not overestimated as ggx.fit_normals of the centres does. info.log_likelihood is
     the mean log P(cell); no goodness of fit (NaN). Weights, model and the rest as fit_normals."""
-    a = _array(uv, "uv")
-    if a.ndim < 1 or a.shape[-1] != 2:
-        raise ValueError(f"uv: expected an array of shape (..., 2), got shape {a.shape}")
-    a = np.ascontiguousarray(a.reshape(-1, 2))
-    w = None
-    if weights is not None:
-        w = _array(weights, "weights")
-        if w.size != a.shape[0]:
-            raise ValueError(f"weights: expected shape {np.shape(uv)[:-1]}, got {w.shape}")
-        w = np.ascontiguousarray(w.reshape(-1))
+    a, w = _fit_samples(uv, 2, "uv", weights)
     qq = _real(q, "q")
     md, t, it, tol = _fit_settings(model, threads, max_iterations, tolerance)
     buf = ctypes.create_string_buffer(_SHAPE_SIZE)
