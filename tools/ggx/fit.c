@@ -297,7 +297,7 @@ int cmd_fit(int argc, char **argv)
         size_t nsamp = s.nx * s.ny;
         if (s.kind == SURFACE_HEIGHTS)
             ggx_heightfield_facets(NULL, 0, 0, heights, s.nx, s.ny, spacing[2], spacing[3], &fc.ho, &nsamp);
-        fit_samples fs = {read_samples, &fc, nsamp};
+        fit_samples fs = {read_samples, &fc, nsamp, cells};
         char title[300];
         snprintf(title, sizeof title, "ggx fit: %s", path);
         fit_figure_write(o.figure, &fs, &fit, &info, MODEL_NAMES[fo.model], title);

@@ -154,6 +154,8 @@ void fit_figure_write(const char *path, const fit_samples *src, const ggx_shape 
     if (info->gof_dof > 0)
         snprintf(line, sizeof line, "goodness of fit: chi-square %.1f, %d dof, p = %.3g; %zu samples", info->gof_chi2,
                  info->gof_dof, info->gof_pvalue, info->used);
+    else if (src->cells)
+        snprintf(line, sizeof line, "%zu texels fitted as cells (no goodness of fit for cells)", info->used);
     else
         snprintf(line, sizeof line, "%zu samples (too few for the goodness of fit)", info->used);
     text_at(cr, W / 2.0, H - 22, 0.5, 0.5, line);

@@ -12,6 +12,7 @@ typedef struct fit_samples {
     void (*read)(const void *ctx, size_t at, size_t k, double *x, double *y, double *w);
     const void *ctx;
     size_t n;
+    int cells; /* the samples are texels fitted as cells (ggx_fit_normal_cells): no goodness of fit */
 } fit_samples;
 
 /* Writes the figure (PNG, SVG or PDF by the name's extension): measured and fitted D(m) in top views on one colour
