@@ -103,6 +103,9 @@ static inline double fit_floor(const fit_data *d, const double t[2])
 int fit_model_parameters(ggx_fit_model model);
 /* Raises Sigma's eigenvalues to floor (eigenvectors kept); returns whether it changed Sigma. */
 int fit_clamp_sigma(double sigma[3], double floor);
+/* The largest change from (t, s) to (tn, sn) in the scale of s: |dt_i| / sqrt(s_ii), |ds_ij| / sqrt(s_ii s_jj)
+ * (EM's step, for its stopping rules). */
+double fit_change(const double t[2], const double s[3], const double tn[2], const double sn[3]);
 /* Sigma^-1 of (xx, xy, yy); 0 when not positive definite. */
 int fit_inverse(const double sigma[3], double p[3]);
 /* log det Sigma without overflow, for a positive definite Sigma. */

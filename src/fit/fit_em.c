@@ -19,8 +19,7 @@ int fit_clamp_sigma(double s[3], double floor)
     return 1;
 }
 
-/* The largest change from (t, s) to (tn, sn) in the scale of s: |dt_i| / sqrt(s_ii), |ds_ij| / sqrt(s_ii s_jj). */
-static double change(const double t[2], const double s[3], const double tn[2], const double sn[3])
+double fit_change(const double t[2], const double s[3], const double tn[2], const double sn[3])
 {
     double ex = sqrt(s[0]), ey = sqrt(s[2]);
     double c = fmax(fabs(tn[0] - t[0]) / ex, fabs(tn[1] - t[1]) / ey);
@@ -62,7 +61,7 @@ ggx_status fit_em(const fit_data *d, ggx_fit_model model, const double t0[2], co
         sn[2] = 2.0 * (a[6] / a[1] - dt[1] * dt[1]);
         if (model == GGX_FIT_ISOTROPIC) sn[0] = sn[2] = 0.5 * (sn[0] + sn[2]), sn[1] = 0.0;
         int clamped = fit_clamp_sigma(sn, fit_floor(d, tn));
-        double ch = change(t, s, tn, sn);
+        double ch = fit_change(t, s, tn, sn);
         memcpy(t, tn, sizeof t);
         memcpy(s, sn, sizeof s);
         r->clamped = clamped;

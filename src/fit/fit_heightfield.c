@@ -136,7 +136,8 @@ GGX_API ggx_status ggx_fit_heightfield(ggx_shape *out, const double *h, size_t n
         free(coarse);
         return st;
     }
-    fit_source src = {fill_grid, &g, 4 * (g.nx - 1) * (g.ny - 1), 1, 0, 0.0, 0.0}; /* used and ignored counted by fit_run */
+    /* unit weights: used and ignored are counted by fit_run */
+    fit_source src = {fill_grid, &g, 4 * (g.nx - 1) * (g.ny - 1), 1, 0, 0.0, 0.0};
     ggx_shape s;
     st = fit_run(&src, opt, &s, inf);
     if (st == GGX_OK) *out = s;

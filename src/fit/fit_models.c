@@ -25,12 +25,19 @@ ggx_status fit_settings(const ggx_fit_options *opt, fit_data *d, ggx_fit_model *
 
 /* The Gaussian (Beckmann) fit from the sums a of a moments pass about c (near the mean, so that a large mean slope
  * costs no accuracy): the weighted mean and covariance and the log-likelihood per sample. */
-static void fit_gaussian(const fit_data *d, const double a[FIT_MOMENT_SUMS], const double c[2], double mean[2],
-                         double cov[3], double *ll)
+/* The weighted mean and covariance (about the mean) from the sums a of a moments pass about c. */
+static void gaussian_moments(const double a[FIT_MOMENT_SUMS], const double c[2], double mean[2], double cov[3])
 {
     double dx = a[1] / a[0], dy = a[2] / a[0]; /* the mean less c */
     mean[0] = c[0] + dx, mean[1] = c[1] + dy;
-    double s[3] = {a[3] / a[0] - dx * dx, a[4] / a[0] - dx * dy, a[5] / a[0] - dy * dy}; /* about the mean */
+    cov[0] = a[3] / a[0] - dx * dx, cov[1] = a[4] / a[0] - dx * dy, cov[2] = a[5] / a[0] - dy * dy;
+}
+
+static void fit_gaussian(const fit_data *d, const double a[FIT_MOMENT_SUMS], const double c[2], double mean[2],
+                         double cov[3], double *ll)
+{
+    double s[3];
+    gaussian_moments(a, c, mean, s);
     memcpy(cov, s, sizeof s);
     fit_clamp_sigma(cov, 0.5 * fit_floor(d, mean));
     double p[3];
@@ -51,16 +58,12 @@ static ggx_status fit_gaussian_cells(const fit_data *d, double mean[2], double c
         ggx_status st = fit_pass(d->src, d->threads, FIT_PASS_MOMENTS, &at, a);
         if (st != GGX_OK) return st;
         *ll = -log(2.0 * GGX_PI) - 0.5 * fit_log_det(cov) + a[6] / a[0]; /* at (mean, cov) */
-        double dx = a[1] / a[0], dy = a[2] / a[0];
-        double s[3] = {a[3] / a[0] - dx * dx, a[4] / a[0] - dx * dy, a[5] / a[0] - dy * dy};
-        const double at_mean[2] = {mean[0] + dx, mean[1] + dy};
-        fit_clamp_sigma(s, 0.5 * fit_floor(d, at_mean));
-        double ex = sqrt(cov[0]), ey = sqrt(cov[2]);
-        double ch = fmax(fmax(fabs(dx) / ex, fabs(dy) / ey), fmax(fabs(s[0] - cov[0]) / cov[0], fabs(s[2] - cov[2]) / cov[2]));
-        ch = fmax(ch, fabs(s[1] - cov[1]) / (ex * ey));
-        if (ch <= 1e-10 || it == 999) break; /* (mean, cov) and its likelihood kept */
-        mean[0] += dx, mean[1] += dy;
-        memcpy(cov, s, sizeof s);
+        double mn[2], cn[3];
+        gaussian_moments(a, mean, mn, cn);
+        fit_clamp_sigma(cn, 0.5 * fit_floor(d, mn));
+        if (fit_change(mean, cov, mn, cn) <= 1e-10 || it == 999) break; /* (mean, cov) and its likelihood kept */
+        memcpy(mean, mn, sizeof mn);
+        memcpy(cov, cn, sizeof cn);
     }
     return GGX_OK;
 }
@@ -173,8 +176,8 @@ ggx_status fit_run(const fit_source *src, const ggx_fit_options *opt, ggx_shape 
     ggx_fit_model_result *mr = info->models;
     mr[GGX_FIT_BECKMANN] = (ggx_fit_model_result){gll, 0.0, 5, 0, {mean[0], mean[1]}, {cov[0], cov[1], cov[2]}};
 
-    /* The three Student-t models start at t = 0 and Sigma = floor I (GGX_ALPHA_MIN^2), a start no outlier can move: there
-     * every delta is large, the first M step weights each slope by about 1 / |x~|^2 and lands on a robust scale
+    /* The three Student-t models start at t = 0 and Sigma = floor I (GGX_ALPHA_MIN^2), a start no outlier can move:
+     * there every delta is large, the first M step weights each slope by about 1 / |x~|^2 and lands on a robust scale
      * (a start at the Gaussian's covariance, which one slope near the horizon can make 1e196, took hundreds of
      * iterations or overflowed). */
     const double t0[2] = {0.0, 0.0}, s0[3] = {d.floor, 0.0, d.floor};

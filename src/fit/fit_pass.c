@@ -66,7 +66,8 @@ static double weighted_log_sum(const double *q, const double *d, const double *w
 }
 
 /* The sums of samples [i0, i1) into s (zeroed by the caller). Every loop is free of branches (a skipped sample has
- * w = 0 and finite slopes, so it adds zeros) and vectorises; the x86-64-v3 clone runs them 4 wide. */
+ * w = 0 and finite slopes, so it adds zeros) and vectorises; the x86-64-v3 and x86-64-v4 clones run them 4 and 8
+ * wide. */
 GGX_HOT_WIDE static void unit_sums(const fit_source *src, fit_pass_kind kind, const fit_point *at, size_t i0, size_t i1,
                               double *s)
 {
