@@ -110,12 +110,14 @@ static void usage(void)
 }
 
 /* The samples of the input, fitted. */
+/* 8-bit levels are as coarse as a fine lobe: such a map's texels are fitted as the cells of normals they stand for. */
+static int fit_as_cells(const surface *s) { return s->kind == SURFACE_NORMALS && s->uv && s->bits == 8; }
+
 static void fit_input(const options *o, const surface *s, const ggx_fit_options *fo, ggx_shape *out,
                       ggx_fit_info *info, const char **what, double *spacing_used, const double **heights)
 {
     ggx_status st;
-    if (s->kind == SURFACE_NORMALS && s->uv && s->bits == 8) {
-        /* 8-bit levels are as coarse as a fine lobe: each texel is the cell of normals its levels stand for */
+    if (fit_as_cells(s)) {
         st = ggx_fit_normal_cells(out, s->uv, NULL, s->nx * s->ny, 2.0 / 255.0, fo, info);
         *what = "normal-map texels (8-bit: each fitted as its cell of normals)";
     } else if (s->kind == SURFACE_NORMALS) {
@@ -189,7 +191,7 @@ int cmd_fit(int argc, char **argv)
     if (bar) progress_end("fit", 200);
     /* An 8-bit map is fitted as cells (fit_input), which holds Sigma at (0.4 q)^2 (1 + |t|^2)^3: say so when that
      * binds. */
-    const int cells = s.kind == SURFACE_NORMALS && s.uv && s.bits == 8;
+    const int cells = fit_as_cells(&s);
     char qnote[400] = "";
     if (cells && info.clamped) {
         snprintf(qnote, sizeof qnote,
