@@ -112,7 +112,6 @@ typedef enum figure_kind {
 /* The figure named on the command line (dies on an unknown name, listing the names); figure_name is its inverse. */
 figure_kind figure_from_name(const char *name);
 const char *figure_name(figure_kind k);
-extern const char FIGURE_NAMES[]; /* "ndf, ndf-side, ..." for help texts */
 
 /* ---- subcommands ---- */
 int cmd_demo(int argc, char **argv);
