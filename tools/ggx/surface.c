@@ -31,6 +31,10 @@ surface_format surface_format_of(const char *name, const unsigned char *data, si
     if (n >= 4 && memcmp(data, "\x76\x2f\x31\x01", 4) == 0) return SURFACE_EXR;
     if (n >= 4 && memcmp(data, "PK\x03\x04", 4) == 0) return SURFACE_X3P;
     if (n >= 21 && memcmp(data, "Gwyddion Simple Field", 21) == 0) return SURFACE_GSF;
+    if ((n >= 10 && memcmp(data, "#?RADIANCE", 10) == 0) || (n >= 6 && memcmp(data, "#?RGBE", 6) == 0))
+        return SURFACE_HDR;
+    if (n >= 3 && data[0] == 'P' && (data[1] == 'F' || data[1] == 'f') && (data[2] == '\n' || data[2] == ' '))
+        return SURFACE_PFM;
     const char *e = ext_of(name);
     if (strcasecmp(e, "csv") == 0) return SURFACE_CSV;
     if (strcasecmp(e, "xyz") == 0) return SURFACE_XYZ;
@@ -39,13 +43,15 @@ surface_format surface_format_of(const char *name, const unsigned char *data, si
     if (strcasecmp(e, "png") == 0) return SURFACE_PNG;
     if (strcasecmp(e, "exr") == 0) return SURFACE_EXR;
     if (strcasecmp(e, "x3p") == 0) return SURFACE_X3P;
+    if (strcasecmp(e, "hdr") == 0 || strcasecmp(e, "pic") == 0) return SURFACE_HDR;
+    if (strcasecmp(e, "pfm") == 0) return SURFACE_PFM;
     return SURFACE_UNKNOWN;
 }
 
 const char *surface_format_name(surface_format f)
 {
     static const char *const names[] = {"CSV normals", "ASCII matrix", "XYZ text", "Gwyddion .gsf", "PNG",
-                                        "OpenEXR", "x3p", "unknown"};
+                                        "OpenEXR", "x3p", "Radiance .hdr", "PFM", "unknown"};
     return names[f <= SURFACE_UNKNOWN ? f : SURFACE_UNKNOWN];
 }
 
@@ -55,6 +61,7 @@ void surface_free(surface *s)
     free(s->m);
     free(s->w);
     free(s->uv);
+    free(s->rgb);
     memset(s, 0, sizeof *s);
 }
 
@@ -85,18 +92,37 @@ int surface_parse(surface_format f, const unsigned char *data, size_t n, const s
     case SURFACE_PNG: rc = surface_parse_png(data, n, o, s, err, errn); break;
     case SURFACE_EXR: rc = surface_parse_exr(data, n, o, s, err, errn); break;
     case SURFACE_X3P: rc = surface_parse_x3p(data, n, s, err, errn); break;
-    default: return surface_fail(err, errn, "unknown format (give .csv, .txt/.asc, .xyz, .gsf, .png, .exr or .x3p)");
+    case SURFACE_HDR: rc = surface_parse_hdr(data, n, s, err, errn); break;
+    case SURFACE_PFM: rc = surface_parse_pfm(data, n, s, err, errn); break;
+    default:
+        return surface_fail(err, errn, o->want == SURFACE_RADIANCE
+                                           ? "unknown format (give .exr, .hdr or .pfm)"
+                                           : "unknown format (give .csv, .txt/.asc, .xyz, .gsf, .png, .exr or .x3p)");
     }
     if (rc != 0) {
         surface_free(s);
         return -1;
     }
     s->format = f;
+    /* a one-channel float image (PFM "Pf") is radiance in grey where radiance is wanted */
+    if (o->want == SURFACE_RADIANCE && s->kind == SURFACE_HEIGHTS && f == SURFACE_PFM) {
+        size_t count = s->nx * s->ny;
+        s->rgb = malloc(count * 3 * sizeof *s->rgb);
+        if (!s->rgb) {
+            surface_free(s);
+            return surface_fail(err, errn, "out of memory");
+        }
+        for (size_t i = 0; i < count; i++) s->rgb[3 * i] = s->rgb[3 * i + 1] = s->rgb[3 * i + 2] = (float)s->h[i];
+        free(s->h);
+        s->h = NULL;
+        s->kind = SURFACE_RADIANCE;
+    }
     if (s->kind != o->want) {
-        const char *had = s->kind == SURFACE_HEIGHTS ? "heights" : "normals";
+        static const char *const what[] = {"heights", "normals", "radiance"};
+        static const char *const wanted[] = {"a height field", "normals", "an image of radiance"};
+        surface_kind had = s->kind;
         surface_free(s);
-        return surface_fail(err, errn, "the file holds %s, not %s", had,
-                            o->want == SURFACE_HEIGHTS ? "a height field" : "normals");
+        return surface_fail(err, errn, "the file holds %s, not %s", what[had], wanted[o->want]);
     }
     return 0;
 }
@@ -149,6 +175,7 @@ int surface_write(const char *path, surface_format f, const surface *s, int bits
     case SURFACE_PNG: return surface_write_png(path, s, bits, z_scale, err, errn);
     case SURFACE_EXR: return surface_write_exr(path, s, err, errn);
     case SURFACE_X3P: return surface_write_x3p(path, s, err, errn);
+    case SURFACE_PFM: return surface_write_pfm(path, s, err, errn);
     default: return surface_fail(err, errn, "unknown format");
     }
 }

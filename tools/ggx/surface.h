@@ -8,7 +8,9 @@
 
 #include "ggx/ggx.h"
 
-typedef enum surface_kind { SURFACE_HEIGHTS, SURFACE_NORMALS } surface_kind;
+/* What a file is read as: heights, unit normals, or linear RGB radiance (environment maps and rendered images, in
+ * surface.rgb, never normalised). */
+typedef enum surface_kind { SURFACE_HEIGHTS, SURFACE_NORMALS, SURFACE_RADIANCE } surface_kind;
 
 typedef enum surface_format {
     SURFACE_CSV,   /* normals: x,y,z[,weight] per line, an optional header line of names */
@@ -18,6 +20,8 @@ typedef enum surface_format {
     SURFACE_PNG,   /* heights (grey) or a tangent-space normal map (RGB, or grey + alpha / two channels), 8 or 16 bit */
     SURFACE_EXR,   /* heights (one channel: Y, Z or the first) or a normal map (R, G[, B]) in float */
     SURFACE_X3P,   /* heights: ISO 25178-72 / ISO 5436-2 .x3p (a zip of main.xml and the binary points) */
+    SURFACE_HDR,   /* radiance: Radiance RGBE (.hdr), read through stb_image */
+    SURFACE_PFM,   /* radiance (PF, 3 channels) or heights (Pf, 1 channel): the Portable Float Map */
     SURFACE_UNKNOWN
 } surface_format;
 
@@ -26,6 +30,7 @@ typedef struct surface {
     size_t nx, ny;  /* the grid (heights and normal maps); a list of normals has ny = 1 */
     double *h;      /* heights, nx * ny, x fastest; NaN where the file marks a point invalid */
     ggx_vec3 *m;    /* normals, nx * ny */
+    float *rgb;     /* radiance (SURFACE_RADIANCE): R, G, B per pixel, nx * ny pixels, the top row first */
     double *w;      /* the normals' weights (CSV), or NULL */
     double *uv;     /* normal maps of integer levels (PNG): each texel's decoded red and green, 2 level / (2^bits - 1)
                      * - 1 (green negated with y_down), the centre of its cell of normals (ggx_fit_normal_cells,
@@ -75,6 +80,14 @@ int surface_write_gsf(const char *path, const surface *s, char *err, size_t errn
 int surface_write_png(const char *path, const surface *s, int bits, double *z_scale, char *err, size_t errn);
 int surface_write_exr(const char *path, const surface *s, char *err, size_t errn);
 int surface_write_x3p(const char *path, const surface *s, char *err, size_t errn);
+int surface_parse_hdr(const unsigned char *data, size_t n, surface *s, char *err, size_t errn);
+int surface_parse_pfm(const unsigned char *data, size_t n, surface *s, char *err, size_t errn);
+int surface_write_pfm(const char *path, const surface *s, char *err, size_t errn);
+/* The bytes of an OpenEXR file (surface_write_exr's) in *data (malloc'd, *n bytes), for callers that write them
+ * through their own output; 0, or -1 with err. Radiance is written as R, G, B in FLOAT. */
+int surface_encode_exr(const surface *s, unsigned char **data, size_t *n, char *err, size_t errn);
+/* The same for PFM: "PF" (radiance) or "Pf" (heights), little-endian, the bottom row first as the format says. */
+int surface_encode_pfm(const surface *s, unsigned char **data, size_t *n, char *err, size_t errn);
 
 /* Shared by the parsers: a formatted reason into err (returns -1), and the normal of a map's texel. */
 int surface_fail(char *err, size_t errn, const char *fmt, ...) __attribute__((format(printf, 3, 4)));

@@ -1,10 +1,11 @@
 /* OpenEXR surfaces through the OpenEXR C core library (OpenEXRCore): part 0 of a scanline or tiled file (level 0 of
  * a mipmap or ripmap), any compression the library decodes (OpenEXRCore 3.1 decodes none, RLE, ZIPS, ZIP, PIZ, PXR24,
  * B44 and B44A, not DWAA or DWAB), channels of type HALF, FLOAT or UINT. Heights are the channel "Y", else "Z", else
- * the file's first channel; a normal map is R, G and optionally B, components stored directly in [-1, 1]. Subsampled
+ * the file's first channel; a normal map is R, G and optionally B, components stored directly in [-1, 1]; radiance
+ * is R, G, B (or a grey image's Y, else its first channel, for all three). Subsampled
  * channels are skipped over in files compressed as bytes (none, RLE, ZIP) and refused elsewhere. Written as a
  * scanline file with ZIP compression (16 lines a chunk) in FLOAT: heights in one channel "Y" (times z_scale where it
- * is set), normals in R, G, B. SPDX-License-Identifier: MIT */
+ * is set), normals and radiance in R, G, B. SPDX-License-Identifier: MIT */
 #include <math.h>
 #include <stdint.h>
 #include <stdio.h>
@@ -78,17 +79,13 @@ static int exr_grow(exr_reader *r, size_t rows)
     if (want < rows) want = rows;
     if (want < 64) want = 64;
     if (want > r->ny) want = r->ny;
-    size_t elem = r->s->kind == SURFACE_HEIGHTS ? sizeof *r->s->h : sizeof *r->s->m;
+    surface *o = r->s;
+    size_t elem = o->kind == SURFACE_HEIGHTS ? sizeof *o->h : o->kind == SURFACE_NORMALS ? sizeof *o->m : 3 * sizeof *o->rgb;
     if (want > SIZE_MAX / elem / r->nx) return -1;
-    if (r->s->kind == SURFACE_HEIGHTS) {
-        double *p = realloc(r->s->h, want * r->nx * elem);
-        if (!p) return -1;
-        r->s->h = p;
-    } else {
-        ggx_vec3 *p = realloc(r->s->m, want * r->nx * elem);
-        if (!p) return -1;
-        r->s->m = p;
-    }
+    void **slot = o->kind == SURFACE_HEIGHTS ? (void **)&o->h : o->kind == SURFACE_NORMALS ? (void **)&o->m : (void **)&o->rgb;
+    void *p = realloc(*slot, want * r->nx * elem);
+    if (!p) return -1;
+    *slot = p;
     r->rows_alloc = want;
     return 0;
 }
@@ -186,7 +183,9 @@ static int exr_decode_chunk(exr_reader *r, const exr_chunk_info_t *ci, size_t px
                 v[k] = exr_sample(block + at[k] + x * (size_t)exr_type_bytes(type), type);
             }
             if (r->s->kind == SURFACE_HEIGHTS) r->s->h[i] = v[0];
-            else r->s->m[i] = surface_texel_normal(v, r->nwant, r->o->y_down);
+            else if (r->s->kind == SURFACE_NORMALS) r->s->m[i] = surface_texel_normal(v, r->nwant, r->o->y_down);
+            else
+                for (int k = 0; k < 3; k++) r->s->rgb[3 * i + k] = (float)v[r->nwant == 3 ? k : 0];
         }
     }
     return 0;
@@ -268,6 +267,16 @@ static int exr_parse_part(exr_reader *r, size_t n, char *err, size_t errn)
         if (k < 0) k = 0;
         r->want[0] = k, r->nwant = 1;
         r->s->kind = SURFACE_HEIGHTS;
+    } else if (r->o->want == SURFACE_RADIANCE) {
+        /* R, G, B; else a grey image's Y (or its first channel) for all three */
+        r->want[0] = exr_find_channel(cl, "R"), r->want[1] = exr_find_channel(cl, "G");
+        r->want[2] = exr_find_channel(cl, "B");
+        r->nwant = 3;
+        if (r->want[0] < 0 || r->want[1] < 0 || r->want[2] < 0) {
+            int k = exr_find_channel(cl, "Y");
+            r->want[0] = k < 0 ? 0 : k, r->nwant = 1;
+        }
+        r->s->kind = SURFACE_RADIANCE;
     } else {
         r->want[0] = exr_find_channel(cl, "R"), r->want[1] = exr_find_channel(cl, "G");
         r->want[2] = exr_find_channel(cl, "B");
@@ -313,7 +322,7 @@ int surface_parse_exr(const unsigned char *data, size_t n, const surface_read_op
     exr_reader r;
     memset(&r, 0, sizeof r);
     r.o = o, r.s = s;
-    s->h = NULL, s->m = NULL;
+    s->h = NULL, s->m = NULL, s->rgb = NULL;
     s->nx = s->ny = 0;
     s->dx = s->dy = 0, s->z_scale = 0, s->bits = 0, s->channels = 0;
     if (!data || n < 4 || exr_start_read(&r.ctx, "<memory>", &init) != EXR_ERR_SUCCESS) {
@@ -324,8 +333,8 @@ int surface_parse_exr(const unsigned char *data, size_t n, const surface_read_op
     if (r.dec_ready) exr_decoding_destroy(r.ctx, &r.dec);
     exr_finish(&r.ctx);
     if (rc != 0) {
-        free(s->h), free(s->m);
-        s->h = NULL, s->m = NULL;
+        free(s->h), free(s->m), free(s->rgb);
+        s->h = NULL, s->m = NULL, s->rgb = NULL;
         s->nx = s->ny = 0;
         return -1;
     }
@@ -333,12 +342,41 @@ int surface_parse_exr(const unsigned char *data, size_t n, const surface_read_op
     return 0;
 }
 
-int surface_write_exr(const char *path, const surface *s, char *err, size_t errn)
+/* The file's bytes, gathered in memory: the library writes the offset table last, at an earlier offset. */
+typedef struct exr_sink {
+    unsigned char *p;
+    size_t n, cap;
+    int failed;
+} exr_sink;
+
+static int64_t exr_sink_write(exr_const_context_t ctx, void *user, const void *buf, uint64_t sz, uint64_t off,
+                              exr_stream_error_func_ptr_t error_cb)
 {
+    (void)ctx, (void)error_cb;
+    exr_sink *k = user;
+    if (off > SIZE_MAX - sz) return k->failed = 1, -1;
+    size_t end = (size_t)(off + sz);
+    if (end > k->cap) {
+        size_t cap = k->cap ? k->cap : 1 << 16;
+        while (cap < end) cap = cap > SIZE_MAX / 2 ? end : cap * 2;
+        unsigned char *p = realloc(k->p, cap);
+        if (!p) return k->failed = 1, -1;
+        if (cap > k->cap) memset(p + k->cap, 0, cap - k->cap);
+        k->p = p, k->cap = cap;
+    }
+    memcpy(k->p + off, buf, (size_t)sz);
+    if (end > k->n) k->n = end;
+    return (int64_t)sz;
+}
+
+int surface_encode_exr(const surface *s, unsigned char **data, size_t *n, char *err, size_t errn)
+{
+    *data = NULL, *n = 0;
     int heights = s->kind == SURFACE_HEIGHTS, nch = heights ? 1 : 3;
     if (s->nx < 1 || s->ny < 1 || s->nx > INT32_MAX || s->ny > INT32_MAX || s->nx > SIZE_MAX / s->ny ||
-        s->nx * s->ny > SIZE_MAX / sizeof(float) / 3 || (heights ? !s->h : !s->m))
-        return surface_fail(err, errn, "cannot write '%s' (no surface, or too large for OpenEXR)", path);
+        s->nx * s->ny > SIZE_MAX / sizeof(float) / 3 ||
+        (heights ? !s->h : s->kind == SURFACE_NORMALS ? !s->m : !s->rgb))
+        return surface_fail(err, errn, "no surface, or too large for OpenEXR");
     size_t count = s->nx * s->ny;
     static const char *const names[3] = {"R", "G", "B"};
     float *plane[3] = {NULL, NULL, NULL};
@@ -351,18 +389,23 @@ int surface_write_exr(const char *path, const surface *s, char *err, size_t errn
     for (size_t i = 0; i < count; i++) {
         if (heights) {
             plane[0][i] = (float)(s->h[i] * scale);
+        } else if (s->kind == SURFACE_RADIANCE) {
+            for (int k = 0; k < 3; k++) plane[k][i] = s->rgb[3 * i + k];
         } else {
             plane[0][i] = (float)s->m[i].x, plane[1][i] = (float)s->m[i].y, plane[2][i] = (float)s->m[i].z;
         }
     }
     exr_context_initializer_t init = EXR_DEFAULT_CONTEXT_INITIALIZER;
     init.error_handler_fn = exr_quiet;
+    exr_sink sink = {NULL, 0, 0, 0};
+    init.user_data = &sink;
+    init.write_fn = exr_sink_write;
     exr_context_t ctx = NULL;
     exr_encode_pipeline_t enc;
     memset(&enc, 0, sizeof enc);
     int enc_ready = 0, part = 0, started = 0;
     int32_t lines = 0;
-    exr_result_t rv = exr_start_write(&ctx, path, EXR_WRITE_FILE_DIRECTLY, &init);
+    exr_result_t rv = exr_start_write(&ctx, "<memory>", EXR_WRITE_FILE_DIRECTLY, &init);
     if (rv == EXR_ERR_SUCCESS) started = 1;
     if (rv == EXR_ERR_SUCCESS) rv = exr_add_part(ctx, NULL, EXR_STORAGE_SCANLINE, &part);
     if (rv == EXR_ERR_SUCCESS)
@@ -401,12 +444,33 @@ int surface_write_exr(const char *path, const surface *s, char *err, size_t errn
     for (int k = 0; k < nch; k++) free(plane[k]);
     exr_result_t fin = started ? exr_finish(&ctx) : EXR_ERR_SUCCESS;
     if (rv == EXR_ERR_SUCCESS) rv = fin;
+    if (rv == EXR_ERR_SUCCESS && sink.failed) rv = EXR_ERR_OUT_OF_MEMORY;
     if (rv != EXR_ERR_SUCCESS) {
-        if (started) remove(path);
-        return surface_fail(err, errn, "cannot write '%s' (%s)", path, exr_get_error_code_as_string(rv));
+        free(sink.p);
+        return surface_fail(err, errn, "%s", exr_get_error_code_as_string(rv));
+    }
+    *data = sink.p, *n = sink.n;
+    return 0;
+}
+
+int surface_write_exr(const char *path, const surface *s, char *err, size_t errn)
+{
+    unsigned char *data;
+    size_t n;
+    char why[160];
+    if (surface_encode_exr(s, &data, &n, why, sizeof why) != 0)
+        return surface_fail(err, errn, "cannot write '%s' (%s)", path, why);
+    FILE *f = fopen(path, "wb");
+    int ok = f && fwrite(data, 1, n, f) == n;
+    if (f && fclose(f) != 0) ok = 0;
+    free(data);
+    if (!ok) {
+        if (f) remove(path);
+        return surface_fail(err, errn, "cannot write '%s'", path);
     }
     return 0;
 }
+
 #else
 int surface_parse_exr(const unsigned char *data, size_t n, const surface_read_options *o, surface *s, char *err,
                       size_t errn)
@@ -417,6 +481,12 @@ int surface_parse_exr(const unsigned char *data, size_t n, const surface_read_op
 int surface_write_exr(const char *path, const surface *s, char *err, size_t errn)
 {
     (void)path, (void)s;
+    return surface_fail(err, errn, "OpenEXR support was not built (OpenEXR missing: apt-get install libopenexr-dev)");
+}
+int surface_encode_exr(const surface *s, unsigned char **data, size_t *n, char *err, size_t errn)
+{
+    (void)s;
+    *data = NULL, *n = 0;
     return surface_fail(err, errn, "OpenEXR support was not built (OpenEXR missing: apt-get install libopenexr-dev)");
 }
 #endif
