@@ -106,6 +106,8 @@ void parse_options(int argc, char **argv, int first, options *o, const char *all
     o->phi_d = 90.0;
     o->eta = 1.5;
     o->progress = -1;
+    o->spp = 64;
+    o->depth = 32;
     for (int i = first; i < argc; i++) {
         const char *a = argv[i];
         const char *val = i + 1 < argc ? argv[i + 1] : NULL;
@@ -129,10 +131,11 @@ void parse_options(int argc, char **argv, int first, options *o, const char *all
             die("unknown option '%s' (see --help)", a);
         /* flags */
         int flag = strcmp(key, "log") == 0 || strcmp(key, "progress") == 0 || strcmp(key, "no-progress") == 0 ||
-                   strcmp(key, "keep-tilt") == 0 || strcmp(key, "y-down") == 0;
+                   strcmp(key, "keep-tilt") == 0 || strcmp(key, "y-down") == 0 || strcmp(key, "compensate") == 0;
         if (flag && inline_val) die("option '%s' takes no value", a);
         if (strcmp(key, "keep-tilt") == 0) { o->keep_tilt = 1; continue; }
         if (strcmp(key, "y-down") == 0) { o->y_down = 1; continue; }
+        if (strcmp(key, "compensate") == 0) { o->compensate = 1; continue; }
         if (strcmp(key, "log") == 0) { o->log_scale = 1; continue; }
         if (strcmp(key, "progress") == 0) { o->progress = 1; continue; }
         if (strcmp(key, "no-progress") == 0) { o->progress = 0; continue; }
@@ -239,6 +242,26 @@ void parse_options(int argc, char **argv, int first, options *o, const char *all
             parse_list(a, val, &o->z_scale, 1);
             if (!(o->z_scale > 0)) die("%s: the z scale must be positive ('%s' given)", a, val);
             o->have_z_scale = 1;
+        } else if (strcmp(key, "scene") == 0) {
+            o->scene = val;
+        } else if (strcmp(key, "light") == 0) {
+            o->light = val;
+        } else if (strcmp(key, "strategy") == 0) {
+            o->strategy = val;
+        } else if (strcmp(key, "spp") == 0) {
+            double v;
+            parse_list(a, val, &v, 1);
+            if (!(v >= 1 && v <= 1048576) || v != floor(v))
+                die("%s: '%s' is not a number of samples per pixel from 1 to 1048576", a, val);
+            o->spp = (long)v;
+        } else if (strcmp(key, "depth") == 0) {
+            double v;
+            parse_list(a, val, &v, 1);
+            if (!(v >= 1 && v <= 1024) || v != floor(v)) die("%s: '%s' is not a path depth from 1 to 1024", a, val);
+            o->depth = (int)v;
+        } else if (strcmp(key, "exposure") == 0) {
+            parse_list(a, val, &o->exposure, 1);
+            if (!(fabs(o->exposure) <= 30)) die("%s: '%s' is not an exposure in stops within [-30, 30]", a, val);
         } else if (strcmp(key, "downsample") == 0 || strcmp(key, "threads") == 0) {
             double v;
             parse_list(a, val, &v, 1);

@@ -40,6 +40,11 @@ typedef struct options {
     const char *heightfield, *normal_map, *normals, *model;
     double spacing[2], z_scale;
     int have_spacing, have_z_scale, keep_tilt, downsample, y_down, threads;
+    /* ggx render */
+    const char *scene, *light, *strategy;
+    long spp;
+    int depth, compensate;
+    double exposure;
 } options;
 
 /* Parses argv[first..] into o (defaults first); unknown options and malformed values die(). */
@@ -122,6 +127,7 @@ int cmd_plot(int argc, char **argv);
 int cmd_check(int argc, char **argv);
 int cmd_audit(int argc, char **argv);
 int cmd_fit(int argc, char **argv);
+int cmd_render(int argc, char **argv);
 
 /* ---- checks (also used by demo) ---- */
 typedef struct check_result {

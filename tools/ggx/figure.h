@@ -87,4 +87,13 @@ void figure_shape_caption(char *buf, size_t n, double ax, double ay, double tx, 
 /* Writes the figure to path: PNG, SVG or PDF as its name says (standard output and devices: fmt), w x h exactly. */
 void figure_write(const figure_spec *f, const char *path, canvas_format fmt, int w, int h);
 
+/* ---- rendered images (render_cmd.c) ---- */
+#include "render.h"
+/* Paints a linear RGB image (w x h, the top row first) at (x, y), each pixel scale units wide, as 8-bit sRGB of
+ * min(1, 2^exposure L) per channel. */
+void render_paint(cairo_t *cr, double x, double y, double scale, const float *rgb, int w, int h, double exposure);
+/* The caption's words for the material (and its compensation) and the scene's tangent frame. */
+void render_material_words(const render_spec *r, char *buf, size_t n);
+const char *render_frame_words(render_scene scene);
+
 #endif

@@ -18,6 +18,7 @@ static const struct command {
     {"plot", cmd_plot, "one figure (PNG, SVG or PDF) for any shape, view and sampler: the seeds' figures and line plots"},
     {"check", cmd_check, "chi-square, normalisation and Jacobian checks; exit status 0 only if all pass"},
     {"audit", cmd_audit, "the table of the seeds' claims for default or given shapes"},
+    {"render", cmd_render, "an image of a sphere or plane of the material under a sky, an environment map or a light"},
     {"fit", cmd_fit, "the shape A of a measured height field, normal map or list of normals, by maximum likelihood"},
 };
 enum { NCOMMANDS = sizeof COMMANDS / sizeof COMMANDS[0] };

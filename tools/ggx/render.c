@@ -1,0 +1,398 @@
+/* The renderer of render.h: the camera, the sphere and the plane, the path tracer with light and BSDF sampling
+ * combined by the power heuristic, and the tiles shared among threads. SPDX-License-Identifier: MIT */
+#include <math.h>
+#include <pthread.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "render.h"
+#include "surface.h"
+
+#define R_PI 3.14159265358979323846
+#define R_DEG (R_PI / 180)
+#define TILE 16
+
+/* ---- small vector helpers ---- */
+static ggx_vec3 v3(double x, double y, double z) { return (ggx_vec3){x, y, z}; }
+static double dot(ggx_vec3 a, ggx_vec3 b) { return a.x * b.x + a.y * b.y + a.z * b.z; }
+static ggx_vec3 add(ggx_vec3 a, ggx_vec3 b) { return v3(a.x + b.x, a.y + b.y, a.z + b.z); }
+static ggx_vec3 scale(ggx_vec3 a, double k) { return v3(a.x * k, a.y * k, a.z * k); }
+static ggx_vec3 cross(ggx_vec3 a, ggx_vec3 b)
+{
+    return v3(a.y * b.z - a.z * b.y, a.z * b.x - a.x * b.z, a.x * b.y - a.y * b.x);
+}
+static ggx_vec3 normalize(ggx_vec3 a) { return scale(a, 1 / sqrt(dot(a, a))); }
+
+/* ---- random numbers: a counter-based stream per (seed, pixel, sample) ---- */
+typedef struct stream {
+    uint64_t s;
+} stream;
+
+static uint64_t mix64(uint64_t z)
+{
+    z = (z ^ (z >> 30)) * 0xbf58476d1ce4e5b9ULL;
+    z = (z ^ (z >> 27)) * 0x94d049bb133111ebULL;
+    return z ^ (z >> 31);
+}
+static double next_uniform(stream *r)
+{
+    r->s += 0x9e3779b97f4a7c15ULL;
+    return (double)(mix64(r->s) >> 11) * 0x1.0p-53;
+}
+static double uniform_cb(void *st) { return next_uniform(st); }
+
+/* ---- the camera ---- */
+typedef struct camera {
+    ggx_vec3 pos, fwd, right, up;
+    double tan_half;
+} camera;
+
+/* The sphere is seen from 4 units at 10 degrees elevation from -y; the plane from 3.2 units at 35 degrees elevation,
+ * azimuth 60 degrees, so that the default sun (azimuth -120, elevation 35) is mirrored at the image's centre. */
+static camera make_camera(const render_spec *r)
+{
+    double elev = r->scene == RENDER_SPHERE ? 10 * R_DEG : 35 * R_DEG;
+    double az = r->scene == RENDER_SPHERE ? -90 * R_DEG : 60 * R_DEG;
+    double dist = r->scene == RENDER_SPHERE ? 4.0 : 3.2, fov = r->scene == RENDER_SPHERE ? 34 * R_DEG : 50 * R_DEG;
+    camera c;
+    c.pos = v3(dist * cos(elev) * cos(az), dist * cos(elev) * sin(az), dist * sin(elev));
+    c.fwd = normalize(scale(c.pos, -1));
+    c.right = normalize(cross(c.fwd, v3(0, 0, 1)));
+    c.up = cross(c.right, c.fwd);
+    c.tan_half = tan(fov / 2);
+    return c;
+}
+
+void render_camera_words(const render_spec *r, char *buf, size_t n)
+{
+    if (r->scene == RENDER_SPHERE)
+        snprintf(buf, n, "camera 4 units from the unit sphere, 10° up, on −y; 34° field of view");
+    else
+        snprintf(buf, n, "camera 3.2 units from the origin, 35° up, azimuth 60°; 50° field of view");
+}
+
+static ggx_vec3 camera_dir(const render_spec *r, const camera *c, double x, double y)
+{
+    double aspect = (double)r->width / r->height;
+    double sx = (2 * x / r->width - 1) * c->tan_half * aspect, sy = (1 - 2 * y / r->height) * c->tan_half;
+    return normalize(add(c->fwd, add(scale(c->right, sx), scale(c->up, sy))));
+}
+
+/* ---- the surfaces ---- */
+static void frame_at(const render_spec *r, ggx_vec3 p, render_hit *h)
+{
+    h->p = p;
+    if (r->scene == RENDER_PLANE) {
+        h->t = v3(1, 0, 0), h->b = v3(0, 1, 0), h->n = v3(0, 0, 1);
+        return;
+    }
+    h->n = p;
+    double l = hypot(p.x, p.y);
+    h->t = l > 1e-12 ? v3(-p.y / l, p.x / l, 0) : v3(1, 0, 0); /* at the poles: any tangent */
+    if (l <= 1e-12) h->t = normalize(add(h->t, scale(h->n, -dot(h->t, h->n))));
+    h->b = cross(h->n, h->t);
+}
+
+static ggx_vec3 to_local(const render_hit *h, ggx_vec3 w) { return v3(dot(w, h->t), dot(w, h->b), dot(w, h->n)); }
+static ggx_vec3 to_world(const render_hit *h, ggx_vec3 w)
+{
+    return add(scale(h->t, w.x), add(scale(h->b, w.y), scale(h->n, w.z)));
+}
+
+/* A camera ray from o along unit d: the first surface point, 1 if any. */
+static int first_hit(const render_spec *r, ggx_vec3 o, ggx_vec3 d, ggx_vec3 *p)
+{
+    if (r->scene == RENDER_PLANE) {
+        if (!(d.z < 0) || !(o.z > 0)) return 0;
+        *p = add(o, scale(d, -o.z / d.z));
+        p->z = 0;
+        return 1;
+    }
+    double b = dot(o, d), c = dot(o, o) - 1, disc = b * b - c;
+    if (disc <= 0) return 0;
+    double q = sqrt(disc), t = -b - q;
+    if (!(t > 0)) return 0;
+    *p = normalize(add(o, scale(d, t)));
+    return 1;
+}
+
+/* ---- the material ---- */
+static int is_glass(const render_spec *r) { return r->fresnel.kind == GGX_FRESNEL_DIELECTRIC; }
+
+/* f(wl -> v) in the radiance convention, local directions: wl towards the light, v towards the camera. */
+static double bsdf_eval(const render_spec *r, ggx_vec3 wl, ggx_vec3 v)
+{
+    if (is_glass(r))
+        return r->bsdf_energy ? ggx_bsdf_compensated_eval(r->bsdf_energy, wl, v, GGX_RADIANCE)
+                              : ggx_bsdf_eval(&r->shape, r->fresnel.eta, wl, v, GGX_RADIANCE);
+    return r->energy ? ggx_brdf_compensated_eval(r->energy, &r->fresnel, wl, v)
+                     : ggx_brdf_eval(&r->shape, &r->fresnel, wl, v);
+}
+
+/* The density with which bsdf_sample draws w from v. */
+static double bsdf_pdf(const render_spec *r, ggx_vec3 v, ggx_vec3 w)
+{
+    if (is_glass(r))
+        return r->bsdf_energy ? ggx_pdf_bsdf_compensated(r->bsdf_energy, v, w)
+                              : ggx_pdf_bsdf(&r->shape, r->fresnel.eta, v, w);
+    if (r->energy) return ggx_pdf_brdf_compensated(r->energy, &r->fresnel, v, w);
+    const ggx_sampler_info *smp = r->sampler;
+    if (smp->family == GGX_FAMILY_DIRECTION) return smp->pdf_direction(&r->shape, r->fresnel.eta, v, w);
+    if (!(v.z > 0) || !(w.z > 0)) return 0;
+    ggx_vec3 m = normalize(add(v, w));
+    return smp->pdf(&r->shape, v, m) / (4 * dot(v, m));
+}
+
+/* A direction w from v: 1 with its pdf and weight f(w -> v) |w.z| / pdf, or 0. */
+static int bsdf_sample(const render_spec *r, ggx_vec3 v, stream *rs, ggx_vec3 *w, double *pdf, double *weight)
+{
+    double u1 = next_uniform(rs), u2 = next_uniform(rs), u3 = next_uniform(rs);
+    ggx_sample x;
+    if (is_glass(r))
+        x = r->bsdf_energy ? ggx_sample_bsdf_compensated(r->bsdf_energy, v, u1, u2, u3, GGX_RADIANCE)
+                           : ggx_sample_bsdf(&r->shape, r->fresnel.eta, v, u1, u2, u3, GGX_RADIANCE);
+    else if (r->energy)
+        x = ggx_sample_brdf_compensated(r->energy, &r->fresnel, v, u1, u2, u3);
+    else if (r->sampler->family == GGX_FAMILY_DIRECTION)
+        x = r->sampler->sample_direction(&r->shape, &r->fresnel, r->fresnel.eta, v, u1, u2, u3, GGX_RADIANCE);
+    else {
+        /* a sampler of normals: the mirror direction of its normal */
+        const ggx_sampler_info *smp = r->sampler;
+        unsigned trials;
+        ggx_vec3 m = smp->family == GGX_FAMILY_REJECTION ? smp->sample_reject(&r->shape, v, uniform_cb, rs, &trials)
+                                                        : smp->sample(&r->shape, v, u1, u2);
+        double vm = dot(v, m);
+        if (!(vm > 0)) return 0;
+        ggx_vec3 o = ggx_reflect(v, m);
+        double pm = smp->pdf(&r->shape, v, m);
+        if (!(o.z > 0) || !(pm > 0)) return 0;
+        *w = o, *pdf = pm / (4 * vm), *weight = bsdf_eval(r, o, v) * o.z / *pdf;
+        return isfinite(*weight);
+    }
+    if (x.event == GGX_EVENT_INVALID || !(x.pdf > 0) || !isfinite(x.weight)) return 0;
+    *w = x.w, *pdf = x.pdf, *weight = x.weight;
+    return 1;
+}
+
+static double power_heuristic(double a, double b) { return a * a / (a * a + b * b); }
+
+/* Whether light arriving from world direction d reaches point h unobstructed: the sphere is convex, so from its
+ * surface every direction on the outer side leaves it; the plane's lower side has no far side to light it. */
+static int unoccluded(const render_spec *r, const render_hit *h, ggx_vec3 d)
+{
+    return r->scene == RENDER_PLANE ? d.z > 0 : dot(d, h->n) > 0;
+}
+
+/* The radiance along one camera path; out[3] += it. */
+static void trace(const render_spec *r, const camera *cam, double x, double y, stream *rs, double out[3])
+{
+    ggx_vec3 d = camera_dir(r, cam, x, y), p;
+    int env = r->light == RENDER_LIGHT_ENV;
+    double Le[3];
+    if (!first_hit(r, cam->pos, d, &p)) {
+        if (env) {
+            render_env_radiance(r->env, d, Le);
+            for (int k = 0; k < 3; k++) out[k] += Le[k];
+        }
+        return;
+    }
+    double beta = 1;
+    for (int depth = 0; depth < r->depth; depth++) {
+        render_hit h;
+        frame_at(r, p, &h);
+        ggx_vec3 v = to_local(&h, scale(d, -1));
+        /* the light's sample */
+        if (!env) {
+            ggx_vec3 wl = r->light_dir;
+            if (unoccluded(r, &h, wl)) {
+                ggx_vec3 l = to_local(&h, wl);
+                double c = beta * bsdf_eval(r, l, v) * fabs(l.z) * r->light_irradiance;
+                for (int k = 0; k < 3; k++) out[k] += c;
+            }
+        } else if (r->strategy != RENDER_BSDF_ONLY) {
+            double pl, u1 = next_uniform(rs), u2 = next_uniform(rs);
+            ggx_vec3 wl = render_env_sample(r->env, u1, u2, &pl);
+            if (pl > 0 && unoccluded(r, &h, wl)) {
+                ggx_vec3 l = to_local(&h, wl);
+                double f = bsdf_eval(r, l, v);
+                if (f > 0) {
+                    double mis = r->strategy == RENDER_MIS ? power_heuristic(pl, bsdf_pdf(r, v, l)) : 1;
+                    double c = beta * f * fabs(l.z) * mis / pl;
+                    render_env_radiance(r->env, wl, Le);
+                    for (int k = 0; k < 3; k++) out[k] += c * Le[k];
+                }
+            }
+        }
+        /* the BSDF's sample */
+        ggx_vec3 w;
+        double pdf, weight;
+        if (!bsdf_sample(r, v, rs, &w, &pdf, &weight)) return;
+        beta *= weight;
+        if (!(beta > 0)) return;
+        ggx_vec3 wd = to_world(&h, w);
+        if (unoccluded(r, &h, wd) || r->scene == RENDER_PLANE) {
+            /* it leaves the scene (below the plane: into its inside, which gives nothing) */
+            if (!env || r->strategy == RENDER_LIGHT_ONLY || !unoccluded(r, &h, wd)) return;
+            double mis = r->strategy == RENDER_MIS ? power_heuristic(pdf, render_env_pdf(r->env, wd)) : 1;
+            render_env_radiance(r->env, wd, Le);
+            for (int k = 0; k < 3; k++) out[k] += beta * mis * Le[k];
+            return;
+        }
+        /* inside the sphere: to its far side, the chord from p along wd */
+        p = normalize(add(p, scale(wd, -2 * dot(p, wd))));
+        d = wd;
+    }
+}
+
+int render_primary(const render_spec *r, double x, double y, render_hit *hit)
+{
+    camera cam = make_camera(r);
+    memset(hit, 0, sizeof *hit);
+    ggx_vec3 d = camera_dir(r, &cam, x, y), p;
+    hit->dir = d;
+    if (!first_hit(r, cam.pos, d, &p)) return 0;
+    frame_at(r, p, hit);
+    hit->view_local = to_local(hit, scale(d, -1));
+    hit->dir = d;
+    return 1;
+}
+
+/* ---- setup ---- */
+void render_spec_defaults(render_spec *r)
+{
+    memset(r, 0, sizeof *r);
+    ggx_shape_iso(&r->shape, 0.2);
+    ggx_fresnel_one(&r->fresnel);
+    r->scene = RENDER_SPHERE;
+    r->light = RENDER_LIGHT_ENV;
+    r->strategy = RENDER_MIS;
+    r->width = r->height = 256;
+    r->spp = 64;
+    r->depth = 32;
+    r->seed = 1;
+    r->threads = 1;
+    r->jitter = 1;
+    r->light_dir = v3(0, 0, 1);
+    r->light_irradiance = 1;
+}
+
+int render_prepare(render_spec *r, char *err, size_t errn)
+{
+    r->energy = NULL, r->bsdf_energy = NULL;
+    if (r->width < 1 || r->height < 1 || r->spp < 1 || r->depth < 1 || r->threads < 1)
+        return surface_fail(err, errn, "an image needs a size, samples, a depth and threads of at least 1");
+    if (r->light == RENDER_LIGHT_ENV && !r->env) return surface_fail(err, errn, "no environment to light with");
+    if (r->light == RENDER_LIGHT_DIRECTIONAL &&
+        !(fabs(dot(r->light_dir, r->light_dir) - 1) < 1e-9 && r->light_irradiance >= 0))
+        return surface_fail(err, errn, "a distant light needs a unit direction and a non-negative irradiance");
+    const ggx_sampler_info *bounded = ggx_sampler_get(GGX_SAMPLER_BRDF_BOUNDED);
+    if (is_glass(r)) {
+        if (r->sampler && r->sampler->id != GGX_SAMPLER_BSDF)
+            return surface_fail(err, errn, "the rough glass samples by its own sampler, bsdf (not %s)", r->sampler->name);
+        r->sampler = ggx_sampler_get(GGX_SAMPLER_BSDF);
+    } else {
+        if (!r->sampler) r->sampler = bounded;
+        if (r->sampler->id == GGX_SAMPLER_BSDF)
+            return surface_fail(err, errn, "sampler bsdf is the rough glass's: a reflector takes any other");
+        if (r->sampler->domain == GGX_DOMAIN_UNSKEWED && r->shape.kind == GGX_SHAPE_SKEWED)
+            return surface_fail(err, errn, "sampler '%s' is for unskewed shapes only; this shape is skewed",
+                                r->sampler->name);
+    }
+    if (r->compensate && !is_glass(r) && r->sampler != bounded)
+        return surface_fail(err, errn, "with compensation a reflector samples by ggx_sample_brdf_compensated, whose "
+                                       "single-scattering lobe is brdf-bounded (not %s)", r->sampler->name);
+    if (!r->compensate) return 0;
+    ggx_status st = is_glass(r) ? ggx_bsdf_energy_create(&r->shape, r->fresnel.eta, &r->bsdf_energy)
+                                : ggx_energy_create(&r->shape, &r->energy);
+    if (st != GGX_OK)
+        return surface_fail(err, errn, "no energy compensation for this %s: %s", is_glass(r) ? "shape and eta" : "shape",
+                            ggx_status_str(st));
+    return 0;
+}
+
+void render_release(render_spec *r)
+{
+    ggx_energy_free(r->energy);
+    ggx_bsdf_energy_free(r->bsdf_energy);
+    r->energy = NULL, r->bsdf_energy = NULL;
+}
+
+/* ---- the image, in tiles over threads ---- */
+typedef struct job {
+    const render_spec *r;
+    camera cam;
+    float *rgb, *var;
+    int tiles_x, tiles;
+    int next;  /* the next tile to take (atomic) */
+    long done; /* pixels finished (atomic) */
+} job;
+
+static void render_tile(job *j, int tile)
+{
+    const render_spec *r = j->r;
+    int x0 = tile % j->tiles_x * TILE, y0 = tile / j->tiles_x * TILE;
+    for (int y = y0; y < y0 + TILE && y < r->height; y++)
+        for (int x = x0; x < x0 + TILE && x < r->width; x++) {
+            uint64_t pixel = (uint64_t)y * (uint64_t)r->width + (uint64_t)x;
+            double sum[3] = {0, 0, 0}, sq[3] = {0, 0, 0};
+            for (int s = 0; s < r->spp; s++) {
+                stream rs = {mix64(mix64(r->seed ^ 0x6a09e667f3bcc909ULL) + pixel) ^ mix64((uint64_t)s + 1)};
+                double sx = r->jitter ? next_uniform(&rs) : 0.5, sy = r->jitter ? next_uniform(&rs) : 0.5;
+                double L[3] = {0, 0, 0};
+                trace(r, &j->cam, x + sx, y + sy, &rs, L);
+                for (int k = 0; k < 3; k++) sum[k] += L[k], sq[k] += L[k] * L[k];
+            }
+            for (int k = 0; k < 3; k++) {
+                double mean = sum[k] / r->spp;
+                j->rgb[3 * pixel + k] = (float)mean;
+                if (j->var)
+                    j->var[3 * pixel + k] =
+                        r->spp > 1 ? (float)(fmax(0.0, sq[k] - r->spp * mean * mean) / ((double)r->spp * (r->spp - 1)))
+                                   : 0.0f;
+            }
+        }
+    long px = (long)((x0 + TILE < r->width ? TILE : r->width - x0) * (y0 + TILE < r->height ? TILE : r->height - y0));
+    __atomic_fetch_add(&j->done, px, __ATOMIC_RELAXED);
+}
+
+static void *worker(void *arg)
+{
+    job *j = arg;
+    for (;;) {
+        int t = __atomic_fetch_add(&j->next, 1, __ATOMIC_RELAXED);
+        if (t >= j->tiles) return NULL;
+        render_tile(j, t);
+    }
+}
+
+int render_image(const render_spec *r, float *rgb, float *var)
+{
+    job j;
+    memset(&j, 0, sizeof j);
+    j.r = r, j.cam = make_camera(r), j.rgb = rgb, j.var = var;
+    j.tiles_x = (r->width + TILE - 1) / TILE;
+    j.tiles = j.tiles_x * ((r->height + TILE - 1) / TILE);
+    long total = (long)r->width * r->height;
+    int n = r->threads > j.tiles ? j.tiles : r->threads, started = 0, rc = 0;
+    pthread_t *th = n > 1 ? calloc((size_t)n - 1, sizeof *th) : NULL;
+    if (n > 1 && !th) return -1;
+    for (int i = 0; i + 1 < n; i++) {
+        if (pthread_create(&th[i], NULL, worker, &j) != 0) {
+            rc = -1;
+            break;
+        }
+        started++;
+    }
+    /* the calling thread works too, and reports progress between its tiles */
+    for (;;) {
+        int t = __atomic_fetch_add(&j.next, 1, __ATOMIC_RELAXED);
+        if (t >= j.tiles) break;
+        render_tile(&j, t);
+        if (r->progress) r->progress(r->progress_ctx, __atomic_load_n(&j.done, __ATOMIC_RELAXED), total);
+    }
+    for (int i = 0; i < started; i++) pthread_join(th[i], NULL);
+    free(th);
+    if (r->progress) r->progress(r->progress_ctx, total, total);
+    return rc;
+}
