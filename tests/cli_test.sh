@@ -165,6 +165,42 @@ done > domain.txt
 "$GGX" check --sampler wrong-s ${N:--n 200000} > wrong0.txt; [ $? -eq 0 ] && ok || bad "wrong-s is right when unskewed"
 [ -z "$(ls chi2_*.csv 2>/dev/null)" ] && ok || bad "ggx check left files in the working folder"
 
+# --- ggx render: sizes and formats, and its bad input
+"$GGX" render --size 96x64 --spp 2 --out r.png 2> r.err && [ "$("$PNG_INFO" r.png)" = "96 64" ] && [ ! -s r.err ] &&
+    ok || bad "render png: $("$PNG_INFO" r.png) $(cat r.err)"
+"$GGX" render --size 256x64 --spp 1 --scene plane --light point:30,20 --out rc.png &&
+    [ "$("$PNG_INFO" rc.png)" = "256 $((64 + 81))" ] && ok || bad "render png with its caption: $("$PNG_INFO" rc.png)"
+"$GGX" render --size 64 --spp 2 --light white --fresnel dielectric:1.5 --out r.pfm &&
+    [ "$(head -c 14 r.pfm | tr '\n' ' ')" = "PF 64 64 -1.0 " ] && [ "$(wc -c < r.pfm)" -eq $((14 + 64 * 64 * 12)) ] &&
+    ok || bad "render pfm: $(head -c 20 r.pfm | od -c | head -2)"
+"$GGX" render --size 64 --spp 2 --light r.pfm --out r2.exr && [ "$(head -c 4 r2.exr | od -An -tx1 | tr -d ' ')" = "762f3101" ] &&
+    ok || bad "render exr lit by a pfm environment"
+"$GGX" render --size 64 --spp 2 --light r2.exr --threads 1 --out t1.pfm && "$GGX" render --size 64 --spp 2 --light r2.exr --threads 3 --out t3.pfm &&
+    cmp -s t1.pfm t3.pfm && ok || bad "render: another thread count gave another image"
+"$GGX" render --size 64 --spp 1 --out - > r3.png && [ "$("$PNG_INFO" r3.png)" = "64 64" ] && ok || bad "render to stdout"
+printf 'PF\n2 2\n-1.0\n' > nan.pfm; printf '\0\0\300\177%.0s' 1 2 3 4 5 6 7 8 9 10 11 12 >> nan.pfm
+printf 'PF\n2 2\n-1.0\n' > black.pfm; printf '\0\0\0\0%.0s' 1 2 3 4 5 6 7 8 9 10 11 12 >> black.pfm
+head -c 20 nan.pfm > short.pfm; : > empty.exr; printf 'v/1\001garbage' > bad.exr
+printf 'PF\n2 2\n-1.0\n' > neg.pfm; printf '\0\0\200\277%.0s' 1 2 3 4 5 6 7 8 9 10 11 12 >> neg.pfm
+"$GGX" render --size 64 --spp 1 --light neg.pfm --out neg.png 2> neg.err; [ $? -eq 2 ] && grep -q "black everywhere" neg.err &&
+    grep -q "note: 12 negative values" neg.err && [ ! -e neg.png ] && ok || bad "render: negative environment: $(cat neg.err)"
+expect2 "render --spp 0" "not a number of samples" "$GGX" render --spp 0 --out no.png
+expect2 "render --size 0" "is not a size" "$GGX" render --size 0 --out no.png
+expect2 "render absurd size" "is not a size" "$GGX" render --size 100000x100000 --out no.png
+expect2 "render unknown scene" "unknown scene" "$GGX" render --scene cube --out no.png
+expect2 "render unknown strategy" "unknown strategy" "$GGX" render --strategy luck --out no.png
+expect2 "render bad format" "give a .png" "$GGX" render --out no.jpg
+expect2 "render missing environment" "cannot read" "$GGX" render --light missing.exr --out no.png
+expect2 "render empty environment" "is empty" "$GGX" render --light empty.exr --out no.png
+expect2 "render corrupt environment" "not a readable OpenEXR" "$GGX" render --light bad.exr --out no.png
+expect2 "render truncated environment" "cut short" "$GGX" render --light short.pfm --out no.png
+expect2 "render NaN environment" "NaN or infinite" "$GGX" render --light nan.pfm --out no.png
+expect2 "render black environment" "black everywhere" "$GGX" render --light black.pfm --out no.png
+expect2 "render bad point light" "point:THETA,PHI" "$GGX" render --light point:30 --out no.png
+expect2 "render glass with another sampler" "own sampler" "$GGX" render --fresnel dielectric:1.5 --sampler caps --out no.png
+expect2 "render compensated with another sampler" "compensation" "$GGX" render --compensate --sampler caps --out no.png
+[ ! -e no.png ] && [ ! -e no.jpg ] && ok || bad "render left a file after an error"
+
 # --- bad input: exit 2, exactly one line on stderr starting with "ggx: ", no output file left behind
 expect2() { # description, expected-substring, command...
     desc=$1; want=$2; shift 2

@@ -112,8 +112,9 @@ static void light_from_options(const options *o, render_spec *r, render_env *env
         s.rgb = NULL;
         int w = (int)s.nx, h = (int)s.ny;
         surface_free(&s);
-        if (render_env_init(env, w, h, rgb, &neg, err, sizeof err) != 0) die("--light '%s': %s", l, err);
+        int rc = render_env_init(env, w, h, rgb, &neg, err, sizeof err);
         if (neg) fprintf(stderr, "ggx: note: %ld negative values of '%s' read as 0\n", neg, l);
+        if (rc != 0) die("--light '%s': %s", l, err);
         const char *base = strrchr(l, '/');
         snprintf(words, n, "environment %s (%d × %d)", base ? base + 1 : l, w, h);
     }

@@ -38,11 +38,11 @@ int render_env_init(render_env *e, int w, int h, float *rgb, long *negatives, ch
         if (!isfinite(rgb[i])) bad++;
         else if (rgb[i] < 0) rgb[i] = 0, neg++;
     }
+    if (negatives) *negatives = neg;
     if (bad) {
         render_env_free(e);
         return surface_fail(err, errn, "%ld values of the environment are NaN or infinite (not radiance)", bad);
     }
-    if (negatives) *negatives = neg;
     if (count > UINT32_MAX) {
         render_env_free(e);
         return env_fail(err, errn, "an environment of more than 2^32 pixels");
