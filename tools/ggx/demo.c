@@ -1,8 +1,10 @@
 /* ggx demo: the seeds' figures for the seeds' shape and a skewed one, the line plots, figures.pdf with all of them
  * in the seeds' order, then a check of every sampler of normals. SPDX-License-Identifier: MIT */
 #include <math.h>
+#include <stdlib.h>
 #include <string.h>
 #include <time.h>
+#include <unistd.h>
 
 #include "chi2.h"
 #include "figure.h"
@@ -56,8 +58,64 @@ static figure_spec demo_spec(const struct demo_figure *d, const ggx_shape *s, in
     return f;
 }
 
-/* figures.pdf: one page per figure, the seeds' shape at the left and the skewed one at the right. */
-static void write_pdf(const char *path, ggx_shape sh[2])
+/* The row of lit spheres: the seeds' shape, the same skewed, the same rotated; a conductor under the built-in sky. */
+enum { NSPHERES = 3 };
+static const struct demo_sphere {
+    double tx, ty, tz; /* degrees */
+    const char *label;
+} SPHERES[NSPHERES] = {{0, 0, 0, "the seeds' shape"}, {15, -10, 0, "skewed θx 15°, θy −10°"}, {0, 0, 45, "rotated θz 45°"}};
+
+static void render_spheres(int px, float *img[NSPHERES])
+{
+    render_env env;
+    char err[300];
+    if (render_env_default_sky(&env, err, sizeof err) != 0) die("demo sky: %s", err);
+    for (int k = 0; k < NSPHERES; k++) {
+        render_spec r;
+        render_spec_defaults(&r);
+        if (ggx_shape_ellipsoid(&r.shape, 0.15, 0.5, SPHERES[k].tx * DEG, SPHERES[k].ty * DEG, SPHERES[k].tz * DEG) != GGX_OK)
+            die("demo sphere shape");
+        ggx_fresnel_conductor(&r.fresnel, 1.0, 6.7);
+        r.env = &env, r.width = r.height = px, r.spp = 32;
+        long cpus = sysconf(_SC_NPROCESSORS_ONLN);
+        r.threads = cpus >= 1 && cpus <= 256 ? (int)cpus : 1;
+        if (render_prepare(&r, err, sizeof err) != 0) die("demo sphere: %s", err);
+        img[k] = malloc((size_t)px * (size_t)px * 3 * sizeof(float));
+        if (!img[k] || render_image(&r, img[k], NULL) != 0) die("demo sphere: out of memory");
+    }
+    render_env_free(&env);
+}
+
+/* The spheres side by side in (x, y, w), each labelled below; returns the height used. */
+static double draw_spheres(cairo_t *cr, const theme *th, double x, double y, double w, float *img[NSPHERES], int px)
+{
+    double gap = 0.02 * w, cell = (w - (NSPHERES - 1) * gap) / NSPHERES, sc = cell / px, font = fmax(8.0, cell / 22);
+    set_rgb(cr, th->fg);
+    text_font(cr, font, 0);
+    for (int k = 0; k < NSPHERES; k++) {
+        double cx = x + k * (cell + gap);
+        render_paint(cr, cx, y, sc, img[k], px, px, 0);
+        text_at(cr, cx + 0.5 * cell, y + cell + 1.4 * font, 0.5, 0.5, SPHERES[k].label);
+    }
+    return cell + 2.4 * font;
+}
+
+static const char *const SPHERES_NOTE[2] = {
+    "αx 0.15, αy 0.5, conductor η 1, k 6.7, built-in sky (sun at 35°, azimuth −120°), 32 spp; the shape's x along "
+    "the parallels (east).",
+    "The skew moves the highlight off the mirror direction of the sun; θz turns the streak."};
+
+static void write_spheres(const char *path, float *img[NSPHERES], int px, int width)
+{
+    canvas c;
+    double h = (width - 24) / (double)NSPHERES + 2.4 * fmax(8.0, (width - 24) / (double)NSPHERES / 22) + 20;
+    canvas_open(&c, path, FMT_PNG, width, (int)ceil(h), 0);
+    draw_spheres(c.cr, c.th, 12, 12, width - 24, img, px);
+    canvas_close(&c);
+}
+
+/* figures.pdf: one page per figure, the seeds' shape at the left and the skewed one at the right; then the spheres. */
+static void write_pdf(const char *path, ggx_shape sh[2], float *img[NSPHERES], int px)
 {
     const double W = 842, H = 595; /* A4 landscape, points */
     canvas c;
@@ -80,6 +138,13 @@ static void write_pdf(const char *path, ggx_shape sh[2])
             figure_draw(c.cr, c.th, 28 + k * pw, 66 + 0.5 * (H - 90 - ph), pw, ph, &f, NULL);
         }
     }
+    canvas_page(&c);
+    set_rgb(c.cr, c.th->fg);
+    text_font(c.cr, 13, 1);
+    text_at(c.cr, 28, 26, 0, 0, "Beyond the seeds: the material, lit (ggx render)");
+    text_font(c.cr, 10, 0);
+    for (int i = 0; i < 2; i++) text_at(c.cr, 28, 46 + 14 * i, 0, 0, SPHERES_NOTE[i]);
+    draw_spheres(c.cr, c.th, 28, 90, W - 56, img, px);
     canvas_close(&c);
 }
 
@@ -98,7 +163,10 @@ int cmd_demo(int argc, char **argv)
                "    vndf-75-P-side.png (the VNDF pdf), each with the grey region of normals that reflect the view\n"
                "    above the horizon;\n"
                "  line plots: g1.svg, lambda.svg, ndf-slice.svg, furnace.svg;\n"
-               "  figures.pdf: every figure, one page each in the seeds' order, the seed's shape beside the skewed one.\n"
+               "  spheres.png: spheres of the material under the built-in sky (ggx render): the seeds' shape, the same\n"
+               "    skewed, the same rotated by theta_z = 45;\n"
+               "  figures.pdf: every figure, one page each in the seeds' order, the seed's shape beside the skewed one;\n"
+               "    the spheres on the last page.\n"
                "Then checks every sampler for these shapes (N samples each, default 10^6) and prints the table.\n"
                "--size: the figures' width (default 640; heights follow each figure's aspect). The figures are\n"
                "written all or none.\n");
@@ -128,9 +196,16 @@ int cmd_demo(int argc, char **argv)
             out_flush_stdout();
         }
     }
+    int px = size * 2 / 5;
+    float *img[NSPHERES];
+    render_spheres(px, img);
+    snprintf(path, sizeof path, "%s/spheres.png", dir);
+    write_spheres(path, img, px, size);
+    printf("  %s\n", path);
     snprintf(path, sizeof path, "%s/figures.pdf", dir);
-    write_pdf(path, sh);
-    printf("  %s (%d pages)\n", path, NFIGS);
+    write_pdf(path, sh, img, px);
+    for (int k = 0; k < NSPHERES; k++) free(img[k]);
+    printf("  %s (%d pages)\n", path, NFIGS + 1);
     out_commit_set();
     clock_gettime(CLOCK_MONOTONIC, &t1);
     printf("figures drawn in %.1f s\n", (double)(t1.tv_sec - t0.tv_sec) + 1e-9 * (double)(t1.tv_nsec - t0.tv_nsec));
