@@ -31,7 +31,9 @@ for p in "" skewed-; do
         [ "$("$PNG_INFO" "out/$p${f%%:*}.png")" = "640 ${f#*:}" ] && ok || bad "demo $p${f%%:*}.png size $("$PNG_INFO" "out/$p${f%%:*}.png")"
     done
 done
-pdfinfo out/figures.pdf > pdf.txt && grep -q "^Pages: *16$" pdf.txt && grep -q "^Page size: *842 x 595 pts" pdf.txt && ok ||
+[ "$("$PNG_INFO" out/spheres.png)" = "640 248" ] && ok || bad "demo spheres.png size $("$PNG_INFO" out/spheres.png)"
+pdftotext -f 17 -l 17 out/figures.pdf - | grep -q "the material, lit" && ok || bad "figures.pdf: no page of lit spheres"
+pdfinfo out/figures.pdf > pdf.txt && grep -q "^Pages: *17$" pdf.txt && grep -q "^Page size: *842 x 595 pts" pdf.txt && ok ||
     bad "demo figures.pdf: $(cat pdf.txt)"
 # the pages name the seed files, in the seeds' order (seed 001's four figures, then seed 004's eight)
 pdftotext out/figures.pdf - | grep -o "Seed [0-9]*_[0-9a-f]*\.txt" | uniq -c | awk '{ print $1, $3 }' | tr '\n' ' ' > seeds.txt
