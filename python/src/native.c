@@ -355,3 +355,49 @@ EXPORT void ggxpy_surface_close(void *handle)
     surface_free(handle);
     free(handle);
 }
+
+/* ---- images of the material (tools/ggx/render.h) ----
+ * ggx.render: light 0 the built-in sky, 1 the white furnace, 2 the environment file at path, 3 a distant light from
+ * dir (unit, world frame) of irradiance E; sampler a registry name or NULL. Fills rgb (and var unless NULL) with
+ * 3 w h floats; returns 0, or -1 with a one-line reason in err. */
+#include "render.h"
+
+EXPORT int ggxpy_render(const ggx_shape *s, const ggx_fresnel *f, const char *sampler, int compensate, int scene,
+                        int light, const char *path, const double dir[3], double irradiance, int strategy, int w,
+                        int h, int spp, int depth, unsigned long long seed, int threads, int jitter, float *rgb,
+                        float *var, char *err, size_t errn)
+{
+    render_spec r;
+    render_spec_defaults(&r);
+    r.shape = *s, r.fresnel = *f, r.compensate = compensate, r.scene = scene ? RENDER_PLANE : RENDER_SPHERE;
+    r.strategy = (render_strategy)strategy, r.width = w, r.height = h, r.spp = spp, r.depth = depth, r.seed = seed;
+    r.threads = threads, r.jitter = jitter;
+    if (sampler && !(r.sampler = ggx_sampler_find(sampler))) return surface_fail(err, errn, "unknown sampler '%s'", sampler);
+    render_env env;
+    memset(&env, 0, sizeof env);
+    int rc = 0;
+    if (light == 0) rc = render_env_default_sky(&env, err, errn);
+    else if (light == 1) rc = render_env_white(&env, 1.0, err, errn);
+    else if (light == 2) {
+        surface m;
+        surface_read_options o = {SURFACE_RADIANCE, 0};
+        rc = surface_read(path, &o, &m, err, errn);
+        if (rc == 0 && (m.nx > 65536 || m.ny > 65536)) rc = surface_fail(err, errn, "'%s': too large", path);
+        if (rc == 0) {
+            float *px = m.rgb;
+            m.rgb = NULL;
+            rc = render_env_init(&env, (int)m.nx, (int)m.ny, px, NULL, err, errn);
+        }
+        surface_free(&m);
+    } else {
+        r.light = RENDER_LIGHT_DIRECTIONAL;
+        r.light_dir = (ggx_vec3){dir[0], dir[1], dir[2]};
+        r.light_irradiance = irradiance;
+    }
+    if (rc == 0 && light <= 2) r.env = &env;
+    if (rc == 0) rc = render_prepare(&r, err, errn);
+    if (rc == 0 && render_image(&r, rgb, var) != 0) rc = surface_fail(err, errn, "cannot start %d threads", threads);
+    render_release(&r);
+    render_env_free(&env);
+    return rc;
+}

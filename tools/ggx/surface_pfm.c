@@ -55,6 +55,8 @@ int surface_parse_pfm(const unsigned char *data, size_t n, surface *s, char *err
         return surface_fail(err, errn, "a PFM header of %g x %g pixels, scale %g: not an image", v[0], v[1], v[2]);
     if (v[0] > PFM_MAX_SIDE || v[1] > PFM_MAX_SIDE)
         return surface_fail(err, errn, "%g x %g pixels: too large (at most %d a side)", v[0], v[1], PFM_MAX_SIDE);
+    if (ch == 1 && (v[0] < 2 || v[1] < 2))
+        return surface_fail(err, errn, "%g x %g pixels: a height field needs at least 2 x 2", v[0], v[1]);
     at++; /* the single whitespace byte before the data */
     size_t w = (size_t)v[0], h = (size_t)v[1], count = w * h * (size_t)ch;
     if (at > n || (n - at) / 4 < count)
