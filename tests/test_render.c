@@ -327,17 +327,20 @@ static void environment(void **state)
     rng g = {3};
     for (int i = 0; i < 3 * w * h; i++) rgb[i] = (float)rng_range(&g, 0.0, 2.0);
     for (int k = 0; k < 3; k++) rgb[3 * 37 + k] = 0; /* one black pixel */
-    rgb[3 * 50] = -0.5f;                             /* one negative value, read as 0 */
+    rgb[3 * 16 + 2] = -0.5f;                         /* one negative value, read as 0 */
     render_env e;
     char err[200];
     long neg = 0;
     CHECK(render_env_init(&e, w, h, rgb, &neg, err, sizeof err) == 0, "%s", err);
-    CHECK(neg == 1 && e.rgb[3 * 50] == 0, "negatives %ld", neg);
+    CHECK(neg == 1 && e.texel[16].rgb[2] == 0, "negatives %ld", neg);
     long n = (long)(200000 * test_scale()) + 20000, *count = calloc((size_t)(w * h), sizeof *count);
     double worst = 0;
     for (long s = 0; s < n; s++) {
         double pdf;
-        ggx_vec3 d = render_env_sample(&e, rng_uniform(&g), rng_uniform(&g), &pdf);
+        double c[3], c2[3];
+        ggx_vec3 d = render_env_sample(&e, rng_uniform(&g), rng_uniform(&g), &pdf, c);
+        render_env_radiance(&e, d, c2);
+        if (pdf > 0) CHECK(c[0] == c2[0] && c[1] == c2[1] && c[2] == c2[2], "the sample's radiance is its pixel's");
         double p2 = render_env_pdf(&e, d);
         if (pdf > 0 && fabs(pdf - p2) / pdf > worst) worst = fabs(pdf - p2) / pdf;
         int i = (int)(acos(d.z) / T_PI * h), j = (int)(fmod(atan2(d.y, d.x) + 2 * T_PI, 2 * T_PI) / (2 * T_PI) * w);
@@ -349,7 +352,7 @@ static void environment(void **state)
     double chi2 = 0, integral = 0;
     int cells = 0;
     for (int k = 0; k < w * h; k++) {
-        double p = e.pdf_scale[k] * 2 * T_PI * T_PI / (w * h);
+        double p = e.texel[k].pdf_scale * 2 * T_PI * T_PI / (w * h);
         integral += p;
         if (k == 37) continue;
         double ex = p * (double)n;

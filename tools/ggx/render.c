@@ -212,14 +212,13 @@ static void trace(const render_spec *r, const camera *cam, double x, double y, s
             }
         } else if (r->strategy != RENDER_BSDF_ONLY) {
             double pl, u1 = next_uniform(rs), u2 = next_uniform(rs);
-            ggx_vec3 wl = render_env_sample(r->env, u1, u2, &pl);
+            ggx_vec3 wl = render_env_sample(r->env, u1, u2, &pl, Le);
             if (pl > 0 && unoccluded(r, &h, wl)) {
                 ggx_vec3 l = to_local(&h, wl);
                 double f = bsdf_eval(r, l, v);
                 if (f > 0) {
                     double mis = r->strategy == RENDER_MIS ? power_heuristic(pl, bsdf_pdf(r, v, l)) : 1;
                     double c = beta * f * fabs(l.z) * mis / pl;
-                    render_env_radiance(r->env, wl, Le);
                     for (int k = 0; k < 3; k++) out[k] += c * Le[k];
                 }
             }
@@ -234,8 +233,8 @@ static void trace(const render_spec *r, const camera *cam, double x, double y, s
         if (unoccluded(r, &h, wd) || r->scene == RENDER_PLANE) {
             /* it leaves the scene (below the plane: into its inside, which gives nothing) */
             if (!env || r->strategy == RENDER_LIGHT_ONLY || !unoccluded(r, &h, wd)) return;
-            double mis = r->strategy == RENDER_MIS ? power_heuristic(pdf, render_env_pdf(r->env, wd)) : 1;
-            render_env_radiance(r->env, wd, Le);
+            double pe = render_env_lookup(r->env, wd, Le);
+            double mis = r->strategy == RENDER_MIS ? power_heuristic(pdf, pe) : 1;
             for (int k = 0; k < 3; k++) out[k] += beta * mis * Le[k];
             return;
         }

@@ -23,12 +23,18 @@
  * 2D distribution: a pixel with probability p_ij proportional to its luminance (Rec. 709: 0.2126 R + 0.7152 G +
  * 0.0722 B) times sin theta at its centre, drawn in constant time from an alias table (Walker, Vose), then uniformly
  * in (theta, phi) within it; pdf per solid angle p_ij w h / (2 pi^2 sin theta). */
+typedef struct render_texel {
+    float rgb[3];
+    float pdf_scale; /* p_ij w h / (2 pi^2): the pdf times sin theta (radiance and pdf in one cache line) */
+} render_texel;
+typedef struct render_alias {
+    float keep;      /* the probability of keeping pixel k ... */
+    uint32_t other;  /* ... and the pixel taken otherwise */
+} render_alias;
 typedef struct render_env {
     int w, h;
-    float *rgb;       /* 3 w h, row-major, the top row first */
-    float *pdf_scale; /* w h: p_ij w h / (2 pi^2), the pdf times sin theta */
-    float *prob;      /* w h: the alias table's probability of keeping pixel k ... */
-    uint32_t *alias;  /* ... and the pixel taken otherwise */
+    render_texel *texel; /* w h, row-major, the top row first */
+    render_alias *alias; /* w h */
 } render_env;
 
 /* Takes rgb (malloc'd, 3 w h floats; freed by render_env_free, also on failure). Refuses (returns -1 with a one-line
@@ -44,14 +50,17 @@ int render_env_white(render_env *e, double L, char *err, size_t errn);
  * disc's rim crosses are covered by 8 x 8 subsamples). */
 int render_env_sky(render_env *e, int w, int h, double sun_elev, double sun_az, double sun_radius,
                    double sun_irradiance, char *err, size_t errn);
-/* The defaults of `ggx render`'s sky: 1024 x 512 pixels, the sun at 35 degrees elevation, azimuth -120 degrees, of
+/* The defaults of `ggx render`'s sky: 512 x 256 pixels, the sun at 35 degrees elevation, azimuth -120 degrees, of
  * radius 1.5 degrees and irradiance 6 (the sky adds about 2.6 on a horizontal plane). */
 int render_env_default_sky(render_env *e, char *err, size_t errn);
-/* Radiance along unit d, written to rgb[3]. */
+/* Radiance along unit d, written to rgb[3]; with the pdf of render_env_sample for d (0 at the poles) as the return
+ * value. */
+double render_env_lookup(const render_env *e, ggx_vec3 d, double rgb[3]);
 void render_env_radiance(const render_env *e, ggx_vec3 d, double rgb[3]);
-/* A direction drawn from the distribution by (u1, u2) in [0, 1)^2, its pdf per solid angle in *pdf (0: invalid). */
-ggx_vec3 render_env_sample(const render_env *e, double u1, double u2, double *pdf);
 double render_env_pdf(const render_env *e, ggx_vec3 d);
+/* A direction drawn from the distribution by (u1, u2) in [0, 1)^2, its pdf per solid angle in *pdf (0: invalid) and
+ * its radiance in rgb[3]. */
+ggx_vec3 render_env_sample(const render_env *e, double u1, double u2, double *pdf, double rgb[3]);
 
 /* ---- what to render ---- */
 typedef enum render_scene { RENDER_SPHERE, RENDER_PLANE } render_scene;

@@ -17,7 +17,7 @@ static int env_fail(char *err, size_t errn, const char *msg)
 
 void render_env_free(render_env *e)
 {
-    free(e->rgb), free(e->pdf_scale), free(e->prob), free(e->alias);
+    free(e->texel), free(e->alias);
     memset(e, 0, sizeof *e);
 }
 
@@ -31,7 +31,7 @@ int render_env_init(render_env *e, int w, int h, float *rgb, long *negatives, ch
         free(rgb);
         return env_fail(err, errn, "an environment needs at least 1 x 1 pixels");
     }
-    e->w = w, e->h = h, e->rgb = rgb;
+    e->w = w, e->h = h;
     size_t count = (size_t)w * (size_t)h;
     long bad = 0, neg = 0;
     for (size_t i = 0; i < 3 * count; i++) {
@@ -40,20 +40,21 @@ int render_env_init(render_env *e, int w, int h, float *rgb, long *negatives, ch
     }
     if (negatives) *negatives = neg;
     if (bad) {
+        free(rgb);
         render_env_free(e);
         return surface_fail(err, errn, "%ld values of the environment are NaN or infinite (not radiance)", bad);
     }
     if (count > UINT32_MAX) {
+        free(rgb);
         render_env_free(e);
         return env_fail(err, errn, "an environment of more than 2^32 pixels");
     }
-    e->pdf_scale = malloc(count * sizeof *e->pdf_scale);
-    e->prob = malloc(count * sizeof *e->prob);
+    e->texel = malloc(count * sizeof *e->texel);
     e->alias = malloc(count * sizeof *e->alias);
     double *p = malloc(count * sizeof *p);
     uint32_t *work = malloc(count * sizeof *work);
-    if (!e->pdf_scale || !e->prob || !e->alias || !p || !work) {
-        free(p), free(work);
+    if (!e->texel || !e->alias || !p || !work) {
+        free(p), free(work), free(rgb);
         render_env_free(e);
         return env_fail(err, errn, "out of memory");
     }
@@ -66,6 +67,9 @@ int render_env_init(render_env *e, int w, int h, float *rgb, long *negatives, ch
             total += p[k];
         }
     }
+    for (size_t k = 0; k < count; k++)
+        for (int c = 0; c < 3; c++) e->texel[k].rgb[c] = rgb[3 * k + (size_t)c];
+    free(rgb);
     if (!(total > 0) || !isfinite(total)) {
         free(p), free(work);
         render_env_free(e);
@@ -76,19 +80,19 @@ int render_env_init(render_env *e, int w, int h, float *rgb, long *negatives, ch
      * large one. work holds the small indices from the front and the large from the back. */
     size_t ns = 0, nl = 0;
     for (size_t k = 0; k < count; k++) {
-        e->pdf_scale[k] = (float)(p[k] / total * (double)count / (2 * R_PI * R_PI));
+        e->texel[k].pdf_scale = (float)(p[k] / total * (double)count / (2 * R_PI * R_PI));
         p[k] *= (double)count / total;
         if (p[k] < 1) work[ns++] = (uint32_t)k;
         else work[count - 1 - nl++] = (uint32_t)k;
     }
     while (ns && nl) {
         uint32_t s = work[--ns], l = work[count - nl];
-        e->prob[s] = (float)p[s], e->alias[s] = l;
+        e->alias[s].keep = (float)p[s], e->alias[s].other = l;
         p[l] -= 1 - p[s];
         if (p[l] < 1) nl--, work[ns++] = l;
     }
-    while (nl) { uint32_t l = work[count - nl--]; e->prob[l] = 1, e->alias[l] = l; }
-    while (ns) { uint32_t s = work[--ns]; e->prob[s] = 1, e->alias[s] = s; } /* rounding's leftovers */
+    while (nl) { uint32_t l = work[count - nl--]; e->alias[l].keep = 1, e->alias[l].other = l; }
+    while (ns) { uint32_t s = work[--ns]; e->alias[s].keep = 1, e->alias[s].other = s; } /* rounding's leftovers */
     free(p), free(work);
     return 0;
 }
@@ -158,7 +162,7 @@ int render_env_sky(render_env *e, int w, int h, double sun_elev, double sun_az, 
 int render_env_default_sky(render_env *e, char *err, size_t errn)
 {
     double deg = R_PI / 180;
-    return render_env_sky(e, 1024, 512, 35 * deg, -120 * deg, 1.5 * deg, 6.0, err, errn);
+    return render_env_sky(e, 512, 256, 35 * deg, -120 * deg, 1.5 * deg, 6.0, err, errn);
 }
 
 /* The pixel of direction d and sin theta there. */
@@ -175,34 +179,38 @@ static size_t env_pixel(const render_env *e, ggx_vec3 d, double *sin_theta)
     return (size_t)i * (size_t)e->w + (size_t)j;
 }
 
-void render_env_radiance(const render_env *e, ggx_vec3 d, double rgb[3])
+double render_env_lookup(const render_env *e, ggx_vec3 d, double rgb[3])
 {
     double s;
-    const float *c = e->rgb + 3 * env_pixel(e, d, &s);
-    rgb[0] = c[0], rgb[1] = c[1], rgb[2] = c[2];
+    const render_texel *t = e->texel + env_pixel(e, d, &s);
+    rgb[0] = t->rgb[0], rgb[1] = t->rgb[1], rgb[2] = t->rgb[2];
+    return s > 0 ? t->pdf_scale / s : 0;
 }
+
+void render_env_radiance(const render_env *e, ggx_vec3 d, double rgb[3]) { render_env_lookup(e, d, rgb); }
 
 double render_env_pdf(const render_env *e, ggx_vec3 d)
 {
-    double s;
-    size_t k = env_pixel(e, d, &s);
-    return s > 0 ? e->pdf_scale[k] / s : 0;
+    double rgb[3];
+    return render_env_lookup(e, d, rgb);
 }
 
-ggx_vec3 render_env_sample(const render_env *e, double u1, double u2, double *pdf)
+ggx_vec3 render_env_sample(const render_env *e, double u1, double u2, double *pdf, double rgb[3])
 {
     size_t count = (size_t)e->w * (size_t)e->h;
     double x = fmin(fmax(u1, 0.0), 1.0) * (double)count, f;
     size_t k = (size_t)x;
     if (k >= count) k = count - 1;
     f = x - (double)k;
-    double keep = e->prob[k];
-    if (f < keep) f = f / keep; /* the fraction of the kept part, uniform again: theta within the pixel */
-    else f = (f - keep) / (1 - keep), k = e->alias[k];
+    render_alias a = e->alias[k];
+    if (f < a.keep) f = f / a.keep; /* the fraction of the kept part, uniform again: theta within the pixel */
+    else f = (f - a.keep) / (1 - a.keep), k = a.other;
     f = fmin(fmax(f, 0.0), 1.0);
     size_t i = k / (size_t)e->w, j = k % (size_t)e->w;
     double th = ((double)i + f) * R_PI / e->h, ph = ((double)j + fmin(fmax(u2, 0.0), 1.0)) * 2 * R_PI / e->w;
     double s = sin(th);
-    *pdf = s > 0 ? e->pdf_scale[k] / s : 0;
+    const render_texel *t = e->texel + k;
+    rgb[0] = t->rgb[0], rgb[1] = t->rgb[1], rgb[2] = t->rgb[2];
+    *pdf = s > 0 ? t->pdf_scale / s : 0;
     return dir_of(th, ph);
 }
