@@ -75,11 +75,11 @@ mutate $K/fresnel.inc "ggx_r rp = (eta * ci - ct) / (eta * ci + ct);" "ggx_r rp 
 mutate $K/ndf.inc "GGX_FN(k_finite0)(GGX_FN(ndf)(s, m) * mv * d / w)" \
     "GGX_FN(k_finite0)(GGX_FN(ndf)(s, m) * mv / v.z)" \
     "VNDF pdf with G1 dropped"
-mutate $K/sample.inc "ggx_r pz = w * opz;" "ggx_r pz = w * opz + GGX_C(0.1) * av.z;" \
+mutate $K/lune.inc "ggx_r pz = w * opz;" "ggx_r pz = w * opz + GGX_C(0.1) * av.z;" \
     "spherical cap with the wrong lower bound"
-mutate $K/sample.inc "sc = GGX_C(0.5) * opz," "sc = GGX_C(0.5) * (1 + vs.z * vs.z)," \
+mutate $K/lune.inc "sc = GGX_C(0.5) * opz," "sc = GGX_C(0.5) * (1 + vs.z * vs.z)," \
     "crescent factor s squared"
-mutate $K/sample.inc "ggx_r h = GGX_SQRT(GGX_FN(k_max0)(1 - d.x * d.x - d.y * d.y));" \
+mutate $K/rejection.inc "ggx_r h = GGX_SQRT(GGX_FN(k_max0)(1 - d.x * d.x - d.y * d.y));" \
     "ggx_r h = GGX_C(0.5) * GGX_SQRT(GGX_FN(k_max0)(1 - d.x * d.x - d.y * d.y));" \
     "rejection (Walter version 2) lifting the silhouette to half height"
 mutate src/batch/loops.inc "pdf[i] = uok ? r.pdf : 0.0f;" "pdf[i] = uok ? 0.5f * r.pdf : 0.0f;" \
@@ -97,22 +97,22 @@ mutate src/api/registry.c "return ggx_pdf_ndf(s, m);" "return ggx_pdf_vndf(s, v,
 mutate $K/traits.h "#define GGX_PROOF_C GGX_C(1.52587890625e-05) /* 2^-16 */" \
     "#define GGX_PROOF_C GGX_C(2.384185791015625e-07) /* 2^-22 */" \
     "float caps proof's C term 64 times too small (its premise fails for views along A's most contracted direction)"
-mutate $K/sample.inc "ggx_rw b = GGX_BOUND_DIVIDE ? 1 : (ggx_rw)GGX_B33(s), b2 = b * b;" "ggx_rw b = 1, b2 = 1;" \
+mutate $K/bounded.inc "ggx_rw b = GGX_BOUND_DIVIDE ? 1 : (ggx_rw)GGX_B33(s), b2 = b * b;" "ggx_rw b = 1, b2 = 1;" \
     "bounded plane's fraction in double without its scale (scaled shapes fall to the slow path's u2 kappa at the rim)"
 mutate $K/traits.h "#define GGX_FACE_FLOOR(bar, mu2) ((mu2) >= 1e-250)" "#define GGX_FACE_FLOOR(bar, mu2) ((bar) >= 1e-78)" \
     "double facing check's floor on bar instead of mu.mu (small matrices leave the fast path)"
-mutate $K/sample.inc "(p.z >= GGX_PROOF_T * k)" "(p.z >= 0)" \
+mutate $K/lune.inc "(p.z >= GGX_PROOF_T * k)" "(p.z >= 0)" \
     "scalar caps sampler's proof without the rim bound (returns unchecked normals at the rim)"
-mutate $K/sample.inc "*q = 1 - u1; /* exact for u1 >= 1/2 */" "*q = 1 - r * r * (c * c + sn * sn);" \
+mutate $K/disk.inc "*q = 1 - u1; /* exact for u1 >= 1/2 */" "*q = 1 - r * r * (c * c + sn * sn);" \
     "polar disk's 1 - |d|^2 by cancellation (float crescent-polar, Heitz and ellipse samplers off near the rim)"
-mutate $K/sample.inc "    return rt < rc ? rt : rc;" "    return rt < rc ? rc : rt;" \
+mutate $K/bounded.inc "    return rt < rc ? rt : rc;" "    return rt < rc ? rc : rt;" \
     "per-azimuth bound stopping at the later of its two quadratics' roots (removes points only one of them bounds)"
-mutate $K/sample.inc "    cur = two & (ra >= h1) ? rb : ra;" "    cur = two ? rb : ra;" \
+mutate $K/bounded.inc "    cur = (two & (ra >= h1)) ? rb : ra;" "    cur = two ? rb : ra;" \
     "per-azimuth bound's second stage taken where the first stopped below the equator"
-mutate $K/sample.inc "    int ok = (wn.z > 0) & (b > start) & (num > 0) & (num < den);" \
+mutate $K/bounded.inc "    int ok = (wn.z > 0) & (b > start) & (num > 0) & (num < den);" \
     "    int ok = (wn.z > 0) & (b > start - 2) & (num > 0) & (num < den);" \
     "per-azimuth bound in absolute z where the stages leave the plane bound (kappa above the plane's)"
-mutate $K/sample.inc "    ggx_rw P = 1 - t * y, Q = (dy3 - 2 * t * y) + 3;" \
+mutate $K/bounded.inc "    ggx_rw P = 1 - t * y, Q = (dy3 - 2 * t * y) + 3;" \
     "    ggx_rw d = (ggx_rw)s->det * (ggx_rw)s->det, P = 1 - t * y, Q = (d * y * y * y + 0 * dy3 - 2 * t * y) + 3;" \
     "sigma2's Newton step from det^2 (subnormal for ill-conditioned matrices near 1e-50)"
 echo "$killed mutant(s) killed, $survived survived"

@@ -261,7 +261,7 @@ static void properties(void **state)
 }
 
 
-/* The premise of the float caps proof (sample.inc, above k_lune_core_pk), from the computed lune point p and the
+/* The premise of the float caps proof (lune.inc, above k_lune_core_span), from the computed lune point p and the
  * float shape's entries in double: p.z^2 >= K ||A||_F L with K = 2.02 (66 u + 4.08 (margin + u)), u = 2^-24, L =
  * ||A v||. The sampler tests the cheaper p.z >= T L and p.z^2 >= C ||A||_F^2 (traits), whose product implies it
  * where T sqrt(C) >= K (2^-14 against 1.63e-5). The outcome check below cannot see a weakened test: the bound is a
@@ -290,7 +290,7 @@ static void proof_premise_f(const ggx_shapef *sf, ggx_vec3f v, float u1, float u
 {
     ggx_vec3f av = ggx_k_amul_f(sf, v), sv;
     float k;
-    ggx_vec3f p = ggx_k_lune_point_scaled_f(GGX_SAMPLER_CAPS, av, ggx_k_len_f(av), u1, u2, 1 - u2, 1, &k, &sv);
+    ggx_vec3f p = ggx_k_lune_point_scaled_f(GGX_K_MAP_CAPS, av, ggx_k_len_f(av), u1, u2, 1 - u2, 1, &k, &sv);
     double f2, l2;
     frob_len_f(sf, v, &f2, &l2);
     double u = ldexp(1.0, -24), margin = ldexp(1.0, -20), K = 2.02 * (66 * u + 4.08 * (margin + u));
@@ -302,7 +302,7 @@ static void proof_premise_f(const ggx_shapef *sf, ggx_vec3f v, float u1, float u
 }
 
 /* The scalar float caps sampler returns m without the ellipsoid-space check where a bound proves that the check
- * would pass (k_lune_core_pk, *proved; the double sampler has no proof: GGX_CAPS_PROOF). Over the extreme shapes
+ * would pass (k_lune_core_span, *proved; the double sampler has no proof: GGX_CAPS_PROOF). Over the extreme shapes
  * (alpha 1e-4 with skews to pi/2, ratio 1:1e7, scaled matrices) and random ones, views of length 1/2 to 2 including
  * grazing ones, and u2 up to 1 - 2^-52: wherever the proof holds the check holds too and the sampler returns that
  * very m; and the proof's premise holds (proof_premise_f), with u2 placed where p.z is near the proof's T ||A v||,
@@ -355,11 +355,11 @@ static void caps_proof(void **state)
             band += f2 >= 23.0 * 23.0 * l2 && f2 <= 32.0 * 32.0 * l2;
         }
         int ok, pr;
-        ggx_k_lune_core_p_d(&s, v, u1, u2, GGX_SAMPLER_CAPS, &ok, &pr);
+        ggx_k_lune_core_p_d(&s, v, u1, u2, GGX_K_MAP_CAPS, &ok, &pr);
         CHECK(!pr, "the double sampler claimed a proof: %s", what);
         ggx_vec3f vf = {(float)v.x, (float)v.y, (float)v.z};
         float f1 = (float)u1, f2 = (float)u2;
-        ggx_vec3f mf = ggx_k_lune_core_p_f(&sf, vf, f1, f2, GGX_SAMPLER_CAPS, &ok, &pr);
+        ggx_vec3f mf = ggx_k_lune_core_p_f(&sf, vf, f1, f2, GGX_K_MAP_CAPS, &ok, &pr);
         if (pr) {
             ggx_vec3f wf = ggx_sample_vndf_caps_f(&sf, vf, f1, f2);
             double mv = ((double)mf.x * vf.x + (double)mf.y * vf.y + (double)mf.z * vf.z) /

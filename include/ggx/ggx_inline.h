@@ -35,7 +35,7 @@
 #include <math.h>
 
 #include "ggx/ggx.h"
-#include "ggx/ggx_samplers.h"
+#include "ggx/kernel/maps.h"
 
 /* GGX_HD qualifies every kernel. A program may define it before including this header (the library defines it to
  * force inlining in its own loops, so that they vectorise). */

@@ -4,7 +4,7 @@
  * One list, GGX_SAMPLER_LIST, names every sampler of the library once. The run-time table (ggx_sampler_get,
  * ggx_sampler_find), the batch kernels, the ggx command's --sampler option, the test sweeps, the fuzz target, the
  * benchmark and the seed audit are all generated from it or iterate the table. Adding a sampler is one kernel (for a
- * sphere-space sampler, one case of k_lune_point in kernel/sample.inc) and one line here.
+ * sphere-space sampler, one case of k_lune_point in kernel/lune.inc) and one line here.
  */
 #ifndef GGX_GGX_SAMPLERS_H
 #define GGX_GGX_SAMPLERS_H

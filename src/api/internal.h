@@ -8,6 +8,7 @@
 #define GGX_HD static inline __attribute__((always_inline, unused))
 #endif
 #include "ggx/ggx_inline.h"
+#include "ggx/ggx_samplers.h"
 
 #define GGX_PI 3.14159265358979323846
 

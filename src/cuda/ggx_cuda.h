@@ -11,6 +11,7 @@
 #include <stddef.h>
 
 #include "ggx/ggx_inline.h"
+#include "ggx/ggx_samplers.h"
 
 #ifdef __cplusplus
 extern "C" {

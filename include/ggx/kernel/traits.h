@@ -38,9 +38,9 @@
  * ||A v||^2 stays below FLT_MAX; anything else is rescaled first. */
 #define GGX_L2_MIN GGX_C(1e-20)
 #define GGX_L2_MAX GGX_C(1e4)
-/* The caps fast path's shortest views (k_lune_core_pk): as the others (GGX_L2_MIN). */
+/* The caps fast path's shortest views (k_lune_core_span): as the others (GGX_L2_MIN). */
 #define GGX_L2_FAST GGX_L2_MIN
-/* The floor of the fast path's facing check (k_lune_core_pk), on bar = margin^2 |v|^2 mu.mu: a normal number (float's
+/* The floor of the fast path's facing check (k_lune_core_span), on bar = margin^2 |v|^2 mu.mu: a normal number (float's
  * smallest is 1.2e-38), and with |v|^2 <= GGX_L2_MAX it keeps mu.mu >= 1e-37 / (2^-40 1e4) = 1.1e-29, 1e9 times
  * float's smallest normal, so that mu's components lose no precision to subnormals. (The float shape is normalised,
  * ||A n|| = 1: an absolute floor is scale-free.) Views shorter than about 1e-6 (for |A| ~ 1) take the slow path. */
