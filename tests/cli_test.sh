@@ -105,14 +105,16 @@ else
     "$GGX" audit > audit.md && CLAIMS=$(grep -c '^| [0-9]' audit.md) && [ "$CLAIMS" -gt 0 ] &&
         [ "$(grep '^| [0-9]' audit.md | tail -1 | cut -d' ' -f2)" = "$CLAIMS" ] && grep -q 'fails' audit.md &&
         cmp -s audit.md "$ROOT/docs/audit.md" && ok || bad "audit: docs/audit.md is not ggx audit's output: $(diff audit.md "$ROOT/docs/audit.md" | head -5)"
-    # JSON: a list of the claims, each naming its seed file and giving three verdicts from the vocabulary
+    # JSON: a list of the claims, each naming its seeds by their short names and giving three verdicts from the
+    # vocabulary
     "$GGX" audit --format json --rotate 10 > audit.json && CLAIMS=$CLAIMS /usr/bin/python3 -c '
 import json, os
 rows = json.load(open("audit.json"))
 words = {"holds", "holds with a correction", "fails", "not claimed"}
+seeds = {"walter-ellipsoid", "engstad-stretch", "engstad-vndf-proof", "ellipsoidal-ggx-1", "ellipsoidal-ggx-2"}
 assert len(rows) == int(os.environ["CLAIMS"]), len(rows)
 for r in rows:
-    assert r["seed_file"].endswith(".txt") and len(r["verdicts"]) == 3, r
+    assert set(r["seed"].split(", ")) <= seeds and len(r["verdicts"]) == 3, r
     assert all(v["verdict"] in words and v["evidence"] for v in r["verdicts"]), r
 ' && ok || bad "audit --format json"
 fi
@@ -342,9 +344,9 @@ one_line "too few samples (demo)" "needs at least 10000 samples" 2 "$GGX" demo -
 "$GGX" check --alpha 1e4 --sampler caps -n 20000 > nojac.txt && grep -q "(no point)" nojac.txt && ! grep -q "0.00e+00" nojac.txt && ok || bad "check without Jacobian points: $(cat nojac.txt)"
 one_line "ill-conditioned matrix" "ill-conditioned" 2 "$GGX" eval --matrix 1e9,0,0,0,1,0,0,0,1
 if [ "${GGX_CLI_QUICK:-0}" != 1 ]; then
-    # CSV: a header row, one row per claim and shape, every row naming a seed file; --alpha sets all three shapes
-    "$GGX" audit --alpha 0.15,0.5 --format csv > a2.csv && head -1 a2.csv | grep -qx 'id,seed_file,where,scope,claim,shape,verdict,evidence' &&
-        [ "$(tail -n +2 a2.csv | grep -c '^"[a-z0-9-]*","[0-9][0-9][0-9]_[0-9a-f]*\.txt')" -eq $((3 * CLAIMS)) ] &&
+    # CSV: a header row, one row per claim and shape, every row naming a seed; --alpha sets all three shapes
+    "$GGX" audit --alpha 0.15,0.5 --format csv > a2.csv && head -1 a2.csv | grep -qx 'id,seed,where,scope,claim,shape,verdict,evidence' &&
+        [ "$(tail -n +2 a2.csv | grep -Ec '^"[a-z0-9-]*","(walter-ellipsoid|engstad-stretch|engstad-vndf-proof|ellipsoidal-ggx-[12])')" -eq $((3 * CLAIMS)) ] &&
         grep -q '"rotated A (0.15, 0.5; theta_z 28.65 deg)"' a2.csv && grep -q '"skewed A (0.15, 0.5; 22.92, -17.19, 28.65 deg)"' a2.csv &&
         ok || bad "audit --alpha --format csv: $(head -3 a2.csv)"
     # every audit row that docs/seed-claims.md names as covering a claim exists
