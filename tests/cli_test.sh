@@ -35,9 +35,10 @@ done
 pdftotext -f 17 -l 17 out/figures.pdf - | grep -q "the material, lit" && ok || bad "figures.pdf: no page of lit spheres"
 pdfinfo out/figures.pdf > pdf.txt && grep -q "^Pages: *17$" pdf.txt && grep -q "^Page size: *842 x 595 pts" pdf.txt && ok ||
     bad "demo figures.pdf: $(cat pdf.txt)"
-# the pages name the seed files, in the seeds' order (seed 001's four figures, then seed 004's eight)
-pdftotext out/figures.pdf - | grep -o "Seed [0-9]*_[0-9a-f]*\.txt" | uniq -c | awk '{ print $1, $3 }' | tr '\n' ' ' > seeds.txt
-[ "$(cat seeds.txt)" = "4 001_3ccb6b534f20718a.txt 8 004_96c01450b98ca7e0.txt " ] && ok || bad "figures.pdf seed order: $(cat seeds.txt)"
+# the pages name the seeds (docs/references.md), in their order (Elliptic Stretch's four figures, then the VNDF
+# proof's eight)
+pdftotext out/figures.pdf - | grep -o "Seed [a-z0-9-]*," | uniq -c | awk '{ print $1, $3 }' | tr '\n' ' ' > seeds.txt
+[ "$(cat seeds.txt)" = "4 engstad-stretch, 8 engstad-vndf-proof, " ] && ok || bad "figures.pdf seed order: $(cat seeds.txt)"
 
 "$GGX" eval > eval.csv && ok || bad "ggx eval"
 [ "$(wc -l < eval.csv)" -eq 5 ] && [ "$(awk -F, 'NR > 1 && NF != 19 { n++ } END { print n + 0 }' eval.csv)" -eq 0 ] &&
