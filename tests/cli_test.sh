@@ -354,16 +354,21 @@ if [ "${GGX_CLI_QUICK:-0}" != 1 ]; then
     grep -o '(covered: [a-z0-9, -]*)' "$ROOT/docs/seed-claims.md" | sed 's/(covered: \(.*\))/\1/' | tr ',' '\n' | tr -d ' ' | sort -u > covered.txt
     cut -d, -f1 a2.csv | tr -d '"' | sort -u > ids.txt
     [ -s covered.txt ] && [ -z "$(comm -23 covered.txt ids.txt)" ] && ok || bad "seed-claims.md names rows the audit lacks: $(comm -23 covered.txt ids.txt)"
-    # the README's command lines, run as written (from the ```sh block of "The ggx command")
+    # the README's command lines, run as written (from the ```sh block of "The ggx command"), then those of
+    # docs/cli.md's "Examples"
     sed -n '/^## The `ggx` command/,/^## /p' "$ROOT/README.md" | sed -n '/^```sh/,/^```/p' | grep '^ggx ' |
         sed 's/ *#.*//' > readme_cmds.txt
     [ "$(wc -l < readme_cmds.txt)" -ge 6 ] && ok || bad "README command lines not found"
+    sed -n '/^## Examples/,/^## /p' "$ROOT/docs/cli.md" | sed -n '/^```sh/,/^```/p' | grep '^ggx ' |
+        sed 's/ *#.*//' > cli_doc_cmds.txt
+    [ "$(wc -l < cli_doc_cmds.txt)" -ge 10 ] && ok || bad "docs/cli.md example lines not found"
+    cat readme_cmds.txt cli_doc_cmds.txt | awk '!seen[$0]++' > doc_cmds.txt # each distinct line once
     while read -r line; do
         # shellcheck disable=SC2086
         set -- $line
         shift
-        "$GGX" "$@" > readme_out.txt 2>&1 && ok || bad "README line '$line': $(tail -2 readme_out.txt)"
-    done < readme_cmds.txt
+        "$GGX" "$@" > readme_out.txt 2>&1 && ok || bad "documented line '$line': $(tail -2 readme_out.txt)"
+    done < doc_cmds.txt
 fi
 
 echo "cli: $pass passed, $fail failed"
