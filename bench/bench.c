@@ -150,7 +150,7 @@ SCALAR_BENCH(b_bsdftab, ggx_bsdf_albedo_iso_table(0.05 + c->u1[k], 1.2 + c->u2[k
  * isotropic table against the quadrature it replaces. */
 static void energy_table(sctx *sc, const ggx_shape *diag, const ggx_shape *skew, long ns)
 {
-    printf("\nenergy compensation (docs/energy.md), ns per call   diagonal A    skewed A\n");
+    printf("\nenergy compensation (docs/design/energy.md), ns per call   diagonal A    skewed A\n");
     const ggx_shape *sh[2] = {diag, skew};
     ggx_energy *e[2];
     double setup[2], r[8][2];
@@ -211,7 +211,7 @@ static void energy_table(sctx *sc, const ggx_shape *diag, const ggx_shape *skew,
 
 static double rnd(uint64_t *s);
 
-/* The best any sampler of the bounded form can do (docs/bounded-vndf.md, "What no bound of this form can do"): such
+/* The best any sampler of the bounded form can do (docs/design/bounded-vndf.md, "What no bound of this form can do"): such
  * a sampler keeps the caps' azimuth 2 pi u1 and draws u2 uniformly in [0, u2*(u1)) (c.z uniform above a bound), and
  * no removed point may reflect above the horizon, so on each meridian it keeps at least [0, u2*] with u2* the largest
  * u2 whose plain sample (ggx_sample_brdf, the same cap point) is valid. On a grid of np meridians and nz heights,

@@ -35,9 +35,10 @@ done
 pdftotext -f 17 -l 17 out/figures.pdf - | grep -q "the material, lit" && ok || bad "figures.pdf: no page of lit spheres"
 pdfinfo out/figures.pdf > pdf.txt && grep -q "^Pages: *17$" pdf.txt && grep -q "^Page size: *842 x 595 pts" pdf.txt && ok ||
     bad "demo figures.pdf: $(cat pdf.txt)"
-# the pages name the seed files, in the seeds' order (seed 001's four figures, then seed 004's eight)
-pdftotext out/figures.pdf - | grep -o "Seed [0-9]*_[0-9a-f]*\.txt" | uniq -c | awk '{ print $1, $3 }' | tr '\n' ' ' > seeds.txt
-[ "$(cat seeds.txt)" = "4 001_3ccb6b534f20718a.txt 8 004_96c01450b98ca7e0.txt " ] && ok || bad "figures.pdf seed order: $(cat seeds.txt)"
+# the pages name the seeds (docs/references.md), in their order (Elliptic Stretch's four figures, then the VNDF
+# proof's eight)
+pdftotext out/figures.pdf - | grep -o "Seed [a-z0-9-]*," | uniq -c | awk '{ print $1, $3 }' | tr '\n' ' ' > seeds.txt
+[ "$(cat seeds.txt)" = "4 engstad-stretch, 8 engstad-vndf-proof, " ] && ok || bad "figures.pdf seed order: $(cat seeds.txt)"
 
 "$GGX" eval > eval.csv && ok || bad "ggx eval"
 [ "$(wc -l < eval.csv)" -eq 5 ] && [ "$(awk -F, 'NR > 1 && NF != 19 { n++ } END { print n + 0 }' eval.csv)" -eq 0 ] &&
@@ -100,19 +101,21 @@ done
 if [ "${GGX_CLI_QUICK:-0}" = 1 ]; then # 16 chi-square runs of 10^6 samples: minutes under valgrind
     "$GGX" audit --help > audit.txt && ok || bad "audit --help"
 else
-    # docs/audit.md is the command's output on its defaults, byte for byte
-    # (the number of claims is docs/testing.md's; tests/test_audit.c lists them)
-    CLAIMS=$(sed -n 's/.*the seed audit (\[docs\/audit.md\](audit.md), which is `ggx audit`.s output, compared byte for byte): \([0-9]*\) claims.*/\1/p' "$ROOT/docs/testing.md")
-    "$GGX" audit > audit.md && [ -n "$CLAIMS" ] && [ "$(grep -c '^| [0-9]' audit.md)" -eq "$CLAIMS" ] && grep -q 'fails' audit.md &&
-        cmp -s audit.md "$ROOT/docs/audit.md" && ok || bad "audit: docs/audit.md is not ggx audit's output or not the $CLAIMS claims of docs/testing.md: $(diff audit.md "$ROOT/docs/audit.md" | head -5)"
-    # JSON: a list of the claims, each naming its seed file and giving three verdicts from the vocabulary
+    # docs/audit.md is the command's output on its defaults, byte for byte; its rows are numbered 1 to the number
+    # of claims, which the other formats must match (tests/test_audit.c lists the claims and asserts the count)
+    "$GGX" audit > audit.md && CLAIMS=$(grep -c '^| [0-9]' audit.md) && [ "$CLAIMS" -gt 0 ] &&
+        [ "$(grep '^| [0-9]' audit.md | tail -1 | cut -d' ' -f2)" = "$CLAIMS" ] && grep -q 'fails' audit.md &&
+        cmp -s audit.md "$ROOT/docs/audit.md" && ok || bad "audit: docs/audit.md is not ggx audit's output: $(diff audit.md "$ROOT/docs/audit.md" | head -5)"
+    # JSON: a list of the claims, each naming its seeds by their short names and giving three verdicts from the
+    # vocabulary
     "$GGX" audit --format json --rotate 10 > audit.json && CLAIMS=$CLAIMS /usr/bin/python3 -c '
 import json, os
 rows = json.load(open("audit.json"))
 words = {"holds", "holds with a correction", "fails", "not claimed"}
+seeds = {"walter-ellipsoid", "engstad-stretch", "engstad-vndf-proof", "ellipsoidal-ggx-1", "ellipsoidal-ggx-2"}
 assert len(rows) == int(os.environ["CLAIMS"]), len(rows)
 for r in rows:
-    assert r["seed_file"].endswith(".txt") and len(r["verdicts"]) == 3, r
+    assert set(r["seed"].split(", ")) <= seeds and len(r["verdicts"]) == 3, r
     assert all(v["verdict"] in words and v["evidence"] for v in r["verdicts"]), r
 ' && ok || bad "audit --format json"
 fi
@@ -342,25 +345,30 @@ one_line "too few samples (demo)" "needs at least 10000 samples" 2 "$GGX" demo -
 "$GGX" check --alpha 1e4 --sampler caps -n 20000 > nojac.txt && grep -q "(no point)" nojac.txt && ! grep -q "0.00e+00" nojac.txt && ok || bad "check without Jacobian points: $(cat nojac.txt)"
 one_line "ill-conditioned matrix" "ill-conditioned" 2 "$GGX" eval --matrix 1e9,0,0,0,1,0,0,0,1
 if [ "${GGX_CLI_QUICK:-0}" != 1 ]; then
-    # CSV: a header row, one row per claim and shape, every row naming a seed file; --alpha sets all three shapes
-    "$GGX" audit --alpha 0.15,0.5 --format csv > a2.csv && head -1 a2.csv | grep -qx 'id,seed_file,where,scope,claim,shape,verdict,evidence' &&
-        [ "$(tail -n +2 a2.csv | grep -c '^"[a-z0-9-]*","[0-9][0-9][0-9]_[0-9a-f]*\.txt')" -eq $((3 * CLAIMS)) ] &&
+    # CSV: a header row, one row per claim and shape, every row naming a seed; --alpha sets all three shapes
+    "$GGX" audit --alpha 0.15,0.5 --format csv > a2.csv && head -1 a2.csv | grep -qx 'id,seed,where,scope,claim,shape,verdict,evidence' &&
+        [ "$(tail -n +2 a2.csv | grep -Ec '^"[a-z0-9-]*","(walter-ellipsoid|engstad-stretch|engstad-vndf-proof|ellipsoidal-ggx-[12])')" -eq $((3 * CLAIMS)) ] &&
         grep -q '"rotated A (0.15, 0.5; theta_z 28.65 deg)"' a2.csv && grep -q '"skewed A (0.15, 0.5; 22.92, -17.19, 28.65 deg)"' a2.csv &&
         ok || bad "audit --alpha --format csv: $(head -3 a2.csv)"
     # every audit row that docs/seed-claims.md names as covering a claim exists
     grep -o '(covered: [a-z0-9, -]*)' "$ROOT/docs/seed-claims.md" | sed 's/(covered: \(.*\))/\1/' | tr ',' '\n' | tr -d ' ' | sort -u > covered.txt
     cut -d, -f1 a2.csv | tr -d '"' | sort -u > ids.txt
     [ -s covered.txt ] && [ -z "$(comm -23 covered.txt ids.txt)" ] && ok || bad "seed-claims.md names rows the audit lacks: $(comm -23 covered.txt ids.txt)"
-    # the README's command lines, run as written (from the ```sh block of "The ggx command")
+    # the README's command lines, run as written (from the ```sh block of "The ggx command"), then those of
+    # docs/cli.md's "Examples"
     sed -n '/^## The `ggx` command/,/^## /p' "$ROOT/README.md" | sed -n '/^```sh/,/^```/p' | grep '^ggx ' |
         sed 's/ *#.*//' > readme_cmds.txt
     [ "$(wc -l < readme_cmds.txt)" -ge 6 ] && ok || bad "README command lines not found"
+    sed -n '/^## Examples/,/^## /p' "$ROOT/docs/cli.md" | sed -n '/^```sh/,/^```/p' | grep '^ggx ' |
+        sed 's/ *#.*//' > cli_doc_cmds.txt
+    [ "$(wc -l < cli_doc_cmds.txt)" -ge 10 ] && ok || bad "docs/cli.md example lines not found"
+    cat readme_cmds.txt cli_doc_cmds.txt | awk '!seen[$0]++' > doc_cmds.txt # each distinct line once
     while read -r line; do
         # shellcheck disable=SC2086
         set -- $line
         shift
-        "$GGX" "$@" > readme_out.txt 2>&1 && ok || bad "README line '$line': $(tail -2 readme_out.txt)"
-    done < readme_cmds.txt
+        "$GGX" "$@" > readme_out.txt 2>&1 && ok || bad "documented line '$line': $(tail -2 readme_out.txt)"
+    done < doc_cmds.txt
 fi
 
 echo "cli: $pass passed, $fail failed"

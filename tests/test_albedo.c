@@ -206,7 +206,7 @@ static void bsdf_albedo_deterministic(void **state)
             /* Light from the denser side: the map from facets to refracted directions folds at the critical angle,
              * where the transmitted lobe has an integrable 1 / sqrt edge in w that the quadrature over w resolves
              * only to ~1e-5 (at grazing: 1.6e-5, while 4e8 Monte Carlo samples agree with ggx_bsdf_albedo to 7e-7,
-             * docs/albedo.md). There the reference is trusted to 1e-4. */
+             * docs/design/albedo.md). There the reference is trusted to 1e-4. */
             double rel = v.z > 0 ? eta : 1 / eta, ref_tol = rel < 1 ? 1e-4 : BSDF_PROMISE;
             CHECK_CLOSE(r, rq, 0, ref_tol, "R, shape %d, eta %g, view %d", i, eta, j);
             CHECK_CLOSE(t, tq, 0, ref_tol, "T, shape %d, eta %g, view %d", i, eta, j);
@@ -317,7 +317,7 @@ static void against_monte_carlo(void **state)
 }
 
 /* E_avg against Monte Carlo: views drawn with density v.z / pi, then a BRDF sample. A skewed E_avg takes about
- * 15 s (docs/albedo.md), so part 3 runs it alone. */
+ * 15 s (docs/design/albedo.md), so part 3 runs it alone. */
 static int avg_first, avg_last;
 static void average_against_monte_carlo(void **state)
 {

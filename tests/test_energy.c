@@ -111,7 +111,7 @@ static void table_against_albedo(void **state)
         printf("%-36s max |E_table - E| = %.2e\n", SHAPES[i].name, shape_worst);
         if (shape_worst > worst) worst = shape_worst;
         /* E_avg of the table against the exact one. A skewed E_avg costs about 15 s each, so for the two skewed
-         * shapes the values are ggx_albedo_avg's, computed once (2026-11-23; 1e-6 promised, docs/albedo.md). */
+         * shapes the values are ggx_albedo_avg's, computed once (2026-11-23; 1e-6 promised, docs/design/albedo.md). */
         double exact = i == 5 ? 0.467027305 : i == 6 ? 0.312155710 : ggx_albedo_avg(&shapes[i]);
         CHECK_CLOSE(ggx_energy_albedo_avg(tables[i]), exact, 0, TABLE_PROMISE, "%s: E_avg", SHAPES[i].name);
         printf("%-36s E_avg of the table - E_avg = %.1e\n", SHAPES[i].name, ggx_energy_albedo_avg(tables[i]) - exact);
@@ -401,7 +401,7 @@ static void aniso_table(void **state)
     printf("aniso table: largest |E_table - E| %.2e (ratios to 4), %.2e (4 to 20), %.2e (20 to 40)\n", worst[0],
            worst[1], worst[2]);
     /* the hardest slices: small alphas at 89 degrees (the 33 rows), ratios 4 and 20 near the axis of the smaller
-     * alpha (the azimuths; docs/energy.md); the last view is a hostile tester's worst case at ratio 20 */
+     * alpha (the azimuths; docs/design/energy.md); the last view is a hostile tester's worst case at ratio 20 */
     double slice[3] = {0, 0, 0};
     for (int i = 0; i < 6; i++)
         for (int j = 0; j < 6; j++)

@@ -192,7 +192,7 @@ static void dielectric_sweep(void **state)
 }
 
 /* The bound of bounded reflection sampling removes only cap points that reflect the view below the horizon
- * (docs/bounded-vndf.md): for random shapes (alpha 0.02 to 2, ratio to 1:10, skews to 0.5 rad, any rotation) and
+ * (docs/design/bounded-vndf.md): for random shapes (alpha 0.02 to 2, ratio to 1:10, skews to 0.5 rad, any rotation) and
  * views (a quarter grazing, and n itself), cap points c drawn on the removed band -vs.z <= c.z < b = 1 - kappa (1 +
  * vs.z) give m = normalize(A'^T (vs + c)) and wo = reflect(v, m) with wo.z <= 0 (1e-9 for rounding), computed here
  * from the shape's matrix, not by the sampler. kappa is scale-free in A (1e-5 A and 1e5 A give the same). Negative
@@ -251,7 +251,7 @@ static void bounded_removes_only_below_horizon(void **state)
             double u1 = rng_uniform(&r), ka = ggx_k_bound_kappa_u_d(&s, v, ggx_k_bound_sigma2_d(&s), u1);
             double kp = ggx_k_bound_kappa_d(&s, v);
             CHECK(ka > 0 && ka <= kp * (1 + 1e-12), "per-azimuth kappa %.17g, plane %.17g", ka, kp);
-            for (int e = -5; e <= 5; e += 10) { /* scale-free, up to its conditioning (docs/bounded-vndf.md) */
+            for (int e = -5; e <= 5; e += 10) { /* scale-free, up to its conditioning (docs/design/bounded-vndf.md) */
                 double t = pow(10.0, e), M[3][3];
                 for (int a = 0; a < 3; a++)
                     for (int b = 0; b < 3; b++) M[a][b] = t * s.a[a][b];
@@ -323,7 +323,7 @@ static void bounded_removes_only_below_horizon(void **state)
            "%.3g\n", w);
 }
 
-/* The plane bound of unskewed shapes in closed form (docs/bounded-vndf.md, "Unskewed shapes"). (1) Isotropic alpha:
+/* The plane bound of unskewed shapes in closed form (docs/design/bounded-vndf.md, "Unskewed shapes"). (1) Isotropic alpha:
  * the bound is exact, and equals Eto and Tokuyoshi's (2023), written here from their formula: the cap's lower end
  * b = -k vs.z with k = (1 - a^2) s^2 / (s^2 + a^2 wi.z^2), s = 1 + |wi.xy|, a = min(alpha, 1), so kappa =
  * (1 + k vs.z) / (1 + vs.z). (2) Any unskewed shape at wi = n: kappa = 1 / (1 + a^2), a = min(alpha_x, alpha_y, 1)
@@ -533,7 +533,7 @@ static void bounded_tiny_skew(void **state)
  * shapes (skews too) and views; (2) the albedo estimated with its weights (F = 1) equals the one estimated by plain
  * reflection sampling (chi-square tested above; independent random numbers, 4 times the samples) within 4.5
  * combined standard errors (family-wise about 1e-4 over the 27 cases), for every sweep shape at views 0, 45 and 80
- * degrees; (3) its variance is no larger (kappa times the second moment, docs/bounded-vndf.md), within 4.5 standard
+ * degrees; (3) its variance is no larger (kappa times the second moment, docs/design/bounded-vndf.md), within 4.5 standard
  * errors of the two variance estimates. The reference is not the hemisphere quadrature of f_r wo.z over the half vector (test_bsdf.c's
  * brdf_albedo): for skew 0.3:1 at view 0 that gives 0.39868 where a uniform-hemisphere Monte Carlo estimate of 2 10^7
  * samples gives 0.40136 +- 0.00009 and both samplers agree with the latter: its integrand jumps at wo.z = 0, a curve

@@ -75,7 +75,7 @@ static void apply_scope(audit_row *r, const ggx_shape sh[AUDIT_SHAPES])
  * - chi2_seed: the seed of the run for shape k is chi2_seed + 2k (+ 1 for the library's form after a literal);
  * - note_skewed: appended to the evidence for skewed shapes. */
 typedef struct sampler_claim {
-    const char *claim, *seed_file, *where;
+    const char *claim, *seed, *where;
     audit_scope scope;
     uint64_t chi2_seed;
     au_literal_fn literal;
@@ -127,7 +127,7 @@ static void sampler_rows(audit_row *rows, int *nr, ggx_sampler_family family, co
         const ggx_sampler_info *info = ggx_sampler_get((ggx_sampler_id)id);
         const sampler_claim *cl = &CLAIMS[id];
         if (info->family != family || !cl->claim || !info->sample) continue;
-        audit_row *r = au_add(rows, nr, info->name, cl->claim, cl->seed_file, cl->where, cl->scope);
+        audit_row *r = au_add(rows, nr, info->name, cl->claim, cl->seed, cl->where, cl->scope);
         const ggx_vec3 views[2] = {family == GGX_FAMILY_NDF ? t_vec(0, 0, 1) : v, t_dir(1.5, 2.0)};
         int nv = family == GGX_FAMILY_NDF ? 1 : 2;
         for (int k = 0; k < AUDIT_SHAPES; k++) {
@@ -902,7 +902,7 @@ int audit_run(const double A[AUDIT_SHAPES][3][3], audit_row *rows, int progress)
     }
 
     r = au_add(rows, &nr, "squish-jacobian", "the crescent squish (s, t) -> (s, (1 - z) sqrt(1 - s^2) + z t) has Jacobian z",
-            SEED_VNDF ", " SEED_BLOG2 ", " SEED_WALTER, "004 step 3; blog Part 2; Walter eq 38-41", AUDIT_SCOPE_ANY);
+            SEED_VNDF ", " SEED_BLOG2 ", " SEED_WALTER, "the VNDF proof, step 3; blog Part 2; Walter eq 38-41", AUDIT_SCOPE_ANY);
     {
         rng g = {89};
         double worst = 0;
@@ -916,7 +916,7 @@ int audit_run(const double A[AUDIT_SHAPES][3][3], audit_row *rows, int progress)
     }
 
     r = au_add(rows, &nr, "stretch-jacobian", "the elliptic stretch m = normalize(A s) has solid-angle Jacobian |dm / ds| = ax ay "
-            "||A^-1 m||^3", SEED_STRETCH ", " SEED_VNDF, "GGX composition; 004 Elliptic Stretch", AUDIT_SCOPE_DIAGONAL);
+            "||A^-1 m||^3", SEED_STRETCH ", " SEED_VNDF, "GGX composition; the VNDF proof, Elliptic Stretch", AUDIT_SCOPE_DIAGONAL);
     for (int k = 0; k < AUDIT_SHAPES; k++) {
         double ax, ay;
         if (!au_alphas_or_skip(r, k, &sh[k], &ax, &ay)) continue;
@@ -1074,7 +1074,7 @@ int audit_run(const double A[AUDIT_SHAPES][3][3], audit_row *rows, int progress)
     }
 
     r = au_add(rows, &nr, "stretch-inverse", "s = A^-1 m / ||A^-1 m|| inverts m = A s / ||A s||, and |s_z| = |m_z| ||m_||, "
-            "mx^2/ax^2 + my^2/ay^2 + mz^2 = 1 / ||m_||^2 (m_ = A s)", SEED_VNDF ", " SEED_STRETCH, "004 Elliptic Stretch; 001 Elliptic "
+            "mx^2/ax^2 + my^2/ay^2 + mz^2 = 1 / ||m_||^2 (m_ = A s)", SEED_VNDF ", " SEED_STRETCH, "the VNDF proof, Elliptic Stretch; Elliptic "
             "Stretch", AUDIT_SCOPE_DIAGONAL);
     for (int k = 0; k < AUDIT_SHAPES; k++) {
         double ax, ay;
@@ -1218,11 +1218,11 @@ static void json_string(FILE *f, const char *text)
 void audit_write(FILE *f, audit_format fmt, const audit_row *rows, int n, const char *const labels[AUDIT_SHAPES])
 {
     if (fmt == AUDIT_CSV) {
-        fputs("id,seed_file,where,scope,claim,shape,verdict,evidence\n", f);
+        fputs("id,seed,where,scope,claim,shape,verdict,evidence\n", f);
         for (int i = 0; i < n; i++)
             for (int k = 0; k < AUDIT_SHAPES; k++) {
                 const audit_row *r = &rows[i];
-                csv_field(f, r->id, 0), csv_field(f, r->seed_file, 0), csv_field(f, r->where, 0);
+                csv_field(f, r->id, 0), csv_field(f, r->seed, 0), csv_field(f, r->where, 0);
                 csv_field(f, audit_scope_name(r->scope), 0), csv_field(f, r->claim, 0), csv_field(f, labels[k], 0);
                 csv_field(f, audit_verdict_name(r->verdict[k]), 0), csv_field(f, r->text[k], 1);
             }
@@ -1233,7 +1233,7 @@ void audit_write(FILE *f, audit_format fmt, const audit_row *rows, int n, const 
         for (int i = 0; i < n; i++) {
             const audit_row *r = &rows[i];
             fputs("  {\"id\": ", f), json_string(f, r->id);
-            fputs(", \"seed_file\": ", f), json_string(f, r->seed_file);
+            fputs(", \"seed\": ", f), json_string(f, r->seed);
             fputs(", \"where\": ", f), json_string(f, r->where);
             fputs(", \"scope\": ", f), json_string(f, audit_scope_name(r->scope));
             fputs(", \"claim\": ", f), json_string(f, r->claim);
@@ -1252,7 +1252,8 @@ void audit_write(FILE *f, audit_format fmt, const audit_row *rows, int n, const 
     fprintf(f, "# Seed audit\n\n"
                "Written by `ggx audit` (its defaults; `ggx audit --format md > docs/audit.md`); `make test` checks that "
                "this file is the command's output and asserts every verdict (tests/test_audit.c). Each claim names "
-               "its seed file (../shared/seeds), where it is, and the shapes the seed states it for. Verdicts: "
+               "its seed by the short name of [references.md](references.md), where it is in that text, and the shapes "
+               "the seed states it for. Verdicts: "
                "**holds**; **holds with a correction** (the seed's formula fails as written, the evidence states the "
                "form that holds); **fails** (with the counterexample found); **not claimed** for this shape (the "
                "evidence says what happens when it is applied anyway). Shapes: a claim about every point of every "
@@ -1266,12 +1267,12 @@ void audit_write(FILE *f, audit_format fmt, const audit_row *rows, int n, const 
                "shot at the ellipsoid itself, curvature and Jacobians by finite differences; more of them in "
                "tests/test_ndf.c and tests/test_sample_map.c.\n\n",
             AU_KIN, AU_KIN - 1, au_alpha_level());
-    fprintf(f, "| # | id | claim | seed file, where | scope | %s | %s | %s |\n|---|---|---|---|---|---|---|---|\n",
+    fprintf(f, "| # | id | claim | seed, where | scope | %s | %s | %s |\n|---|---|---|---|---|---|---|---|\n",
             labels[0], labels[1], labels[2]);
     for (int i = 0; i < n; i++) {
         const audit_row *r = &rows[i];
         char where[256];
-        snprintf(where, sizeof where, "%s (%s)", r->seed_file, r->where);
+        snprintf(where, sizeof where, "%s (%s)", r->seed, r->where);
         fprintf(f, "| %d ", i + 1);
         md_cell(f, r->id), md_cell(f, r->claim), md_cell(f, where), md_cell(f, audit_scope_name(r->scope));
         for (int k = 0; k < AUDIT_SHAPES; k++) {

@@ -19,7 +19,7 @@ typedef enum audit_scope { AUDIT_SCOPE_DIAGONAL, AUDIT_SCOPE_ROTATED, AUDIT_SCOP
 typedef enum audit_verdict { AUDIT_FAILS, AUDIT_HOLDS, AUDIT_CORRECTED, AUDIT_NOT_CLAIMED } audit_verdict;
 
 typedef struct audit_row {
-    const char *id, *claim, *seed_file, *where; /* seed_file: the seed's file name(s) in ../shared/seeds */
+    const char *id, *claim, *seed, *where; /* seed: the seed's short name(s), docs/references.md */
     audit_scope scope;
     audit_verdict verdict[AUDIT_SHAPES];
     char text[AUDIT_SHAPES][AUDIT_TEXT]; /* the evidence, with the figure measured */

@@ -8,12 +8,12 @@
 #include "audit.h"
 #include "chi2.h"
 
-/* The seeds, by file (../shared/seeds). */
-#define SEED_BLOG2 "000_a290dd7369ef5aa9.txt"    /* blog, Part 2 */
-#define SEED_STRETCH "001_3ccb6b534f20718a.txt"  /* Engstad, Elliptic Stretch */
-#define SEED_BLOG1 "002_bcf7c176b3e74bba.txt"    /* blog, Part 1 */
-#define SEED_WALTER "003_d5b5d8b0d5f73c5c.txt"   /* Walter et al., The Ellipsoid NDF */
-#define SEED_VNDF "004_96c01450b98ca7e0.txt"     /* Engstad, Proof of the Sampling Method for Visible GGX */
+/* The seeds, by their short names in docs/references.md. */
+#define SEED_BLOG2 "ellipsoidal-ggx-2"     /* "The Ellipsoidal Nature of GGX distribution", Part 2 */
+#define SEED_STRETCH "engstad-stretch"     /* Engstad, "Elliptic Stretch" */
+#define SEED_BLOG1 "ellipsoidal-ggx-1"     /* "The Ellipsoidal Nature of GGX distribution", Part 1 */
+#define SEED_WALTER "walter-ellipsoid"     /* Walter, Dong, Marschner, Greenberg, "The Ellipsoid Normal Distribution Function" */
+#define SEED_VNDF "engstad-vndf-proof"     /* Engstad, "Proof of the Sampling Method for Visible GGX" */
 
 /* What every claim file's rows see: the table, the three shapes (as given and as the library's shapes). */
 typedef struct au_ctx {
@@ -26,7 +26,7 @@ typedef struct au_ctx {
 
 /* ---- rows ---- */
 /* A new row, every verdict "not claimed: not checked" until set; aborts beyond AUDIT_MAX_ROWS. */
-audit_row *au_add(audit_row *rows, int *n, const char *id, const char *claim, const char *seed_file,
+audit_row *au_add(audit_row *rows, int *n, const char *id, const char *claim, const char *seed,
                   const char *where, audit_scope scope);
 /* Sets a row's verdict for shape k and its evidence (printf-style); au_append adds to the evidence. */
 void au_set(audit_row *r, int k, audit_verdict v, const char *fmt, ...) __attribute__((format(printf, 4, 5)));

@@ -71,13 +71,13 @@ void au_verdict_p(audit_row *r, int k, double p)
     au_set(r, k, p >= au_alpha_level() ? AUDIT_HOLDS : AUDIT_FAILS, "chi-square p = %.2g", p);
 }
 
-audit_row *au_add(audit_row *rows, int *n, const char *id, const char *claim, const char *seed_file,
+audit_row *au_add(audit_row *rows, int *n, const char *id, const char *claim, const char *seed,
                   const char *where, audit_scope scope)
 {
     if (*n >= AUDIT_MAX_ROWS) abort(); /* a claim added beyond the table's size: raise AUDIT_MAX_ROWS */
     audit_row *r = &rows[(*n)++];
     memset(r, 0, sizeof *r);
-    r->id = id, r->claim = claim, r->seed_file = seed_file, r->where = where, r->scope = scope;
+    r->id = id, r->claim = claim, r->seed = seed, r->where = where, r->scope = scope;
     for (int k = 0; k < AUDIT_SHAPES; k++) au_set(r, k, AUDIT_NOT_CLAIMED, "not checked");
     return r;
 }

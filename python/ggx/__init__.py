@@ -880,7 +880,7 @@ def half_reflect(wi, wo, dtype=np.float64):
 # --- Energy compensation -----------------------------------------------------------------------------------------
 
 class Energy:
-    """A shape's albedo table and Kulla-Conty energy compensation (ggx_energy_create; docs/energy.md).
+    """A shape's albedo table and Kulla-Conty energy compensation (ggx_energy_create; docs/design/energy.md).
 
     Building it takes microseconds for shapes read from the shipped tables, 3 to 7 s for other unskewed shapes and
     7 to 30 s for skewed ones; it is immutable after that and safe to share between threads. A shape whose albedo has

@@ -25,7 +25,7 @@ int cmd_audit(int argc, char **argv)
                "and the skewed one's (the defaults for those not given); --matrix replaces the skewed shape (the\n"
                "diagonal one then takes its alphas when it has them). --format md (default: the document\n"
                "docs/audit.md, which is this command's output on its defaults), csv (a header row, one row per claim\n"
-               "and shape, each naming the seed file) or json. Takes about 15 s.\n");
+               "and shape, each naming its seeds) or json. Takes about 15 s.\n");
         return 0;
     }
     audit_format fmt = AUDIT_MD;
