@@ -1,5 +1,5 @@
 /* Directional and average albedo of the BRDF with F = 1, by deterministic quadrature in the sphere space of the
- * shape (docs/albedo.md has the derivation). SPDX-License-Identifier: MIT
+ * shape (docs/design/albedo.md has the derivation). SPDX-License-Identifier: MIT
  *
  * E(v) = int f_r(v, w) w.z dw over w.z > 0. With w = reflect(v, h), dw = 4 (v.h) dh, and h the normal of the
  * unit sphere at k under m = A^T k / ||A^T k|| (D(m) dm = ||A^T k|| / (pi ||An||) dk, v.m = (Av).k / ||A^T k||):
@@ -240,7 +240,7 @@ typedef struct bsdf_ctx {
  *     (eta_rel^2 - 1) a^2 z z^T.
  * On a meridian k = cos t u' + sin t d each is a quadratic in tan t, solved in closed form (bsdf_outer), so the
  * panels start at the kinks instead of bisecting towards them: ggx_bsdf_albedo is about 10 times faster and the
- * dielectric's tables build 3 to 3.5 times faster (docs/albedo.md, docs/energy.md). */
+ * dielectric's tables build 3 to 3.5 times faster (docs/design/albedo.md, docs/design/energy.md). */
 static void bsdf_kinks(bsdf_ctx *c, ggx_vec3 u)
 {
     const ggx_shape *s = c->s;
@@ -307,7 +307,7 @@ static double bsdf_outer(double psi, void *vc)
     double x0 = c->up.z < 0 ? atan2(-c->up.z, d) / c->T : 0.0;
     /* the fixed points, then the kinks (bsdf_kinks): roots of q_c tau^2 + 2 q_b tau + q_a = 0 with tau = tan t.
      * Between the kinks the integrand is smooth but for the layer of width ~alpha where G1 falls towards the lune's
-     * edge, which 0.875 starts (fewer fixed points let the error estimate be fooled; more cost 1.5x, docs/albedo.md) */
+     * edge, which 0.875 starts (fewer fixed points let the error estimate be fooled; more cost 1.5x, docs/design/albedo.md) */
     double br[4 + 6] = {x0};
     int nb = 1;
     for (int i = 1; i < 4; i++) {
@@ -519,7 +519,7 @@ static double albedo_avg(const ggx_shape *s, int hc)
          * tangent at n to the azimuth phi_k perpendicular to that gradient; the line integrals are smooth in phi
          * on either side of phi_k and phi_k + pi, so each half turn is one piece. Inside, E has weaker
          * singularities (where the kink of G1(w) meets the cone's edge) and the orders converge algebraically:
-         * a fixed order, whose error against doubled orders is measured in docs/albedo.md, keeps the cost at
+         * a fixed order, whose error against doubled orders is measured in docs/design/albedo.md, keeps the cost at
          * seconds. */
         const double eps = 1e-6;
         c.cp = 1.0;

@@ -1,6 +1,6 @@
 /* Energy compensation (Kulla & Conty 2017) for every shape: the per-shape table of the albedo E(v) of ggx_brdf_eval
  * (src/api/energy_table.c), the multiple-scattering lobe, its sampler and pdf, and the compensated BRDF
- * (docs/energy.md). SPDX-License-Identifier: MIT
+ * (docs/design/energy.md). SPDX-License-Identifier: MIT
  *
  * The lobe. f_ms(wi, wo) = F_ms (1 - E(wi)) (1 - E(wo)) / (pi (1 - E_avg)) with E the table's interpolant and
  * E_avg = (1 / pi) int E(w) w.z dw computed from the same interpolant, so that int f_ms(wi, wo) wo.z dwo is exactly
@@ -17,7 +17,7 @@
 /* Table size. Shapes whose nodes come from a shipped table take its rows: isotropic ones 65 rows and one column,
  * unskewed anisotropic ones 33 rows (y = i / 32, the anisotropic table's) and 128 columns on a full turn (E of
  * anisotropic shapes has sharp features in the azimuth at grazing: 64 columns left errors of 1.6e-3 to 3.8e-3 at
- * 89 degrees, 128 columns 1.5e-4 to 4e-4; docs/energy.md). The others (skewed shapes, roughnesses or anisotropy
+ * 89 degrees, 128 columns 1.5e-4 to 4e-4; docs/design/energy.md). The others (skewed shapes, roughnesses or anisotropy
  * outside the shipped tables) compute their nodes by quadrature, to TABLE_TOL, on 65 rows (with 33, skewed lobes of
  * alpha 0.05 erred by 1e-2 near grazing, with 65 by 1.6e-3) and 128 columns, then CHECK_COLUMNS where the check of
  * the interpolation (energy_table.c) finds more than TABLE_PROMISE; a shape that the finer table does not meet

@@ -1,6 +1,6 @@
 /* Energy compensation of the rough dielectric ggx_bsdf_eval (Kulla & Conty 2017, "Revisiting Physically Based
  * Shading at Imageworks", the dielectric part), for every shape: the albedo tables of both sides, the multiple-
- * scattering lobes on both sides, their sampler and pdf, and the compensated BSDF (docs/energy.md has the
+ * scattering lobes on both sides, their sampler and pdf, and the compensated BSDF (docs/design/energy.md has the
  * derivation). SPDX-License-Identifier: MIT
  *
  * Side 0 is above the surface (index 1), side 1 below it (index eta). E_a(u) is the single-scattering albedo R + T
@@ -23,13 +23,13 @@
 #include "../tables/bsdf_grid.h"
 #include "energy_table.h"
 
-/* The nodes are computed to TABLE_TOL; the lookup's error is dominated by the interpolation (docs/energy.md). */
+/* The nodes are computed to TABLE_TOL; the lookup's error is dominated by the interpolation (docs/design/energy.md). */
 #define TABLE_TOL 1e-4
 /* The check of the interpolation refuses a shape whose tables it finds further than this from the quadrature. */
 #define TABLE_PROMISE 1e-3
 /* 65 rows: with 33 (the conductor's) the lookup erred by up to 1.6e-3 near the critical angle from the denser side,
  * where E dips over a width ~alpha; 128 columns: with 64 it erred by 3.9e-3 at grazing for alpha (0.1, 1)
- * (docs/energy.md). */
+ * (docs/design/energy.md). */
 enum { ROWS = 65, COLUMNS = 128 };
 /* the rows of the shipped isotropic table are these rows (bsdf_node reads them) */
 _Static_assert((int)ROWS == (int)BSDF_NY, "the per-shape tables and the shipped table share their rows");

@@ -1,5 +1,5 @@
 /* The albedo table of the energy compensation: E(v) over the upper hemisphere, its interpolation, and the sampling
- * distribution of the multiple-scattering lobe built on its cells (docs/energy.md). SPDX-License-Identifier: MIT
+ * distribution of the multiple-scattering lobe built on its cells (docs/design/energy.md). SPDX-License-Identifier: MIT
  *
  * E = P(v) I(v) (internal.h): P is closed-form and carries E's steep dependence on the view at grazing and the kink
  * of Walter's min through n for skewed shapes; the table holds I at nodes
@@ -130,7 +130,7 @@ size_t ggx_internal_etab_size(const ggx_shape *s, int nm, int np_full)
     return (size_t)nm * np + (size_t)(nm + 2) * pw + (size_t)(nm - 1) * np + 1;
 }
 
-/* The check of the interpolation (docs/energy.md). Every cell whose 4 x 4 stencil has a third difference above
+/* The check of the interpolation (docs/design/energy.md). Every cell whose 4 x 4 stencil has a third difference above
  * CHECK_D3 (a kink or a step of I near it; Catmull-Rom is exact for quadratics and smooth I gives third differences
  * far below it) is compared at its centre with the node function. The largest difference in E is the check's
  * measured error: it exceeds the table's tolerance where E holds a feature narrower than the nodes resolve (the

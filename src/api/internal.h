@@ -45,7 +45,7 @@ extern const ggx_fresnel ggx_internal_fresnel_one;
 /* From src/api/albedo.c, for the energy tables (src/api/energy.c): E(v) of a unit v with v.z > 0 to an absolute
  * error of about tol (hc: height-correlated G2), and the separable factor of ggx_albedo's E,
  * P(v) = ||A v|| G1(v) / (v.z ||A n||), which carries E's steepest dependence on the view: E = P(v) I(v) with I
- * smooth (docs/albedo.md). v.z > 0. */
+ * smooth (docs/design/albedo.md). v.z > 0. */
 double ggx_internal_albedo(const ggx_shape *s, ggx_vec3 v, int hc, double tol);
 double ggx_internal_albedo_scale(const ggx_shape *s, ggx_vec3 v);
 /* From src/api/albedo.c: R + T of ggx_bsdf_albedo in one quadrature, for a unit v with v.z != 0, to an absolute

@@ -21,7 +21,7 @@ static inline double rows_y_of_theta(double th)
  * unskewed E (phi -> -phi, pi - phi, pi + phi map psi alike) and is k times denser at both tangent axes, where E at
  * grazing changes fastest with the azimuth near the axis of the smaller alpha: with k = 1/2 the interpolation error
  * of (0.0171, 0.3426) at 89 degrees fell from 2.7e-3 to 8.5e-4, of (0.1, 1) from 5.4e-4 to 1.3e-4, and stayed at
- * 1.9e-5 for (0.3, 0.45) (docs/energy.md). */
+ * 1.9e-5 for (0.3, 0.45) (docs/design/energy.md). */
 #define COLS_WARP_K 0.5
 
 /* phi of psi: psi plus the warp's correction, written without wrapping (its atan2 stays in (-pi/2, pi/2)). */

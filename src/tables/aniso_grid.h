@@ -12,7 +12,7 @@
  *   [-1, ANI_NA]. u is log-uniform at small alpha and denser towards alpha = 2, where E bends most: with 17 nodes
  *   the largest Catmull-Rom error between nodes along alpha_y (alpha_x 0.01 to 0.7, 66 views) was 7.3e-4
  *   log-uniform, 3.4e-4 with ANI_C = 0.7, which left 1.1e-3 at alpha 0.02 at grazing; hence 21 nodes and
- *   ANI_C = 0.5 (docs/energy.md).
+ *   ANI_C = 0.5 (docs/design/energy.md).
  *   E(alpha_x, alpha_y, phi) = E(alpha_y, alpha_x, pi / 2 - phi), so only the pairs a_x <= a_y are stored, pair
  *   ani_pair(a_x, a_y).
  * The values are I = E / P(v), P the closed-form factor of ggx_albedo's E (internal.h), stored as float. */

@@ -12,7 +12,7 @@
  * - Columns in eta_r: BSDF_NE per half, uniform in s^(1/4). As eta_r -> 1 the critical angle of the side that can
  *   reflect totally moves to grazing like 2 sqrt(s), and E changes fastest there; measured on alpha 0.02 to 1 with
  *   24 nodes per half, the largest Catmull-Rom error between nodes was 1.3e-2 uniform in s, 2.5e-3 uniform in
- *   sqrt(s), 1.1e-3 uniform in log s (worse at large s) and 8.3e-4 uniform in s^(1/4) (docs/energy.md).
+ *   sqrt(s), 1.1e-3 uniform in log s (worse at large s) and 8.3e-4 uniform in s^(1/4) (docs/design/energy.md).
  * The values are I = E / P(v), P the closed-form factor of ggx_albedo's E (internal.h), stored as float: the
  * interpolation error (1e-4 and more) is far above float's rounding. */
 #ifndef GGX_TABLES_BSDF_GRID_H
@@ -25,7 +25,7 @@
 enum { BSDF_NY = ISO_NY, BSDF_NA = 33, BSDF_NE = 24 };
 #define BSDF_AMIN 1e-2
 /* The table keeps within 1e-3 of the quadrature from this alpha; below it, near the critical angle of the denser
- * side, up to 1.2e-3 was found (docs/energy.md). */
+ * side, up to 1.2e-3 was found (docs/design/energy.md). */
 #define BSDF_PROMISE_AMIN 0.025
 #define BSDF_AMAX 2.0
 #define BSDF_ETA0 1.05

@@ -2,7 +2,7 @@
  * (tools/gen_tables) and their lookup (src/api/tables.c). SPDX-License-Identifier: MIT
  *
  * Rows: views at y = i / (ISO_NY - 1), theta = (pi / 2)(1 - y^2) (mu = sin(pi y^2 / 2): dense towards grazing, linear
- * in theta at n; the energy tables' rows, docs/energy.md). Columns: alpha = ISO_AMIN (ISO_AMAX / ISO_AMIN)^x,
+ * in theta at n; the energy tables' rows, docs/design/energy.md). Columns: alpha = ISO_AMIN (ISO_AMAX / ISO_AMIN)^x,
  * x = j / (ISO_NA - 1), log-uniform (E changes with the ratio of alpha to the view's height near grazing).
  * The values are I = E / P(v) with P the closed-form factor of ggx_albedo's E (internal.h). */
 #ifndef GGX_TABLES_ISO_GRID_H

@@ -1,4 +1,4 @@
-/* Generates the shipped albedo tables (docs/energy.md): `make tables`. Without --bsdf,
+/* Generates the shipped albedo tables (docs/design/energy.md): `make tables`. Without --bsdf,
  * src/tables/albedo_iso.inc (the conductor's E, both maskings); with --bsdf, src/tables/bsdf_iso.inc (the rough
  * dielectric's R + T); with --aniso, src/tables/albedo_aniso.inc (the conductor's E of diagonal anisotropic shapes).
  * Linked against the baseline build of the library (no FMA clones), so the output is the same
@@ -81,7 +81,7 @@ static void put_floats(const float *v, int n)
 }
 
 /* The dielectric's nodes: R + T of ggx_bsdf_albedo's quadrature to 1e-6 (the interpolation error between nodes is
- * 1e-4 and more, docs/energy.md), divided by P. Line (h, k, j): BSDF_NY values. */
+ * 1e-4 and more, docs/design/energy.md), divided by P. Line (h, k, j): BSDF_NY values. */
 #define BSDF_GEN_TOL 1e-6
 enum { BSDF_LINES = 2 * BSDF_NE * BSDF_NA };
 
