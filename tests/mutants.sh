@@ -84,8 +84,8 @@ mutate $K/rejection.inc "ggx_r h = GGX_SQRT(GGX_FN(k_max0)(1 - d.x * d.x - d.y *
     "rejection (Walter version 2) lifting the silhouette to half height"
 mutate src/batch/loops.inc "pdf[i] = uok ? r.pdf : 0.0f;" "pdf[i] = uok ? 0.5f * r.pdf : 0.0f;" \
     "batch reflection pdf off by 2 (fast path)"
-mutate src/batch/loops.inc "#define NORMALS_CASE_VNDF_1(ID) NORMALS_CASE_ANY(ID, 1)" \
-    "#define NORMALS_CASE_VNDF_1(ID) NORMALS_CASE_ANY(ID, 0)" "batch VNDF samplers of the registry ignoring the view"
+mutate src/batch/loops.inc "#define NORMALS_CASE_VNDF_1(ID, stem) NORMALS_CASE_ANY(ID, stem, 1)" \
+    "#define NORMALS_CASE_VNDF_1(ID, stem) NORMALS_CASE_ANY(ID, stem, 0)" "batch VNDF samplers of the registry ignoring the view"
 mutate $K/traits.h "(x2) * (8.331978694e-03f +" "(x2) * (9.331978694e-03f +" \
     "float sincos polynomial with a wrong coefficient (float variants only)"
 mutate include/ggx/ggx_inline.h "out->a_frob2 = (float)f2;" "out->a_frob2 = (float)(f2 / 64);" \
