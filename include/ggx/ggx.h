@@ -4,41 +4,32 @@
  * SPDX-License-Identifier: MIT
  *
  * Conventions (stated once, used everywhere)
- * -----------------------------------------
- * - Local frame: the macro-surface normal is n = +z. Tangent axes x and y are the axes of alpha_x and alpha_y.
+ * - Local frame: the macro-surface normal is n = +z; the tangent axes x and y are the axes of alpha_x and alpha_y.
  * - Every direction (m, u, v, wi, wo) is a unit vector in that frame pointing AWAY from the surface.
- *   Functions do not normalise their inputs; a non-unit direction gives a result for that vector, which is
- *   meaningless but never NaN or Inf (see "Hot functions" below).
  * - The shape matrix is Walter's A (Walter et al. 2014, eq 2): A = S R with S = diag(alpha_x, alpha_y, 1) and
- *   R = Rx(theta_x) Ry(theta_y) Rz(theta_z) (eq 3). R = I gives anisotropic GGX (GTR2aniso), alpha_x = alpha_y gives
- *   isotropic GGX. theta_z rotates the anisotropy in the tangent plane; theta_x, theta_y skew the distribution
- *   (its peak moves away from n).
+ *   R = Rx(theta_x) Ry(theta_y) Rz(theta_z) (eq 3). R = I gives anisotropic GGX (GTR2aniso), alpha_x = alpha_y
+ *   isotropic GGX; theta_z rotates the anisotropy in the tangent plane, theta_x and theta_y skew the distribution (its
+ *   peak moves away from n).
  * - The ellipsoid size constant is Ce = 1 (Walter eq 30) wherever an absolute area or curvature is returned.
- * - Angles are in radians in this API.
+ * - Angles are in radians.
  * - A NULL const ggx_fresnel * means F = 1 (GGX_FRESNEL_ONE) in every function of ggx.h and ggx_batch.h that takes
  *   one. The inline kernels of ggx_inline.h take a valid pointer (ggx_fresnelf_from needs one).
  * - "Unskewed" means that A^T A n is parallel to n (theta_x = theta_y = 0 for ggx_shape_ellipsoid). For unskewed
  *   shapes the Smith identities of GGX hold; for skewed shapes the ellipsoid forms of Walter are used throughout.
- *
- * Two tiers
- * ---------
  * - Setup functions (ggx_shape_*, ggx_fresnel_*) validate their input and return a ggx_status; on failure the
- *   output is left unchanged. ggx_status_str() gives a one-line English message.
- * - Hot functions (everything taking a const ggx_shape *) do no allocation and no validation beyond what is stated;
- *   the shape must come from a successful setup call.
+ *   output is left unchanged. Hot functions (everything taking a const ggx_shape *) do no allocation and no
+ *   validation beyond what is stated; the shape must come from a successful setup call.
+ * - Threads: any number of threads may call any function at once; the objects passed by const pointer are only read.
  *
- * The numerical contract (tests/test_robust.c proves it on an adversarial table and 10^7 random inputs per
- * function; tests/fuzz/ feeds raw bytes to every function under AddressSanitizer and UndefinedBehaviorSanitizer)
- * ---------------------------------------------------------------------------------------------------------------
- * - Evaluations: for any input they return a finite value >= 0 (ggx_lambda: finite, and negative only for skewed
- *   shapes). Outside the documented domain (a direction below the horizon where that is not allowed, a zero vector)
- *   the result is exactly 0.
+ * The numerical contract (tests/test_robust.c: an adversarial table and 10^7 random inputs per function;
+ * tests/fuzz/: raw bytes to every function under AddressSanitizer and UndefinedBehaviorSanitizer)
+ * - Evaluations return a finite value >= 0 for any input (ggx_lambda: finite, and negative only for skewed shapes);
+ *   outside the documented domain (a direction below the horizon where that is not allowed, a zero vector) exactly 0.
  * - NaN: a NaN or infinite component in a direction, or a NaN parameter of a hot function, gives 0 (evaluations),
- *   the zero vector (samplers) or an invalid sample. NaN random numbers u are treated as 0; u outside [0, 1] is
- *   clamped.
- * - Non-unit directions: directions are not normalised (a precondition, not checked, to keep hot paths lean); a
- *   non-unit vector still gives a finite value >= 0, but it is the formula evaluated at that vector. The samplers'
- *   view v is the exception: they depend on its direction only.
+ *   the zero vector (samplers) or an invalid sample. NaN random numbers u are read as 0; u outside [0, 1] is clamped.
+ * - Non-unit directions are not normalised (a precondition, not checked, to keep hot paths lean): the result is the
+ *   formula at that vector, meaningless but finite and >= 0. The samplers' view v is the exception: they depend on
+ *   its direction only.
  * - Samplers of normals return a unit vector (| ||m|| - 1 | <= 1e-12) with a finite pdf > 0 under the matching pdf
  *   function, or the zero vector when no sample exists (view at or below the horizon, a skewed shape for
  *   ggx_sample_ndf_inversion, an exhausted rejection budget, or a visible part of the truncated ellipsoid below
@@ -49,10 +40,9 @@
  *   exactly, eq 52) or marked GGX_EVENT_INVALID with w = 0, pdf = 0, weight = 0.
  * - Shapes: alpha in [GGX_ALPHA_MIN, GGX_ALPHA_MAX] (tested from 1e-4 to 10 with ratios to 1:1000), skews up to
  *   GGX_SKEW_MAX; matrices must be well-conditioned (GGX_SINGULAR_TOL) and of moderate scale (GGX_MATRIX_SCALE_MAX).
- *
- * Accuracy: all functions work in double precision with a fixed, short sequence of operations; the tests check
- * them against independent evaluations (closed-form GGX, quadrature of the defining integrals, finite
- * differences, complex-arithmetic Fresnel) at the tolerances stated in each block.
+ * - Accuracy: double precision with a fixed, short sequence of operations, checked against independent evaluations
+ *   (closed-form GGX, quadrature of the defining integrals, finite differences, complex-arithmetic Fresnel) at the
+ *   tolerances stated in each block.
  */
 #ifndef GGX_GGX_H
 #define GGX_GGX_H
@@ -71,11 +61,11 @@ extern "C" {
 #define GGX_ALPHA_MAX 1e4
 /* Largest |theta_x|, |theta_y| accepted by ggx_shape_ellipsoid (radians): pi / 2. */
 #define GGX_SKEW_MAX 1.5707963267948966
-/* ggx_shape_matrix refuses A when |det A| <= GGX_SINGULAR_TOL * ||A||_F^3 (the determinant relative to the
- * matrix's scale, roughly sigma_min^2 / sigma_max^2 for a matrix with two small singular values). */
+/* ggx_shape_matrix refuses A when |det A| <= GGX_SINGULAR_TOL * ||A||_F^3 (roughly sigma_min^2 / sigma_max^2 for a
+ * matrix with two small singular values). */
 #define GGX_SINGULAR_TOL 1e-12
-/* ggx_shape_matrix refuses A when ||A||_F is outside [1 / GGX_MATRIX_SCALE_MAX, GGX_MATRIX_SCALE_MAX]: D and the
- * areas are computed from |A| ~ ||A||^3 and would underflow or overflow. (c A describes the same distribution.) */
+/* ggx_shape_matrix refuses A when ||A||_F is outside [1 / GGX_MATRIX_SCALE_MAX, GGX_MATRIX_SCALE_MAX], where D and
+ * the areas, computed from |A| ~ ||A||^3, would underflow or overflow (c A describes the same distribution). */
 #define GGX_MATRIX_SCALE_MAX 1e50
 
 typedef struct ggx_vec3 {
@@ -110,11 +100,9 @@ typedef enum ggx_shape_kind {
     GGX_SHAPE_SKEWED = 2    /* general ellipsoid: A^T A n not parallel to n */
 } ggx_shape_kind;
 
-/* A shape: the matrix A and what evaluation needs. A complete type so callers keep it by value (no pointers; copy it
- * freely). Treat every field as read-only and set it only through ggx_shape_*.
- * The stored matrix is a canonical A' = Q A, with Q the rotation that takes A n to +z (and A' = -A' when det A < 0):
- * it gives exactly the same distributions and areas as the A you passed (Walter section 1), and A' n = ||A n|| z,
- * so the truncation m.n >= 0 is the hemisphere z >= 0 of sphere space for every shape. */
+/* A shape: a complete type, kept by value and copied freely; every field is read-only, set only by ggx_shape_*.
+ * It stores a canonical A' = Q A (Q the rotation taking A n to +z; A' = -A' when det A < 0), which gives exactly the
+ * distributions and areas of A (Walter section 1) and has A' n = ||A n|| z. */
 typedef struct ggx_shape {
     double a[3][3];      /* A', row-major */
     double ainv_t[3][3]; /* A'^{-T} */
@@ -129,74 +117,61 @@ typedef struct ggx_shape {
     ggx_shape_kind kind;
 } ggx_shape;
 
-/* Isotropic GGX of roughness alpha (A = diag(alpha, alpha, 1)).
- * alpha in (0, GGX_ALPHA_MAX]; alpha < GGX_ALPHA_MIN is raised to GGX_ALPHA_MIN.
- * Errors: GGX_ERR_NULL, GGX_ERR_NONFINITE, GGX_ERR_ALPHA; GGX_ERR_SINGULAR as for ggx_shape_matrix (the resulting
- * A too ill-conditioned: for ggx_shape_aniso and ggx_shape_ellipsoid, alphas far apart, such as 1e-4 with 1e4;
- * never for ggx_shape_iso). */
+/* Isotropic GGX of roughness alpha (A = diag(alpha, alpha, 1)); alpha in (0, GGX_ALPHA_MAX], raised to GGX_ALPHA_MIN
+ * below it. Errors: GGX_ERR_NULL, GGX_ERR_NONFINITE, GGX_ERR_ALPHA (never GGX_ERR_SINGULAR). */
 ggx_status ggx_shape_iso(ggx_shape *s, double alpha);
 
-/* Anisotropic GGX (GTR2aniso), R = I: A = diag(alpha_x, alpha_y, 1). Same domain and errors as ggx_shape_iso;
- * GGX_ERR_SINGULAR when alpha_x alpha_y <= GGX_SINGULAR_TOL (alpha_x^2 + alpha_y^2 + 1)^(3/2). */
+/* Anisotropic GGX (GTR2aniso), R = I: A = diag(alpha_x, alpha_y, 1). Domain and errors as ggx_shape_iso, and
+ * GGX_ERR_SINGULAR (alphas far apart, such as 1e-4 with 1e4) when alpha_x alpha_y <= GGX_SINGULAR_TOL
+ * (alpha_x^2 + alpha_y^2 + 1)^(3/2). */
 ggx_status ggx_shape_aniso(ggx_shape *s, double alpha_x, double alpha_y);
 
-/* Walter's ellipsoid, A = diag(alpha_x, alpha_y, 1) Rx(theta_x) Ry(theta_y) Rz(theta_z) (eq 2-3), angles in
- * radians. theta_z is any finite angle; |theta_x|, |theta_y| <= GGX_SKEW_MAX. Alphas as in ggx_shape_iso.
+/* Walter's ellipsoid, A = diag(alpha_x, alpha_y, 1) Rx(theta_x) Ry(theta_y) Rz(theta_z) (eq 2-3): theta_z any finite
+ * angle, |theta_x|, |theta_y| <= GGX_SKEW_MAX, alphas as in ggx_shape_iso.
  * Errors: GGX_ERR_NULL, GGX_ERR_NONFINITE, GGX_ERR_ALPHA, GGX_ERR_ANGLE, GGX_ERR_SINGULAR (as ggx_shape_aniso). */
 ggx_status ggx_shape_ellipsoid(ggx_shape *s, double alpha_x, double alpha_y, double theta_x, double theta_y,
                                double theta_z);
 
-/* The matrix A = diag(alpha_x, alpha_y, 1) Rx(theta_x) Ry(theta_y) Rz(theta_z) of ggx_shape_ellipsoid (Walter eq 2-3),
- * row-major: the A a user wrote (the shape stores a canonical Q A instead, ggx_shape.a). Same domain as
- * ggx_shape_ellipsoid, alpha below GGX_ALPHA_MIN raised to it; ggx_shape_matrix of the result is the shape
- * ggx_shape_ellipsoid gives, bit for bit (tests/test_errors.c). Each entry is the product of the sines and cosines as
- * written, within 2 ulp of the exact product for the rounded angles (tested against the three rotations multiplied
- * out). Errors: GGX_ERR_NULL (A NULL), GGX_ERR_NONFINITE (an angle or alpha NaN or infinite), GGX_ERR_ALPHA,
- * GGX_ERR_ANGLE; never GGX_ERR_SINGULAR (the conditioning test is ggx_shape_matrix's). A is unchanged on error. */
+/* The matrix A of ggx_shape_ellipsoid (eq 2-3), row-major, as a user writes it (the shape stores Q A instead). Same
+ * domain, alpha below GGX_ALPHA_MIN raised to it; ggx_shape_matrix of the result is ggx_shape_ellipsoid's shape, bit
+ * for bit (tests/test_errors.c). Each entry is within 2 ulp of the exact product of the sines and cosines of the
+ * rounded angles. Errors: GGX_ERR_NULL (A NULL), GGX_ERR_NONFINITE (an angle or alpha NaN or infinite),
+ * GGX_ERR_ALPHA, GGX_ERR_ANGLE; never GGX_ERR_SINGULAR. A is unchanged on error. */
 ggx_status ggx_ellipsoid_matrix(double A[3][3], double alpha_x, double alpha_y, double theta_x, double theta_y,
                                 double theta_z);
 
-/* Any invertible A, row-major (A[row][col], so A n is the last column). A and c A (c != 0) and Q A (Q orthogonal)
- * give the same distributions; a negative determinant is handled by using -A. Absolute areas
- * (ggx_projected_area, ggx_lune_area) and the curvature do depend on the scale of A (Ce = 1).
+/* Any invertible A, row-major (A[row][col], so A n is the last column). A, c A (c != 0) and Q A (Q orthogonal) give
+ * the same distributions (a negative determinant is handled by using -A); absolute areas (ggx_projected_area,
+ * ggx_lune_area) and the curvature depend on the scale of A (Ce = 1).
  * Errors: GGX_ERR_NULL, GGX_ERR_NONFINITE, GGX_ERR_SINGULAR (|det A| <= GGX_SINGULAR_TOL ||A||_F^3), GGX_ERR_RANGE
  * (||A||_F outside [1 / GGX_MATRIX_SCALE_MAX, GGX_MATRIX_SCALE_MAX]). */
 ggx_status ggx_shape_matrix(ggx_shape *s, const double A[3][3]);
 
-/* The ellipsoid as a distribution of slopes (docs/design/slopes.md). With the slope of a normal m (m.z > 0) written
- * x~ = (-m.x / m.z, -m.y / m.z), normals drawn with density D(m) (m.n) have slopes distributed as GGX's P22 with a
- * location t and a scale Sigma, a bivariate Student t with 2 degrees of freedom:
- *   P22(x~) = 1 / (pi sqrt(det Sigma) (1 + (x~ - t)^T Sigma^-1 (x~ - t))^2),
- * where t is the slope of the mean normal A^T A n and Sigma = alpha^2 I for isotropic GGX. For the canonical
- * A' = [B 0; b^T a33] (ggx_shape.a): t = -b / a33 and Sigma = B^T B / a33^2. t = 0 exactly when the shape is
- * unskewed. Every (t, Sigma) with Sigma positive definite is a shape, and every shape is one (t, Sigma).
- *
- * ggx_shape_slopes writes t = (t_x, t_y) and sigma = (Sigma_xx, Sigma_xy, Sigma_yy), each within a few ulp of
- * the products of the stored A'. Rounded to doubles, the three entries carry det Sigma to about 1e-16 cond(Sigma)
- * relative, so D rebuilt from (t, Sigma) by the form above matches ggx_ndf to 1e-12 + 2e-15 kappa(A)^2 relative,
- * kappa(A) = max(ax, ay, 1) / min(ax, ay, 1) for ggx_shape_ellipsoid (tested on 10^4 random shapes with alphas
- * from 1e-3 to 10 and skews to GGX_SKEW_MAX). Errors: GGX_ERR_NULL (any pointer NULL). */
+/* The location t = (t_x, t_y) and scale sigma = (Sigma_xx, Sigma_xy, Sigma_yy) of the shape's slopes, a Student t
+ * with 2 degrees of freedom (P22 of ggx_fit.h; docs/design/slopes.md): t is the slope of the mean normal A^T A n (0
+ * exactly for unskewed shapes), Sigma = alpha^2 I for isotropic GGX, and the shapes are exactly the pairs (t, Sigma)
+ * with Sigma positive definite. Each entry is within a few ulp of the products of the stored A'; D rebuilt from them
+ * matches ggx_ndf to 1e-12 + 2e-15 kappa(A)^2 relative, kappa(A) = max(ax, ay, 1) / min(ax, ay, 1) for
+ * ggx_shape_ellipsoid (tests/test_slopes.c: alphas from 1e-3 to 10, skews to GGX_SKEW_MAX). Errors: GGX_ERR_NULL
+ * (any pointer NULL). */
 ggx_status ggx_shape_slopes(const ggx_shape *s, double t[2], double sigma[3]);
 
 /* The shape whose slopes have location (tx, ty) and scale Sigma = [sxx sxy; sxy syy]: A = [B 0; -t^T 1] with
  * B = Sigma^(1/2), the symmetric square root, so that ggx_shape_slopes gives back (t, Sigma) to rounding. An
- * eigenvalue of Sigma below GGX_ALPHA_MIN^2 is raised to it (the counterpart of the alpha clamp of ggx_shape_iso;
- * its eigenvector is kept). Errors: GGX_ERR_NULL; GGX_ERR_NONFINITE (an argument NaN or infinite);
- * GGX_ERR_ALPHA (Sigma not positive semi-definite: sxx < 0, syy < 0 or sxx syy < sxy^2 beyond rounding, or an
- * eigenvalue above GGX_ALPHA_MAX^2); GGX_ERR_SINGULAR and GGX_ERR_RANGE as for ggx_shape_matrix (|t| or the
- * eigenvalues' ratio too large). s is unchanged on error. */
+ * eigenvalue of Sigma below GGX_ALPHA_MIN^2 is raised to it (its eigenvector is kept). Errors: GGX_ERR_NULL;
+ * GGX_ERR_NONFINITE (an argument NaN or infinite); GGX_ERR_ALPHA (Sigma not positive semi-definite: sxx < 0, syy < 0
+ * or sxx syy < sxy^2 beyond rounding, or an eigenvalue above GGX_ALPHA_MAX^2); GGX_ERR_SINGULAR and GGX_ERR_RANGE as
+ * for ggx_shape_matrix (|t| or the eigenvalues' ratio too large). s is unchanged on error. */
 ggx_status ggx_shape_from_slopes(ggx_shape *s, double tx, double ty, double sxx, double sxy, double syy);
 
-/* The parameters of ggx_shape_ellipsoid that give the same distribution as s: D from ggx_shape_ellipsoid of the
- * outputs equals ggx_ndf(s, .) to 1e-12 relative times kappa(A) = max(ax, ay, 1) / min(ax, ay, 1) (tested on random
- * shapes).
- * Of the equivalent parameter sets it returns the one whose third axis (the row of R with eigenvalue 1 of A^T A)
- * is the principal axis of A^T A nearest to n, so |theta_x|, |theta_y| < pi / 2 strictly, and of the four quarter
- * turns about that axis the one with the smallest |theta_z| (below pi / 2); for alpha_x = alpha_y (to 1e-12
- * relative), theta_z = 0. A shape made by ggx_shape_ellipsoid whose parameters are that choice gives them back to
- * about 1e-13 kappa(A)^2 (e.g. |theta_x|, |theta_y| <= 0.45 with |theta_z| <= 0.5, tested). alpha_x or
- * alpha_y may be below GGX_ALPHA_MIN for a shape from ggx_shape_matrix. Any output pointer may be NULL.
- * Errors: GGX_ERR_NULL (s NULL). */
+/* The parameters of ggx_shape_ellipsoid that give the same distribution as s: D from them equals ggx_ndf(s, .) to
+ * 1e-12 kappa(A) relative (kappa as for ggx_shape_slopes; tested on random shapes). Of the equivalent sets it returns
+ * the one whose third axis (the row of R with eigenvalue 1 of A^T A) is the principal axis of A^T A nearest to n, so
+ * |theta_x|, |theta_y| < pi / 2 strictly, and of the four quarter turns about it the one with the smallest |theta_z|
+ * (below pi / 2); theta_z = 0 for alpha_x = alpha_y (to 1e-12 relative). A shape made by ggx_shape_ellipsoid from
+ * such parameters gives them back to about 1e-13 kappa(A)^2 (tested with |theta_x|, |theta_y| <= 0.45 and
+ * |theta_z| <= 0.5). alpha_x or alpha_y may be below GGX_ALPHA_MIN for a shape from ggx_shape_matrix. Any output
+ * pointer may be NULL. Errors: GGX_ERR_NULL (s NULL). */
 ggx_status ggx_shape_ellipsoid_params(const ggx_shape *s, double *alpha_x, double *alpha_y, double *theta_x,
                                       double *theta_y, double *theta_z);
 
@@ -204,33 +179,32 @@ ggx_status ggx_shape_ellipsoid_params(const ggx_shape *s, double *alpha_x, doubl
  * The distribution of normals
  * ------------------------------------------------------------------------------------------------------------ */
 
-/* D(m) = X+(m.n) / (pi |A| ||A n|| ||A^{-T} m||^4)   (Walter eq 1).
- * Domain: unit m. m.z < 0 gives 0 (X+(0) = 1, as in the seed, so the horizon itself is inside).
- * Normalised: the integral of D(m) (m.n) over the hemisphere is 1 for every A (tested to 1e-9 relative).
- * For R = I it equals 1 / (pi ax ay (mx^2/ax^2 + my^2/ay^2 + mz^2)^2), anisotropic GGX. */
+/* D(m) = X+(m.n) / (pi |A| ||A n|| ||A^{-T} m||^4) (Walter eq 1), unit m; m.z < 0 gives 0 (X+(0) = 1: the horizon
+ * itself is inside).
+ * Normalised: the integral of D(m) (m.n) over the hemisphere is 1 for every A (tested to 1e-9 relative). For R = I it
+ * is 1 / (pi ax ay (mx^2/ax^2 + my^2/ay^2 + mz^2)^2), anisotropic GGX. */
 double ggx_ndf(const ggx_shape *s, ggx_vec3 m);
 
-/* The NDF as a density over the spherical angles: D(theta, phi) = D(m) sin(theta) with
- * m = (sin theta cos phi, sin theta sin phi, cos theta) (blog Part 1). theta in [0, pi/2], phi any. */
+/* D(theta, phi) = D(m) sin(theta), m = (sin theta cos phi, sin theta sin phi, cos theta): the NDF as a density over
+ * the spherical angles (blog Part 1). theta in [0, pi/2] (else 0), phi any. */
 double ggx_ndf_spherical(const ggx_shape *s, double theta, double phi);
 
-/* Slope-space distribution P22(x~, y~), with the slopes of a normal m given by x~ = -mx/mz, y~ = -my/mz, so that
- * D(m) = P22(x~, y~) / cos^4(theta_m) (blog Part 1). Closed form for any A:
- * P22 = 1 / (pi |A| ||A n|| ||A^{-T} (-x~, -y~, 1)||^4). Integrates to 1 over the plane. Any finite slopes. */
+/* P22(x~, y~) = D(m) cos^4(theta_m) for the slopes x~ = -mx/mz, y~ = -my/mz of m (blog Part 1); for any A
+ * it is 1 / (pi |A| ||A n|| ||A^{-T} (-x~, -y~, 1)||^4); integrates to 1 over the plane. Any finite slopes. */
 double ggx_p22(const ggx_shape *s, double slope_x, double slope_y);
 
-/* Gaussian curvature of the ellipsoid x^T A^T A x = 1 (Ce = 1) at the point whose outward normal is m:
- * Kg(m) = |A|^2 ||A^{-T} m||^4   (Walter eq 20). Defined on the whole sphere (m.z of any sign); zero m gives 0.
+/* Gaussian curvature of the ellipsoid x^T A^T A x = 1 (Ce = 1) where the outward normal is m:
+ * Kg(m) = |A|^2 ||A^{-T} m||^4 (Walter eq 20), on the whole sphere (m.z of any sign); zero m gives 0.
  * D(m) = 1 / (A_perp_e(n) Kg(m)) for m.z >= 0 (eq 9). Tested against finite differences of the Gauss map. */
 double ggx_gaussian_curvature(const ggx_shape *s, ggx_vec3 m);
 
-/* Projected area of the ellipsoid seen from direction u (Ce = 1): pi ||A u|| / |A|   (eq 26). Any unit u. */
+/* Projected area of the ellipsoid seen from direction u (Ce = 1): pi ||A u|| / |A| (eq 26). Any unit u. */
 double ggx_projected_area(const ggx_shape *s, ggx_vec3 u);
 
 /* Projected area, seen from u, of the ellipsoidal lune {m.u >= 0 and m.v >= 0} (Ce = 1):
- * pi (||A u|| ||A v|| + (A u).(A v)) / (2 |A| ||A v||)   (eq 28). ggx_lune_area(s, u, u) = ggx_projected_area(s, u).
- * Any unit u, v; a zero v gives 0. The truncated microsurface is the lune with v = n, so
- * the integral of X+(m.u) D(m) (m.u) dm = A_perp_l(u, n) / A_perp_e(n) (tested by quadrature, grazing u included). */
+ * pi (||A u|| ||A v|| + (A u).(A v)) / (2 |A| ||A v||) (eq 28); ggx_lune_area(s, u, u) = ggx_projected_area(s, u).
+ * Any unit u, v; a zero v gives 0. With v = n it is the truncated microsurface: the integral of
+ * X+(m.u) D(m) (m.u) dm = A_perp_l(u, n) / A_perp_e(n) (tested by quadrature, grazing u included). */
 double ggx_lune_area(const ggx_shape *s, ggx_vec3 u, ggx_vec3 v);
 
 /* ------------------------------------------------------------------------------------------------------------
@@ -239,33 +213,31 @@ double ggx_lune_area(const ggx_shape *s, ggx_vec3 u, ggx_vec3 v);
 
 /* Walter's ellipsoid masking term, eq 6 / eq 32:
  * G1(u, m) = min(1, A_perp_e(n) |u.n| / A_perp_l(u, n)) X+(u.m)
- *          = min(1, 2 ||A n||^2 |u.n| / (||A u|| ||A n|| + (A u).(A n))) X+(u.m).
- * Domain: u.z > 0 (u.z <= 0 gives 0; for transmission pass the direction flipped to the upper side, eq 7).
- * In [0, 1]. For unskewed shapes the min is never active and G1 = 1 / (1 + Lambda(u)) with the GGX Lambda. */
+ *          = min(1, 2 ||A n||^2 |u.n| / (||A u|| ||A n|| + (A u).(A n))) X+(u.m), in [0, 1].
+ * Domain: u.z > 0 (u.z <= 0 gives 0; for transmission pass the direction flipped to the upper side, eq 7). For
+ * unskewed shapes the min is never active and G1 = 1 / (1 + Lambda(u)) with the GGX Lambda. */
 double ggx_g1(const ggx_shape *s, ggx_vec3 u, ggx_vec3 m);
 
-/* The direction-only part of eq 32 without the min: A_perp_l(u, n) / (A_perp_e(n) u.z) - 1, which for unskewed
- * shapes is Smith's GGX Lambda(u) = (sqrt(1 + alpha(phi)^2 tan^2 theta) - 1) / 2 (blog Part 1). For skewed shapes
- * it is the lune-area generalisation and may be negative (where Walter's min clips G1 to 1).
- * Domain: u.z > 0; u.z <= 0 gives 0. */
+/* A_perp_l(u, n) / (A_perp_e(n) u.z) - 1, the direction-only part of eq 32 without the min: for unskewed shapes
+ * Smith's GGX Lambda(u) = (sqrt(1 + alpha(phi)^2 tan^2 theta) - 1) / 2 (blog Part 1), for skewed shapes its
+ * lune-area generalisation, which may be negative (where Walter's min clips G1 to 1). u.z <= 0 gives 0. */
 double ggx_lambda(const ggx_shape *s, ggx_vec3 u);
 
-/* Smith form G1 = 1 / (1 + Lambda(u)), without the back-facing test or the min. Equal to ggx_g1 with u.m > 0
- * for unskewed shapes; may exceed 1 for skewed shapes. Domain u.z > 0; otherwise 0. */
+/* Smith form G1 = 1 / (1 + Lambda(u)), without the back-facing test or the min: ggx_g1 with u.m > 0 for unskewed
+ * shapes; may exceed 1 for skewed shapes. u.z <= 0 gives 0. */
 double ggx_g1_smith(const ggx_shape *s, ggx_vec3 u);
 
-/* Separable shadowing-masking G = G1(wi, m) G1(wo, m)   (eq 5). Both directions above the horizon; else 0. */
+/* Separable shadowing-masking G = G1(wi, m) G1(wo, m) (eq 5). Both directions above the horizon; else 0. */
 double ggx_g2(const ggx_shape *s, ggx_vec3 wi, ggx_vec3 wo, ggx_vec3 m);
 
-/* Height-correlated Smith shadowing-masking X+(wi.m) X+(wo.m) / (1 + L(wi) + L(wo)) with L = max(Lambda, 0)
- * (for unskewed shapes Lambda >= 0, so this is the standard form; clamping at 0 is the counterpart of Walter's
- * min for skewed shapes and keeps the result in [0, 1]). Both directions above the horizon; else 0. */
+/* Height-correlated Smith shadowing-masking X+(wi.m) X+(wo.m) / (1 + L(wi) + L(wo)), L = max(Lambda, 0) (the
+ * standard form for unskewed shapes, where Lambda >= 0; the clamp is the counterpart of Walter's min for skewed
+ * shapes), in [0, 1]. Both directions above the horizon; else 0. */
 double ggx_g2_height_correlated(const ggx_shape *s, ggx_vec3 wi, ggx_vec3 wo, ggx_vec3 m);
 
 /* Density of visible normals for view v (Walter eq 33), a pdf over the solid angle of m:
- * D_v(m) = A_perp_e(n) / A_perp_l(v, n) X+(m.v) D(m) (m.v).
- * Integrates to 1 over m for every A and every v above the horizon. For unskewed shapes it equals
- * G1(v) D(m) (m.v) / (v.n). Domain: v.z > 0; otherwise 0. */
+ * D_v(m) = A_perp_e(n) / A_perp_l(v, n) X+(m.v) D(m) (m.v); integrates to 1 for every A and every v above the
+ * horizon; G1(v) D(m) (m.v) / (v.n) for unskewed shapes. v.z <= 0 gives 0. */
 double ggx_pdf_vndf(const ggx_shape *s, ggx_vec3 v, ggx_vec3 m);
 
 /* ------------------------------------------------------------------------------------------------------------
@@ -273,7 +245,7 @@ double ggx_pdf_vndf(const ggx_shape *s, ggx_vec3 v, ggx_vec3 m);
  * ------------------------------------------------------------------------------------------------------------ */
 
 /* Exact unpolarised Fresnel reflectance of a dielectric interface, eta = eta_transmitted / eta_incident > 0,
- * cos_i = |cosine| of the incidence angle (the sign is ignored, values above 1 are clamped). Returns 1 under total
+ * cos_i = |cosine| of the incidence angle (the sign is ignored, values above 1 are clamped); 1 under total
  * internal reflection. Tested against the complex-amplitude Fresnel equations and textbook values. */
 double ggx_fresnel_dielectric_eval(double cos_i, double eta);
 
@@ -311,28 +283,28 @@ double ggx_fresnel_eval(const ggx_fresnel *f, double cos_i);
  * Half vectors and their Jacobians (Walter et al. 2007)
  * ------------------------------------------------------------------------------------------------------------ */
 
-/* Reflection half vector normalize(wi + wo), flipped to the upper hemisphere (h.z >= 0). (0,0,0) when
+/* Reflection half vector normalize(wi + wo), flipped to the upper hemisphere (h.z >= 0); (0,0,0) when
  * wi + wo = 0. */
 ggx_vec3 ggx_half_reflect(ggx_vec3 wi, ggx_vec3 wo);
 
 /* Generalised half vector of refraction -(eta_i wi + eta_o wo) normalised, flipped to h.z >= 0 (Walter 2007
- * eq 16), where eta_i, eta_o are the indices on the sides of wi and wo. (0,0,0) when it is zero. */
+ * eq 16), eta_i, eta_o the indices on the sides of wi and wo; (0,0,0) when it is zero. */
 ggx_vec3 ggx_half_refract(ggx_vec3 wi, ggx_vec3 wo, double eta_i, double eta_o);
 
-/* d omega_h / d omega_o for reflection: 1 / (4 |wo.h|) (Walter 2007 eq 14). 0 when wo.h = 0. */
+/* d omega_h / d omega_o for reflection: 1 / (4 |wo.h|) (Walter 2007 eq 14); 0 when wo.h = 0. */
 double ggx_jacobian_reflect(ggx_vec3 wo, ggx_vec3 h);
 
-/* d omega_h / d omega_o for refraction: eta_o^2 |wo.h| / (eta_i (wi.h) + eta_o (wo.h))^2 (Walter 2007 eq 17).
- * 0 when the denominator is 0. Both Jacobians are tested against finite differences of the maps. */
+/* d omega_h / d omega_o for refraction: eta_o^2 |wo.h| / (eta_i (wi.h) + eta_o (wo.h))^2 (Walter 2007 eq 17); 0 when
+ * the denominator is 0. Both Jacobians are tested against finite differences of the maps. */
 double ggx_jacobian_refract(ggx_vec3 wi, ggx_vec3 wo, ggx_vec3 h, double eta_i, double eta_o);
 
 /* Mirror reflection of w about the unit normal m: 2 (w.m) m - w. Any w, m. */
 ggx_vec3 ggx_reflect(ggx_vec3 w, ggx_vec3 m);
 
 /* Refraction of w through a facet with unit normal m, eta = eta_transmitted / eta_incident (the side of w is the
- * incident side; m may face either way). Writes the unit refracted direction (on the far side of the facet) to
- * *out and returns 1, or returns 0 and writes (0,0,0) under total internal reflection, for w.m = 0, eta outside
- * (0, inf) or NaN input. Snell's law holds to 1e-15 (tested). */
+ * incident side; m may face either way): writes the unit refracted direction (on the far side of the facet) to *out
+ * and returns 1, or writes (0,0,0) and returns 0 under total internal reflection, for w.m = 0, eta outside (0, inf)
+ * or NaN input. Snell's law holds to 1e-15 (tested). */
 int ggx_refract(ggx_vec3 w, ggx_vec3 m, double eta, ggx_vec3 *out);
 
 /* ------------------------------------------------------------------------------------------------------------
@@ -341,9 +313,8 @@ int ggx_refract(ggx_vec3 w, ggx_vec3 m, double eta, ggx_vec3 *out);
 
 /* Microfacet BRDF (Walter eq 4 with G of eq 5):
  * f_r(wi, wo) = D(h) G1(wi, h) G1(wo, h) F(wi.h) / (4 |wi.n| |wo.n|),  h = normalize(wi + wo).
- * Reflection only: wi.z <= 0 or wo.z <= 0 gives 0. Reciprocal: f_r(wi, wo) = f_r(wo, wi) (tested to 1e-12).
- * With F = 1 the directional albedo is <= 1 for every shape and wi (and <= G1(wi) for unskewed shapes); ggx_albedo
- * computes it. */
+ * Reflection only: wi.z <= 0 or wo.z <= 0 gives 0. Reciprocal: f_r(wi, wo) = f_r(wo, wi) (tested to 1e-12). With
+ * F = 1 the directional albedo (ggx_albedo) is <= 1 for every shape and wi, and <= G1(wi) for unskewed shapes. */
 double ggx_brdf_eval(const ggx_shape *s, const ggx_fresnel *f, ggx_vec3 wi, ggx_vec3 wo);
 
 /* Which quantity the BSDF transports (Veach 1997, Walter 2007 section 5.2). */
@@ -352,55 +323,50 @@ typedef enum ggx_transport {
     GGX_IMPORTANCE = 1 /* the adjoint: f*(wi, wo) = f(wo -> wi), for light tracing / importance */
 } ggx_transport;
 
-/* Rough dielectric BSDF (Walter et al. 2007) on both sides of an interface whose lower side (z < 0) has index eta
- * relative to the upper side (eta = eta_below / eta_above > 0, eta != 1 for a meaningful transmission; eta = 1 is
- * allowed and gives reflection only from the Fresnel term, which is then 0).
- * wi: direction towards the light, wo: direction towards the viewer, either on either side (z != 0).
+/* Rough dielectric BSDF (Walter et al. 2007) on both sides of an interface whose lower side (z < 0) has index
+ * eta = eta_below / eta_above > 0 relative to the upper side (eta != 1 for a meaningful transmission; eta = 1 is
+ * allowed and gives reflection only from the Fresnel term, which is then 0). wi: towards the light, wo: towards the
+ * viewer, each on either side (z != 0).
  * - Same side: reflection, F(|wi.h|) D(h) G / (4 |wi.n| |wo.n|) with h = ggx_half_reflect.
  * - Opposite sides: transmission with h = ggx_half_refract (eta_i, eta_o the indices on the sides of wi, wo):
  *   |wi.h| |wo.h| eta_o^2 (1 - F(|wi.h|)) D(h) G / (|wi.n| |wo.n| (eta_i wi.h + eta_o wo.h)^2)   (Walter 2007 eq 21).
- * G is eq 7: G1(sgn(wi.n) wi, h) G1(sgn(wo.n) wo, h); F is the exact dielectric Fresnel with the relative index
- * seen from wi's side. Configurations that no microfacet produces (h below the horizon, wi.h and wo.h on the
- * wrong sides) give 0.
- * Radiance convention: f(wi, wo) / eta_o^2 = f(wo, wi) / eta_i^2 (generalised reciprocity), and for fixed wi the
- * integral of f(wi, wo) |wo.n| over all wo is <= 1. GGX_IMPORTANCE returns f(wo, wi). wi.z = 0 or wo.z = 0, or
- * eta outside (0, inf), gives 0. */
+ * G is eq 7, G1(sgn(wi.n) wi, h) G1(sgn(wo.n) wo, h); F is the exact dielectric Fresnel with the relative index seen
+ * from wi's side. Configurations that no microfacet produces (h below the horizon, wi.h and wo.h on the wrong sides)
+ * give 0. Radiance convention: f(wi, wo) / eta_o^2 = f(wo, wi) / eta_i^2 (generalised reciprocity), and for fixed
+ * wi the integral of f(wi, wo) |wo.n| over all wo is <= 1; GGX_IMPORTANCE returns f(wo, wi). wi.z = 0 or wo.z = 0,
+ * or eta outside (0, inf), gives 0. */
 double ggx_bsdf_eval(const ggx_shape *s, double eta, ggx_vec3 wi, ggx_vec3 wo, ggx_transport mode);
 
 /* ------------------------------------------------------------------------------------------------------------
  * Energy: albedo (docs/design/albedo.md)
  *
- * These are integrals, computed by deterministic adaptive quadrature (no randomness, no tables, no allocation;
- * thread-safe). They are setup-time functions: microseconds to milliseconds per call, not per-sample ones.
+ * Integrals by deterministic adaptive quadrature (no randomness, no tables, no allocation): setup-time functions,
+ * microseconds to milliseconds per call, not per-sample ones (docs/performance.md, "Albedo and energy compensation").
  * ------------------------------------------------------------------------------------------------------------ */
 
 /* Directional albedo of ggx_brdf_eval with F = 1 (separable G, eq 5): E(v) = int f_r(v, w) w.z dw over the upper
- * hemisphere. Any shape, any v with v.z > 0 (v is normalised first; a zero, non-finite or v.z <= 0 vector gives 0).
- * Result in [0, 1]. Absolute error <= 1e-6 (tested against an independent quadrature over w, the closed form
- * 2 (1 - ln 2) / (1 + v.z) at alpha_x = alpha_y = 1 for every rotation, and Monte Carlo with ggx_sample_brdf).
- * Cost: about 0.1 to 5 ms (more for small alpha, grazing views and skewed shapes). */
+ * hemisphere, for any shape and v.z > 0 (v is normalised first; a zero, non-finite or v.z <= 0 vector gives 0). In
+ * [0, 1], absolute error <= 1e-6 (tests/test_albedo.c: against an independent quadrature over w, the closed form
+ * 2 (1 - ln 2) / (1 + v.z) at alpha_x = alpha_y = 1 for every rotation, and Monte Carlo with ggx_sample_brdf). */
 double ggx_albedo(const ggx_shape *s, ggx_vec3 v);
 
 /* The same for the height-correlated G2 (ggx_g2_height_correlated in place of eq 5), the masking most renderers
- * use: f_r = D(h) G2(v, w, h) / (4 v.z w.z). Closed form at alpha_x = alpha_y = 1: 1 - v.z ln(1 + 1 / v.z).
- * Same domain, accuracy and cost as ggx_albedo. */
+ * use: f_r = D(h) G2(v, w, h) / (4 v.z w.z); 1 - v.z ln(1 + 1 / v.z) at alpha_x = alpha_y = 1. Domain and accuracy
+ * as ggx_albedo. */
 double ggx_albedo_height_correlated(const ggx_shape *s, ggx_vec3 v);
 
-/* Albedo of the rough dielectric ggx_bsdf_eval for light arriving from v, on either side (v.z != 0; v is
- * normalised): *reflected = int f(v -> w) |w.z| dw over v's side, *transmitted = the same over the other side,
- * returns their sum (<= 1; the rest is lost to multiple scattering). eta as for ggx_bsdf_eval (the lower side's
- * index relative to the upper side's). Either output pointer may be NULL. Deterministic quadrature over the facets
- * that v sees (docs/design/albedo.md): absolute error <= 1e-5 (tested against a quadrature of ggx_bsdf_eval over w, to
- * 6.4e-7 where the light comes from the less dense side, against Monte Carlo with ggx_sample_bsdf, and against
- * T = G1(u)^2 / G1_smith(u), u = sgn(v.z) v, R = 0, the limit at eta = 1, where the transmission is a delta that
- * ggx_bsdf_eval gives as 0). v.z = 0, a zero or non-finite v, eta outside
- * (0, 1e300] or s NULL: 0 and both outputs 0. Cost: 2 to 100 ms (docs/design/albedo.md). */
+/* Albedo of the rough dielectric ggx_bsdf_eval for light arriving from v on either side (v.z != 0; v is
+ * normalised): *reflected = int f(v -> w) |w.z| dw over v's side, *transmitted the same over the other side; returns
+ * their sum (<= 1; the rest is lost to multiple scattering). eta as for ggx_bsdf_eval; either output pointer may be
+ * NULL. Absolute error <= 1e-5 (docs/design/albedo.md: against a quadrature of ggx_bsdf_eval over w, to 6.4e-7 where
+ * the light comes from the less dense side, against Monte Carlo with ggx_sample_bsdf, and against the limit at
+ * eta = 1, T = G1(u)^2 / G1_smith(u), u = sgn(v.z) v, R = 0, a delta that ggx_bsdf_eval gives as 0). v.z = 0, a
+ * zero or non-finite v, eta outside (0, 1e300] or s NULL: 0 and both outputs 0. */
 double ggx_bsdf_albedo(const ggx_shape *s, double eta, ggx_vec3 v, double *reflected, double *transmitted);
 
 /* Average albedo E_avg = (1 / pi) int E(v) v.z dv over the upper hemisphere (Kulla & Conty 2017), of ggx_albedo
- * and of ggx_albedo_height_correlated. Result in [0, 1], absolute error <= 1e-6. Closed forms at
- * alpha_x = alpha_y = 1: 4 (1 - ln 2)^2 and 4 (1 - ln 2) / 3. Cost: tens of albedo evaluations for isotropic
- * shapes, a few hundred otherwise. */
+ * and of ggx_albedo_height_correlated: in [0, 1], absolute error <= 1e-6; 4 (1 - ln 2)^2 and 4 (1 - ln 2) / 3 at
+ * alpha_x = alpha_y = 1. Cost: tens of albedo evaluations for isotropic shapes, a few hundred otherwise. */
 double ggx_albedo_avg(const ggx_shape *s);
 double ggx_albedo_avg_height_correlated(const ggx_shape *s);
 
@@ -434,8 +400,8 @@ double ggx_pdf_ndf(const ggx_shape *s, ggx_vec3 m);
 /* The library's default NDF sampler (ggx_sample_ndf_stretch). Any shape. */
 ggx_vec3 ggx_sample_ndf(const ggx_shape *s, double u1, double u2);
 
-/* Engstad's elliptic stretch: a cosine-weighted direction c about the pole of sphere space, m = normalize(A^T c).
- * For diagonal A this is m = normalize(ax cx, ay cy, cz). Any shape (the canonical A makes the pole +z). */
+/* Engstad's elliptic stretch: a cosine-weighted direction c about the pole of sphere space, m = normalize(A^T c)
+ * (for diagonal A, m = normalize(ax cx, ay cy, cz)). Any shape. */
 ggx_vec3 ggx_sample_ndf_stretch(const ggx_shape *s, double u1, double u2);
 ggx_vec2 ggx_sample_ndf_stretch_inv(const ggx_shape *s, ggx_vec3 m);
 
@@ -482,11 +448,10 @@ typedef double (*ggx_uniform_fn)(void *state);
 /* Walter's versions 1 and 2 (rejection). Version 1 shoots rays along -v from uniform points of the disk of the
  * ellipsoid's bounding sphere (radius 1 / sigma_min(A)) and keeps the first hit if m.n >= 0; version 2 draws uniform
  * points of the silhouette in sphere space, lifts them onto the sphere and keeps those with m.n >= 0. Each
- * candidate uses two numbers from next(state). *trials (if not NULL) receives the number of candidates drawn;
- * the acceptance rate is 1 / mean(trials). After 100000 rejected candidates the zero vector is returned.
- * Version 1's sphere is loose for alpha >> 1 (a needle: silhouette radius 1 / alpha against the disk's 1): viewed
- * from n the mean is about alpha^2 candidates (9.6e3 at alpha 100), so at alpha >= 1e3 most samples near n give up
- * (`ggx check --alpha 1e4 --sampler walter-v1` fails for that reason). Small alpha is cheap (13 at 1e-4, grazing). */
+ * candidate uses two numbers from next(state); *trials (if not NULL) receives the number of candidates drawn (the
+ * acceptance rate is 1 / mean(trials)). After 100000 rejected candidates the zero vector is returned: version 1 needs
+ * about alpha^2 candidates viewed from n for alpha >> 1, so from alpha ~1e3 most samples near n give up
+ * (docs/design/kernels.md, "What version 1 costs"). */
 ggx_vec3 ggx_sample_vndf_walter_v1(const ggx_shape *s, ggx_vec3 v, ggx_uniform_fn next, void *state,
                                    unsigned *trials);
 ggx_vec3 ggx_sample_vndf_walter_v2(const ggx_shape *s, ggx_vec3 v, ggx_uniform_fn next, void *state,
@@ -516,42 +481,34 @@ ggx_sample ggx_sample_brdf(const ggx_shape *s, const ggx_fresnel *f, ggx_vec3 wi
 /* The pdf of ggx_sample_brdf for a given pair; 0 unless wi.z > 0 and wo.z > 0. */
 double ggx_pdf_brdf(const ggx_shape *s, ggx_vec3 wi, ggx_vec3 wo);
 
-/* Bounded reflection sampling, for any shape (docs/design/bounded-vndf.md; after Eto & Tokuyoshi 2023, with a bound derived
- * for every A): as ggx_sample_brdf, but the spherical cap of the caps sampler starts at the height b below which
- * every cap point reflects wi below the horizon, so fewer samples are invalid (for isotropic shapes b is the lowest
- * cap point that reflects above it, Eto and Tokuyoshi's exact bound: none are invalid at wi = n, nor at any view for
- * alpha = 1) and the distribution of valid directions is the same up to the factor kappa = (1 - b) / (1 + vs.z) in
- * (0, 1]:
- * pdf = ggx_pdf_brdf / kappa (the removed cap points all reflect below the horizon: proved in the document and by
- * tests/test_sample_dir.c), weight = kappa x ggx_sample_brdf's weight (<= 1, eq 52).
+/* Bounded reflection sampling for any shape (docs/design/bounded-vndf.md; after Eto & Tokuyoshi 2023): as
+ * ggx_sample_brdf, but the caps sampler's cap starts at a height b below which every cap point reflects wi below the
+ * horizon (for isotropic shapes the lowest one that reflects above it: no invalid samples at wi = n, nor at any view
+ * for alpha = 1), so fewer samples are invalid. pdf = ggx_pdf_brdf / kappa, kappa = (1 - b) / (1 + vs.z) in (0, 1]
+ * (proved in the document and by tests/test_sample_dir.c), weight = kappa x ggx_sample_brdf's weight (<= 1, eq 52).
  * Same domain, invalid samples and contract as ggx_sample_brdf; u1, u2 in [0, 1) (clamped). */
 ggx_sample ggx_sample_brdf_bounded(const ggx_shape *s, const ggx_fresnel *f, ggx_vec3 wi, double u1, double u2);
 /* The pdf of ggx_sample_brdf_bounded for a given pair: ggx_pdf_brdf / kappa, since every removed cap point reflects
  * below the horizon; 0 unless wi.z > 0 and wo.z > 0. Relative accuracy as ggx_pdf_brdf. */
 double ggx_pdf_brdf_bounded(const ggx_shape *s, ggx_vec3 wi, ggx_vec3 wo);
 
-/* Bounded reflection sampling with a bound per azimuth of the cap point, for any shape (docs/design/bounded-vndf.md, "A
- * bound per azimuth"): as ggx_sample_brdf_bounded, but the cap's lower end b(phi) depends on the azimuth phi = 2 pi u1
- * of the cap point: from the plane bound of ggx_sample_brdf_bounded, a tangent and a chord of the unit circle on that
- * meridian (in two stages, below and above the cap's equator) move it up to where the reflection may reach the
- * horizon. It removes most of what
- * ggx_sample_brdf_bounded leaves for anisotropic shapes (all of the waste of any unskewed shape at wi = n), at
- * about twice ggx_sample_brdf's cost (docs/performance.md). pdf = ggx_pdf_brdf / kappa(phi) with kappa(phi) =
- * (1 - b(phi)) / (1 + vs.z) in (0, ggx_sample_brdf_bounded's kappa], weight = kappa(phi) x ggx_sample_brdf's weight
- * (<= 1), so the variance is never above ggx_sample_brdf's. b(phi) jumps where a meridian touches the boundary of the
- * region that reflects above the horizon, so the pdf jumps across some curves of directions; near them, and near the
- * pole of the cap (where phi is ill-conditioned), the float sampler (ggx_inline.h) may take another bound than the
- * double one: it agrees within 1e-4 per direction component, 2e-4 relative in pdf and 4e-4 in weight for all but a
- * fraction 1e-3 of samples (tests: none of 188 948 random samples missed). Same domain, invalid samples and contract
- * as ggx_sample_brdf; u1, u2 in [0, 1) (clamped). */
+/* Bounded reflection sampling with a bound per azimuth of the cap point, for any shape (docs/design/bounded-vndf.md,
+ * "A bound per azimuth of the cap point"): as ggx_sample_brdf_bounded, but the cap's lower end b(phi) depends on the
+ * cap point's azimuth phi = 2 pi u1 (no invalid samples for an unskewed shape at wi = n; fewer than
+ * ggx_sample_brdf_bounded's for anisotropic shapes, at a higher cost: docs/performance.md). pdf = ggx_pdf_brdf /
+ * kappa(phi), kappa(phi) = (1 - b(phi)) / (1 + vs.z) in (0, ggx_sample_brdf_bounded's kappa], weight = kappa(phi) x
+ * ggx_sample_brdf's weight (<= 1): the variance is never above ggx_sample_brdf's. b(phi), and so the pdf, jumps
+ * across some curves of directions; near them and near the cap's pole (where phi is ill-conditioned) the float
+ * sampler (ggx_inline.h) may take another bound than the double one: it agrees within 1e-4 per direction component,
+ * 2e-4 relative in pdf and 4e-4 in weight for all but a fraction 1e-3 of samples (tests/test_sample_dir.c). Same
+ * domain, invalid samples and contract as ggx_sample_brdf; u1, u2 in [0, 1) (clamped). */
 ggx_sample ggx_sample_brdf_bounded_azimuth(const ggx_shape *s, const ggx_fresnel *f, ggx_vec3 wi, double u1,
                                            double u2);
 /* The pdf of ggx_sample_brdf_bounded_azimuth for a given pair: ggx_pdf_brdf / kappa(phi), phi the azimuth of the cap
  * point of wo's half vector (phi = 0 at the pole, a single point); 0 unless wi.z > 0 and wo.z > 0. At a direction
- * the sampler drew, it agrees with the sample's pdf within 1e-6 relative for u2 >= 1e-3 (tests: 2.4e-10 over 93 950
- * random samples of alphas 0.02 to 2, ratios to 1:10, skews to 0.5 rad; a hostile test found 1.4e-7 for alphas
- * from 0.01 and skews to 1.2 rad). Near the pole of the cap (u2 kappa -> 0) the recovered azimuth is ill-conditioned:
- * up to 2e-5 there, and up to a few percent for shapes whose alphas differ by a factor 1e5 or more. */
+ * the sampler drew, it agrees with the sample's pdf within 1e-6 relative for u2 >= 1e-3 (tests/test_sample_dir.c).
+ * Near the pole of the cap (u2 kappa -> 0) the recovered azimuth is ill-conditioned: up to 2e-5 there, and up to a
+ * few percent for shapes whose alphas differ by a factor 1e5 or more. */
 double ggx_pdf_brdf_bounded_azimuth(const ggx_shape *s, ggx_vec3 wi, ggx_vec3 wo);
 
 /* Rough-dielectric sampling (Walter 2007 section 5.3): from the known direction v (either side), m from the VNDF
@@ -566,11 +523,10 @@ ggx_sample ggx_sample_bsdf(const ggx_shape *s, double eta, ggx_vec3 v, double u1
 double ggx_pdf_bsdf(const ggx_shape *s, double eta, ggx_vec3 v, ggx_vec3 w);
 
 /* ------------------------------------------------------------------------------------------------------------
- * Energy: shipped isotropic albedo tables (docs/design/energy.md)
+ * Energy: shipped albedo tables (docs/design/energy.md)
  *
- * Generated by tools/gen_tables (make tables) from ggx_albedo's quadrature on 65 views x 97 roughnesses
- * (alpha from 1e-3 to 2, log-uniform) and read by bicubic interpolation: about 0.1 microsecond, against milliseconds
- * for the quadrature; the rough dielectric's likewise from ggx_bsdf_albedo's. Thread-safe, no allocation.
+ * Generated by tools/gen_tables (make tables) from the quadratures and read by interpolation, in a fraction of a
+ * microsecond against the quadrature's milliseconds (docs/performance.md). No allocation.
  * ------------------------------------------------------------------------------------------------------------ */
 
 /* Which shadowing-masking an albedo belongs to. */
@@ -580,53 +536,46 @@ typedef enum ggx_masking {
 } ggx_masking;
 
 /* E(mu) of isotropic GGX of roughness alpha, mu = cos theta of the view: ggx_albedo (or
- * ggx_albedo_height_correlated) within 1e-3 absolute for mu >= 0.0175 (89 degrees); the largest error measured
- * over random (alpha, mu) is in docs/design/energy.md. alpha outside [1e-3, 2] (but accepted by ggx_shape_iso) is computed
- * by the quadrature instead (milliseconds). mu <= 0, NaN, or an alpha that ggx_shape_iso rejects: 0; mu > 1 reads
- * as 1. In [0, 1]. Any other masking value reads as GGX_MASKING_SEPARABLE. */
+ * ggx_albedo_height_correlated) within 1e-3 absolute for mu >= 0.0175 (89 degrees; the largest errors are in
+ * docs/design/energy.md). alpha outside [1e-3, 2] (but accepted by ggx_shape_iso) is computed by the quadrature
+ * instead (milliseconds). mu <= 0, NaN, or an alpha that ggx_shape_iso rejects: 0; mu > 1 reads as 1. In [0, 1]. Any
+ * other masking value reads as GGX_MASKING_SEPARABLE. */
 double ggx_albedo_iso_table(double alpha, double mu, ggx_masking g);
 /* E_avg(alpha) likewise (ggx_albedo_avg, ggx_albedo_avg_height_correlated), within 1e-5. */
 double ggx_albedo_avg_iso_table(double alpha, ggx_masking g);
 /* R + T of the rough dielectric ggx_bsdf_eval for isotropic GGX of roughness alpha (ggx_bsdf_albedo's sum), for
- * light arriving along a direction with cos theta = mu: mu > 0 from above, mu < 0 from below; eta as for
- * ggx_bsdf_albedo. Read from a shipped table of 65 views x 33 roughnesses (1e-2 to 2) x 48 relative indices (the
- * index the light meets, eta from above and 1 / eta from below, in [1.05, 3] and [1 / 3, 1 / 1.05]), by tricubic
- * interpolation, about 0.3 microsecond: within 1e-3 absolute of ggx_bsdf_albedo for |mu| >= 0.0175 (89 degrees) and
+ * light arriving with cos theta = mu: mu > 0 from above, mu < 0 from below; eta as for ggx_bsdf_albedo. Read from a
+ * shipped table for alpha in [1e-2, 2] and a relative index met by the light (eta from above, 1 / eta from below) in
+ * [1.05, 3] or [1 / 3, 1 / 1.05]: within 1e-3 absolute of ggx_bsdf_albedo for |mu| >= 0.0175 (89 degrees) and
  * alpha >= 0.025; below that, near the critical angle of light meeting the denser side with eta_r near 1 / 1.05,
- * errors up to 1.2e-3 were measured (docs/design/energy.md has the largest errors found). Outside the table's range (but
- * accepted by ggx_shape_iso and ggx_bsdf_albedo) it computes the quadrature instead (milliseconds). mu = 0, NaN,
- * eta outside (0, 1e300] or an alpha that ggx_shape_iso rejects: 0; |mu| > 1 reads as 1. In [0, 1]. Thread-safe. */
+ * errors reach 1.2e-3 (docs/design/energy.md). Outside the table's range (but accepted by ggx_shape_iso and
+ * ggx_bsdf_albedo) it computes the quadrature instead (milliseconds). mu = 0, NaN, eta outside (0, 1e300] or an alpha
+ * that ggx_shape_iso rejects: 0; |mu| > 1 reads as 1. In [0, 1]. */
 double ggx_bsdf_albedo_iso_table(double alpha, double eta, double mu);
 /* E(v) of anisotropic GGX (ggx_shape_aniso(alpha_x, alpha_y): ggx_albedo, separable G) at a view v in the shape's
- * frame (x along alpha_x; v need not be unit; a rotated shape's view is first turned into its frame). Read from a
- * shipped table of 33 views x 33 azimuths (a quarter turn: E is even about both tangent axes) x 21 x 21 roughnesses
- * (1e-2 to 2, the pairs alpha_x <= alpha_y stored) by interpolation in all four, about 0.5 microsecond:
- * within 1.1e-3 absolute of ggx_albedo for v.z >= 0.0175 (89 degrees) and alpha_x / alpha_y in [1/20, 20]. The
- * largest errors are at 89 degrees with alphas near 0.02, where E changes faster with the elevation than 33 rows
- * follow (docs/design/energy.md has the largest found). The azimuths are warped towards the tangent axes
- * (common/albedo_rows.h); per-shape tables (ggx_energy_create) share the layout and these errors. A roughness
- * outside [1e-2, 2] or an anisotropy beyond 1:20 (but accepted by ggx_shape_aniso): the quadrature instead
- * (milliseconds). v.z <= 0, a zero or non-finite v, or alphas that
- * ggx_shape_aniso rejects: 0. In [0, 1]. Thread-safe. */
+ * frame (x along alpha_x; v need not be unit; a rotated shape's view is first turned into its frame), read from a
+ * shipped table (docs/design/energy.md, "Shipped anisotropic table") for alphas in [1e-2, 2] and alpha_x / alpha_y
+ * in [1/20, 20]: within 1.1e-3 absolute of ggx_albedo for v.z >= 0.0175 (89 degrees), the largest errors at 89
+ * degrees with alphas near 0.02. Per-shape tables (ggx_energy_create) share its layout and these errors. Other
+ * alphas accepted by ggx_shape_aniso: the quadrature instead (milliseconds). v.z <= 0, a zero or non-finite v, or
+ * alphas that ggx_shape_aniso rejects: 0. In [0, 1]. */
 double ggx_albedo_aniso_table(double alpha_x, double alpha_y, ggx_vec3 v);
 
 /* ------------------------------------------------------------------------------------------------------------
  * Energy compensation (docs/design/energy.md; Kulla & Conty 2017, for every shape)
  *
- * The single-scattering BRDF loses the light that bounces more than once among the facets: 1 - E(wi) with F = 1.
- * The multiple-scattering lobe returns it:
+ * The single-scattering BRDF loses 1 - E(wi) (F = 1) to light that bounces more than once among the facets. The
+ * multiple-scattering lobe returns it, reciprocally:
  *   f_ms(wi, wo) = F_ms (1 - E(wi)) (1 - E(wo)) / (pi (1 - E_avg)),  F_ms = F_avg^2 E_avg / (1 - F_avg (1 - E_avg)),
- * which is reciprocal, and with F = 1 makes the albedo of f_r + f_ms exactly 1 when E is exact. Here E is a per-shape
- * table of ggx_albedo (separable G, the library's BRDF) built by ggx_energy_create, read by interpolation, and E_avg
- * is the table's own average, so the compensated albedo is 1 + (E - E_table)(wi): within 1e-3 of 1 (and so never
- * more than 1 + 1e-3) for views with wi.z >= 0.0175 (89 degrees) and every shape that ggx_energy_create accepts
- * (tests/test_energy.c, tests/test_energy_domain.c: the reproducers of a hostile report and a random search from
- * alpha 1e-4 to 2, anisotropy to 1:200, skews to 1.2 rad; docs/design/energy.md has the largest errors measured); for
- * unskewed anisotropic shapes read from the shipped table, within that table's 1.1e-3. A shape whose E has a feature
- * narrower than the table's nodes resolve (the mirror horizon of a sharp skewed lobe: docs/design/energy.md) is refused, so
- * that no table underestimates E by more than that. Beyond 89 degrees the table is not promised (errors up to
- * 1.8e-3 measured at 89.5 to 89.9 degrees for alpha 0.002 to 0.004). F_avg is the cosine-weighted average of F
- * (ggx_fresnel_avg): one channel, one wavelength, as everywhere in this API.
+ * with E a per-shape table of ggx_albedo (separable G, the library's BRDF) built by ggx_energy_create and read by
+ * interpolation, and E_avg the table's own average. With F = 1 the compensated albedo is then 1 + (E - E_table)(wi):
+ * within 1e-3 of 1 (so never above 1 + 1e-3) for views with wi.z >= 0.0175 (89 degrees) and every shape that
+ * ggx_energy_create accepts (tests/test_energy.c, tests/test_energy_domain.c: alpha 1e-4 to 2, anisotropy to 1:200,
+ * skews to 1.2 rad); for unskewed anisotropic shapes read from the shipped table, within that table's 1.1e-3. A shape
+ * whose E has a feature narrower than the table's nodes resolve (the mirror horizon of a sharp skewed lobe) is
+ * refused, so that no table underestimates E by more than that. Beyond 89 degrees the table is not promised
+ * (docs/design/energy.md has the errors there). F_avg is the cosine-weighted average of F (ggx_fresnel_avg): one
+ * channel, one wavelength, as everywhere in this API.
  * A NULL ggx_fresnel means F = 1. Directions need not be unit (they are normalised); wi.z <= 0 or wo.z <= 0, zero or
  * non-finite vectors give 0 or an invalid sample. An energy object is read-only after creation: any number of
  * threads may use one at once.
@@ -635,17 +584,12 @@ double ggx_albedo_aniso_table(double alpha_x, double alpha_y, ggx_vec3 v);
 /* A shape's albedo table (opaque; about 100 KB for anisotropic and skewed shapes, 1.6 KB for isotropic ones). */
 typedef struct ggx_energy ggx_energy;
 
-/* Builds the table of shape s (copied; s may be freed after). Isotropic shapes: 65 x 1 albedos, read from the shipped
- * table of ggx_albedo_iso_table when alpha is in [1e-3, 2]; unskewed anisotropic ones with both alphas in [1e-2, 2]
- * and anisotropy to 1:20: 33 x 128 read from the shipped table of ggx_albedo_aniso_table. The others: 65 x 128 by
- * ggx_albedo's quadrature (a quarter of the columns for unskewed shapes, whose E is even about the tangent axes),
- * then the check of the interpolation (docs/design/energy.md): where it finds the table more than 1e-3 off ggx_albedo, a
- * 65 x 256 table, and where that is off too, GGX_ERR_RANGE. Measured: skewed isotropic lobes are accepted from
- * alpha 0.15 at every skew to 1 rad, from 0.1 to 1 rad, and below at skews of 0.1 rad; refused below alpha 0.1 at
- * skews of 0.3 rad and more; unskewed shapes to 1:50 at alpha 0.01 (refused at 1:50 with alpha 0.02 and at 1:200).
- * Cost, on one core: microseconds for shapes read from a shipped table, 0.02 to 0.15 s for other isotropic ones, 3
- * to 7 s for other unskewed ones, 7 to 14 s for skewed ones (30 s where the finer table is needed; docs/design/energy.md
- * has the measured times); build tables once per material, at scene setup. Thread-safe.
+/* Builds the table of shape s (copied; s may be freed after; docs/design/energy.md, "The table"). Isotropic shapes
+ * with alpha in [1e-3, 2] and unskewed anisotropic ones with both alphas in [1e-2, 2] and anisotropy to 1:20 read it
+ * from the shipped tables (microseconds); the others compute it by ggx_albedo's quadrature (seconds:
+ * docs/performance.md; build tables once per material, at scene setup) and check the interpolation: where the table
+ * is more than 1e-3 off ggx_albedo, a finer one, and where that is off too, GGX_ERR_RANGE (which shapes pass:
+ * docs/design/energy.md, "Where the table cannot follow E").
  * Errors: GGX_ERR_NULL (s or out NULL), GGX_ERR_RANGE (E has a feature narrower than the table resolves: render
  * without compensation, which loses the multiple scattering but adds no energy), GGX_ERR_MEMORY; *out is NULL then. */
 ggx_status ggx_energy_create(const ggx_shape *s, ggx_energy **out);
@@ -655,8 +599,8 @@ void ggx_energy_free(ggx_energy *e);
 const ggx_shape *ggx_energy_shape(const ggx_energy *e);
 
 /* E(v) from the table: ggx_albedo(s, v) within 1e-3 absolute for v.z >= 0.0175 (89 degrees), 1.1e-3 for unskewed
- * anisotropic shapes read from the shipped table (their nodes and errors are ggx_albedo_aniso_table's; the tests
- * measure it over random views and on the slices where that table errs most), in [0, 1]; about 100 ns. v.z <= 0: 0. */
+ * anisotropic shapes read from the shipped table (their nodes and errors are ggx_albedo_aniso_table's), in [0, 1].
+ * v.z <= 0: 0. */
 double ggx_energy_albedo(const ggx_energy *e, ggx_vec3 v);
 /* E_avg of the table: (1 / pi) int E(v) v.z dv of its interpolant, within 1e-3 of ggx_albedo_avg. */
 double ggx_energy_albedo_avg(const ggx_energy *e);
@@ -674,9 +618,8 @@ ggx_sample ggx_sample_brdf_ms(const ggx_energy *e, const ggx_fresnel *f, ggx_vec
 double ggx_pdf_brdf_ms(const ggx_energy *e, ggx_vec3 wi, ggx_vec3 wo);
 
 /* The energy-compensated BRDF, the entry point a renderer calls in place of ggx_brdf_eval:
- * ggx_brdf_eval(shape, f, wi, wo) + ggx_brdf_ms_eval(e, f, wi, wo). Reciprocal to 1e-12. Cost: about 300 ns, 6 times
- * ggx_brdf_eval (two table lookups; F_avg of the last 4 conductor or dielectric terms is remembered per thread,
- * bench/bench.c). */
+ * ggx_brdf_eval(shape, f, wi, wo) + ggx_brdf_ms_eval(e, f, wi, wo). Reciprocal to 1e-12. Two table lookups; F_avg of
+ * the last 4 conductor or dielectric terms is remembered per thread (the cost: docs/performance.md). */
 double ggx_brdf_compensated_eval(const ggx_energy *e, const ggx_fresnel *f, ggx_vec3 wi, ggx_vec3 wo);
 /* Samples it: with probability p = F_avg E(wi) / (F_avg E(wi) + F_ms (1 - E(wi))) (u3 < p) the single-scattering
  * lobe by ggx_sample_brdf_bounded, else the multiple-scattering lobe; pdf = p ggx_pdf_brdf_bounded + (1 - p)
@@ -693,16 +636,16 @@ double ggx_pdf_brdf_compensated(const ggx_energy *e, const ggx_fresnel *f, ggx_v
  * energy, E_a = R + T of ggx_bsdf_albedo. The multiple-scattering lobes on both sides return it: for wi on side a
  * and wo on side b, in the radiance convention,
  *   f_ms(wi, wo) = c_ab (1 - E_a(wi)) (1 - E_b(wo)),
- * with c_ab fixed at setup so that (1) int f_ms(wi, wo) |wo.z| dwo = 1 - E_a(wi) from both sides, the share x_a of
- * it transmitted, and (2) f_ms(wi, wo) / eta_o^2 = f_ms(wo, wi) / eta_i^2 (the generalised reciprocity of
- * ggx_bsdf_eval). (1) and (2) leave one free number, the transmitted shares: x_a <= 1 - F_avg,a (the average Fresnel
- * transmittance from side a), with equality on the side that loses more (the derivation is in docs/design/energy.md).
+ * with c_ab fixed at setup so that int f_ms(wi, wo) |wo.z| dwo = 1 - E_a(wi) from both sides, a share x_a of it
+ * transmitted (x_a <= 1 - F_avg,a, the average Fresnel transmittance from side a, with equality on the side that
+ * loses more), and f_ms(wi, wo) / eta_o^2 = f_ms(wo, wi) / eta_i^2, the generalised reciprocity of ggx_bsdf_eval
+ * (derivation: docs/design/energy.md).
  * E_a is a per-(shape, eta) table of ggx_bsdf_albedo for each side, built by ggx_bsdf_energy_create and read by
  * interpolation, so that a non-absorbing interface keeps R + T = 1 + (E_a - E_a,table)(wi): within 1e-3 of 1 from
- * both sides for views with |wi.z| >= 0.0175 (89 degrees), every (shape, eta) that ggx_bsdf_energy_create accepts
+ * both sides for views with |wi.z| >= 0.0175 (89 degrees), for every (shape, eta) that ggx_bsdf_energy_create accepts
  * and that tests/test_energy_bsdf.c and tests/test_energy_domain.c try (isotropic alpha 0.05 to 1, anisotropic to
- * 1:10, rotated, skewed to 0.5 rad; eta 1.001 to 2 and below 1; the largest error measured is in docs/design/energy.md).
- * Tables whose nodes are computed are checked as the conductor's are, and refused where the check fails.
+ * 1:10, rotated, skewed to 0.5 rad; eta 1.001 to 2 and below 1). Tables whose nodes are computed are checked as the
+ * conductor's are, and refused where the check fails.
  * Sides, directions and modes as for ggx_bsdf_eval: eta = eta_below / eta_above, directions point away from the
  * surface on either side, GGX_IMPORTANCE gives the adjoint f(wo, wi). Directions need not be unit (they are
  * normalised); w.z = 0, zero or non-finite vectors give 0 or an invalid sample; e NULL gives 0 or an invalid sample.
@@ -713,13 +656,10 @@ double ggx_pdf_brdf_compensated(const ggx_energy *e, const ggx_fresnel *f, ggx_v
  * 3 KB for isotropic ones). */
 typedef struct ggx_bsdf_energy ggx_bsdf_energy;
 
-/* Builds the tables of shape s (copied) and eta for both sides: 2 x 65 x 128 values of ggx_bsdf_albedo's R + T by
- * quadrature (65 for each side of isotropic shapes, a quarter of the columns for unskewed ones), the two sides on
- * two threads; isotropic shapes with alpha in [0.025, 2] and eta or 1 / eta in [1.05, 3] read their 65 from the
- * shipped table of ggx_bsdf_albedo_iso_table instead. Cost, measured on this project's 2-core machine
- * (docs/design/energy.md): microseconds for isotropic shapes in the shipped table's range (0.1 to 0.2 s outside it), about
- * 4 s for anisotropic ones and 16 to 18 s (some 28 s of CPU) for skewed ones; build them once per material, at scene
- * setup. Thread-safe.
+/* Builds the tables of shape s (copied) and eta for both sides, of ggx_bsdf_albedo's R + T by quadrature, the two
+ * sides on two threads (seconds: docs/performance.md; build them once per material, at scene setup); isotropic
+ * shapes with alpha in [0.025, 2] and eta or 1 / eta in [1.05, 3] read them from the shipped table of
+ * ggx_bsdf_albedo_iso_table instead (microseconds).
  * Errors: GGX_ERR_NULL (s or out NULL), GGX_ERR_NONFINITE (eta NaN or infinite), GGX_ERR_ETA (eta <= 0, above 1e300,
  * or exactly 1, where the transmission is a delta that ggx_bsdf_eval does not represent), GGX_ERR_RANGE (the check
  * of the interpolation finds either side's table more than 1e-3 off ggx_bsdf_albedo: sharp skewed lobes, as for
@@ -732,8 +672,7 @@ const ggx_shape *ggx_bsdf_energy_shape(const ggx_bsdf_energy *e);
 double ggx_bsdf_energy_eta(const ggx_bsdf_energy *e);
 
 /* E(v) = R + T of light arriving from v (either side) from the table: ggx_bsdf_albedo's sum within 1e-3 absolute for
- * |v.z| >= 0.0175 (the largest error measured over random views is in docs/design/energy.md), in [0, 1]; about 100 ns.
- * v.z = 0: 0. */
+ * |v.z| >= 0.0175 (89 degrees; the largest errors are in docs/design/energy.md), in [0, 1]. v.z = 0: 0. */
 double ggx_bsdf_energy_albedo(const ggx_bsdf_energy *e, ggx_vec3 v);
 /* E_avg of one side's table, (1 / pi) int E(v) |v.z| dv over that side: below = 0 for light from above, else from
  * below. */

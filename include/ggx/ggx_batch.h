@@ -10,19 +10,18 @@
  * - expects unit direction inputs (not checked) and meets the contract of ggx.h in float: finite results >= 0,
  *   exactly 0 outside the domain (below the horizon, NaN), samplers a unit vector or the zero vector. Unlike the
  *   double API, a NaN or infinite u gives the zero vector (an invalid sample) rather than being read as 0.
- * Accuracy against the double API (tests/test_batch.c, every instruction-set path, n from 0 to 300, misaligned
- * pointers, alpha >= 0.05, skews to 0.5 rad, inputs with m.z, v.z >= 0.02): relative error <= 2e-5 for
- * ggx_batch_ndf, _g1, _brdf and _pdf_vndf (the last where m.v >= 0.01: the pdf is proportional to m.v, which a
- * float dot product resolves to ~1e-7 absolute); measured maxima 1.7e-6, 3.3e-7, 3.6e-6, 6.2e-6. Sampled directions
- * within 1e-4 per component of the double sampler's for the same (u1, u2), for every sampler of the registry, u at
- * the ends of [0, 1) and views at n (tests/test_float_regress.c; measured 4.7e-5: the caps construction loses float
- * accuracy where v' + c nearly cancels, at low-pdf rim samples); sample pdfs within 1e-4 relative (measured 3.4e-5)
- * and weights within 2e-4 absolute (measured 2.6e-5) of ggx_sample_brdf's. Known exceptions, found by a hostile test
- * and not fixed: shapes with an alpha above ~1 and alpha ratios above ~3 at views near grazing (wi.z ~ 0.02), where
- * a sample whose reflection passes close to the horizon amplifies float rounding: direction up to 5.4e-4, pdf 8.7e-4
- * relative, weight 1.2e-3 for ggx_sample_brdf (109 of 689 725 samples at ratios up to 10^2.5, 1 of 2.79 million up to
- * 3.16), and up to 7.7e-4, 5.3e-3, 3.4e-3 for ggx_sample_brdf_bounded, whose cap ends there for u2 near 1 (180 and 6
- * of the same).
+ * Accuracy against the double API, on every instruction-set path, for alpha >= 0.05, skews to 0.5 rad and inputs
+ * with m.z, v.z >= 0.02 (tests/test_batch.c: n from 0 to 300, misaligned pointers; tests/test_float_regress.c):
+ * - ggx_batch_ndf, _g1, _brdf and _pdf_vndf: relative error <= 2e-5 (_pdf_vndf where m.v >= 0.01: the pdf is
+ *   proportional to m.v, which a float dot product resolves to ~1e-7 absolute);
+ * - sampled directions: within 1e-4 per component of the double sampler's for the same (u1, u2), for every sampler
+ *   of the registry, u at the ends of [0, 1) and views at n;
+ * - sample pdfs within 1e-4 relative and weights within 2e-4 absolute of ggx_sample_brdf's.
+ * Known exceptions: for shapes with an alpha above ~1 and alpha ratios above ~3 at views near grazing (wi.z ~ 0.02),
+ * a few samples whose reflection passes close to the horizon amplify float rounding beyond these bounds, up to
+ * 5.4e-4 in direction, 8.7e-4 relative in pdf and 1.2e-3 in weight for ggx_sample_brdf, and 7.7e-4, 5.3e-3 and
+ * 3.4e-3 for ggx_sample_brdf_bounded, whose cap ends there for u2 near 1 (docs/design/kernels.md, "Float against
+ * double").
  * Every function is a loop over the float kernels of ggx_inline.h (the same source as the double API), compiled for a
  * scalar baseline and for AVX2 + FMA (and AVX-512 where the compiler can), chosen at run time by a CPU check. The
  * shape is converted by ggx_shapef_from (normalised), so every shape the double API accepts works, at any scale.

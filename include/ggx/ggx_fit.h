@@ -132,22 +132,17 @@ ggx_status ggx_fit_log_likelihood(const ggx_shape *s, const ggx_vec3 *m, const d
  * and n_z = sqrt(1 - n_x^2 - n_y^2) (the part of the square outside the unit disk holds no normal). For a map that
  * stores (n + 1) / 2 in b-bit integers, uv is the decoded 2 level / (2^b - 1) - 1 of the red and green channels
  * (green negated for a map whose y points down) and q = 2 / (2^b - 1); a blue channel adds a constraint that is not
- * used (the fit is then that of the red and green channels alone). The likelihood is that of the
- * cells, the product over texels of P(cell) = the integral of D(m) dn_x dn_y over the texel's square, by an 8 x 8
- * Gauss-Legendre rule in (n_x, n_y): unlike ggx_fit_normals on the cells' centres, it does not overestimate alpha
- * when alpha is near q (docs/design/fit.md, "Quantised normal maps"). A square maps to a cell (1 + |x~|^2)^(3/2)
- * times wider in slope at slope x~ than at n, so Sigma's eigenvalues are held at (0.4 q)^2 (1 + |t|^2)^3 or above
- * (info->clamped says when that binds): there the rule's relative error in P(cell) is 1e-4 at every t (1e-5 at 1.25
- * times the floor's alpha, 2e-9 at 2.5 times it; below the floor it grows without bound, as the rule's points do not
- * see a lobe narrower than their spacing). A square counts as inside the disk when one of the rule's points is. The
- * EM is that of the cells (each cell's points
- * weighted by their shares of its probability), the decrement and covariance from central differences of the
- * likelihood's exact gradient. Texels with the same (uv, q) share one cell, so the cost grows with the distinct cells
- * (at most 65 536 for 8-bit maps), not the texels.
+ * used. The likelihood is that of the cells, the product over texels of P(cell) = the integral of D(m) dn_x dn_y over
+ * the texel's square, by an 8 x 8 Gauss-Legendre rule in (n_x, n_y): unlike ggx_fit_normals on the cells' centres,
+ * it does not overestimate alpha when alpha is near q (docs/design/fit.md, "Quantised normal maps"). Sigma's
+ * eigenvalues are held at (0.4 q)^2 (1 + |t|^2)^3 or above (info->clamped says when that binds), where the rule's
+ * relative error in P(cell) is 1e-4 at every t, falling fast above the floor (below it the error grows without
+ * bound). A square counts as inside the disk when one of the rule's points is. Texels with the same (uv, q) share one
+ * cell, so the cost grows with the distinct cells (at most 65 536 for 8-bit maps), not the texels.
  * info as in ggx_fit_normals, except: log_likelihood (and each model's) is the mean of log P(cell) over the texels,
  * a probability, not the density of ggx_fit_normals; the goodness of fit is not computed (gof_chi2 and gof_pvalue
- * NaN, gof_cells and gof_dof 0: a texel's cell straddles the test's cells); Beckmann's fit is its cells' likelihood
- * too (EM). Texels whose square has no point inside the unit disk are ignored as at the horizon.
+ * NaN, gof_cells and gof_dof 0); Beckmann's fit is its cells' likelihood too (EM). Texels whose square has no point
+ * inside the unit disk are ignored as at the horizon.
  * Errors: as ggx_fit_normals (uv NULL with n > 0: GGX_ERR_NULL); GGX_ERR_RANGE for q not in (0, 2];
  * GGX_ERR_NONFINITE for q NaN or infinite. */
 ggx_status ggx_fit_normal_cells(ggx_shape *out, const double *uv, const double *weight, size_t n, double q,

@@ -23,7 +23,8 @@
  *   1e-14 kappa^2, kappa the condition number of A (max / min of alpha_x, alpha_y and 1 for ggx_shape_ellipsoid):
  *   per component of a sampled normal, and relative for D, the VNDF pdf and the BRDF where the normal is at least
  *   0.01 from the horizon and from edge-on to the view (a dot product near 0 keeps only an absolute accuracy). So
- *   1e-12 for kappa <= 10; rounding differences grow with kappa^2 near the rim (1.6e-9 at kappa = 1e4).
+ *   1e-12 for kappa <= 10; rounding differences grow with kappa^2 near the rim (docs/design/kernels.md, "Float
+ *   against double").
  * - Rim steps, margins and view-length ranges are those of kernel/traits.h for float.
  * Names beginning ggx_k_ are internal steps of the kernels, not API.
  * All functions are reentrant and thread-safe (they only read their arguments).
@@ -98,8 +99,8 @@ typedef struct ggx_shapef {
 typedef struct ggx_fresnelf {
     ggx_fresnel_kind kind;
     float eta, k, f0;
-    double eta_wide; /* eta in double: near the critical angle the dielectric term has a square-root singularity in
-                      * 1 - sin^2 / eta^2, where the float rounding of eta alone would cost 1e-3 */
+    double eta_wide; /* eta in double, for the dielectric term's square-root singularity in 1 - sin^2 / eta^2 at the
+                      * critical angle (docs/design/kernels.md, "Precision traits") */
 } ggx_fresnelf;
 
 /* A direction sample in float: same fields as ggx_sample. */

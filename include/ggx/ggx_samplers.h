@@ -86,7 +86,7 @@ typedef struct ggx_sampler_info {
     /* DIRECTION: the pdf of sample_direction giving w from v. */
     double (*pdf_direction)(const ggx_shape *s, double eta, ggx_vec3 v, ggx_vec3 w);
     /* The name of its double API function, "ggx_<stem>" (its inverse is that name + "_inv"), for bindings and tools
-     * that call the named function. (Added after the fields above; entries are only reached through pointers.) */
+     * that call the named function. (Entries are only reached through pointers, so fields are added at the end.) */
     const char *function;
 } ggx_sampler_info;
 

@@ -1,6 +1,7 @@
 /* libggx kernels: the precision traits. Included by ggx_inline.h before each instantiation of the kernels, with
  * GGX_K_PRECISION set to 32 or 64; kernel/untraits.h undoes it. Every precision-dependent choice of the kernels is
- * here, each with its reason. SPDX-License-Identifier: MIT */
+ * here, each with its reason; the derivations of the constants: docs/design/kernels.md, "Precision traits".
+ * SPDX-License-Identifier: MIT */
 #if GGX_K_PRECISION == 32
 #define ggx_r float
 #define ggx_v3 ggx_vec3f
@@ -25,49 +26,44 @@
 #define GGX_ROUND_MAGIC 12582912.0f /* 1.5 2^23: x + it - it rounds x to an integer for |x| < 2^22 */
 #define GGX_QUARTER_MAGIC 3145728.0f /* 1.5 2^21: x + it - it rounds x to a multiple of 1/4 for |x| < 2^20 */
 /* Rim step in sphere space: samples on the rim of the lune (pdf 0) are moved inside by this much, as in double, so
- * that the float sampler follows the double one to the rim. It need not exceed float rounding: (A^T p).z = p.z
- * exactly for the normalised float shape (third column (0, 0, 1)), and m.v is verified after the move (a failure
- * takes the slow path). */
+ * that the float sampler follows the double one to the rim (m.v is verified after the move). */
 #define GGX_RIM_STEP GGX_C(9.313225746154785e-10) /* 2^-30 */
 /* A sampled normal must face the view by this much (m.v >= margin) to have a pdf > 0 in float and in double: far
  * above the rounding of a float dot product of unit vectors (~2e-7). */
 #define GGX_MARGIN GGX_C(9.5367431640625e-07) /* 2^-20 */
 /* Doublings of the rim step before giving up: 2^-30 * 2^34 covers the whole lune. */
 #define GGX_RIM_TRIES 34
-/* Squared view lengths the fast path takes as they are: with the float shape's entries below ~1e12 (ggx_shapef),
- * ||A v||^2 stays below FLT_MAX; anything else is rescaled first. */
+/* Squared view lengths the fast path takes as they are (||A v||^2 then stays below FLT_MAX for every ggx_shapef);
+ * anything else is rescaled first. */
 #define GGX_L2_MIN GGX_C(1e-20)
 #define GGX_L2_MAX GGX_C(1e4)
 /* The caps fast path's shortest views (k_lune_core_span): as the others (GGX_L2_MIN). */
 #define GGX_L2_FAST GGX_L2_MIN
-/* The floor of the fast path's facing check (k_lune_core_span), on bar = margin^2 |v|^2 mu.mu: a normal number (float's
- * smallest is 1.2e-38), and with |v|^2 <= GGX_L2_MAX it keeps mu.mu >= 1e-37 / (2^-40 1e4) = 1.1e-29, 1e9 times
- * float's smallest normal, so that mu's components lose no precision to subnormals. (The float shape is normalised,
- * ||A n|| = 1: an absolute floor is scale-free.) Views shorter than about 1e-6 (for |A| ~ 1) take the slow path. */
+/* The floor of the fast path's facing check (k_lune_core_span), on bar = margin^2 |v|^2 mu.mu: a normal number that
+ * keeps mu.mu far above float's subnormals (docs/design/kernels.md, "The fast path's facing check"). Views shorter
+ * than about 1e-6 (for |A| ~ 1) take the slow path. */
 #define GGX_FACE_FLOOR(bar, mu2) ((bar) >= GGX_C(1e-37))
-/* sin and cos of x in [-pi/4, pi/4] by minimax polynomials of degree 7 and 8 (fitted to the absolute error on a
- * grid of 2e4 points by reweighted least squares, coefficients rounded to float): approximation errors 1.8e-9 and
- * 5.4e-11, so the float evaluation is within 6.9e-8 of sin and cos, the same as the Taylor series to x^9 and x^10
- * with one multiply-add fewer each (tests/test_float_regress.c checks the float sincos against libm). */
+/* sin and cos of x in [-pi/4, pi/4] by minimax polynomials of degree 7 and 8: the float evaluation is within 6.9e-8
+ * of sin and cos (tests/test_float_regress.c checks it against libm; the fit: docs/design/kernels.md, "The turn
+ * sincos"). */
 #define GGX_SIN_POLY(x, x2)                                                                                       \
     ((x) * (1.0f + (x2) * (-1.666665077e-01f + (x2) * (8.331978694e-03f + (x2) * -1.949564612e-04f))))
 #define GGX_COS_POLY(x2)                                                                                          \
     (1.0f + (x2) * (-0.5f + (x2) * (4.166662320e-02f + (x2) * (-1.388676348e-03f + (x2) * 2.439045602e-05f))))
-/* The caps' sphere-space normal h = vs + c is formed by cancellation near the rim of the lune (c near -vs): where
- * ||h||^2 < 2^-12 its float direction is off by more than ~1e-5 (rounding 1e-7 of vs and c over ||h|| ~ 1e-2), so
- * those elements (a fraction ~1e-5 of the samples) take the slow path, which the float kernels run in double. */
+/* The caps' sphere-space normal h = vs + c cancels near the rim of the lune (c near -vs): where ||h||^2 < 2^-12 its
+ * float direction is off by more than ~1e-5, so those elements take the slow path, which the float kernels run in
+ * double. */
 #define GGX_H2_MIN GGX_C(2.44140625e-4) /* 2^-12 */
-/* The scalar caps sampler's proof that a normal meets the contract without the ellipsoid-space check (k_lune_core_p,
- * where the bound is derived): p.z >= GGX_PROOF_T ||A v|| and p.z^2 >= GGX_PROOF_C ||A||_F^2 for a view of length
- * in [1/2, 2]. T = 2^-6 also keeps the float sphere-space normal out of the GGX_H2_MIN cancellation; C = (K / T)^2
- * with K = 2^-14, 3.7 times the float bound 1.63e-5. */
+/* The scalar caps sampler's proof that a normal meets the contract without the ellipsoid-space check
+ * (k_lune_core_span): p.z >= GGX_PROOF_T ||A v|| and p.z^2 >= GGX_PROOF_C ||A||_F^2 for a view of length in
+ * [1/2, 2]. proof: docs/design/kernels.md, "The caps fast path's proof". */
 #define GGX_PROOF_T GGX_C(0.015625)
 #define GGX_PROOF_C GGX_C(1.52587890625e-05) /* 2^-16 */
 /* ||A||_F^2 for the proof: stored in the float shape (ggx_shapef_from), summed per call in double (ggx_shape has
  * no field for it). The float shape's a33 is 1 exactly (normalised: A' n = z), so its products skip it. */
 #define GGX_FROB2(s) ((s)->a_frob2)
-/* The proof is used in float: without it the scalar float sampler takes 13.3 ns instead of 11.0 ns per call (Xeon,
- * x86-64-v3; the check waits for the tiny-h test and the float-to-double slow-path flags). */
+/* The proof is used in float, where the check it skips waits for the tiny-h test and the slow-path flags
+ * (docs/performance.md, "Choices inside the kernels"). */
 #define GGX_CAPS_PROOF 1
 /* The plane bound's fraction is divided out in float (k_bound_frac): its terms go with ||A' wn||^5. */
 #define GGX_BOUND_DIVIDE 1
@@ -111,9 +107,8 @@
 #define GGX_L2_MIN 1e-200
 #define GGX_L2_MAX 1e200
 /* The double shape is not normalised (matrices are accepted at any scale), so the facing check's floor is on mu.mu
- * itself: 1e58 times double's smallest normal (mu.mu of a matrix scaled to 1e-50 and a view of length 1e-100
- * underflows), and the caps fast path takes views from |v|^2 = 1e-28 (GGX_L2_FAST), so that bar >= 2^-96 1e-28
- * 1e-250 = 1.3e-307 is a normal number. Shorter views take the slow path. */
+ * itself, and the fast path takes views from |v|^2 = GGX_L2_FAST, so that bar is a normal number
+ * (docs/design/kernels.md, "The fast path's facing check"). Shorter views take the slow path. */
 #define GGX_L2_FAST 1e-28
 #define GGX_FACE_FLOOR(bar, mu2) ((mu2) >= 1e-250)
 /* Taylor series to x^15 and x^16 on [-pi/4, pi/4]: remainders below 7e-17, under double rounding. */
@@ -124,9 +119,8 @@
     (1.0 + (x2) * (-0.5 + (x2) * (1.0 / 24 + (x2) * (-1.0 / 720 + (x2) * (1.0 / 40320 + (x2) * (-1.0 / 3628800 +  \
            (x2) * (1.0 / 479001600.0 + (x2) * (-1.0 / 87178291200.0 + (x2) * (1.0 / 20922789888000.0)))))))))
 #define GGX_H2_MIN 0.0 /* double resolves h down to the rim step */
-/* No proof in double: ggx_shape has no field for ||A||_F^2, and summing it per call (seven products and their
- * loads) costs more than the check's wait that the proof saves: ggx_sample_vndf at 0.77 of the plain transcription
- * with the proof, 0.71 without (bench, Xeon). */
+/* No proof in double: ggx_shape has no field for ||A||_F^2, and summing it per call costs more than the check's wait
+ * that the proof saves (docs/performance.md, "Choices inside the kernels"). */
 #define GGX_CAPS_PROOF 0
 #define GGX_BOUND_DIVIDE 0
 #define GGX_A33(s) ((s)->a[2][2]) /* = an_len: A' n = (0, 0, ||A n||) */
@@ -138,15 +132,12 @@
 #error "GGX_K_PRECISION must be 32 or 64"
 #endif
 /* The bounded reflection sampler's sigma2 (k_bound_sigma2) is computed in double for both precisions and lowered by
- * 2^-20 relative: far above the rounding of its Newton step near a simple root (a few units in the last place of
- * double, relative to lambda_min over the gap to the next root). */
+ * 2^-20 relative: far above the rounding of its Newton step near a simple root. */
 #define GGX_BOUND_SAFETY 9.5367431640625e-07
-/* The bounded samplers' kappa is raised by 2^-46 before use (k_bound_kappa_sigma2, k_bound_kappa_az): the cap's start
- * b = 1 - kappa (1 + vs.z) moves down by 128 ulps of 1, above the rounding of kappa (the unskewed plane's closed form
- * takes some 12 roundings) and of the cap's height 1 - u2 kappa (1 + vs.z) in double. 2^-50 was the first value: a
- * hostile test found b 1 to 2 ulps above a plane bound exact to its last bit (alpha (2.5e-4, 8.3e3) skewed by pi/2,
- * wi = n). Both precisions compute kappa in double; the float kernels then round it to float, as they round the cap
- * point. */
+/* The bounded samplers' kappa is raised by 2^-46 before use (k_bound_frac, k_bound_frac_az): the cap's start
+ * b = 1 - kappa (1 + vs.z) moves down by 128 ulps of 1, above the roundings of kappa and of the cap's height
+ * (docs/design/kernels.md, "The bounded samplers' guards"). Both precisions compute kappa in double; the float
+ * kernels then round it to float, as they round the cap point. */
 #define GGX_KAPPA_SLACK 1.4210854715202004e-14
 /* The per-azimuth bound's tolerance for a root at the start of its piece (k_bound_first): 2^-40. */
 #define GGX_BOUND_TOL 9.094947017729282e-13
