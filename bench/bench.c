@@ -275,7 +275,7 @@ static void bounded_table(long n, int np, int nz)
         ggx_shape s;
         ggx_shape_ellipsoid(&s, shapes[i].ax, shapes[i].ay, shapes[i].tx, shapes[i].ty, shapes[i].tz);
         for (unsigned j = 0; j < sizeof views / sizeof views[0]; j++) {
-            double t = views[j] * 3.14159265358979 / 180, ph = 0.7;
+            double t = views[j] * GGX_PI / 180, ph = 0.7;
             ggx_vec3 v = {sin(t) * cos(ph), sin(t) * sin(ph), cos(t)};
             uint64_t seed = 99;
             double sw[3] = {0, 0, 0}, sw2[3] = {0, 0, 0};

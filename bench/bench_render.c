@@ -11,7 +11,7 @@
 
 #include "render.h"
 
-#define DEG (3.14159265358979323846 / 180)
+#define DEG (GGX_PI / 180)
 
 static double now(void)
 {

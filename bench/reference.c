@@ -8,7 +8,6 @@
 
 #include <math.h>
 
-#define REF_PI 3.14159265358979323846
 
 /* Spherical caps (Dupuy & Benyoub 2023) for any A: in sphere space the visible normals of the unit sphere seen from
  * v' = normalize(A v) are v' + c with c uniform on the cap c.z >= -v'.z; A^T maps a sphere normal back to the
@@ -20,7 +19,7 @@ ggx_vec3 REF_FN(ref_caps_vndf_d)(const double A[3][3], ggx_vec3 v, double u1, do
     double sz = A[2][0] * v.x + A[2][1] * v.y + A[2][2] * v.z;
     double il = 1.0 / sqrt(sx * sx + sy * sy + sz * sz);
     sx *= il, sy *= il, sz *= il;
-    double phi = 2.0 * REF_PI * u1;
+    double phi = 2.0 * GGX_PI * u1;
     double z = (1.0 - u2) * (1.0 + sz) - sz;
     double r = sqrt(1.0 - z * z);
     double hx = sx + r * cos(phi), hy = sy + r * sin(phi), hz = sz + z;
@@ -50,7 +49,7 @@ void REF_FN(ref_caps_vndf_f_diag)(float ax, float ay, float vx, float vy, float 
                                   float out[3])
 {
     rvec3f wi = normalize_f((rvec3f){ax * vx, ay * vy, vz});
-    float phi = 2.0f * (float)REF_PI * u1;
+    float phi = 2.0f * (float)GGX_PI * u1;
     float z = fmaf(1.0f - u2, 1.0f + wi.z, -wi.z);
     float s2 = 1.0f - z * z;
     float sin_theta = sqrtf(s2 < 0.0f ? 0.0f : (s2 > 1.0f ? 1.0f : s2));
@@ -86,7 +85,7 @@ double REF_FN(ref_pdf_vndf_eq33)(const double A[3][3], const double AinvT[3][3],
     double qy = AinvT[1][0] * m.x + AinvT[1][1] * m.y + AinvT[1][2] * m.z;
     double qz = AinvT[2][0] * m.x + AinvT[2][1] * m.y + AinvT[2][2] * m.z;
     double n2 = nx * nx + ny * ny + nz * nz, nl = sqrt(n2), q2 = qx * qx + qy * qy + qz * qz;
-    double d = m.z >= 0.0 ? 1.0 / (REF_PI * det * nl * q2 * q2) : 0.0;
+    double d = m.z >= 0.0 ? 1.0 / (GGX_PI * det * nl * q2 * q2) : 0.0;
     double ratio = 2.0 * n2 / (sqrt(vx * vx + vy * vy + vz * vz) * nl + vx * nx + vy * ny + vz * nz);
     double mv = m.x * v.x + m.y * v.y + m.z * v.z;
     return ratio * (mv > 0.0 ? mv : 0.0) * d;
@@ -94,6 +93,6 @@ double REF_FN(ref_pdf_vndf_eq33)(const double A[3][3], const double AinvT[3][3],
 
 float REF_FN(ref_sqrt_sincos_f)(float u1, float x)
 {
-    float phi = 2.0f * (float)REF_PI * u1;
+    float phi = 2.0f * (float)GGX_PI * u1;
     return sqrtf(x) + sinf(phi) + cosf(phi);
 }

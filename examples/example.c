@@ -5,18 +5,17 @@
 
 #include "ggx/ggx.h"
 
-static const double pi = 3.14159265358979323846;
 
 static ggx_vec3 dir(double theta_deg, double phi_deg)
 {
-    double t = theta_deg * pi / 180.0, p = phi_deg * pi / 180.0;
+    double t = theta_deg * GGX_PI / 180.0, p = phi_deg * GGX_PI / 180.0;
     ggx_vec3 v = {sin(t) * cos(p), sin(t) * sin(p), cos(t)};
     return v;
 }
 
 int main(void)
 {
-    const double deg = pi / 180.0;
+    const double deg = GGX_PI / 180.0;
     ggx_shape s;
     ggx_fresnel f;
     ggx_status st = ggx_shape_ellipsoid(&s, 0.15, 0.5, 10.0 * deg, -5.0 * deg, 30.0 * deg);

@@ -23,7 +23,7 @@ double test_chi2_level(void) { return chi2_sidak(TEST_CHI2_RUNS); }
 ggx_vec3 sweep_view(double theta_deg)
 {
     if (theta_deg == 0.0) return t_vec(0, 0, 1);
-    return t_dir(theta_deg * T_PI / 180.0, 0.7);
+    return t_dir(theta_deg * GGX_PI / 180.0, 0.7);
 }
 
 normal_ctx normal_ctx_of(const variant *var, ggx_sampler_id id, const ggx_shape *s, ggx_vec3 v)
@@ -216,8 +216,8 @@ double binned_chi2(const binned_problem *p, uint64_t seed, int *dof)
         ggx_vec3 w;
         if (!p->draw(p->ctx, &r, &w)) continue;
         int side = w.z < 0 && p->sides == 2;
-        double t = w.z * w.z, phi = atan2(w.y, w.x) + T_PI;
-        int bt = (int)(t * BT), bp = (int)(phi / (2 * T_PI) * BP);
+        double t = w.z * w.z, phi = atan2(w.y, w.x) + GGX_PI;
+        int bt = (int)(t * BT), bp = (int)(phi / (2 * GGX_PI) * BP);
         bt = bt < BT ? bt : BT - 1;
         bp = bp < BP ? bp : BP - 1;
         obs[(side * BT + bt) * BP + bp]++;
@@ -229,12 +229,12 @@ double binned_chi2(const binned_problem *p, uint64_t seed, int *dof)
                 for (int i = 0; i < ST; i++) {
                     double t = (bt + (i + 0.5) / ST) / BT, mu = sqrt(t), st = sqrt(1 - t);
                     for (int j = 0; j < SP; j++) {
-                        double phi = (bp + (j + 0.5) / SP) / BP * 2 * T_PI - T_PI;
+                        double phi = (bp + (j + 0.5) / SP) / BP * 2 * GGX_PI - GGX_PI;
                         ggx_vec3 w = t_vec(st * cos(phi), st * sin(phi), side ? -mu : mu);
                         sum += p->pdf(p->ctx, w) / (2 * mu); /* dw = dt dphi / (2 mu) */
                     }
                 }
-                ex[(side * BT + bt) * BP + bp] = (double)n * sum / (ST * SP) * (1.0 / BT) * (2 * T_PI / BP);
+                ex[(side * BT + bt) * BP + bp] = (double)n * sum / (ST * SP) * (1.0 / BT) * (2 * GGX_PI / BP);
             }
     double stat = 0, po = 0, pe = 0;
     int bins = 0;
@@ -277,7 +277,7 @@ static double hemi_theta(double theta, void *vc)
     hemi_ctx *c = vc;
     c->theta = theta;
     double sum = 0;
-    for (int k = 0; k < 8; k++) sum += quad_adapt(hemi_phi, c, k * T_PI / 4, (k + 1) * T_PI / 4, 1e-9);
+    for (int k = 0; k < 8; k++) sum += quad_adapt(hemi_phi, c, k * GGX_PI / 4, (k + 1) * GGX_PI / 4, 1e-9);
     return sum;
 }
 
@@ -285,6 +285,6 @@ double hemisphere_cos_quad(double (*f)(ggx_vec3 w, void *ctx), void *ctx, int be
 {
     hemi_ctx c = {f, ctx, 0, below};
     double sum = 0;
-    for (int k = 0; k < 8; k++) sum += quad_adapt(hemi_theta, &c, k * T_PI / 16, (k + 1) * T_PI / 16, 1e-8);
+    for (int k = 0; k < 8; k++) sum += quad_adapt(hemi_theta, &c, k * GGX_PI / 16, (k + 1) * GGX_PI / 16, 1e-8);
     return sum;
 }

@@ -48,14 +48,14 @@ static double wq_theta(double theta, void *vc)
     wq_ctx *c = vc;
     c->theta = theta;
     double pr = atan2(-c->v.y, -c->v.x);
-    return quad_adapt(wq_phi, c, pr - T_PI, pr, 1e-12) + quad_adapt(wq_phi, c, pr, pr + T_PI, 1e-12);
+    return quad_adapt(wq_phi, c, pr - GGX_PI, pr, 1e-12) + quad_adapt(wq_phi, c, pr, pr + GGX_PI, 1e-12);
 }
 
 static double albedo_over_w(const ggx_shape *s, ggx_vec3 v, int hc)
 {
     wq_ctx c = {s, v, 0.0, hc};
     double tr = acos(v.z);
-    return quad_adapt(wq_theta, &c, 0.0, tr, 1e-11) + quad_adapt(wq_theta, &c, tr, 0.5 * T_PI, 1e-11);
+    return quad_adapt(wq_theta, &c, 0.0, tr, 1e-11) + quad_adapt(wq_theta, &c, tr, 0.5 * GGX_PI, 1e-11);
 }
 
 /* At alpha_x = alpha_y = 1 the ellipsoid is the unit sphere for every rotation: D = 1 / pi, Lambda(u) =
@@ -72,8 +72,8 @@ static void closed_forms_alpha_one(void **state)
         double tx = i ? rng_range(&r, -1.5, 1.5) : 0.0, ty = i ? rng_range(&r, -1.5, 1.5) : 0.0;
         CHECK(ggx_shape_ellipsoid(&s, 1.0, 1.0, tx, ty, rng_range(&r, -3, 3)) == GGX_OK, "shape");
         for (int j = 0; j < 8; j++) {
-            double th = j < 7 ? j * 0.25 : 0.5 * T_PI - 1e-4;
-            ggx_vec3 v = t_dir(th, rng_range(&r, 0, 2 * T_PI));
+            double th = j < 7 ? j * 0.25 : 0.5 * GGX_PI - 1e-4;
+            ggx_vec3 v = t_dir(th, rng_range(&r, 0, 2 * GGX_PI));
             double mu = v.z;
             double sep = 2 * (1 - log(2.0)) / (1 + mu), hc = 1 - mu * log1p(1 / mu);
             double a = ggx_albedo(&s, v), b = ggx_albedo_height_correlated(&s, v);
@@ -101,7 +101,7 @@ static const shape_params sweep[] = {
 static void against_quadrature_over_w(void **state)
 {
     (void)state;
-    const double ths[] = {0.0, 0.5, 1.2, 1.5, 89.5 * T_PI / 180};
+    const double ths[] = {0.0, 0.5, 1.2, 1.5, 89.5 * GGX_PI / 180};
     double worst = 0.0;
     int n = 0;
     for (size_t i = 0; i < sizeof sweep / sizeof sweep[0]; i++) {
@@ -152,8 +152,8 @@ static double bq_theta(double theta, void *vc)
 {
     bq_ctx *c = vc;
     c->theta = theta;
-    return quad_adapt(bq_phi, c, c->peak_phi - T_PI, c->peak_phi, 1e-11) +
-           quad_adapt(bq_phi, c, c->peak_phi, c->peak_phi + T_PI, 1e-11);
+    return quad_adapt(bq_phi, c, c->peak_phi - GGX_PI, c->peak_phi, 1e-11) +
+           quad_adapt(bq_phi, c, c->peak_phi, c->peak_phi + GGX_PI, 1e-11);
 }
 
 static double bsdf_side_over_w(const ggx_shape *s, double eta, ggx_vec3 v, double side)
@@ -162,10 +162,10 @@ static double bsdf_side_over_w(const ggx_shape *s, double eta, ggx_vec3 v, doubl
     double tv = acos(fabs(v.z)), tp = tv;
     if (!same) { /* Snell through n: sin t = sin tv * eta_v / eta_t */
         double rel = v.z > 0 ? 1 / eta : eta, st = sin(tv) * rel;
-        tp = st < 1 ? asin(st) : 0.5 * T_PI;
+        tp = st < 1 ? asin(st) : 0.5 * GGX_PI;
     }
-    bq_ctx c = {s, v, eta, 0, side, atan2(-v.y, -v.x) + (same ? 0 : T_PI)};
-    return quad_adapt(bq_theta, &c, 0.0, tp, 1e-10) + quad_adapt(bq_theta, &c, tp, 0.5 * T_PI, 1e-10);
+    bq_ctx c = {s, v, eta, 0, side, atan2(-v.y, -v.x) + (same ? 0 : GGX_PI)};
+    return quad_adapt(bq_theta, &c, 0.0, tp, 1e-10) + quad_adapt(bq_theta, &c, tp, 0.5 * GGX_PI, 1e-10);
 }
 
 static void bsdf_albedo_deterministic(void **state)
@@ -401,7 +401,7 @@ static void domain_edges(void **state)
     for (int i = 0; i < 4; i++) {
         CHECK(ggx_shape_aniso(&s, alphas[i][0], alphas[i][1]) == GGX_OK, "shape");
         for (int j = 0; j < 6; j++) {
-            ggx_vec3 v = j < 2 ? t_dir(0.5 * T_PI - pow(10.0, -3 - 3 * j), 0.3) : random_view(&r);
+            ggx_vec3 v = j < 2 ? t_dir(0.5 * GGX_PI - pow(10.0, -3 - 3 * j), 0.3) : random_view(&r);
             for (int hc = 0; hc < 2; hc++) {
                 double e = albedo_of(&s, v, hc);
                 CHECK(e >= 0 && e <= 1, "alpha (%g, %g) view z %g: E = %g", alphas[i][0], alphas[i][1], v.z, e);

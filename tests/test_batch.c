@@ -57,8 +57,8 @@ static void compare(ggx_batch_isa isa, worst *w)
         if (n % 4 == 3) ggx_fresnel_one(&f);
         double V[NMAX][3], M[NMAX][3];
         for (int i = 0; i < n; i++) {
-            ggx_vec3 v = t_dir(acos(rng_range(&r, 0.02, 1)), rng_range(&r, -T_PI, T_PI));
-            ggx_vec3 m = t_dir(acos(rng_range(&r, 0.02, 1)), rng_range(&r, -T_PI, T_PI));
+            ggx_vec3 v = t_dir(acos(rng_range(&r, 0.02, 1)), rng_range(&r, -GGX_PI, GGX_PI));
+            ggx_vec3 m = t_dir(acos(rng_range(&r, 0.02, 1)), rng_range(&r, -GGX_PI, GGX_PI));
             vx[i] = (float)v.x, vy[i] = (float)v.y, vz[i] = (float)v.z, mx[i] = (float)m.x, my[i] = (float)m.y, mz[i] = (float)m.z;
             /* the double reference sees exactly the float inputs */
             V[i][0] = vx[i], V[i][1] = vy[i], V[i][2] = vz[i], M[i][0] = mx[i], M[i][1] = my[i], M[i][2] = mz[i];
@@ -272,7 +272,7 @@ static void short_views(void **state)
         ggx_vec3 unit[NV];
         float u1[NV], u2[NV];
         for (int i = 0; i < NV; i++) {
-            unit[i] = t_dir(acos(rng_range(&r, 0.05, 1)), rng_range(&r, -T_PI, T_PI));
+            unit[i] = t_dir(acos(rng_range(&r, 0.05, 1)), rng_range(&r, -GGX_PI, GGX_PI));
             u1[i] = (float)rng_uniform(&r), u2[i] = (float)rng_uniform(&r);
         }
         for (unsigned q = 0; q < sizeof isas / sizeof isas[0]; q++) {

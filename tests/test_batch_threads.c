@@ -67,7 +67,7 @@ static void first_calls_concurrent(void **state)
         }
         w[t].u[0] = alloc_floats(), w[t].u[1] = alloc_floats(), w[t].d = alloc_floats();
         for (int i = 0; i < N; i++) {
-            ggx_vec3 v = random_view(&r), m = t_dir(acos(rng_range(&r, 0.0, 1.0)), rng_range(&r, -T_PI, T_PI));
+            ggx_vec3 v = random_view(&r), m = t_dir(acos(rng_range(&r, 0.0, 1.0)), rng_range(&r, -GGX_PI, GGX_PI));
             w[t].v[0][i] = (float)v.x, w[t].v[1][i] = (float)v.y, w[t].v[2][i] = (float)v.z;
             w[t].m_in[0][i] = (float)m.x, w[t].m_in[1][i] = (float)m.y, w[t].m_in[2][i] = (float)m.z;
             w[t].u[0][i] = (float)rng_uniform(&r), w[t].u[1][i] = (float)rng_uniform(&r);

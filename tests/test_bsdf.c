@@ -186,7 +186,7 @@ static void jacobians_and_snell(void **state)
     (void)state;
     rng r = {45};
     for (int i = 0; i < 5000; i++) {
-        ggx_vec3 wi = random_view(&r), h = t_dir(acos(rng_range(&r, 0.05, 1)), rng_range(&r, -T_PI, T_PI));
+        ggx_vec3 wi = random_view(&r), h = t_dir(acos(rng_range(&r, 0.05, 1)), rng_range(&r, -GGX_PI, GGX_PI));
         if (t_dot(wi, h) < 1e-3) continue;
         map_ctx c = {wi, 0};
         ggx_vec3 wo = ggx_reflect(wi, h);

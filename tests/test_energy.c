@@ -91,7 +91,7 @@ static ggx_vec3 view_mu(double mu, double phi)
 static ggx_vec3 random_table_view(rng *r)
 {
     double u = rng_uniform(r);
-    return view_mu(MU_MIN + (1 - MU_MIN) * u * u, rng_range(r, 0, 2 * T_PI));
+    return view_mu(MU_MIN + (1 - MU_MIN) * u * u, rng_range(r, 0, 2 * GGX_PI));
 }
 
 /* ggx_energy_albedo against ggx_albedo at random views and at the table's hardest places (grazing, exactly n). */
@@ -157,7 +157,7 @@ static void white_furnace(void **state)
         double fms = fa * fa * ea / (1 - fa * (1 - ea));
         for (int a = 0; a < 5; a++)
             for (int b = 0; b < 2; b++) {
-                ggx_vec3 wi = t_dir(thetas[a] * T_PI / 180, 0.7 + 2.1 * b);
+                ggx_vec3 wi = t_dir(thetas[a] * GGX_PI / 180, 0.7 + 2.1 * b);
                 double ms = ms_albedo(e, &one, wi), total = ggx_albedo(&shapes[i], wi) + ms;
                 CHECK_CLOSE(total, 1.0, 0, TABLE_PROMISE, "%s: furnace at theta %g, phi %g", SHAPES[i].name,
                             thetas[a], 0.7 + 2.1 * b);
@@ -215,7 +215,7 @@ static void *cycle_fresnels(void *arg)
             else
                 ggx_fresnel_conductor(&f, 0.2 + 0.3 * k + 0.01 * (double)(size_t)arg, 3.0 - 0.4 * k);
             double fa = ggx_fresnel_avg(&f), fms = fa * fa * ea / (1 - fa * (1 - ea));
-            double want = fms * (1 - ei) * (1 - eo) / (T_PI * (1 - ea));
+            double want = fms * (1 - ei) * (1 - eo) / (GGX_PI * (1 - ea));
             if (fabs(ggx_brdf_ms_eval(e, &f, wi, wo) - want) > 1e-14 * want) bad++;
         }
     return (void *)bad;
@@ -389,7 +389,7 @@ static void aniso_table(void **state)
     for (int k = 0; k < 500; k++) {
         /* alpha_x log-uniform; the ratio log-uniform to 1:40: the promise is 1e-3 to 1:20 */
         double ax = 1e-2 * pow(200.0, rng_uniform(&r)), ay = ax * pow(40.0, rng_range(&r, -1, 1)), u = rng_uniform(&r);
-        double mu = MU_MIN + (1 - MU_MIN) * u * u, phi = rng_range(&r, 0, 2 * T_PI), ratio = fmax(ax / ay, ay / ax);
+        double mu = MU_MIN + (1 - MU_MIN) * u * u, phi = rng_range(&r, 0, 2 * GGX_PI), ratio = fmax(ax / ay, ay / ax);
         if (ay < 1e-2 || ay > 2) continue;
         ggx_shape s;
         make_shape(&s, (shape_params){ax, ay, 0, 0, 0});
@@ -411,7 +411,7 @@ static void aniso_table(void **state)
                 double ax = 1e-2 * pow(6.0, i / 5.0), ay = 1e-2 * pow(6.0, j / 5.0);
                 ggx_shape s;
                 make_shape(&s, (shape_params){ax, ay, 0, 0, 0});
-                ggx_vec3 w = view_mu(MU_MIN, p * T_PI / 4);
+                ggx_vec3 w = view_mu(MU_MIN, p * GGX_PI / 4);
                 double err = fabs(ggx_albedo_aniso_table(ax, ay, w) - ggx_albedo(&s, w));
                 CHECK(err <= TABLE_PROMISE, "aniso table at 89 degrees, alpha (%.6g, %.6g), phi %d pi/4: error %.3g", ax, ay, p, err);
                 if (err > slice[0]) slice[0] = err;
@@ -494,7 +494,7 @@ typedef struct smp_ctx {
 static double smp_pdf(const smp_ctx *c, ggx_vec3 w)
 {
     if (c->compensated) return ggx_pdf_brdf_compensated(c->e, &c->f, c->v, w);
-    if (c->control) return w.z > 0 ? w.z / T_PI : 0.0; /* the cosine pdf: not what the lobe sampler draws */
+    if (c->control) return w.z > 0 ? w.z / GGX_PI : 0.0; /* the cosine pdf: not what the lobe sampler draws */
     return ggx_pdf_brdf_ms(c->e, c->v, w);
 }
 
@@ -567,7 +567,7 @@ static void sampling_chi2(void **state)
     int runs = 0;
     for (int i = 0; i < nshapes; i++)
         for (int a = 0; a < 4; a++) {
-            smp_ctx c = {tables[i], &shapes[i], {GGX_FRESNEL_ONE, 0, 0, 0}, t_dir(thetas[a] * T_PI / 180, 0.9), 0, 0, 0};
+            smp_ctx c = {tables[i], &shapes[i], {GGX_FRESNEL_ONE, 0, 0, 0}, t_dir(thetas[a] * GGX_PI / 180, 0.9), 0, 0, 0};
             ggx_fresnel_conductor(&c.f, 0.2, 3.0);
             char name[96];
             int dof;

@@ -107,7 +107,7 @@ static void table_against_albedo(void **state)
             double er = side ? 1 / eta : eta; /* relative index seen from this side */
             double mc = er < 1 ? sqrt(1 - er * er) : 0.5;
             for (int k = 0; k < 20; k++) {
-                double u = rng_uniform(&r), phi = rng_range(&r, 0, 2 * T_PI);
+                double u = rng_uniform(&r), phi = rng_range(&r, 0, 2 * GGX_PI);
                 double mu = k == 0 ? 1 : k == 1 ? MU_MIN : k < 8 ? mc * (0.9 + 0.2 * (k - 2) / 5.0)
                                                                  : MU_MIN + (1 - MU_MIN) * u * u;
                 ggx_vec3 v = view_mu(fmin(mu, 1.0), phi, side);
@@ -156,7 +156,7 @@ static void white_furnace(void **state)
         if (!used(i)) continue;
         for (int side = 0; side < 2; side++)
             for (int a = 0; a < 5; a++) {
-                ggx_vec3 wi = view_mu(cos(thetas[a] * T_PI / 180), 0.7 + 2.1 * a, side);
+                ggx_vec3 wi = view_mu(cos(thetas[a] * GGX_PI / 180), 0.7 + 2.1 * a, side);
                 double trans, ms = ms_albedo(tables[i], wi, &trans), ss = exact_albedo(i, wi), total = ss + ms;
                 CHECK_CLOSE(total, 1.0, 0, PROMISE, "%s: furnace from side %d at theta %g", CONFIGS[i].name, side,
                             thetas[a]);
@@ -288,7 +288,7 @@ static double smp_pdf(void *vc, ggx_vec3 w)
 {
     smp_ctx *c = vc;
     if (c->compensated) return ggx_pdf_bsdf_compensated(c->e, c->v, w);
-    if (c->control) return 0.5 * fabs(w.z) / T_PI; /* cosine on both sides: not what the lobes draw */
+    if (c->control) return 0.5 * fabs(w.z) / GGX_PI; /* cosine on both sides: not what the lobes draw */
     return ggx_pdf_bsdf_ms(c->e, c->v, w);
 }
 
@@ -332,7 +332,7 @@ static void sampling_chi2(void **state)
         if (!used(i)) continue;
         for (int side = 0; side < 2; side++)
             for (int a = 0; a < 3; a++) {
-                smp_ctx c = {tables[i], view_mu(cos(thetas[a] * T_PI / 180), 0.9, side), 0, 0, 0};
+                smp_ctx c = {tables[i], view_mu(cos(thetas[a] * GGX_PI / 180), 0.9, side), 0, 0, 0};
                 int dof;
                 if (a == 2 * side) { /* n from above, 89 degrees from below */
                     double p = run_binned(&c, 1800 + 100 * (uint64_t)i + 10 * (uint64_t)side + (uint64_t)a, &dof);

@@ -21,7 +21,7 @@ typedef struct view_case {
 
 static ggx_vec3 view_deg(double theta_deg, double phi)
 {
-    double t = theta_deg * T_PI / 180;
+    double t = theta_deg * GGX_PI / 180;
     return t_vec(sin(t) * cos(phi), sin(t) * sin(phi), cos(t));
 }
 
@@ -102,10 +102,10 @@ static void brdf_shape(const char *name, shape_params p, view_case vc, int nphi,
     int stride = test_quick() ? 4 : 1;
     for (int k = 0; k < nv; k++) {
         if (k < NT * nphi && (k % nphi) % stride) continue;
-        ggx_vec3 v = k < NT * nphi ? view_deg(thetas[k / nphi], 2 * T_PI * ((k % nphi) + 0.37) / nphi)
+        ggx_vec3 v = k < NT * nphi ? view_deg(thetas[k / nphi], 2 * GGX_PI * ((k % nphi) + 0.37) / nphi)
                                    : view_deg(vc.theta_deg, vc.phi);
         double want = ggx_albedo(&s, v), got = ggx_energy_albedo(e, v), err = fabs(got - want);
-        if (acos(v.z) > THETA_MAX_DEG * T_PI / 180 + 1e-9) { /* beyond the promise: reported */
+        if (acos(v.z) > THETA_MAX_DEG * GGX_PI / 180 + 1e-9) { /* beyond the promise: reported */
             if (err > beyond) beyond = err;
             if (want - got > beyond_gain) beyond_gain = want - got;
             continue;
@@ -178,7 +178,7 @@ static void random_brdf(void **state)
         double ay = fmin(2.0, fmax(GGX_ALPHA_MIN, ax * pow(200.0, rng_range(&r, -1, 1))));
         double tx = 0, ty = 0;
         if (k % 2 == 0) tx = rng_range(&r, -1.2, 1.2), ty = rng_range(&r, -1.2, 1.2);
-        shape_params p = {ax, ay, tx, ty, rng_range(&r, 0, T_PI)};
+        shape_params p = {ax, ay, tx, ty, rng_range(&r, 0, GGX_PI)};
         char name[96];
         snprintf(name, sizeof name, "(%.4g, %.4g, %.3g, %.3g, %.3g)", p.ax, p.ay, p.tx, p.ty, p.tz);
         brdf_shape(name, p, (view_case){0, -1}, nphi() / 2, 2);
@@ -203,7 +203,7 @@ static void bsdf_shape(const char *name, shape_params p, double eta, double thet
     double worst = 0, fdev = 0;
     for (int side = 0; side < 2; side++)
         for (int k = 0; k < nphi_; k++) {
-            ggx_vec3 v = view_deg(side ? 180 - theta_deg : theta_deg, 2 * T_PI * (k + 0.37) / nphi_);
+            ggx_vec3 v = view_deg(side ? 180 - theta_deg : theta_deg, 2 * GGX_PI * (k + 0.37) / nphi_);
             double want = ggx_bsdf_albedo(&s, eta, v, NULL, NULL), got = ggx_bsdf_energy_albedo(e, v);
             CHECK(fabs(got - want) <= TABLE_PROMISE, "%s: table %.6f, ggx_bsdf_albedo %.6f at (%.4f, %.4f, %.4f)",
                   name, got, want, v.x, v.y, v.z);
@@ -211,7 +211,7 @@ static void bsdf_shape(const char *name, shape_params p, double eta, double thet
             if (k % (nphi_ / 4) == 0) {
                 double sigma, f = furnace(draw_bsdf, e, v, 600, 104729u, &sigma);
                 char what[160];
-                snprintf(what, sizeof what, "%s, side %d, phi %.3f", name, side, 2 * T_PI * (k + 0.37) / nphi_);
+                snprintf(what, sizeof what, "%s, side %d, phi %.3f", name, side, 2 * GGX_PI * (k + 0.37) / nphi_);
                 check_furnace(what, f, sigma, want, got);
                 if (fabs(f - 1) > fdev) fdev = fabs(f - 1);
             }

@@ -10,8 +10,7 @@
 #include "figure.h"
 #include "testlib.h"
 
-#ifndef M_PI
-#define M_PI 3.14159265358979323846
+#ifndef GGX_PI
 #endif
 
 static const shape_params SHAPES[] = {
@@ -117,7 +116,7 @@ static void peak_values(void **state)
     make_shape(&s, SHAPES[0]);
     figure_spec f = {FIG_NDF, &s, dir(75, 0), NULL, 0, 0, NAN, "", "", 0.0, 0.0};
     ggx_vec3 m;
-    CHECK_CLOSE(figure_peak(&f, &m), 1 / (M_PI * 0.15 * 0.5), 1e-9, 0, "NDF peak");
+    CHECK_CLOSE(figure_peak(&f, &m), 1 / (GGX_PI * 0.15 * 0.5), 1e-9, 0, "NDF peak");
     CHECK(m.z > 1 - 1e-12, "NDF peak at n: m.z = %.15g", m.z);
     f.kind = FIG_VNDF;
     CHECK_CLOSE(figure_peak(&f, &m), 4.106, 0, 5e-4, "VNDF peak, phi_v = 0");
@@ -133,7 +132,7 @@ static void side_views(void **state)
     rng r = {11};
     hemi_proj hp = {1, 100, 200, 80, {0, 0, 0}, {0, 0, 0}, 0};
     for (int t = 0; t < 2000; t++) {
-        double from = rng_range(&r, -M_PI, M_PI);
+        double from = rng_range(&r, -GGX_PI, GGX_PI);
         hp.toward = (ggx_vec3){cos(from), sin(from), 0}, hp.right = (ggx_vec3){-sin(from), cos(from), 0};
         ggx_vec3 m = random_view(&r), back;
         double X, Y;
@@ -166,11 +165,11 @@ static void side_views(void **state)
     ggx_shape s;
     make_shape(&s, SHAPES[0]);
     figure_spec f = {FIG_VNDF_SIDE, &s, dir(75, 0), NULL, 0, 0, NAN, "", "", 0.0, 0.0};
-    CHECK(fabs(figure_default_from(&f) + M_PI / 2) < 1e-12, "phi_v = 0: from %g", figure_default_from(&f));
+    CHECK(fabs(figure_default_from(&f) + GGX_PI / 2) < 1e-12, "phi_v = 0: from %g", figure_default_from(&f));
     f.view = dir(75, 90);
-    CHECK(fabs(figure_default_from(&f) - M_PI / 2) < 1e-12, "phi_v = 90: from %g", figure_default_from(&f));
+    CHECK(fabs(figure_default_from(&f) - GGX_PI / 2) < 1e-12, "phi_v = 90: from %g", figure_default_from(&f));
     f.kind = FIG_NDF_SIDE;
-    CHECK(fabs(figure_default_from(&f) + M_PI / 2) < 1e-12, "NDF: from %g", figure_default_from(&f));
+    CHECK(fabs(figure_default_from(&f) + GGX_PI / 2) < 1e-12, "NDF: from %g", figure_default_from(&f));
 }
 
 /* The grey region: its boundary (as drawn) separates grey from not grey; it covers exactly half of the top view's
@@ -199,16 +198,16 @@ static void grey_region(void **state)
         double area = 0;
         const int NPHI = 2048;
         for (int k = 0; k < NPHI; k++) {
-            double phi = 2 * M_PI * k / NPHI;
+            double phi = 2 * GGX_PI * k / NPHI;
             ggx_vec3 b = figure_grey_boundary(v, phi);
             double st = sqrt(b.x * b.x + b.y * b.y), ct = b.z, th = atan2(st, ct);
             ggx_vec3 in = {sin(th - 1e-7) * cos(phi), sin(th - 1e-7) * sin(phi), cos(th - 1e-7)};
             ggx_vec3 out = {sin(th + 1e-7) * cos(phi), sin(th + 1e-7) * sin(phi), cos(th + 1e-7)};
-            if (th + 1e-7 < M_PI / 2) CHECK(!figure_grey(v, out), "just outside the boundary is not grey");
+            if (th + 1e-7 < GGX_PI / 2) CHECK(!figure_grey(v, out), "just outside the boundary is not grey");
             CHECK(figure_grey(v, in), "just inside the boundary is grey (v = (%g, %g, %g), phi %g)", v.x, v.y, v.z, phi);
-            area += 0.5 * st * st * (2 * M_PI / NPHI);
+            area += 0.5 * st * st * (2 * GGX_PI / NPHI);
         }
-        CHECK_CLOSE(area, M_PI / 2, 1e-9, 0, "projected area of the grey region, v = (%g, %g, %g)", v.x, v.y, v.z);
+        CHECK_CLOSE(area, GGX_PI / 2, 1e-9, 0, "projected area of the grey region, v = (%g, %g, %g)", v.x, v.y, v.z);
     }
     static const double VIEWS[][2] = {{75, 0}, {75, 90}, {40, 30}, {85, 200}, {10, 300}};
     long N = (long)(400000 * test_scale());
@@ -243,9 +242,9 @@ static void grey_region(void **state)
             double I = 0;
             const int NPHI = 720;
             for (int k = 0; k < NPHI; k++) {
-                g.phi = 2 * M_PI * (k + 0.5) / NPHI;
+                g.phi = 2 * GGX_PI * (k + 0.5) / NPHI;
                 ggx_vec3 bd = figure_grey_boundary(v, g.phi);
-                I += quad_adapt(grey_inner, &g, 0, acos(bd.z), 1e-9) * (2 * M_PI / NPHI);
+                I += quad_adapt(grey_inner, &g, 0, acos(bd.z), 1e-9) * (2 * GGX_PI / NPHI);
             }
             CHECK(fabs(I - b) <= 0.01 * b, "shape %d, view (%g, %g): integral of the VNDF pdf over the region %.5f, "
                   "sampled fraction %.5f", i, VIEWS[j][0], VIEWS[j][1], I, b);
@@ -272,7 +271,7 @@ static void furnace_curves(void **state)
         int n = figure_curve(&f, 4, x, y, 400, label, sizeof label);
         CHECK(strstr(label, "0.274") != NULL, "label '%s'", label);
         for (int i = 0; i < n; i += 30)
-            CHECK_CLOSE(y[i], ggx_albedo_iso_table(sqrt(0.15 * 0.5), cos(x[i] * T_PI / 180), GGX_MASKING_SEPARABLE), 0,
+            CHECK_CLOSE(y[i], ggx_albedo_iso_table(sqrt(0.15 * 0.5), cos(x[i] * GGX_PI / 180), GGX_MASKING_SEPARABLE), 0,
                         1e-12, "the isotropic curve at theta %g", x[i]);
     }
 }
@@ -302,7 +301,7 @@ static void polar_curves(void **state)
             ggx_vec3 wi = dir(ti, phi_v);
             double peak = 0.0;
             for (int i = 0; i < n; i += 7) {
-                double a = x[i] * T_PI / 180, az = (phi_v + (k % 2 ? 90.0 : 180.0)) * T_PI / 180;
+                double a = x[i] * GGX_PI / 180, az = (phi_v + (k % 2 ? 90.0 : 180.0)) * GGX_PI / 180;
                 ggx_vec3 wo = {sin(a) * cos(az), sin(a) * sin(az), cos(a)};
                 double want = bsdf ? ggx_bsdf_eval(&s, 1.5, wi, wo, GGX_RADIANCE) * fabs(wo.z)
                                    : (wo.z > 0 ? ggx_brdf_eval(&s, NULL, wi, wo) * wo.z : 0.0);
@@ -325,12 +324,12 @@ static void slice_values(void **state)
     const double pd[3] = {90.0, 45.0, -120.0};
     int zeros = 0, checked = 0;
     for (int p = 0; p < 3; p++) {
-        figure_spec f = {FIG_SLICE, &s, dir(0, 0), NULL, 0, 0, NAN, "", "", 0.0, pd[p] * T_PI / 180};
+        figure_spec f = {FIG_SLICE, &s, dir(0, 0), NULL, 0, 0, NAN, "", "", 0.0, pd[p] * GGX_PI / 180};
         figure_spec g = f;
-        g.phi_d = (pd[p] + 180.0) * T_PI / 180;
+        g.phi_d = (pd[p] + 180.0) * GGX_PI / 180;
         for (int i = 0; i < 12; i++)
             for (int j = 0; j < 12; j++) {
-                double th = (i + 0.3) * 7.5 * T_PI / 180, td = (j + 0.6) * 7.5 * T_PI / 180;
+                double th = (i + 0.3) * 7.5 * GGX_PI / 180, td = (j + 0.6) * 7.5 * GGX_PI / 180;
                 ggx_vec3 wi, wo;
                 slice_dirs(th, td, f.phi_d, &wi, &wo);
                 double hx = wi.x + wo.x, hy = wi.y + wo.y, hz = wi.z + wo.z, hl = sqrt(hx * hx + hy * hy + hz * hz);

@@ -14,7 +14,7 @@
 static double gauss(rng *r)
 {
     double u = rng_uniform(r), v = rng_uniform(r);
-    return sqrt(-2.0 * log(1.0 - u)) * cos(2.0 * T_PI * v);
+    return sqrt(-2.0 * log(1.0 - u)) * cos(2.0 * GGX_PI * v);
 }
 
 static ggx_vec3 normal_of_slope(double x, double y)

@@ -432,7 +432,7 @@ static void every_variant(const char *test, void (*body)(report *))
 
 static ggx_vec3 dir_z(rng *r, double zmin, double zmax)
 {
-    return t_dir(acos(rng_range(r, zmin, zmax)), rng_range(r, -T_PI, T_PI));
+    return t_dir(acos(rng_range(r, zmin, zmax)), rng_range(r, -GGX_PI, GGX_PI));
 }
 static float ufloat(rng *r) { return (float)rng_uniform(r) * (1.0f - 0x1p-24f); } /* in [0, 1) as a float */
 
@@ -584,7 +584,7 @@ static void body_samplers(report *r)
         for (int i = 0; i < 1000; i++) {
             double kind = rng_uniform(&rr);
             ggx_vec3 v = kind < 0.5   ? dir_z(&rr, 0.02, 1)
-                         : kind < 0.7 ? t_dir(exp(rng_range(&rr, log(1e-5), log(0.1))), rng_range(&rr, -T_PI, T_PI))
+                         : kind < 0.7 ? t_dir(exp(rng_range(&rr, log(1e-5), log(0.1))), rng_range(&rr, -GGX_PI, GGX_PI))
                          : kind < 0.9 ? dir_z(&rr, 0.02, 0.05)
                                       : t_vec(0, 0, 1);
             float u1 = ufloat(&rr), u2 = ufloat(&rr);
@@ -620,9 +620,9 @@ static void body_critical(report *r)
             /* cos_i = wi.h at the critical cosine, or off it by 1e-8 .. 2e-3 on either side */
             double d = b.n % 10 == 0 ? 0.0 : exp(rng_range(&rr, log(1e-8), log(2e-3)));
             double c = c_crit + (b.n % 2 ? d : -d);
-            ggx_vec3 h = t_dir(rng_range(&rr, 0, 0.8), rng_range(&rr, -T_PI, T_PI)), e1, e2;
+            ggx_vec3 h = t_dir(rng_range(&rr, 0, 0.8), rng_range(&rr, -GGX_PI, GGX_PI)), e1, e2;
             t_frame(h, &e1, &e2);
-            double phi = rng_range(&rr, -T_PI, T_PI), sn = sqrt(1 - c * c);
+            double phi = rng_range(&rr, -GGX_PI, GGX_PI), sn = sqrt(1 - c * c);
             ggx_vec3 wi = t_add(t_scale(h, c), t_add(t_scale(e1, sn * cos(phi)), t_scale(e2, sn * sin(phi))));
             ggx_vec3 wo = ggx_reflect(wi, h);
             if (wi.z < 0.02 || wo.z < 0.02) continue;
@@ -669,7 +669,7 @@ static void body_backfacing(report *r)
     for (int j = 0; j < 1000; j++) {
         rng rr = {6000 + (uint64_t)j};
         shape_params p = {exp(rng_range(&rr, log(1e-4), log(1e-2))), exp(rng_range(&rr, log(1e-4), log(1e-2))),
-                          rng_range(&rr, -1.5, 1.5), rng_range(&rr, -1.5, 1.5), rng_range(&rr, -T_PI, T_PI)};
+                          rng_range(&rr, -1.5, 1.5), rng_range(&rr, -1.5, 1.5), rng_range(&rr, -GGX_PI, GGX_PI)};
         start_ellipsoid(&b, &s, p, NULL, 0);
         for (int i = 0; i < 1000; i++) {
             ggx_vec3 v = random_view(&rr);
@@ -698,7 +698,7 @@ static void float_sincos(void **state)
     for (long i = 0; i <= 1L << 24; i++) {
         float t = (float)i * 0x1p-24f;
         ggx_vec2f d = ggx_disk_polar_f(1.0f, t);
-        double e = fmax(fabs(d.x - cos(2 * T_PI * t)), fabs(d.y - sin(2 * T_PI * t)));
+        double e = fmax(fabs(d.x - cos(2 * GGX_PI * t)), fabs(d.y - sin(2 * GGX_PI * t)));
         if (e > worst) worst = e, worst_t = t;
     }
     printf("float sincos of 2 pi t: largest error %.3g (t = %.9g), bound 1.5e-7\n", worst, worst_t);

@@ -45,7 +45,7 @@ static void dielectric(void **state)
     /* Textbook values for glass n = 1.5 (Hecht): 4 % at normal incidence; at 45 degrees R_s = 0.0920 and
      * R_p = 0.0085, so F = 0.0502; at Brewster's angle atan(1.5) R_p = 0 and F = R_s / 2 = 0.0739. */
     CHECK_CLOSE(ggx_fresnel_dielectric_eval(1.0, 1.5), 0.04, 1e-14, 0, "normal");
-    CHECK_CLOSE(ggx_fresnel_dielectric_eval(cos(T_PI / 4), 1.5), 0.0502, 0, 1e-4, "45 degrees");
+    CHECK_CLOSE(ggx_fresnel_dielectric_eval(cos(GGX_PI / 4), 1.5), 0.0502, 0, 1e-4, "45 degrees");
     double cb = cos(atan(1.5));
     CHECK_CLOSE(ggx_fresnel_dielectric_eval(cb, 1.5), 0.5 * pow((1.5 * 1.5 - 1) / (1.5 * 1.5 + 1), 2), 1e-12, 0,
                 "Brewster");

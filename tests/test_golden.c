@@ -20,7 +20,7 @@ static void compute(double *out)
     ggx_fresnel f;
     ggx_fresnel_conductor(&f, 0.2, 3.9);
     const ggx_vec3 wi = t_dir(0.7, 0.3), wo = t_dir(0.4, 2.8), m = t_dir(0.25, -0.4), gr = t_dir(1.55, 1.0);
-    const ggx_vec3 in = t_dir(T_PI - 0.3, 2.0);
+    const ggx_vec3 in = t_dir(GGX_PI - 0.3, 2.0);
     int k = 0;
     for (int i = 0; i < 4; i++) {
         const ggx_shape *s = &sh[i];
@@ -42,7 +42,7 @@ static void compute(double *out)
         out[k++] = ggx_bsdf_eval(s, 1.5, wi, wo, GGX_RADIANCE);
         out[k++] = ggx_bsdf_eval(s, 1.5, wi, in, GGX_RADIANCE);
         out[k++] = ggx_bsdf_eval(s, 1.5, in, wi, GGX_RADIANCE);
-        out[k++] = ggx_bsdf_eval(s, 1 / 1.33, in, t_dir(T_PI - 0.5, 2.5), GGX_IMPORTANCE);
+        out[k++] = ggx_bsdf_eval(s, 1 / 1.33, in, t_dir(GGX_PI - 0.5, 2.5), GGX_IMPORTANCE);
     }
     out[k++] = ggx_fresnel_dielectric_eval(0.3, 1.5);
     out[k++] = ggx_fresnel_dielectric_eval(0.9, 1 / 1.5);

@@ -139,7 +139,7 @@ static void vndf_pdf(void **state)
         if (fabs(I - 1) > worst) worst = fabs(I - 1);
         if (i < 10) {
             for (int k = 0; k < 50; k++) {
-                ggx_vec3 m = t_dir(acos(rng_range(&r, 0, 1)), rng_range(&r, -T_PI, T_PI));
+                ggx_vec3 m = t_dir(acos(rng_range(&r, 0, 1)), rng_range(&r, -GGX_PI, GGX_PI));
                 double mv = t_dot(m, v);
                 double want = mv > 0 ? ggx_g1(&s, v, m) * ggx_ndf(&s, m) * mv / v.z : 0.0;
                 CHECK_CLOSE(ggx_pdf_vndf(&s, v, m), want, 1e-12, 0, "unskewed identity");

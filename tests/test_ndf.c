@@ -48,7 +48,7 @@ static double sph_theta(double theta, void *vc)
 {
     sph_ctx *c = vc;
     c->theta = theta;
-    return quad_adapt(sph_phi, c, 0.0, 2.0 * T_PI, 1e-12);
+    return quad_adapt(sph_phi, c, 0.0, 2.0 * GGX_PI, 1e-12);
 }
 static void spherical_density(void **state)
 {
@@ -58,10 +58,10 @@ static void spherical_density(void **state)
         ggx_shape s;
         make_shape(&s, ps[i]);
         sph_ctx c = {&s, 0.0};
-        CHECK_CLOSE(quad_adapt(sph_theta, &c, 0.0, 0.5 * T_PI, 1e-11), 1.0, 1e-8, 0.0, "shape %u", i);
+        CHECK_CLOSE(quad_adapt(sph_theta, &c, 0.0, 0.5 * GGX_PI, 1e-11), 1.0, 1e-8, 0.0, "shape %u", i);
         rng r = {100 + i};
         for (int k = 0; k < 100; k++) {
-            double th = rng_range(&r, 0.0, 0.5 * T_PI), ph = rng_range(&r, -T_PI, T_PI);
+            double th = rng_range(&r, 0.0, 0.5 * GGX_PI), ph = rng_range(&r, -GGX_PI, GGX_PI);
             CHECK_CLOSE(ggx_ndf_spherical(&s, th, ph), ggx_ndf(&s, t_dir(th, ph)) * sin(th), 1e-15, 0.0,
                         "theta %g phi %g", th, ph);
         }
@@ -72,7 +72,7 @@ static void spherical_density(void **state)
 static double ggx_aniso_closed(double ax, double ay, ggx_vec3 m)
 {
     double q = m.x * m.x / (ax * ax) + m.y * m.y / (ay * ay) + m.z * m.z;
-    return 1.0 / (T_PI * ax * ay * q * q);
+    return 1.0 / (GGX_PI * ax * ay * q * q);
 }
 
 /* R = I: anisotropic GGX; alpha_x = alpha_y: the isotropic form alpha^2 / (pi cos^4 (alpha^2 + tan^2)^2);
@@ -88,7 +88,7 @@ static void closed_forms(void **state)
         CHECK(ggx_shape_ellipsoid(&rot, p.ax, p.ay, 0, 0, p.tz) == GGX_OK, "rotated");
         CHECK(ggx_shape_iso(&iso, p.ax) == GGX_OK, "iso");
         CHECK(s.kind == GGX_SHAPE_DIAGONAL && rot.kind == GGX_SHAPE_UNSKEWED, "kinds %d %d", s.kind, rot.kind);
-        double th = acos(rng_range(&r, 1e-3, 1.0)), ph = rng_range(&r, -T_PI, T_PI);
+        double th = acos(rng_range(&r, 1e-3, 1.0)), ph = rng_range(&r, -GGX_PI, GGX_PI);
         ggx_vec3 m = t_dir(th, ph);
         CHECK_CLOSE(ggx_ndf(&s, m), ggx_aniso_closed(p.ax, p.ay, m), 1e-13, 0.0, "a=(%g,%g) m=(%g,%g,%g)", p.ax,
                     p.ay, m.x, m.y, m.z);
@@ -100,7 +100,7 @@ static void closed_forms(void **state)
         ggx_vec3 mt = t_vec(rot.tangent_cos * m.x + rot.tangent_sin * m.y, -rot.tangent_sin * m.x + rot.tangent_cos * m.y, m.z);
         CHECK_CLOSE(ggx_ndf(&rot, m), ggx_aniso_closed(rot.alpha_x, rot.alpha_y, mt), 1e-11, 0, "tangent frame");
         double a2 = p.ax * p.ax, t2 = tan(th) * tan(th), c4 = pow(cos(th), 4);
-        CHECK_CLOSE(ggx_ndf(&iso, m), a2 / (T_PI * c4 * (a2 + t2) * (a2 + t2)), 1e-12, 0.0, "iso alpha %g", p.ax);
+        CHECK_CLOSE(ggx_ndf(&iso, m), a2 / (GGX_PI * c4 * (a2 + t2) * (a2 + t2)), 1e-12, 0.0, "iso alpha %g", p.ax);
     }
 }
 
@@ -121,7 +121,7 @@ static double p22_t(double t, void *vc)
 {
     p22_ctx *c = vc;
     c->t = t;
-    return quad_adapt(p22_phi, c, 0.0, 2.0 * T_PI, 1e-12);
+    return quad_adapt(p22_phi, c, 0.0, 2.0 * GGX_PI, 1e-12);
 }
 static void slope_space(void **state)
 {
@@ -132,12 +132,12 @@ static void slope_space(void **state)
         ggx_shape s, d;
         make_shape(&s, p);
         CHECK(ggx_shape_aniso(&d, p.ax, p.ay) == GGX_OK, "aniso");
-        ggx_vec3 m = t_dir(acos(rng_range(&r, 1e-3, 1.0)), rng_range(&r, -T_PI, T_PI));
+        ggx_vec3 m = t_dir(acos(rng_range(&r, 1e-3, 1.0)), rng_range(&r, -GGX_PI, GGX_PI));
         double c4 = pow(m.z, 4);
         CHECK_CLOSE(ggx_ndf(&s, m), ggx_p22(&s, -m.x / m.z, -m.y / m.z) / c4, 1e-12, 0.0, "shape %d", i);
         double x = rng_range(&r, -5, 5), y = rng_range(&r, -5, 5);
         double q = 1.0 + x * x / (p.ax * p.ax) + y * y / (p.ay * p.ay);
-        CHECK_CLOSE(ggx_p22(&d, x, y), 1.0 / (T_PI * p.ax * p.ay * q * q), 1e-12, 0.0, "slopes %g %g", x, y);
+        CHECK_CLOSE(ggx_p22(&d, x, y), 1.0 / (GGX_PI * p.ax * p.ay * q * q), 1e-12, 0.0, "slopes %g %g", x, y);
     }
     const shape_params ps[] = {{0.5, 0.5, 0, 0, 0}, {0.4, 0.8, 0.3, -0.2, 0.7}};
     for (int i = 0; i < 2; i++) {
@@ -172,7 +172,7 @@ static void gaussian_curvature(void **state)
         shape_params p = random_shape(&r, 0.6);
         ggx_shape s;
         make_shape(&s, p);
-        double th = acos(rng_range(&r, -0.95, 0.95)), ph = rng_range(&r, -T_PI, T_PI);
+        double th = acos(rng_range(&r, -0.95, 0.95)), ph = rng_range(&r, -GGX_PI, GGX_PI);
         ell_pt t0 = ellipsoid_point(&s, th + h, ph), t1 = ellipsoid_point(&s, th - h, ph);
         ell_pt p0 = ellipsoid_point(&s, th, ph + h), p1 = ellipsoid_point(&s, th, ph - h);
         ggx_vec3 xt = t_scale(t_add(t0.x, t_scale(t1.x, -1)), 0.5 / h), xp = t_scale(t_add(p0.x, t_scale(p1.x, -1)), 0.5 / h);
@@ -197,16 +197,16 @@ static void projected_areas(void **state)
     (void)state;
     ggx_shape d;
     CHECK(ggx_shape_aniso(&d, 0.3, 0.7) == GGX_OK, "aniso");
-    CHECK_CLOSE(ggx_projected_area(&d, t_vec(0, 0, 1)), T_PI / (0.3 * 0.7), 1e-15, 0, "along z");
-    CHECK_CLOSE(ggx_projected_area(&d, t_vec(1, 0, 0)), T_PI / 0.7, 1e-15, 0, "along x");
-    CHECK_CLOSE(ggx_projected_area(&d, t_vec(0, 1, 0)), T_PI / 0.3, 1e-15, 0, "along y");
+    CHECK_CLOSE(ggx_projected_area(&d, t_vec(0, 0, 1)), GGX_PI / (0.3 * 0.7), 1e-15, 0, "along z");
+    CHECK_CLOSE(ggx_projected_area(&d, t_vec(1, 0, 0)), GGX_PI / 0.7, 1e-15, 0, "along x");
+    CHECK_CLOSE(ggx_projected_area(&d, t_vec(0, 1, 0)), GGX_PI / 0.3, 1e-15, 0, "along y");
     rng r = {5};
     for (int i = 0; i < 200; i++) {
         shape_params p = random_shape(&r, 0.6);
         ggx_shape s;
         make_shape(&s, p);
-        ggx_vec3 u = t_dir(acos(rng_range(&r, -1, 1)), rng_range(&r, -T_PI, T_PI));
-        ggx_vec3 v = t_dir(acos(rng_range(&r, -1, 1)), rng_range(&r, -T_PI, T_PI));
+        ggx_vec3 u = t_dir(acos(rng_range(&r, -1, 1)), rng_range(&r, -GGX_PI, GGX_PI));
+        ggx_vec3 v = t_dir(acos(rng_range(&r, -1, 1)), rng_range(&r, -GGX_PI, GGX_PI));
         double ae = ggx_projected_area(&s, u);
         CHECK_CLOSE(ggx_lune_area(&s, u, u), ae, 1e-14, 0, "A_l(u,u)");
         CHECK_CLOSE(ggx_lune_area(&s, u, v) + ggx_lune_area(&s, u, t_scale(v, -1)), ae, 1e-13, 0, "halves");
@@ -229,7 +229,7 @@ static void projected_areas(void **state)
         CHECK(s.kind == GGX_SHAPE_SKEWED || fabs(p.tx) + fabs(p.ty) == 0, "kind");
         CHECK_CLOSE(ggx_projected_area(&sq, u), ae, 1e-13, 0, "Q A");
         CHECK_CLOSE(ggx_lune_area(&sq, u, v), ggx_lune_area(&s, u, v), 1e-12, 1e-14 * ae, "Q A lune");
-        ggx_vec3 m = t_dir(acos(rng_range(&r, 0, 1)), rng_range(&r, -T_PI, T_PI));
+        ggx_vec3 m = t_dir(acos(rng_range(&r, 0, 1)), rng_range(&r, -GGX_PI, GGX_PI));
         CHECK_CLOSE(ggx_ndf(&sq, m), ggx_ndf(&s, m), 1e-12, 0, "Q A ndf");
         CHECK_CLOSE(ggx_ndf(&s2, m), ggx_ndf(&s, m), 1e-13, 0, "2A ndf");
     }
@@ -255,7 +255,7 @@ static void lune_by_quadrature(void **state)
         shape_params p = random_shape(&r, 0.6);
         ggx_shape s;
         make_shape(&s, p);
-        ggx_vec3 u = i % 8 == 7 ? t_dir(rng_range(&r, 0.5 * T_PI, 0.9 * T_PI), rng_range(&r, -T_PI, T_PI)) : random_view(&r);
+        ggx_vec3 u = i % 8 == 7 ? t_dir(rng_range(&r, 0.5 * GGX_PI, 0.9 * GGX_PI), rng_range(&r, -GGX_PI, GGX_PI)) : random_view(&r);
         const void *ctx[2] = {&s, &u};
         double got = quad_hemisphere(&s, ndf_cos_u, ctx, &u, 1, 1e-10, NULL);
         ggx_vec3 n = t_vec(0, 0, 1);

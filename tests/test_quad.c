@@ -62,14 +62,14 @@ static void sphere_space_integrals(void **state)
         shape_params p = random_shape(&r, 0.6);
         ggx_shape s;
         make_shape(&s, p);
-        CHECK_CLOSE(quad_hemisphere(&s, one, NULL, NULL, 0, 1e-10, NULL), 2.0 * T_PI, 1e-8, 0.0, "shape %d", i);
-        CHECK_CLOSE(quad_hemisphere(&s, cos_n, NULL, NULL, 0, 1e-10, NULL), T_PI, 1e-8, 0.0, "shape %d", i);
-        ggx_vec3 u = t_dir(rng_range(&r, 0.0, T_PI), rng_range(&r, 0.0, 2.0 * T_PI));
+        CHECK_CLOSE(quad_hemisphere(&s, one, NULL, NULL, 0, 1e-10, NULL), 2.0 * GGX_PI, 1e-8, 0.0, "shape %d", i);
+        CHECK_CLOSE(quad_hemisphere(&s, cos_n, NULL, NULL, 0, 1e-10, NULL), GGX_PI, 1e-8, 0.0, "shape %d", i);
+        ggx_vec3 u = t_dir(rng_range(&r, 0.0, GGX_PI), rng_range(&r, 0.0, 2.0 * GGX_PI));
         /* Area of the lune {m.n >= 0, m.u >= 0} is 2 (pi - angle(n, u)). */
-        double lune = 2.0 * (T_PI - acos(u.z));
+        double lune = 2.0 * (GGX_PI - acos(u.z));
         CHECK_CLOSE(quad_hemisphere(&s, one, NULL, &u, 1, 1e-10, NULL), lune, 1e-7, 0.0, "shape %d u.z %g", i, u.z);
         /* Projected area of that lune seen from u: (1 + u.n) pi / 2. */
-        CHECK_CLOSE(quad_hemisphere(&s, cos_u, &u, &u, 1, 1e-10, NULL), 0.5 * T_PI * (1.0 + u.z), 1e-7, 1e-12,
+        CHECK_CLOSE(quad_hemisphere(&s, cos_u, &u, &u, 1, 1e-10, NULL), 0.5 * GGX_PI * (1.0 + u.z), 1e-7, 1e-12,
                     "shape %d u.z %g", i, u.z);
     }
 }

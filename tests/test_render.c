@@ -19,7 +19,7 @@
 #include <stb_image_write.h>
 #endif
 
-#define DEG (T_PI / 180)
+#define DEG (GGX_PI / 180)
 
 typedef struct image {
     int w, h;
@@ -343,7 +343,7 @@ static void environment(void **state)
         if (pdf > 0) CHECK(c[0] == c2[0] && c[1] == c2[1] && c[2] == c2[2], "the sample's radiance is its pixel's");
         double p2 = render_env_pdf(&e, d);
         if (pdf > 0 && fabs(pdf - p2) / pdf > worst) worst = fabs(pdf - p2) / pdf;
-        int i = (int)(acos(d.z) / T_PI * h), j = (int)(fmod(atan2(d.y, d.x) + 2 * T_PI, 2 * T_PI) / (2 * T_PI) * w);
+        int i = (int)(acos(d.z) / GGX_PI * h), j = (int)(fmod(atan2(d.y, d.x) + 2 * GGX_PI, 2 * GGX_PI) / (2 * GGX_PI) * w);
         count[(i < h ? i : h - 1) * w + (j < w ? j : w - 1)]++;
     }
     CHECK(worst < 1e-5, "sample pdf and render_env_pdf differ by %.2g", worst);
@@ -352,7 +352,7 @@ static void environment(void **state)
     double chi2 = 0, integral = 0;
     int cells = 0;
     for (int k = 0; k < w * h; k++) {
-        double p = e.texel[k].pdf_scale * 2 * T_PI * T_PI / (w * h);
+        double p = e.texel[k].pdf_scale * 2 * GGX_PI * GGX_PI / (w * h);
         integral += p;
         if (k == 37) continue;
         double ex = p * (double)n;

@@ -219,13 +219,13 @@ static shape_params wide_shape(rng *r)
     double skew = rng_uniform(r) < 0.3 ? 0.0 : 1.5707963267948966;
     p.tx = rng_range(r, -skew, skew);
     p.ty = rng_range(r, -skew, skew);
-    p.tz = rng_range(r, -T_PI, T_PI);
+    p.tz = rng_range(r, -GGX_PI, GGX_PI);
     return p;
 }
 static ggx_vec3 any_dir(rng *r)
 {
     double c = rng_uniform(r) < 0.1 ? (rng_uniform(r) - 0.5) * 1e-6 : rng_range(r, -1, 1);
-    double sn = sqrt(fmax(0, 1 - c * c)), ph = rng_range(r, 0, 2 * T_PI);
+    double sn = sqrt(fmax(0, 1 - c * c)), ph = rng_range(r, 0, 2 * GGX_PI);
     return t_vec(sn * cos(ph), sn * sin(ph), c);
 }
 

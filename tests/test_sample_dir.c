@@ -210,7 +210,7 @@ static double removed_band_max_z(const ggx_shape *s, ggx_vec3 v, double raise, r
     ggx_vec3 vs = t_scale(av, 1.0 / sqrt(t_dot(av, av)));
     for (int k = 0; k < draws; k++) {
         /* the per-azimuth bound: the meridian 2 pi u1 and its own kappa */
-        double u1 = rng_uniform(r), phi = 2.0 * T_PI * u1;
+        double u1 = rng_uniform(r), phi = 2.0 * GGX_PI * u1;
         if (azimuth) kappa = ggx_k_bound_kappa_u_d(s, v, sigma2, u1);
         double b = 1.0 - kappa * (1.0 + vs.z);
         b += raise * (1.0 - b);
@@ -342,7 +342,7 @@ static void bounded_plane_closed_forms(void **state)
     int n = 0;
     for (unsigned i = 0; i < sizeof alphas / sizeof alphas[0]; i++)
         for (unsigned j = 0; j < sizeof thetas / sizeof thetas[0]; j++) {
-            double al = alphas[i], a = fmin(al, 1.0), th = thetas[j] * T_PI / 180, ph = 2 * T_PI * rng_uniform(&r);
+            double al = alphas[i], a = fmin(al, 1.0), th = thetas[j] * GGX_PI / 180, ph = 2 * GGX_PI * rng_uniform(&r);
             ggx_vec3 wi = t_vec(sin(th) * cos(ph), sin(th) * sin(ph), cos(th));
             ggx_shape s;
             make_shape(&s, (shape_params){al, al, 0, 0, 0});
@@ -355,7 +355,7 @@ static void bounded_plane_closed_forms(void **state)
             worst_iso = fmax(worst_iso, fabs(kappa - pub));
             /* an unskewed anisotropic shape at n, rotated: the smaller alpha decides */
             double ay = al * (1.5 + 3 * rng_uniform(&r));
-            make_shape(&s, (shape_params){ay, al, 0, 0, 2 * T_PI * rng_uniform(&r)});
+            make_shape(&s, (shape_params){ay, al, 0, 0, 2 * GGX_PI * rng_uniform(&r)});
             double kn = ggx_k_bound_kappa_d(&s, t_vec(0, 0, 1)), exact = 1 / (1 + a * a);
             CHECK(kn >= exact - 1e-15 && kn - exact <= 1e-6, "alpha (%g, %g) at n: kappa %.17g, 1 / (1 + a^2) %.17g", ay,
                   al, kn, exact);
@@ -414,7 +414,7 @@ static double band_top_max_z(const ggx_shape *s, ggx_vec3 v, int unskewed)
     long double ay = (long double)s->a[1][0] * v.x + (long double)s->a[1][1] * v.y + (long double)s->a[1][2] * v.z;
     long double phv = atan2l(ay, ax);
     for (int ia = 0; ia < 362; ia++) {
-        long double phi = ia < 360 ? 2 * (long double)T_PI * ia / 360 : phv + (ia == 360 ? 0 : (long double)T_PI);
+        long double phi = ia < 360 ? 2 * (long double)GGX_PI * ia / 360 : phv + (ia == 360 ? 0 : (long double)GGX_PI);
         worst = fmax(worst, meridian_band_max_z(s, v, phi, omk, 13));
     }
     return worst;
@@ -450,7 +450,7 @@ static void bounded_azimuth_grazing(void **state)
         ggx_vec3 v = t_normalize(cases[i].v);
         double sigma2 = ggx_k_bound_sigma2_d(&s), omk, omp;
         ggx_k_bound_kappa_u_om_d(&s, v, sigma2, cases[i].u1, &omk);
-        worst = fmax(worst, meridian_band_max_z(&s, v, 2 * (long double)T_PI * cases[i].u1, omk, 16));
+        worst = fmax(worst, meridian_band_max_z(&s, v, 2 * (long double)GGX_PI * cases[i].u1, omk, 16));
         /* the control: 1 - kappa from the plane bound placed in absolute z (b = omp (1 + vz) - vz in double) */
         ggx_k_bound_kappa_om_d(&s, v, sigma2, ggx_k_bound_is_unskewed_d(&s), &omp);
         ggx_vec3 av = {s.a[0][0] * v.x + s.a[0][1] * v.y + s.a[0][2] * v.z,
@@ -458,7 +458,7 @@ static void bounded_azimuth_grazing(void **state)
                        s.a[2][0] * v.x + s.a[2][1] * v.y + s.a[2][2] * v.z};
         double vz = av.z / sqrt(t_dot(av, av)), b = omp * (1 + vz) - vz;
         control = fmax(control,
-                       meridian_band_max_z(&s, v, 2 * (long double)T_PI * cases[i].u1, 1 - (1 - b) / (1 + vz), 16));
+                       meridian_band_max_z(&s, v, 2 * (long double)GGX_PI * cases[i].u1, 1 - (1 - b) / (1 + vz), 16));
     }
     printf("bounded per azimuth, grazing views with 1 + vs.z near 1e-6: removed points reflect to wo.z <= %.3g (the "
            "plane bound placed in absolute z: %.3g)\n", worst, control);

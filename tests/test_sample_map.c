@@ -167,7 +167,7 @@ static void inverses(void **state)
     for (int t = 0; t <= 1000000; t++) {
         double u = t / 1e6;
         ggx_vec2 d = ggx_disk_polar(1.0, u);
-        worst = fmax(worst, fmax(fabs(d.x - cos(2 * T_PI * u)), fabs(d.y - sin(2 * T_PI * u))));
+        worst = fmax(worst, fmax(fabs(d.x - cos(2 * GGX_PI * u)), fabs(d.y - sin(2 * GGX_PI * u))));
     }
     /* 1e-15: the libm reference takes cos of the rounded 2 pi t, itself off by up to ~7e-16 near t = 1. */
     CHECK(worst <= 1e-15, "sincos of 2 pi t: error %g", worst);
@@ -184,8 +184,8 @@ static void edge_cases(void **state)
 {
     (void)state;
     const double us[] = {0.0, 1e-300, 0.5, 1.0 - DBL_EPSILON / 2, 1.0};
-    const ggx_vec3 views[] = {t_vec(0, 0, 1), t_dir(T_PI / 2 - 1e-8, 0.3), t_vec(0.6, 0.8, 0),
-                              t_dir(T_PI / 2 + 0.1, 0.2)};
+    const ggx_vec3 views[] = {t_vec(0, 0, 1), t_dir(GGX_PI / 2 - 1e-8, 0.3), t_vec(0.6, 0.8, 0),
+                              t_dir(GGX_PI / 2 + 0.1, 0.2)};
     long n = 0;
     for (int i = 0; i < SWEEP_NSHAPES; i++) {
         ggx_shape s;

@@ -15,7 +15,7 @@ static int wide_shape(rng *r, ggx_shape *s, shape_params *p)
     p->ay = exp(rng_range(r, log(1e-3), log(10.0)));
     p->tx = rng_range(r, -GGX_SKEW_MAX, GGX_SKEW_MAX);
     p->ty = rng_range(r, -GGX_SKEW_MAX, GGX_SKEW_MAX);
-    p->tz = rng_range(r, -T_PI, T_PI);
+    p->tz = rng_range(r, -GGX_PI, GGX_PI);
     return ggx_shape_ellipsoid(s, p->ax, p->ay, p->tx, p->ty, p->tz) == GGX_OK;
 }
 
@@ -33,7 +33,7 @@ static long double ndf_from_slopes(const double t[2], const double sg[3], ggx_ve
 static ggx_vec3 test_normal(rng *r, const ggx_shape *s, int i)
 {
     if (i % 2 == 0) return ggx_sample_ndf(s, rng_uniform(r), rng_uniform(r));
-    double z = rng_range(r, 1e-3, 1.0), ph = rng_range(r, 0.0, 2.0 * T_PI), q = sqrt(1.0 - z * z);
+    double z = rng_range(r, 1e-3, 1.0), ph = rng_range(r, 0.0, 2.0 * GGX_PI), q = sqrt(1.0 - z * z);
     return (ggx_vec3){q * cos(ph), q * sin(ph), z};
 }
 
@@ -165,7 +165,7 @@ static double standardised_chi2(const ggx_shape *s, double scale, long n, rng *r
         ggx_vec3 m = ggx_sample_ndf(s, rng_uniform(r), rng_uniform(r));
         double x = -m.x / m.z - t[0], y = -m.y / m.z - t[1];
         double z0 = x / l00, z1 = (y - l10 * z0) / l11, r2 = z0 * z0 + z1 * z1;
-        double u = r2 / (1.0 + r2), a = atan2(z1, z0) / (2.0 * T_PI) + 0.5;
+        double u = r2 / (1.0 + r2), a = atan2(z1, z0) / (2.0 * GGX_PI) + 0.5;
         int iu = (int)(u * K), ia = (int)(a * K);
         cnt[iu < K ? iu : K - 1][ia < K ? ia : K - 1]++;
     }
@@ -212,7 +212,7 @@ static void ellipsoid_params_round_trip(void **state)
         if (ggx_shape_ellipsoid(&s, p.ax, p.ay, p.tx, p.ty, p.tz) != GGX_OK) continue;
         double ax, ay, tx, ty, tz;
         assert_int_equal(ggx_shape_ellipsoid_params(&s, &ax, &ay, &tx, &ty, &tz), GGX_OK);
-        CHECK(fabs(tx) < T_PI / 2 && fabs(ty) < T_PI / 2 && fabs(tz) < T_PI / 2,
+        CHECK(fabs(tx) < GGX_PI / 2 && fabs(ty) < GGX_PI / 2 && fabs(tz) < GGX_PI / 2,
               "angles out of range: %g %g %g", tx, ty, tz);
         assert_int_equal(ggx_shape_ellipsoid(&b, ax, ay, tx, ty, tz), GGX_OK);
         double kappa = kappa_of(p);

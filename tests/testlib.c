@@ -41,7 +41,7 @@ shape_params random_shape(rng *r, double max_skew)
     if (p.ay > 2.0) p.ay = 2.0;
     p.tx = rng_range(r, -max_skew, max_skew);
     p.ty = rng_range(r, -max_skew, max_skew);
-    p.tz = rng_range(r, -T_PI, T_PI);
+    p.tz = rng_range(r, -GGX_PI, GGX_PI);
     return p;
 }
 
@@ -53,7 +53,7 @@ void make_shape(ggx_shape *s, shape_params p)
 
 ggx_vec3 random_view(rng *r)
 {
-    double phi = rng_range(r, 0.0, 2.0 * T_PI);
+    double phi = rng_range(r, 0.0, 2.0 * GGX_PI);
     double c = rng_uniform(r) < 0.25 ? exp(rng_range(r, log(1e-6), log(1e-2))) : rng_range(r, 1e-2, 1.0);
     double sn = sqrt(1.0 - c * c);
     return t_vec(sn * cos(phi), sn * sin(phi), c);

@@ -19,7 +19,7 @@ static double pdf_g1_form(const ggx_shape *s, ggx_vec3 v, ggx_vec3 m) /* G1(v) D
 static ggx_vec3 literal_stretch(const double A[3][3], ggx_vec3 v, double u1, double u2) /* Engstad: normalize(A s) */
 {
     (void)v;
-    double r = sqrt(u1), ph = 2 * T_PI * u2;
+    double r = sqrt(u1), ph = 2 * GGX_PI * u2;
     return t_normalize(t_matvec(A, t_vec(r * cos(ph), r * sin(ph), sqrt(1 - u1))));
 }
 /* Blog Part 2, eq theta_m_sample and phi_m_sample as written: tan theta = sqrt(u1 / (1 - u1))
@@ -29,7 +29,7 @@ static ggx_vec3 literal_inversion(const double A[3][3], ggx_vec3 v, double u1, d
 {
     (void)v;
     double ax = hypot(A[0][0], hypot(A[0][1], A[0][2])), ay = hypot(A[1][0], hypot(A[1][1], A[1][2]));
-    double t = 2 * T_PI * u2, c = cos(t), sn = sin(t);
+    double t = 2 * GGX_PI * u2, c = cos(t), sn = sin(t);
     double th = atan(sqrt(u1 / (1 - u1)) * sqrt(ax * ax * c * c + ay * ay * sn * sn)), ph = atan(ay / ax * tan(t));
     return t_vec(sin(th) * cos(ph), sin(th) * sin(ph), cos(th));
 }
@@ -312,7 +312,7 @@ static const ggx_vec3 N_UP = {0, 0, 1};
 static double err_ggx(const au_kin *K, rng *g, void *ctx, char *at, size_t nat)
 {
     (void)ctx;
-    ggx_vec3 m = t_dir(acos(rng_uniform(g)), 2 * T_PI * rng_uniform(g));
+    ggx_vec3 m = t_dir(acos(rng_uniform(g)), 2 * GGX_PI * rng_uniform(g));
     snprintf(at, nat, "m = (%.3g, %.3g, %.3g)", m.x, m.y, m.z);
     double ax, ay;
     au_kin_alphas(K, &ax, &ay);
@@ -325,7 +325,7 @@ static double err_p22(const au_kin *K, rng *g, void *ctx, char *at, size_t nat)
     double ax, ay;
     au_kin_alphas(K, &ax, &ay);
     double p = -m.x / m.z, q = -m.y / m.z, t = 1 + p * p / (ax * ax) + q * q / (ay * ay);
-    double lit = 1 / (T_PI * ax * ay * t * t) / (m.z * m.z * m.z * m.z);
+    double lit = 1 / (GGX_PI * ax * ay * t * t) / (m.z * m.z * m.z * m.z);
     snprintf(at, nat, "m = (%.3g, %.3g, %.3g)", m.x, m.y, m.z);
     return fabs(lit / ggx_ndf(&K->s, m) - 1);
 }
@@ -444,7 +444,7 @@ static double err_sggx(const au_kin *K, rng *g, void *ctx, char *at, size_t nat)
     double Ait[3][3];
     au_inv_t((const double(*)[3])K->A, Ait);
     ggx_vec3 m = au_random_upper(g), q = t_matvec((const double(*)[3])Ait, m); /* m^T S^-1 m = ||A^-T m||^2 */
-    double qq = t_dot(q, q), d_sggx = 1 / (T_PI * K->s.det * qq * qq);
+    double qq = t_dot(q, q), d_sggx = 1 / (GGX_PI * K->s.det * qq * qq);
     snprintf(at, nat, "m = (%.3g, %.3g, %.3g)", m.x, m.y, m.z);
     return fabs(d_sggx / (au_norm_of((const double(*)[3])K->A, N_UP) * ggx_ndf(&K->s, m)) - 1);
 }
@@ -538,7 +538,7 @@ int audit_run(const double A[AUDIT_SHAPES][3][3], audit_row *rows, int progress)
         rng g = {72};
         double worst_blog = 0, worst_true = 0;
         for (int i = 0; i < 200; i++) {
-            ggx_vec3 m = t_dir(acos(0.2 + 0.8 * rng_uniform(&g)), 2 * T_PI * rng_uniform(&g)), t1, t2;
+            ggx_vec3 m = t_dir(acos(0.2 + 0.8 * rng_uniform(&g)), 2 * GGX_PI * rng_uniform(&g)), t1, t2;
             t_frame(m, &t1, &t2);
             const double h = 1e-6;
             ggx_vec3 a = t_add(key_of_normal(&sh[k], t_normalize(t_add(m, t_scale(t1, h)))),
@@ -560,10 +560,10 @@ int audit_run(const double A[AUDIT_SHAPES][3][3], audit_row *rows, int progress)
         ggx_vec3 av = t_matvec((const double(*)[3])sh[k].a, v), an = t_matvec((const double(*)[3])sh[k].a, n);
         double avl = sqrt(t_dot(av, av)), sw = 0.5 * (1 + t_dot(av, an) / (avl * sqrt(t_dot(an, an))));
         for (int i = 0; i < 200; i++) {
-            ggx_vec3 m = t_dir(acos(rng_uniform(&g)), 2 * T_PI * rng_uniform(&g)), q = t_matvec((const double(*)[3])sh[k].ainv_t, m);
+            ggx_vec3 m = t_dir(acos(rng_uniform(&g)), 2 * GGX_PI * rng_uniform(&g)), q = t_matvec((const double(*)[3])sh[k].ainv_t, m);
             double mv = t_dot(m, v), ql = sqrt(t_dot(q, q));
             if (!(mv > 0)) continue;
-            double p_blog = sh[k].det / (T_PI * avl * ql * ql * ql * ql) * mv / sw;
+            double p_blog = sh[k].det / (GGX_PI * avl * ql * ql * ql * ql) * mv / sw;
             double x = p_blog / ggx_pdf_vndf(&sh[k], v, m) / (sh[k].det * sh[k].det);
             lo = fmin(lo, x), hi = fmax(hi, x);
         }
@@ -580,7 +580,7 @@ int audit_run(const double A[AUDIT_SHAPES][3][3], audit_row *rows, int progress)
         double wmax = 0, ratio_min = 2;
         ggx_fresnel one = {GGX_FRESNEL_ONE, 0, 0, 0};
         for (int i = 0; i < 200000; i++) {
-            double c = rng_uniform(&g), ph = 2 * T_PI * rng_uniform(&g);
+            double c = rng_uniform(&g), ph = 2 * GGX_PI * rng_uniform(&g);
             ggx_vec3 wi = t_vec(sqrt(1 - c * c) * cos(ph), sqrt(1 - c * c) * sin(ph), c);
             ggx_sample smp = ggx_sample_brdf(&sh[k], &one, wi, rng_uniform(&g), rng_uniform(&g));
             if (smp.event == GGX_EVENT_INVALID) continue;
@@ -600,7 +600,7 @@ int audit_run(const double A[AUDIT_SHAPES][3][3], audit_row *rows, int progress)
         rng g = {74};
         long below = 0, n_all = 200000;
         ggx_fresnel one = {GGX_FRESNEL_ONE, 0, 0, 0};
-        ggx_vec3 wi = t_dir(80 * T_PI / 180, 0.3);
+        ggx_vec3 wi = t_dir(80 * GGX_PI / 180, 0.3);
         for (long i = 0; i < n_all; i++)
             below += ggx_sample_brdf(&sh[k], &one, wi, rng_uniform(&g), rng_uniform(&g)).event == GGX_EVENT_INVALID;
         au_set(r, k, below > 0 ? AUDIT_HOLDS : AUDIT_FAILS, "%.1f %% of reflections below the horizon at an 80 degree view",
@@ -700,7 +700,7 @@ int audit_run(const double A[AUDIT_SHAPES][3][3], audit_row *rows, int progress)
         ggx_vec3 x = t_cross(got, want);
         double ang = atan2(sqrt(t_dot(x, x)), t_dot(got, want));
         au_set(r, k, ang < 1e-7 ? AUDIT_HOLDS : AUDIT_FAILS, "angle between the quadrature's mean normal and A^T A n %.1e rad; "
-            "the mean normal leans %.4g degrees from n", ang, acos(fmin(1.0, got.z)) * 180 / T_PI);
+            "the mean normal leans %.4g degrees from n", ang, acos(fmin(1.0, got.z)) * 180 / GGX_PI);
     }
 
     r = au_add(rows, &nr, "reciprocity", "the BRDF (eq 4 with G of eq 5, 6) is reciprocal: f_r(i, o) = f_r(o, i)", SEED_WALTER,
@@ -765,10 +765,10 @@ int audit_run(const double A[AUDIT_SHAPES][3][3], audit_row *rows, int progress)
         long N = 200000, top_lit = 0, top_fix = 0, off = 0;
         for (long i = 0; i < N; i++) {
             double a = 2 * rng_uniform(&g) - 1, b = 2 * rng_uniform(&g) - 1, sx, sy, fx, fy;
-            if (fabs(a) > fabs(b)) sx = fx = a * cos(T_PI * b / (4 * a)), sy = fy = a * sin(T_PI * b / (4 * a));
+            if (fabs(a) > fabs(b)) sx = fx = a * cos(GGX_PI * b / (4 * a)), sy = fy = a * sin(GGX_PI * b / (4 * a));
             else if (fabs(a) < fabs(b)) {
-                sx = b * cos(T_PI * a / (4 * b)), sy = b * sin(T_PI * a / (4 * b));
-                fx = b * cos(T_PI / 2 - T_PI * a / (4 * b)), fy = b * sin(T_PI / 2 - T_PI * a / (4 * b));
+                sx = b * cos(GGX_PI * a / (4 * b)), sy = b * sin(GGX_PI * a / (4 * b));
+                fx = b * cos(GGX_PI / 2 - GGX_PI * a / (4 * b)), fy = b * sin(GGX_PI / 2 - GGX_PI * a / (4 * b));
             } else sx = fx = a, sy = fy = b;
             top_lit += fabs(sy) > fabs(sx), top_fix += fabs(fy) > fabs(fx);
             off += sx * sx + sy * sy > 1 + 1e-12;
@@ -789,7 +789,7 @@ int audit_run(const double A[AUDIT_SHAPES][3][3], audit_row *rows, int progress)
             au_set(r, k, AUDIT_NOT_CLAIMED, "cannot be applied (the seed's D is written for a diagonal A)");
             continue;
         }
-        ggx_vec3 vv = t_dir(75 * T_PI / 180, 0);
+        ggx_vec3 vv = t_dir(75 * GGX_PI / 180, 0);
         lower_ctx lc = {ax, ay, vv};
         ggx_vec3 cut = t_scale(vv, -1);
         double lower = quad_hemisphere(&sh[k], lower_f, &lc, &cut, 1, 1e-10, NULL) * ggx_g1(&sh[k], vv, n) / vv.z;
@@ -864,12 +864,12 @@ int audit_run(const double A[AUDIT_SHAPES][3][3], audit_row *rows, int progress)
     r = au_add(rows, &nr, "vndf-phi90", "at theta_v = 75 degrees the VNDF leans toward the view more for phi_v = 90 than for phi_v = "
             "0, since ay > ax (figures 1-8)", SEED_VNDF, "figures, alpha (0.15, 0.5)", AUDIT_SCOPE_DIAGONAL);
     for (int k = 0; k < AUDIT_SHAPES; k++) {
-        double l0 = vndf_lean(&sh[k], t_dir(75 * T_PI / 180, 0)), l90 = vndf_lean(&sh[k], t_dir(75 * T_PI / 180, T_PI / 2));
+        double l0 = vndf_lean(&sh[k], t_dir(75 * GGX_PI / 180, 0)), l90 = vndf_lean(&sh[k], t_dir(75 * GGX_PI / 180, GGX_PI / 2));
         double ax = hypot(A[k][0][0], hypot(A[k][0][1], A[k][0][2])), ay = hypot(A[k][1][0], hypot(A[k][1][1], A[k][1][2]));
         int want = ay > ax;
         au_set(r, k, (l90 > l0) == want ? AUDIT_HOLDS : AUDIT_FAILS, "mean visible normal %.2f degrees from n for phi_v = 0, %.2f "
-            "for phi_v = 90 (n leans %.2f degrees without a view)", l0 * 180 / T_PI, l90 * 180 / T_PI,
-            acos(fmin(1.0, t_normalize(t_mattvec(A[k], t_matvec(A[k], n))).z)) * 180 / T_PI);
+            "for phi_v = 90 (n leans %.2f degrees without a view)", l0 * 180 / GGX_PI, l90 * 180 / GGX_PI,
+            acos(fmin(1.0, t_normalize(t_mattvec(A[k], t_matvec(A[k], n))).z)) * 180 / GGX_PI);
     }
     /* ---- Jacobians the seeds state, by finite differences of the maps themselves ---- */
     r = au_add(rows, &nr, "cosine-jacobian", "the cosine-weighted map s(u, v) has |ds / d(u, v)| = pi / s_z, so p(s) = (s.n) / pi",
@@ -879,7 +879,7 @@ int audit_run(const double A[AUDIT_SHAPES][3][3], audit_row *rows, int progress)
         double worst = 0;
         for (int i = 0; i < 1000; i++) {
             double u = 0.01 + 0.98 * rng_uniform(&g), w = rng_uniform(&g);
-            worst = fmax(worst, fabs(au_fd_jacobian(au_map_cosine, NULL, u, w, 1e-6) / (T_PI / sqrt(1 - u)) - 1));
+            worst = fmax(worst, fabs(au_fd_jacobian(au_map_cosine, NULL, u, w, 1e-6) / (GGX_PI / sqrt(1 - u)) - 1));
         }
         for (int k = 0; k < AUDIT_SHAPES; k++)
             au_set(r, k, worst < 1e-6 ? AUDIT_HOLDS : AUDIT_FAILS, "largest relative difference from the finite-difference "
@@ -976,7 +976,7 @@ int audit_run(const double A[AUDIT_SHAPES][3][3], audit_row *rows, int progress)
         long disagree = 0;
         ggx_vec3 ata = t_mattvec(A[k], t_matvec(A[k], n));
         for (int i = 0; i < 100000; i++) {
-            ggx_vec3 sp = t_dir(acos(2 * rng_uniform(&g) - 1), 2 * T_PI * rng_uniform(&g));
+            ggx_vec3 sp = t_dir(acos(2 * rng_uniform(&g) - 1), 2 * GGX_PI * rng_uniform(&g));
             ggx_vec3 p = t_mattvec((const double(*)[3])Ait, sp); /* A^-1 s: a point of the ellipsoid */
             ggx_vec3 m = t_normalize(t_mattvec(A[k], t_matvec(A[k], p)));
             disagree += (m.z > 0) != (t_dot(ata, p) > 0);
@@ -1124,7 +1124,7 @@ int audit_run(const double A[AUDIT_SHAPES][3][3], audit_row *rows, int progress)
         rng g = {102};
         double worst = 0;
         for (int i = 0; i < 1000; i++) {
-            double x1 = rng_uniform(&g), t = 2 * T_PI * rng_uniform(&g), c = cos(t), sn = sin(t);
+            double x1 = rng_uniform(&g), t = 2 * GGX_PI * rng_uniform(&g), c = cos(t), sn = sin(t);
             /* the normal at the point lifted from (a r cos t, b r sin t), a = 1 / ax, b = 1 / ay: the gradient A^T A p */
             ggx_vec3 p = t_vec(sqrt(x1) * c / ax, sqrt(x1) * sn / ay, sqrt(1 - x1));
             ggx_vec3 m = t_normalize(t_mattvec(A[k], t_matvec(A[k], p)));
@@ -1145,9 +1145,9 @@ int audit_run(const double A[AUDIT_SHAPES][3][3], audit_row *rows, int progress)
         rng g = {103};
         double worst = 0;
         for (int i = 0; i < 1000; i++) {
-            double th = acos(0.02 + 0.98 * rng_uniform(&g)), ph = 2 * T_PI * rng_uniform(&g), c = cos(th), t2 = tan(th) * tan(th);
+            double th = acos(0.02 + 0.98 * rng_uniform(&g)), ph = 2 * GGX_PI * rng_uniform(&g), c = cos(th), t2 = tan(th) * tan(th);
             double q = 1 + t2 * (cos(ph) * cos(ph) / (ax * ax) + sin(ph) * sin(ph) / (ay * ay));
-            worst = fmax(worst, fabs(1 / (T_PI * ax * ay * c * c * c * c * q * q) / ggx_ndf(&sh[k], t_dir(th, ph)) - 1));
+            worst = fmax(worst, fabs(1 / (GGX_PI * ax * ay * c * c * c * c * q * q) / ggx_ndf(&sh[k], t_dir(th, ph)) - 1));
         }
         au_set(r, k, worst < 1e-9 ? AUDIT_HOLDS : AUDIT_FAILS, "largest relative difference from Walter eq 1 %.1e over 1000 normals",
             worst);

@@ -24,7 +24,7 @@ static double det_of(const double A[3][3])
 {
     return au_det3(t_matvec(A, t_vec(1, 0, 0)), t_matvec(A, t_vec(0, 1, 0)), t_matvec(A, t_vec(0, 0, 1)));
 }
-static ggx_vec3 random_unit(rng *g) { return t_dir(acos(1 - 2 * rng_uniform(g)), 2 * T_PI * rng_uniform(g)); }
+static ggx_vec3 random_unit(rng *g) { return t_dir(acos(1 - 2 * rng_uniform(g)), 2 * GGX_PI * rng_uniform(g)); }
 
 /* ---- a point and its normal (blog Part 1 after eq:ellipsoid-k, eq:mag-gradient; Walter section 2) ---- */
 static double err_normal_point(const au_kin *K, rng *g, void *ctx, char *at, size_t nat)
@@ -138,17 +138,17 @@ static double err_silhouette(const au_kin *K, rng *g, void *ctx, char *at, size_
     ggx_vec3 v = random_unit(g), w = t_matvec((const double(*)[3])M, v), e1, e2, wn = t_normalize(w);
     t_frame(wn, &e1, &e2);
     for (int i = 0; i < 16; i++) { /* silhouette points: m.v = 0 */
-        double t = 2 * T_PI * (i + rng_uniform(g)) / 16;
+        double t = 2 * GGX_PI * (i + rng_uniform(g)) / 16;
         ggx_vec3 q = t_add(t_scale(e1, cos(t)), t_scale(e2, sin(t)));
         ggx_vec3 p = t_scale(q, 1 / sqrt(t_dot(q, t_matvec((const double(*)[3])M, q))));
         worst = fmax(worst, fabs(t_dot(t_normalize(t_matvec((const double(*)[3])M, p)), v)));
     }
     /* the section of the ellipsoid by the plane: an ellipse of area pi / sqrt(det B), B = [e_i^T M e_j] */
     ggx_vec3 m1 = t_matvec((const double(*)[3])M, e1), m2 = t_matvec((const double(*)[3])M, e2);
-    double b11 = t_dot(e1, m1), b12 = t_dot(e1, m2), b22 = t_dot(e2, m2), area = T_PI / sqrt(b11 * b22 - b12 * b12);
-    double proj = area * fabs(t_dot(wn, v)), eq26 = T_PI * au_norm_of((const double(*)[3])K->A, v) / fabs(det_of((const double(*)[3])K->A));
+    double b11 = t_dot(e1, m1), b12 = t_dot(e1, m2), b22 = t_dot(e2, m2), area = GGX_PI / sqrt(b11 * b22 - b12 * b12);
+    double proj = area * fabs(t_dot(wn, v)), eq26 = GGX_PI * au_norm_of((const double(*)[3])K->A, v) / fabs(det_of((const double(*)[3])K->A));
     snprintf(at, nat, "v = (%.3g, %.3g, %.3g): A^T A v %.3g deg from v, section x cosine %.6g, eq 26 %.6g", v.x, v.y, v.z,
-             acos(fmin(1.0, t_dot(wn, v))) * 180 / T_PI, proj, eq26);
+             acos(fmin(1.0, t_dot(wn, v))) * 180 / GGX_PI, proj, eq26);
     return fmax(worst, fabs(proj / eq26 - 1));
 }
 
@@ -206,7 +206,7 @@ static void lune_sphere_row(audit_row *r, int k, const double A[3][3])
     for (int i = 0; i < 4; i++) {
         ggx_vec3 u = au_random_upper(&g), v = au_random_upper(&g);
         ggx_vec3 a = t_normalize(t_matvec(A, u)), b = t_normalize(t_matvec(A, v)); /* the lune's plane normals */
-        double sig, rays = au_ray_area(I, b, a, 1, 1000000, 411 + (uint64_t)i, &sig), want = T_PI / 2 * (1 + t_dot(a, b));
+        double sig, rays = au_ray_area(I, b, a, 1, 1000000, 411 + (uint64_t)i, &sig), want = GGX_PI / 2 * (1 + t_dot(a, b));
         ok &= fabs(rays - want) <= 5 * sig;
         if (fabs(rays / want - 1) > worst) worst = fabs(rays / want - 1), worst_sig = sig / want;
     }
@@ -223,7 +223,7 @@ static void ce_row(audit_row *r, int k, const double A[3][3], const ggx_shape *s
     int ok = 1;
     rng g = {141};
     for (int i = 0; i < 3; i++) {
-        double ce = ces[i] > 0 ? ces[i] : sqrt(det / (T_PI * au_norm_of(A, N_UP))), Ac[3][3], sig;
+        double ce = ces[i] > 0 ? ces[i] : sqrt(det / (GGX_PI * au_norm_of(A, N_UP))), Ac[3][3], sig;
         for (int a = 0; a < 3; a++)
             for (int b = 0; b < 3; b++) Ac[a][b] = A[a][b] / ce; /* x^T A^T A x = ce^2 */
         double ae = au_ray_area((const double(*)[3])Ac, N_UP, N_UP, 0, 1000000, 421 + (uint64_t)i, &sig);
@@ -279,7 +279,7 @@ static ggx_vec3 argmax_d(const ggx_shape *s)
     double bt = 0, bp = 0, best = 0;
     for (int i = 0; i <= 60; i++)
         for (int j = 0; j < 120; j++) {
-            double th = 0.5 * T_PI * i / 60, ph = 2 * T_PI * j / 120, d = -neg_d(s, th, ph);
+            double th = 0.5 * GGX_PI * i / 60, ph = 2 * GGX_PI * j / 120, d = -neg_d(s, th, ph);
             if (d > best) best = d, bt = th, bp = ph;
         }
     for (double h = 0.02; h > 1e-13; h *= 0.5) /* pattern search, halving the step */
@@ -287,7 +287,7 @@ static ggx_vec3 argmax_d(const ggx_shape *s)
             moved = 0;
             static const int dt[4] = {1, -1, 0, 0}, dp[4] = {0, 0, 1, -1};
             for (int q = 0; q < 4; q++) {
-                double th = fmin(0.5 * T_PI, fabs(bt + dt[q] * h)), ph = bp + dp[q] * h / fmax(sin(bt), 1e-3);
+                double th = fmin(0.5 * GGX_PI, fabs(bt + dt[q] * h)), ph = bp + dp[q] * h / fmax(sin(bt), 1e-3);
                 double d = -neg_d(s, th, ph);
                 if (d > best) best = d, bt = th, bp = ph, moved = 1;
             }
@@ -310,7 +310,7 @@ static void skew_max_row(audit_row *r, int k, const ggx_shape *s0, const double 
         shapes++;
     }
     au_set(r, k, worst < 1e-5 ? AUDIT_HOLDS : AUDIT_FAILS, "the maximum of D found by search is R^T z within %.1e rad on "
-           "%d shapes of this kind with alphas < 0.9; it lies up to %.3g degrees from n", worst, shapes, shift * 180 / T_PI);
+           "%d shapes of this kind with alphas < 0.9; it lies up to %.3g degrees from n", worst, shapes, shift * 180 / GGX_PI);
 }
 
 /* ---- D along any direction u (blog Part 1 eq:NDF_norm and the eq after eq:A_perp_expression; Part 2 D(m, v)):
@@ -325,7 +325,7 @@ static double d_u(const du_ctx *c, ggx_vec3 m)
 {
     ggx_vec3 q = t_matvec((const double(*)[3])c->Ait, m);
     double q2 = t_dot(q, q);
-    return 1 / (c->det * T_PI * au_norm_of((const double(*)[3])c->A, c->u) * q2 * q2);
+    return 1 / (c->det * GGX_PI * au_norm_of((const double(*)[3])c->A, c->u) * q2 * q2);
 }
 static double du_f(ggx_vec3 m, void *vc)
 {
@@ -368,7 +368,7 @@ static double sph_phi(double ph, void *vc)
 static double sph_theta(double th, void *vc)
 {
     sph_ctx c = {((const sph_ctx *)vc)->s, th};
-    return quad_adapt(sph_phi, &c, 0, 2 * T_PI, 1e-13);
+    return quad_adapt(sph_phi, &c, 0, 2 * GGX_PI, 1e-13);
 }
 static ggx_vec3 map_angles(const void *ctx, double th, double ph)
 {
@@ -378,10 +378,10 @@ static ggx_vec3 map_angles(const void *ctx, double th, double ph)
 static void sin_row(audit_row *r, int k, const ggx_shape *s)
 {
     sph_ctx c = {s, 0};
-    double I = quad_adapt(sph_theta, &c, 0, 0.5 * T_PI, 1e-12), worst = 0;
+    double I = quad_adapt(sph_theta, &c, 0, 0.5 * GGX_PI, 1e-12), worst = 0;
     rng g = {151};
     for (int i = 0; i < 200; i++) {
-        double th = 0.01 + 1.55 * rng_uniform(&g), ph = 2 * T_PI * rng_uniform(&g);
+        double th = 0.01 + 1.55 * rng_uniform(&g), ph = 2 * GGX_PI * rng_uniform(&g);
         worst = fmax(worst, fabs(au_fd_jacobian(map_angles, NULL, th, ph, 1e-6) / sin(th) - 1));
     }
     au_set(r, k, fabs(I - 1) < 1e-8 && worst < 1e-8 ? AUDIT_HOLDS : AUDIT_FAILS, "|dm / d(theta, phi)| = sin theta within "

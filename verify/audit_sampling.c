@@ -23,7 +23,7 @@ typedef struct ell_ctx {
 static ggx_vec3 map_ellipse(const void *vc, double x1, double x2)
 {
     const ell_ctx *c = vc;
-    double r = sqrt(x1), t = 2 * T_PI * x2;
+    double r = sqrt(x1), t = 2 * GGX_PI * x2;
     return t_vec(c->a * r * cos(t), c->b * r * sin(t), 0);
 }
 static double err_lift(const au_kin *K, rng *g, void *ctx, char *at, size_t nat)
@@ -33,13 +33,13 @@ static double err_lift(const au_kin *K, rng *g, void *ctx, char *at, size_t nat)
     double ax, ay;
     au_kin_alphas(K, &ax, &ay);
     ell_ctx c = {1 / ax, 1 / ay};
-    double x1 = 0.02 + 0.96 * rng_uniform(g), x2 = rng_uniform(g), r = sqrt(x1), t = 2 * T_PI * x2;
+    double x1 = 0.02 + 0.96 * rng_uniform(g), x2 = rng_uniform(g), r = sqrt(x1), t = 2 * GGX_PI * x2;
     ggx_vec3 p = t_vec(c.a * r * cos(t), c.b * r * sin(t), sqrt(1 - x1)); /* c = 1 */
     ggx_vec3 ap = t_matvec(A, p), normal = t_normalize(t_mattvec(A, ap));    /* the shape's normal at p */
     ggx_vec3 m = t_normalize(t_vec(r * cos(t) / c.a, r * sin(t) / c.b, sqrt(1 - x1)));
     double on = fabs(t_dot(ap, ap) - 1); /* p on the shape's ellipsoid */
-    double jac = au_fd_jacobian(map_ellipse, &c, x1, x2, 1e-6), want = T_PI * c.a * c.b;
-    double area = T_PI * au_norm_of(A, N_UP) / fabs(au_det3(t_matvec(A, t_vec(1, 0, 0)), t_matvec(A, t_vec(0, 1, 0)),
+    double jac = au_fd_jacobian(map_ellipse, &c, x1, x2, 1e-6), want = GGX_PI * c.a * c.b;
+    double area = GGX_PI * au_norm_of(A, N_UP) / fabs(au_det3(t_matvec(A, t_vec(1, 0, 0)), t_matvec(A, t_vec(0, 1, 0)),
                                                             t_matvec(A, N_UP)));
     snprintf(at, nat, "xi = (%.3g, %.3g): p on the ellipsoid to %.1e, m off the normal by %.3g", x1, x2, on,
              vdist(m, normal));
@@ -52,7 +52,7 @@ static double err_lift(const au_kin *K, rng *g, void *ctx, char *at, size_t nat)
 static ggx_vec3 disk_projected(const ggx_shape *s, ggx_vec3 v, double u1, double u2)
 {
     (void)s, (void)v;
-    double r = sqrt(u1), t = 2 * T_PI * u2;
+    double r = sqrt(u1), t = 2 * GGX_PI * u2;
     return t_vec(r * cos(t), r * sin(t), sqrt(fmax(0, 1 - u1)));
 }
 static ggx_vec3 crescent_sphere(const ggx_shape *s, ggx_vec3 v, double u1, double u2)
@@ -69,8 +69,8 @@ static ggx_vec3 map_concentric_walter(const void *vc, double x1, double x2)
     (void)vc;
     double a = 2 * x1 - 1, b = 2 * x2 - 1;
     if (a == 0 && b == 0) return t_vec(0, 0, 0);
-    if (fabs(a) > fabs(b)) return t_vec(a * cos(T_PI * b / (4 * a)), a * sin(T_PI * b / (4 * a)), 0);
-    return t_vec(b * sin(T_PI * a / (4 * b)), b * cos(T_PI * a / (4 * b)), 0);
+    if (fabs(a) > fabs(b)) return t_vec(a * cos(GGX_PI * b / (4 * a)), a * sin(GGX_PI * b / (4 * a)), 0);
+    return t_vec(b * sin(GGX_PI * a / (4 * b)), b * cos(GGX_PI * a / (4 * b)), 0);
 }
 static double err_concentric(const au_kin *K, rng *g, void *ctx, char *at, size_t nat)
 {
@@ -83,7 +83,7 @@ static double err_concentric(const au_kin *K, rng *g, void *ctx, char *at, size_
     double jac = da.x * db.y - da.y * db.x; /* signed */
     ggx_vec3 d = map_concentric_walter(NULL, x1, x2);
     snprintf(at, nat, "xi = (%.4g, %.4g): signed Jacobian %.6g", x1, x2, jac);
-    return fmax(fabs(jac / T_PI - 1), fmax(0, t_dot(d, d) - 1));
+    return fmax(fabs(jac / GGX_PI - 1), fmax(0, t_dot(d, d) - 1));
 }
 
 /* ---- Walter eq 38-41: the squeeze along x by s and the lift (the image: the lune's crescent) ---- */
@@ -113,7 +113,7 @@ static ggx_vec3 walter_pc(const double A[3][3], ggx_vec3 psi, double xa, double 
 }
 static void random_disk(rng *g, double *x, double *y)
 {
-    double r = sqrt(rng_uniform(g)), t = 2 * T_PI * rng_uniform(g);
+    double r = sqrt(rng_uniform(g)), t = 2 * GGX_PI * rng_uniform(g);
     *x = r * cos(t), *y = r * sin(t);
 }
 static double err_squeeze(const au_kin *K, rng *g, void *ctx, char *at, size_t nat)
@@ -245,8 +245,8 @@ static double err_total_vndf(const au_kin *K, rng *g, void *ctx, char *at, size_
     ggx_vec3 ai = t_mattvec((const double(*)[3])Ait, m);
     double lai = sqrt(t_dot(ai, ai)), lav = sqrt(t_dot(av, av)), mv = t_dot(m, c.v), zz = av.z / lav;
     double z = mv / (lai * lav), z_direct = t_dot(t_scale(ai, 1 / lai), t_scale(av, 1 / lav)); /* s.z_hat */
-    double j1 = axy * lai * lai * lai / z * 0.5 * (1 + zz) * T_PI;
-    double j2 = T_PI * axy * lai * lai * lai * lai * c.v.z / (mv * ggx_g1(&K->s, c.v, m));
+    double j1 = axy * lai * lai * lai / z * 0.5 * (1 + zz) * GGX_PI;
+    double j2 = GGX_PI * axy * lai * lai * lai * lai * c.v.z / (mv * ggx_g1(&K->s, c.v, m));
     snprintf(at, nat, "v = (%.3g, %.3g, %.3g), u = (%.3g, %.3g): finite differences %.6g, the two forms %.6g, %.6g",
              c.v.x, c.v.y, c.v.z, u1, u2, fd, j1, j2);
     return fmax(fmax(fabs(j1 / fd - 1), fabs(j2 / fd - 1)), fabs(z - z_direct));
@@ -311,8 +311,8 @@ void au_rows_sampling(const au_ctx *c)
         long cnt[16] = {0}, n_pts = 160000;
         for (long i = 0; i < n_pts; i++) {
             ggx_vec3 d = map_concentric_walter(NULL, rng_uniform(&g), rng_uniform(&g));
-            double a = atan2(d.y, d.x) + T_PI;
-            int w = (int)(a / (T_PI / 4)) & 7, ring = d.x * d.x + d.y * d.y >= 0.5;
+            double a = atan2(d.y, d.x) + GGX_PI;
+            int w = (int)(a / (GGX_PI / 4)) & 7, ring = d.x * d.x + d.y * d.y >= 0.5;
             cnt[w + 8 * ring]++;
         }
         double want = (double)n_pts / 16.0, sig = sqrt(want * (1 - 1 / 16.0)), worst = 0;

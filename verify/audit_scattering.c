@@ -38,7 +38,7 @@ static void smith_row(audit_row *r, int k, const ggx_shape *s)
         for (int j = 0; j < 4; j++) {
             ggx_vec3 v = t_dir(thetas[i], phis[j]);
             double g = 1 / (1 + ggx_lambda(s, v)); /* the ellipsoid's G1 without the min (eq 32) */
-            double gl = 1 / (1 + smith_lambda(s, thetas[i], 0.5 * T_PI)), gc = 1 / (1 + smith_lambda(s, thetas[i], phis[j]));
+            double gl = 1 / (1 + smith_lambda(s, thetas[i], 0.5 * GGX_PI)), gc = 1 / (1 + smith_lambda(s, thetas[i], phis[j]));
             if (fabs(gl - g) > lit) lit = fabs(gl - g), lit_phi = phis[j];
             if (fabs(gc - g) > cor) cor = fabs(gc - g), cor_th = thetas[i], cor_phi = phis[j];
             /* blog Part 2's G1 as a ratio of projected areas, against Smith's */

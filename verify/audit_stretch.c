@@ -62,7 +62,7 @@ static double err_total_jacobian(const au_kin *K, rng *g, void *ctx, char *at, s
     double u = 0.05 + 0.9 * rng_uniform(g), v = rng_uniform(g), axy = ax * ay;
     ggx_vec3 s = au_map_cosine(NULL, u, v), mu = t_matvec(c.A, s), m = t_normalize(mu);
     double l = sqrt(t_dot(mu, mu)), fd = au_fd_jacobian(map_cos_stretch, &c, u, v, 1e-6);
-    double f1 = T_PI * axy / (fabs(s.z) * l * l * l), f2 = T_PI * axy / (fabs(m.z) * l * l * l * l);
+    double f1 = GGX_PI * axy / (fabs(s.z) * l * l * l), f2 = GGX_PI * axy / (fabs(m.z) * l * l * l * l);
     double f3 = 1 / (fabs(m.z) * ggx_ndf(&K->s, m));
     snprintf(at, nat, "(u, v) = (%.3g, %.3g): finite differences %.5g, the three forms %.5g, %.5g, %.5g", u, v, fd, f1,
              f2, f3);
@@ -91,7 +91,7 @@ static double err_d_slope(const au_kin *K, rng *g, void *ctx, char *at, size_t n
     double ax, ay;
     au_kin_alphas(K, &ax, &ay);
     double x = m.x / m.z, y = m.y / m.z, t = x * x / (ax * ax) + y * y / (ay * ay) + 1;
-    double q = x * x + y * y + 1, d1 = q * q / (T_PI * ax * ay * t * t), p22 = 1 / (T_PI * ax * ay * t * t);
+    double q = x * x + y * y + 1, d1 = q * q / (GGX_PI * ax * ay * t * t), p22 = 1 / (GGX_PI * ax * ay * t * t);
     double d2 = p22 / (m.z * m.z * m.z * m.z), d = ggx_ndf(&K->s, m);
     snprintf(at, nat, "m = (%.3g, %.3g, %.3g): D %.5g, the slope forms %.5g, %.5g", m.x, m.y, m.z, d, d1, d2);
     return fmax(fabs(d1 / d - 1), fabs(d2 / d - 1));
@@ -104,14 +104,14 @@ static void iso_row(audit_row *r, int k, const ggx_shape *s0)
     double worst = 0, wa = 0;
     ggx_vec3 wm = t_vec(0, 0, 1);
     for (int i = 0; i < AU_KIN; i++) {
-        double a = 0.05 * pow(40.0, rng_uniform(&g)), tz = T_PI * (2 * rng_uniform(&g) - 1);
+        double a = 0.05 * pow(40.0, rng_uniform(&g)), tz = GGX_PI * (2 * rng_uniform(&g) - 1);
         double tx = s0->kind == GGX_SHAPE_SKEWED ? 0.02 + 0.58 * rng_uniform(&g) : 0, ty = -0.5 * tx;
         ggx_shape s;
         if (ggx_shape_ellipsoid(&s, a, a, tx, ty, s0->kind == GGX_SHAPE_DIAGONAL ? 0 : tz) != GGX_OK) continue;
         for (int j = 0; j < 50; j++) {
             ggx_vec3 m = au_random_upper(&g);
             double c2 = m.z * m.z, q1 = 1 - c2 + a * a * c2, q2 = c2 * (a * a - 1) + 1;
-            double d = ggx_ndf(&s, m), e = fmax(fabs(a * a / (T_PI * q1 * q1) / d - 1), fabs(a * a / (T_PI * q2 * q2) / d - 1));
+            double d = ggx_ndf(&s, m), e = fmax(fabs(a * a / (GGX_PI * q1 * q1) / d - 1), fabs(a * a / (GGX_PI * q2 * q2) / d - 1));
             if (e > worst) worst = e, wa = a, wm = m;
         }
     }

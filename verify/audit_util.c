@@ -157,14 +157,14 @@ ggx_vec3 au_view_near_n(rng *g)
 {
     if (rng_uniform(g) < 0.5) return au_random_upper(g);
     double r = rng_uniform(g);
-    return t_dir(0.5 * r * r * r * r, 2 * T_PI * rng_uniform(g));
+    return t_dir(0.5 * r * r * r * r, 2 * GGX_PI * rng_uniform(g));
 }
-ggx_vec3 au_random_upper(rng *g) { return t_dir(acos(0.02 + 0.98 * rng_uniform(g)), 2 * T_PI * rng_uniform(g)); }
+ggx_vec3 au_random_upper(rng *g) { return t_dir(acos(0.02 + 0.98 * rng_uniform(g)), 2 * GGX_PI * rng_uniform(g)); }
 
 double au_ggx_formula(double ax, double ay, ggx_vec3 m)
 {
     double q = m.x * m.x / (ax * ax) + m.y * m.y / (ay * ay) + m.z * m.z;
-    return 1.0 / (T_PI * ax * ay * q * q);
+    return 1.0 / (GGX_PI * ax * ay * q * q);
 }
 
 ggx_vec3 au_point_of_normal(const double Ait[3][3], ggx_vec3 m)
@@ -234,7 +234,7 @@ void au_kin_shape(const ggx_shape *s0, const double A0[3][3], int i, uint64_t se
     } else {
         rng g = {seed * 1000003u + (uint64_t)i};
         double ax = 0.05 * pow(40.0, rng_uniform(&g)), ay = 0.05 * pow(40.0, rng_uniform(&g)), tx = 0, ty = 0, tz = 0;
-        if (s0->kind != GGX_SHAPE_DIAGONAL) tz = T_PI * (2 * rng_uniform(&g) - 1);
+        if (s0->kind != GGX_SHAPE_DIAGONAL) tz = GGX_PI * (2 * rng_uniform(&g) - 1);
         if (s0->kind == GGX_SHAPE_SKEWED) {
             tx = (0.02 + 0.58 * rng_uniform(&g)) * (rng_uniform(&g) < 0.5 ? -1 : 1);
             ty = (0.02 + 0.58 * rng_uniform(&g)) * (rng_uniform(&g) < 0.5 ? -1 : 1);
@@ -262,8 +262,8 @@ typedef struct kin_result {
 /* theta_z reduced to (-pi/2, pi/2]: a rotation by pi is the same shape. */
 static double reduce_tz(double tz)
 {
-    double r = tz - T_PI * floor(tz / T_PI + 0.5);
-    return r <= -0.5 * T_PI ? r + T_PI : r;
+    double r = tz - GGX_PI * floor(tz / GGX_PI + 0.5);
+    return r <= -0.5 * GGX_PI ? r + GGX_PI : r;
 }
 /* How far a shape of the family is from the claim's simplest case, by which counterexamples are ordered: for a
  * rotated family the rotation |theta_z| (reduced), for a skewed one the off-diagonal share of A^T A (the tilt). */
@@ -382,7 +382,7 @@ void au_verdict_kin(audit_row *r, int k, const ggx_shape *s0, const double A0[3]
 ggx_vec3 au_map_cosine(const void *ctx, double u, double v)
 {
     (void)ctx;
-    return t_vec(sqrt(u) * cos(2 * T_PI * v), sqrt(u) * sin(2 * T_PI * v), sqrt(1 - u));
+    return t_vec(sqrt(u) * cos(2 * GGX_PI * v), sqrt(u) * sin(2 * GGX_PI * v), sqrt(1 - u));
 }
 
 double au_det3(ggx_vec3 a, ggx_vec3 b, ggx_vec3 c) { return t_dot(a, t_cross(b, c)); }
@@ -392,7 +392,7 @@ ggx_vec3 au_literal_heitz(const double A[3][3], ggx_vec3 v, double u1, double u2
     ggx_vec3 vh = t_normalize(t_matvec(A, v));
     double l = hypot(vh.x, vh.y);
     ggx_vec3 t1v = l > 0 ? t_vec(-vh.y / l, vh.x / l, 0) : t_vec(1, 0, 0), t2v = t_cross(vh, t1v);
-    double r = sqrt(u1), ph = 2 * T_PI * u2, t1 = r * cos(ph), t2 = r * sin(ph), sq = 0.5 * (1 + vh.z);
+    double r = sqrt(u1), ph = 2 * GGX_PI * u2, t1 = r * cos(ph), t2 = r * sin(ph), sq = 0.5 * (1 + vh.z);
     t2 = (1 - sq) * sqrt(1 - t1 * t1) + sq * t2;
     ggx_vec3 nh = t_add(t_add(t_scale(t1v, t1), t_scale(t2v, t2)), t_scale(vh, sqrt(fmax(0, 1 - t1 * t1 - t2 * t2))));
     return t_normalize(t_matvec(A, nh));
@@ -405,7 +405,7 @@ void au_verdict_views(audit_row *r, int k, double (*f)(const ggx_shape *, ggx_ve
     double worst = -1, th = 0, ph = 0, x = 1, first_th = INFINITY, first_ph = 0, first_x = 1;
     for (int i = 0; i < AU_VIEW_THETAS; i++)
         for (int j = 0; j < AU_VIEW_PHIS; j++) {
-            double phi = -T_PI + 2 * T_PI * (j + 0.5) / AU_VIEW_PHIS, y = f(s, t_dir(thetas[i], phi));
+            double phi = -GGX_PI + 2 * GGX_PI * (j + 0.5) / AU_VIEW_PHIS, y = f(s, t_dir(thetas[i], phi));
             if (fabs(y - 1) > worst) worst = fabs(y - 1), th = thetas[i], ph = phi, x = y;
             if (!(fabs(y - 1) < tol) && thetas[i] < first_th) first_th = thetas[i], first_ph = phi, first_x = y;
         }

@@ -175,8 +175,8 @@ static chi2_result run(const chi2_problem *p, long n, int ntheta, int nphi, uint
         }
         int it = (int)floor((k.z + 1.0) * 0.5 * ntheta);
         double phi = atan2(k.y, k.x);
-        if (phi < 0) phi += 2.0 * T_PI;
-        int ip = (int)floor(phi / (2.0 * T_PI) * nphi);
+        if (phi < 0) phi += 2.0 * GGX_PI;
+        int ip = (int)floor(phi / (2.0 * GGX_PI) * nphi);
         if (!(p->density(p->ctx, region, k) > 0.0)) res.zero_cell_hits++; /* a sample the pdf says is impossible */
         it = it < 0 ? 0 : (it >= ntheta ? ntheta - 1 : it);
         ip = ip < 0 ? 0 : (ip >= nphi ? nphi - 1 : ip);
@@ -187,7 +187,7 @@ static chi2_result run(const chi2_problem *p, long n, int ntheta, int nphi, uint
         for (int it = 0; it < ntheta; it++) {
             double c0 = -1.0 + 2.0 * it / ntheta, c1 = -1.0 + 2.0 * (it + 1) / ntheta;
             for (int ip = 0; ip < nphi; ip++) {
-                double p0 = 2.0 * T_PI * ip / nphi, p1 = 2.0 * T_PI * (ip + 1) / nphi;
+                double p0 = 2.0 * GGX_PI * ip / nphi, p1 = 2.0 * GGX_PI * (ip + 1) / nphi;
                 long idx = ((long)reg * ntheta + it) * nphi + ip;
                 double v, vc;
                 /* adaptive subdivision where the density jumps (a horizon, a bound) or has a feature its nodes

@@ -121,7 +121,7 @@ static double hemi_theta(double theta, void *vc)
     double br[2 + 2 * 8];
     int nb = 0;
     br[nb++] = 0.0;
-    br[nb++] = 2.0 * T_PI;
+    br[nb++] = 2.0 * GGX_PI;
     for (int k = 0; k < c->ncuts; k++) {
         double R = hypot(c->w[k].x, c->w[k].y);
         if (!(R > 0.0)) continue;
@@ -129,7 +129,7 @@ static double hemi_theta(double theta, void *vc)
         if (!(fabs(rhs) < 1.0)) continue;
         double phi0 = atan2(c->w[k].y, c->w[k].x), d = acos(rhs);
         for (int sgn = -1; sgn <= 1; sgn += 2) {
-            double ph = fmod(phi0 + sgn * d + 4.0 * T_PI, 2.0 * T_PI);
+            double ph = fmod(phi0 + sgn * d + 4.0 * GGX_PI, 2.0 * GGX_PI);
             br[nb++] = ph;
         }
     }
@@ -153,13 +153,13 @@ double quad_hemisphere(const ggx_shape *s, t_integrand f, void *ctx, const ggx_v
     double br[2 + 8];
     int nb = 0;
     br[nb++] = 0.0;
-    br[nb++] = 0.5 * T_PI;
+    br[nb++] = 0.5 * GGX_PI;
     for (int k = 0; k < ncuts && k < 8; k++) {
         ggx_vec3 w = t_matvec(s->a, cuts[k]);
         c.w[k] = t_vec(t_dot(w, c.e1), t_dot(w, c.e2), t_dot(w, c.p));
         double R = hypot(c.w[k].x, c.w[k].y);
         double tb = atan2(fabs(c.w[k].z), R); /* the cut reaches polar angle tb */
-        if (tb > 0.0 && tb < 0.5 * T_PI) br[nb++] = tb;
+        if (tb > 0.0 && tb < 0.5 * GGX_PI) br[nb++] = tb;
     }
     qsort(br, (size_t)nb, sizeof br[0], cmp_double);
     /* A first pass at a loose tolerance sets the scale for the absolute tolerance of the real pass. */

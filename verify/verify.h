@@ -8,7 +8,6 @@
 
 #include "ggx/ggx.h"
 
-#define T_PI 3.14159265358979323846
 
 /* ---- RNG: splitmix64, fixed seeds everywhere ---- */
 typedef struct rng {

@@ -55,6 +55,11 @@ extern "C" {
 #define GGX_VERSION_MINOR 1
 #define GGX_VERSION_PATCH 0
 
+/* pi, spelled once for the library, its tools and tests ((float)GGX_PI is float's nearest value). */
+#ifndef GGX_PI
+#define GGX_PI 3.14159265358979323846
+#endif
+
 /* Roughness below GGX_ALPHA_MIN is raised to GGX_ALPHA_MIN by the alpha-based constructors (a mirror is a
  * delta distribution that a density cannot represent). Roughness above GGX_ALPHA_MAX is refused. */
 #define GGX_ALPHA_MIN 1e-4

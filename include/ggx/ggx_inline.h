@@ -128,7 +128,7 @@ static inline GGX_UNUSED void ggx_shapef_from(ggx_shapef *out, const ggx_shape *
     out->ainv_t[2][2] = 1.0f;
     out->det = (float)det;
     out->an_len = 1.0f;
-    out->ndf_scale = (float)(1.0 / (3.14159265358979323846 * det));
+    out->ndf_scale = (float)(1.0 / (GGX_PI * det));
     out->alpha_x = (float)s->alpha_x, out->alpha_y = (float)s->alpha_y;
     out->tangent_cos = (float)s->tangent_cos, out->tangent_sin = (float)s->tangent_sin;
     out->kind = s->kind;

@@ -10,8 +10,6 @@
 #include "ggx/ggx_inline.h"
 #include "ggx/ggx_samplers.h"
 
-#define GGX_PI 3.14159265358979323846
-
 /* Every public function is defined with GGX_API; the library is built with hidden visibility, so libggx.so exports
  * exactly the public ggx_* API (tests/exports.sh checks it). */
 #if defined(__GNUC__)

@@ -5,14 +5,16 @@
 #ifndef GGX_COMMON_ALBEDO_ROWS_H
 #define GGX_COMMON_ALBEDO_ROWS_H
 
+#include "ggx/ggx.h"
+
 #include <math.h>
 
-static inline double rows_theta_of_y(double y) { return 0.5 * 3.14159265358979323846 * (1.0 - y * y); }
+static inline double rows_theta_of_y(double y) { return 0.5 * GGX_PI * (1.0 - y * y); }
 
 /* The row coordinate of a polar angle theta in [0, pi / 2] (0 at and beyond the horizon). */
 static inline double rows_y_of_theta(double th)
 {
-    double y2 = 1.0 - th * (2.0 / 3.14159265358979323846);
+    double y2 = 1.0 - th * (2.0 / GGX_PI);
     return y2 > 0 ? sqrt(y2) : 0.0;
 }
 
@@ -36,7 +38,7 @@ static inline double cols_phi_of_psi(double psi, double k)
 static inline double cols_psi_of_xy(double x, double y, double k)
 {
     double psi = 0.5 * atan2(2.0 * x * y, k * (x * x - y * y));
-    if (signbit(x)) psi += psi > 0 ? -3.14159265358979323846 : 3.14159265358979323846;
+    if (signbit(x)) psi += psi > 0 ? -GGX_PI : GGX_PI;
     return psi;
 }
 

@@ -4,12 +4,14 @@
 #ifndef GGX_COMMON_CHI2_TAIL_H
 #define GGX_COMMON_CHI2_TAIL_H
 
+#include "ggx/ggx.h"
+
 #include <math.h>
 
 /* log Gamma(k / 2) for an integer k >= 1: Gamma(1/2) = sqrt(pi), Gamma(1) = 1, Gamma(a + 1) = a Gamma(a). */
 static inline double ggx_log_gamma_half(int k)
 {
-    double a = (k % 2) ? 0.5 : 1.0, lg = (k % 2) ? 0.5 * log(3.14159265358979323846) : 0.0;
+    double a = (k % 2) ? 0.5 : 1.0, lg = (k % 2) ? 0.5 * log(GGX_PI) : 0.0;
     for (; a < 0.5 * k - 0.25; a += 1.0) lg += log(a);
     return lg;
 }

@@ -4,6 +4,8 @@
 #ifndef GGX_COMMON_GAUSS_H
 #define GGX_COMMON_GAUSS_H
 
+#include "ggx/ggx.h"
+
 #include <math.h>
 
 enum { GQ_N = 12, GQ_M = 6 };
@@ -17,7 +19,7 @@ typedef struct gq_rule {
 static inline void gq_nodes(int n, double *xs, double *ws)
 {
     for (int i = 0; i < n; i++) {
-        double x = cos(3.14159265358979323846 * (i + 0.75) / (n + 0.5)), dp = 1.0;
+        double x = cos(GGX_PI * (i + 0.75) / (n + 0.5)), dp = 1.0;
         for (int it = 0; it < 100; it++) {
             double p0 = 1.0, p1 = x;
             for (int k = 2; k <= n; k++) {

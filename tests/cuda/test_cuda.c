@@ -129,12 +129,12 @@ static void directions(float d[NDIRS][3])
     d[n][0] = 0, d[n][1] = 0, d[n][2] = 1, n++;
     for (int i = 0; i < 6; i++)
         for (int j = 0; j < 3; j++) {
-            ggx_vec3 v = t_dir(theta_up[i] * T_PI / 180, phi_up[j] * T_PI / 180);
+            ggx_vec3 v = t_dir(theta_up[i] * GGX_PI / 180, phi_up[j] * GGX_PI / 180);
             d[n][0] = (float)v.x, d[n][1] = (float)v.y, d[n][2] = (float)v.z, n++;
         }
     for (int i = 0; i < 3; i++)
         for (int j = 0; j < 2; j++) {
-            ggx_vec3 v = t_dir(theta_down[i] * T_PI / 180, phi_down[j] * T_PI / 180);
+            ggx_vec3 v = t_dir(theta_down[i] * GGX_PI / 180, phi_down[j] * GGX_PI / 180);
             d[n][0] = (float)v.x, d[n][1] = (float)v.y, d[n][2] = (float)v.z, n++;
         }
     d[n][0] = 1, d[n][1] = 0, d[n][2] = 0, n++;

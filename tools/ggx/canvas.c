@@ -155,7 +155,7 @@ void text_vertical(cairo_t *cr, double x, double y, const char *s)
 {
     cairo_save(cr);
     cairo_translate(cr, x, y);
-    cairo_rotate(cr, -M_PI / 2);
+    cairo_rotate(cr, -GGX_PI / 2);
     text_at(cr, 0, 0, 0.5, 0.5, s);
     cairo_restore(cr);
 }

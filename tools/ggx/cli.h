@@ -11,7 +11,7 @@
 #include "verify.h"
 
 /* Degrees to radians: the command's angles are in degrees. */
-#define DEG (3.14159265358979323846 / 180.0)
+#define DEG (GGX_PI / 180.0)
 
 /* Prints "ggx: <message>" on stderr and exits with status 2 (bad input, unwritable output). When cli_die_jump is
  * set (by the fuzz target of the parsers) it jumps there silently instead. */

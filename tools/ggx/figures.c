@@ -6,9 +6,9 @@
 #include <string.h>
 
 #include "figure.h"
+#include "../../src/common/eig3.h"
 
-#ifndef M_PI
-#define M_PI 3.14159265358979323846
+#ifndef GGX_PI
 #endif
 
 static ggx_vec3 v3(double x, double y, double z)
@@ -141,7 +141,7 @@ double figure_default_from(const figure_spec *f)
     }
     /* in profile (from lobe - 90 degrees: the lean in the image plane, pointing right) unless the lobe is narrower
      * across that plane than across the other, where the visible half would be a sliver: then facing it */
-    double profile = lobe - M_PI / 2;
+    double profile = lobe - GGX_PI / 2;
     return lobe_width(f->s, profile) >= lobe_width(f->s, lobe) ? profile : lobe;
 }
 
@@ -153,7 +153,7 @@ double figure_default_from(const figure_spec *f)
 static int arc_points(ggx_vec3 a, ggx_vec3 b, ggx_vec3 *out, int n, int max)
 {
     double w = acos(fmax(-1.0, fmin(1.0, dot3(a, b))));
-    int k = (int)(w / (2.0 * M_PI / 180));
+    int k = (int)(w / (2.0 * GGX_PI / 180));
     for (int i = 1; i < k && n < max; i++) {
         double t = (double)i / k, s = sin(w);
         double ca = sin((1 - t) * w) / s, cb = sin(t * w) / s;
@@ -208,7 +208,7 @@ static void path_points(cairo_t *cr, const hemi_proj *hp, const ggx_vec3 *p, int
 static void grey_path(cairo_t *cr, const hemi_proj *hp, ggx_vec3 v)
 {
     static ggx_vec3 ring[GREY_N], vis[GREY_N * 3];
-    for (int i = 0; i < GREY_N; i++) ring[i] = figure_grey_boundary(v, 2 * M_PI * i / GREY_N);
+    for (int i = 0; i < GREY_N; i++) ring[i] = figure_grey_boundary(v, 2 * GGX_PI * i / GREY_N);
     if (!hp->side) path_points(cr, hp, ring, GREY_N);
     else path_points(cr, hp, vis, clip_front(ring, GREY_N, hp->toward, vis, GREY_N * 3));
 }
@@ -220,7 +220,7 @@ static void grey_contour(cairo_t *cr, const hemi_proj *hp, ggx_vec3 v)
     cairo_new_path(cr);
     for (int i = 0; i <= GREY_N; i++) {
         double X, Y;
-        int vis = hemi_project(hp, figure_grey_boundary(v, 2 * M_PI * i / GREY_N), &X, &Y);
+        int vis = hemi_project(hp, figure_grey_boundary(v, 2 * GGX_PI * i / GREY_N), &X, &Y);
         if (vis && pen) cairo_line_to(cr, X, Y);
         else if (vis) cairo_move_to(cr, X, Y);
         pen = vis;
@@ -349,7 +349,7 @@ static void draw_marks(cairo_t *cr, const theme *th, const hemi_proj *hp, const 
     char name[32];
     if (!hp->side) {
         cairo_new_path(cr);
-        cairo_arc(cr, cx, cy, R, 0, 2 * M_PI);
+        cairo_arc(cr, cx, cy, R, 0, 2 * GGX_PI);
         cairo_stroke(cr);
         arrow(cr, cx + R, cy, cx + R + 1.1 * F, cy, 0.45 * F);
         text_at(cr, cx + R + 0.6 * F, cy - 0.55 * F, 0.5, 1, "x");
@@ -361,7 +361,7 @@ static void draw_marks(cairo_t *cr, const theme *th, const hemi_proj *hp, const 
         text_at(cr, cx - R - 0.2 * F, cy + R, 0, 1, "n: centre");
     } else {
         cairo_new_path(cr);
-        cairo_arc(cr, cx, cy, R, M_PI, 2 * M_PI);
+        cairo_arc(cr, cx, cy, R, GGX_PI, 2 * GGX_PI);
         cairo_stroke(cr);
         cairo_move_to(cr, cx - R - 0.3 * F, cy);
         cairo_line_to(cr, cx + R, cy);
@@ -380,12 +380,12 @@ static void draw_marks(cairo_t *cr, const theme *th, const hemi_proj *hp, const 
         cairo_set_line_width(cr, fmax(1.0, 0.16 * F));
         if (!vis) cairo_set_dash(cr, dash, 2, 0);
         cairo_new_path(cr);
-        cairo_arc(cr, X, Y, 0.42 * F, 0, 2 * M_PI);
+        cairo_arc(cr, X, Y, 0.42 * F, 0, 2 * GGX_PI);
         cairo_stroke(cr);
         cairo_set_source_rgb(cr, 0, 0, 0);
         cairo_set_line_width(cr, fmax(0.6, 0.07 * F));
         cairo_new_path(cr);
-        cairo_arc(cr, X, Y, 0.55 * F, 0, 2 * M_PI);
+        cairo_arc(cr, X, Y, 0.55 * F, 0, 2 * GGX_PI);
         cairo_stroke(cr);
         cairo_set_dash(cr, NULL, 0, 0);
         /* the label below right of the mark, clear of the axis labels (above the x arrow, left of the y / n one) */
@@ -529,7 +529,7 @@ static void draw_hemisphere(cairo_t *cr, const theme *th, double x, double y, do
     double bx = x, by = y + cap, bw = w - band, bh = h - cap - 0.4 * F;
     hemi_proj hp = {0};
     hp.side = is_side(f->kind);
-    hemi_set_from(&hp, isnan(f->from) ? -M_PI / 2 : f->from);
+    hemi_set_from(&hp, isnan(f->from) ? -GGX_PI / 2 : f->from);
     if (!hp.side) {
         hp.R = fmax(1.0, 0.5 * fmin(bw - 2 * margin, bh - 2 * margin));
         hp.cx = bx + 0.5 * bw, hp.cy = by + 0.5 * bh;
@@ -540,8 +540,8 @@ static void draw_hemisphere(cairo_t *cr, const theme *th, double x, double y, do
     /* the hemisphere's disk */
     set_rgb(cr, th->disk);
     cairo_new_path(cr);
-    if (hp.side) cairo_arc(cr, hp.cx, hp.cy, hp.R, M_PI, 2 * M_PI);
-    else cairo_arc(cr, hp.cx, hp.cy, hp.R, 0, 2 * M_PI);
+    if (hp.side) cairo_arc(cr, hp.cx, hp.cy, hp.R, GGX_PI, 2 * GGX_PI);
+    else cairo_arc(cr, hp.cx, hp.cy, hp.R, 0, 2 * GGX_PI);
     cairo_close_path(cr);
     cairo_fill(cr);
     double vmax = 0;
@@ -564,7 +564,7 @@ static void draw_hemisphere(cairo_t *cr, const theme *th, double x, double y, do
         cairo_set_source_rgba(cr, 0.5, 0.5, 0.55, 0.8);
         for (int r = 30; r <= 60; r += 30) {
             cairo_new_path(cr);
-            cairo_arc(cr, hp.cx, hp.cy, hp.R * sin(r * DEG), 0, 2 * M_PI);
+            cairo_arc(cr, hp.cx, hp.cy, hp.R * sin(r * DEG), 0, 2 * GGX_PI);
             cairo_stroke(cr);
         }
         cairo_set_dash(cr, NULL, 0, 0);
@@ -622,33 +622,17 @@ static int plot_azimuths(const ggx_shape *s, double *phi)
     return 4;
 }
 
-/* The NDF's principal axes: D(m) = c / (m^T B m)^2 with B = A'^{-1} A'^{-T}; Jacobi's method on B. */
+/* The NDF's principal axes: D(m) = c / (m^T B m)^2 with B = A'^{-1} A'^{-T}, by the library's 3x3 eigen-solver. */
 static void principal_axes(const ggx_shape *s, ggx_vec3 axes[3], double eig[3])
 {
-    double B[3][3], V[3][3] = {{1, 0, 0}, {0, 1, 0}, {0, 0, 1}};
+    double B[3][3], V[3][3];
     for (int i = 0; i < 3; i++)
         for (int j = 0; j < 3; j++) {
             B[i][j] = 0;
             for (int k = 0; k < 3; k++) B[i][j] += s->ainv_t[k][i] * s->ainv_t[k][j];
         }
-    for (int sweep = 0; sweep < 50; sweep++) {
-        for (int p = 0; p < 2; p++)
-            for (int q = p + 1; q < 3; q++) {
-                if (fabs(B[p][q]) < 1e-300) continue;
-                double th = 0.5 * atan2(2 * B[p][q], B[q][q] - B[p][p]), c = cos(th), sn = sin(th);
-                for (int k = 0; k < 3; k++) { /* B <- B J, V <- V J */
-                    double bp = B[k][p], bq = B[k][q];
-                    B[k][p] = c * bp - sn * bq, B[k][q] = sn * bp + c * bq;
-                    double vp = V[k][p], vq = V[k][q];
-                    V[k][p] = c * vp - sn * vq, V[k][q] = sn * vp + c * vq;
-                }
-                for (int k = 0; k < 3; k++) { /* B <- J^T B */
-                    double bp = B[p][k], bq = B[q][k];
-                    B[p][k] = c * bp - sn * bq, B[q][k] = sn * bp + c * bq;
-                }
-            }
-    }
-    for (int i = 0; i < 3; i++) eig[i] = B[i][i], axes[i] = v3(V[0][i], V[1][i], V[2][i]);
+    ggx_eig3(B, V);
+    for (int i = 0; i < 3; i++) eig[i] = B[i][i], axes[i] = v3(V[i][0], V[i][1], V[i][2]);
 }
 
 static int line_series(const figure_spec *f, series *sr, const char **xlabel, const char **ylabel, int *logy)

@@ -9,8 +9,7 @@
 #include "render.h"
 #include "surface.h"
 
-#define R_PI 3.14159265358979323846
-#define R_DEG (R_PI / 180)
+#define R_DEG (GGX_PI / 180)
 #define TILE 16
 
 /* ---- small vector helpers ---- */

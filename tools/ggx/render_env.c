@@ -8,7 +8,6 @@
 #include "render.h"
 #include "surface.h"
 
-#define R_PI 3.14159265358979323846
 
 static int env_fail(char *err, size_t errn, const char *msg)
 {
@@ -60,7 +59,7 @@ int render_env_init(render_env *e, int w, int h, float *rgb, long *negatives, ch
     }
     double total = 0;
     for (int i = 0; i < h; i++) {
-        double s = sin((i + 0.5) * R_PI / h);
+        double s = sin((i + 0.5) * GGX_PI / h);
         for (int j = 0; j < w; j++) {
             size_t k = (size_t)i * (size_t)w + (size_t)j;
             p[k] = luminance(rgb + 3 * k) * s;
@@ -80,7 +79,7 @@ int render_env_init(render_env *e, int w, int h, float *rgb, long *negatives, ch
      * large one. work holds the small indices from the front and the large from the back. */
     size_t ns = 0, nl = 0;
     for (size_t k = 0; k < count; k++) {
-        e->texel[k].pdf_scale = (float)(p[k] / total * (double)count / (2 * R_PI * R_PI));
+        e->texel[k].pdf_scale = (float)(p[k] / total * (double)count / (2 * GGX_PI * GGX_PI));
         p[k] *= (double)count / total;
         if (p[k] < 1) work[ns++] = (uint32_t)k;
         else work[count - 1 - nl++] = (uint32_t)k;
@@ -132,14 +131,14 @@ int render_env_sky(render_env *e, int w, int h, double sun_elev, double sun_az, 
         return env_fail(err, errn, "a sky needs at least 2 x 2 pixels and a sun radius in (0, 0.5) rad");
     float *rgb = malloc((size_t)w * (size_t)h * 3 * sizeof *rgb);
     if (!rgb) return env_fail(err, errn, "out of memory");
-    ggx_vec3 sun = dir_of(R_PI / 2 - sun_elev, sun_az);
+    ggx_vec3 sun = dir_of(GGX_PI / 2 - sun_elev, sun_az);
     static const double sun_colour[3] = {1.0, 0.95, 0.88};
     /* radiance of a uniform disc giving sun_irradiance at normal incidence: E = L pi sin^2(r) */
-    double Ls = sun_irradiance / (R_PI * sin(sun_radius) * sin(sun_radius)), cos_r = cos(sun_radius);
-    double pix = fmax(R_PI / h, 2 * R_PI / w); /* a pixel's largest angular side */
+    double Ls = sun_irradiance / (GGX_PI * sin(sun_radius) * sin(sun_radius)), cos_r = cos(sun_radius);
+    double pix = fmax(GGX_PI / h, 2 * GGX_PI / w); /* a pixel's largest angular side */
     for (int i = 0; i < h; i++)
         for (int j = 0; j < w; j++) {
-            double th = (i + 0.5) * R_PI / h, ph = (j + 0.5) * 2 * R_PI / w, c[3];
+            double th = (i + 0.5) * GGX_PI / h, ph = (j + 0.5) * 2 * GGX_PI / w, c[3];
             ggx_vec3 d = dir_of(th, ph);
             sky_radiance(d, sun, c);
             double cs = d.x * sun.x + d.y * sun.y + d.z * sun.z, ang = acos(fmax(-1.0, fmin(1.0, cs)));
@@ -148,7 +147,7 @@ int render_env_sky(render_env *e, int w, int h, double sun_elev, double sun_az, 
                 int in = 0;
                 for (int a = 0; a < 8; a++)
                     for (int b = 0; b < 8; b++) {
-                        ggx_vec3 q = dir_of((i + (a + 0.5) / 8) * R_PI / h, (j + (b + 0.5) / 8) * 2 * R_PI / w);
+                        ggx_vec3 q = dir_of((i + (a + 0.5) / 8) * GGX_PI / h, (j + (b + 0.5) / 8) * 2 * GGX_PI / w);
                         in += q.x * sun.x + q.y * sun.y + q.z * sun.z >= cos_r;
                     }
                 cover = in / 64.0;
@@ -161,7 +160,7 @@ int render_env_sky(render_env *e, int w, int h, double sun_elev, double sun_az, 
 
 int render_env_default_sky(render_env *e, char *err, size_t errn)
 {
-    double deg = R_PI / 180;
+    double deg = GGX_PI / 180;
     return render_env_sky(e, 512, 256, 35 * deg, -120 * deg, 1.5 * deg, 6.0, err, errn);
 }
 
@@ -169,8 +168,8 @@ int render_env_default_sky(render_env *e, char *err, size_t errn)
 static size_t env_pixel(const render_env *e, ggx_vec3 d, double *sin_theta)
 {
     double z = fmax(-1.0, fmin(1.0, d.z)), th = acos(z), ph = atan2(d.y, d.x);
-    if (ph < 0) ph += 2 * R_PI;
-    int i = (int)(th / R_PI * e->h), j = (int)(ph / (2 * R_PI) * e->w);
+    if (ph < 0) ph += 2 * GGX_PI;
+    int i = (int)(th / GGX_PI * e->h), j = (int)(ph / (2 * GGX_PI) * e->w);
     if (i >= e->h) i = e->h - 1;
     if (j >= e->w) j = e->w - 1;
     if (i < 0) i = 0;
@@ -207,7 +206,7 @@ ggx_vec3 render_env_sample(const render_env *e, double u1, double u2, double *pd
     else f = (f - a.keep) / (1 - a.keep), k = a.other;
     f = fmin(fmax(f, 0.0), 1.0);
     size_t i = k / (size_t)e->w, j = k % (size_t)e->w;
-    double th = ((double)i + f) * R_PI / e->h, ph = ((double)j + fmin(fmax(u2, 0.0), 1.0)) * 2 * R_PI / e->w;
+    double th = ((double)i + f) * GGX_PI / e->h, ph = ((double)j + fmin(fmax(u2, 0.0), 1.0)) * 2 * GGX_PI / e->w;
     double s = sin(th);
     const render_texel *t = e->texel + k;
     rgb[0] = t->rgb[0], rgb[1] = t->rgb[1], rgb[2] = t->rgb[2];
