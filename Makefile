@@ -5,7 +5,7 @@ PREFIX ?= /usr/local
 JOBS ?= 2
 MAKEFLAGS += --no-print-directory
 
-.PHONY: all deps deps-run deps-dev configure configure-run build run example bench bench-python test test-long test-clang sanitize tsan tables \
+.PHONY: all deps deps-run deps-dev configure configure-run build run example bench bench-python test test-full test-long test-clang sanitize tsan tables \
         valgrind fuzz fuzz-ci install clean
 
 all: build
@@ -69,8 +69,15 @@ bench-python: build
 example: build
 	@$(BUILD)/ggx_example
 
+# The two tiers of the suite (docs/testing.md). make test: every function, sampler and variant, chi-square with its
+# negative controls, on the quick tier's smaller sweeps (GGX_TEST_SCALE 0.2; the command's test without its
+# chi-square minutes). make test-full: the full sweeps (scale 1), the command's audit and check runs included.
+TEST_QUICK_SCALE = 0.2
 test: build
-	@cd $(BUILD) && ctest --output-on-failure -j $(JOBS)
+	@cd $(BUILD) && GGX_TEST_SCALE=$(TEST_QUICK_SCALE) GGX_CLI_QUICK=1 ctest --output-on-failure -j $(JOBS)
+
+test-full: build
+	@cd $(BUILD) && GGX_TEST_SCALE=1 ctest --output-on-failure -j $(JOBS)
 
 # The property tests at ten times their size (about 5 minutes).
 test-long: build
