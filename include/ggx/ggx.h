@@ -61,9 +61,7 @@
 extern "C" {
 #endif
 
-#define GGX_VERSION_MAJOR 0
-#define GGX_VERSION_MINOR 1
-#define GGX_VERSION_PATCH 0
+#include "ggx/ggx_version.h"
 
 /* Roughness below GGX_ALPHA_MIN is raised to GGX_ALPHA_MIN by the alpha-based constructors (a mirror is a
  * delta distribution that a density cannot represent). Roughness above GGX_ALPHA_MAX is refused. */
