@@ -3,7 +3,8 @@
 # (its C block, built with the README's exact command) and a CMake project with find_package(ggx) are built and run
 # with no LD_LIBRARY_PATH: a prefix outside the loader's folders gets an rpath through ggx.pc, and CMake's targets
 # carry their own. Also checks the installed files (the shared library under its SONAME, libggx.so.MAJOR.MINOR while
-# MAJOR is 0), the man page and the version. Usage: install_test.sh BUILD SRC
+# MAJOR is 0), the man page and the version, and that the installed Python package loads the installed libggx.
+# Usage: install_test.sh BUILD SRC
 set -eu
 build=$1
 src=$2
@@ -84,6 +85,9 @@ if [ -f "$build/python/ggx/_ggx_native.so" ]; then
       'import ggx; print(ggx.__file__); print(ggx.__version__); print(ggx.ndf(ggx.Shape.iso(0.3), [0, 0, 1]))')
   echo "$d" | head -n 1 | grep -q "^$pypath/ggx/__init__.py$" || { echo "install: imported $d" >&2; exit 1; }
   [ "$(echo "$d" | sed -n 2p)" = "$version" ] || { echo "install: ggx.__version__ is not $version: $d" >&2; exit 1; }
+  # the module links the installed libggx (one copy of the library), which it finds by itself
+  ldd "$pypath/ggx/_ggx_native.so" | grep -q "$soname => $libdir/" ||
+    { ldd "$pypath/ggx/_ggx_native.so"; echo "install: the Python module does not load the installed libggx" >&2; exit 1; }
   # D(n) = 1 / (pi alpha^2) for isotropic GGX
   echo "$d" | tail -n 1 | awk '{exit !($1 > 3.53677 && $1 < 3.53678)}' || { echo "install: ggx.ndf gave $d" >&2; exit 1; }
   echo "Python package: $pypath/ggx"

@@ -40,6 +40,7 @@ __all__ = [
     "FitInfo", "Surface", "fit_normals", "fit_normal_cells", "fit_heightfield", "read_surface", "render",
 ]
 
+# The native module; the library's own functions are found through it in libggx, which it links.
 _lib = ctypes.CDLL(os.path.join(os.path.dirname(os.path.abspath(__file__)), "_ggx_native.so"))
 
 _vp = ctypes.c_void_p
