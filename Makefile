@@ -49,7 +49,7 @@ tables: deps-dev configure
 # The main job on built-in defaults: the seeds' figures into out/ and a check of every sampler. It needs only the
 # command: a first configure leaves the tests out (no cmocka needed); a build that has them keeps them.
 configure-run: deps-run
-	@cmake -S . -B $(BUILD) $(CMAKE_CONFIG) $(if $(wildcard $(BUILD)/CMakeCache.txt),,-DGGX_BUILD_TESTS=OFF) >/dev/null
+	@cmake -S . -B $(BUILD) $(CMAKE_CONFIG) -DGGX_BUILD_TOOL=ON $(if $(wildcard $(BUILD)/CMakeCache.txt),,-DGGX_BUILD_TESTS=OFF) >/dev/null
 
 run: configure-run
 	@cmake --build $(BUILD) -j $(JOBS) --target ggx_tool

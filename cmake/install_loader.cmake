@@ -1,11 +1,12 @@
 # Runs at install time (make install, cmake --install [--prefix P]), for the prefix actually installed into, so that a
-# freshly installed program finds libggx.so.0 without LD_LIBRARY_PATH:
+# freshly installed program finds the shared library (GGX_SONAME_FILE, libggx.so.0.1) without LD_LIBRARY_PATH:
 #  - libdir is a folder the dynamic loader searches (ld.so.conf: /usr/local/lib, /usr/lib/<triplet>, ...): as root
 #    and without DESTDIR, run ldconfig, which the loader's cache needs to list a new library;
 #  - any other libdir ($HOME/.local/lib, /opt/x/lib): ggx.pc's Libs carry -Wl,-rpath,${libdir}.
 # It then writes ggx.pc for that prefix and says what a user still has to set (PKG_CONFIG_PATH, ldconfig as root).
 # Inputs (set by CMakeLists.txt's install(CODE)): GGX_PC_IN, GGX_BINARY_DIR, GGX_LIBDIR and GGX_INCLUDEDIR (relative to
-# the prefix or absolute), GGX_VERSION, GGX_DESCRIPTION, GGX_LDCONFIG and GGX_PKG_CONFIG (paths or empty).
+# the prefix or absolute), GGX_VERSION, GGX_DESCRIPTION, GGX_SONAME_FILE (empty for a static libggx: no loader, no
+# rpath), GGX_LDCONFIG and GGX_PKG_CONFIG (paths or empty).
 cmake_policy(PUSH)
 cmake_policy(SET CMP0057 NEW) # IN_LIST
 include("${CMAKE_CURRENT_LIST_DIR}/sh_quote.cmake")
@@ -18,7 +19,9 @@ get_filename_component(libdir_real "${libdir}" REALPATH)
 
 # The loader's folders, as ldconfig lists them (-N: no cache update, -X: no links; readable without root).
 set(in_loader FALSE)
-if(GGX_LDCONFIG)
+if(GGX_SONAME_FILE STREQUAL "")
+  set(in_loader TRUE) # a static library: nothing for the loader to find
+elseif(GGX_LDCONFIG)
   execute_process(COMMAND "${GGX_LDCONFIG}" -v -N -X OUTPUT_VARIABLE ld_out ERROR_QUIET)
   string(REPLACE "\n" ";" ld_lines "${ld_out}")
   foreach(line IN LISTS ld_lines)
@@ -46,13 +49,17 @@ if(GGX_LDCONFIG)
 endif()
 
 set(GGX_PC_RPATH "")
+set(GGX_PC_LIBS "")
 set(notes "")
-if(in_loader)
+if(GGX_SONAME_FILE STREQUAL "")
+  # A static libggx: a program links its dependencies too, with or without pkg-config --static.
+  set(GGX_PC_LIBS " -lm -lpthread")
+elseif(in_loader)
   execute_process(COMMAND id -u OUTPUT_VARIABLE uid OUTPUT_STRIP_TRAILING_WHITESPACE ERROR_QUIET)
   if("$ENV{DESTDIR}" STREQUAL "" AND uid STREQUAL "0")
     set(run_ldconfig TRUE) # after the library is in place: below
   elseif("$ENV{DESTDIR}" STREQUAL "")
-    list(APPEND notes "run ldconfig as root so that programs find libggx.so.0 in ${libdir}")
+    list(APPEND notes "run ldconfig as root so that programs find ${GGX_SONAME_FILE} in ${libdir}")
   endif()
 else()
   set(GGX_PC_RPATH " -Wl,-rpath,\${libdir}")
@@ -73,9 +80,9 @@ file(INSTALL "${GGX_BINARY_DIR}/pc-install/ggx.pc" DESTINATION "${libdir}/pkgcon
 if(run_ldconfig)
   execute_process(COMMAND "${GGX_LDCONFIG}" RESULT_VARIABLE rc)
   if(rc EQUAL 0)
-    message(STATUS "Ran ldconfig: the loader now finds libggx.so.0 in ${libdir}")
+    message(STATUS "Ran ldconfig: the loader now finds ${GGX_SONAME_FILE} in ${libdir}")
   else()
-    list(APPEND notes "ldconfig failed (${rc}): run it as root so that programs find libggx.so.0")
+    list(APPEND notes "ldconfig failed (${rc}): run it as root so that programs find ${GGX_SONAME_FILE}")
   endif()
 elseif(NOT in_loader)
   message(STATUS "${libdir} is not searched by the dynamic loader: ggx.pc links with -Wl,-rpath,${libdir}")

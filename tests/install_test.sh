@@ -2,13 +2,21 @@
 # make install works as the README says: `make install PREFIX=...` into a scratch prefix, then the README's example
 # (its C block, built with the README's exact command) and a CMake project with find_package(ggx) are built and run
 # with no LD_LIBRARY_PATH: a prefix outside the loader's folders gets an rpath through ggx.pc, and CMake's targets
-# carry their own. Also checks the installed files, the man page and the version. Usage: install_test.sh BUILD SRC
+# carry their own. Also checks the installed files (the shared library under its SONAME, libggx.so.MAJOR.MINOR while
+# MAJOR is 0), the man page and the version, and that the installed Python package loads the installed libggx.
+# Usage: install_test.sh BUILD SRC
 set -eu
 build=$1
 src=$2
 tmp=$(mktemp -d)
 trap 'rm -rf "$tmp"' EXIT
 prefix="$tmp/prefix"
+version=$(sed -n 's/^#define GGX_VERSION_\(MAJOR\|MINOR\|PATCH\) \([0-9]*\)$/\2/p' "$src/include/ggx/ggx_version.h" |
+          paste -sd. -)
+case $version in
+0.*) soname=libggx.so.$(echo "$version" | cut -d. -f1-2) ;;
+*) soname=libggx.so.$(echo "$version" | cut -d. -f1) ;;
+esac
 make -s -C "$src" install BUILD="$build" PREFIX="$prefix" >"$tmp/install.log" 2>&1 || { cat "$tmp/install.log"; exit 1; }
 # It says how to reach the pkg-config file of a prefix outside pkg-config's path, and that it used an rpath.
 grep -q "export PKG_CONFIG_PATH=$prefix/lib.*/pkgconfig" "$tmp/install.log" ||
@@ -16,14 +24,21 @@ grep -q "export PKG_CONFIG_PATH=$prefix/lib.*/pkgconfig" "$tmp/install.log" ||
 grep -q "rpath" "$tmp/install.log" || { cat "$tmp/install.log"; echo "install: no rpath note" >&2; exit 1; }
 libdir=$(ls -d "$prefix"/lib*/pkgconfig | head -n 1)
 libdir=${libdir%/pkgconfig}
-for f in include/ggx/ggx.h include/ggx/ggx_inline.h include/ggx/ggx_batch.h include/ggx/ggx_samplers.h include/ggx/ggx_fit.h \
-         bin/ggx share/man/man1/ggx.1; do
+tool=
+[ -x "$build/ggx" ] && tool="bin/ggx share/man/man1/ggx.1"
+for f in include/ggx/ggx.h include/ggx/ggx_version.h include/ggx/ggx_inline.h include/ggx/ggx_batch.h \
+         include/ggx/ggx_samplers.h include/ggx/ggx_fit.h $tool; do
   test -f "$prefix/$f" || { echo "install: $f missing" >&2; exit 1; }
 done
-for f in libggx.so.0 libggx.a cmake/ggx/ggxConfig.cmake pkgconfig/ggx.pc; do
+for f in "$soname" libggx.so cmake/ggx/ggxConfig.cmake cmake/ggx/ggxConfigVersion.cmake pkgconfig/ggx.pc; do
   test -e "$libdir/$f" || { echo "install: $libdir/$f missing" >&2; exit 1; }
 done
-"$prefix/bin/ggx" --version | grep -q '^ggx [0-9]'
+# the library of a shared build only (BUILD_SHARED_LIBS=OFF: tests/consumer_test.sh)
+test ! -e "$libdir/libggx.a" || { echo "install: a shared build installed libggx.a too" >&2; exit 1; }
+if [ -n "$tool" ]; then
+  [ "$("$prefix/bin/ggx" --version)" = "ggx $version" ] || { echo "install: ggx --version is not ggx $version" >&2; exit 1; }
+fi
+grep -q "^Version: $version\$" "$libdir/pkgconfig/ggx.pc" || { echo "install: ggx.pc is not version $version" >&2; exit 1; }
 grep -q '^prefix='"$prefix"'$' "$libdir/pkgconfig/ggx.pc" || { echo "install: ggx.pc names another prefix" >&2; exit 1; }
 
 # The README's example, with the README's build command, run as is.
@@ -40,7 +55,7 @@ echo "README example: $out"
 # Its line gives D, G1, pdf and f_r: each a positive number.
 echo "$out" | awk '{ok = NF == 12; for (i = 3; i <= 12; i += 3) ok = ok && $i + 0 > 0} END {exit !ok}' ||
   { echo "install: unexpected example output" >&2; exit 1; }
-ldd "$tmp/a.out" | grep -q "libggx.so.0 => $libdir/" || { ldd "$tmp/a.out"; echo "install: not linked to the installed libggx" >&2; exit 1; }
+ldd "$tmp/a.out" | grep -q "$soname => $libdir/" || { ldd "$tmp/a.out"; echo "install: not linked to the installed libggx" >&2; exit 1; }
 
 # A CMake project with find_package(ggx).
 mkdir "$tmp/consumer"
@@ -67,8 +82,12 @@ if [ -f "$build/python/ggx/_ggx_native.so" ]; then
   py=/usr/bin/python3
   [ -x "$py" ] || py=python3
   d=$(cd "$tmp" && env -u LD_LIBRARY_PATH PYTHONPATH="$pypath" "$py" -c \
-      'import ggx; print(ggx.__file__); print(ggx.ndf(ggx.Shape.iso(0.3), [0, 0, 1]))')
+      'import ggx; print(ggx.__file__); print(ggx.__version__); print(ggx.ndf(ggx.Shape.iso(0.3), [0, 0, 1]))')
   echo "$d" | head -n 1 | grep -q "^$pypath/ggx/__init__.py$" || { echo "install: imported $d" >&2; exit 1; }
+  [ "$(echo "$d" | sed -n 2p)" = "$version" ] || { echo "install: ggx.__version__ is not $version: $d" >&2; exit 1; }
+  # the module links the installed libggx (one copy of the library), which it finds by itself
+  ldd "$pypath/ggx/_ggx_native.so" | grep -q "$soname => $libdir/" ||
+    { ldd "$pypath/ggx/_ggx_native.so"; echo "install: the Python module does not load the installed libggx" >&2; exit 1; }
   # D(n) = 1 / (pi alpha^2) for isotropic GGX
   echo "$d" | tail -n 1 | awk '{exit !($1 > 3.53677 && $1 < 3.53678)}' || { echo "install: ggx.ndf gave $d" >&2; exit 1; }
   echo "Python package: $pypath/ggx"
@@ -85,7 +104,7 @@ splib=$(ls -d "$sp"/lib*/pkgconfig | head -n 1)
 (cd "$tmp" && rm -f a.out && PKG_CONFIG_PATH="$splib" sh -c 'eval "cc prog.c $(pkg-config --cflags --libs ggx)"') ||
   { echo "install: the eval build failed for a prefix with a space" >&2; exit 1; }
 [ "$(cd "$tmp" && env -u LD_LIBRARY_PATH ./a.out)" = "$out" ] || { echo "install: prefix with a space: other output" >&2; exit 1; }
-ldd "$tmp/a.out" | grep -q "libggx.so.0 => $sp/" || { ldd "$tmp/a.out"; echo "install: not linked to $sp" >&2; exit 1; }
+ldd "$tmp/a.out" | grep -q "$soname => $sp/" || { ldd "$tmp/a.out"; echo "install: not linked to $sp" >&2; exit 1; }
 rm -rf "$tmp/consumer/build"
 cmake -S "$tmp/consumer" -B "$tmp/consumer/build" -DCMAKE_PREFIX_PATH="$sp" >/dev/null
 cmake --build "$tmp/consumer/build" >/dev/null

@@ -51,9 +51,7 @@
 extern "C" {
 #endif
 
-#define GGX_VERSION_MAJOR 0
-#define GGX_VERSION_MINOR 1
-#define GGX_VERSION_PATCH 0
+#include "ggx/ggx_version.h"
 
 /* pi, spelled once for the library, its tools and tests ((float)GGX_PI is float's nearest value). */
 #ifndef GGX_PI

@@ -40,6 +40,7 @@ __all__ = [
     "FitInfo", "Surface", "fit_normals", "fit_normal_cells", "fit_heightfield", "read_surface", "render",
 ]
 
+# The native module; the library's own functions are found through it in libggx, which it links.
 _lib = ctypes.CDLL(os.path.join(os.path.dirname(os.path.abspath(__file__)), "_ggx_native.so"))
 
 _vp = ctypes.c_void_p
@@ -63,6 +64,8 @@ def _proto(name, restype, *argtypes):
     return f
 
 
+#: The version of the libggx the package runs with, "MAJOR.MINOR.PATCH" (ggx_version).
+__version__ = _proto("ggx_version", ctypes.c_char_p)().decode()
 _status_str = _proto("ggx_status_str", ctypes.c_char_p, _i)
 _ellipsoid_matrix = _proto("ggx_ellipsoid_matrix", _i, _vp, _d, _d, _d, _d, _d)
 _shape_ellipsoid = _proto("ggx_shape_ellipsoid", _i, _vp, _d, _d, _d, _d, _d)
