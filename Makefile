@@ -84,7 +84,7 @@ test-long: build
 	@cd $(BUILD) && GGX_TEST_SCALE=10 ctest --output-on-failure -R robust
 
 # The whole unit and property suite under AddressSanitizer + UndefinedBehaviorSanitizer (gcc), at a tenth of the
-# sample counts (the install test is left out: its consumer program is not built with the sanitizer runtime; so is
+# sample counts (the install and consumer tests are left out: their programs are not built with the sanitizer runtime; so is
 # the Python test: python3 would have to load the sanitizer runtime first).
 SAN_FLAGS = -fsanitize=address,undefined -fno-sanitize-recover=all -fno-omit-frame-pointer -g
 sanitize: deps
@@ -92,7 +92,7 @@ sanitize: deps
 	  -DCMAKE_CXX_FLAGS="$(SAN_FLAGS)" -DCMAKE_EXE_LINKER_FLAGS="$(SAN_FLAGS)" -DCMAKE_SHARED_LINKER_FLAGS="$(SAN_FLAGS)" >/dev/null
 	@cmake --build build-san -j $(JOBS)
 	@cd build-san && GGX_TEST_SCALE=0.1 GGX_CLI_QUICK=1 ASAN_OPTIONS=detect_leaks=1:abort_on_error=1 LSAN_OPTIONS=suppressions=$(CURDIR)/tests/lsan.supp:print_suppressions=0 \
-	  UBSAN_OPTIONS=print_stacktrace=1 ctest --output-on-failure -j $(JOBS) -E 'install|python'
+	  UBSAN_OPTIONS=print_stacktrace=1 ctest --output-on-failure -j $(JOBS) -E 'install|consumer|python'
 
 # The batch tests under ThreadSanitizer (gcc; TSAN_CC=clang works too where its runtime is installed): batch calls
 # from many threads, the first calls of a process included (tests/test_batch_threads.c), must be free of data races.
