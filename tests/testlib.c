@@ -14,13 +14,6 @@ double test_scale(void)
 
 int test_quick(void) { return test_scale() < 1.0; }
 
-int test_count(int n, int lo)
-{
-    double s = test_scale();
-    int k = s < 1.0 ? (int)ceil(n * s) : n;
-    return k < lo ? (lo < n ? lo : n) : k;
-}
-
 long chi2_samples(void) { return (long)(1e6 * test_scale()); }
 
 void chi2_grid(long n, int *ntheta, int *nphi)

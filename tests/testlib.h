@@ -31,8 +31,6 @@ double test_scale(void);
 /* The quick tier: GGX_TEST_SCALE below 1. A test over a list of cases then runs the subset that keeps one case of
  * each kind it covers (every function, sampler and variant still runs); the full tier, at 1 and above, runs all. */
 int test_quick(void);
-/* n at the full tier, times GGX_TEST_SCALE below 1, but at least lo (and at most n). */
-int test_count(int n, int lo);
 /* Samples for a chi-square run (10^6 at scale 1) and its grid (100 x 200 at scale 1, so that cells expect ~50). */
 long chi2_samples(void);
 void chi2_grid(long n, int *ntheta, int *nphi);
