@@ -101,14 +101,17 @@ done
 if [ "${GGX_CLI_QUICK:-0}" = 1 ]; then # 16 chi-square runs of 10^6 samples: minutes under valgrind
     "$GGX" audit --help > audit.txt && ok || bad "audit --help"
 else
-    # docs/audit.md is the command's output on its defaults, byte for byte; its rows are numbered 1 to the number
-    # of claims, which the other formats must match (tests/test_audit.c lists the claims and asserts the count)
-    "$GGX" audit > audit.md && CLAIMS=$(grep -c '^| [0-9]' audit.md) && [ "$CLAIMS" -gt 0 ] &&
-        [ "$(grep '^| [0-9]' audit.md | tail -1 | cut -d' ' -f2)" = "$CLAIMS" ] && grep -q 'fails' audit.md &&
-        cmp -s audit.md "$ROOT/docs/audit.md" && ok || bad "audit: docs/audit.md is not ggx audit's output: $(diff audit.md "$ROOT/docs/audit.md" | head -5)"
+    # The one audit of the tier: the line of docs/cli.md's Examples, three files from one run. docs/audit.md is the
+    # command's output on its defaults, byte for byte; its rows are numbered 1 to the number of claims, which the
+    # other formats must match (tests/test_audit.c lists the claims and asserts the count)
+    AUDIT_LINE='ggx audit --out audit.md --out audit.csv --out audit.json'
+    "$GGX" audit --out audit.md --out audit.csv --out audit.json && CLAIMS=$(grep -c '^| [0-9]' audit.md) &&
+        [ "$CLAIMS" -gt 0 ] && [ "$(grep '^| [0-9]' audit.md | tail -1 | cut -d' ' -f2)" = "$CLAIMS" ] &&
+        grep -q 'fails' audit.md && cmp -s audit.md "$ROOT/docs/audit.md" &&
+        ok || bad "audit: docs/audit.md is not ggx audit's output: $(diff audit.md "$ROOT/docs/audit.md" | head -5)"
     # JSON: a list of the claims, each naming its seeds by their short names and giving three verdicts from the
     # vocabulary
-    "$GGX" audit --format json --rotate 10 > audit.json && CLAIMS=$CLAIMS /usr/bin/python3 -c '
+    CLAIMS=$CLAIMS /usr/bin/python3 -c '
 import json, os
 rows = json.load(open("audit.json"))
 words = {"holds", "holds with a correction", "fails", "not claimed"}
@@ -117,7 +120,12 @@ assert len(rows) == int(os.environ["CLAIMS"]), len(rows)
 for r in rows:
     assert set(r["seed"].split(", ")) <= seeds and len(r["verdicts"]) == 3, r
     assert all(v["verdict"] in words and v["evidence"] for v in r["verdicts"]), r
-' && ok || bad "audit --format json"
+' && ok || bad "audit json"
+    # CSV: a header row, one row per claim and shape, every row naming a seed, the shapes labelled
+    head -1 audit.csv | grep -qx 'id,seed,where,scope,claim,shape,verdict,evidence' &&
+        [ "$(tail -n +2 audit.csv | grep -Ec '^"[a-z0-9-]*","(walter-ellipsoid|engstad-stretch|engstad-vndf-proof|ellipsoidal-ggx-[12])')" -eq $((3 * CLAIMS)) ] &&
+        grep -q '"rotated A (0.3, 0.6; theta_z 28.65 deg)"' audit.csv && grep -q '"skewed A (0.3, 0.6; 22.92, -17.19, 28.65 deg)"' audit.csv &&
+        ok || bad "audit csv: $(head -3 audit.csv)"
 fi
 
 # --- the samplers of the command are the registry's (in its order) and wrong-s, nothing else. The registry's list
@@ -232,6 +240,9 @@ expect2 "albedo --eta view on the horizon" "not on the horizon" "$GGX" albedo --
 expect2 "unknown sampler" "unknown sampler" "$GGX" sample --sampler magic
 expect2 "unknown figure" "unknown figure" "$GGX" plot --figure pie
 expect2 "bad audit format" "is not md, csv or json" "$GGX" audit --format xml
+expect2 "audit file of no format" "does not end with .md, .csv or .json" "$GGX" audit --out a.md --out a.txt
+expect2 "audit files and --format" "each file's name gives its format" "$GGX" audit --format csv --out a.md --out a.csv
+expect2 "five audit files" "at most 4 output files" "$GGX" audit --out 1.md --out 2.md --out 3.md --out 4.md --out 5.md
 expect2 "bad count" "not a count" "$GGX" sample -n 0
 expect2 "missing value" "needs a value" "$GGX" sample --seed
 expect2 "bad fresnel" "fresnel" "$GGX" eval --fresnel gold
@@ -345,14 +356,9 @@ one_line "too few samples (demo)" "needs at least 10000 samples" 2 "$GGX" demo -
 "$GGX" check --alpha 1e4 --sampler caps -n 20000 > nojac.txt && grep -q "(no point)" nojac.txt && ! grep -q "0.00e+00" nojac.txt && ok || bad "check without Jacobian points: $(cat nojac.txt)"
 one_line "ill-conditioned matrix" "ill-conditioned" 2 "$GGX" eval --matrix 1e9,0,0,0,1,0,0,0,1
 if [ "${GGX_CLI_QUICK:-0}" != 1 ]; then
-    # CSV: a header row, one row per claim and shape, every row naming a seed; --alpha sets all three shapes
-    "$GGX" audit --alpha 0.15,0.5 --format csv > a2.csv && head -1 a2.csv | grep -qx 'id,seed,where,scope,claim,shape,verdict,evidence' &&
-        [ "$(tail -n +2 a2.csv | grep -Ec '^"[a-z0-9-]*","(walter-ellipsoid|engstad-stretch|engstad-vndf-proof|ellipsoidal-ggx-[12])')" -eq $((3 * CLAIMS)) ] &&
-        grep -q '"rotated A (0.15, 0.5; theta_z 28.65 deg)"' a2.csv && grep -q '"skewed A (0.15, 0.5; 22.92, -17.19, 28.65 deg)"' a2.csv &&
-        ok || bad "audit --alpha --format csv: $(head -3 a2.csv)"
     # every audit row that docs/seed-claims.md names as covering a claim exists
     grep -o '(covered: [a-z0-9, -]*)' "$ROOT/docs/seed-claims.md" | sed 's/(covered: \(.*\))/\1/' | tr ',' '\n' | tr -d ' ' | sort -u > covered.txt
-    cut -d, -f1 a2.csv | tr -d '"' | sort -u > ids.txt
+    cut -d, -f1 audit.csv | tr -d '"' | sort -u > ids.txt
     [ -s covered.txt ] && [ -z "$(comm -23 covered.txt ids.txt)" ] && ok || bad "seed-claims.md names rows the audit lacks: $(comm -23 covered.txt ids.txt)"
     # the README's command lines, run as written (from the ```sh block of "The ggx command"), then those of
     # docs/cli.md's "Examples"
@@ -362,7 +368,9 @@ if [ "${GGX_CLI_QUICK:-0}" != 1 ]; then
     sed -n '/^## Examples/,/^## /p' "$ROOT/docs/cli.md" | sed -n '/^```sh/,/^```/p' | grep '^ggx ' |
         sed 's/ *#.*//' > cli_doc_cmds.txt
     [ "$(wc -l < cli_doc_cmds.txt)" -ge 10 ] && ok || bad "docs/cli.md example lines not found"
-    cat readme_cmds.txt cli_doc_cmds.txt | awk '!seen[$0]++' > doc_cmds.txt # each distinct line once
+    grep -qxF "$AUDIT_LINE" cli_doc_cmds.txt && ok || bad "docs/cli.md's audit line is not the one run above"
+    # each distinct line once, the audit's (run and checked above) left out
+    cat readme_cmds.txt cli_doc_cmds.txt | awk '!seen[$0]++' | grep -vxF "$AUDIT_LINE" > doc_cmds.txt
     while read -r line; do
         # shellcheck disable=SC2086
         set -- $line

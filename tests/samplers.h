@@ -22,14 +22,6 @@ extern const double SWEEP_VIEWS_DEG[];
 extern const int SWEEP_NVIEWS;
 ggx_vec3 sweep_view(double theta_deg);
 
-/* The suite's bound on its chi-square runs, for the Sidak level of each run (family-wise 0.01). It counts every
- * run of every test program (each prints its count) and the seed audit's 14 runs, which verify/audit.c makes at
- * the level of CHI2_SUITE_RUNS (400, looser per run): 594 runs at present (sample_vndf 219, sample_ndf 34,
- * sample_dir 112, variants 189, energy 26, audit 14), so that the sum of the per-run levels, an upper bound on the
- * family-wise level, is 580 x 1.26e-5 + 14 x 2.5e-5 < 0.0077; the room above 594 is for new samplers and
- * variants. */
-#define TEST_CHI2_RUNS 800
-double test_chi2_level(void);
 
 typedef ggx_vec3 (*vndf_fn)(const ggx_shape *, ggx_vec3, double, double);
 
@@ -80,7 +72,6 @@ int chi2_sweep(const variant *var, unsigned families, const int *shapes, int nsh
 int sampler_transmits(const ggx_sampler_info *info);
 
 /* Chi-square runs made so far by this program: in all, and per variant and sampler. */
-extern int chi2_runs_done;
 extern int chi2_runs_by[VARIANT_COUNT][GGX_SAMPLER_COUNT];
 /* Fails unless every registry sampler of the given families that var has got at least one chi-square run: a
  * registered sampler that no sweep reaches (a domain that excludes every swept shape, a family left out) fails. */

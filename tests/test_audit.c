@@ -81,7 +81,9 @@ static void audit(void **state)
     default_shapes(A);
     audit_row rows[AUDIT_MAX_ROWS];
     remove("chi2_audit.csv");
-    int n = audit_run((const double(*)[3][3])A, rows, 0);
+    long before = chi2_runs_made();
+    int n = audit_run_at((const double(*)[3][3])A, rows, 0, test_chi2_level());
+    chi2_budget_spend(chi2_runs_made() - before);
     /* claims that fail are answers: the audit's chi-square runs are quiet and leave no histogram behind */
     FILE *dump = fopen("chi2_audit.csv", "r");
     CHECK(dump == NULL, "the audit wrote chi2_audit.csv");
@@ -104,7 +106,7 @@ static void audit(void **state)
         for (int k = 0; k < AUDIT_SHAPES; k++) {
             const char *h = strstr(rows[i].text[k], "holds as ");
             if (h && strstr(h, "(p = ")) /* a sampler's corrected form, with its own chi-square */
-                CHECK(atof(strstr(h, "(p = ") + 5) >= chi2_sidak(CHI2_SUITE_RUNS), "%s: %s", rows[i].id, rows[i].text[k]);
+                CHECK(atof(strstr(h, "(p = ") + 5) >= test_chi2_level(), "%s: %s", rows[i].id, rows[i].text[k]);
             if (rows[i].verdict[k] == AUDIT_CORRECTED) /* a correction is stated */
                 CHECK(h || strstr(rows[i].text[k], " with "), "%s: %s", rows[i].id, rows[i].text[k]);
             if (rows[i].verdict[k] == AUDIT_NOT_CLAIMED)
@@ -136,7 +138,9 @@ static void view_grid(void **state)
     CHECK(ggx_ellipsoid_matrix(A[1], 0.1, 0.8, 0, 0, 1.0) == GGX_OK, "rotated");
     CHECK(ggx_ellipsoid_matrix(A[2], 0.1, 0.8, 0.6, 0.5, 1.0) == GGX_OK, "skewed");
     audit_row rows[AUDIT_MAX_ROWS];
-    int n = audit_run((const double(*)[3][3])A, rows, 0), found = 0;
+    long before = chi2_runs_made();
+    int n = audit_run_at((const double(*)[3][3])A, rows, 0, test_chi2_level()), found = 0;
+    chi2_budget_spend(chi2_runs_made() - before);
     for (int i = 0; i < n; i++) {
         if (strcmp(rows[i].id, "g1-blog") != 0 && strcmp(rows[i].id, "vndf-g1") != 0) continue;
         found++;
@@ -192,9 +196,10 @@ static void kin_counterexample(void **state)
     CHECK(row.verdict[1] == AUDIT_HOLDS, "%s", row.text[1]);
 }
 
-int main(void)
+int main(int argc, char **argv)
 {
     const struct CMUnitTest tests[] = {cmocka_unit_test(audit), cmocka_unit_test(view_grid),
                                        cmocka_unit_test(kin_counterexample)};
-    return cmocka_run_group_tests(tests, NULL, NULL);
+    int rc = cmocka_run_group_tests(tests, NULL, NULL);
+    return rc | chi2_budget_end("audit", argc, argv);
 }

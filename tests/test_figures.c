@@ -1,5 +1,5 @@
 /* The figures' promises: the brightest pixel of every density figure sits on the density's peak (so the image is
- * neither mirrored, shifted nor mis-scaled), side views draw only the visible half, and seed 004's grey region is
+ * neither mirrored, shifted nor mis-scaled), side views draw only the visible half, and engstad-vndf-proof's grey region is
  * what it says: its pointwise test, its drawn boundary and its measure agree with sampling.
  * SPDX-License-Identifier: MIT */
 #include <math.h>
@@ -160,7 +160,7 @@ static void side_views(void **state)
         CHECK((fabs(pa) < 1e-6 && pr >= -1e-9) || (fabs(pr) < 1e-6 && pa >= -1e-9),
               "shape %d: the NDF peak in the plane seen in profile or facing the viewer (%g, %g)", i, pa, pr);
     }
-    /* the seeds' shape: phi_v = 0 seen from -y as in seed 004 (profile); phi_v = 90 faced from +y (the lobe is
+    /* the seeds' shape: phi_v = 0 seen from -y as in engstad-vndf-proof (profile); phi_v = 90 faced from +y (the lobe is
      * narrow along x, so its profile would show a sliver) */
     ggx_shape s;
     make_shape(&s, SHAPES[0]);

@@ -38,11 +38,10 @@ static void ndf_negative_control(void **state)
     CHECK(r.pvalue < test_chi2_level() || r.zero_cell_hits > 0, "not rejected: p = %.3g", r.pvalue);
 }
 
-int main(void)
+int main(int argc, char **argv)
 {
     const struct CMUnitTest tests[] = {cmocka_unit_test(ndf_sweep), cmocka_unit_test(ndf_coverage),
                                        cmocka_unit_test(ndf_negative_control)};
     int rc = cmocka_run_group_tests(tests, NULL, NULL);
-    printf("chi-square runs in this program: %d\n", chi2_runs_done);
-    return rc;
+    return rc | chi2_budget_end("sample_ndf", argc, argv);
 }

@@ -120,6 +120,5 @@ int main(int argc, char **argv)
     const struct CMUnitTest tests[] = {cmocka_unit_test(variant_sweeps), cmocka_unit_test(variant_negative_controls),
                                        cmocka_unit_test(coverage)};
     int rc = cmocka_run_group_tests(tests, NULL, NULL);
-    printf("chi-square runs in this program: %d\n", chi2_runs_done);
-    return rc;
+    return rc | chi2_budget_end("variants", argc, argv);
 }

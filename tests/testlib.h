@@ -35,6 +35,17 @@ int test_quick(void);
 long chi2_samples(void);
 void chi2_grid(long n, int *ntheta, int *nphi);
 
+/* ---- the suite's one chi-square budget (tests/chi2_budget.c) ----
+ * Every chi-square check of the suite that must pass is made at one per-run level, test_chi2_level(): the Sidak
+ * level for a family-wise 0.01 over the sum of the shares tests/chi2_budget.c lists for each ctest entry. A negative
+ * control, which must be rejected, compares with the same level and is not counted. */
+double test_chi2_level(void);
+int chi2_accepts(double p);          /* p >= test_chi2_level(); counts one check */
+void chi2_budget_spend(long runs);   /* counts runs judged elsewhere at test_chi2_level() (the seed audit's) */
+/* At a program's end: prints the count and returns 1 (the program fails) when it exceeds the share of the entry
+ * "program argv[1]" (of every entry of the program when argc <= 1). */
+int chi2_budget_end(const char *program, int argc, char **argv);
+
 /* ---- checks ---- */
 /* |got - want| <= abs_tol + rel_tol |want|; on failure prints what and fails the test. */
 #define CHECK_CLOSE(got, want, rel_tol, abs_tol, ...)                                                       \

@@ -31,6 +31,9 @@ typedef struct audit_row {
  * progress: dots on stderr. The claims about samplers are found by walking the sampler registry (ggx_samplers.h).
  * No global state: threads may run audits at once. */
 int audit_run(const double A[AUDIT_SHAPES][3][3], audit_row *rows, int progress);
+/* audit_run judging each chi-square run at the per-run level alpha instead of the command's
+ * chi2_sidak(CHI2_SUITE_RUNS): the test suite's own level (tests/testlib.h). */
+int audit_run_at(const double A[AUDIT_SHAPES][3][3], audit_row *rows, int progress, double alpha);
 
 const char *audit_verdict_name(audit_verdict v); /* "holds", "holds with a correction", "fails", "not claimed" */
 const char *audit_scope_name(audit_scope s);     /* "diagonal A", "A = S Rz", "any A" */

@@ -388,7 +388,7 @@ static void sin_row(audit_row *r, int k, const ggx_shape *s)
            "%.1e (finite differences, 200 points); the double integral in (theta, phi) is 1 %+.1e", worst, I - 1);
 }
 
-/* ---- Engstad's ellipsoid map (seed 004): normalize(A s) is the normal at A^-1 s, normalize(A^T s) ---- */
+/* ---- Engstad's ellipsoid map (engstad-vndf-proof): normalize(A s) is the normal at A^-1 s, normalize(A^T s) ---- */
 static double err_ellipsoid_map(const au_kin *K, rng *g, void *ctx, char *at, size_t nat)
 {
     (void)ctx;

@@ -53,6 +53,7 @@ double au_chi2_draw(const ggx_shape *s, ggx_vec3 v, int (*draw)(void *ctx, rng *
                     verify_pdf_fn pdf, uint64_t seed, int progress);
 /* The significance level of one run: the suite's Sidak-corrected level. */
 double au_alpha_level(void);
+void au_set_alpha_level(double alpha); /* this thread's level; negative: the command's, chi2_sidak(CHI2_SUITE_RUNS) */
 /* holds if p >= au_alpha_level(), else fails; the evidence is the p-value. */
 void au_verdict_p(audit_row *r, int k, double p);
 /* rng_uniform as the library's callback (the rejection samplers' random stream). */

@@ -46,7 +46,10 @@ double au_chi2_sampler(const ggx_shape *s, ggx_vec3 v, au_vndf_fn f, verify_pdf_
     return au_chi2_p(&c, seed, progress);
 }
 
-double au_alpha_level(void) { return chi2_sidak(CHI2_SUITE_RUNS); }
+/* the level of the audit running on this thread (audit_run_at); each thread's audit has its own */
+static _Thread_local double level_of_thread = -1;
+void au_set_alpha_level(double alpha) { level_of_thread = alpha; }
+double au_alpha_level(void) { return level_of_thread >= 0 ? level_of_thread : chi2_sidak(CHI2_SUITE_RUNS); }
 
 void au_set(audit_row *r, int k, audit_verdict v, const char *fmt, ...)
 {

@@ -260,12 +260,17 @@ static chi2_result run(const chi2_problem *p, long n, int ntheta, int nphi, uint
     return res;
 }
 
+static long runs_made; /* every run of the process, counted atomically */
+long chi2_runs_made(void) { return __atomic_load_n(&runs_made, __ATOMIC_RELAXED); }
+
 chi2_result chi2_run(const chi2_problem *p, long n, int ntheta, int nphi, uint64_t seed, double alpha)
 {
+    __atomic_add_fetch(&runs_made, 1, __ATOMIC_RELAXED);
     return run(p, n, ntheta, nphi, seed, alpha, 1);
 }
 
 chi2_result chi2_run_quiet(const chi2_problem *p, long n, int ntheta, int nphi, uint64_t seed, double alpha)
 {
+    __atomic_add_fetch(&runs_made, 1, __ATOMIC_RELAXED);
     return run(p, n, ntheta, nphi, seed, alpha, 0);
 }

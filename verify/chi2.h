@@ -40,7 +40,8 @@ typedef struct chi2_result {
  * region, itheta, iphi, observed, expected into the working directory, for the test that failed to show. */
 chi2_result chi2_run(const chi2_problem *p, long n, int ntheta, int nphi, uint64_t seed, double alpha);
 /* chi2_run that writes nothing: for the ggx command, which reports in its table, and the seed audit, whose failures
- * are expected answers. Both functions keep no state between calls, so threads may run them at once. */
+ * are expected answers. Both functions keep no state between calls (but the count of chi2_runs_made), so threads
+ * may run them at once. */
 chi2_result chi2_run_quiet(const chi2_problem *p, long n, int ntheta, int nphi, uint64_t seed, double alpha);
 
 /* Keys for samplers of normals: k = normalize(A^{-T} m), the sphere space of the shape, where every lobe is wide;
@@ -63,9 +64,12 @@ double chi2_pvalue(double x, int dof);
 /* Per-run significance for an overall level of 0.01 over `runs` runs (Sidak correction). */
 double chi2_sidak(int runs);
 
-/* The number of runs behind the Sidak level of the seed audit's and `ggx check`'s chi-square runs. The test suite
- * bounds its own runs separately (TEST_CHI2_RUNS in tests/samplers.h: 594 runs at present, the audit's 14 among
- * them at this looser level) so that its family-wise level stays <= 0.01. */
+/* The number of chi2_run and chi2_run_quiet calls this process has made, from any thread: what a test counts
+ * against its share of the suite's chi-square budget (tests/testlib.h). */
+long chi2_runs_made(void);
+
+/* The number of runs behind the Sidak level at which `ggx audit` judges its chi-square runs (audit_run). The test
+ * suite judges the audit at its own level instead (audit_run_at). */
 #define CHI2_SUITE_RUNS 400
 
 #endif

@@ -1,6 +1,8 @@
 /* SPDX-License-Identifier: MIT */
 #include "verify.h"
 
+#include "ggx/ggx_inline.h"
+
 #include "../src/common/gauss.h"
 
 #include <math.h>
@@ -18,33 +20,19 @@ double rng_uniform(rng *r)
 
 double rng_range(rng *r, double a, double b) { return a + (b - a) * rng_uniform(r); }
 
-ggx_vec3 t_vec(double x, double y, double z)
-{
-    ggx_vec3 v = {x, y, z};
-    return v;
-}
+/* The vector helpers are the kernel's (include/ggx/kernel/vec.inc) in double. */
+ggx_vec3 t_vec(double x, double y, double z) { return ggx_k_v3_d(x, y, z); }
 ggx_vec3 t_dir(double theta, double phi)
 {
     return t_vec(sin(theta) * cos(phi), sin(theta) * sin(phi), cos(theta));
 }
-double t_dot(ggx_vec3 a, ggx_vec3 b) { return a.x * b.x + a.y * b.y + a.z * b.z; }
-ggx_vec3 t_scale(ggx_vec3 a, double k) { return t_vec(a.x * k, a.y * k, a.z * k); }
-ggx_vec3 t_add(ggx_vec3 a, ggx_vec3 b) { return t_vec(a.x + b.x, a.y + b.y, a.z + b.z); }
-ggx_vec3 t_normalize(ggx_vec3 v) { return t_scale(v, 1.0 / sqrt(t_dot(v, v))); }
-ggx_vec3 t_cross(ggx_vec3 a, ggx_vec3 b)
-{
-    return t_vec(a.y * b.z - a.z * b.y, a.z * b.x - a.x * b.z, a.x * b.y - a.y * b.x);
-}
-ggx_vec3 t_matvec(const double M[3][3], ggx_vec3 v)
-{
-    return t_vec(M[0][0] * v.x + M[0][1] * v.y + M[0][2] * v.z, M[1][0] * v.x + M[1][1] * v.y + M[1][2] * v.z,
-                 M[2][0] * v.x + M[2][1] * v.y + M[2][2] * v.z);
-}
-ggx_vec3 t_mattvec(const double M[3][3], ggx_vec3 v)
-{
-    return t_vec(M[0][0] * v.x + M[1][0] * v.y + M[2][0] * v.z, M[0][1] * v.x + M[1][1] * v.y + M[2][1] * v.z,
-                 M[0][2] * v.x + M[1][2] * v.y + M[2][2] * v.z);
-}
+double t_dot(ggx_vec3 a, ggx_vec3 b) { return ggx_k_dot_d(a, b); }
+ggx_vec3 t_scale(ggx_vec3 a, double k) { return ggx_k_scale_d(a, k); }
+ggx_vec3 t_add(ggx_vec3 a, ggx_vec3 b) { return ggx_k_add_d(a, b); }
+ggx_vec3 t_normalize(ggx_vec3 v) { return t_scale(v, 1.0 / sqrt(t_dot(v, v))); } /* NaN for the zero vector */
+ggx_vec3 t_cross(ggx_vec3 a, ggx_vec3 b) { return ggx_k_cross_d(a, b); }
+ggx_vec3 t_matvec(const double M[3][3], ggx_vec3 v) { return ggx_k_mul_d(M, v); }
+ggx_vec3 t_mattvec(const double M[3][3], ggx_vec3 v) { return ggx_k_tmul_d(M, v); }
 void t_frame(ggx_vec3 n, ggx_vec3 *e1, ggx_vec3 *e2)
 {
     ggx_vec3 a = fabs(n.x) < 0.6 ? t_vec(1, 0, 0) : t_vec(0, 1, 0);

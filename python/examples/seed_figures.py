@@ -1,4 +1,4 @@
-"""Seed 004 (Engstad, visible GGX), figures 3 and 7: the VNDF pdf from the top for alpha = (0.15, 0.5), theta_v = 75
+"""engstad-vndf-proof (Engstad, visible GGX), figures 3 and 7: the VNDF pdf from the top for alpha = (0.15, 0.5), theta_v = 75
 degrees and phi_v = 0, 90; grey: normals that reflect the view into the upper hemisphere. Usage: [out.png]"""
 import sys
 import matplotlib

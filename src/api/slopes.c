@@ -74,11 +74,6 @@ static void right_singular(const double A[3][3], double sv[3], double V[3][3])
     for (int j = 0; j < 3; j++) sv[j] = sqrt(w[0][j] * w[0][j] + w[1][j] * w[1][j] + w[2][j] * w[2][j]);
 }
 
-static ggx_vec3 v_cross(ggx_vec3 a, ggx_vec3 b)
-{
-    return ggx_k_v3_d(a.y * b.z - a.z * b.y, a.z * b.x - a.x * b.z, a.x * b.y - a.y * b.x);
-}
-
 GGX_API ggx_status ggx_shape_ellipsoid_params(const ggx_shape *s, double *alpha_x, double *alpha_y, double *theta_x,
                                               double *theta_y, double *theta_z)
 {
@@ -102,13 +97,13 @@ GGX_API ggx_status ggx_shape_ellipsoid_params(const ggx_shape *s, double *alpha_
     if (fabs(li - lj) <= 1e-12 * fmax(li, lj)) {
         /* A circular cross-section: any orthonormal pair spans it; the one with theta_z = 0 has r0 orthogonal to y. */
         ggx_vec3 y = ggx_k_v3_d(0.0, 1.0, 0.0);
-        r0 = v_cross(y, r2);
+        r0 = ggx_k_cross_d(y, r2);
         r0 = ggx_k_scale_d(r0, 1.0 / ggx_k_len_d(r0));
-        r1 = v_cross(r2, r0);
+        r1 = ggx_k_cross_d(r2, r0);
         ax = ay = 0.5 * (li + lj);
     } else {
         r0 = ev[i], r1 = ev[j], ax = li, ay = lj;
-        if (ggx_k_dot_d(v_cross(r0, r1), r2) < 0.0) r1 = ggx_k_scale_d(r1, -1.0);
+        if (ggx_k_dot_d(ggx_k_cross_d(r0, r1), r2) < 0.0) r1 = ggx_k_scale_d(r1, -1.0);
         /* The four quarter turns of (r0, r1) about r2 are the same distribution (the alphas swapped for odd turns):
          * keep the one with the smallest |theta_z|. */
         ggx_vec3 b0 = r0, b1 = r1;

@@ -216,6 +216,8 @@ void parse_options(int argc, char **argv, int first, options *o, const char *all
             o->have_eta = 1;
         } else if (strcmp(key, "out") == 0) {
             o->out = val;
+            if (o->nout == (int)(sizeof o->outs / sizeof o->outs[0])) die("%s: at most 4 output files", a);
+            o->outs[o->nout++] = val;
         } else if (strcmp(key, "format") == 0) {
             o->format = val;
         } else if (strcmp(key, "sampler") == 0) {

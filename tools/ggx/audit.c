@@ -11,7 +11,7 @@ int cmd_audit(int argc, char **argv)
     parse_options(argc, argv, 2, &o, "alpha,skew,rotate,matrix,format,out,progress,no-progress");
     if (o.help) {
         printf("usage: ggx audit [--alpha AX,AY] [--skew TX,TY] [--rotate TZ] [--matrix ...] [--format md|csv|json]\n"
-               "                 [--out FILE]\n\n"
+               "                 [--out FILE]...\n\n"
                "Checks each claim of the seeds (normalisation, every sampler's pdf, G1 as a ratio of projected areas,\n"
                "the crescent factor, the weight bound, ...) for three shapes and prints its verdict for each: holds,\n"
                "holds with a correction, fails, or not claimed (the seed restricts the claim to other shapes; the\n"
@@ -25,12 +25,26 @@ int cmd_audit(int argc, char **argv)
                "and the skewed one's (the defaults for those not given); --matrix replaces the skewed shape (the\n"
                "diagonal one then takes its alphas when it has them). --format md (default: the document\n"
                "docs/audit.md, which is this command's output on its defaults), csv (a header row, one row per claim\n"
-               "and shape, each naming its seeds) or json. Takes about 15 s.\n");
+               "and shape, each naming its seeds) or json. --out may be given up to four times: one run then writes\n"
+               "every file, each in the format its name ends with (.md, .csv or .json), all or none. Takes about 15 s.\n");
         return 0;
     }
-    audit_format fmt = AUDIT_MD;
-    if (o.format && strcmp(o.format, "csv") == 0) fmt = AUDIT_CSV;
-    else if (o.format && strcmp(o.format, "json") == 0) fmt = AUDIT_JSON;
+    /* one output in the format of --format, or several, each in the format its name ends with */
+    const char *names[4] = {o.out};
+    audit_format fmts[4] = {AUDIT_MD};
+    int nout = o.nout > 1 ? o.nout : 1;
+    if (o.nout > 1) {
+        if (o.format) die("--format: with several --out files each file's name gives its format");
+        for (int i = 0; i < nout; i++) {
+            const char *dot = strrchr(o.outs[i], '.');
+            names[i] = o.outs[i];
+            if (dot && strcmp(dot, ".md") == 0) fmts[i] = AUDIT_MD;
+            else if (dot && strcmp(dot, ".csv") == 0) fmts[i] = AUDIT_CSV;
+            else if (dot && strcmp(dot, ".json") == 0) fmts[i] = AUDIT_JSON;
+            else die("--out: '%s' does not end with .md, .csv or .json", o.outs[i]);
+        }
+    } else if (o.format && strcmp(o.format, "csv") == 0) fmts[0] = AUDIT_CSV;
+    else if (o.format && strcmp(o.format, "json") == 0) fmts[0] = AUDIT_JSON;
     else if (o.format && strcmp(o.format, "md") != 0) die("--format: '%s' is not md, csv or json", o.format);
     /* what the user gave, option by option: a default is never guessed from a value */
     double ax0 = o.have_alpha ? o.alpha[0] : 0.15, ay0 = o.have_alpha ? o.alpha[1] : 0.5;
@@ -62,9 +76,13 @@ int cmd_audit(int argc, char **argv)
     if (o.have_matrix) snprintf(label[2], sizeof label[2], "given matrix");
     else snprintf(label[2], sizeof label[2], "skewed A (%.4g, %.4g; %.4g, %.4g, %.4g deg)", ax, ay, tx, ty, tz);
     const char *const labels[AUDIT_SHAPES] = {label[0], label[1], label[2]};
-    out_file out;
-    out_open(&out, o.out);
-    audit_write(out.f, fmt, rows, n, labels);
-    out_close(&out);
+    if (nout > 1) out_begin_set();
+    for (int i = 0; i < nout; i++) {
+        out_file out;
+        out_open(&out, names[i]);
+        audit_write(out.f, fmts[i], rows, n, labels);
+        out_close(&out);
+    }
+    if (nout > 1) out_commit_set();
     return 0;
 }

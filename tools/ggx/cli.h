@@ -32,6 +32,8 @@ typedef struct options {
     long n;
     unsigned long long seed;
     const char *out, *format, *sampler, *figure, *fresnel, *claim;
+    const char *outs[4]; /* every --out given, in order (out is the last); ggx audit writes each */
+    int nout;
     double eta;
     int have_eta, log_scale, size, size_h, dark, help, progress; /* size_h: 0 unless --size W x H */
     double from; /* --from (degrees), NAN when not given */

@@ -15,7 +15,7 @@ static int checked(const ggx_sampler_info *smp, const ggx_shape *s)
     return smp->family != GGX_FAMILY_DIRECTION && sampler_applies(smp, s);
 }
 
-/* The seeds' figures, in the seeds' order: seed 001's four, seed 004's eight; then the line plots. */
+/* The seeds' figures, in the seeds' order: engstad-stretch's four, engstad-vndf-proof's eight; then the line plots. */
 static const struct demo_figure {
     const char *file, *seed, *seed_figure;
     figure_kind kind;
@@ -156,9 +156,9 @@ int cmd_demo(int argc, char **argv)
         printf("usage: ggx demo [--out DIR] [-n N] [--size W] [--theme light|dark]\n\n"
                "Draws the seeds' figures for alpha = (0.15, 0.5) and for the same shape skewed by theta_x = 15,\n"
                "theta_y = -10 degrees into DIR (default out/), the skewed ones prefixed skewed-:\n"
-               "  seed 001 (elliptic stretch): grid-top.svg, grid-side.svg (the 10 x 10 equal-area grid mapped by\n"
+               "  engstad-stretch: grid-top.svg, grid-side.svg (the 10 x 10 equal-area grid mapped by\n"
                "    NDF sampling), ndf-top.png, ndf-side.png (the NDF pdf);\n"
-               "  seed 004 (visible normals, theta_v = 75, phi_v = P for P = 0 and 90): vndf-75-P-grid-top.svg,\n"
+               "  engstad-vndf-proof (visible normals, theta_v = 75, phi_v = P for P = 0 and 90): vndf-75-P-grid-top.svg,\n"
                "    vndf-75-P-grid-side.svg (the grid mapped by the five-step VNDF sampler), vndf-75-P-top.png,\n"
                "    vndf-75-P-side.png (the VNDF pdf), each with the grey region of normals that reflect the view\n"
                "    above the horizon;\n"

@@ -39,7 +39,7 @@ double figure_density(const figure_spec *f, ggx_vec3 m);
 /* The density's largest value and where it is (a dense search of the hemisphere refined by pattern search on the
  * function itself, not on the image): the colour scale's top and the peak the tests find in the image. */
 double figure_peak(const figure_spec *f, ggx_vec3 *where);
-/* The seed 004 grey region: 1 when the view reflected about m, 2 (m.v) m - v, lies above the horizon. Its
+/* The grey region of engstad-vndf-proof: 1 when the view reflected about m, 2 (m.v) m - v, lies above the horizon. Its
  * boundary is theta_b(phi) = atan2(cos theta_v, -sin theta_v cos(phi - phi_v)) / 2 (derived in docs/figures.md). */
 int figure_grey(ggx_vec3 v, ggx_vec3 m);
 /* The point of the grey region's boundary at azimuth phi (radians), for a view v above the horizon. */

@@ -1,27 +1,13 @@
 /* The figures: the seeds' hemisphere figures (densities and equal-area grids, from above and from the side, with
- * seed 004's grey region) and the line plots (G1, Lambda, NDF slices, furnace and albedo), drawn with cairo.
+ * engstad-vndf-proof's grey region) and the line plots (G1, Lambda, NDF slices, furnace and albedo), drawn with cairo.
  * SPDX-License-Identifier: MIT */
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
 
 #include "figure.h"
+#include "ggx/ggx_inline.h"
 #include "../../src/common/eig3.h"
-
-#ifndef GGX_PI
-#endif
-
-static ggx_vec3 v3(double x, double y, double z)
-{
-    ggx_vec3 r = {x, y, z};
-    return r;
-}
-static double dot3(ggx_vec3 a, ggx_vec3 b) { return a.x * b.x + a.y * b.y + a.z * b.z; }
-static ggx_vec3 unit3(ggx_vec3 a)
-{
-    double l = sqrt(dot3(a, a));
-    return v3(a.x / l, a.y / l, a.z / l);
-}
 
 static int is_side(figure_kind k) { return k == FIG_NDF_SIDE || k == FIG_VNDF_SIDE || k == FIG_GRID_SIDE; }
 static int is_grid(figure_kind k) { return k == FIG_GRID || k == FIG_GRID_SIDE; }
@@ -38,8 +24,8 @@ int hemi_project(const hemi_proj *p, ggx_vec3 m, double *X, double *Y)
         *X = p->cx + p->R * m.x, *Y = p->cy - p->R * m.y;
         return 1;
     }
-    *X = p->cx + p->R * dot3(m, p->right), *Y = p->cy - p->R * m.z;
-    return dot3(m, p->toward) >= -1e-9; /* the silhouette itself is visible */
+    *X = p->cx + p->R * ggx_k_dot_d(m, p->right), *Y = p->cy - p->R * m.z;
+    return ggx_k_dot_d(m, p->toward) >= -1e-9; /* the silhouette itself is visible */
 }
 
 int hemi_unproject(const hemi_proj *p, double X, double Y, ggx_vec3 *m)
@@ -47,20 +33,20 @@ int hemi_unproject(const hemi_proj *p, double X, double Y, ggx_vec3 *m)
     double a = (X - p->cx) / p->R, b = (p->cy - Y) / p->R, r2 = a * a + b * b;
     if (r2 > 1.0) return 0;
     if (!p->side) {
-        *m = v3(a, b, sqrt(1.0 - r2));
+        *m = ggx_k_v3_d(a, b, sqrt(1.0 - r2));
         return 1;
     }
     if (b < 0) return 0;
     double c = sqrt(1.0 - r2);
-    *m = v3(a * p->right.x + c * p->toward.x, a * p->right.y + c * p->toward.y, b);
+    *m = ggx_k_v3_d(a * p->right.x + c * p->toward.x, a * p->right.y + c * p->toward.y, b);
     return 1;
 }
 
 static void hemi_set_from(hemi_proj *p, double from)
 {
     p->from = from;
-    p->toward = v3(cos(from), sin(from), 0);
-    p->right = v3(-p->toward.y, p->toward.x, 0); /* n x toward */
+    p->toward = ggx_k_v3_d(cos(from), sin(from), 0);
+    p->right = ggx_k_v3_d(-p->toward.y, p->toward.x, 0); /* n x toward */
 }
 
 /* ---------------------------------------------------------------------------------------------------------------
@@ -81,7 +67,7 @@ double figure_peak(const figure_spec *f, ggx_vec3 *where)
         for (int j = 0; j <= N; j++) {
             double a = -1 + 2.0 * i / N, b = -1 + 2.0 * j / N, r2 = a * a + b * b;
             if (r2 > 1) continue;
-            double d = figure_density(f, v3(a, b, sqrt(1 - r2)));
+            double d = figure_density(f, ggx_k_v3_d(a, b, sqrt(1 - r2)));
             if (d > best) best = d, ba = a, bb = b;
         }
     for (double step = 2.0 / N; step > 1e-10; step *= 0.5) {
@@ -91,16 +77,16 @@ double figure_peak(const figure_spec *f, ggx_vec3 *where)
             for (int k = 0; k < 8; k++) {
                 double a = ba + step * dirs[k][0], b = bb + step * dirs[k][1], r2 = a * a + b * b;
                 if (r2 > 1) continue;
-                double d = figure_density(f, v3(a, b, sqrt(1 - r2)));
+                double d = figure_density(f, ggx_k_v3_d(a, b, sqrt(1 - r2)));
                 if (d > best) best = d, ba = a, bb = b, moved = 1;
             }
         }
     }
-    if (where) *where = v3(ba, bb, sqrt(fmax(0.0, 1 - ba * ba - bb * bb)));
+    if (where) *where = ggx_k_v3_d(ba, bb, sqrt(fmax(0.0, 1 - ba * ba - bb * bb)));
     return best;
 }
 
-int figure_grey(ggx_vec3 v, ggx_vec3 m) { return 2.0 * dot3(m, v) * m.z - v.z > 0; }
+int figure_grey(ggx_vec3 v, ggx_vec3 m) { return 2.0 * ggx_k_dot_d(m, v) * m.z - v.z > 0; }
 
 int figure_has_grey(const figure_spec *f)
 {
@@ -112,7 +98,7 @@ ggx_vec3 figure_grey_boundary(ggx_vec3 v, double phi)
 {
     double st = sqrt(fmax(0.0, 1 - v.z * v.z)), pv = atan2(v.y, v.x);
     double tb = 0.5 * atan2(v.z, -st * cos(phi - pv));
-    return v3(sin(tb) * cos(phi), sin(tb) * sin(phi), cos(tb));
+    return ggx_k_v3_d(sin(tb) * cos(phi), sin(tb) * sin(phi), cos(tb));
 }
 
 /* The lobe's width seen across a horizontal direction t: ||A' t||, the ellipsoid's extent along t (alpha_x along x
@@ -152,12 +138,12 @@ double figure_default_from(const figure_spec *f)
 /* Appends the great-circle arc from a to b (shorter way, end points excluded) to out. */
 static int arc_points(ggx_vec3 a, ggx_vec3 b, ggx_vec3 *out, int n, int max)
 {
-    double w = acos(fmax(-1.0, fmin(1.0, dot3(a, b))));
+    double w = acos(fmax(-1.0, fmin(1.0, ggx_k_dot_d(a, b))));
     int k = (int)(w / (2.0 * GGX_PI / 180));
     for (int i = 1; i < k && n < max; i++) {
         double t = (double)i / k, s = sin(w);
         double ca = sin((1 - t) * w) / s, cb = sin(t * w) / s;
-        out[n++] = v3(ca * a.x + cb * b.x, ca * a.y + cb * b.y, ca * a.z + cb * b.z);
+        out[n++] = ggx_k_v3_d(ca * a.x + cb * b.x, ca * a.y + cb * b.y, ca * a.z + cb * b.z);
     }
     return n;
 }
@@ -168,17 +154,17 @@ static int clip_front(const ggx_vec3 *p, int n, ggx_vec3 e, ggx_vec3 *out, int m
 {
     int start = -1;
     for (int i = 0; i < n; i++)
-        if (dot3(p[i], e) >= 0) { start = i; break; }
+        if (ggx_k_dot_d(p[i], e) >= 0) { start = i; break; }
     if (start < 0) return 0;
     int k = 0;
     ggx_vec3 exit_pt = p[start];
     for (int j = 0; j < n; j++) {
         ggx_vec3 a = p[(start + j) % n], b = p[(start + j + 1) % n];
-        double da = dot3(a, e), db = dot3(b, e);
+        double da = ggx_k_dot_d(a, e), db = ggx_k_dot_d(b, e);
         if (da >= 0 && k < max) out[k++] = a;
         if ((da >= 0) != (db >= 0)) {
             double t = da / (da - db);
-            ggx_vec3 x = unit3(v3(a.x + t * (b.x - a.x), a.y + t * (b.y - a.y), a.z + t * (b.z - a.z)));
+            ggx_vec3 x = ggx_k_normalize_d(ggx_k_v3_d(a.x + t * (b.x - a.x), a.y + t * (b.y - a.y), a.z + t * (b.z - a.z)));
             if (da >= 0) {
                 exit_pt = x;
                 if (k < max) out[k++] = x;
@@ -468,7 +454,7 @@ static int trace_edge(const figure_spec *f, double a1, double a2, ggx_vec3 ma, d
 {
     /* u = 1 itself is outside the samplers' domain; 1 - 1e-7 keeps the map away from the rounding of its singular point */
     ggx_vec3 mb = f->sampler->sample(f->s, f->view, fmin(b1, 1.0 - 1e-7), fmin(b2, 1.0 - 1e-7));
-    if (depth < 14 && dot3(ma, mb) < cos(1.0 * DEG)) {
+    if (depth < 14 && ggx_k_dot_d(ma, mb) < cos(1.0 * DEG)) {
         double c1 = 0.5 * (a1 + b1), c2 = 0.5 * (a2 + b2);
         n = trace_edge(f, a1, a2, ma, c1, c2, out, n, max, depth + 1);
         ggx_vec3 mc = n > 0 ? out[n - 1] : ma;
@@ -476,7 +462,7 @@ static int trace_edge(const figure_spec *f, double a1, double a2, ggx_vec3 ma, d
     }
     /* still a jump: the segment crosses the singular point, whose image is the arc of the great circle m.v = 0
      * between the two limits (the boundary of the visible normals) */
-    if (dot3(ma, mb) < cos(1.0 * DEG)) n = arc_points(ma, mb, out, n, max);
+    if (ggx_k_dot_d(ma, mb) < cos(1.0 * DEG)) n = arc_points(ma, mb, out, n, max);
     if (n < max) out[n++] = mb;
     return n;
 }
@@ -607,7 +593,7 @@ const double FIGURE_PALETTE[6][3] = {{0.0, 0.447, 0.698}, {0.835, 0.369, 0.0}, {
 
 static ggx_vec3 dir_deg(double theta, double phi)
 {
-    return v3(sin(theta * DEG) * cos(phi * DEG), sin(theta * DEG) * sin(phi * DEG), cos(theta * DEG));
+    return ggx_k_v3_d(sin(theta * DEG) * cos(phi * DEG), sin(theta * DEG) * sin(phi * DEG), cos(theta * DEG));
 }
 
 /* The azimuths the direction plots sample: the principal ones of an unskewed shape, the four quadrants otherwise. */
@@ -632,14 +618,14 @@ static void principal_axes(const ggx_shape *s, ggx_vec3 axes[3], double eig[3])
             for (int k = 0; k < 3; k++) B[i][j] += s->ainv_t[k][i] * s->ainv_t[k][j];
         }
     ggx_eig3(B, V);
-    for (int i = 0; i < 3; i++) eig[i] = B[i][i], axes[i] = v3(V[i][0], V[i][1], V[i][2]);
+    for (int i = 0; i < 3; i++) eig[i] = B[i][i], axes[i] = ggx_k_v3_d(V[i][0], V[i][1], V[i][2]);
 }
 
 static int line_series(const figure_spec *f, series *sr, const char **xlabel, const char **ylabel, int *logy)
 {
     double phi[4];
     int na = plot_azimuths(f->s, phi), ns = 0;
-    ggx_vec3 n = v3(0, 0, 1);
+    ggx_vec3 n = ggx_k_v3_d(0, 0, 1);
     *xlabel = "view polar angle θ (degrees)";
     *logy = 0;
     if (f->kind == FIG_G1 || f->kind == FIG_LAMBDA) {
@@ -665,18 +651,18 @@ static int line_series(const figure_spec *f, series *sr, const char **xlabel, co
         int top = 0; /* the peak: the axis of the smallest eigenvalue of B, turned to the upper side */
         for (int i = 1; i < 3; i++)
             if (eig[i] < eig[top]) top = i;
-        ggx_vec3 pk = ax[top].z < 0 ? v3(-ax[top].x, -ax[top].y, -ax[top].z) : ax[top];
+        ggx_vec3 pk = ax[top].z < 0 ? ggx_k_v3_d(-ax[top].x, -ax[top].y, -ax[top].z) : ax[top];
         for (int i = 0; i < 3; i++) {
             if (i == top) continue;
             series *s = &sr[ns++];
             s->n = 0;
             ggx_vec3 t = ax[i];
-            if (t.x + 1e-9 * t.y < 0) t = v3(-t.x, -t.y, -t.z);
+            if (t.x + 1e-9 * t.y < 0) t = ggx_k_v3_d(-t.x, -t.y, -t.z);
             double alpha = sqrt(eig[top] / eig[i]);
             snprintf(s->label, sizeof s->label, "toward φ %.4g° (α %.3g)", azimuth_deg(atan2(t.y, t.x)), alpha);
             for (int k = 0; k <= 358; k++) {
                 double g = (-89.5 + 0.5 * k) * DEG;
-                ggx_vec3 m = v3(cos(g) * pk.x + sin(g) * t.x, cos(g) * pk.y + sin(g) * t.y, cos(g) * pk.z + sin(g) * t.z);
+                ggx_vec3 m = ggx_k_v3_d(cos(g) * pk.x + sin(g) * t.x, cos(g) * pk.y + sin(g) * t.y, cos(g) * pk.z + sin(g) * t.z);
                 double d = ggx_ndf(f->s, m);
                 if (d > 0) s->x[s->n] = g / DEG, s->y[s->n++] = d;
             }

@@ -23,7 +23,7 @@ int cmd_plot(int argc, char **argv)
                "                [--log] [--theme light|dark] [--eta E] [--phi-d DEG] [--out FILE]\n\n"
                "Figures (the seeds' hemisphere figures, then line plots):\n"
                "  ndf, ndf-side      the NDF pdf D(m) (m.n), from above / from the side, with a colour bar (sr^-1)\n"
-               "  vndf, vndf-side    the visible-normal pdf for --view (default 75,0), with seed 004's grey region:\n"
+               "  vndf, vndf-side    the visible-normal pdf for --view (default 75,0), with engstad-vndf-proof's grey region:\n"
                "                     the normals that reflect the view above the horizon\n"
                "  grid, grid-side    the 10 x 10 equal-area grid of the unit square mapped onto the hemisphere by\n"
                "                     --sampler (default stretch; a VNDF sampler maps for --view and shows the region)\n"

@@ -6,22 +6,13 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "ggx/ggx_inline.h"
 #include "render.h"
 #include "surface.h"
 
 #define R_DEG (GGX_PI / 180)
 #define TILE 16
 
-/* ---- small vector helpers ---- */
-static ggx_vec3 v3(double x, double y, double z) { return (ggx_vec3){x, y, z}; }
-static double dot(ggx_vec3 a, ggx_vec3 b) { return a.x * b.x + a.y * b.y + a.z * b.z; }
-static ggx_vec3 add(ggx_vec3 a, ggx_vec3 b) { return v3(a.x + b.x, a.y + b.y, a.z + b.z); }
-static ggx_vec3 scale(ggx_vec3 a, double k) { return v3(a.x * k, a.y * k, a.z * k); }
-static ggx_vec3 cross(ggx_vec3 a, ggx_vec3 b)
-{
-    return v3(a.y * b.z - a.z * b.y, a.z * b.x - a.x * b.z, a.x * b.y - a.y * b.x);
-}
-static ggx_vec3 normalize(ggx_vec3 a) { return scale(a, 1 / sqrt(dot(a, a))); }
 
 /* ---- random numbers: a counter-based stream per (seed, pixel, sample) ---- */
 typedef struct stream {
@@ -55,10 +46,10 @@ static camera make_camera(const render_spec *r)
     double az = r->scene == RENDER_SPHERE ? -90 * R_DEG : 60 * R_DEG;
     double dist = r->scene == RENDER_SPHERE ? 4.0 : 3.2, fov = r->scene == RENDER_SPHERE ? 34 * R_DEG : 50 * R_DEG;
     camera c;
-    c.pos = v3(dist * cos(elev) * cos(az), dist * cos(elev) * sin(az), dist * sin(elev));
-    c.fwd = normalize(scale(c.pos, -1));
-    c.right = normalize(cross(c.fwd, v3(0, 0, 1)));
-    c.up = cross(c.right, c.fwd);
+    c.pos = ggx_k_v3_d(dist * cos(elev) * cos(az), dist * cos(elev) * sin(az), dist * sin(elev));
+    c.fwd = ggx_k_normalize_d(ggx_k_scale_d(c.pos, -1));
+    c.right = ggx_k_normalize_d(ggx_k_cross_d(c.fwd, ggx_k_v3_d(0, 0, 1)));
+    c.up = ggx_k_cross_d(c.right, c.fwd);
     c.tan_half = tan(fov / 2);
     return c;
 }
@@ -75,7 +66,7 @@ static ggx_vec3 camera_dir(const render_spec *r, const camera *c, double x, doub
 {
     double aspect = (double)r->width / r->height;
     double sx = (2 * x / r->width - 1) * c->tan_half * aspect, sy = (1 - 2 * y / r->height) * c->tan_half;
-    return normalize(add(c->fwd, add(scale(c->right, sx), scale(c->up, sy))));
+    return ggx_k_normalize_d(ggx_k_add_d(c->fwd, ggx_k_add_d(ggx_k_scale_d(c->right, sx), ggx_k_scale_d(c->up, sy))));
 }
 
 /* ---- the surfaces ---- */
@@ -83,20 +74,20 @@ static void frame_at(const render_spec *r, ggx_vec3 p, render_hit *h)
 {
     h->p = p;
     if (r->scene == RENDER_PLANE) {
-        h->t = v3(1, 0, 0), h->b = v3(0, 1, 0), h->n = v3(0, 0, 1);
+        h->t = ggx_k_v3_d(1, 0, 0), h->b = ggx_k_v3_d(0, 1, 0), h->n = ggx_k_v3_d(0, 0, 1);
         return;
     }
     h->n = p;
     double l = hypot(p.x, p.y);
-    h->t = l > 1e-12 ? v3(-p.y / l, p.x / l, 0) : v3(1, 0, 0); /* at the poles: any tangent */
-    if (l <= 1e-12) h->t = normalize(add(h->t, scale(h->n, -dot(h->t, h->n))));
-    h->b = cross(h->n, h->t);
+    h->t = l > 1e-12 ? ggx_k_v3_d(-p.y / l, p.x / l, 0) : ggx_k_v3_d(1, 0, 0); /* at the poles: any tangent */
+    if (l <= 1e-12) h->t = ggx_k_normalize_d(ggx_k_add_d(h->t, ggx_k_scale_d(h->n, -ggx_k_dot_d(h->t, h->n))));
+    h->b = ggx_k_cross_d(h->n, h->t);
 }
 
-static ggx_vec3 to_local(const render_hit *h, ggx_vec3 w) { return v3(dot(w, h->t), dot(w, h->b), dot(w, h->n)); }
+static ggx_vec3 to_local(const render_hit *h, ggx_vec3 w) { return ggx_k_v3_d(ggx_k_dot_d(w, h->t), ggx_k_dot_d(w, h->b), ggx_k_dot_d(w, h->n)); }
 static ggx_vec3 to_world(const render_hit *h, ggx_vec3 w)
 {
-    return add(scale(h->t, w.x), add(scale(h->b, w.y), scale(h->n, w.z)));
+    return ggx_k_add_d(ggx_k_scale_d(h->t, w.x), ggx_k_add_d(ggx_k_scale_d(h->b, w.y), ggx_k_scale_d(h->n, w.z)));
 }
 
 /* A camera ray from o along unit d: the first surface point, 1 if any. */
@@ -104,15 +95,15 @@ static int first_hit(const render_spec *r, ggx_vec3 o, ggx_vec3 d, ggx_vec3 *p)
 {
     if (r->scene == RENDER_PLANE) {
         if (!(d.z < 0) || !(o.z > 0)) return 0;
-        *p = add(o, scale(d, -o.z / d.z));
+        *p = ggx_k_add_d(o, ggx_k_scale_d(d, -o.z / d.z));
         p->z = 0;
         return 1;
     }
-    double b = dot(o, d), c = dot(o, o) - 1, disc = b * b - c;
+    double b = ggx_k_dot_d(o, d), c = ggx_k_dot_d(o, o) - 1, disc = b * b - c;
     if (disc <= 0) return 0;
     double q = sqrt(disc), t = -b - q;
     if (!(t > 0)) return 0;
-    *p = normalize(add(o, scale(d, t)));
+    *p = ggx_k_normalize_d(ggx_k_add_d(o, ggx_k_scale_d(d, t)));
     return 1;
 }
 
@@ -139,8 +130,8 @@ static double bsdf_pdf(const render_spec *r, ggx_vec3 v, ggx_vec3 w)
     const ggx_sampler_info *smp = r->sampler;
     if (smp->family == GGX_FAMILY_DIRECTION) return smp->pdf_direction(&r->shape, r->fresnel.eta, v, w);
     if (!(v.z > 0) || !(w.z > 0)) return 0;
-    ggx_vec3 m = normalize(add(v, w));
-    return smp->pdf(&r->shape, v, m) / (4 * dot(v, m));
+    ggx_vec3 m = ggx_k_normalize_d(ggx_k_add_d(v, w));
+    return smp->pdf(&r->shape, v, m) / (4 * ggx_k_dot_d(v, m));
 }
 
 /* A direction w from v: 1 with its pdf and weight f(w -> v) |w.z| / pdf, or 0. */
@@ -161,7 +152,7 @@ static int bsdf_sample(const render_spec *r, ggx_vec3 v, stream *rs, ggx_vec3 *w
         unsigned trials;
         ggx_vec3 m = smp->family == GGX_FAMILY_REJECTION ? smp->sample_reject(&r->shape, v, uniform_cb, rs, &trials)
                                                         : smp->sample(&r->shape, v, u1, u2);
-        double vm = dot(v, m);
+        double vm = ggx_k_dot_d(v, m);
         if (!(vm > 0)) return 0;
         ggx_vec3 o = ggx_reflect(v, m);
         double pm = smp->pdf(&r->shape, v, m);
@@ -180,7 +171,7 @@ static double power_heuristic(double a, double b) { return a * a / (a * a + b * 
  * surface every direction on the outer side leaves it; the plane's lower side has no far side to light it. */
 static int unoccluded(const render_spec *r, const render_hit *h, ggx_vec3 d)
 {
-    return r->scene == RENDER_PLANE ? d.z > 0 : dot(d, h->n) > 0;
+    return r->scene == RENDER_PLANE ? d.z > 0 : ggx_k_dot_d(d, h->n) > 0;
 }
 
 /* The radiance along one camera path; out[3] += it. */
@@ -200,7 +191,7 @@ static void trace(const render_spec *r, const camera *cam, double x, double y, s
     for (int depth = 0; depth < r->depth; depth++) {
         render_hit h;
         frame_at(r, p, &h);
-        ggx_vec3 v = to_local(&h, scale(d, -1));
+        ggx_vec3 v = to_local(&h, ggx_k_scale_d(d, -1));
         /* the light's sample */
         if (!env) {
             ggx_vec3 wl = r->light_dir;
@@ -238,7 +229,7 @@ static void trace(const render_spec *r, const camera *cam, double x, double y, s
             return;
         }
         /* inside the sphere: to its far side, the chord from p along wd */
-        p = normalize(add(p, scale(wd, -2 * dot(p, wd))));
+        p = ggx_k_normalize_d(ggx_k_add_d(p, ggx_k_scale_d(wd, -2 * ggx_k_dot_d(p, wd))));
         d = wd;
     }
 }
@@ -251,7 +242,7 @@ int render_primary(const render_spec *r, double x, double y, render_hit *hit)
     hit->dir = d;
     if (!first_hit(r, cam.pos, d, &p)) return 0;
     frame_at(r, p, hit);
-    hit->view_local = to_local(hit, scale(d, -1));
+    hit->view_local = to_local(hit, ggx_k_scale_d(d, -1));
     hit->dir = d;
     return 1;
 }
@@ -271,7 +262,7 @@ void render_spec_defaults(render_spec *r)
     r->seed = 1;
     r->threads = 1;
     r->jitter = 1;
-    r->light_dir = v3(0, 0, 1);
+    r->light_dir = ggx_k_v3_d(0, 0, 1);
     r->light_irradiance = 1;
 }
 
@@ -282,7 +273,7 @@ int render_prepare(render_spec *r, char *err, size_t errn)
         return surface_fail(err, errn, "an image needs a size, samples, a depth and threads of at least 1");
     if (r->light == RENDER_LIGHT_ENV && !r->env) return surface_fail(err, errn, "no environment to light with");
     if (r->light == RENDER_LIGHT_DIRECTIONAL &&
-        !(fabs(dot(r->light_dir, r->light_dir) - 1) < 1e-9 && r->light_irradiance >= 0))
+        !(fabs(ggx_k_dot_d(r->light_dir, r->light_dir) - 1) < 1e-9 && r->light_irradiance >= 0))
         return surface_fail(err, errn, "a distant light needs a unit direction and a non-negative irradiance");
     const ggx_sampler_info *bounded = ggx_sampler_get(GGX_SAMPLER_BRDF_BOUNDED);
     if (is_glass(r)) {
