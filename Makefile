@@ -63,7 +63,7 @@ bench: build
 
 # The Python package's overhead: ns per element and microseconds per call against its bare native loops.
 bench-python: build
-	@PYTHONPATH=$(BUILD)/python $(PYTHON) bench/bench_python.py
+	@PYTHONPATH=$(BUILD)/python $(PYTHON) lab/bench/bench_python.py
 
 # The small C example of the library (D, G1 and the BRDF for a skewed shape).
 example: build

@@ -1,6 +1,6 @@
 #!/bin/sh
 # The public headers as a reader finds them: every public inline kernel is declared by its full name in
-# include/ggx/ggx_inline.h (the index that tools/gen_inline_index.py derives from the kernels is current), ctags finds
+# include/ggx/ggx_inline.h (the index that lab/gen_inline_index.py derives from the kernels is current), ctags finds
 # a tag for every ggx_*_f and ggx_*_d kernel and every batch function (with the repository's .ctags.d options), and
 # no public header holds a date.
 # Usage: sh tests/header_index.sh SOURCE_DIR C_COMPILER PYTHON
@@ -11,7 +11,7 @@ PY=$3
 fail=0
 bad() { echo "FAIL: $*"; fail=1; }
 
-"$PY" tools/gen_inline_index.py --check --cc "$CC" || bad "the function index of ggx_inline.h"
+"$PY" lab/gen_inline_index.py --check --cc "$CC" || bad "the function index of ggx_inline.h"
 
 # the kernels' public names, from the index itself (its declarations are checked against the kernels above)
 names=$(sed -n '/^\/\* ---- function index/,/^\/\* ---- end of the function index/p' include/ggx/ggx_inline.h |

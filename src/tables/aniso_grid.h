@@ -1,5 +1,5 @@
 /* The grid of the shipped anisotropic albedo table (src/tables/albedo_aniso.inc), shared by its generator
- * (tools/gen_tables), its lookup (src/api/tables.c) and the per-shape tables of ggx_energy_create, whose nodes are
+ * (lab/gen_tables), its lookup (src/api/tables.c) and the per-shape tables of ggx_energy_create, whose nodes are
  * nodes of this grid. SPDX-License-Identifier: MIT
  *
  * E(v) of ggx_albedo (separable G) for the diagonal shape (alpha_x, alpha_y), v in the shape's frame.

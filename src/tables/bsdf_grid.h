@@ -1,5 +1,5 @@
 /* The grid of the shipped isotropic table of the rough dielectric's albedo R + T (src/tables/bsdf_iso.inc), shared
- * by its generator (tools/gen_tables) and its lookup (src/api/tables.c). SPDX-License-Identifier: MIT
+ * by its generator (lab/gen_tables) and its lookup (src/api/tables.c). SPDX-License-Identifier: MIT
  *
  * The table is indexed by the relative index eta_r that the light meets: eta for light from above, 1 / eta from
  * below (an isotropic ellipsoid is symmetric about the tangent plane, so light from below through eta is light from

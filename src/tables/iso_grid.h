@@ -1,5 +1,5 @@
 /* The grid of the shipped isotropic albedo tables (src/tables/albedo_iso.inc), shared by their generator
- * (tools/gen_tables) and their lookup (src/api/tables.c). SPDX-License-Identifier: MIT
+ * (lab/gen_tables) and their lookup (src/api/tables.c). SPDX-License-Identifier: MIT
  *
  * Rows: views at y = i / (ISO_NY - 1), theta = (pi / 2)(1 - y^2) (mu = sin(pi y^2 / 2): dense towards grazing, linear
  * in theta at n; the energy tables' rows, docs/design/energy.md). Columns: alpha = ISO_AMIN (ISO_AMAX / ISO_AMIN)^x,

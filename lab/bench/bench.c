@@ -2,7 +2,7 @@
  * kernel on every instruction-set path, at an n that fits in L1 and at 64 MiB of data, with 1 and 2 threads; ratios
  * within the same run; instructions per sample where perf counters are available; and the two floors of the batch
  * VNDF sampler: arithmetic (its operations at the measured peak) and memory (its bytes at the measured copy
- * bandwidth); and plain transcriptions of the same formulas (bench/reference.c) timed beside the library on the same
+ * bandwidth); and plain transcriptions of the same formulas (lab/bench/reference.c) timed beside the library on the same
  * inputs, with checks that they compute the same values. Never part of the test suite. SPDX-License-Identifier: MIT */
 #define _GNU_SOURCE
 #include <immintrin.h>
@@ -531,7 +531,7 @@ int main(int argc, char **argv)
     energy_table(&sc, &diag, &skew, ns);
 
     /* Each reference is timed right after the library function it transcribes, on the same shape and inputs. */
-    printf("\nreference transcriptions (same run; bench/reference.c), ns per call\n");
+    printf("\nreference transcriptions (same run; lab/bench/reference.c), ns per call\n");
     printf("timed alternately, 9 rounds; the ratio is the median of the per-round ratios\n");
     printf("%-32s %8s   %-28s %8s   %s\n", "reference", "ns/call", "library", "ns/call", "library/reference");
     struct {

@@ -5,7 +5,7 @@
 
 #include "ggx/ggx.h"
 
-/* The names of the transcriptions: bench/isa_v3.c compiles this file a second time for x86-64-v3 with a suffix. */
+/* The names of the transcriptions: lab/bench/isa_v3.c compiles this file a second time for x86-64-v3 with a suffix. */
 #ifndef REF_FN
 #define REF_FN(name) name
 #endif
