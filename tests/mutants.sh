@@ -13,7 +13,7 @@ trap 'rm -rf "$work"' EXIT
 survived=0
 killed=0
 # The sources, copied once (later edits of the tree do not reach a running check).
-mkdir "$work/tree" && cp -r "$root/CMakeLists.txt" "$root/cmake" "$root/include" "$root/src" "$root/lab" \
+mkdir "$work/tree" && cp -r "$root/CMakeLists.txt" "$root/.ctags.d" "$root/cmake" "$root/include" "$root/src" "$root/lab" \
     "$root/tests" "$root/tools" "$root/examples" "$work/tree/"
 # Builds the scratch tree and prints the names of the test programs that fail, or BUILD FAILED.
 build_and_test() {
