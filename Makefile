@@ -59,6 +59,7 @@ run: configure-run
 bench: build
 	@$(BUILD)/ggx_bench
 	@$(BUILD)/ggx_bench_fit
+	@$(BUILD)/ggx_bench_filter
 	@if [ -x $(BUILD)/ggx_bench_render ]; then $(BUILD)/ggx_bench_render; fi
 
 # The Python package's overhead: ns per element and microseconds per call against its bare native loops.

@@ -38,6 +38,7 @@ __all__ = [
     "sample", "pdf", "sample_inverse", "sample_ndf", "sample_vndf", "sample_brdf",
     "pdf_brdf", "sample_bsdf", "pdf_bsdf", "reflect", "half_reflect", "batch_isa", "set_batch_threads",
     "FitInfo", "Surface", "fit_normals", "fit_normal_cells", "fit_heightfield", "read_surface", "render",
+    "texel_lobe", "filter_lobes", "filter_kl",
 ]
 
 # The native module; the library's own functions are found through it in libggx, which it links.
@@ -1221,3 +1222,95 @@ def render(shape, fresnel=None, scene="sphere", light="sky", spp=64, size=(256, 
     if rc != 0:
         raise ValueError(err.value.decode(errors="replace"))
     return (img, var) if variance else img
+
+
+# --- Normal-map filtering (ggx_filter.h) ---------------------------------------------------------------------------
+
+class _Vec3(ctypes.Structure):
+    _fields_ = [("x", _d), ("y", _d), ("z", _d)]
+
+
+class _FilterOptions(ctypes.Structure):
+    _fields_ = [("max_iterations", _i), ("tolerance", _d), ("radial_nodes", _i), ("angular_nodes", _i)]
+
+
+class _FilterInfo(ctypes.Structure):
+    _fields_ = [("iterations", _i), ("converged", _i), ("log_likelihood", _d)]
+
+
+_texel_lobe = _proto("ggx_texel_lobe", _i, _vp, _Vec3, _d, _d, _d)
+_filter_lobes = _proto("ggx_filter_lobes", _i, _vp, _vp, _vp, _sz, ctypes.POINTER(_FilterOptions),
+                       ctypes.POINTER(_FilterInfo))
+_filter_kl = _proto("ggx_filter_kl", _i, _vp, _vp, _vp, _sz, ctypes.POINTER(_FilterOptions), ctypes.POINTER(_d))
+
+
+def texel_lobe(normal, alpha_x, alpha_y=None, phi=0.0):
+    """The lobe of one normal-map texel (ggx_texel_lobe): GGX of roughness (alpha_x, alpha_y; alpha_y defaults to
+    alpha_x) with its x axis at phi (radians) in the tangent plane, translated in slope space to the slope of the
+    texel's normal (any length, n.z > 0): a skewed ellipsoid where the normal is tilted."""
+    n = _array(normal, "normal").reshape(-1)
+    if n.shape != (3,):
+        raise ValueError(f"normal: expected 3 numbers, got shape {np.shape(normal)}")
+    ax = _real(alpha_x, "alpha_x")
+    ay = ax if alpha_y is None else _real(alpha_y, "alpha_y")
+    ph = _real(phi, "phi")
+    probe = ctypes.create_string_buffer(_SHAPE_SIZE)
+    v = _Vec3(float(n[0]), float(n[1]), float(n[2]))
+    _check(_texel_lobe(probe, v, ax, ay, ph))
+    t, sg = np.zeros(2), np.zeros(3)
+    _check(_shape_slopes(probe, t.ctypes.data, sg.ctypes.data))
+    return Shape.from_slopes(t, sg)
+
+
+def _lobes(lobes, weights):
+    """The lobes (a sequence of ggx.Shape) as one buffer of shapes, and the weights as a float64 array or None."""
+    shapes = list(lobes) if not isinstance(lobes, Shape) else [lobes]
+    if not shapes:
+        raise ValueError("lobes: expected at least one ggx.Shape")
+    buf = ctypes.create_string_buffer(b"".join(_shape(x)._buf.raw for x in shapes), _SHAPE_SIZE * len(shapes))
+    w = None
+    if weights is not None:
+        w = np.ascontiguousarray(_array(weights, "weights").reshape(-1))
+        if w.size != len(shapes):
+            raise ValueError(f"weights: expected {len(shapes)} weights, got {w.size}")
+    return buf, len(shapes), w
+
+
+def _filter_options(max_iterations, tolerance, nodes):
+    o = _FilterOptions(0, 0.0, 0, 0)
+    if max_iterations is not None:
+        o.max_iterations = int(max_iterations)
+    if tolerance is not None:
+        o.tolerance = _real(tolerance, "tolerance")
+    if nodes is not None:
+        if len(nodes) != 2:
+            raise ValueError(f"nodes: expected (radial, angular), got {nodes!r}")
+        o.radial_nodes, o.angular_nodes = int(nodes[0]), int(nodes[1])
+    return o
+
+
+def filter_lobes(lobes, weights=None, max_iterations=None, tolerance=None, nodes=None):
+    """(shape, info): the one ellipsoid closest to the mixture of lobes (a sequence of ggx.Shape, such as
+    texel_lobe's of a footprint's texels) with optional relative weights, the least KL divergence from it
+    (ggx_filter_lobes, by EM). nodes = (radial, angular) sets each lobe's quadrature (default 8 x 16). info is a
+    dict: iterations, converged, log_likelihood (the mixture's expected log P22 of the result)."""
+    buf, n, w = _lobes(lobes, weights)
+    o = _filter_options(max_iterations, tolerance, nodes)
+    out = ctypes.create_string_buffer(_SHAPE_SIZE)
+    info = _FilterInfo(0, 0, 0.0)
+    _check(_filter_lobes(out, buf, None if w is None else w.ctypes.data, n, ctypes.byref(o), ctypes.byref(info)))
+    t, sg = np.zeros(2), np.zeros(3)
+    _check(_shape_slopes(out, t.ctypes.data, sg.ctypes.data))
+    return Shape.from_slopes(t, sg), {"iterations": info.iterations, "converged": bool(info.converged),
+                                      "log_likelihood": info.log_likelihood}
+
+
+def filter_kl(shape, lobes, weights=None, nodes=None):
+    """KL(mixture || shape) in nats (ggx_filter_kl): how far shape is from the mixture of lobes, by each lobe's
+    quadrature (nodes as in filter_lobes)."""
+    buf, n, w = _lobes(lobes, weights)
+    o = _filter_options(None, None, nodes)
+    kl = _d(0.0)
+    _check(_filter_kl(_shape(shape)._buf, buf, None if w is None else w.ctypes.data, n, ctypes.byref(o),
+                      ctypes.byref(kl)))
+    return kl.value

@@ -111,6 +111,24 @@ int fit_inverse(const double sigma[3], double p[3]);
 /* log det Sigma without overflow, for a positive definite Sigma. */
 double fit_log_det(const double sigma[3]);
 
+/* The M step of PX-EM for the Student-t models (docs/design/fit.md) from the sums a of an E step taken about t (the
+ * FIT_PASS_ESTEP layout: W, sum w c, sum w c r (2), sum w c r r^T (3), ...; r = x~ - t, c = 1 / (1 + delta)):
+ * t' = t + sum w c r / sum w c and Sigma' = 2 sum w c (r - dt)(r - dt)^T / sum w c, with t' = t for the models
+ * without a location and Sigma' = tr(Sigma') / 2 I for the isotropic one. Shared by fit_em and ggx_filter_lobes. */
+static inline void fit_mstep(const double *a, const double t[2], ggx_fit_model model, double tn[2], double sn[3])
+{
+    double dt[2] = {0.0, 0.0};
+    tn[0] = t[0], tn[1] = t[1];
+    if (model == GGX_FIT_ELLIPSOID) {
+        dt[0] = a[2] / a[1], dt[1] = a[3] / a[1];
+        tn[0] = t[0] + dt[0], tn[1] = t[1] + dt[1];
+    }
+    sn[0] = 2.0 * (a[4] / a[1] - dt[0] * dt[0]);
+    sn[1] = 2.0 * (a[5] / a[1] - dt[0] * dt[1]);
+    sn[2] = 2.0 * (a[6] / a[1] - dt[1] * dt[1]);
+    if (model == GGX_FIT_ISOTROPIC) sn[0] = sn[2] = 0.5 * (sn[0] + sn[2]), sn[1] = 0.0;
+}
+
 /* EM for the Student-t models (ELLIPSOID, ANISOTROPIC, ISOTROPIC), from (t0, sigma0). */
 ggx_status fit_em(const fit_data *d, ggx_fit_model model, const double t0[2], const double sigma0[3], fit_result *r);
 

@@ -50,16 +50,8 @@ ggx_status fit_em(const fit_data *d, ggx_fit_model model, const double t0[2], co
             r->stopped = 1;
             break;
         }
-        /* M step: t' = t + sum w c r / sum w c; Sigma' = 2 sum w c (r - dt)(r - dt)^T / sum w c. */
-        double tn[2] = {t[0], t[1]}, sn[3], dt[2] = {0.0, 0.0};
-        if (model == GGX_FIT_ELLIPSOID) {
-            dt[0] = a[2] / a[1], dt[1] = a[3] / a[1];
-            tn[0] = t[0] + dt[0], tn[1] = t[1] + dt[1];
-        }
-        sn[0] = 2.0 * (a[4] / a[1] - dt[0] * dt[0]);
-        sn[1] = 2.0 * (a[5] / a[1] - dt[0] * dt[1]);
-        sn[2] = 2.0 * (a[6] / a[1] - dt[1] * dt[1]);
-        if (model == GGX_FIT_ISOTROPIC) sn[0] = sn[2] = 0.5 * (sn[0] + sn[2]), sn[1] = 0.0;
+        double tn[2], sn[3];
+        fit_mstep(a, t, model, tn, sn);
         int clamped = fit_clamp_sigma(sn, fit_floor(d, tn));
         double ch = fit_change(t, s, tn, sn);
         memcpy(t, tn, sizeof t);

@@ -1,0 +1,80 @@
+/*
+ * libggx filtering: the one ellipsoid closest to a mixture of ellipsoid lobes, for normal maps filtered exactly.
+ *
+ * SPDX-License-Identifier: MIT
+ *
+ * A texel of a tangent-space normal map with base roughness alpha is the lobe of a GGX surface on a tilted mean
+ * plane: in slope space (ggx.h, ggx_shape_slopes) a Student t with location t = the slope of the texel's normal and
+ * scale Sigma = alpha^2 I, which is exactly an ellipsoid NDF (a skewed one where the normal is tilted). A footprint
+ * of texels is the mixture of their lobes, weighted by their areas. ggx_filter_lobes returns the ellipsoid that
+ * maximises the mixture's expected log-likelihood, which is the one of least Kullback-Leibler divergence from it:
+ * its skew carries the footprint's mean normal, so no shading normal is left (docs/design/filter.md).
+ *
+ * Threads: every function may be called from any number of threads at once.
+ */
+#ifndef GGX_GGX_FILTER_H
+#define GGX_GGX_FILTER_H
+
+#include <stddef.h>
+
+#include "ggx/ggx.h"
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+/* The lobe of one texel: the shape whose slopes have location t = (-n.x / n.z, -n.y / n.z), the slope of the
+ * texel's normal n (any length), and scale Sigma = Rz(phi) diag(alpha_x^2, alpha_y^2) Rz(phi)^T, the base
+ * roughness with its axis x at angle phi (radians) in the tangent plane (phi = 0, alpha_x = alpha_y: isotropic).
+ * For n = +z and phi = 0 it has ggx_shape_aniso's distribution; in general P22 of the result is the GGX P22 of
+ * (alpha_x, alpha_y, phi) translated by t, within ggx_shape_from_slopes' 1e-12 + 2e-15 kappa^2 relative, kappa =
+ * max(alpha_x, alpha_y, 1) / min(alpha_x, alpha_y, 1) (tests/test_filter.c). Alphas below GGX_ALPHA_MIN are
+ * raised to it. Errors: GGX_ERR_NULL; GGX_ERR_NONFINITE (n, an
+ * alpha or phi NaN or infinite); GGX_ERR_RANGE (n.z <= 0: the normal not above the tangent plane, or n.z so
+ * small that |t| exceeds GGX_MATRIX_SCALE_MAX); GGX_ERR_ALPHA as for ggx_shape_aniso; out is unchanged on error. */
+ggx_status ggx_texel_lobe(ggx_shape *out, ggx_vec3 n, double alpha_x, double alpha_y, double phi);
+
+/* Options; a zeroed struct (or NULL) means every default. */
+typedef struct ggx_filter_options {
+    int max_iterations; /* EM iterations at most; 0: 500 */
+    double tolerance;   /* stop when an iteration moves t and Sigma by less than this in Sigma's own scale (the
+                         * largest |dt_i| / sqrt(Sigma_ii), |dSigma_ij| / sqrt(Sigma_ii Sigma_jj)); 0: 1e-10 */
+    int radial_nodes;   /* the quadrature of each lobe (below): Gauss-Legendre nodes in the radius; 0: 8 */
+    int angular_nodes;  /* and equally spaced angles, even; 0: 16 */
+} ggx_filter_options;
+
+typedef struct ggx_filter_info {
+    int iterations;        /* EM iterations made */
+    int converged;         /* 1 when the last iteration met the tolerance */
+    double log_likelihood; /* the mixture's expected log P22 of the result (slope space), by the quadrature */
+} ggx_filter_info;
+
+/* The single ellipsoid closest to the mixture of n lobes with weights weight[i] >= 0 (relative; NULL: equal):
+ * the maximiser of sum_i w_i E_i[log P22_out(x~)], E_i the expectation over lobe i's slopes, equivalently the least
+ * KL divergence from the mixture (ggx_filter_kl). By EM for the Student t (PX-EM, the fits' M-step; ggx_fit.h)
+ * with each lobe's expectations by a product rule in its own standardised slopes: radial_nodes Gauss-Legendre
+ * nodes in s, where u = 1 - (1 - s)^2 is the lobe's radial probability, times angular_nodes equal angles. The rule
+ * integrates the E-step of a lobe at its own parameters exactly, so n equal lobes (a constant normal map) give that
+ * lobe back to rounding: D within ggx_shape_from_slopes' 1e-12 + 2e-15 kappa^2 relative (tests/test_filter.c); its error for distinct lobes, measured against
+ * 64 x 128 nodes, is in docs/design/filter.md. Each iteration never lowers the objective as the rule computes it.
+ * Starts from t = the weighted mean of the lobes' t_i, Sigma = the weighted mean of Sigma_i + (t_i - t)(t_i - t)^T.
+ * Sigma's eigenvalues are held at GGX_ALPHA_MIN^2 or above. info may be NULL. Errors: GGX_ERR_NULL (out or lobes
+ * NULL); GGX_ERR_RANGE (n = 0, a weight negative or NaN, all weights 0, or a bad option: iterations or nodes below
+ * 0, more than 1024 radial or 4096 angular nodes, an odd angular count, a tolerance NaN or below 0);
+ * GGX_ERR_MEMORY; GGX_ERR_ALPHA, GGX_ERR_SINGULAR or GGX_ERR_RANGE from ggx_shape_from_slopes when the result is
+ * not a shape. out is unchanged on error. */
+ggx_status ggx_filter_lobes(ggx_shape *out, const ggx_shape *lobes, const double *weight, size_t n,
+                            const ggx_filter_options *opt, ggx_filter_info *info);
+
+/* KL(mixture || s) = sum_i w_i E_i[log(mix(x~) / P22_s(x~))] in slope space, >= 0, by the rule of
+ * ggx_filter_lobes (opt's nodes) for each lobe; mix is the weighted mixture of the lobes' P22 (weights as there).
+ * O(n^2) in the lobes. Errors: GGX_ERR_NULL (s, lobes or kl NULL), GGX_ERR_RANGE and GGX_ERR_MEMORY as
+ * ggx_filter_lobes. */
+ggx_status ggx_filter_kl(const ggx_shape *s, const ggx_shape *lobes, const double *weight, size_t n,
+                         const ggx_filter_options *opt, double *kl);
+
+#ifdef __cplusplus
+}
+#endif
+
+#endif

@@ -1,0 +1,257 @@
+/* The ellipsoid closest to a mixture of lobes (ggx_filter.h): EM for the Student t over each lobe's quadrature
+ * nodes, the texel's lobe, and the KL divergence of a shape from the mixture (docs/design/filter.md).
+ * SPDX-License-Identifier: MIT */
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "../common/gauss.h"
+#include "../fit/fit.h"
+#include "ggx/ggx_filter.h"
+
+enum { FILTER_MAX_RADIAL = 1024, FILTER_MAX_ANGULAR = 4096 };
+
+typedef struct filter_settings {
+    int max_iterations, radial, angular;
+    double tolerance;
+} filter_settings;
+
+static ggx_status settings(const ggx_filter_options *opt, filter_settings *f)
+{
+    ggx_filter_options o;
+    if (opt) o = *opt;
+    else memset(&o, 0, sizeof o);
+    if (o.max_iterations < 0 || o.radial_nodes < 0 || o.angular_nodes < 0 || !(o.tolerance >= 0.0) ||
+        o.radial_nodes > FILTER_MAX_RADIAL || o.angular_nodes > FILTER_MAX_ANGULAR || o.angular_nodes % 2 != 0)
+        return GGX_ERR_RANGE;
+    f->max_iterations = o.max_iterations ? o.max_iterations : 500;
+    f->tolerance = o.tolerance > 0.0 ? o.tolerance : 1e-10;
+    f->radial = o.radial_nodes ? o.radial_nodes : 8;
+    f->angular = o.angular_nodes ? o.angular_nodes : 16;
+    return GGX_OK;
+}
+
+/* The standardised nodes z_k of a lobe's rule and their weights q_k (summing to 1): s_j Gauss-Legendre on (0, 1),
+ * the radial probability u = 1 - (1 - s)^2 (du = 2 (1 - s) ds), the radius |z|^2 = u / (1 - u) (P22 of alpha = 1
+ * puts probability u inside it), the angles 2 pi (k + 1/2) / M. */
+typedef struct filter_rule {
+    int n;
+    double *zx, *zy, *q;
+} filter_rule;
+
+static ggx_status rule_make(const filter_settings *f, filter_rule *r)
+{
+    int nr = f->radial, na = f->angular;
+    r->n = nr * na;
+    r->zx = malloc(3 * (size_t)r->n * sizeof *r->zx);
+    double *xs = malloc(2 * (size_t)nr * sizeof *xs);
+    if (!r->zx || !xs) {
+        free(r->zx), free(xs);
+        return GGX_ERR_MEMORY;
+    }
+    r->zy = r->zx + r->n, r->q = r->zy + r->n;
+    double *ws = xs + nr;
+    gq_nodes(nr, xs, ws);
+    for (int j = 0; j < nr; j++) {
+        double s = 0.5 * (1.0 + xs[j]), om = 1.0 - s; /* 1 - s, exact for s >= 1/2 and the rule's s below it */
+        double rho = sqrt(s * (2.0 - s)) / om;
+        double wq = 0.5 * ws[j] * 2.0 * om / na;
+        for (int k = 0; k < na; k++) {
+            double c, sn;
+            ggx_k_sincos_turn_d((k + 0.5) / na, &c, &sn);
+            r->zx[j * na + k] = rho * c, r->zy[j * na + k] = rho * sn, r->q[j * na + k] = wq;
+        }
+    }
+    free(xs);
+    return GGX_OK;
+}
+
+/* A lobe in slope space: its location, scale, the Cholesky factor L (Sigma = L L^T: l00, l10, l11) and
+ * log(pi sqrt(det Sigma)) + log of its weight share, for its density. */
+typedef struct filter_lobe {
+    double t[2], sigma[3], l[3], p[3], log_norm, w;
+} filter_lobe;
+
+static ggx_status lobes_make(const ggx_shape *lobes, const double *weight, size_t n, filter_lobe **out, double *w_sum)
+{
+    if (n == 0) return GGX_ERR_RANGE;
+    double W = 0.0;
+    for (size_t i = 0; i < n; i++) {
+        double w = weight ? weight[i] : 1.0;
+        if (!(w >= 0.0) || !isfinite(w)) return GGX_ERR_RANGE;
+        W += w;
+    }
+    if (!(W > 0.0) || !isfinite(W)) return GGX_ERR_RANGE;
+    filter_lobe *L = malloc(n * sizeof *L);
+    if (!L) return GGX_ERR_MEMORY;
+    for (size_t i = 0; i < n; i++) {
+        filter_lobe *b = &L[i];
+        ggx_shape_slopes(&lobes[i], b->t, b->sigma);
+        b->l[0] = sqrt(b->sigma[0]);
+        b->l[1] = b->sigma[1] / b->l[0];
+        b->l[2] = sqrt(fmax(b->sigma[2] - b->l[1] * b->l[1], 0.0));
+        fit_inverse(b->sigma, b->p);
+        b->w = (weight ? weight[i] : 1.0) / W;
+        b->log_norm = log(GGX_PI) + 0.5 * fit_log_det(b->sigma);
+    }
+    *out = L;
+    *w_sum = W;
+    return GGX_OK;
+}
+
+/* The node k of lobe b, about c: r = t_b - c + L_b z_k. */
+static inline void node(const filter_lobe *b, const filter_rule *r, int k, const double c[2], double *rx, double *ry)
+{
+    *rx = b->t[0] - c[0] + b->l[0] * r->zx[k];
+    *ry = b->t[1] - c[1] + b->l[1] * r->zx[k] + b->l[2] * r->zy[k];
+}
+
+/* The E step at (t, Sigma^-1 = p) over every lobe's nodes, in the layout of fit_mstep (W = 1); the sum of
+ * w log(1 + delta), for the log-likelihood, only when want_ll is set. */
+static void estep(const filter_lobe *L, size_t n, const filter_rule *r, const double t[2], const double p[3],
+                  int want_ll, double a[FIT_ESTEP_SUMS])
+{
+    memset(a, 0, FIT_ESTEP_SUMS * sizeof *a);
+    for (size_t i = 0; i < n; i++) {
+        if (L[i].w == 0.0) continue;
+        double s[FIT_ESTEP_SUMS] = {0};
+        for (int k = 0; k < r->n; k++) {
+            double x, y;
+            node(&L[i], r, k, t, &x, &y);
+            double d = p[0] * x * x + 2.0 * p[1] * x * y + p[2] * y * y, q = r->q[k], c = q / (1.0 + d);
+            s[1] += c, s[2] += c * x, s[3] += c * y;
+            s[4] += c * x * x, s[5] += c * x * y, s[6] += c * y * y;
+            if (want_ll) s[7] += q * log1p(d);
+        }
+        a[0] += L[i].w;
+        for (int j = 1; j < FIT_ESTEP_SUMS; j++) a[j] += L[i].w * s[j];
+    }
+}
+
+static double log_likelihood(const double sigma[3], const double a[FIT_ESTEP_SUMS])
+{
+    return -log(GGX_PI) - 0.5 * fit_log_det(sigma) - 2.0 * a[7] / a[0];
+}
+
+GGX_API ggx_status ggx_filter_lobes(ggx_shape *out, const ggx_shape *lobes, const double *weight, size_t n,
+                            const ggx_filter_options *opt, ggx_filter_info *info)
+{
+    if (!out || !lobes) return GGX_ERR_NULL;
+    filter_settings f;
+    ggx_status st = settings(opt, &f);
+    if (st != GGX_OK) return st;
+    filter_lobe *L;
+    double W;
+    if ((st = lobes_make(lobes, weight, n, &L, &W)) != GGX_OK) return st;
+    filter_rule r;
+    if ((st = rule_make(&f, &r)) != GGX_OK) {
+        free(L);
+        return st;
+    }
+    /* the start: the lobes' mean location and their mean scale plus the locations' spread */
+    double t[2] = {0.0, 0.0}, s[3] = {0.0, 0.0, 0.0};
+    for (size_t i = 0; i < n; i++) t[0] += L[i].w * L[i].t[0], t[1] += L[i].w * L[i].t[1];
+    for (size_t i = 0; i < n; i++) {
+        double dx = L[i].t[0] - t[0], dy = L[i].t[1] - t[1];
+        s[0] += L[i].w * (L[i].sigma[0] + dx * dx);
+        s[1] += L[i].w * (L[i].sigma[1] + dx * dy);
+        s[2] += L[i].w * (L[i].sigma[2] + dy * dy);
+    }
+    const double floor = GGX_ALPHA_MIN * GGX_ALPHA_MIN;
+    fit_clamp_sigma(s, floor);
+    int it = 0, converged = 0;
+    double a[FIT_ESTEP_SUMS], p[3];
+    while (it < f.max_iterations) {
+        fit_inverse(s, p);
+        estep(L, n, &r, t, p, 0, a);
+        double tn[2], sn[3];
+        fit_mstep(a, t, GGX_FIT_ELLIPSOID, tn, sn);
+        fit_clamp_sigma(sn, floor);
+        double ch = fit_change(t, s, tn, sn);
+        memcpy(t, tn, sizeof t), memcpy(s, sn, sizeof s);
+        it++;
+        if (!(ch > f.tolerance)) {
+            converged = ch <= f.tolerance;
+            break;
+        }
+    }
+    fit_inverse(s, p);
+    estep(L, n, &r, t, p, 1, a);
+    double ll = log_likelihood(s, a);
+    free(L);
+    free(r.zx);
+    ggx_shape res;
+    st = ggx_shape_from_slopes(&res, t[0], t[1], s[0], s[1], s[2]);
+    if (st != GGX_OK) return st;
+    *out = res;
+    if (info) info->iterations = it, info->converged = converged, info->log_likelihood = ll;
+    return GGX_OK;
+}
+
+GGX_API ggx_status ggx_filter_kl(const ggx_shape *sh, const ggx_shape *lobes, const double *weight, size_t n,
+                         const ggx_filter_options *opt, double *kl)
+{
+    if (!sh || !lobes || !kl) return GGX_ERR_NULL;
+    filter_settings f;
+    ggx_status st = settings(opt, &f);
+    if (st != GGX_OK) return st;
+    filter_lobe *L;
+    double W;
+    if ((st = lobes_make(lobes, weight, n, &L, &W)) != GGX_OK) return st;
+    filter_rule r;
+    if ((st = rule_make(&f, &r)) != GGX_OK) {
+        free(L);
+        return st;
+    }
+    double ts[2], ss[3], ps[3];
+    ggx_shape_slopes(sh, ts, ss);
+    fit_inverse(ss, ps);
+    const double log_norm_s = log(GGX_PI) + 0.5 * fit_log_det(ss), zero[2] = {0.0, 0.0};
+    double total = 0.0;
+    for (size_t i = 0; i < n; i++) {
+        if (L[i].w == 0.0) continue;
+        double sum = 0.0;
+        for (int k = 0; k < r.n; k++) {
+            double x, y;
+            node(&L[i], &r, k, zero, &x, &y); /* the slope itself */
+            /* log mix(x) by log-sum-exp over the lobes, about the largest term */
+            double top = -HUGE_VAL, acc = 0.0;
+            for (size_t j = 0; j < n; j++) {
+                if (L[j].w == 0.0) continue;
+                double dx = x - L[j].t[0], dy = y - L[j].t[1];
+                double d = L[j].p[0] * dx * dx + 2.0 * L[j].p[1] * dx * dy + L[j].p[2] * dy * dy;
+                double lj = log(L[j].w) - L[j].log_norm - 2.0 * log1p(d);
+                if (lj > top) acc = acc * exp(top - lj) + 1.0, top = lj;
+                else acc += exp(lj - top);
+            }
+            double dx = x - ts[0], dy = y - ts[1];
+            double d = ps[0] * dx * dx + 2.0 * ps[1] * dx * dy + ps[2] * dy * dy;
+            sum += r.q[k] * (top + log(acc) + log_norm_s + 2.0 * log1p(d));
+        }
+        total += L[i].w * sum;
+    }
+    free(L);
+    free(r.zx);
+    *kl = total;
+    return GGX_OK;
+}
+
+GGX_API ggx_status ggx_texel_lobe(ggx_shape *out, ggx_vec3 nrm, double alpha_x, double alpha_y, double phi)
+{
+    if (!out) return GGX_ERR_NULL;
+    if (!isfinite(nrm.x) || !isfinite(nrm.y) || !isfinite(nrm.z) || !isfinite(alpha_x) || !isfinite(alpha_y) ||
+        !isfinite(phi))
+        return GGX_ERR_NONFINITE;
+    if (!(nrm.z > 0.0)) return GGX_ERR_RANGE;
+    if (!(alpha_x > 0.0 && alpha_y > 0.0 && alpha_x <= GGX_ALPHA_MAX && alpha_y <= GGX_ALPHA_MAX)) return GGX_ERR_ALPHA;
+    double tx = -nrm.x / nrm.z, ty = -nrm.y / nrm.z;
+    if (!(fabs(tx) <= GGX_MATRIX_SCALE_MAX && fabs(ty) <= GGX_MATRIX_SCALE_MAX)) return GGX_ERR_RANGE;
+    double ax = fmax(alpha_x, GGX_ALPHA_MIN), ay = fmax(alpha_y, GGX_ALPHA_MIN), c = cos(phi), s = sin(phi);
+    double lx = ax * ax, ly = ay * ay;
+    ggx_shape res;
+    ggx_status st = ggx_shape_from_slopes(&res, tx, ty, lx * c * c + ly * s * s, (lx - ly) * c * s,
+                                          lx * s * s + ly * c * c);
+    if (st != GGX_OK) return st;
+    *out = res;
+    return GGX_OK;
+}

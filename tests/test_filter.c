@@ -1,0 +1,429 @@
+/* Normal-map filtering (ggx_filter.h): the texel's lobe, the filter of a constant map, EM's monotone objective, the
+ * optimum against perturbations and the engines' baselines, the rule's accuracy, weights, bad input and threads.
+ * SPDX-License-Identifier: MIT */
+#include <math.h>
+#include <pthread.h>
+#include <stdio.h>
+#include <string.h>
+
+#include "ggx/ggx_filter.h"
+#include "testlib.h"
+
+static ggx_vec3 random_normal(rng *r, double max_tilt)
+{
+    double th = rng_range(r, 0.0, max_tilt), ph = rng_range(r, 0.0, 2.0 * GGX_PI);
+    return t_dir(th, ph);
+}
+
+static void lobe_ok(ggx_shape *s, ggx_vec3 n, double ax, double ay, double phi)
+{
+    ggx_status st = ggx_texel_lobe(s, n, ax, ay, phi);
+    CHECK(st == GGX_OK, "ggx_texel_lobe(%g %g %g, %g, %g, %g): %s", n.x, n.y, n.z, ax, ay, phi, ggx_status_str(st));
+}
+
+/* P22 of the GGX of (ax, ay) with its x axis at phi, translated by t: written out. */
+static double p22_translated(const double t[2], double ax, double ay, double phi, double x, double y)
+{
+    double dx = x - t[0], dy = y - t[1], c = cos(phi), s = sin(phi);
+    double u = (c * dx + s * dy) / ax, v = (-s * dx + c * dy) / ay;
+    double q = 1.0 + u * u + v * v;
+    return 1.0 / (GGX_PI * ax * ay * q * q);
+}
+
+/* The texel's lobe is GGX translated to the slope of its normal: P22 against the written-out form at random slopes
+ * near and far from the lobe; the normal's length does not matter; n = +z with phi = 0 is ggx_shape_aniso. */
+static void texel_lobe_form(void **state)
+{
+    (void)state;
+    rng r = {11};
+    double worst = 0.0;
+    for (int i = 0; i < 2000; i++) {
+        ggx_vec3 n = random_normal(&r, 1.4);
+        double ax = exp(rng_range(&r, log(1e-3), log(2.0))), ay = exp(rng_range(&r, log(1e-3), log(2.0)));
+        double phi = rng_range(&r, -GGX_PI, GGX_PI), t[2] = {-n.x / n.z, -n.y / n.z};
+        ggx_shape s, s2;
+        lobe_ok(&s, n, ax, ay, phi);
+        lobe_ok(&s2, t_scale(n, i % 2 ? 1e-3 : 1e3), ax, ay, phi);
+        for (int k = 0; k < 8; k++) {
+            double sc = k < 4 ? fmax(ax, ay) : 10.0 * fmax(ax, ay);
+            double x = t[0] + sc * rng_range(&r, -3, 3), y = t[1] + sc * rng_range(&r, -3, 3);
+            /* ggx_shape_from_slopes' bound, kappa = max(ax, ay, 1) / min(ax, ay, 1) */
+            double kappa = fmax(fmax(ax, ay), 1.0) / fmin(fmin(ax, ay), 1.0), tol = 1e-12 + 2e-15 * kappa * kappa;
+            double want = p22_translated(t, ax, ay, phi, x, y), got = ggx_p22(&s, x, y);
+            worst = fmax(worst, fabs(got - want) / want / tol);
+            CHECK_CLOSE(got, want, tol, 0, "lobe (%g %g %g) alphas %g %g phi %g at (%g, %g)", n.x, n.y, n.z, ax, ay,
+                        phi, x, y);
+            CHECK_CLOSE(ggx_p22(&s2, x, y), got, tol, 0, "the normal's length changed the lobe");
+        }
+    }
+    printf("texel lobes: P22 within %.2g of the bound 1e-12 + 2e-15 kappa^2 of GGX translated\n", worst);
+    ggx_shape a, b;
+    lobe_ok(&a, t_vec(0, 0, 1), 0.2, 0.6, 0.0);
+    CHECK(ggx_shape_aniso(&b, 0.2, 0.6) == GGX_OK, "aniso");
+    for (int k = 0; k < 64; k++) {
+        ggx_vec3 m = random_normal(&r, 1.5);
+        CHECK_CLOSE(ggx_ndf(&a, m), ggx_ndf(&b, m), 1e-13, 0, "n = +z, phi = 0 is not ggx_shape_aniso");
+    }
+}
+
+static void texel_lobe_errors(void **state)
+{
+    (void)state;
+    ggx_shape s, keep;
+    lobe_ok(&keep, t_vec(0.1, 0.2, 1), 0.3, 0.3, 0);
+    s = keep;
+    const ggx_vec3 up = {0, 0, 1};
+    CHECK(ggx_texel_lobe(NULL, up, 0.3, 0.3, 0) == GGX_ERR_NULL, "NULL out");
+    CHECK(ggx_texel_lobe(&s, t_vec(NAN, 0, 1), 0.3, 0.3, 0) == GGX_ERR_NONFINITE, "NaN normal");
+    CHECK(ggx_texel_lobe(&s, t_vec(0, 0, INFINITY), 0.3, 0.3, 0) == GGX_ERR_NONFINITE, "infinite normal");
+    CHECK(ggx_texel_lobe(&s, up, NAN, 0.3, 0) == GGX_ERR_NONFINITE, "NaN alpha");
+    CHECK(ggx_texel_lobe(&s, up, 0.3, 0.3, INFINITY) == GGX_ERR_NONFINITE, "infinite phi");
+    CHECK(ggx_texel_lobe(&s, t_vec(0, 0, 0), 0.3, 0.3, 0) == GGX_ERR_RANGE, "zero normal");
+    CHECK(ggx_texel_lobe(&s, t_vec(1, 0, 0), 0.3, 0.3, 0) == GGX_ERR_RANGE, "normal in the tangent plane");
+    CHECK(ggx_texel_lobe(&s, t_vec(0, 0.3, -1), 0.3, 0.3, 0) == GGX_ERR_RANGE, "normal below");
+    CHECK(ggx_texel_lobe(&s, t_vec(1, 0, 1e-300), 0.3, 0.3, 0) == GGX_ERR_RANGE, "slope beyond the matrix scale");
+    CHECK(ggx_texel_lobe(&s, up, 0.0, 0.3, 0) == GGX_ERR_ALPHA, "alpha 0");
+    CHECK(ggx_texel_lobe(&s, up, 0.3, -1, 0) == GGX_ERR_ALPHA, "alpha < 0");
+    CHECK(ggx_texel_lobe(&s, up, 0.3, 2 * GGX_ALPHA_MAX, 0) == GGX_ERR_ALPHA, "alpha above the maximum");
+    CHECK(memcmp(&s, &keep, sizeof s) == 0, "out changed on error");
+    /* alphas below the minimum are raised to it */
+    ggx_shape lo, mn;
+    lobe_ok(&lo, up, 1e-9, 1e-9, 0);
+    lobe_ok(&mn, up, GGX_ALPHA_MIN, GGX_ALPHA_MIN, 0);
+    CHECK_CLOSE(ggx_p22(&lo, 1e-5, 0), ggx_p22(&mn, 1e-5, 0), 1e-12, 0, "alpha 1e-9 is not raised to GGX_ALPHA_MIN");
+}
+
+static double ndf_rel_diff(const ggx_shape *a, const ggx_shape *b, rng *r)
+{
+    double worst = 0.0;
+    for (int k = 0; k < 64; k++) {
+        ggx_vec3 m = k % 2 ? ggx_sample_ndf(b, rng_uniform(r), rng_uniform(r)) : random_normal(r, 1.5);
+        double da = ggx_ndf(a, m), db = ggx_ndf(b, m);
+        if (db > 0) worst = fmax(worst, fabs(da - db) / db);
+    }
+    return worst;
+}
+
+/* A constant map (n equal lobes, any weights) is filtered exactly: the rule integrates a lobe's E step at the lobe
+ * itself exactly, so the lobe is EM's fixed point and its start; D equal to 1e-12, KL 0 to rounding, for every rule. */
+static void constant_map(void **state)
+{
+    (void)state;
+    rng r = {12};
+    const int rules[][2] = {{2, 4}, {8, 16}, {32, 64}};
+    double worst = 0.0;
+    for (int c = 0; c < 24; c++) {
+        ggx_vec3 n = random_normal(&r, c < 12 ? 0.8 : 1.4);
+        double ax = exp(rng_range(&r, log(1e-3), log(2.0))), ay = c % 3 ? ax : exp(rng_range(&r, log(1e-3), log(2.0)));
+        ggx_shape lobe[16];
+        double w[16];
+        lobe_ok(&lobe[0], n, ax, ay, rng_range(&r, 0, GGX_PI));
+        int nl = c % 2 ? 16 : 1;
+        for (int i = 0; i < nl; i++) lobe[i] = lobe[0], w[i] = rng_range(&r, 0.1, 3.0);
+        for (int k = 0; k < 3; k++) {
+            ggx_filter_options o = {0};
+            o.radial_nodes = rules[k][0], o.angular_nodes = rules[k][1];
+            ggx_shape f;
+            ggx_filter_info info;
+            CHECK(ggx_filter_lobes(&f, lobe, w, (size_t)nl, &o, &info) == GGX_OK, "filter");
+            /* ggx_shape_from_slopes' bound: 1e-12 + 2e-15 kappa^2, kappa = max(ax, ay, 1) / min(ax, ay, 1) */
+            double kappa = fmax(fmax(ax, ay), 1.0) / fmin(fmin(ax, ay), 1.0);
+            double d = ndf_rel_diff(&f, &lobe[0], &r) / (1e-12 + 2e-15 * kappa * kappa);
+            worst = fmax(worst, d);
+            CHECK(d <= 1.0, "constant map (%g %g %g), alphas %g %g, %d lobes, rule %dx%d: D off by %.3g of the bound", n.x, n.y,
+                  n.z, ax, ay, nl, rules[k][0], rules[k][1], d);
+            CHECK(info.converged && info.iterations <= 3, "%d iterations", info.iterations);
+            double kl;
+            CHECK(ggx_filter_kl(&f, lobe, w, (size_t)nl, &o, &kl) == GGX_OK, "kl");
+            /* a sum of log-density differences, each within D's bound */
+            CHECK(fabs(kl) <= 1e-12 + 2e-15 * kappa * kappa, "KL of the exact filter %.3g", kl);
+        }
+    }
+    printf("constant maps: D of the filtered lobe within %.2g of the bound 1e-12 + 2e-15 kappa^2\n", worst);
+}
+
+/* Footprints: a two-tilt checkerboard (slopes +-tilt in x) and random bump maps (normals of a sum of random waves,
+ * 4 to 64 texels). */
+typedef struct footprint {
+    const char *name;
+    int n;
+    ggx_shape lobe[64];
+    ggx_vec3 normal[64];
+    double w[64], alpha;
+} footprint;
+
+static void checkerboard(footprint *f, double tilt, double alpha)
+{
+    f->name = tilt < 0.5 ? "checker 0.3" : "checker 1", f->n = 2, f->alpha = alpha;
+    f->normal[0] = t_normalize(t_vec(tilt, 0, 1)), f->normal[1] = t_normalize(t_vec(-tilt, 0, 1));
+    for (int i = 0; i < 2; i++) lobe_ok(&f->lobe[i], f->normal[i], alpha, alpha, 0), f->w[i] = 1.0;
+}
+
+static void bumps(footprint *f, rng *r, int side, double amplitude, double alpha)
+{
+    f->name = "bumps", f->n = side * side, f->alpha = alpha;
+    double kx[3], ky[3], ph[3];
+    for (int j = 0; j < 3; j++)
+        kx[j] = rng_range(r, -2, 2), ky[j] = rng_range(r, -2, 2), ph[j] = rng_range(r, 0, 2 * GGX_PI);
+    for (int i = 0; i < f->n; i++) {
+        double x = i % side, y = i / side, gx = 0, gy = 0;
+        for (int j = 0; j < 3; j++) {
+            double c = amplitude * cos(kx[j] * x + ky[j] * y + ph[j]);
+            gx += c * kx[j], gy += c * ky[j];
+        }
+        f->normal[i] = t_normalize(t_vec(-gx, -gy, 1));
+        lobe_ok(&f->lobe[i], f->normal[i], alpha, alpha, 0);
+        f->w[i] = 1.0;
+    }
+}
+
+/* The baselines, as shapes: isotropic lobes about the renormalised mean normal n / |n| of the texels' unit normals,
+ * with alpha^2 unchanged (no filtering), Toksvig's (through the Blinn-Phong exponent s = 2 / alpha^2 - 2 scaled by
+ * |n| / (|n| + s (1 - |n|))), or widened by twice the variance of the vMF whose mean length is |n| (kappa =
+ * (3 |n| - |n|^3) / (1 - |n|^2), variance 1 / (2 kappa)) as engines ship Tokuyoshi and Kaplanyan's filter, alpha^2
+ * at most 1. */
+enum { BASE_NONE, BASE_TOKSVIG, BASE_VARIANCE, BASELINES };
+static const char *const BASE_NAMES[BASELINES] = {"no filtering", "Toksvig", "variance widening"};
+static void baseline(const footprint *f, int kind, ggx_shape *s)
+{
+    ggx_vec3 m = {0, 0, 0};
+    double W = 0;
+    for (int i = 0; i < f->n; i++) m = t_add(m, t_scale(f->normal[i], f->w[i])), W += f->w[i];
+    m = t_scale(m, 1.0 / W);
+    double len = sqrt(t_dot(m, m)), a2 = f->alpha * f->alpha;
+    if (kind == BASE_TOKSVIG) {
+        double sp = 2.0 / a2 - 2.0, ft = len / (len + sp * (1.0 - len));
+        a2 = 2.0 / (ft * sp + 2.0);
+    } else if (kind == BASE_VARIANCE && len < 1.0) {
+        double kappa = (3.0 * len - len * len * len) / (1.0 - len * len);
+        a2 = fmin(1.0, a2 + 2.0 * (0.5 / kappa));
+    }
+    lobe_ok(s, m, sqrt(a2), sqrt(a2), 0);
+}
+
+static double kl_of(const ggx_shape *s, const footprint *f)
+{
+    double kl;
+    ggx_filter_options o = {0};
+    o.radial_nodes = 32, o.angular_nodes = 64;
+    CHECK(ggx_filter_kl(s, f->lobe, f->w, (size_t)f->n, &o, &kl) == GGX_OK, "kl");
+    return kl;
+}
+
+static void footprints(footprint *fs, int *count)
+{
+    rng r = {13};
+    int n = 0;
+    const double alphas[] = {0.05, 0.2, 0.5};
+    for (int a = 0; a < 3; a++) checkerboard(&fs[n++], 0.3, alphas[a]);
+    for (int a = 0; a < 3; a++) checkerboard(&fs[n++], 1.0, alphas[a]);
+    for (int side = 2; side <= 8; side *= 2)
+        for (int a = 0; a < 3; a++) bumps(&fs[n++], &r, side, 0.15, alphas[a]);
+    *count = n;
+}
+enum { MAX_FOOTPRINTS = 16 };
+
+/* EM never lowers the objective: the log-likelihood after k iterations, k = 1 to 40 (each run from the same start,
+ * so run k ends at iterate k), never falls by more than the rounding of its sums. */
+static void em_monotone(void **state)
+{
+    (void)state;
+    footprint fs[MAX_FOOTPRINTS];
+    int nf;
+    footprints(fs, &nf);
+    for (int i = 0; i < nf; i++) {
+        double last = -HUGE_VAL;
+        for (int k = 1; k <= 40; k++) {
+            ggx_filter_options o = {0};
+            o.max_iterations = k;
+            ggx_shape s;
+            ggx_filter_info info;
+            CHECK(ggx_filter_lobes(&s, fs[i].lobe, fs[i].w, (size_t)fs[i].n, &o, &info) == GGX_OK, "filter");
+            CHECK(info.log_likelihood >= last - 1e-13 * fabs(last), "%s %d, alpha %g: iteration %d lowered log L from "
+                  "%.17g to %.17g", fs[i].name, fs[i].n, fs[i].alpha, k, last, info.log_likelihood);
+            last = info.log_likelihood;
+            if (info.iterations < k) break; /* converged before k */
+        }
+    }
+}
+
+/* The filter is the best ellipsoid: its KL from the mixture is below that of every shape 1e-3 away in any of the
+ * five parameters (a local maximum of the objective: a wrong M step or sign moves it) and below every baseline's,
+ * which are members of the family. The margins are printed. */
+static void optimum_and_baselines(void **state)
+{
+    (void)state;
+    footprint fs[MAX_FOOTPRINTS];
+    int nf;
+    footprints(fs, &nf);
+    ggx_filter_options o = {0};
+    o.radial_nodes = 32, o.angular_nodes = 64;
+    for (int i = 0; i < nf; i++) {
+        const footprint *f = &fs[i];
+        ggx_shape s;
+        ggx_filter_info info;
+        CHECK(ggx_filter_lobes(&s, f->lobe, f->w, (size_t)f->n, &o, &info) == GGX_OK && info.converged, "filter");
+        double ours = kl_of(&s, f), t[2], sg[3];
+        ggx_shape_slopes(&s, t, sg);
+        for (int p = 0; p < 5; p++)
+            for (int sign = -1; sign <= 1; sign += 2) {
+                double tp[2] = {t[0], t[1]}, sp[3] = {sg[0], sg[1], sg[2]}, h = 1e-3 * sign;
+                if (p < 2) tp[p] += h * sqrt(sg[p == 0 ? 0 : 2]);
+                else if (p == 3) sp[1] += h * sqrt(sg[0] * sg[2]);
+                else sp[p - 2] *= 1.0 + h;
+                ggx_shape q;
+                CHECK(ggx_shape_from_slopes(&q, tp[0], tp[1], sp[0], sp[1], sp[2]) == GGX_OK, "perturbed");
+                double kq = kl_of(&q, f);
+                CHECK(kq > ours, "%s %d alpha %g: parameter %d moved by %g lowers KL %.12g to %.12g", f->name, f->n,
+                      f->alpha, p, h, ours, kq);
+            }
+        printf("%-12s %2d texels, alpha %.2f: KL ours %.5f", f->name, f->n, f->alpha, ours);
+        for (int b = 0; b < BASELINES; b++) {
+            ggx_shape q;
+            baseline(f, b, &q);
+            double kb = kl_of(&q, f);
+            CHECK(kb >= ours, "%s %d alpha %g: %s has KL %.6g below ours %.6g", f->name, f->n, f->alpha, BASE_NAMES[b],
+                  kb, ours);
+            printf(", %s %.5f", BASE_NAMES[b], kb);
+        }
+        printf("\n");
+    }
+}
+
+/* The default rule against 64 x 128 nodes: the fitted parameters in Sigma's scale (the tolerance's measure), within
+ * the bounds of docs/design/filter.md. */
+static void rule_accuracy(void **state)
+{
+    (void)state;
+    footprint fs[MAX_FOOTPRINTS];
+    int nf;
+    footprints(fs, &nf);
+    double worst = 0.0;
+    for (int i = 0; i < nf; i++) {
+        const footprint *f = &fs[i];
+        ggx_filter_options fine = {0};
+        fine.radial_nodes = 64, fine.angular_nodes = 128;
+        ggx_shape a, b;
+        CHECK(ggx_filter_lobes(&a, f->lobe, f->w, (size_t)f->n, NULL, NULL) == GGX_OK, "default");
+        CHECK(ggx_filter_lobes(&b, f->lobe, f->w, (size_t)f->n, &fine, NULL) == GGX_OK, "fine");
+        double ta[2], sa[3], tb[2], sb[3];
+        ggx_shape_slopes(&a, ta, sa), ggx_shape_slopes(&b, tb, sb);
+        double e = fmax(fabs(ta[0] - tb[0]) / sqrt(sb[0]), fabs(ta[1] - tb[1]) / sqrt(sb[2]));
+        e = fmax(e, fmax(fabs(sa[0] - sb[0]) / sb[0], fabs(sa[2] - sb[2]) / sb[2]));
+        e = fmax(e, fabs(sa[1] - sb[1]) / sqrt(sb[0] * sb[2]));
+        /* the bound (docs/design/filter.md): 1e-3 while the lobes' slopes spread over at most 3 alpha, 1.5e-2 beyond */
+        double spread = 0.0;
+        for (int p = 0; p < f->n; p++)
+            for (int q = 0; q < p; q++) {
+                double dx = f->normal[p].x / f->normal[p].z - f->normal[q].x / f->normal[q].z;
+                double dy = f->normal[p].y / f->normal[p].z - f->normal[q].y / f->normal[q].z;
+                spread = fmax(spread, sqrt(dx * dx + dy * dy) / f->alpha);
+            }
+        double bound = spread <= 3.0 ? 1e-3 : 1.5e-2;
+        printf("  %-12s %2d texels, alpha %.2f, spread %5.1f alpha: %.3g\n", f->name, f->n, f->alpha, spread, e);
+        CHECK(e <= bound, "%s %d alpha %g: default rule off by %.3g (bound %g)", f->name, f->n, f->alpha, e, bound);
+        worst = fmax(worst, e);
+    }
+    printf("default rule (8 x 16) against 64 x 128: parameters within %.3g\n", worst);
+}
+
+/* Weights are relative (any scale gives the same bits), NULL means equal, and a zero weight drops its lobe. */
+static void weights(void **state)
+{
+    (void)state;
+    footprint f;
+    rng r = {14};
+    bumps(&f, &r, 4, 0.2, 0.1);
+    for (int i = 0; i < f.n; i++) f.w[i] = rng_range(&r, 0.5, 2.0);
+    ggx_shape a, b, c;
+    double w[64], ones[64];
+    CHECK(ggx_filter_lobes(&a, f.lobe, f.w, (size_t)f.n, NULL, NULL) == GGX_OK, "filter");
+    for (double scale = 1e-300; scale < 1e301; scale *= 1e150) {
+        for (int i = 0; i < f.n; i++) w[i] = f.w[i] * scale;
+        CHECK(ggx_filter_lobes(&b, f.lobe, w, (size_t)f.n, NULL, NULL) == GGX_OK, "scaled");
+        CHECK_CLOSE(ggx_p22(&b, 0.1, 0.2), ggx_p22(&a, 0.1, 0.2), 1e-13, 0, "weights scaled by %g", scale);
+    }
+    for (int i = 0; i < f.n; i++) ones[i] = 1.0;
+    CHECK(ggx_filter_lobes(&b, f.lobe, NULL, (size_t)f.n, NULL, NULL) == GGX_OK, "NULL weights");
+    CHECK(ggx_filter_lobes(&c, f.lobe, ones, (size_t)f.n, NULL, NULL) == GGX_OK, "ones");
+    CHECK(memcmp(&b, &c, sizeof b) == 0, "NULL weights are not equal weights");
+    /* lobes 8.. with weight 0 against the first 8 alone */
+    for (int i = 0; i < f.n; i++) w[i] = i < 8 ? f.w[i] : 0.0;
+    CHECK(ggx_filter_lobes(&b, f.lobe, w, (size_t)f.n, NULL, NULL) == GGX_OK, "zeros");
+    CHECK(ggx_filter_lobes(&c, f.lobe, f.w, 8, NULL, NULL) == GGX_OK, "first 8");
+    CHECK(memcmp(&b, &c, sizeof b) == 0, "a zero weight did not drop its lobe");
+}
+
+static void bad_input(void **state)
+{
+    (void)state;
+    footprint f;
+    checkerboard(&f, 0.3, 0.2);
+    ggx_shape s, keep;
+    lobe_ok(&keep, t_vec(0, 0, 1), 0.5, 0.5, 0);
+    s = keep;
+    double kl, w[2] = {1, 1};
+    CHECK(ggx_filter_lobes(NULL, f.lobe, w, 2, NULL, NULL) == GGX_ERR_NULL, "NULL out");
+    CHECK(ggx_filter_lobes(&s, NULL, w, 2, NULL, NULL) == GGX_ERR_NULL, "NULL lobes");
+    CHECK(ggx_filter_kl(&s, f.lobe, w, 2, NULL, NULL) == GGX_ERR_NULL, "NULL kl");
+    CHECK(ggx_filter_kl(NULL, f.lobe, w, 2, NULL, &kl) == GGX_ERR_NULL, "NULL shape");
+    CHECK(ggx_filter_lobes(&s, f.lobe, w, 0, NULL, NULL) == GGX_ERR_RANGE, "no lobes");
+    const double bad[][2] = {{-1, 1}, {NAN, 1}, {INFINITY, 1}, {0, 0}, {1e308, 1e308}};
+    for (int i = 0; i < 5; i++) {
+        CHECK(ggx_filter_lobes(&s, f.lobe, bad[i], 2, NULL, NULL) == GGX_ERR_RANGE, "weights %g %g", bad[i][0],
+              bad[i][1]);
+        CHECK(ggx_filter_kl(&keep, f.lobe, bad[i], 2, NULL, &kl) == GGX_ERR_RANGE, "kl weights %g %g", bad[i][0],
+              bad[i][1]);
+    }
+    ggx_filter_options opts[6];
+    memset(opts, 0, sizeof opts);
+    opts[0].max_iterations = -1, opts[1].radial_nodes = -1, opts[2].angular_nodes = 15;
+    opts[3].radial_nodes = 1025, opts[4].angular_nodes = 4098, opts[5].tolerance = NAN;
+    for (int i = 0; i < 6; i++) CHECK(ggx_filter_lobes(&s, f.lobe, w, 2, &opts[i], NULL) == GGX_ERR_RANGE, "option %d", i);
+    CHECK(memcmp(&s, &keep, sizeof s) == 0, "out changed on error");
+    /* the extremes that are allowed: one radial node and two angles, one iteration */
+    ggx_filter_options tiny = {0};
+    tiny.radial_nodes = 1, tiny.angular_nodes = 2, tiny.max_iterations = 1;
+    ggx_filter_info info;
+    CHECK(ggx_filter_lobes(&s, f.lobe, w, 2, &tiny, &info) == GGX_OK && info.iterations == 1, "smallest rule");
+}
+
+/* Threads: eight at once filter the same footprints and get the same bits as one alone. */
+typedef struct job {
+    const footprint *fs;
+    int n;
+    ggx_shape out[MAX_FOOTPRINTS];
+} job;
+static void *run_job(void *p)
+{
+    job *j = p;
+    for (int rep = 0; rep < 4; rep++)
+        for (int i = 0; i < j->n; i++)
+            ggx_filter_lobes(&j->out[i], j->fs[i].lobe, j->fs[i].w, (size_t)j->fs[i].n, NULL, NULL);
+    return NULL;
+}
+static void threads(void **state)
+{
+    (void)state;
+    static footprint fs[MAX_FOOTPRINTS];
+    int nf;
+    footprints(fs, &nf);
+    static job ref, jobs[8];
+    ref.fs = fs, ref.n = nf;
+    run_job(&ref);
+    pthread_t th[8];
+    for (int k = 0; k < 8; k++) jobs[k].fs = fs, jobs[k].n = nf, pthread_create(&th[k], NULL, run_job, &jobs[k]);
+    for (int k = 0; k < 8; k++) pthread_join(th[k], NULL);
+    for (int k = 0; k < 8; k++) CHECK(memcmp(jobs[k].out, ref.out, (size_t)nf * sizeof ref.out[0]) == 0, "thread %d", k);
+}
+
+int main(int argc, char **argv)
+{
+    const struct CMUnitTest tests[] = {
+        cmocka_unit_test(texel_lobe_form), cmocka_unit_test(texel_lobe_errors),     cmocka_unit_test(constant_map),
+        cmocka_unit_test(em_monotone),     cmocka_unit_test(optimum_and_baselines), cmocka_unit_test(rule_accuracy),
+        cmocka_unit_test(weights),         cmocka_unit_test(bad_input),             cmocka_unit_test(threads),
+    };
+    int rc = cmocka_run_group_tests(tests, NULL, NULL);
+    return rc | chi2_budget_end("filter", argc, argv);
+}
