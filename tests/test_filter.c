@@ -388,6 +388,96 @@ static void bad_input(void **state)
     CHECK(ggx_filter_lobes(&s, f.lobe, w, 2, &tiny, &info) == GGX_OK && info.iterations == 1, "smallest rule");
 }
 
+/* A map's lobes as GGX_LOBE_PARAMS doubles per texel. */
+static void params_of(const ggx_shape *s, double *c) { ggx_shape_slopes(s, c, c + 2); }
+
+/* The chain of a constant map, of a size that is no power of two (13 x 7 -> 7 x 4 -> 4 x 2 -> 2 x 1 -> 1 x 1): every
+ * level is the texel's lobe, each entry to the bound of ggx_shape_from_slopes' round trip. */
+static void chain_constant(void **state)
+{
+    (void)state;
+    ggx_shape lobe;
+    lobe_ok(&lobe, t_vec(0.5, -0.3, 1), 0.1, 0.25, 0.4);
+    static double a[13 * 7 * GGX_LOBE_PARAMS], b[13 * 7 * GGX_LOBE_PARAMS];
+    double c[GGX_LOBE_PARAMS];
+    params_of(&lobe, c);
+    size_t w = 13, h = 7;
+    for (size_t i = 0; i < w * h; i++) memcpy(a + GGX_LOBE_PARAMS * i, c, sizeof c);
+    const size_t sizes[][2] = {{7, 4}, {4, 2}, {2, 1}, {1, 1}};
+    for (int level = 0; level < 4; level++) {
+        CHECK(ggx_filter_downsample(b, a, w, h, NULL) == GGX_OK, "level %d", level + 1);
+        w = (w + 1) / 2, h = (h + 1) / 2;
+        CHECK(w == sizes[level][0] && h == sizes[level][1], "size");
+        for (size_t i = 0; i < w * h; i++)
+            for (int k = 0; k < GGX_LOBE_PARAMS; k++)
+                CHECK_CLOSE(b[GGX_LOBE_PARAMS * i + k], c[k], 1e-13, 1e-13 * sqrt(c[2] * c[4]),
+                            "level %d texel %zu entry %d", level + 1, i, k);
+        memcpy(a, b, w * h * sizeof c);
+    }
+}
+
+/* Each texel of a level is ggx_filter_lobes of its box, the boxes cut at an odd last column and row (5 x 3 ->
+ * 3 x 2: boxes 2 x 2, 1 x 2, 2 x 1, 1 x 1), the same for any thread count, bit for bit; bad input leaves out
+ * untouched. The chain's two steps against the exact filter of all 16 base texels of a 4 x 4 map: KL printed. */
+static void chain_boxes(void **state)
+{
+    (void)state;
+    footprint f;
+    rng r = {15};
+    bumps(&f, &r, 8, 0.2, 0.1);
+    static double in[64 * GGX_LOBE_PARAMS], out[16 * GGX_LOBE_PARAMS], out3[16 * GGX_LOBE_PARAMS];
+    for (int i = 0; i < 15; i++) params_of(&f.lobe[i], in + GGX_LOBE_PARAMS * i); /* 5 x 3 of the first 15 */
+    CHECK(ggx_filter_downsample(out, in, 5, 3, NULL) == GGX_OK, "5 x 3");
+    for (int y = 0; y < 2; y++)
+        for (int x = 0; x < 3; x++) {
+            ggx_shape box[4], s;
+            int n = 0;
+            for (int dy = 0; dy < 2 && 2 * y + dy < 3; dy++)
+                for (int dx = 0; dx < 2 && 2 * x + dx < 5; dx++) box[n++] = f.lobe[(2 * y + dy) * 5 + 2 * x + dx];
+            CHECK(ggx_filter_lobes(&s, box, NULL, (size_t)n, NULL, NULL) == GGX_OK, "box");
+            double c[GGX_LOBE_PARAMS];
+            params_of(&s, c);
+            for (int k = 0; k < GGX_LOBE_PARAMS; k++)
+                CHECK_CLOSE(out[GGX_LOBE_PARAMS * (y * 3 + x) + k], c[k], 1e-12, 1e-12 * sqrt(c[2] * c[4]),
+                            "texel (%d, %d) of %d lobes, entry %d", x, y, n, k);
+        }
+    for (int threads = 2; threads <= 7; threads += 5) {
+        ggx_filter_options o = {0};
+        o.threads = threads;
+        CHECK(ggx_filter_downsample(out3, in, 5, 3, &o) == GGX_OK, "threads");
+        CHECK(memcmp(out3, out, 6 * GGX_LOBE_PARAMS * sizeof *out) == 0, "%d threads changed the level", threads);
+    }
+    /* bad input */
+    memcpy(out3, out, sizeof out3);
+    double bad[4 * GGX_LOBE_PARAMS];
+    memcpy(bad, in, sizeof bad);
+    CHECK(ggx_filter_downsample(NULL, in, 5, 3, NULL) == GGX_ERR_NULL, "NULL out");
+    CHECK(ggx_filter_downsample(out3, NULL, 5, 3, NULL) == GGX_ERR_NULL, "NULL in");
+    CHECK(ggx_filter_downsample(out3, in, 0, 3, NULL) == GGX_ERR_RANGE, "width 0");
+    CHECK(ggx_filter_downsample(out3, in, (size_t)-1, 3, NULL) == GGX_ERR_RANGE, "overflowing size");
+    bad[7] = NAN;
+    CHECK(ggx_filter_downsample(out3, bad, 2, 2, NULL) == GGX_ERR_RANGE, "NaN texel");
+    bad[7] = in[7], bad[GGX_LOBE_PARAMS * 3 + 3] = 10.0;
+    CHECK(ggx_filter_downsample(out3, bad, 2, 2, NULL) == GGX_ERR_RANGE, "Sigma not positive definite");
+    ggx_filter_options odd = {0};
+    odd.angular_nodes = 3;
+    CHECK(ggx_filter_downsample(out3, in, 5, 3, &odd) == GGX_ERR_RANGE, "odd angular nodes");
+    CHECK(memcmp(out3, out, sizeof out3) == 0, "out written on error");
+    /* two steps of the chain against the exact filter of the 16 base texels of a 4 x 4 map */
+    for (int i = 0; i < 16; i++) params_of(&f.lobe[i], in + GGX_LOBE_PARAMS * i);
+    CHECK(ggx_filter_downsample(out, in, 4, 4, NULL) == GGX_OK && ggx_filter_downsample(out3, out, 2, 2, NULL) == GGX_OK,
+          "two levels");
+    ggx_shape chain, exact;
+    CHECK(ggx_shape_from_slopes(&chain, out3[0], out3[1], out3[2], out3[3], out3[4]) == GGX_OK, "chain's lobe");
+    CHECK(ggx_filter_lobes(&exact, f.lobe, NULL, 16, NULL, NULL) == GGX_OK, "exact");
+    footprint base = f;
+    base.n = 16;
+    double k_chain = kl_of(&chain, &base), k_exact = kl_of(&exact, &base);
+    CHECK(k_chain >= k_exact - 1e-12, "the chain's lobe is closer than the exact filter: %.6g < %.6g", k_chain,
+          k_exact);
+    printf("4 x 4 bumps (alpha 0.1): KL of the exact filter %.5f, of two chain steps %.5f\n", k_exact, k_chain);
+}
+
 /* Threads: eight at once filter the same footprints and get the same bits as one alone. */
 typedef struct job {
     const footprint *fs;
@@ -422,7 +512,8 @@ int main(int argc, char **argv)
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(texel_lobe_form), cmocka_unit_test(texel_lobe_errors),     cmocka_unit_test(constant_map),
         cmocka_unit_test(em_monotone),     cmocka_unit_test(optimum_and_baselines), cmocka_unit_test(rule_accuracy),
-        cmocka_unit_test(weights),         cmocka_unit_test(bad_input),             cmocka_unit_test(threads),
+        cmocka_unit_test(weights),         cmocka_unit_test(bad_input),             cmocka_unit_test(chain_constant),
+        cmocka_unit_test(chain_boxes),     cmocka_unit_test(threads),
     };
     int rc = cmocka_run_group_tests(tests, NULL, NULL);
     return rc | chi2_budget_end("filter", argc, argv);

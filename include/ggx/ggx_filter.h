@@ -41,6 +41,7 @@ typedef struct ggx_filter_options {
                          * largest |dt_i| / sqrt(Sigma_ii), |dSigma_ij| / sqrt(Sigma_ii Sigma_jj)); 0: 1e-10 */
     int radial_nodes;   /* the quadrature of each lobe (below): Gauss-Legendre nodes in the radius; 0: 8 */
     int angular_nodes;  /* and equally spaced angles, even; 0: 16 */
+    int threads;        /* POSIX threads for ggx_filter_downsample (results do not depend on it); 0: 1 */
 } ggx_filter_options;
 
 typedef struct ggx_filter_info {
@@ -60,7 +61,8 @@ typedef struct ggx_filter_info {
  * Starts from t = the weighted mean of the lobes' t_i, Sigma = the weighted mean of Sigma_i + (t_i - t)(t_i - t)^T.
  * Sigma's eigenvalues are held at GGX_ALPHA_MIN^2 or above. info may be NULL. Errors: GGX_ERR_NULL (out or lobes
  * NULL); GGX_ERR_RANGE (n = 0, a weight negative or NaN, all weights 0, or a bad option: iterations or nodes below
- * 0, more than 1024 radial or 4096 angular nodes, an odd angular count, a tolerance NaN or below 0);
+ * 0, more than 1024 radial or 4096 angular nodes, an odd angular count, a tolerance NaN or below 0, threads
+ * below 0 or above 1024);
  * GGX_ERR_MEMORY; GGX_ERR_ALPHA, GGX_ERR_SINGULAR or GGX_ERR_RANGE from ggx_shape_from_slopes when the result is
  * not a shape. out is unchanged on error. */
 ggx_status ggx_filter_lobes(ggx_shape *out, const ggx_shape *lobes, const double *weight, size_t n,
@@ -72,6 +74,20 @@ ggx_status ggx_filter_lobes(ggx_shape *out, const ggx_shape *lobes, const double
  * ggx_filter_lobes. */
 ggx_status ggx_filter_kl(const ggx_shape *s, const ggx_shape *lobes, const double *weight, size_t n,
                          const ggx_filter_options *opt, double *kl);
+
+/* A texel of a mip chain of lobes: GGX_LOBE_PARAMS doubles, (t_x, t_y, Sigma_xx, Sigma_xy, Sigma_yy), its slopes'
+ * location and scale as ggx_shape_slopes gives them (and ggx_shape_from_slopes takes them back). */
+enum { GGX_LOBE_PARAMS = 5 };
+
+/* One level of a mip chain: out, ceil(w / 2) x ceil(h / 2) texels, from in, w x h texels (both row-major, texel
+ * (x, y) at GGX_LOBE_PARAMS (y w + x)). Each texel of out is ggx_filter_lobes of its box of in's texels, equal
+ * weights: the 2 x 2 texels from (2x, 2y), cut to 2 x 1, 1 x 2 or 1 x 1 at an odd last column or row (so sizes that
+ * are not powers of two keep every texel once); a 1 x 1 box is copied. Repeated down to 1 x 1 it builds the chain;
+ * a level is then the filter of the level above (the exact filter of all of a coarse texel's base texels is
+ * ggx_filter_lobes of them). opt: rule, tolerance and threads; results do not depend on the thread count. Errors:
+ * GGX_ERR_NULL; GGX_ERR_RANGE (w or h 0, the size overflowing, a texel not finite or its Sigma not positive definite,
+ * or a bad option as for ggx_filter_lobes), before anything is written; GGX_ERR_MEMORY. */
+ggx_status ggx_filter_downsample(double *out, const double *in, size_t w, size_t h, const ggx_filter_options *opt);
 
 #ifdef __cplusplus
 }

@@ -1231,7 +1231,8 @@ class _Vec3(ctypes.Structure):
 
 
 class _FilterOptions(ctypes.Structure):
-    _fields_ = [("max_iterations", _i), ("tolerance", _d), ("radial_nodes", _i), ("angular_nodes", _i)]
+    _fields_ = [("max_iterations", _i), ("tolerance", _d), ("radial_nodes", _i), ("angular_nodes", _i),
+                ("threads", _i)]
 
 
 class _FilterInfo(ctypes.Structure):
@@ -1277,7 +1278,7 @@ def _lobes(lobes, weights):
 
 
 def _filter_options(max_iterations, tolerance, nodes):
-    o = _FilterOptions(0, 0.0, 0, 0)
+    o = _FilterOptions(0, 0.0, 0, 0, 0)
     if max_iterations is not None:
         o.max_iterations = int(max_iterations)
     if tolerance is not None:

@@ -6,40 +6,26 @@
 #include <string.h>
 
 #include "../common/gauss.h"
-#include "../fit/fit.h"
-#include "ggx/ggx_filter.h"
+#include "filter.h"
 
-enum { FILTER_MAX_RADIAL = 1024, FILTER_MAX_ANGULAR = 4096 };
-
-typedef struct filter_settings {
-    int max_iterations, radial, angular;
-    double tolerance;
-} filter_settings;
-
-static ggx_status settings(const ggx_filter_options *opt, filter_settings *f)
+ggx_status filter_settings_of(const ggx_filter_options *opt, filter_settings *f)
 {
     ggx_filter_options o;
     if (opt) o = *opt;
     else memset(&o, 0, sizeof o);
-    if (o.max_iterations < 0 || o.radial_nodes < 0 || o.angular_nodes < 0 || !(o.tolerance >= 0.0) ||
+    if (o.max_iterations < 0 || o.radial_nodes < 0 || o.angular_nodes < 0 || !(o.tolerance >= 0.0) || o.threads < 0 ||
+        o.threads > FILTER_MAX_THREADS ||
         o.radial_nodes > FILTER_MAX_RADIAL || o.angular_nodes > FILTER_MAX_ANGULAR || o.angular_nodes % 2 != 0)
         return GGX_ERR_RANGE;
     f->max_iterations = o.max_iterations ? o.max_iterations : 500;
     f->tolerance = o.tolerance > 0.0 ? o.tolerance : 1e-10;
     f->radial = o.radial_nodes ? o.radial_nodes : 8;
     f->angular = o.angular_nodes ? o.angular_nodes : 16;
+    f->threads = o.threads ? o.threads : 1;
     return GGX_OK;
 }
 
-/* The standardised nodes z_k of a lobe's rule and their weights q_k (summing to 1): s_j Gauss-Legendre on (0, 1),
- * the radial probability u = 1 - (1 - s)^2 (du = 2 (1 - s) ds), the radius |z|^2 = u / (1 - u) (P22 of alpha = 1
- * puts probability u inside it), the angles 2 pi (k + 1/2) / M. */
-typedef struct filter_rule {
-    int n;
-    double *zx, *zy, *q;
-} filter_rule;
-
-static ggx_status rule_make(const filter_settings *f, filter_rule *r)
+ggx_status filter_rule_make(const filter_settings *f, filter_rule *r)
 {
     int nr = f->radial, na = f->angular;
     r->n = nr * na;
@@ -66,11 +52,19 @@ static ggx_status rule_make(const filter_settings *f, filter_rule *r)
     return GGX_OK;
 }
 
-/* A lobe in slope space: its location, scale, the Cholesky factor L (Sigma = L L^T: l00, l10, l11) and
- * log(pi sqrt(det Sigma)) + log of its weight share, for its density. */
-typedef struct filter_lobe {
-    double t[2], sigma[3], l[3], p[3], log_norm, w;
-} filter_lobe;
+void filter_rule_free(filter_rule *r) { free(r->zx); }
+
+void filter_lobe_set(filter_lobe *b, const double t[2], const double sigma[3], double w)
+{
+    b->t[0] = t[0], b->t[1] = t[1];
+    memcpy(b->sigma, sigma, sizeof b->sigma);
+    b->l[0] = sqrt(sigma[0]);
+    b->l[1] = sigma[1] / b->l[0];
+    b->l[2] = sqrt(fmax(sigma[2] - b->l[1] * b->l[1], 0.0));
+    fit_inverse(sigma, b->p);
+    b->w = w;
+    b->log_norm = log(GGX_PI) + 0.5 * fit_log_det(sigma);
+}
 
 static ggx_status lobes_make(const ggx_shape *lobes, const double *weight, size_t n, filter_lobe **out, double *w_sum)
 {
@@ -85,14 +79,9 @@ static ggx_status lobes_make(const ggx_shape *lobes, const double *weight, size_
     filter_lobe *L = malloc(n * sizeof *L);
     if (!L) return GGX_ERR_MEMORY;
     for (size_t i = 0; i < n; i++) {
-        filter_lobe *b = &L[i];
-        ggx_shape_slopes(&lobes[i], b->t, b->sigma);
-        b->l[0] = sqrt(b->sigma[0]);
-        b->l[1] = b->sigma[1] / b->l[0];
-        b->l[2] = sqrt(fmax(b->sigma[2] - b->l[1] * b->l[1], 0.0));
-        fit_inverse(b->sigma, b->p);
-        b->w = (weight ? weight[i] : 1.0) / W;
-        b->log_norm = log(GGX_PI) + 0.5 * fit_log_det(b->sigma);
+        double t[2], sg[3];
+        ggx_shape_slopes(&lobes[i], t, sg);
+        filter_lobe_set(&L[i], t, sg, (weight ? weight[i] : 1.0) / W);
     }
     *out = L;
     *w_sum = W;
@@ -133,23 +122,11 @@ static double log_likelihood(const double sigma[3], const double a[FIT_ESTEP_SUM
     return -log(GGX_PI) - 0.5 * fit_log_det(sigma) - 2.0 * a[7] / a[0];
 }
 
-GGX_API ggx_status ggx_filter_lobes(ggx_shape *out, const ggx_shape *lobes, const double *weight, size_t n,
-                            const ggx_filter_options *opt, ggx_filter_info *info)
+int filter_em(const filter_lobe *L, size_t n, const filter_rule *r, const filter_settings *f, double t[2],
+              double s[3], int *converged, double *ll)
 {
-    if (!out || !lobes) return GGX_ERR_NULL;
-    filter_settings f;
-    ggx_status st = settings(opt, &f);
-    if (st != GGX_OK) return st;
-    filter_lobe *L;
-    double W;
-    if ((st = lobes_make(lobes, weight, n, &L, &W)) != GGX_OK) return st;
-    filter_rule r;
-    if ((st = rule_make(&f, &r)) != GGX_OK) {
-        free(L);
-        return st;
-    }
     /* the start: the lobes' mean location and their mean scale plus the locations' spread */
-    double t[2] = {0.0, 0.0}, s[3] = {0.0, 0.0, 0.0};
+    t[0] = t[1] = 0.0, s[0] = s[1] = s[2] = 0.0;
     for (size_t i = 0; i < n; i++) t[0] += L[i].w * L[i].t[0], t[1] += L[i].w * L[i].t[1];
     for (size_t i = 0; i < n; i++) {
         double dx = L[i].t[0] - t[0], dy = L[i].t[1] - t[1];
@@ -159,27 +136,50 @@ GGX_API ggx_status ggx_filter_lobes(ggx_shape *out, const ggx_shape *lobes, cons
     }
     const double floor = GGX_ALPHA_MIN * GGX_ALPHA_MIN;
     fit_clamp_sigma(s, floor);
-    int it = 0, converged = 0;
+    int it = 0;
     double a[FIT_ESTEP_SUMS], p[3];
-    while (it < f.max_iterations) {
+    *converged = 0;
+    while (it < f->max_iterations) {
         fit_inverse(s, p);
-        estep(L, n, &r, t, p, 0, a);
+        estep(L, n, r, t, p, 0, a);
         double tn[2], sn[3];
         fit_mstep(a, t, GGX_FIT_ELLIPSOID, tn, sn);
         fit_clamp_sigma(sn, floor);
         double ch = fit_change(t, s, tn, sn);
-        memcpy(t, tn, sizeof t), memcpy(s, sn, sizeof s);
+        memcpy(t, tn, 2 * sizeof *t), memcpy(s, sn, 3 * sizeof *s);
         it++;
-        if (!(ch > f.tolerance)) {
-            converged = ch <= f.tolerance;
+        if (!(ch > f->tolerance)) {
+            *converged = ch <= f->tolerance;
             break;
         }
     }
-    fit_inverse(s, p);
-    estep(L, n, &r, t, p, 1, a);
-    double ll = log_likelihood(s, a);
+    if (ll) {
+        fit_inverse(s, p);
+        estep(L, n, r, t, p, 1, a);
+        *ll = log_likelihood(s, a);
+    }
+    return it;
+}
+
+GGX_API ggx_status ggx_filter_lobes(ggx_shape *out, const ggx_shape *lobes, const double *weight, size_t n,
+                            const ggx_filter_options *opt, ggx_filter_info *info)
+{
+    if (!out || !lobes) return GGX_ERR_NULL;
+    filter_settings f;
+    ggx_status st = filter_settings_of(opt, &f);
+    if (st != GGX_OK) return st;
+    filter_lobe *L;
+    double W;
+    if ((st = lobes_make(lobes, weight, n, &L, &W)) != GGX_OK) return st;
+    filter_rule r;
+    if ((st = filter_rule_make(&f, &r)) != GGX_OK) {
+        free(L);
+        return st;
+    }
+    double t[2], s[3], ll;
+    int converged, it = filter_em(L, n, &r, &f, t, s, &converged, &ll);
     free(L);
-    free(r.zx);
+    filter_rule_free(&r);
     ggx_shape res;
     st = ggx_shape_from_slopes(&res, t[0], t[1], s[0], s[1], s[2]);
     if (st != GGX_OK) return st;
@@ -193,13 +193,13 @@ GGX_API ggx_status ggx_filter_kl(const ggx_shape *sh, const ggx_shape *lobes, co
 {
     if (!sh || !lobes || !kl) return GGX_ERR_NULL;
     filter_settings f;
-    ggx_status st = settings(opt, &f);
+    ggx_status st = filter_settings_of(opt, &f);
     if (st != GGX_OK) return st;
     filter_lobe *L;
     double W;
     if ((st = lobes_make(lobes, weight, n, &L, &W)) != GGX_OK) return st;
     filter_rule r;
-    if ((st = rule_make(&f, &r)) != GGX_OK) {
+    if ((st = filter_rule_make(&f, &r)) != GGX_OK) {
         free(L);
         return st;
     }
@@ -231,7 +231,7 @@ GGX_API ggx_status ggx_filter_kl(const ggx_shape *sh, const ggx_shape *lobes, co
         total += L[i].w * sum;
     }
     free(L);
-    free(r.zx);
+    filter_rule_free(&r);
     *kl = total;
     return GGX_OK;
 }

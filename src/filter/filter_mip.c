@@ -1,0 +1,74 @@
+/* One level of a mip chain of lobes (ggx_filter_downsample): each coarser texel the filter of its box of finer
+ * texels, rows split over POSIX threads. SPDX-License-Identifier: MIT */
+#include <math.h>
+#include <pthread.h>
+#include <stdint.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "filter.h"
+
+typedef struct mip_job {
+    double *out;
+    const double *in;
+    size_t w, h, w2, y0, y1;
+    const filter_rule *rule;
+    const filter_settings *f;
+} mip_job;
+
+static void *mip_rows(void *p)
+{
+    const mip_job *j = p;
+    for (size_t y = j->y0; y < j->y1; y++)
+        for (size_t x = 0; x < j->w2; x++) {
+            filter_lobe L[4];
+            size_t n = 0, xs = 2 * x, ys = 2 * y, nx = xs + 1 < j->w ? 2 : 1, ny = ys + 1 < j->h ? 2 : 1;
+            for (size_t dy = 0; dy < ny; dy++)
+                for (size_t dx = 0; dx < nx; dx++) {
+                    const double *c = j->in + GGX_LOBE_PARAMS * ((ys + dy) * j->w + xs + dx);
+                    filter_lobe_set(&L[n++], c, c + 2, 1.0 / (double)(nx * ny));
+                }
+            double *o = j->out + GGX_LOBE_PARAMS * (y * j->w2 + x);
+            if (n == 1) {
+                memcpy(o, j->in + GGX_LOBE_PARAMS * (ys * j->w + xs), GGX_LOBE_PARAMS * sizeof *o);
+                continue;
+            }
+            int converged;
+            filter_em(L, n, j->rule, j->f, o, o + 2, &converged, NULL);
+        }
+    return NULL;
+}
+
+GGX_API ggx_status ggx_filter_downsample(double *out, const double *in, size_t w, size_t h,
+                                         const ggx_filter_options *opt)
+{
+    if (!out || !in) return GGX_ERR_NULL;
+    filter_settings f;
+    ggx_status st = filter_settings_of(opt, &f);
+    if (st != GGX_OK) return st;
+    if (w == 0 || h == 0 || w > SIZE_MAX / GGX_LOBE_PARAMS / sizeof(double) / h) return GGX_ERR_RANGE;
+    for (size_t i = 0; i < w * h; i++) { /* every texel a lobe: finite, Sigma positive definite */
+        const double *c = in + GGX_LOBE_PARAMS * i;
+        for (int k = 0; k < GGX_LOBE_PARAMS; k++)
+            if (!isfinite(c[k])) return GGX_ERR_RANGE;
+        if (!(c[2] > 0.0 && c[4] > 0.0 && c[2] * c[4] - c[3] * c[3] > 0.0)) return GGX_ERR_RANGE;
+    }
+    filter_rule r;
+    if ((st = filter_rule_make(&f, &r)) != GGX_OK) return st;
+    size_t w2 = (w + 1) / 2, h2 = (h + 1) / 2;
+    int nt = (size_t)f.threads < h2 ? f.threads : (int)h2;
+    mip_job jobs[FILTER_MAX_THREADS];
+    pthread_t th[FILTER_MAX_THREADS];
+    int created[FILTER_MAX_THREADS] = {0};
+    for (int k = 0; k < nt; k++) {
+        jobs[k] = (mip_job){out, in, w, h, w2, h2 * (size_t)k / (size_t)nt, h2 * (size_t)(k + 1) / (size_t)nt, &r, &f};
+        if (k > 0) created[k] = pthread_create(&th[k], NULL, mip_rows, &jobs[k]) == 0;
+    }
+    mip_rows(&jobs[0]);
+    for (int k = 1; k < nt; k++) {
+        if (created[k]) pthread_join(th[k], NULL);
+        else mip_rows(&jobs[k]); /* no thread to be had: its rows here */
+    }
+    filter_rule_free(&r);
+    return GGX_OK;
+}
