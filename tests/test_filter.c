@@ -405,7 +405,7 @@ static void chain_constant(void **state)
     for (size_t i = 0; i < w * h; i++) memcpy(a + GGX_LOBE_PARAMS * i, c, sizeof c);
     const size_t sizes[][2] = {{7, 4}, {4, 2}, {2, 1}, {1, 1}};
     for (int level = 0; level < 4; level++) {
-        CHECK(ggx_filter_downsample(b, a, w, h, NULL) == GGX_OK, "level %d", level + 1);
+        CHECK(ggx_filter_downsample(b, NULL, a, NULL, w, h, NULL) == GGX_OK, "level %d", level + 1);
         w = (w + 1) / 2, h = (h + 1) / 2;
         CHECK(w == sizes[level][0] && h == sizes[level][1], "size");
         for (size_t i = 0; i < w * h; i++)
@@ -427,7 +427,7 @@ static void chain_boxes(void **state)
     bumps(&f, &r, 8, 0.2, 0.1);
     static double in[64 * GGX_LOBE_PARAMS], out[16 * GGX_LOBE_PARAMS], out3[16 * GGX_LOBE_PARAMS];
     for (int i = 0; i < 15; i++) params_of(&f.lobe[i], in + GGX_LOBE_PARAMS * i); /* 5 x 3 of the first 15 */
-    CHECK(ggx_filter_downsample(out, in, 5, 3, NULL) == GGX_OK, "5 x 3");
+    CHECK(ggx_filter_downsample(out, NULL, in, NULL, 5, 3, NULL) == GGX_OK, "5 x 3");
     for (int y = 0; y < 2; y++)
         for (int x = 0; x < 3; x++) {
             ggx_shape box[4], s;
@@ -444,28 +444,52 @@ static void chain_boxes(void **state)
     for (int threads = 2; threads <= 7; threads += 5) {
         ggx_filter_options o = {0};
         o.threads = threads;
-        CHECK(ggx_filter_downsample(out3, in, 5, 3, &o) == GGX_OK, "threads");
+        CHECK(ggx_filter_downsample(out3, NULL, in, NULL, 5, 3, &o) == GGX_OK, "threads");
         CHECK(memcmp(out3, out, 6 * GGX_LOBE_PARAMS * sizeof *out) == 0, "%d threads changed the level", threads);
     }
     /* bad input */
     memcpy(out3, out, sizeof out3);
     double bad[4 * GGX_LOBE_PARAMS];
     memcpy(bad, in, sizeof bad);
-    CHECK(ggx_filter_downsample(NULL, in, 5, 3, NULL) == GGX_ERR_NULL, "NULL out");
-    CHECK(ggx_filter_downsample(out3, NULL, 5, 3, NULL) == GGX_ERR_NULL, "NULL in");
-    CHECK(ggx_filter_downsample(out3, in, 0, 3, NULL) == GGX_ERR_RANGE, "width 0");
-    CHECK(ggx_filter_downsample(out3, in, (size_t)-1, 3, NULL) == GGX_ERR_RANGE, "overflowing size");
+    CHECK(ggx_filter_downsample(NULL, NULL, in, NULL, 5, 3, NULL) == GGX_ERR_NULL, "NULL out");
+    CHECK(ggx_filter_downsample(out3, NULL, NULL, NULL, 5, 3, NULL) == GGX_ERR_NULL, "NULL in");
+    CHECK(ggx_filter_downsample(out3, NULL, in, NULL, 0, 3, NULL) == GGX_ERR_RANGE, "width 0");
+    CHECK(ggx_filter_downsample(out3, NULL, in, NULL, (size_t)-1, 3, NULL) == GGX_ERR_RANGE, "overflowing size");
     bad[7] = NAN;
-    CHECK(ggx_filter_downsample(out3, bad, 2, 2, NULL) == GGX_ERR_RANGE, "NaN texel");
+    CHECK(ggx_filter_downsample(out3, NULL, bad, NULL, 2, 2, NULL) == GGX_ERR_RANGE, "NaN texel");
     bad[7] = in[7], bad[GGX_LOBE_PARAMS * 3 + 3] = 10.0;
-    CHECK(ggx_filter_downsample(out3, bad, 2, 2, NULL) == GGX_ERR_RANGE, "Sigma not positive definite");
+    CHECK(ggx_filter_downsample(out3, NULL, bad, NULL, 2, 2, NULL) == GGX_ERR_RANGE, "Sigma not positive definite");
     ggx_filter_options odd = {0};
     odd.angular_nodes = 3;
-    CHECK(ggx_filter_downsample(out3, in, 5, 3, &odd) == GGX_ERR_RANGE, "odd angular nodes");
+    CHECK(ggx_filter_downsample(out3, NULL, in, NULL, 5, 3, &odd) == GGX_ERR_RANGE, "odd angular nodes");
     CHECK(memcmp(out3, out, sizeof out3) == 0, "out written on error");
+    /* weights: a 2 x 2 map weighted (1, 0; 2, 0) is the filter of texels 0 and 2 weighted 1 and 2, of weight 3; a
+     * texel of weight 0 may hold anything; a box of weight 0 is the placeholder; a negative weight is refused */
+    double wts[4] = {1, 0, 2, 0}, wo[1], two[2 * GGX_LOBE_PARAMS], w2[2] = {1, 2};
+    memcpy(bad, in, sizeof bad);
+    bad[GGX_LOBE_PARAMS * 1] = NAN;
+    CHECK(ggx_filter_downsample(out3, wo, bad, wts, 2, 2, NULL) == GGX_OK && wo[0] == 3.0, "weighted box");
+    memcpy(two, in, GGX_LOBE_PARAMS * sizeof *in), memcpy(two + GGX_LOBE_PARAMS, in + 2 * GGX_LOBE_PARAMS,
+                                                          GGX_LOBE_PARAMS * sizeof *in);
+    ggx_shape pair[2], ref;
+    for (int i = 0; i < 2; i++)
+        CHECK(ggx_shape_from_slopes(&pair[i], two[5 * i], two[5 * i + 1], two[5 * i + 2], two[5 * i + 3],
+                                    two[5 * i + 4]) == GGX_OK, "pair");
+    CHECK(ggx_filter_lobes(&ref, pair, w2, 2, NULL, NULL) == GGX_OK, "reference");
+    double c[GGX_LOBE_PARAMS];
+    params_of(&ref, c);
+    for (int k = 0; k < GGX_LOBE_PARAMS; k++)
+        CHECK_CLOSE(out3[k], c[k], 1e-9, 1e-9 * sqrt(c[2] * c[4]), "weighted box entry %d", k);
+    double zeros[4] = {0, 0, 0, 0};
+    CHECK(ggx_filter_downsample(out3, wo, bad, zeros, 2, 2, NULL) == GGX_OK && wo[0] == 0.0 && out3[0] == 0.0 &&
+              out3[1] == 0.0 && out3[2] == 1.0 && out3[3] == 0.0 && out3[4] == 1.0, "empty box");
+    wts[1] = -1;
+    CHECK(ggx_filter_downsample(out3, wo, in, wts, 2, 2, NULL) == GGX_ERR_RANGE, "negative weight");
+    wts[1] = INFINITY;
+    CHECK(ggx_filter_downsample(out3, wo, in, wts, 2, 2, NULL) == GGX_ERR_RANGE, "infinite weight");
     /* two steps of the chain against the exact filter of the 16 base texels of a 4 x 4 map */
     for (int i = 0; i < 16; i++) params_of(&f.lobe[i], in + GGX_LOBE_PARAMS * i);
-    CHECK(ggx_filter_downsample(out, in, 4, 4, NULL) == GGX_OK && ggx_filter_downsample(out3, out, 2, 2, NULL) == GGX_OK,
+    CHECK(ggx_filter_downsample(out, NULL, in, NULL, 4, 4, NULL) == GGX_OK && ggx_filter_downsample(out3, NULL, out, NULL, 2, 2, NULL) == GGX_OK,
           "two levels");
     ggx_shape chain, exact;
     CHECK(ggx_shape_from_slopes(&chain, out3[0], out3[1], out3[2], out3[3], out3[4]) == GGX_OK, "chain's lobe");

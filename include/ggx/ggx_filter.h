@@ -80,14 +80,18 @@ ggx_status ggx_filter_kl(const ggx_shape *s, const ggx_shape *lobes, const doubl
 enum { GGX_LOBE_PARAMS = 5 };
 
 /* One level of a mip chain: out, ceil(w / 2) x ceil(h / 2) texels, from in, w x h texels (both row-major, texel
- * (x, y) at GGX_LOBE_PARAMS (y w + x)). Each texel of out is ggx_filter_lobes of its box of in's texels, equal
- * weights: the 2 x 2 texels from (2x, 2y), cut to 2 x 1, 1 x 2 or 1 x 1 at an odd last column or row (so sizes that
- * are not powers of two keep every texel once); a 1 x 1 box is copied. Repeated down to 1 x 1 it builds the chain;
- * a level is then the filter of the level above (the exact filter of all of a coarse texel's base texels is
- * ggx_filter_lobes of them). opt: rule, tolerance and threads; results do not depend on the thread count. Errors:
- * GGX_ERR_NULL; GGX_ERR_RANGE (w or h 0, the size overflowing, a texel not finite or its Sigma not positive definite,
- * or a bad option as for ggx_filter_lobes), before anything is written; GGX_ERR_MEMORY. */
-ggx_status ggx_filter_downsample(double *out, const double *in, size_t w, size_t h, const ggx_filter_options *opt);
+ * (x, y) at GGX_LOBE_PARAMS (y w + x)). Each texel of out is ggx_filter_lobes of its box of in's texels, weighted by
+ * w_in (NULL: all 1): the 2 x 2 texels from (2x, 2y), cut to 2 x 1, 1 x 2 or 1 x 1 at an odd last column or row (so
+ * sizes that are not powers of two keep every texel once); a box of one texel of nonzero weight is copied. w_out
+ * (may be NULL) receives each box's total weight: a texel of weight 0 (a rejected normal) counts nowhere, and a box
+ * of nothing but such texels has weight 0 and the flat lobe of alpha 1 (t = 0, Sigma = I) as a placeholder.
+ * Repeated down to 1 x 1 it builds the chain; a level is the filter of the level above (the exact filter of all of
+ * a coarse texel's base texels is ggx_filter_lobes of them). opt: rule, tolerance and threads; results do not
+ * depend on the thread count. Errors: GGX_ERR_NULL (out or in); GGX_ERR_RANGE (w or h 0, the size overflowing, a
+ * weight negative or not finite, a texel of nonzero weight not finite or its Sigma not positive definite, or a bad
+ * option as for ggx_filter_lobes), before anything is written; GGX_ERR_MEMORY. */
+ggx_status ggx_filter_downsample(double *out, double *w_out, const double *in, const double *w_in, size_t w, size_t h,
+                                 const ggx_filter_options *opt);
 
 #ifdef __cplusplus
 }

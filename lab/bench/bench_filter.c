@@ -90,7 +90,7 @@ int main(void)
         double t0 = now();
         size_t w = SIDE, h = SIDE;
         while (w > 1 || h > 1) {
-            ggx_filter_downsample(nx, lv, w, h, &o);
+            ggx_filter_downsample(nx, NULL, lv, NULL, w, h, &o);
             w = (w + 1) / 2, h = (h + 1) / 2;
             memcpy(lv, nx, w * h * GGX_LOBE_PARAMS * sizeof *lv);
         }

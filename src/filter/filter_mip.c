@@ -9,8 +9,8 @@
 #include "filter.h"
 
 typedef struct mip_job {
-    double *out;
-    const double *in;
+    double *out, *w_out;
+    const double *in, *w_in;
     size_t w, h, w2, y0, y1;
     const filter_rule *rule;
     const filter_settings *f;
@@ -22,15 +22,28 @@ static void *mip_rows(void *p)
     for (size_t y = j->y0; y < j->y1; y++)
         for (size_t x = 0; x < j->w2; x++) {
             filter_lobe L[4];
-            size_t n = 0, xs = 2 * x, ys = 2 * y, nx = xs + 1 < j->w ? 2 : 1, ny = ys + 1 < j->h ? 2 : 1;
+            size_t n = 0, xs = 2 * x, ys = 2 * y, nx = xs + 1 < j->w ? 2 : 1, ny = ys + 1 < j->h ? 2 : 1, one = 0;
+            double W = 0.0;
+            for (size_t dy = 0; dy < ny; dy++)
+                for (size_t dx = 0; dx < nx; dx++) W += j->w_in ? j->w_in[(ys + dy) * j->w + xs + dx] : 1.0;
             for (size_t dy = 0; dy < ny; dy++)
                 for (size_t dx = 0; dx < nx; dx++) {
-                    const double *c = j->in + GGX_LOBE_PARAMS * ((ys + dy) * j->w + xs + dx);
-                    filter_lobe_set(&L[n++], c, c + 2, 1.0 / (double)(nx * ny));
+                    size_t i = (ys + dy) * j->w + xs + dx;
+                    double wi = j->w_in ? j->w_in[i] : 1.0;
+                    if (wi == 0.0) continue;
+                    const double *c = j->in + GGX_LOBE_PARAMS * i;
+                    filter_lobe_set(&L[n++], c, c + 2, wi / W);
+                    one = i;
                 }
-            double *o = j->out + GGX_LOBE_PARAMS * (y * j->w2 + x);
+            size_t o_i = y * j->w2 + x;
+            double *o = j->out + GGX_LOBE_PARAMS * o_i;
+            if (j->w_out) j->w_out[o_i] = W;
+            if (n == 0) { /* nothing to filter: the placeholder */
+                o[0] = o[1] = o[3] = 0.0, o[2] = o[4] = 1.0;
+                continue;
+            }
             if (n == 1) {
-                memcpy(o, j->in + GGX_LOBE_PARAMS * (ys * j->w + xs), GGX_LOBE_PARAMS * sizeof *o);
+                memcpy(o, j->in + GGX_LOBE_PARAMS * one, GGX_LOBE_PARAMS * sizeof *o);
                 continue;
             }
             int converged;
@@ -39,15 +52,18 @@ static void *mip_rows(void *p)
     return NULL;
 }
 
-GGX_API ggx_status ggx_filter_downsample(double *out, const double *in, size_t w, size_t h,
-                                         const ggx_filter_options *opt)
+GGX_API ggx_status ggx_filter_downsample(double *out, double *w_out, const double *in, const double *w_in, size_t w,
+                                         size_t h, const ggx_filter_options *opt)
 {
     if (!out || !in) return GGX_ERR_NULL;
     filter_settings f;
     ggx_status st = filter_settings_of(opt, &f);
     if (st != GGX_OK) return st;
     if (w == 0 || h == 0 || w > SIZE_MAX / GGX_LOBE_PARAMS / sizeof(double) / h) return GGX_ERR_RANGE;
-    for (size_t i = 0; i < w * h; i++) { /* every texel a lobe: finite, Sigma positive definite */
+    for (size_t i = 0; i < w * h; i++) { /* weights >= 0; every texel that counts a lobe: finite, Sigma > 0 */
+        double wi = w_in ? w_in[i] : 1.0;
+        if (!(wi >= 0.0) || !isfinite(wi)) return GGX_ERR_RANGE;
+        if (wi == 0.0) continue;
         const double *c = in + GGX_LOBE_PARAMS * i;
         for (int k = 0; k < GGX_LOBE_PARAMS; k++)
             if (!isfinite(c[k])) return GGX_ERR_RANGE;
@@ -61,7 +77,8 @@ GGX_API ggx_status ggx_filter_downsample(double *out, const double *in, size_t w
     pthread_t th[FILTER_MAX_THREADS];
     int created[FILTER_MAX_THREADS] = {0};
     for (int k = 0; k < nt; k++) {
-        jobs[k] = (mip_job){out, in, w, h, w2, h2 * (size_t)k / (size_t)nt, h2 * (size_t)(k + 1) / (size_t)nt, &r, &f};
+        jobs[k] = (mip_job){out, w_out, in, w_in, w, h, w2, h2 * (size_t)k / (size_t)nt, h2 * (size_t)(k + 1) / (size_t)nt,
+                            &r, &f};
         if (k > 0) created[k] = pthread_create(&th[k], NULL, mip_rows, &jobs[k]) == 0;
     }
     mip_rows(&jobs[0]);
