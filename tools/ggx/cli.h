@@ -129,6 +129,7 @@ int cmd_plot(int argc, char **argv);
 int cmd_check(int argc, char **argv);
 int cmd_audit(int argc, char **argv);
 int cmd_fit(int argc, char **argv);
+int cmd_mipmap(int argc, char **argv);
 int cmd_render(int argc, char **argv);
 
 /* ---- checks (also used by demo) ---- */

@@ -20,6 +20,7 @@ static const struct command {
     {"audit", cmd_audit, "the table of the seeds' claims for default or given shapes"},
     {"render", cmd_render, "an image of a sphere or plane of the material under a sky, an environment map or a light"},
     {"fit", cmd_fit, "the shape A of a measured height field, normal map or list of normals, by maximum likelihood"},
+    {"mipmap", cmd_mipmap, "a normal map filtered into a mip chain of per-texel ellipsoids (OpenEXR per level)"},
 };
 enum { NCOMMANDS = sizeof COMMANDS / sizeof COMMANDS[0] };
 

@@ -86,6 +86,10 @@ int surface_write_pfm(const char *path, const surface *s, char *err, size_t errn
 /* The bytes of an OpenEXR file (surface_write_exr's) in *data (malloc'd, *n bytes), for callers that write them
  * through their own output; 0, or -1 with err. Radiance is written as R, G, B in FLOAT. */
 int surface_encode_exr(const surface *s, unsigned char **data, size_t *n, char *err, size_t errn);
+/* Any nch FLOAT channels of nx x ny pixels, named names[k], from planes[k] (row-major, the top row first), as an
+ * OpenEXR file's bytes (ZIP, scanlines). */
+int surface_encode_exr_channels(size_t nx, size_t ny, int nch, const char *const *names, float *const *planes,
+                                unsigned char **data, size_t *n, char *err, size_t errn);
 /* The same for PFM: "PF" (radiance) or "Pf" (heights), little-endian, the bottom row first as the format says. */
 int surface_encode_pfm(const surface *s, unsigned char **data, size_t *n, char *err, size_t errn);
 

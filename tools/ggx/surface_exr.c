@@ -369,6 +369,69 @@ static int64_t exr_sink_write(exr_const_context_t ctx, void *user, const void *b
     return (int64_t)sz;
 }
 
+int surface_encode_exr_channels(size_t nx, size_t ny, int nch, const char *const *names, float *const *plane,
+                                unsigned char **data, size_t *n, char *err, size_t errn)
+{
+    *data = NULL, *n = 0;
+    if (nx < 1 || ny < 1 || nx > INT32_MAX || ny > INT32_MAX || nch < 1)
+        return surface_fail(err, errn, "no image, or too large for OpenEXR");
+    exr_context_initializer_t init = EXR_DEFAULT_CONTEXT_INITIALIZER;
+    init.error_handler_fn = exr_quiet;
+    exr_sink sink = {NULL, 0, 0, 0};
+    init.user_data = &sink;
+    init.write_fn = exr_sink_write;
+    exr_context_t ctx = NULL;
+    exr_encode_pipeline_t enc;
+    memset(&enc, 0, sizeof enc);
+    int enc_ready = 0, part = 0, started = 0;
+    int32_t lines = 0;
+    exr_result_t rv = exr_start_write(&ctx, "<memory>", EXR_WRITE_FILE_DIRECTLY, &init);
+    if (rv == EXR_ERR_SUCCESS) started = 1;
+    if (rv == EXR_ERR_SUCCESS) rv = exr_add_part(ctx, NULL, EXR_STORAGE_SCANLINE, &part);
+    if (rv == EXR_ERR_SUCCESS)
+        rv = exr_initialize_required_attr_simple(ctx, part, (int32_t)nx, (int32_t)ny, EXR_COMPRESSION_ZIP);
+    for (int k = 0; k < nch && rv == EXR_ERR_SUCCESS; k++)
+        rv = exr_add_channel(ctx, part, names[k], EXR_PIXEL_FLOAT, EXR_PERCEPTUALLY_LINEAR, 1, 1);
+    if (rv == EXR_ERR_SUCCESS) rv = exr_write_header(ctx);
+    if (rv == EXR_ERR_SUCCESS) rv = exr_get_scanlines_per_chunk(ctx, part, &lines);
+    if (rv == EXR_ERR_SUCCESS && lines < 1) rv = EXR_ERR_UNKNOWN;
+    for (size_t y = 0; y < ny && rv == EXR_ERR_SUCCESS; y += (size_t)lines) {
+        exr_chunk_info_t ci;
+        rv = exr_write_scanline_chunk_info(ctx, part, (int)y, &ci);
+        if (rv != EXR_ERR_SUCCESS) break;
+        rv = enc_ready ? exr_encoding_update(ctx, part, &ci, &enc) : exr_encoding_initialize(ctx, part, &ci, &enc);
+        if (rv != EXR_ERR_SUCCESS) break;
+        enc_ready = 1;
+        for (int c = 0; c < enc.channel_count && rv == EXR_ERR_SUCCESS; c++) {
+            exr_coding_channel_info_t *ch = &enc.channels[c];
+            int k = -1;
+            for (int j = 0; j < nch; j++)
+                if (ch->channel_name && strcmp(ch->channel_name, names[j]) == 0) k = j;
+            if (k < 0) {
+                rv = EXR_ERR_UNKNOWN;
+                break;
+            }
+            ch->encode_from_ptr = (const uint8_t *)(plane[k] + y * nx);
+            ch->user_pixel_stride = (int32_t)sizeof(float);
+            ch->user_line_stride = (int32_t)(nx * sizeof(float));
+            ch->user_bytes_per_element = (int16_t)sizeof(float);
+            ch->user_data_type = EXR_PIXEL_FLOAT;
+        }
+        if (rv == EXR_ERR_SUCCESS) rv = exr_encoding_choose_default_routines(ctx, part, &enc);
+        if (rv == EXR_ERR_SUCCESS) rv = exr_encoding_run(ctx, part, &enc);
+    }
+    if (enc_ready) exr_encoding_destroy(ctx, &enc);
+    exr_result_t fin = started ? exr_finish(&ctx) : EXR_ERR_SUCCESS;
+    if (rv == EXR_ERR_SUCCESS) rv = fin;
+    if (rv == EXR_ERR_SUCCESS && sink.failed) rv = EXR_ERR_OUT_OF_MEMORY;
+    if (rv != EXR_ERR_SUCCESS) {
+        free(sink.p);
+        return surface_fail(err, errn, "%s", exr_get_error_code_as_string(rv));
+    }
+    *data = sink.p, *n = sink.n;
+    return 0;
+}
+
 int surface_encode_exr(const surface *s, unsigned char **data, size_t *n, char *err, size_t errn)
 {
     *data = NULL, *n = 0;
@@ -378,7 +441,7 @@ int surface_encode_exr(const surface *s, unsigned char **data, size_t *n, char *
         (heights ? !s->h : s->kind == SURFACE_NORMALS ? !s->m : !s->rgb))
         return surface_fail(err, errn, "no surface, or too large for OpenEXR");
     size_t count = s->nx * s->ny;
-    static const char *const names[3] = {"R", "G", "B"};
+    static const char *const rgb[3] = {"R", "G", "B"}, *const y[1] = {"Y"};
     float *plane[3] = {NULL, NULL, NULL};
     for (int k = 0; k < nch; k++)
         if (!(plane[k] = malloc(count * sizeof(float)))) {
@@ -395,62 +458,9 @@ int surface_encode_exr(const surface *s, unsigned char **data, size_t *n, char *
             plane[0][i] = (float)s->m[i].x, plane[1][i] = (float)s->m[i].y, plane[2][i] = (float)s->m[i].z;
         }
     }
-    exr_context_initializer_t init = EXR_DEFAULT_CONTEXT_INITIALIZER;
-    init.error_handler_fn = exr_quiet;
-    exr_sink sink = {NULL, 0, 0, 0};
-    init.user_data = &sink;
-    init.write_fn = exr_sink_write;
-    exr_context_t ctx = NULL;
-    exr_encode_pipeline_t enc;
-    memset(&enc, 0, sizeof enc);
-    int enc_ready = 0, part = 0, started = 0;
-    int32_t lines = 0;
-    exr_result_t rv = exr_start_write(&ctx, "<memory>", EXR_WRITE_FILE_DIRECTLY, &init);
-    if (rv == EXR_ERR_SUCCESS) started = 1;
-    if (rv == EXR_ERR_SUCCESS) rv = exr_add_part(ctx, NULL, EXR_STORAGE_SCANLINE, &part);
-    if (rv == EXR_ERR_SUCCESS)
-        rv = exr_initialize_required_attr_simple(ctx, part, (int32_t)s->nx, (int32_t)s->ny, EXR_COMPRESSION_ZIP);
-    for (int k = 0; k < nch && rv == EXR_ERR_SUCCESS; k++)
-        rv = exr_add_channel(ctx, part, heights ? "Y" : names[k], EXR_PIXEL_FLOAT, EXR_PERCEPTUALLY_LINEAR, 1, 1);
-    if (rv == EXR_ERR_SUCCESS) rv = exr_write_header(ctx);
-    if (rv == EXR_ERR_SUCCESS) rv = exr_get_scanlines_per_chunk(ctx, part, &lines);
-    if (rv == EXR_ERR_SUCCESS && lines < 1) rv = EXR_ERR_UNKNOWN;
-    for (size_t y = 0; y < s->ny && rv == EXR_ERR_SUCCESS; y += (size_t)lines) {
-        exr_chunk_info_t ci;
-        rv = exr_write_scanline_chunk_info(ctx, part, (int)y, &ci);
-        if (rv != EXR_ERR_SUCCESS) break;
-        rv = enc_ready ? exr_encoding_update(ctx, part, &ci, &enc) : exr_encoding_initialize(ctx, part, &ci, &enc);
-        if (rv != EXR_ERR_SUCCESS) break;
-        enc_ready = 1;
-        for (int c = 0; c < enc.channel_count && rv == EXR_ERR_SUCCESS; c++) {
-            exr_coding_channel_info_t *ch = &enc.channels[c];
-            int k = -1;
-            for (int j = 0; j < nch; j++)
-                if (ch->channel_name && strcmp(ch->channel_name, heights ? "Y" : names[j]) == 0) k = j;
-            if (k < 0) {
-                rv = EXR_ERR_UNKNOWN;
-                break;
-            }
-            ch->encode_from_ptr = (const uint8_t *)(plane[k] + y * s->nx);
-            ch->user_pixel_stride = (int32_t)sizeof(float);
-            ch->user_line_stride = (int32_t)(s->nx * sizeof(float));
-            ch->user_bytes_per_element = (int16_t)sizeof(float);
-            ch->user_data_type = EXR_PIXEL_FLOAT;
-        }
-        if (rv == EXR_ERR_SUCCESS) rv = exr_encoding_choose_default_routines(ctx, part, &enc);
-        if (rv == EXR_ERR_SUCCESS) rv = exr_encoding_run(ctx, part, &enc);
-    }
-    if (enc_ready) exr_encoding_destroy(ctx, &enc);
+    int rc = surface_encode_exr_channels(s->nx, s->ny, nch, heights ? y : rgb, plane, data, n, err, errn);
     for (int k = 0; k < nch; k++) free(plane[k]);
-    exr_result_t fin = started ? exr_finish(&ctx) : EXR_ERR_SUCCESS;
-    if (rv == EXR_ERR_SUCCESS) rv = fin;
-    if (rv == EXR_ERR_SUCCESS && sink.failed) rv = EXR_ERR_OUT_OF_MEMORY;
-    if (rv != EXR_ERR_SUCCESS) {
-        free(sink.p);
-        return surface_fail(err, errn, "%s", exr_get_error_code_as_string(rv));
-    }
-    *data = sink.p, *n = sink.n;
-    return 0;
+    return rc;
 }
 
 int surface_write_exr(const char *path, const surface *s, char *err, size_t errn)
@@ -486,6 +496,13 @@ int surface_write_exr(const char *path, const surface *s, char *err, size_t errn
 int surface_encode_exr(const surface *s, unsigned char **data, size_t *n, char *err, size_t errn)
 {
     (void)s;
+    *data = NULL, *n = 0;
+    return surface_fail(err, errn, "OpenEXR support was not built (OpenEXR missing: apt-get install libopenexr-dev)");
+}
+int surface_encode_exr_channels(size_t nx, size_t ny, int nch, const char *const *names, float *const *plane,
+                                unsigned char **data, size_t *n, char *err, size_t errn)
+{
+    (void)nx, (void)ny, (void)nch, (void)names, (void)plane;
     *data = NULL, *n = 0;
     return surface_fail(err, errn, "OpenEXR support was not built (OpenEXR missing: apt-get install libopenexr-dev)");
 }

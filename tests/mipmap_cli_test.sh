@@ -1,0 +1,83 @@
+#!/bin/sh
+# ggx mipmap from the command line: a constant normal map keeps its lobe at every level, a checkerboard's tilts
+# widen its levels across them and nowhere else, the levels' OpenEXR files hold the six channels at the sizes of the
+# chain (odd sizes included), rejected texels are counted, and malformed input exits 2 with one line and no files.
+# Usage: mipmap_cli_test.sh GGX   SPDX-License-Identifier: MIT
+set -u
+ROOT=$(cd "$(dirname "$0")/.." && pwd)
+. "$ROOT/tests/cli_common.sh"
+PY=/usr/bin/python3
+
+"$GGX" mipmap --help > h.txt && grep -q "usage: ggx mipmap" h.txt && ok || bad "ggx mipmap --help"
+# maps as CSVs of normals (x,y,z), written as 8-bit PNGs by tests/fit_png_map.py
+"$PY" - <<'EOF_PY'
+import math
+def write(name, w, h, f):
+    with open(name, "w") as out:
+        out.write("x,y,z\n")
+        for j in range(h):
+            for i in range(w):
+                v = f(i, j)
+                z = v[2] if len(v) > 2 else math.sqrt(max(0.0, 1 - v[0] * v[0] - v[1] * v[1]))
+                out.write("%r,%r,%r\n" % (v[0], v[1], z))
+write("const.csv", 10, 6, lambda i, j: (0.3, -0.2))
+write("checker.csv", 8, 8, lambda i, j: (0.3 if (i + j) % 2 else -0.3, 0.0))
+write("flat_edge.csv", 4, 4, lambda i, j: (0.6, 0.0, -0.8) if i == 0 and j == 0 else (0.0, 0.0))
+EOF_PY
+if ! "$PY" "$ROOT/tests/fit_png_map.py" const.csv 10 6 const.png c1.csv ||
+   ! "$PY" "$ROOT/tests/fit_png_map.py" checker.csv 8 8 checker.png c2.csv ||
+   ! "$PY" "$ROOT/tests/fit_png_map.py" flat_edge.csv 4 4 edge.png c3.csv; then
+    bad "writing the test maps"
+fi
+if "$GGX" mipmap --normal-map const.png --alpha 0.2 --out cm > cm.txt 2> cm.err; then
+    # a constant map: every level the same mean slope and width (10 x 6 -> 5 x 3 -> 3 x 2 -> 2 x 1 -> 1 x 1)
+    [ "$(grep -c '^| [0-9]' cm.txt)" -eq 5 ] && [ "$(grep '^| [0-9]' cm.txt | cut -d'|' -f4,5 | sort -u | wc -l)" -eq 1 ] &&
+        ok || bad "constant map: levels differ: $(cat cm.txt)"
+    grep -q "(0 rejected)" cm.txt && ok || bad "constant map: rejected texels: $(head -1 cm.txt)"
+    # the files: six float channels each, at the chain's sizes
+    "$PY" - <<'EOF_PY' && ok || bad "constant map: the levels' OpenEXR headers"
+import struct
+sizes = [(10, 6), (5, 3), (3, 2), (2, 1), (1, 1)]
+for k, (w, h) in enumerate(sizes):
+    d = open("cm/level-%d.exr" % k, "rb").read()
+    assert d[:4] == b"\x76\x2f\x31\x01", k
+    p, attrs = 8, {}
+    while d[p] != 0:
+        name_end = d.index(b"\0", p); name = d[p:name_end].decode()
+        type_end = d.index(b"\0", name_end + 1)
+        size = struct.unpack("<i", d[type_end + 1:type_end + 5])[0]
+        attrs[name] = d[type_end + 5:type_end + 5 + size]
+        p = type_end + 5 + size
+    ch, names = attrs["channels"], []
+    q = 0
+    while ch[q] != 0:
+        e = ch.index(b"\0", q); names.append(ch[q:e].decode())
+        assert struct.unpack("<i", ch[e + 1:e + 5])[0] == 2, "FLOAT"
+        q = e + 17
+    assert sorted(names) == sorted(["t.x", "t.y", "sigma.xx", "sigma.xy", "sigma.yy", "weight"]), names
+    x0, y0, x1, y1 = struct.unpack("<iiii", attrs["dataWindow"])
+    assert (x1 - x0 + 1, y1 - y0 + 1) == (w, h), (k, x0, y0, x1, y1)
+EOF_PY
+    [ ! -e cm/level-5.exr ] && ok || bad "a level below 1 x 1"
+    # a checkerboard of tilts +-0.3 in x: every coarser level is wider than the base lobe, centred on t = 0
+    "$GGX" mipmap --normal-map checker.png --alpha 0.1 --out ck > ck.txt && ok || bad "checker"
+    awk -F'|' '/^\| [1-9]/ { split($4, t, ","); if (!($5 + 0 > 0.15) || t[1] + 0 > 1e-3 || t[1] + 0 < -1e-3) bad = 1 }
+               /^\| 0 / { if ($5 + 0 != 0.1) bad = 1 } END { exit bad }' ck.txt && ok || bad "checker levels: $(cat ck.txt)"
+    # a texel below the tangent plane is rejected and counted
+    "$GGX" mipmap --normal-map edge.png --alpha 0.3 --out em > em.txt && grep -q "(1 rejected)" em.txt && ok ||
+        bad "rejected texel: $(head -1 em.txt)"
+elif grep -q "not built" cm.err; then
+    echo "mipmap CLI: PNG or OpenEXR support is off, the maps are not tested"
+else
+    bad "mipmap: $(cat cm.err)"
+fi
+# malformed input: one line, exit 2, nothing written
+one_line "no normal map" "--normal-map FILE is required" 2 "$GGX" mipmap --alpha 0.2 --out none
+one_line "no alpha" "the base roughness is required" 2 "$GGX" mipmap --normal-map const.png --out none
+one_line "bad format" "is not exr" 2 "$GGX" mipmap --normal-map const.png --alpha 0.2 --format png --out none
+one_line "alpha 0" "--alpha" 2 "$GGX" mipmap --normal-map const.png --alpha 0 --out none
+one_line "missing file" "missing.png" 2 "$GGX" mipmap --normal-map missing.png --alpha 0.2 --out none
+[ ! -e none ] && ok || bad "a failed mipmap left its folder"
+
+echo "mipmap CLI: $pass passed, $fail failed"
+[ $fail -eq 0 ]

@@ -1,0 +1,130 @@
+/* ggx mipmap: a tangent-space normal map filtered into a chain of per-texel ellipsoids (ggx_filter.h), one OpenEXR
+ * file per level holding each texel's slope location t, scale Sigma and weight. SPDX-License-Identifier: MIT */
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <time.h>
+
+#include "cli.h"
+#include "ggx/ggx_filter.h"
+#include "surface.h"
+
+static const char *const CHANNELS[GGX_LOBE_PARAMS + 1] = {"t.x", "t.y", "sigma.xx", "sigma.xy", "sigma.yy", "weight"};
+
+/* The level's summary: the weighted mean slope location and the weighted mean of det(Sigma)^(1/4), the alpha of the
+ * isotropic lobe of the same spread. */
+static void summary(const double *lobes, const double *w, size_t count, double t[2], double *alpha)
+{
+    double W = 0.0;
+    t[0] = t[1] = *alpha = 0.0;
+    for (size_t i = 0; i < count; i++) {
+        const double *c = lobes + GGX_LOBE_PARAMS * i;
+        if (w[i] == 0.0) continue;
+        W += w[i], t[0] += w[i] * c[0], t[1] += w[i] * c[1];
+        *alpha += w[i] * sqrt(sqrt(c[2] * c[4] - c[3] * c[3]));
+    }
+    if (W > 0.0) t[0] /= W, t[1] /= W, *alpha /= W;
+}
+
+static void write_level(const char *path, const double *lobes, const double *w, size_t nx, size_t ny)
+{
+    size_t count = nx * ny;
+    float *plane[GGX_LOBE_PARAMS + 1];
+    for (int k = 0; k <= GGX_LOBE_PARAMS; k++)
+        if (!(plane[k] = malloc(count * sizeof(float)))) die("out of memory");
+    for (size_t i = 0; i < count; i++) {
+        for (int k = 0; k < GGX_LOBE_PARAMS; k++) plane[k][i] = (float)lobes[GGX_LOBE_PARAMS * i + k];
+        plane[GGX_LOBE_PARAMS][i] = (float)w[i];
+    }
+    unsigned char *data;
+    size_t n;
+    char err[256];
+    if (surface_encode_exr_channels(nx, ny, GGX_LOBE_PARAMS + 1, CHANNELS, plane, &data, &n, err, sizeof err) != 0)
+        die("cannot write '%s': %s", path, err);
+    for (int k = 0; k <= GGX_LOBE_PARAMS; k++) free(plane[k]);
+    out_file out;
+    out_open(&out, path);
+    if (fwrite(data, 1, n, out.f) != n) out_check(&out);
+    out_close(&out);
+    free(data);
+}
+
+int cmd_mipmap(int argc, char **argv)
+{
+    options o;
+    parse_options(argc, argv, 2, &o, "normal-map,alpha,y-down,threads,out,format");
+    if (o.help) {
+        printf("usage: ggx mipmap --normal-map FILE --alpha A[,AY] [--y-down] [--threads N] [--out DIR]\n"
+               "                  [--format exr]\n\n"
+               "Filters a tangent-space normal map (PNG 8 or 16 bit, RGB or two channels with z rebuilt; OpenEXR R,\n"
+               "G[, B]) of base roughness A (or AX along x, AY along y) into a mip chain of ellipsoids, with no\n"
+               "shading normal left: each texel of level 0 is the GGX lobe of A translated to its normal's slope (a\n"
+               "skewed ellipsoid, exactly), and each texel of a coarser level the ellipsoid closest (least KL\n"
+               "divergence) to the mixture of its 2 x 2 texels above, by ggx_filter_downsample (odd sizes: the last\n"
+               "column or row filters 2 x 1, 1 x 2 or 1 x 1 boxes). A texel whose normal is NaN, zero or not above\n"
+               "the tangent plane is rejected: weight 0, counted nowhere. --y-down: the green channel points down\n"
+               "(DirectX maps). Writes DIR/level-K.exr (default DIR: mipmap) for K = 0 to the 1 x 1 level, each\n"
+               "with the float channels t.x, t.y (the slope location: the mean normal is (-t.x, -t.y, 1)\n"
+               "normalised), sigma.xx, sigma.xy, sigma.yy (the slope scale, as ggx_shape_from_slopes takes them)\n"
+               "and weight (the texels behind the texel), all files or none. Prints per level its size, the mean\n"
+               "slope location, the mean det(Sigma)^(1/4) (the alpha of an isotropic lobe as wide) and the time.\n");
+        return 0;
+    }
+    if (!o.normal_map) die("--normal-map FILE is required");
+    if (!o.have_alpha) die("--alpha A[,AY]: the base roughness is required");
+    if (o.format && strcmp(o.format, "exr") != 0) die("--format: '%s' is not exr", o.format);
+    surface_read_options ro = {SURFACE_NORMALS, o.y_down};
+    surface s;
+    char err[512];
+    if (surface_read(o.normal_map, &ro, &s, err, sizeof err) != 0) die("%s", err);
+    if (s.ny < 1 || s.nx < 1 || (s.ny == 1 && s.format == SURFACE_CSV)) die("%s: not a normal map", o.normal_map);
+    size_t nx = s.nx, ny = s.ny, count = nx * ny;
+    double *lobes = malloc(count * GGX_LOBE_PARAMS * sizeof *lobes), *w = malloc(count * sizeof *w);
+    double *next = malloc(((nx + 1) / 2) * ((ny + 1) / 2) * GGX_LOBE_PARAMS * sizeof *next);
+    double *wn = malloc(((nx + 1) / 2) * ((ny + 1) / 2) * sizeof *wn);
+    if (!lobes || !w || !next || !wn) die("out of memory");
+    size_t rejected = 0;
+    for (size_t i = 0; i < count; i++) {
+        ggx_shape lobe;
+        ggx_status st = ggx_texel_lobe(&lobe, s.m[i], o.alpha[0], o.alpha[1], 0.0);
+        if (st == GGX_ERR_ALPHA) die("--alpha: %s", ggx_status_str(st));
+        w[i] = st == GGX_OK;
+        if (st == GGX_OK) ggx_shape_slopes(&lobe, lobes + GGX_LOBE_PARAMS * i, lobes + GGX_LOBE_PARAMS * i + 2);
+        else rejected++, memset(lobes + GGX_LOBE_PARAMS * i, 0, GGX_LOBE_PARAMS * sizeof *lobes);
+    }
+    surface_free(&s);
+    const char *dir = o.out ? o.out : "mipmap";
+    ensure_dir(dir);
+    ggx_filter_options fo = {0};
+    fo.threads = o.threads > 0 ? o.threads : 1;
+    printf("ggx mipmap: %s, %zu x %zu texels (%zu rejected), alpha %g, %g, into %s/\n", o.normal_map, nx, ny, rejected,
+           o.alpha[0], o.alpha[1], dir);
+    printf("| level | size | mean t | mean det(Sigma)^(1/4) | seconds to the next |\n|---|---|---|---|---|\n");
+    out_begin_set(); /* every level or none */
+    char path[1024];
+    for (int level = 0;; level++) {
+        snprintf(path, sizeof path, "%s/level-%d.exr", dir, level);
+        write_level(path, lobes, w, nx, ny);
+        double t[2], alpha;
+        summary(lobes, w, nx * ny, t, &alpha);
+        printf("| %d | %zu x %zu | %.6g, %.6g | %.6g | ", level, nx, ny, t[0], t[1], alpha);
+        if (nx == 1 && ny == 1) {
+            printf("|\n");
+            break;
+        }
+        struct timespec t0, t1;
+        clock_gettime(CLOCK_MONOTONIC, &t0);
+        ggx_status st = ggx_filter_downsample(next, wn, lobes, w, nx, ny, &fo);
+        if (st != GGX_OK) die("level %d: %s", level + 1, ggx_status_str(st));
+        clock_gettime(CLOCK_MONOTONIC, &t1);
+        printf("%.3f |\n", (double)(t1.tv_sec - t0.tv_sec) + 1e-9 * (double)(t1.tv_nsec - t0.tv_nsec));
+        out_flush_stdout();
+        nx = (nx + 1) / 2, ny = (ny + 1) / 2;
+        memcpy(lobes, next, nx * ny * GGX_LOBE_PARAMS * sizeof *lobes);
+        memcpy(w, wn, nx * ny * sizeof *w);
+    }
+    out_commit_set();
+    free(lobes), free(w), free(next), free(wn);
+    return 0;
+}
