@@ -93,6 +93,38 @@ static void texel_lobe_errors(void **state)
     CHECK_CLOSE(ggx_p22(&lo, 1e-5, 0), ggx_p22(&mn, 1e-5, 0), 1e-12, 0, "alpha 1e-9 is not raised to GGX_ALPHA_MIN");
 }
 
+/* The texels of a map: each the slopes of ggx_texel_lobe's lobe, the refused normals rejected with weight 0 and the
+ * placeholder, counted; a bad roughness writes nothing. */
+static void texel_lobes(void **state)
+{
+    (void)state;
+    const ggx_vec3 n[6] = {{0.2, -0.1, 1}, {NAN, 0, 1}, {0, 0, 0}, {0.3, 0, -1}, {1, 0, 0}, {0, 0, 5}};
+    double lobes[6 * GGX_LOBE_PARAMS], w[6], keep[6 * GGX_LOBE_PARAMS];
+    size_t rejected = 99;
+    CHECK(ggx_texel_lobes(lobes, w, n, 6, 0.2, 0.4, 0.3, &rejected) == GGX_OK && rejected == 4, "%zu rejected",
+          rejected);
+    for (int i = 0; i < 6; i++) {
+        const double *c = lobes + GGX_LOBE_PARAMS * i;
+        ggx_shape s;
+        ggx_status st = ggx_texel_lobe(&s, n[i], 0.2, 0.4, 0.3);
+        CHECK(w[i] == (st == GGX_OK), "texel %d: weight %g, ggx_texel_lobe %s", i, w[i], ggx_status_str(st));
+        if (st == GGX_OK) {
+            double t[2], sg[3];
+            ggx_shape_slopes(&s, t, sg);
+            CHECK_CLOSE(c[0], t[0], 1e-14, 1e-15, "t_x");
+            CHECK_CLOSE(c[2], sg[0], 1e-13, 0, "sigma_xx");
+            CHECK_CLOSE(c[3], sg[1], 1e-12, 1e-15, "sigma_xy");
+        } else
+            CHECK(c[0] == 0 && c[1] == 0 && c[2] == 1 && c[3] == 0 && c[4] == 1, "placeholder of texel %d", i);
+    }
+    memcpy(keep, lobes, sizeof keep);
+    CHECK(ggx_texel_lobes(lobes, w, n, 6, 0.0, 0.4, 0.3, NULL) == GGX_ERR_ALPHA, "alpha 0");
+    CHECK(ggx_texel_lobes(lobes, w, n, 6, 0.2, NAN, 0.3, NULL) == GGX_ERR_NONFINITE, "NaN alpha");
+    CHECK(memcmp(keep, lobes, sizeof keep) == 0, "written on error");
+    CHECK(ggx_texel_lobes(NULL, w, n, 6, 0.2, 0.4, 0, NULL) == GGX_ERR_NULL, "NULL lobes");
+    CHECK(ggx_texel_lobes(lobes, w, n, 0, 0.2, 0.4, 0, &rejected) == GGX_OK && rejected == 0, "no texels");
+}
+
 static double ndf_rel_diff(const ggx_shape *a, const ggx_shape *b, rng *r)
 {
     double worst = 0.0;
@@ -534,7 +566,8 @@ static void threads(void **state)
 int main(int argc, char **argv)
 {
     const struct CMUnitTest tests[] = {
-        cmocka_unit_test(texel_lobe_form), cmocka_unit_test(texel_lobe_errors),     cmocka_unit_test(constant_map),
+        cmocka_unit_test(texel_lobe_form), cmocka_unit_test(texel_lobe_errors),     cmocka_unit_test(texel_lobes),
+        cmocka_unit_test(constant_map),
         cmocka_unit_test(em_monotone),     cmocka_unit_test(optimum_and_baselines), cmocka_unit_test(rule_accuracy),
         cmocka_unit_test(weights),         cmocka_unit_test(bad_input),             cmocka_unit_test(chain_constant),
         cmocka_unit_test(chain_boxes),     cmocka_unit_test(threads),

@@ -79,6 +79,14 @@ ggx_status ggx_filter_kl(const ggx_shape *s, const ggx_shape *lobes, const doubl
  * location and scale as ggx_shape_slopes gives them (and ggx_shape_from_slopes takes them back). */
 enum { GGX_LOBE_PARAMS = 5 };
 
+/* The texels of a map (level 0 of a chain): lobes[GGX_LOBE_PARAMS i] the slope parameters of ggx_texel_lobe of
+ * normals[i] and weight[i] = 1, or, for a normal that ggx_texel_lobe refuses (NaN, infinite, zero, not above the
+ * tangent plane, too steep), the placeholder of ggx_filter_downsample with weight 0: the texel is rejected, and
+ * counted in *rejected when rejected is not NULL. Errors: GGX_ERR_NULL (lobes, weight or normals NULL);
+ * GGX_ERR_NONFINITE or GGX_ERR_ALPHA for the roughness as ggx_texel_lobe, before anything is written. */
+ggx_status ggx_texel_lobes(double *lobes, double *weight, const ggx_vec3 *normals, size_t n, double alpha_x,
+                           double alpha_y, double phi, size_t *rejected);
+
 /* One level of a mip chain: out, ceil(w / 2) x ceil(h / 2) texels, from in, w x h texels (both row-major, texel
  * (x, y) at GGX_LOBE_PARAMS (y w + x)). Each texel of out is ggx_filter_lobes of its box of in's texels, weighted by
  * w_in (NULL: all 1): the 2 x 2 texels from (2x, 2y), cut to 2 x 1, 1 x 2 or 1 x 1 at an odd last column or row (so

@@ -38,7 +38,7 @@ __all__ = [
     "sample", "pdf", "sample_inverse", "sample_ndf", "sample_vndf", "sample_brdf",
     "pdf_brdf", "sample_bsdf", "pdf_bsdf", "reflect", "half_reflect", "batch_isa", "set_batch_threads",
     "FitInfo", "Surface", "fit_normals", "fit_normal_cells", "fit_heightfield", "read_surface", "render",
-    "texel_lobe", "filter_lobes", "filter_kl",
+    "texel_lobe", "filter_lobes", "filter_kl", "mipmap",
 ]
 
 # The native module; the library's own functions are found through it in libggx, which it links.
@@ -1315,3 +1315,37 @@ def filter_kl(shape, lobes, weights=None, nodes=None):
     _check(_filter_kl(_shape(shape)._buf, buf, None if w is None else w.ctypes.data, n, ctypes.byref(o),
                       ctypes.byref(kl)))
     return kl.value
+
+
+_filter_downsample = _proto("ggx_filter_downsample", _i, _vp, _vp, _vp, _vp, _sz, _sz, ctypes.POINTER(_FilterOptions))
+_texel_lobes = _proto("ggx_texel_lobes", _i, _vp, _vp, _vp, _sz, _d, _d, _d, _vp)
+
+def mipmap(normal_map, alpha, alpha_y=None, threads=1, max_iterations=None, tolerance=None, nodes=None):
+    """The mip chain of a tangent-space normal map (array (h, w, 3) of normals, any length) of base roughness alpha
+    (alpha_y along y, default alpha): a list of (lobes, weights) per level from the full size down to 1 x 1, lobes
+    an array (h, w, 5) of each texel's slope location and scale (t_x, t_y, sigma_xx, sigma_xy, sigma_yy;
+    Shape.from_slopes takes them) and weights (h, w) the texels behind each texel. Level 0 is ggx_texel_lobes of
+    the normals: a normal that is not finite or not above the tangent plane is rejected (weight 0). Each coarser
+    level is ggx_filter_downsample of the one above (boxes of 2 x 2, cut at an odd last column or row); options as
+    filter_lobes, threads splitting the rows."""
+    a = _array(normal_map, "normal_map")
+    if a.ndim != 3 or a.shape[2] != 3 or a.shape[0] < 1 or a.shape[1] < 1:
+        raise ValueError(f"normal_map: expected an array (h, w, 3) of normals, got shape {a.shape}")
+    h, w = a.shape[0], a.shape[1]
+    ax = _real(alpha, "alpha")
+    ay = ax if alpha_y is None else _real(alpha_y, "alpha_y")
+    n = np.ascontiguousarray(a.reshape(-1, 3), dtype=np.float64)
+    lobes, weights = np.zeros((h * w, 5)), np.zeros(h * w)
+    _check(_texel_lobes(lobes.ctypes.data, weights.ctypes.data, n.ctypes.data, h * w, ax, ay, 0.0, None))
+    o = _filter_options(max_iterations, tolerance, nodes)
+    o.threads = int(threads)
+    chain = [(lobes.reshape(h, w, 5), weights.reshape(h, w))]
+    while h > 1 or w > 1:
+        h2, w2 = (h + 1) // 2, (w + 1) // 2
+        out, wo = np.zeros((h2 * w2, 5)), np.zeros(h2 * w2)
+        src, ws = np.ascontiguousarray(chain[-1][0]), np.ascontiguousarray(chain[-1][1])
+        _check(_filter_downsample(out.ctypes.data, wo.ctypes.data, src.ctypes.data, ws.ctypes.data, w, h,
+                                  ctypes.byref(o)))
+        chain.append((out.reshape(h2, w2, 5), wo.reshape(h2, w2)))
+        h, w = h2, w2
+    return chain

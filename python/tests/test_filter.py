@@ -52,3 +52,33 @@ def test_bad_input():
         ggx.texel_lobe([0, 0, -1], 0.3)
     with pytest.raises(ValueError):
         ggx.filter_lobes([a, "not a shape"])
+
+
+def test_mipmap_chain():
+    rng = np.random.default_rng(3)
+    # a constant map: every level the texel's lobe, sizes 7 x 5 -> 4 x 3 -> 2 x 2 -> 1 x 1
+    n = np.tile([0.2, -0.1, 1.0], (5, 7, 1))
+    chain = ggx.mipmap(n, 0.3)
+    assert [lv[0].shape[:2] for lv in chain] == [(5, 7), (3, 4), (2, 2), (1, 1)]
+    want = ggx.texel_lobe([0.2, -0.1, 1.0], 0.3).slopes()
+    for lobes, w in chain:
+        np.testing.assert_allclose(lobes[..., 0], want[0][0], rtol=1e-12)
+        np.testing.assert_allclose(lobes[..., 2], want[1][0], rtol=1e-12)
+    assert chain[-1][1][0, 0] == 35.0
+    # a level's texel is filter_lobes of its box; a rejected texel has weight 0 and counts nowhere
+    m = rng.normal(0, 0.2, (4, 4, 3))
+    m[..., 2] = 1.0
+    m[0, 0] = [1.0, 0.0, -0.5]
+    chain = ggx.mipmap(m, 0.1, threads=2)
+    assert chain[0][1][0, 0] == 0.0 and chain[1][1][0, 0] == 3.0
+    box = [ggx.texel_lobe(m[j, i], 0.1) for j in (0, 1) for i in (0, 1) if (i, j) != (0, 0)]
+    f, _ = ggx.filter_lobes(box)
+    t, sigma = f.slopes()
+    np.testing.assert_allclose(chain[1][0][0, 0, :2], t, rtol=1e-9, atol=1e-12)
+    np.testing.assert_allclose(chain[1][0][0, 0, 2:], sigma, rtol=1e-9)
+    with pytest.raises(ValueError):
+        ggx.mipmap(np.zeros((4, 4)), 0.1)
+    with pytest.raises(ValueError):
+        ggx.mipmap(np.zeros((4, 4, 2)), 0.1)
+    with pytest.raises(ValueError):
+        ggx.mipmap(n, 0.0)

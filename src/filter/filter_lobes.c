@@ -236,22 +236,48 @@ GGX_API ggx_status ggx_filter_kl(const ggx_shape *sh, const ggx_shape *lobes, co
     return GGX_OK;
 }
 
+/* The slope parameters of a texel's lobe (ggx_texel_lobe's checks, in its order). */
+static ggx_status texel_params(ggx_vec3 nrm, double alpha_x, double alpha_y, double phi, double c[GGX_LOBE_PARAMS])
+{
+    if (!isfinite(alpha_x) || !isfinite(alpha_y) || !isfinite(phi)) return GGX_ERR_NONFINITE;
+    if (!(alpha_x > 0.0 && alpha_y > 0.0 && alpha_x <= GGX_ALPHA_MAX && alpha_y <= GGX_ALPHA_MAX)) return GGX_ERR_ALPHA;
+    if (!isfinite(nrm.x) || !isfinite(nrm.y) || !isfinite(nrm.z)) return GGX_ERR_NONFINITE;
+    if (!(nrm.z > 0.0)) return GGX_ERR_RANGE;
+    double tx = -nrm.x / nrm.z, ty = -nrm.y / nrm.z;
+    if (!(fabs(tx) <= GGX_MATRIX_SCALE_MAX && fabs(ty) <= GGX_MATRIX_SCALE_MAX)) return GGX_ERR_RANGE;
+    double ax = fmax(alpha_x, GGX_ALPHA_MIN), ay = fmax(alpha_y, GGX_ALPHA_MIN), co = cos(phi), si = sin(phi);
+    double lx = ax * ax, ly = ay * ay;
+    c[0] = tx, c[1] = ty;
+    c[2] = lx * co * co + ly * si * si, c[3] = (lx - ly) * co * si, c[4] = lx * si * si + ly * co * co;
+    return GGX_OK;
+}
+
 GGX_API ggx_status ggx_texel_lobe(ggx_shape *out, ggx_vec3 nrm, double alpha_x, double alpha_y, double phi)
 {
     if (!out) return GGX_ERR_NULL;
-    if (!isfinite(nrm.x) || !isfinite(nrm.y) || !isfinite(nrm.z) || !isfinite(alpha_x) || !isfinite(alpha_y) ||
-        !isfinite(phi))
-        return GGX_ERR_NONFINITE;
-    if (!(nrm.z > 0.0)) return GGX_ERR_RANGE;
-    if (!(alpha_x > 0.0 && alpha_y > 0.0 && alpha_x <= GGX_ALPHA_MAX && alpha_y <= GGX_ALPHA_MAX)) return GGX_ERR_ALPHA;
-    double tx = -nrm.x / nrm.z, ty = -nrm.y / nrm.z;
-    if (!(fabs(tx) <= GGX_MATRIX_SCALE_MAX && fabs(ty) <= GGX_MATRIX_SCALE_MAX)) return GGX_ERR_RANGE;
-    double ax = fmax(alpha_x, GGX_ALPHA_MIN), ay = fmax(alpha_y, GGX_ALPHA_MIN), c = cos(phi), s = sin(phi);
-    double lx = ax * ax, ly = ay * ay;
-    ggx_shape res;
-    ggx_status st = ggx_shape_from_slopes(&res, tx, ty, lx * c * c + ly * s * s, (lx - ly) * c * s,
-                                          lx * s * s + ly * c * c);
+    double c[GGX_LOBE_PARAMS];
+    ggx_status st = texel_params(nrm, alpha_x, alpha_y, phi, c);
     if (st != GGX_OK) return st;
+    ggx_shape res;
+    if ((st = ggx_shape_from_slopes(&res, c[0], c[1], c[2], c[3], c[4])) != GGX_OK) return st;
     *out = res;
+    return GGX_OK;
+}
+
+GGX_API ggx_status ggx_texel_lobes(double *lobes, double *weight, const ggx_vec3 *normals, size_t n, double alpha_x,
+                                   double alpha_y, double phi, size_t *rejected)
+{
+    if (!lobes || !weight || !normals) return GGX_ERR_NULL;
+    ggx_vec3 up = {0.0, 0.0, 1.0};
+    double probe[GGX_LOBE_PARAMS];
+    ggx_status st = texel_params(up, alpha_x, alpha_y, phi, probe); /* the roughness, before anything is written */
+    if (st != GGX_OK) return st;
+    size_t bad = 0;
+    for (size_t i = 0; i < n; i++) {
+        double *c = lobes + GGX_LOBE_PARAMS * i;
+        weight[i] = texel_params(normals[i], alpha_x, alpha_y, phi, c) == GGX_OK;
+        if (weight[i] == 0.0) bad++, c[0] = c[1] = c[3] = 0.0, c[2] = c[4] = 1.0;
+    }
+    if (rejected) *rejected = bad;
     return GGX_OK;
 }

@@ -84,15 +84,9 @@ int cmd_mipmap(int argc, char **argv)
     double *next = malloc(((nx + 1) / 2) * ((ny + 1) / 2) * GGX_LOBE_PARAMS * sizeof *next);
     double *wn = malloc(((nx + 1) / 2) * ((ny + 1) / 2) * sizeof *wn);
     if (!lobes || !w || !next || !wn) die("out of memory");
-    size_t rejected = 0;
-    for (size_t i = 0; i < count; i++) {
-        ggx_shape lobe;
-        ggx_status st = ggx_texel_lobe(&lobe, s.m[i], o.alpha[0], o.alpha[1], 0.0);
-        if (st == GGX_ERR_ALPHA) die("--alpha: %s", ggx_status_str(st));
-        w[i] = st == GGX_OK;
-        if (st == GGX_OK) ggx_shape_slopes(&lobe, lobes + GGX_LOBE_PARAMS * i, lobes + GGX_LOBE_PARAMS * i + 2);
-        else rejected++, memset(lobes + GGX_LOBE_PARAMS * i, 0, GGX_LOBE_PARAMS * sizeof *lobes);
-    }
+    size_t rejected;
+    ggx_status st = ggx_texel_lobes(lobes, w, s.m, count, o.alpha[0], o.alpha[1], 0.0, &rejected);
+    if (st != GGX_OK) die("--alpha: %s", ggx_status_str(st));
     surface_free(&s);
     const char *dir = o.out ? o.out : "mipmap";
     ensure_dir(dir);
@@ -115,7 +109,7 @@ int cmd_mipmap(int argc, char **argv)
         }
         struct timespec t0, t1;
         clock_gettime(CLOCK_MONOTONIC, &t0);
-        ggx_status st = ggx_filter_downsample(next, wn, lobes, w, nx, ny, &fo);
+        st = ggx_filter_downsample(next, wn, lobes, w, nx, ny, &fo);
         if (st != GGX_OK) die("level %d: %s", level + 1, ggx_status_str(st));
         clock_gettime(CLOCK_MONOTONIC, &t1);
         printf("%.3f |\n", (double)(t1.tv_sec - t0.tv_sec) + 1e-9 * (double)(t1.tv_nsec - t0.tv_nsec));
