@@ -59,6 +59,50 @@ for k, (w, h) in enumerate(sizes):
     assert (x1 - x0 + 1, y1 - y0 + 1) == (w, h), (k, x0, y0, x1, y1)
 EOF_PY
     [ ! -e cm/level-5.exr ] && ok || bad "a level below 1 x 1"
+    # png16: the normal image is a normal map again (its level 0 has the same mean slope, to 16-bit levels), the
+    # sigma image decodes to alpha 0.2 on both axes and no correlation at every level, and its alpha to the share
+    # of the box's base texels in the map
+    "$GGX" mipmap --normal-map const.png --alpha 0.2 --format png16 --out pm > pm.txt && ok || bad "png16"
+    [ "$(ls pm | wc -l)" -eq 10 ] && ok || bad "png16 files: $(ls pm)"
+    "$GGX" mipmap --normal-map pm/level-2-normal.png --alpha 0.2 --out pm2 > pm2.txt &&
+        awk -F'|' 'NR == FNR && /^\| 0 / { split($4, a, ","); next } /^\| 0 / && NR != FNR {
+            split($4, b, ","); d0 = a[1] - b[1]; d1 = a[2] - b[2]; if (d0 < 0) d0 = -d0; if (d1 < 0) d1 = -d1;
+            exit !(d0 < 1e-4 && d1 < 1e-4) }' cm.txt pm2.txt && ok || bad "png16 normal image: $(sed -n 3,4p pm2.txt)"
+    "$PY" - <<'EOF_PY' && ok || bad "png16 sigma image"
+import struct, zlib
+def png16(path):
+    d = open(path, "rb").read()
+    p, idat, hdr = 8, b"", None
+    while p < len(d):
+        n = struct.unpack(">I", d[p:p + 4])[0]; kind = d[p + 4:p + 8]; body = d[p + 8:p + 8 + n]; p += 12 + n
+        if kind == b"IHDR": hdr = struct.unpack(">IIBB", body[:10])
+        if kind == b"IDAT": idat += body
+    w, h, bits, ctype = hdr
+    ch = {0: 1, 4: 2, 2: 3, 6: 4}[ctype]
+    bpp, raw, rows, prev = 2 * ch, zlib.decompress(idat), [], bytearray(w * 2 * ch)
+    stride = w * bpp
+    for y in range(h):
+        f, line = raw[y * (stride + 1)], bytearray(raw[y * (stride + 1) + 1:(y + 1) * (stride + 1)])
+        for i in range(stride):
+            a = line[i - bpp] if i >= bpp else 0; b = prev[i]; c = prev[i - bpp] if i >= bpp else 0
+            if f == 1: line[i] = (line[i] + a) & 255
+            elif f == 2: line[i] = (line[i] + b) & 255
+            elif f == 3: line[i] = (line[i] + (a + b) // 2) & 255
+            elif f == 4:
+                pa, pb, pc = abs(b - c), abs(a - c), abs(a + b - 2 * c)
+                line[i] = (line[i] + (a if pa <= pb and pa <= pc else b if pb <= pc else c)) & 255
+        rows.append([[(line[(x * ch + k) * 2] << 8 | line[(x * ch + k) * 2 + 1]) / 65535 for k in range(ch)]
+                     for x in range(w)])
+        prev = line
+    return rows
+for k in range(5):
+    for row in png16("pm/level-%d-sigma.png" % k):
+        for r, g, b, a in row:
+            assert abs(4 * r - 0.2) < 1e-4 and abs(4 * g - 0.2) < 1e-4 and abs(2 * b - 1) < 1e-4, (k, r, g, b)
+    # the weight share of texel (0, 0): the base texels of its box inside the 10 x 6 map over 4^k
+    want = min(2 ** k, 10) * min(2 ** k, 6) / 4 ** k
+    assert abs(png16("pm/level-%d-sigma.png" % k)[0][0][3] - want) < 1e-4, (k, want)
+EOF_PY
     # a checkerboard of tilts +-0.3 in x: every coarser level is wider than the base lobe, centred on t = 0
     "$GGX" mipmap --normal-map checker.png --alpha 0.1 --out ck > ck.txt && ok || bad "checker"
     awk -F'|' '/^\| [1-9]/ { split($4, t, ","); if (!($5 + 0 > 0.15) || t[1] + 0 > 1e-3 || t[1] + 0 < -1e-3) bad = 1 }
@@ -74,7 +118,7 @@ fi
 # malformed input: one line, exit 2, nothing written
 one_line "no normal map" "--normal-map FILE is required" 2 "$GGX" mipmap --alpha 0.2 --out none
 one_line "no alpha" "the base roughness is required" 2 "$GGX" mipmap --normal-map const.png --out none
-one_line "bad format" "is not exr" 2 "$GGX" mipmap --normal-map const.png --alpha 0.2 --format png --out none
+one_line "bad format" "is not exr or png16" 2 "$GGX" mipmap --normal-map const.png --alpha 0.2 --format png --out none
 one_line "alpha 0" "--alpha" 2 "$GGX" mipmap --normal-map const.png --alpha 0 --out none
 one_line "missing file" "missing.png" 2 "$GGX" mipmap --normal-map missing.png --alpha 0.2 --out none
 [ ! -e none ] && ok || bad "a failed mipmap left its folder"

@@ -50,13 +50,42 @@ static void write_level(const char *path, const double *lobes, const double *w, 
     free(data);
 }
 
+/* The level as two 16-bit PNGs (docs/cli.md states the encoding): the mean normal n = (-t.x, -t.y, 1) / |.| as
+ * (n + 1) / 2 in RGB; sqrt(Sigma_xx) / 4, sqrt(Sigma_yy) / 4, (rho + 1) / 2 with rho = Sigma_xy / sqrt(Sigma_xx
+ * Sigma_yy), and the weight over the level's box of base texels (4^level) in RGBA. */
+static void write_level_png(const char *dir, int level, const double *lobes, const double *w, size_t nx, size_t ny)
+{
+    size_t count = nx * ny;
+    double *pl[7];
+    for (int k = 0; k < 7; k++)
+        if (!(pl[k] = malloc(count * sizeof(double)))) die("out of memory");
+    double box = ldexp(1.0, 2 * level);
+    for (size_t i = 0; i < count; i++) {
+        const double *c = lobes + GGX_LOBE_PARAMS * i;
+        double l = sqrt(1.0 + c[0] * c[0] + c[1] * c[1]), sx = sqrt(c[2]), sy = sqrt(c[4]);
+        pl[0][i] = 0.5 * (1.0 - c[0] / l), pl[1][i] = 0.5 * (1.0 - c[1] / l), pl[2][i] = 0.5 * (1.0 + 1.0 / l);
+        pl[3][i] = sx / 4.0, pl[4][i] = sy / 4.0, pl[5][i] = 0.5 * (1.0 + c[3] / (sx * sy)), pl[6][i] = w[i] / box;
+    }
+    char path[1024], err[256];
+    for (int part = 0; part < 2; part++) {
+        snprintf(path, sizeof path, "%s/level-%d-%s.png", dir, level, part ? "sigma" : "normal");
+        out_file out;
+        out_open(&out, path);
+        const double *const *planes = (const double *const *)(pl + (part ? 3 : 0));
+        if (surface_write_png_channels(out.f, nx, ny, part ? 4 : 3, planes, err, sizeof err) != 0)
+            die("cannot write '%s': %s", path, err);
+        out_close(&out);
+    }
+    for (int k = 0; k < 7; k++) free(pl[k]);
+}
+
 int cmd_mipmap(int argc, char **argv)
 {
     options o;
     parse_options(argc, argv, 2, &o, "normal-map,alpha,y-down,threads,out,format");
     if (o.help) {
         printf("usage: ggx mipmap --normal-map FILE --alpha A[,AY] [--y-down] [--threads N] [--out DIR]\n"
-               "                  [--format exr]\n\n"
+               "                  [--format exr|png16]\n\n"
                "Filters a tangent-space normal map (PNG 8 or 16 bit, RGB or two channels with z rebuilt; OpenEXR R,\n"
                "G[, B]) of base roughness A (or AX along x, AY along y) into a mip chain of ellipsoids, with no\n"
                "shading normal left: each texel of level 0 is the GGX lobe of A translated to its normal's slope (a\n"
@@ -67,13 +96,17 @@ int cmd_mipmap(int argc, char **argv)
                "(DirectX maps). Writes DIR/level-K.exr (default DIR: mipmap) for K = 0 to the 1 x 1 level, each\n"
                "with the float channels t.x, t.y (the slope location: the mean normal is (-t.x, -t.y, 1)\n"
                "normalised), sigma.xx, sigma.xy, sigma.yy (the slope scale, as ggx_shape_from_slopes takes them)\n"
-               "and weight (the texels behind the texel), all files or none. Prints per level its size, the mean\n"
+               "and weight (the texels behind the texel), all files or none. --format png16 writes instead\n"
+               "DIR/level-K-normal.png (RGB: the mean normal n = (-t.x, -t.y, 1) normalised, as (n + 1) / 2) and\n"
+               "DIR/level-K-sigma.png (RGBA: sqrt(sigma.xx) / 4, sqrt(sigma.yy) / 4, (rho + 1) / 2 with rho =\n"
+               "sigma.xy / sqrt(sigma.xx sigma.yy), weight / 4^K), 16 bits each. Prints per level its size, the mean\n"
                "slope location, the mean det(Sigma)^(1/4) (the alpha of an isotropic lobe as wide) and the time.\n");
         return 0;
     }
     if (!o.normal_map) die("--normal-map FILE is required");
     if (!o.have_alpha) die("--alpha A[,AY]: the base roughness is required");
-    if (o.format && strcmp(o.format, "exr") != 0) die("--format: '%s' is not exr", o.format);
+    int png16 = o.format && strcmp(o.format, "png16") == 0;
+    if (o.format && !png16 && strcmp(o.format, "exr") != 0) die("--format: '%s' is not exr or png16", o.format);
     surface_read_options ro = {SURFACE_NORMALS, o.y_down};
     surface s;
     char err[512];
@@ -98,8 +131,12 @@ int cmd_mipmap(int argc, char **argv)
     out_begin_set(); /* every level or none */
     char path[1024];
     for (int level = 0;; level++) {
-        snprintf(path, sizeof path, "%s/level-%d.exr", dir, level);
-        write_level(path, lobes, w, nx, ny);
+        if (png16) {
+            write_level_png(dir, level, lobes, w, nx, ny);
+        } else {
+            snprintf(path, sizeof path, "%s/level-%d.exr", dir, level);
+            write_level(path, lobes, w, nx, ny);
+        }
         double t[2], alpha;
         summary(lobes, w, nx * ny, t, &alpha);
         printf("| %d | %zu x %zu | %.6g, %.6g | %.6g | ", level, nx, ny, t[0], t[1], alpha);

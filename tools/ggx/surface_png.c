@@ -165,7 +165,49 @@ int surface_write_png(const char *path, const surface *s, int bits, double *z_sc
     if (fclose(f) != 0) return surface_fail(err, errn, "cannot write '%s'", path);
     return 0;
 }
+int surface_write_png_channels(FILE *f, size_t nx, size_t ny, int nch, const double *const *planes, char *err,
+                               size_t errn)
+{
+    static const int types[5] = {0, PNG_COLOR_TYPE_GRAY, PNG_COLOR_TYPE_GRAY_ALPHA, PNG_COLOR_TYPE_RGB,
+                                 PNG_COLOR_TYPE_RGB_ALPHA};
+    if (nch < 1 || nch > 4 || nx < 1 || ny < 1 || nx > 0x7fffffff || ny > 0x7fffffff)
+        return surface_fail(err, errn, "no image for PNG");
+    png_structp png = png_create_write_struct(PNG_LIBPNG_VER_STRING, NULL, fail_jump, quiet);
+    png_infop info = png ? png_create_info_struct(png) : NULL;
+    unsigned char *volatile row = NULL;
+    if (!info || setjmp(png_jmpbuf(png))) {
+        png_destroy_write_struct(&png, &info);
+        free(row);
+        return surface_fail(err, errn, "PNG encoding failed");
+    }
+    png_init_io(png, f);
+    png_set_IHDR(png, info, (png_uint_32)nx, (png_uint_32)ny, 16, types[nch], PNG_INTERLACE_NONE,
+                 PNG_COMPRESSION_TYPE_DEFAULT, PNG_FILTER_TYPE_DEFAULT);
+    png_write_info(png, info);
+    row = malloc(nx * (size_t)nch * 2);
+    if (!row) png_error(png, "memory");
+    for (size_t y = 0; y < ny; y++) {
+        for (size_t x = 0; x < nx; x++)
+            for (int k = 0; k < nch; k++) {
+                double v = planes[k][y * nx + x];
+                unsigned l = (unsigned)lround(fmin(fmax(isnan(v) ? 0.0 : v, 0.0), 1.0) * 65535.0);
+                unsigned char *p = row + (x * (size_t)nch + (size_t)k) * 2;
+                p[0] = (unsigned char)(l >> 8), p[1] = (unsigned char)l;
+            }
+        png_write_row(png, row);
+    }
+    png_write_end(png, NULL);
+    png_destroy_write_struct(&png, &info);
+    free(row);
+    return 0;
+}
 #else
+int surface_write_png_channels(FILE *f, size_t nx, size_t ny, int nch, const double *const *planes, char *err,
+                               size_t errn)
+{
+    (void)f, (void)nx, (void)ny, (void)nch, (void)planes;
+    return surface_fail(err, errn, "PNG support was not built (libpng missing: apt-get install libpng-dev)");
+}
 int surface_parse_png(const unsigned char *data, size_t n, const surface_read_options *o, surface *s, char *err,
                       size_t errn)
 {
