@@ -123,6 +123,14 @@ static void texel_lobes(void **state)
     CHECK(memcmp(keep, lobes, sizeof keep) == 0, "written on error");
     CHECK(ggx_texel_lobes(NULL, w, n, 6, 0.2, 0.4, 0, NULL) == GGX_ERR_NULL, "NULL lobes");
     CHECK(ggx_texel_lobes(lobes, w, n, 0, 0.2, 0.4, 0, &rejected) == GGX_OK && rejected == 0, "no texels");
+    /* exactly what ggx_texel_lobe refuses: a steep normal with a tiny alpha is not a shape, nor are alphas far apart */
+    const ggx_vec3 steep[2] = {{1, 0, 0.03}, {0, 0, 1}};
+    ggx_shape tmp;
+    CHECK(ggx_texel_lobe(&tmp, steep[0], 1e-4, 1e-4, 0) != GGX_OK, "the steep lobe is a shape");
+    CHECK(ggx_texel_lobes(lobes, w, steep, 2, 1e-4, 1e-4, 0, &rejected) == GGX_OK && rejected == 1 && w[0] == 0 &&
+              w[1] == 1, "steep normal: %zu rejected", rejected);
+    CHECK(ggx_texel_lobe(&tmp, steep[1], 1e-4, 1e4, 0) != GGX_OK, "alphas 1e-4 and 1e4 make a shape");
+    CHECK(ggx_texel_lobes(lobes, w, steep, 2, 1e-4, 1e4, 0, NULL) != GGX_OK, "alphas 1e-4 and 1e4 accepted");
 }
 
 static double ndf_rel_diff(const ggx_shape *a, const ggx_shape *b, rng *r)
@@ -142,7 +150,7 @@ static void constant_map(void **state)
 {
     (void)state;
     rng r = {12};
-    const int rules[][2] = {{2, 4}, {8, 16}, {32, 64}};
+    const int rules[][2] = {{2, 4}, {8, 16}, {32, 64}}; /* 2 x 4: the smallest rule accepted */
     double worst = 0.0;
     for (int c = 0; c < 24; c++) {
         ggx_vec3 n = random_normal(&r, c < 12 ? 0.8 : 1.4);
@@ -407,15 +415,16 @@ static void bad_input(void **state)
         CHECK(ggx_filter_kl(&keep, f.lobe, bad[i], 2, NULL, &kl) == GGX_ERR_RANGE, "kl weights %g %g", bad[i][0],
               bad[i][1]);
     }
-    ggx_filter_options opts[6];
+    ggx_filter_options opts[10];
     memset(opts, 0, sizeof opts);
     opts[0].max_iterations = -1, opts[1].radial_nodes = -1, opts[2].angular_nodes = 15;
     opts[3].radial_nodes = 1025, opts[4].angular_nodes = 4098, opts[5].tolerance = NAN;
-    for (int i = 0; i < 6; i++) CHECK(ggx_filter_lobes(&s, f.lobe, w, 2, &opts[i], NULL) == GGX_ERR_RANGE, "option %d", i);
+    opts[6].radial_nodes = 1, opts[7].angular_nodes = 2, opts[8].threads = -1, opts[9].threads = 1025;
+    for (int i = 0; i < 10; i++) CHECK(ggx_filter_lobes(&s, f.lobe, w, 2, &opts[i], NULL) == GGX_ERR_RANGE, "option %d", i);
     CHECK(memcmp(&s, &keep, sizeof s) == 0, "out changed on error");
-    /* the extremes that are allowed: one radial node and two angles, one iteration */
+    /* the extremes that are allowed: two radial nodes and four angles, one iteration */
     ggx_filter_options tiny = {0};
-    tiny.radial_nodes = 1, tiny.angular_nodes = 2, tiny.max_iterations = 1;
+    tiny.radial_nodes = 2, tiny.angular_nodes = 4, tiny.max_iterations = 1;
     ggx_filter_info info;
     CHECK(ggx_filter_lobes(&s, f.lobe, w, 2, &tiny, &info) == GGX_OK && info.iterations == 1, "smallest rule");
 }
@@ -517,6 +526,24 @@ static void chain_boxes(void **state)
               out3[1] == 0.0 && out3[2] == 1.0 && out3[3] == 0.0 && out3[4] == 1.0, "empty box");
     wts[1] = -1;
     CHECK(ggx_filter_downsample(out3, wo, in, wts, 2, 2, NULL) == GGX_ERR_RANGE, "negative weight");
+    double big[4] = {1e308, 1e308, 1e308, 1e308};
+    CHECK(ggx_filter_downsample(out3, wo, in, big, 2, 2, NULL) == GGX_ERR_RANGE, "weights whose sum overflows");
+    memcpy(bad, in, sizeof bad);
+    bad[0] = 1e300;
+    CHECK(ggx_filter_downsample(out3, wo, bad, NULL, 2, 2, NULL) == GGX_ERR_RANGE, "a slope of 1e300");
+    memcpy(bad, in, sizeof bad);
+    bad[2] = bad[4] = 1e200, bad[3] = 0;
+    CHECK(ggx_filter_downsample(out3, wo, bad, NULL, 2, 2, NULL) == GGX_ERR_RANGE, "Sigma of 1e200");
+    /* the widest lobes tilted apart: the result's Sigma held at GGX_ALPHA_MAX^2, a shape */
+    ggx_shape wide[2];
+    lobe_ok(&wide[0], t_vec(1, 0, 1), GGX_ALPHA_MAX, GGX_ALPHA_MAX, 0);
+    lobe_ok(&wide[1], t_vec(-1, 0, 1), GGX_ALPHA_MAX, GGX_ALPHA_MAX, 0);
+    params_of(&wide[0], bad), params_of(&wide[1], bad + GGX_LOBE_PARAMS);
+    ggx_shape q;
+    CHECK(ggx_filter_downsample(out3, wo, bad, NULL, 2, 1, NULL) == GGX_OK &&
+              ggx_shape_from_slopes(&q, out3[0], out3[1], out3[2], out3[3], out3[4]) == GGX_OK,
+          "the widest lobes' filter is not a shape: Sigma %g %g %g", out3[2], out3[3], out3[4]);
+    CHECK(ggx_filter_lobes(&q, wide, NULL, 2, NULL, NULL) == GGX_OK, "the widest lobes' filter");
     wts[1] = INFINITY;
     CHECK(ggx_filter_downsample(out3, wo, in, wts, 2, 2, NULL) == GGX_ERR_RANGE, "infinite weight");
     /* two steps of the chain against the exact filter of the 16 base texels of a 4 x 4 map */

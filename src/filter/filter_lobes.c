@@ -15,7 +15,8 @@ ggx_status filter_settings_of(const ggx_filter_options *opt, filter_settings *f)
     else memset(&o, 0, sizeof o);
     if (o.max_iterations < 0 || o.radial_nodes < 0 || o.angular_nodes < 0 || !(o.tolerance >= 0.0) || o.threads < 0 ||
         o.threads > FILTER_MAX_THREADS ||
-        o.radial_nodes > FILTER_MAX_RADIAL || o.angular_nodes > FILTER_MAX_ANGULAR || o.angular_nodes % 2 != 0)
+        o.radial_nodes > FILTER_MAX_RADIAL || o.angular_nodes > FILTER_MAX_ANGULAR || o.angular_nodes % 2 != 0 ||
+        o.radial_nodes == 1 || o.angular_nodes == 2)
         return GGX_ERR_RANGE;
     f->max_iterations = o.max_iterations ? o.max_iterations : 500;
     f->tolerance = o.tolerance > 0.0 ? o.tolerance : 1e-10;
@@ -122,6 +123,19 @@ static double log_likelihood(const double sigma[3], const double a[FIT_ESTEP_SUM
     return -log(GGX_PI) - 0.5 * fit_log_det(sigma) - 2.0 * a[7] / a[0];
 }
 
+/* Sigma's eigenvalues held at GGX_ALPHA_MAX^2 or below, eigenvectors kept (with the floor, the constrained M step:
+ * docs/design/fit.md) */
+static void sigma_ceiling(double s[3])
+{
+    const double top = GGX_ALPHA_MAX * GGX_ALPHA_MAX;
+    double half = 0.5 * (s[0] - s[2]), rad = hypot(half, s[1]), mean = 0.5 * (s[0] + s[2]);
+    double l1 = mean + rad, l2 = mean - rad;
+    if (l1 <= top) return;
+    double phi = 0.5 * atan2(2.0 * s[1], s[0] - s[2]), c = cos(phi), sn = sin(phi);
+    l1 = top, l2 = fmin(l2, top);
+    s[0] = l1 * c * c + l2 * sn * sn, s[1] = (l1 - l2) * c * sn, s[2] = l1 * sn * sn + l2 * c * c;
+}
+
 int filter_em(const filter_lobe *L, size_t n, const filter_rule *r, const filter_settings *f, double t[2],
               double s[3], int *converged, double *ll)
 {
@@ -136,6 +150,7 @@ int filter_em(const filter_lobe *L, size_t n, const filter_rule *r, const filter
     }
     const double floor = GGX_ALPHA_MIN * GGX_ALPHA_MIN;
     fit_clamp_sigma(s, floor);
+    sigma_ceiling(s);
     int it = 0;
     double a[FIT_ESTEP_SUMS], p[3];
     *converged = 0;
@@ -145,6 +160,7 @@ int filter_em(const filter_lobe *L, size_t n, const filter_rule *r, const filter
         double tn[2], sn[3];
         fit_mstep(a, t, GGX_FIT_ELLIPSOID, tn, sn);
         fit_clamp_sigma(sn, floor);
+        sigma_ceiling(sn);
         double ch = fit_change(t, s, tn, sn);
         memcpy(t, tn, 2 * sizeof *t), memcpy(s, sn, 3 * sizeof *s);
         it++;
@@ -195,6 +211,9 @@ GGX_API ggx_status ggx_filter_kl(const ggx_shape *sh, const ggx_shape *lobes, co
     filter_settings f;
     ggx_status st = filter_settings_of(opt, &f);
     if (st != GGX_OK) return st;
+    /* its own default rule, finer than the filter's: the log of the mixture is harder to integrate than the E step */
+    if (!opt || !opt->radial_nodes) f.radial = 32;
+    if (!opt || !opt->angular_nodes) f.angular = 64;
     filter_lobe *L;
     double W;
     if ((st = lobes_make(lobes, weight, n, &L, &W)) != GGX_OK) return st;
@@ -252,14 +271,21 @@ static ggx_status texel_params(ggx_vec3 nrm, double alpha_x, double alpha_y, dou
     return GGX_OK;
 }
 
+/* texel_params, and the lobe is a shape (ggx_shape_from_slopes accepts it) */
+static ggx_status texel_shape(ggx_vec3 nrm, double alpha_x, double alpha_y, double phi, double c[GGX_LOBE_PARAMS],
+                              ggx_shape *s)
+{
+    ggx_status st = texel_params(nrm, alpha_x, alpha_y, phi, c);
+    return st != GGX_OK ? st : ggx_shape_from_slopes(s, c[0], c[1], c[2], c[3], c[4]);
+}
+
 GGX_API ggx_status ggx_texel_lobe(ggx_shape *out, ggx_vec3 nrm, double alpha_x, double alpha_y, double phi)
 {
     if (!out) return GGX_ERR_NULL;
     double c[GGX_LOBE_PARAMS];
-    ggx_status st = texel_params(nrm, alpha_x, alpha_y, phi, c);
-    if (st != GGX_OK) return st;
     ggx_shape res;
-    if ((st = ggx_shape_from_slopes(&res, c[0], c[1], c[2], c[3], c[4])) != GGX_OK) return st;
+    ggx_status st = texel_shape(nrm, alpha_x, alpha_y, phi, c, &res);
+    if (st != GGX_OK) return st;
     *out = res;
     return GGX_OK;
 }
@@ -270,12 +296,13 @@ GGX_API ggx_status ggx_texel_lobes(double *lobes, double *weight, const ggx_vec3
     if (!lobes || !weight || !normals) return GGX_ERR_NULL;
     ggx_vec3 up = {0.0, 0.0, 1.0};
     double probe[GGX_LOBE_PARAMS];
-    ggx_status st = texel_params(up, alpha_x, alpha_y, phi, probe); /* the roughness, before anything is written */
+    ggx_shape s;
+    ggx_status st = texel_shape(up, alpha_x, alpha_y, phi, probe, &s); /* the roughness, before anything is written */
     if (st != GGX_OK) return st;
     size_t bad = 0;
     for (size_t i = 0; i < n; i++) {
         double *c = lobes + GGX_LOBE_PARAMS * i;
-        weight[i] = texel_params(normals[i], alpha_x, alpha_y, phi, c) == GGX_OK;
+        weight[i] = texel_shape(normals[i], alpha_x, alpha_y, phi, c, &s) == GGX_OK;
         if (weight[i] == 0.0) bad++, c[0] = c[1] = c[3] = 0.0, c[2] = c[4] = 1.0;
     }
     if (rejected) *rejected = bad;

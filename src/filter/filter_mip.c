@@ -60,22 +60,26 @@ GGX_API ggx_status ggx_filter_downsample(double *out, double *w_out, const doubl
     ggx_status st = filter_settings_of(opt, &f);
     if (st != GGX_OK) return st;
     if (w == 0 || h == 0 || w > SIZE_MAX / GGX_LOBE_PARAMS / sizeof(double) / h) return GGX_ERR_RANGE;
-    for (size_t i = 0; i < w * h; i++) { /* weights >= 0; every texel that counts a lobe: finite, Sigma > 0 */
+    for (size_t i = 0; i < w * h; i++) { /* weights in [0, 1e300]; every texel that counts a shape */
         double wi = w_in ? w_in[i] : 1.0;
-        if (!(wi >= 0.0) || !isfinite(wi)) return GGX_ERR_RANGE;
+        if (!(wi >= 0.0 && wi <= 1e300)) return GGX_ERR_RANGE;
         if (wi == 0.0) continue;
         const double *c = in + GGX_LOBE_PARAMS * i;
-        for (int k = 0; k < GGX_LOBE_PARAMS; k++)
-            if (!isfinite(c[k])) return GGX_ERR_RANGE;
-        if (!(c[2] > 0.0 && c[4] > 0.0 && c[2] * c[4] - c[3] * c[3] > 0.0)) return GGX_ERR_RANGE;
+        ggx_shape s;
+        if (ggx_shape_from_slopes(&s, c[0], c[1], c[2], c[3], c[4]) != GGX_OK) return GGX_ERR_RANGE;
     }
     filter_rule r;
     if ((st = filter_rule_make(&f, &r)) != GGX_OK) return st;
     size_t w2 = (w + 1) / 2, h2 = (h + 1) / 2;
     int nt = (size_t)f.threads < h2 ? f.threads : (int)h2;
-    mip_job jobs[FILTER_MAX_THREADS];
-    pthread_t th[FILTER_MAX_THREADS];
-    int created[FILTER_MAX_THREADS] = {0};
+    mip_job *jobs = malloc((size_t)nt * sizeof *jobs);
+    pthread_t *th = malloc((size_t)nt * sizeof *th);
+    int *created = calloc((size_t)nt, sizeof *created);
+    if (!jobs || !th || !created) {
+        free(jobs), free(th), free(created);
+        filter_rule_free(&r);
+        return GGX_ERR_MEMORY;
+    }
     for (int k = 0; k < nt; k++) {
         jobs[k] = (mip_job){out, w_out, in, w_in, w, h, w2, h2 * (size_t)k / (size_t)nt, h2 * (size_t)(k + 1) / (size_t)nt,
                             &r, &f};
@@ -86,6 +90,7 @@ GGX_API ggx_status ggx_filter_downsample(double *out, double *w_out, const doubl
         if (created[k]) pthread_join(th[k], NULL);
         else mip_rows(&jobs[k]); /* no thread to be had: its rows here */
     }
+    free(jobs), free(th), free(created);
     filter_rule_free(&r);
     return GGX_OK;
 }

@@ -99,8 +99,9 @@ int cmd_mipmap(int argc, char **argv)
                "and weight (the texels behind the texel), all files or none. --format png16 writes instead\n"
                "DIR/level-K-normal.png (RGB: the mean normal n = (-t.x, -t.y, 1) normalised, as (n + 1) / 2) and\n"
                "DIR/level-K-sigma.png (RGBA: sqrt(sigma.xx) / 4, sqrt(sigma.yy) / 4, (rho + 1) / 2 with rho =\n"
-               "sigma.xy / sqrt(sigma.xx sigma.yy), weight / 4^K), 16 bits each. Prints per level its size, the mean\n"
-               "slope location, the mean det(Sigma)^(1/4) (the alpha of an isotropic lobe as wide) and the time.\n");
+               "sigma.xy / sqrt(sigma.xx sigma.yy), weight / 4^K), 16 bits each (widths above 4 saturate). Prints per\n"
+               "level its size, the mean slope location, the mean det(Sigma)^(1/4) (the alpha of an isotropic\n"
+               "lobe as wide) and the time.\n");
         return 0;
     }
     if (!o.normal_map) die("--normal-map FILE is required");
