@@ -53,31 +53,30 @@ typedef struct ggx_filter_info {
     double log_likelihood; /* the mixture's expected log P22 of the result (slope space), by the quadrature */
 } ggx_filter_info;
 
-/* The single ellipsoid closest to the mixture of n lobes with weights weight[i] >= 0 (relative; NULL: equal):
- * the maximiser of sum_i w_i E_i[log P22_out(x~)], E_i the expectation over lobe i's slopes, equivalently the least
- * KL divergence from the mixture (ggx_filter_kl). By EM for the Student t (PX-EM, the fits' M-step; ggx_fit.h)
- * with each lobe's expectations by a product rule in its own standardised slopes: radial_nodes Gauss-Legendre
- * nodes in s, where u = 1 - (1 - s)^2 is the lobe's radial probability, times angular_nodes equal angles. The rule
- * integrates the E-step of a lobe at its own parameters exactly, so n equal lobes (a constant normal map) give that
- * lobe back to rounding: D within ggx_shape_from_slopes' 1e-12 + 2e-15 kappa^2 relative (tests/test_filter.c); its error for distinct lobes, measured against
- * 64 x 128 nodes, is in docs/design/filter.md. Each iteration never lowers the objective as the rule computes it
- * (to rounding).
- * Starts from t = the weighted mean of the lobes' t_i, Sigma = the weighted mean of Sigma_i + (t_i - t)(t_i - t)^T.
- * Sigma's eigenvalues are held in [GGX_ALPHA_MIN^2, GGX_ALPHA_MAX^2]. info may be NULL. Errors: GGX_ERR_NULL (out or
- * lobes NULL); GGX_ERR_RANGE (n = 0, a weight negative, NaN or infinite, all weights 0 or their sum overflowing, or
- * a bad option: iterations or nodes below 0, 1 radial node, 2 angular nodes or an odd count, more than 1024 radial
- * or 4096 angular nodes, a tolerance NaN or below 0, threads below 0 or above 1024);
- * GGX_ERR_MEMORY; GGX_ERR_ALPHA, GGX_ERR_SINGULAR or GGX_ERR_RANGE from ggx_shape_from_slopes when the result is
- * not a shape. out is unchanged on error. */
+/* The single ellipsoid closest to the mixture of n lobes with weights weight[i] >= 0 (relative; NULL: equal): the
+ * maximiser of sum_i w_i E_i[log P22_out(x~)], E_i the expectation over lobe i's slopes, equivalently the least KL
+ * divergence from the mixture (ggx_filter_kl). By EM for the Student t (PX-EM, the fits' M-step; ggx_fit.h) with
+ * each lobe's expectations by a product rule in its own standardised slopes: radial_nodes Gauss-Legendre nodes in s,
+ * where u = 1 - (1 - s)^2 is the lobe's radial probability, times angular_nodes equal angles. The rule integrates
+ * the E-step of a lobe at its own parameters exactly, so n equal lobes (a constant normal map) give that lobe back
+ * to rounding: D within ggx_shape_from_slopes' 1e-12 + 2e-15 kappa^2 relative (tests/test_filter.c); its error for
+ * distinct lobes, measured against 64 x 128 nodes, is in docs/design/filter.md. Each iteration never lowers the
+ * objective as the rule computes it (to rounding). Starts from t = the weighted mean of the lobes' t_i, Sigma = the
+ * weighted mean of Sigma_i + (t_i - t)(t_i - t)^T. Sigma's eigenvalues are held in [GGX_ALPHA_MIN^2,
+ * GGX_ALPHA_MAX^2]. info may be NULL. Errors: GGX_ERR_NULL (out or lobes NULL); GGX_ERR_RANGE (n = 0, a weight
+ * negative, NaN or infinite, all weights 0 or their sum overflowing, or a bad option: iterations or nodes below 0, 1
+ * radial node, 2 angular nodes or an odd count, more than 1024 radial or 4096 angular nodes, a tolerance NaN or
+ * below 0, threads below 0 or above 1024); GGX_ERR_MEMORY; GGX_ERR_ALPHA, GGX_ERR_SINGULAR or GGX_ERR_RANGE from
+ * ggx_shape_from_slopes when the result is not a shape. out is unchanged on error. */
 ggx_status ggx_filter_lobes(ggx_shape *out, const ggx_shape *lobes, const double *weight, size_t n,
                             const ggx_filter_options *opt, ggx_filter_info *info);
 
 /* KL(mixture || s) = sum_i w_i E_i[log(mix(x~) / P22_s(x~))] in slope space, by the rule of ggx_filter_lobes for
  * each lobe (32 x 64 nodes unless opt sets them); mix is the weighted mixture of the lobes' P22 (weights as there).
- * The exact integral is >= 0; the rule's error, which can take it below 0, is that of integrating log mix: below
- * rounding for equal lobes, about 5e-3 where a narrow lobe of small weight sits inside a wide one (alpha 0.03
- * at weight 3 % inside alpha 1: 0.0026 against 0.0072 at 128 x 256; 8 x 16 gives -0.013). O(n^2) in the lobes. Errors: GGX_ERR_NULL (s, lobes or kl NULL), GGX_ERR_RANGE and GGX_ERR_MEMORY as
- * ggx_filter_lobes. */
+ * The exact integral is >= 0; the rule's error, which can take it below 0, is that of integrating log mix: rounding
+ * for equal lobes, about 5e-3 where a narrow lobe of small weight sits inside a wide one (alpha 0.03 at weight 3 %
+ * inside alpha 1: 0.0026 against 0.0072 at 128 x 256; 8 x 16 gives -0.013). O(n^2) in the lobes. Errors:
+ * GGX_ERR_NULL (s, lobes or kl NULL), GGX_ERR_RANGE and GGX_ERR_MEMORY as ggx_filter_lobes. */
 ggx_status ggx_filter_kl(const ggx_shape *s, const ggx_shape *lobes, const double *weight, size_t n,
                          const ggx_filter_options *opt, double *kl);
 
@@ -89,21 +88,23 @@ enum { GGX_LOBE_PARAMS = 5 };
  * normals[i] and weight[i] = 1, or, for a normal that ggx_texel_lobe refuses (NaN, infinite, zero, not above the
  * tangent plane, too steep), the placeholder of ggx_filter_downsample with weight 0: the texel is rejected, and
  * counted in *rejected when rejected is not NULL. Errors: GGX_ERR_NULL (lobes, weight or normals NULL);
- * GGX_ERR_NONFINITE or GGX_ERR_ALPHA for the roughness as ggx_texel_lobe, before anything is written. */
+ * GGX_ERR_NONFINITE, GGX_ERR_ALPHA or GGX_ERR_SINGULAR for the roughness as ggx_texel_lobe gives them at n = +z,
+ * before anything is written. */
 ggx_status ggx_texel_lobes(double *lobes, double *weight, const ggx_vec3 *normals, size_t n, double alpha_x,
                            double alpha_y, double phi, size_t *rejected);
 
-/* One level of a mip chain: out, ceil(w / 2) x ceil(h / 2) texels, from in, w x h texels (both row-major, texel
- * (x, y) at GGX_LOBE_PARAMS (y w + x)). Each texel of out is ggx_filter_lobes of its box of in's texels (without
- * the round trip through ggx_shape), weighted by w_in (NULL: all 1): the 2 x 2 texels from (2x, 2y), cut to 2 x 1, 1 x 2 or 1 x 1 at an odd last column or row (so
- * sizes that are not powers of two keep every texel once); a box of one texel of nonzero weight is copied. w_out
- * (may be NULL) receives each box's total weight: a texel of weight 0 (a rejected normal) counts nowhere, and a box
- * of nothing but such texels has weight 0 and the flat lobe of alpha 1 (t = 0, Sigma = I) as a placeholder.
- * Repeated down to 1 x 1 it builds the chain; a level is the filter of the level above (the exact filter of all of
- * a coarse texel's base texels is ggx_filter_lobes of them). opt: rule, tolerance and threads; results do not
- * depend on the thread count. Errors: GGX_ERR_NULL (out or in); GGX_ERR_RANGE (w or h 0, the size overflowing, a
- * weight negative, NaN or above 1e300, a texel of nonzero weight whose parameters ggx_shape_from_slopes refuses, or
- * a bad option as for ggx_filter_lobes), before anything is written; GGX_ERR_MEMORY. */
+/* One level of a mip chain: out, ceil(w / 2) x ceil(h / 2) texels, from in, w x h texels (both row-major, texel (x,
+ * y) at GGX_LOBE_PARAMS (y w + x)). Each texel of out is ggx_filter_lobes of its box of in's texels (without the
+ * round trip through ggx_shape), weighted by w_in (NULL: all 1): the 2 x 2 texels from (2x, 2y), cut to 2 x 1, 1 x 2
+ * or 1 x 1 at an odd last column or row (so sizes that are not powers of two keep every texel once); a box of one
+ * texel of nonzero weight is copied. w_out (may be NULL) receives each box's total weight: a texel of weight 0 (a
+ * rejected normal) counts nowhere, and a box of nothing but such texels has weight 0 and the flat lobe of alpha 1 (t
+ * = 0, Sigma = I) as a placeholder. Repeated down to 1 x 1 it builds the chain; a level is the filter of the level
+ * above (the exact filter of all of a coarse texel's base texels is ggx_filter_lobes of them). opt: rule, tolerance
+ * and threads; results do not depend on the thread count. Errors: GGX_ERR_NULL (out or in); GGX_ERR_RANGE (w or h 0,
+ * the size overflowing, a weight negative, NaN or above 1e300, a texel of nonzero weight whose parameters
+ * ggx_shape_from_slopes refuses, or a bad option as for ggx_filter_lobes), before anything is written;
+ * GGX_ERR_MEMORY. */
 ggx_status ggx_filter_downsample(double *out, double *w_out, const double *in, const double *w_in, size_t w, size_t h,
                                  const ggx_filter_options *opt);
 

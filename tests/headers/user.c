@@ -36,3 +36,17 @@ int user_fit(ggx_shape *out, const ggx_vec3 *m, size_t n)
     (void)hopt;
     return ggx_fit_normals(out, m, NULL, n, &opt, &info) == GGX_OK && info.best == GGX_FIT_ELLIPSOID;
 }
+
+/* The filter's header too. */
+#include "ggx/ggx_filter.h"
+
+int user_filter(ggx_shape *out, const ggx_shape *lobes, size_t n);
+
+int user_filter(ggx_shape *out, const ggx_shape *lobes, size_t n)
+{
+    ggx_filter_options opt = {100, 1e-8, 8, 16, 1};
+    ggx_filter_info info;
+    double params[GGX_LOBE_PARAMS];
+    (void)params;
+    return ggx_filter_lobes(out, lobes, NULL, n, &opt, &info) == GGX_OK && info.converged;
+}
