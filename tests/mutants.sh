@@ -114,5 +114,16 @@ mutate $K/bounded.inc "    int ok = (wn.z > 0) & (b > start) & (num > 0) & (num 
 mutate $K/bounded.inc "    ggx_rw P = 1 - t * y, Q = (dy3 - 2 * t * y) + 3;" \
     "    ggx_rw d = (ggx_rw)s->det * (ggx_rw)s->det, P = 1 - t * y, Q = (d * y * y * y + 0 * dy3 - 2 * t * y) + 3;" \
     "sigma2's Newton step from det^2 (subnormal for ill-conditioned matrices near 1e-50)"
+# the normal-map filter and the M step it shares with the fits
+mutate src/fit/fit.h "    sn[0] = 2.0 * (a[4] / a[1] - dt[0] * dt[0]);" "    sn[0] = (a[4] / a[1] - dt[0] * dt[0]);" \
+    "the M step's scale without the factor 2 of nu = 2 (the plain t's scale for Sigma / 2)"
+mutate src/filter/filter_lobes.c "        double wq = 0.5 * ws[j] * 2.0 * om / na;" "        double wq = 0.5 * ws[j] / na;" \
+    "the lobe's rule without the Jacobian 2 (1 - s) of u = 1 - (1 - s)^2"
+mutate src/filter/filter_lobes.c "        double rho = sqrt(s * (2.0 - s)) / om;" "        double rho = sqrt(s * (2.0 - s));" \
+    "the lobe's rule with the radius sqrt(u) instead of sqrt(u / (1 - u))"
+mutate src/filter/filter_lobes.c "    c[0] = tx, c[1] = ty;" "    c[0] = -tx, c[1] = ty;" \
+    "the texel's lobe at the mirrored slope in x (t = +n.x / n.z)"
+mutate src/filter/filter_mip.c "filter_lobe_set(&L[n++], c, c + 2, wi / W);" \
+    "filter_lobe_set(&L[n++], c, c + 2, 1.0 / (double)(nx * ny));" "a mip level's box ignoring the texels' weights"
 echo "$killed mutant(s) killed, $survived survived"
 [ "$survived" -eq 0 ]
