@@ -167,14 +167,15 @@ int render_env_default_sky(render_env *e, char *err, size_t errn)
 /* The pixel of direction d and sin theta there. */
 static size_t env_pixel(const render_env *e, ggx_vec3 d, double *sin_theta)
 {
-    double z = fmax(-1.0, fmin(1.0, d.z)), th = acos(z), ph = atan2(d.y, d.x);
+    /* theta and sin theta from the components, not from z: 1 - z^2 loses sin theta's digits near the poles */
+    double rho = hypot(d.x, d.y), th = atan2(rho, d.z), ph = atan2(d.y, d.x);
     if (ph < 0) ph += 2 * GGX_PI;
     int i = (int)(th / GGX_PI * e->h), j = (int)(ph / (2 * GGX_PI) * e->w);
     if (i >= e->h) i = e->h - 1;
     if (j >= e->w) j = e->w - 1;
     if (i < 0) i = 0;
     if (j < 0) j = 0;
-    *sin_theta = sqrt(fmax(0.0, 1 - z * z));
+    *sin_theta = rho / hypot(rho, d.z);
     return (size_t)i * (size_t)e->w + (size_t)j;
 }
 
