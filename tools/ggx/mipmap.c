@@ -108,6 +108,10 @@ int cmd_mipmap(int argc, char **argv)
     if (!o.have_alpha) die("--alpha A[,AY]: the base roughness is required");
     int png16 = o.format && strcmp(o.format, "png16") == 0;
     if (o.format && !png16 && strcmp(o.format, "exr") != 0) die("--format: '%s' is not exr or png16", o.format);
+    double none_d[GGX_LOBE_PARAMS];
+    ggx_vec3 none_v = {0.0, 0.0, 1.0};
+    ggx_status st = ggx_texel_lobes(none_d, none_d, &none_v, 0, o.alpha[0], o.alpha[1], 0.0, NULL);
+    if (st != GGX_OK) die("--alpha: %s", ggx_status_str(st)); /* before the map is read */
     surface_read_options ro = {SURFACE_NORMALS, o.y_down};
     surface s;
     char err[512];
@@ -119,7 +123,7 @@ int cmd_mipmap(int argc, char **argv)
     double *wn = malloc(((nx + 1) / 2) * ((ny + 1) / 2) * sizeof *wn);
     if (!lobes || !w || !next || !wn) die("out of memory");
     size_t rejected;
-    ggx_status st = ggx_texel_lobes(lobes, w, s.m, count, o.alpha[0], o.alpha[1], 0.0, &rejected);
+    st = ggx_texel_lobes(lobes, w, s.m, count, o.alpha[0], o.alpha[1], 0.0, &rejected);
     if (st != GGX_OK) die("--alpha: %s", ggx_status_str(st));
     surface_free(&s);
     const char *dir = o.out ? o.out : "mipmap";
