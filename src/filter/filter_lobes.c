@@ -67,7 +67,10 @@ void filter_lobe_set(filter_lobe *b, const double t[2], const double sigma[3], d
     b->log_norm = log(GGX_PI) + 0.5 * fit_log_det(sigma);
 }
 
-static ggx_status lobes_make(const ggx_shape *lobes, const double *weight, size_t n, filter_lobe **out, double *w_sum)
+/* The lobes of the shapes with their shares of the weights, and the rule of f: what ggx_filter_lobes and
+ * ggx_filter_kl work on (free both with filter_release). */
+static ggx_status lobes_make(const ggx_shape *lobes, const double *weight, size_t n, const filter_settings *f,
+                             filter_lobe **out, filter_rule *r)
 {
     if (n == 0) return GGX_ERR_RANGE;
     double W = 0.0;
@@ -84,9 +87,31 @@ static ggx_status lobes_make(const ggx_shape *lobes, const double *weight, size_
         ggx_shape_slopes(&lobes[i], t, sg);
         filter_lobe_set(&L[i], t, sg, (weight ? weight[i] : 1.0) / W);
     }
+    ggx_status st = filter_rule_make(f, r);
+    if (st != GGX_OK) {
+        free(L);
+        return st;
+    }
     *out = L;
-    *w_sum = W;
     return GGX_OK;
+}
+
+static void filter_release(filter_lobe *L, filter_rule *r)
+{
+    free(L);
+    filter_rule_free(r);
+}
+
+/* (x, y) P (x, y)^T for a symmetric P = (p_xx, p_xy, p_yy): delta of a slope offset against Sigma^-1 = P. */
+static inline double quad_form(const double p[3], double x, double y)
+{
+    return p[0] * x * x + 2.0 * p[1] * x * y + p[2] * y * y;
+}
+
+/* log P22 of lobe b at slope (x, y), plus log of its share. */
+static inline double lobe_log_density(const filter_lobe *b, double x, double y)
+{
+    return log(b->w) - b->log_norm - 2.0 * log1p(quad_form(b->p, x - b->t[0], y - b->t[1]));
 }
 
 /* The node k of lobe b, about c: r = t_b - c + L_b z_k. */
@@ -108,7 +133,7 @@ static void estep(const filter_lobe *L, size_t n, const filter_rule *r, const do
         for (int k = 0; k < r->n; k++) {
             double x, y;
             node(&L[i], r, k, t, &x, &y);
-            double d = p[0] * x * x + 2.0 * p[1] * x * y + p[2] * y * y, q = r->q[k], c = q / (1.0 + d);
+            double d = quad_form(p, x, y), q = r->q[k], c = q / (1.0 + d);
             s[1] += c, s[2] += c * x, s[3] += c * y;
             s[4] += c * x * x, s[5] += c * x * y, s[6] += c * y * y;
             if (want_ll) s[7] += q * log1p(d);
@@ -123,19 +148,6 @@ static double log_likelihood(const double sigma[3], const double a[FIT_ESTEP_SUM
     return -log(GGX_PI) - 0.5 * fit_log_det(sigma) - 2.0 * a[7] / a[0];
 }
 
-/* Sigma's eigenvalues held at GGX_ALPHA_MAX^2 or below, eigenvectors kept (with the floor, the constrained M step:
- * docs/design/fit.md) */
-static void sigma_ceiling(double s[3])
-{
-    const double top = GGX_ALPHA_MAX * GGX_ALPHA_MAX;
-    double half = 0.5 * (s[0] - s[2]), rad = hypot(half, s[1]), mean = 0.5 * (s[0] + s[2]);
-    double l1 = mean + rad, l2 = mean - rad;
-    if (l1 <= top) return;
-    double phi = 0.5 * atan2(2.0 * s[1], s[0] - s[2]), c = cos(phi), sn = sin(phi);
-    l1 = top, l2 = fmin(l2, top);
-    s[0] = l1 * c * c + l2 * sn * sn, s[1] = (l1 - l2) * c * sn, s[2] = l1 * sn * sn + l2 * c * c;
-}
-
 int filter_em(const filter_lobe *L, size_t n, const filter_rule *r, const filter_settings *f, double t[2],
               double s[3], int *converged, double *ll)
 {
@@ -148,9 +160,9 @@ int filter_em(const filter_lobe *L, size_t n, const filter_rule *r, const filter
         s[1] += L[i].w * (L[i].sigma[1] + dx * dy);
         s[2] += L[i].w * (L[i].sigma[2] + dy * dy);
     }
-    const double floor = GGX_ALPHA_MIN * GGX_ALPHA_MIN;
-    fit_clamp_sigma(s, floor);
-    sigma_ceiling(s);
+    /* Sigma's eigenvalues held in [GGX_ALPHA_MIN^2, GGX_ALPHA_MAX^2]: the constrained M step (docs/design/fit.md) */
+    const double lo = GGX_ALPHA_MIN * GGX_ALPHA_MIN, hi = GGX_ALPHA_MAX * GGX_ALPHA_MAX;
+    fit_clamp_sigma_range(s, lo, hi);
     int it = 0;
     double a[FIT_ESTEP_SUMS], p[3];
     *converged = 0;
@@ -159,8 +171,7 @@ int filter_em(const filter_lobe *L, size_t n, const filter_rule *r, const filter
         estep(L, n, r, t, p, 0, a);
         double tn[2], sn[3];
         fit_mstep(a, t, GGX_FIT_ELLIPSOID, tn, sn);
-        fit_clamp_sigma(sn, floor);
-        sigma_ceiling(sn);
+        fit_clamp_sigma_range(sn, lo, hi);
         double ch = fit_change(t, s, tn, sn);
         memcpy(t, tn, 2 * sizeof *t), memcpy(s, sn, 3 * sizeof *s);
         it++;
@@ -185,17 +196,11 @@ GGX_API ggx_status ggx_filter_lobes(ggx_shape *out, const ggx_shape *lobes, cons
     ggx_status st = filter_settings_of(opt, &f);
     if (st != GGX_OK) return st;
     filter_lobe *L;
-    double W;
-    if ((st = lobes_make(lobes, weight, n, &L, &W)) != GGX_OK) return st;
     filter_rule r;
-    if ((st = filter_rule_make(&f, &r)) != GGX_OK) {
-        free(L);
-        return st;
-    }
+    if ((st = lobes_make(lobes, weight, n, &f, &L, &r)) != GGX_OK) return st;
     double t[2], s[3], ll;
     int converged, it = filter_em(L, n, &r, &f, t, s, &converged, &ll);
-    free(L);
-    filter_rule_free(&r);
+    filter_release(L, &r);
     ggx_shape res;
     st = ggx_shape_from_slopes(&res, t[0], t[1], s[0], s[1], s[2]);
     if (st != GGX_OK) return st;
@@ -215,17 +220,13 @@ GGX_API ggx_status ggx_filter_kl(const ggx_shape *sh, const ggx_shape *lobes, co
     if (!opt || !opt->radial_nodes) f.radial = 32;
     if (!opt || !opt->angular_nodes) f.angular = 64;
     filter_lobe *L;
-    double W;
-    if ((st = lobes_make(lobes, weight, n, &L, &W)) != GGX_OK) return st;
     filter_rule r;
-    if ((st = filter_rule_make(&f, &r)) != GGX_OK) {
-        free(L);
-        return st;
-    }
-    double ts[2], ss[3], ps[3];
+    if ((st = lobes_make(lobes, weight, n, &f, &L, &r)) != GGX_OK) return st;
+    double ts[2], ss[3];
     ggx_shape_slopes(sh, ts, ss);
-    fit_inverse(ss, ps);
-    const double log_norm_s = log(GGX_PI) + 0.5 * fit_log_det(ss), zero[2] = {0.0, 0.0};
+    filter_lobe S; /* the shape, as a lobe of share 1 */
+    filter_lobe_set(&S, ts, ss, 1.0);
+    const double zero[2] = {0.0, 0.0};
     double total = 0.0;
     for (size_t i = 0; i < n; i++) {
         if (L[i].w == 0.0) continue;
@@ -237,20 +238,15 @@ GGX_API ggx_status ggx_filter_kl(const ggx_shape *sh, const ggx_shape *lobes, co
             double top = -HUGE_VAL, acc = 0.0;
             for (size_t j = 0; j < n; j++) {
                 if (L[j].w == 0.0) continue;
-                double dx = x - L[j].t[0], dy = y - L[j].t[1];
-                double d = L[j].p[0] * dx * dx + 2.0 * L[j].p[1] * dx * dy + L[j].p[2] * dy * dy;
-                double lj = log(L[j].w) - L[j].log_norm - 2.0 * log1p(d);
+                double lj = lobe_log_density(&L[j], x, y);
                 if (lj > top) acc = acc * exp(top - lj) + 1.0, top = lj;
                 else acc += exp(lj - top);
             }
-            double dx = x - ts[0], dy = y - ts[1];
-            double d = ps[0] * dx * dx + 2.0 * ps[1] * dx * dy + ps[2] * dy * dy;
-            sum += r.q[k] * (top + log(acc) + log_norm_s + 2.0 * log1p(d));
+            sum += r.q[k] * (top + log(acc) - lobe_log_density(&S, x, y));
         }
         total += L[i].w * sum;
     }
-    free(L);
-    filter_rule_free(&r);
+    filter_release(L, &r);
     *kl = total;
     return GGX_OK;
 }

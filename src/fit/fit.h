@@ -103,6 +103,8 @@ static inline double fit_floor(const fit_data *d, const double t[2])
 int fit_model_parameters(ggx_fit_model model);
 /* Raises Sigma's eigenvalues to floor (eigenvectors kept); returns whether it changed Sigma. */
 int fit_clamp_sigma(double sigma[3], double floor);
+/* The same, and lowers them to hi: Sigma's eigenvalues held in [lo, hi]. */
+int fit_clamp_sigma_range(double sigma[3], double lo, double hi);
 /* The largest change from (t, s) to (tn, sn) in the scale of s: |dt_i| / sqrt(s_ii), |ds_ij| / sqrt(s_ii s_jj)
  * (EM's step, for its stopping rules). */
 double fit_change(const double t[2], const double s[3], const double tn[2], const double sn[3]);

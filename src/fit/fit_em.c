@@ -5,19 +5,23 @@
 
 #include "fit.h"
 
-int fit_clamp_sigma(double s[3], double floor)
+int fit_clamp_sigma_range(double s[3], double lo, double hi)
 {
     double half = 0.5 * (s[0] - s[2]), rad = hypot(half, s[1]), mean = 0.5 * (s[0] + s[2]);
     double l1 = mean + rad, l2 = mean - rad;
-    if (l2 >= floor && isfinite(l1)) return 0;
+    if (l2 >= lo && l1 <= hi && isfinite(l1)) return 0;
     double phi = 0.5 * atan2(2.0 * s[1], s[0] - s[2]), c = cos(phi), sn = sin(phi);
-    if (!(l1 >= floor)) l1 = floor;
-    if (!(l2 >= floor)) l2 = floor;
+    if (!(l1 >= lo)) l1 = lo;
+    if (!(l2 >= lo)) l2 = lo;
+    if (l1 > hi) l1 = hi;
+    if (l2 > hi) l2 = hi;
     s[0] = l1 * c * c + l2 * sn * sn;
     s[1] = (l1 - l2) * c * sn;
     s[2] = l1 * sn * sn + l2 * c * c;
     return 1;
 }
+
+int fit_clamp_sigma(double s[3], double floor) { return fit_clamp_sigma_range(s, floor, HUGE_VAL); }
 
 double fit_change(const double t[2], const double s[3], const double tn[2], const double sn[3])
 {
