@@ -37,13 +37,10 @@ static ggx_vec3 test_normal(rng *r, const ggx_shape *s, int i)
     return (ggx_vec3){q * cos(ph), q * sin(ph), z};
 }
 
-/* kappa(A) of ggx_shape_ellipsoid: its singular values are alpha_x, alpha_y and 1 (R is orthogonal). */
-static double kappa_of(shape_params p) { return fmax(fmax(p.ax, p.ay), 1.0) / fmin(fmin(p.ax, p.ay), 1.0); }
-
-/* ggx.h's bound on D rebuilt from (t, Sigma): 1e-12 + 2e-15 kappa^2 relative. The kappa^2 term is the rounding of
- * Sigma's entries, which carry det Sigma to about 1e-16 cond(Sigma) = 1e-16 kappa^2 (measured against D of the
- * user's A in __float128 on these shapes: 5.9e-16 kappa^2 at most; ggx_ndf itself 8.3e-16 kappa^2). */
-static double slopes_tol(shape_params p) { return 1e-12 + 2e-15 * kappa_of(p) * kappa_of(p); }
+/* ggx.h's bound on D rebuilt from (t, Sigma) (slopes_bound, tests/testlib.h), measured against D of the user's A in
+ * __float128 on these shapes: 5.9e-16 kappa^2 at most; ggx_ndf itself 8.3e-16 kappa^2. */
+static double kappa_of(shape_params p) { return shape_kappa(p.ax, p.ay); }
+static double slopes_tol(shape_params p) { return slopes_bound(p.ax, p.ay); }
 
 /* The key fact: for 10^4 random A over all five degrees of freedom, D built from (t, Sigma) equals ggx_ndf at 8 normals
  * each, within slopes_tol. A sign error in t (t = +b / a33) or Sigma from A A^T instead of A^T A fails by orders of

@@ -23,6 +23,9 @@ void chi2_grid(long n, int *ntheta, int *nphi)
     *nphi = 2 * *ntheta;
 }
 
+double shape_kappa(double ax, double ay) { return fmax(fmax(ax, ay), 1.0) / fmin(fmin(ax, ay), 1.0); }
+double slopes_bound(double ax, double ay) { return 1e-12 + 2e-15 * shape_kappa(ax, ay) * shape_kappa(ax, ay); }
+
 shape_params random_shape(rng *r, double max_skew)
 {
     shape_params p;

@@ -25,6 +25,12 @@ void make_shape(ggx_shape *s, shape_params p); /* fails the test if setup fails 
 /* Random direction above the horizon; with probability 1/4 a grazing one (cos theta in [1e-6, 1e-2]). */
 ggx_vec3 random_view(rng *r);
 
+/* kappa(A) = max(ax, ay, 1) / min(ax, ay, 1) of ggx_shape_ellipsoid's A (its singular values are ax, ay and 1), and
+ * ggx.h's bound on D rebuilt from (t, Sigma), 1e-12 + 2e-15 kappa^2 relative (ggx_shape_slopes, tests/test_slopes.c):
+ * the kappa^2 term is the rounding of Sigma's entries, which carry det Sigma to about 1e-16 cond(Sigma). */
+double shape_kappa(double ax, double ay);
+double slopes_bound(double ax, double ay);
+
 /* ---- scale of the statistical tests ---- */
 /* GGX_TEST_SCALE from the environment (default 1; make test runs the quick tier at 0.2, the sanitizer build 0.1). */
 double test_scale(void);
