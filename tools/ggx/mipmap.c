@@ -157,8 +157,9 @@ int cmd_mipmap(int argc, char **argv)
         printf("%.3f |\n", (double)(t1.tv_sec - t0.tv_sec) + 1e-9 * (double)(t1.tv_nsec - t0.tv_nsec));
         out_flush_stdout();
         nx = (nx + 1) / 2, ny = (ny + 1) / 2;
-        memcpy(lobes, next, nx * ny * GGX_LOBE_PARAMS * sizeof *lobes);
-        memcpy(w, wn, nx * ny * sizeof *w);
+        /* the new level becomes the one to filter: both buffers hold any level below the first */
+        double *tl = lobes, *tw = w;
+        lobes = next, w = wn, next = tl, wn = tw;
     }
     out_commit_set();
     free(lobes), free(w), free(next), free(wn);
