@@ -107,6 +107,37 @@ EOF_PY
     "$GGX" mipmap --normal-map checker.png --alpha 0.1 --out ck > ck.txt && ok || bad "checker"
     awk -F'|' '/^\| [1-9]/ { split($4, t, ","); if (!($5 + 0 > 0.15) || t[1] + 0 > 1e-3 || t[1] + 0 < -1e-3) bad = 1 }
                /^\| 0 / { if ($5 + 0 != 0.1) bad = 1 } END { exit bad }' ck.txt && ok || bad "checker levels: $(cat ck.txt)"
+    # roughness maps (grey 8-bit PNGs): 51 / 255 = 0.2 everywhere is --alpha 0.2, level for level; with --perceptual
+    # 102 / 255 = 0.4 is alpha 0.16; a map whose texel is 0 gives that texel alpha 1e-4 (the mean width drops)
+    "$PY" - <<'EOF_PY' || bad "writing the roughness maps"
+import struct, zlib
+def grey(name, w, h, f):
+    raw = b"".join(b"\0" + bytes(f(i, j) for i in range(w)) for j in range(h))
+    chunk = lambda k, b: struct.pack(">I", len(b)) + k + b + struct.pack(">I", zlib.crc32(k + b) & 0xFFFFFFFF)
+    open(name, "wb").write(b"\x89PNG\r\n\x1a\n" + chunk(b"IHDR", struct.pack(">IIBBBBB", w, h, 8, 0, 0, 0, 0)) +
+                           chunk(b"IDAT", zlib.compress(raw)) + chunk(b"IEND", b""))
+grey("r02.png", 10, 6, lambda i, j: 51)
+grey("r04.png", 10, 6, lambda i, j: 102)
+grey("r0.png", 10, 6, lambda i, j: 0 if i == 0 and j == 0 else 51)
+grey("small.png", 5, 3, lambda i, j: 51)
+EOF_PY
+    "$GGX" mipmap --normal-map const.png --roughness-map r02.png --out rm > rm.txt &&
+        [ "$(grep '^| [0-9]' rm.txt | cut -d'|' -f2-5)" = "$(grep '^| [0-9]' cm.txt | cut -d'|' -f2-5)" ] &&
+        grep -q "roughness r02.png" rm.txt && ok || bad "roughness map 0.2: $(cat rm.txt)"
+    "$GGX" mipmap --normal-map const.png --alpha 0.16 --out a16 > a16.txt &&
+        "$GGX" mipmap --normal-map const.png --roughness-map r04.png --perceptual --out rp > rp.txt &&
+        [ "$(grep '^| [0-9]' rp.txt | cut -d'|' -f2-5)" = "$(grep '^| [0-9]' a16.txt | cut -d'|' -f2-5)" ] && ok ||
+        bad "perceptual roughness map 0.4: $(cat rp.txt) against $(cat a16.txt)"
+    "$GGX" mipmap --normal-map const.png --roughness-map r0.png --out r0 > r0.txt &&
+        grep -q "(0 rejected)" r0.txt && awk -F'|' '/^\| 0 / { exit !($5 + 0 < 0.2 && $5 + 0 > 0.19) }' r0.txt && ok ||
+        bad "a roughness map's 0: $(cat r0.txt)"
+    # the fast mode: the constant map's levels are the same lobe, the checkerboard's widen as the exact filter's do
+    "$GGX" mipmap --normal-map const.png --alpha 0.2 --fast --out cf > cf.txt &&
+        [ "$(grep '^| [0-9]' cf.txt | cut -d'|' -f2-5)" = "$(grep '^| [0-9]' cm.txt | cut -d'|' -f2-5)" ] &&
+        grep -q "fast mode" cf.txt && ok || bad "fast mode, constant map: $(cat cf.txt)"
+    "$GGX" mipmap --normal-map checker.png --alpha 0.1 --fast --out kf > kf.txt &&
+        awk -F'|' '/^\| [1-9]/ { split($4, t, ","); if (!($5 + 0 > 0.15) || t[1] + 0 > 1e-3 || t[1] + 0 < -1e-3) bad = 1 }
+                   END { exit bad }' kf.txt && ok || bad "fast mode, checker: $(cat kf.txt)"
     # a texel below the tangent plane is rejected and counted
     "$GGX" mipmap --normal-map edge.png --alpha 0.3 --out em > em.txt && grep -q "(1 rejected)" em.txt && ok ||
         bad "rejected texel: $(head -1 em.txt)"
@@ -117,7 +148,15 @@ else
 fi
 # malformed input: one line, exit 2, nothing written
 one_line "no normal map" "--normal-map FILE is required" 2 "$GGX" mipmap --alpha 0.2 --out none
-one_line "no alpha" "the base roughness is required" 2 "$GGX" mipmap --normal-map const.png --out none
+one_line "no alpha" "give the base roughness" 2 "$GGX" mipmap --normal-map const.png --out none
+one_line "alpha and a map" "give the base roughness" 2 "$GGX" mipmap --normal-map const.png --alpha 0.2 \
+    --roughness-map r02.png --out none
+one_line "perceptual alone" "--perceptual applies to --roughness-map" 2 "$GGX" mipmap --normal-map const.png \
+    --alpha 0.2 --perceptual --out none
+if [ -e r02.png ]; then
+    one_line "roughness map of another size" "5 x 3 texels, the normal map 10 x 6" 2 "$GGX" mipmap \
+        --normal-map const.png --roughness-map small.png --out none
+fi
 one_line "bad format" "is not exr or png16" 2 "$GGX" mipmap --normal-map const.png --alpha 0.2 --format png --out none
 one_line "alpha 0" "--alpha" 2 "$GGX" mipmap --normal-map const.png --alpha 0 --out none
 one_line "missing file" "missing.png" 2 "$GGX" mipmap --normal-map missing.png --alpha 0.2 --out none

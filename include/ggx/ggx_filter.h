@@ -46,6 +46,10 @@ typedef struct ggx_filter_options {
     int angular_nodes;  /* and equally spaced angles, even, at least 4; 0: 16 (ggx_filter_kl: 64) */
     int threads;        /* POSIX threads for ggx_filter_downsample (results do not depend on it); 0: 1 */
 } ggx_filter_options;
+/* The fast mode: radial_nodes 2, angular_nodes 4, max_iterations 1, one EM step from the start of
+ * ggx_filter_lobes, 30 to 80 times faster than the defaults. Its KL from the mixture exceeds the converged fit's by
+ * at most 0.005 nats on the footprints of tests/test_filter.c (against 0.02 to 2.4 nats by which the engines'
+ * filters exceed it there), and by up to 0.035 on random 2 x 2 footprints whose slopes spread over 8 alpha (alpha 0.05). */
 
 typedef struct ggx_filter_info {
     int iterations;        /* EM iterations made */
@@ -92,6 +96,15 @@ enum { GGX_LOBE_PARAMS = 5 };
  * before anything is written. */
 ggx_status ggx_texel_lobes(double *lobes, double *weight, const ggx_vec3 *normals, size_t n, double alpha_x,
                            double alpha_y, double phi, size_t *rejected);
+
+/* ggx_texel_lobes with a roughness map: texel i has roughness alpha_x[i] along x and alpha_y[i] along y (alpha_y
+ * NULL: alpha_x[i] along both), its axis x at the angle phi for every texel. A map value in [0, GGX_ALPHA_MIN) is
+ * raised to GGX_ALPHA_MIN (a roughness map's 0 is a mirror); a texel whose value is negative, NaN, infinite or above
+ * GGX_ALPHA_MAX, or whose lobe is not a shape, is rejected as a bad normal is (weight 0, counted in *rejected).
+ * Errors: GGX_ERR_NULL (lobes, weight, normals or alpha_x NULL); GGX_ERR_NONFINITE (phi NaN or infinite), before
+ * anything is written. */
+ggx_status ggx_texel_lobes_roughness(double *lobes, double *weight, const ggx_vec3 *normals, const double *alpha_x,
+                                     const double *alpha_y, size_t n, double phi, size_t *rejected);
 
 /* One level of a mip chain: out, ceil(w / 2) x ceil(h / 2) texels, from in, w x h texels (both row-major, texel (x,
  * y) at GGX_LOBE_PARAMS (y w + x)). Each texel of out is ggx_filter_lobes of its box of in's texels (without the

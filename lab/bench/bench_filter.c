@@ -46,13 +46,16 @@ int main(void)
     const struct {
         int radial, angular;
         double tol;
-    } settings[] = {{8, 16, 0}, {8, 16, 1e-6}, {4, 8, 1e-4}, {2, 4, 1e-3}, {16, 32, 0}};
+        int iterations;
+    } settings[] = {{8, 16, 0, 0}, {8, 16, 1e-6, 0}, {4, 8, 1e-4, 0}, {2, 4, 1e-3, 0}, {16, 32, 0, 0}, {4, 8, 0, 1},
+                    {2, 4, 0, 1}, {2, 4, 0, 2}};
     printf("libggx filter benchmark: ggx_filter_lobes of 2 x 2 texels (alpha 0.05 to 0.5), one thread\n\n");
     printf("%-8s %9s %12s %10s %14s %16s %14s\n", "rule", "tolerance", "iterations", "us/call", "lobes/s",
            "4096^2 chain, s", "error");
     for (size_t k = 0; k < sizeof settings / sizeof settings[0]; k++) {
         ggx_filter_options o = {0};
         o.radial_nodes = settings[k].radial, o.angular_nodes = settings[k].angular, o.tolerance = settings[k].tol;
+        o.max_iterations = settings[k].iterations;
         double best = 1e30, err = 0.0;
         long its = 0;
         for (int rep = 0; rep < 5; rep++) {
@@ -71,32 +74,44 @@ int main(void)
                settings[k].tol > 0 ? settings[k].tol : 1e-10, (double)its / FOOTPRINTS, best * 1e6, 4.0 / best,
                4096.0 * 4096.0 / 3.0 * best, err);
     }
-    enum { SIDE = 512 };
-    size_t bytes = (size_t)SIDE * SIDE * GGX_LOBE_PARAMS * sizeof(double);
-    double *lv = malloc(bytes), *nx = malloc(bytes);
-    printf("\nthe whole chain of a %d x %d map of waves (alpha 0.1) by ggx_filter_downsample, default rule:\n", SIDE,
-           SIDE);
-    printf("%-8s %12s %18s\n", "threads", "seconds", "4096^2 chain, s");
-    for (int threads = 1; threads <= 2; threads++) {
-        for (int i = 0; i < SIDE * SIDE; i++) {
-            double x = i % SIDE, y = i / SIDE;
-            ggx_vec3 n = {-0.2 * cos(0.3 * x + 0.5 * y), -0.2 * sin(0.4 * x - 0.2 * y), 1};
-            ggx_shape s;
-            ggx_texel_lobe(&s, n, 0.1, 0.1, 0);
-            ggx_shape_slopes(&s, lv + GGX_LOBE_PARAMS * i, lv + GGX_LOBE_PARAMS * i + 2);
+    /* whole chains: the default rule on 512 x 512 (times 64 for 4096^2), the fast mode on 4096 x 4096 itself */
+    printf("\nwhole chains of a map of waves (alpha 0.1), level 0 by ggx_texel_lobes, the rest by ggx_filter_downsample:\n");
+    printf("%-34s %8s %14s %14s %18s\n", "settings", "threads", "level 0, s", "the rest, s", "4096^2 chain, s");
+    const struct {
+        const char *name;
+        int side, radial, angular, iterations;
+    } chains[] = {{"default (8x16, 1e-10), 512^2", 512, 0, 0, 0}, {"fast (2x4, 1 iteration), 4096^2", 4096, 2, 4, 1}};
+    for (size_t c = 0; c < sizeof chains / sizeof chains[0]; c++) {
+        size_t side = (size_t)chains[c].side, count = side * side;
+        double *lv = malloc(count * GGX_LOBE_PARAMS * sizeof *lv), *wv = malloc(count * sizeof *wv);
+        double *nx = malloc(count * GGX_LOBE_PARAMS * sizeof *nx), *wn = malloc(count * sizeof *wn); /* either may hold level 0 */
+        ggx_vec3 *nm = malloc(count * sizeof *nm);
+        /* written before the clock starts (not with zeros, which the compiler may turn into calloc): the kernel's
+         * zeroing of fresh pages is not the filter's time */
+        memset(lv, 1, count * GGX_LOBE_PARAMS * sizeof *lv), memset(nx, 1, count * GGX_LOBE_PARAMS * sizeof *nx);
+        memset(wv, 1, count * sizeof *wv), memset(wn, 1, count * sizeof *wn);
+        for (size_t i = 0; i < count; i++) {
+            double x = (double)(i % side), y = (double)(i / side);
+            nm[i] = (ggx_vec3){-0.2 * cos(0.3 * x + 0.5 * y), -0.2 * sin(0.4 * x - 0.2 * y), 1};
         }
-        ggx_filter_options o = {0};
-        o.threads = threads;
-        double t0 = now();
-        size_t w = SIDE, h = SIDE;
-        while (w > 1 || h > 1) {
-            ggx_filter_downsample(nx, NULL, lv, NULL, w, h, &o);
-            w = (w + 1) / 2, h = (h + 1) / 2;
-            memcpy(lv, nx, w * h * GGX_LOBE_PARAMS * sizeof *lv);
+        for (int threads = 1; threads <= 2; threads++) {
+            double t0 = now();
+            ggx_texel_lobes(lv, wv, nm, count, 0.1, 0.1, 0.0, NULL);
+            double t1 = now();
+            ggx_filter_options o = {0};
+            o.threads = threads, o.radial_nodes = chains[c].radial, o.angular_nodes = chains[c].angular;
+            o.max_iterations = chains[c].iterations;
+            size_t w = side, h = side;
+            while (w > 1 || h > 1) {
+                ggx_filter_downsample(nx, wn, lv, wv, w, h, &o);
+                w = (w + 1) / 2, h = (h + 1) / 2;
+                double *tl = lv, *tw = wv;
+                lv = nx, wv = wn, nx = tl, wn = tw;
+            }
+            double t2 = now(), scale = 4096.0 * 4096.0 / (double)count;
+            printf("%-34s %8d %14.2f %14.2f %18.1f\n", chains[c].name, threads, t1 - t0, t2 - t1, (t2 - t0) * scale);
         }
-        double dt = now() - t0;
-        printf("%-8d %12.2f %18.0f\n", threads, dt, dt * 64.0);
+        free(lv), free(wv), free(nx), free(wn), free(nm);
     }
-    free(lv), free(nx);
     return 0;
 }

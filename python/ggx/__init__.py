@@ -1277,8 +1277,10 @@ def _lobes(lobes, weights):
     return buf, len(shapes), w
 
 
-def _filter_options(max_iterations, tolerance, nodes):
+def _filter_options(max_iterations, tolerance, nodes, fast=False):
     o = _FilterOptions(0, 0.0, 0, 0, 0)
+    if fast:  # the fast mode of ggx_filter.h: one EM step over 2 x 4 nodes, unless these are given
+        o.max_iterations, o.radial_nodes, o.angular_nodes = 1, 2, 4
     if max_iterations is not None:
         o.max_iterations = int(max_iterations)
     if tolerance is not None:
@@ -1319,25 +1321,42 @@ def filter_kl(shape, lobes, weights=None, nodes=None):
 
 _filter_downsample = _proto("ggx_filter_downsample", _i, _vp, _vp, _vp, _vp, _sz, _sz, ctypes.POINTER(_FilterOptions))
 _texel_lobes = _proto("ggx_texel_lobes", _i, _vp, _vp, _vp, _sz, _d, _d, _d, _vp)
+_texel_lobes_roughness = _proto("ggx_texel_lobes_roughness", _i, _vp, _vp, _vp, _vp, _vp, _sz, _d, _vp)
 
-def mipmap(normal_map, alpha, alpha_y=None, threads=1, max_iterations=None, tolerance=None, nodes=None):
+def mipmap(normal_map, alpha, alpha_y=None, threads=1, max_iterations=None, tolerance=None, nodes=None, fast=False):
     """The mip chain of a tangent-space normal map (array (h, w, 3) of normals, any length) of base roughness alpha
     (alpha_y along y, default alpha): a list of (lobes, weights) per level from the full size down to 1 x 1, lobes
     an array (h, w, 5) of each texel's slope location and scale (t_x, t_y, sigma_xx, sigma_xy, sigma_yy;
-    Shape.from_slopes takes them) and weights (h, w) the texels behind each texel. Level 0 is ggx_texel_lobes of
-    the normals: a normal that is not finite or not above the tangent plane is rejected (weight 0). Each coarser
-    level is ggx_filter_downsample of the one above (boxes of 2 x 2, cut at an odd last column or row); options as
-    filter_lobes, threads splitting the rows."""
+    Shape.from_slopes takes them) and weights (h, w) the texels behind each texel. alpha (and alpha_y) may be a
+    number or a roughness map, an array (h, w): ggx_texel_lobes_roughness (0 raised to 1e-4; a negative, NaN or
+    infinite value rejects its texel). Level 0 is ggx_texel_lobes of the normals: a normal that is not finite or
+    not above the tangent plane is rejected (weight 0). Each coarser level is ggx_filter_downsample of the one
+    above (boxes of 2 x 2, cut at an odd last column or row); options as filter_lobes, threads splitting the rows;
+    fast=True: ggx_filter.h's fast mode (one EM step over 2 x 4 nodes), unless max_iterations or nodes say
+    otherwise."""
     a = _array(normal_map, "normal_map")
     if a.ndim != 3 or a.shape[2] != 3 or a.shape[0] < 1 or a.shape[1] < 1:
         raise ValueError(f"normal_map: expected an array (h, w, 3) of normals, got shape {a.shape}")
     h, w = a.shape[0], a.shape[1]
-    ax = _real(alpha, "alpha")
-    ay = ax if alpha_y is None else _real(alpha_y, "alpha_y")
     n = np.ascontiguousarray(a.reshape(-1, 3), dtype=np.float64)
     lobes, weights = np.zeros((h * w, 5)), np.zeros(h * w)
-    _check(_texel_lobes(lobes.ctypes.data, weights.ctypes.data, n.ctypes.data, h * w, ax, ay, 0.0, None))
-    o = _filter_options(max_iterations, tolerance, nodes)
+    if np.ndim(alpha) == 0 and (alpha_y is None or np.ndim(alpha_y) == 0):
+        ax = _real(alpha, "alpha")
+        ay = ax if alpha_y is None else _real(alpha_y, "alpha_y")
+        _check(_texel_lobes(lobes.ctypes.data, weights.ctypes.data, n.ctypes.data, h * w, ax, ay, 0.0, None))
+    else:
+        maps = []
+        for name, m in (("alpha", alpha), ("alpha_y", alpha_y)):
+            if m is None:
+                maps.append(None)
+                continue
+            m = np.broadcast_to(np.asarray(m, dtype=np.float64), (h, w)) if np.ndim(m) == 0 else np.asarray(m)
+            if m.shape != (h, w):
+                raise ValueError(f"{name}: a roughness map of shape {m.shape}, the normal map is {(h, w)}")
+            maps.append(np.ascontiguousarray(m, dtype=np.float64).reshape(-1))
+        _check(_texel_lobes_roughness(lobes.ctypes.data, weights.ctypes.data, n.ctypes.data, maps[0].ctypes.data,
+                                      None if maps[1] is None else maps[1].ctypes.data, h * w, 0.0, None))
+    o = _filter_options(max_iterations, tolerance, nodes, fast)
     o.threads = int(threads)
     chain = [(lobes.reshape(h, w, 5), weights.reshape(h, w))]
     while h > 1 or w > 1:

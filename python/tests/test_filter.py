@@ -82,3 +82,35 @@ def test_mipmap_chain():
         ggx.mipmap(np.zeros((4, 4, 2)), 0.1)
     with pytest.raises(ValueError):
         ggx.mipmap(n, 0.0)
+
+
+def test_mipmap_roughness_map_and_fast_mode():
+    rng = np.random.default_rng(5)
+    m = rng.normal(0, 0.2, (6, 5, 3))
+    m[..., 2] = 1.0
+    # a roughness map: level 0 is each texel's own lobe; a constant map is the scalar alpha, level for level
+    r = rng.uniform(0.05, 0.5, (6, 5))
+    chain = ggx.mipmap(m, r)
+    for j, i in ((0, 0), (3, 2), (5, 4)):
+        t, sigma = ggx.texel_lobe(m[j, i], r[j, i]).slopes()
+        np.testing.assert_allclose(chain[0][0][j, i, 2:], sigma, rtol=1e-12)
+    same, scalar = ggx.mipmap(m, np.full((6, 5), 0.3)), ggx.mipmap(m, 0.3)
+    for (a, wa), (b, wb) in zip(same, scalar):
+        np.testing.assert_array_equal(a, b)
+        np.testing.assert_array_equal(wa, wb)
+    # anisotropic maps, a 0 raised to 1e-4, a NaN texel rejected
+    r2 = r.copy()
+    r2[0, 0], r2[1, 1] = 0.0, np.nan
+    chain = ggx.mipmap(m, r2, alpha_y=2 * r)
+    assert chain[0][1][0, 0] == 1.0 and chain[0][1][1, 1] == 0.0
+    t, sigma = ggx.texel_lobe(m[3, 2], r[3, 2], 2 * r[3, 2]).slopes()
+    np.testing.assert_allclose(chain[0][0][3, 2, 2:], sigma, rtol=1e-12)
+    with pytest.raises(ValueError):
+        ggx.mipmap(m, np.full((5, 6), 0.3))
+    # the fast mode: one EM step over 2 x 4 nodes, the same as those options given by hand, and near the exact fit
+    fast, manual, exact = ggx.mipmap(m, 0.1, fast=True), ggx.mipmap(m, 0.1, max_iterations=1, nodes=(2, 4)), \
+        ggx.mipmap(m, 0.1)
+    for (a, _), (b, _) in zip(fast, manual):
+        np.testing.assert_array_equal(a, b)
+    assert not np.array_equal(fast[1][0], exact[1][0])
+    np.testing.assert_allclose(fast[1][0][..., [2, 4]], exact[1][0][..., [2, 4]], rtol=0.3)

@@ -19,6 +19,10 @@ typedef struct filter_settings {
 /* opt (NULL: defaults) validated into f; GGX_ERR_RANGE for a bad option. */
 ggx_status filter_settings_of(const ggx_filter_options *opt, filter_settings *f);
 
+/* GGX_OK when ggx_shape_from_slopes accepts the lobe parameters c (t, Sigma), else its refusal; without building
+ * the shape where c is clearly inside its domain (a fast path, the same verdict). */
+ggx_status filter_params_check(const double c[GGX_LOBE_PARAMS]);
+
 /* The standardised nodes z_k of a lobe's rule and their weights q_k (summing to 1): s_j Gauss-Legendre on (0, 1),
  * the radial probability u = 1 - (1 - s)^2 (du = 2 (1 - s) ds), the radius |z|^2 = u / (1 - u) (P22 of alpha = 1
  * puts probability u inside it), the angles 2 pi (k + 1/2) / M. */

@@ -267,6 +267,20 @@ static ggx_status texel_params(ggx_vec3 nrm, double alpha_x, double alpha_y, dou
     return GGX_OK;
 }
 
+ggx_status filter_params_check(const double c[GGX_LOBE_PARAMS])
+{
+    /* Clearly inside: every entry finite, Sigma positive definite with room for rounding, its eigenvalues (below the
+     * trace tr) under GGX_ALPHA_MAX^2 / 2, and A = [Sigma^(1/2) 0; -t^T 1] (|det A| >= sqrt(det Sigma), ||A||_F^2 <=
+     * tr + 2 GGX_ALPHA_MIN^2 + |t|^2 + 1) conditioned and scaled 4 times inside ggx_shape_matrix's bounds. */
+    double tx = c[0], ty = c[1], sxx = c[2], sxy = c[3], syy = c[4], tr = sxx + syy, d = sxx * syy - sxy * sxy;
+    double f2 = tr + 2.0 * GGX_ALPHA_MIN * GGX_ALPHA_MIN + tx * tx + ty * ty + 1.0;
+    if (sxx > 0.0 && syy > 0.0 && d > 1e-6 * sxx * syy && tr <= 0.5 * GGX_ALPHA_MAX * GGX_ALPHA_MAX &&
+        f2 <= 1e-2 * GGX_MATRIX_SCALE_MAX * GGX_MATRIX_SCALE_MAX && sqrt(d) > 4.0 * GGX_SINGULAR_TOL * f2 * sqrt(f2))
+        return GGX_OK; /* false for NaN; an infinite entry makes f2 or d infinite or NaN */
+    ggx_shape s;
+    return ggx_shape_from_slopes(&s, tx, ty, sxx, sxy, syy);
+}
+
 /* texel_params, and the lobe is a shape (ggx_shape_from_slopes accepts it) */
 static ggx_status texel_shape(ggx_vec3 nrm, double alpha_x, double alpha_y, double phi, double c[GGX_LOBE_PARAMS],
                               ggx_shape *s)
@@ -286,6 +300,24 @@ GGX_API ggx_status ggx_texel_lobe(ggx_shape *out, ggx_vec3 nrm, double alpha_x, 
     return GGX_OK;
 }
 
+/* The lobes of n texels of roughness (ax[i] or ax0, ay[i] or ay0), rejected ones as ggx_texel_lobes says; returns
+ * how many were rejected. Map roughness in [0, GGX_ALPHA_MIN) is raised to GGX_ALPHA_MIN (texel_params refuses 0). */
+static size_t lobes_fill(double *lobes, double *weight, const ggx_vec3 *normals, size_t n, const double *ax,
+                         const double *ay, double ax0, double ay0, double phi)
+{
+    size_t bad = 0;
+    for (size_t i = 0; i < n; i++) {
+        double *c = lobes + GGX_LOBE_PARAMS * i;
+        double x = ax ? ax[i] : ax0, y = ay ? ay[i] : ax ? x : ay0;
+        if (x >= 0.0 && x < GGX_ALPHA_MIN) x = GGX_ALPHA_MIN;
+        if (y >= 0.0 && y < GGX_ALPHA_MIN) y = GGX_ALPHA_MIN;
+        ggx_status ti = texel_params(normals[i], x, y, phi, c);
+        weight[i] = ti == GGX_OK && filter_params_check(c) == GGX_OK;
+        if (weight[i] == 0.0) bad++, c[0] = c[1] = c[3] = 0.0, c[2] = c[4] = 1.0;
+    }
+    return bad;
+}
+
 GGX_API ggx_status ggx_texel_lobes(double *lobes, double *weight, const ggx_vec3 *normals, size_t n, double alpha_x,
                                    double alpha_y, double phi, size_t *rejected)
 {
@@ -295,12 +327,18 @@ GGX_API ggx_status ggx_texel_lobes(double *lobes, double *weight, const ggx_vec3
     ggx_shape s;
     ggx_status st = texel_shape(up, alpha_x, alpha_y, phi, probe, &s); /* the roughness, before anything is written */
     if (st != GGX_OK) return st;
-    size_t bad = 0;
-    for (size_t i = 0; i < n; i++) {
-        double *c = lobes + GGX_LOBE_PARAMS * i;
-        weight[i] = texel_shape(normals[i], alpha_x, alpha_y, phi, c, &s) == GGX_OK;
-        if (weight[i] == 0.0) bad++, c[0] = c[1] = c[3] = 0.0, c[2] = c[4] = 1.0;
-    }
+    size_t bad = lobes_fill(lobes, weight, normals, n, NULL, NULL, alpha_x, alpha_y, phi);
+    if (rejected) *rejected = bad;
+    return GGX_OK;
+}
+
+GGX_API ggx_status ggx_texel_lobes_roughness(double *lobes, double *weight, const ggx_vec3 *normals,
+                                             const double *alpha_x, const double *alpha_y, size_t n, double phi,
+                                             size_t *rejected)
+{
+    if (!lobes || !weight || !normals || !alpha_x) return GGX_ERR_NULL;
+    if (!isfinite(phi)) return GGX_ERR_NONFINITE;
+    size_t bad = lobes_fill(lobes, weight, normals, n, alpha_x, alpha_y, 0.0, 0.0, phi);
     if (rejected) *rejected = bad;
     return GGX_OK;
 }

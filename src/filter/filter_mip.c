@@ -64,9 +64,7 @@ GGX_API ggx_status ggx_filter_downsample(double *out, double *w_out, const doubl
         double wi = w_in ? w_in[i] : 1.0;
         if (!(wi >= 0.0 && wi <= 1e300)) return GGX_ERR_RANGE;
         if (wi == 0.0) continue;
-        const double *c = in + GGX_LOBE_PARAMS * i;
-        ggx_shape s;
-        if (ggx_shape_from_slopes(&s, c[0], c[1], c[2], c[3], c[4]) != GGX_OK) return GGX_ERR_RANGE;
+        if (filter_params_check(in + GGX_LOBE_PARAMS * i) != GGX_OK) return GGX_ERR_RANGE;
     }
     filter_rule r;
     if ((st = filter_rule_make(&f, &r)) != GGX_OK) return st;

@@ -131,11 +131,14 @@ void parse_options(int argc, char **argv, int first, options *o, const char *all
             die("unknown option '%s' (see --help)", a);
         /* flags */
         int flag = strcmp(key, "log") == 0 || strcmp(key, "progress") == 0 || strcmp(key, "no-progress") == 0 ||
-                   strcmp(key, "keep-tilt") == 0 || strcmp(key, "y-down") == 0 || strcmp(key, "compensate") == 0;
+                   strcmp(key, "keep-tilt") == 0 || strcmp(key, "y-down") == 0 || strcmp(key, "compensate") == 0 ||
+                   strcmp(key, "fast") == 0 || strcmp(key, "perceptual") == 0;
         if (flag && inline_val) die("option '%s' takes no value", a);
         if (strcmp(key, "keep-tilt") == 0) { o->keep_tilt = 1; continue; }
         if (strcmp(key, "y-down") == 0) { o->y_down = 1; continue; }
         if (strcmp(key, "compensate") == 0) { o->compensate = 1; continue; }
+        if (strcmp(key, "fast") == 0) { o->fast = 1; continue; }
+        if (strcmp(key, "perceptual") == 0) { o->perceptual = 1; continue; }
         if (strcmp(key, "log") == 0) { o->log_scale = 1; continue; }
         if (strcmp(key, "progress") == 0) { o->progress = 1; continue; }
         if (strcmp(key, "no-progress") == 0) { o->progress = 0; continue; }
@@ -232,6 +235,8 @@ void parse_options(int argc, char **argv, int first, options *o, const char *all
             o->heightfield = val;
         } else if (strcmp(key, "normal-map") == 0) {
             o->normal_map = val;
+        } else if (strcmp(key, "roughness-map") == 0) {
+            o->roughness_map = val;
         } else if (strcmp(key, "normals") == 0) {
             o->normals = val;
         } else if (strcmp(key, "model") == 0) {

@@ -42,6 +42,9 @@ typedef struct options {
     const char *heightfield, *normal_map, *normals, *model;
     double spacing[2], z_scale;
     int have_spacing, have_z_scale, keep_tilt, downsample, y_down, threads;
+    /* ggx mipmap */
+    const char *roughness_map;
+    int fast, perceptual;
     /* ggx render */
     const char *scene, *light, *strategy;
     long spp;
