@@ -104,6 +104,7 @@ void parse_options(int argc, char **argv, int first, options *o, const char *all
     o->size = 0; /* not given: each command has its default */
     o->from = NAN;
     o->phi_d = 90.0;
+    o->level = -1;
     o->eta = 1.5;
     o->progress = -1;
     o->spp = 64;
@@ -269,6 +270,11 @@ void parse_options(int argc, char **argv, int first, options *o, const char *all
         } else if (strcmp(key, "exposure") == 0) {
             parse_list(a, val, &o->exposure, 1);
             if (!(fabs(o->exposure) <= 30)) die("%s: '%s' is not an exposure in stops within [-30, 30]", a, val);
+        } else if (strcmp(key, "level") == 0) {
+            double v;
+            parse_list(a, val, &v, 1);
+            if (!(v >= 0 && v <= 64) || v != floor(v)) die("%s: '%s' is not a level from 0 to 64", a, val);
+            o->level = (int)v;
         } else if (strcmp(key, "downsample") == 0 || strcmp(key, "threads") == 0) {
             double v;
             parse_list(a, val, &v, 1);

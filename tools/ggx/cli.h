@@ -45,6 +45,7 @@ typedef struct options {
     /* ggx mipmap */
     const char *roughness_map;
     int fast, perceptual;
+    int level; /* ggx render --normal-map: the chain's level shown; -1 when not given */
     /* ggx render */
     const char *scene, *light, *strategy;
     long spp;
@@ -134,6 +135,7 @@ int cmd_audit(int argc, char **argv);
 int cmd_fit(int argc, char **argv);
 int cmd_mipmap(int argc, char **argv);
 int cmd_render(int argc, char **argv);
+int render_normal_map(int argc, char **argv); /* ggx render --normal-map (render_mip.c) */
 
 /* ---- checks (also used by demo) ---- */
 typedef struct check_result {

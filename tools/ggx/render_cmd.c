@@ -132,6 +132,9 @@ static void write_bytes(const char *path, const unsigned char *data, size_t n)
 
 int cmd_render(int argc, char **argv)
 {
+    for (int i = 2; i < argc; i++)
+        if (strcmp(argv[i], "--normal-map") == 0 || strncmp(argv[i], "--normal-map=", 13) == 0)
+            return render_normal_map(argc, argv); /* a normal map's filtered chain against its ground truth */
     options o;
     parse_options(argc, argv, 2, &o,
                   SHAPE_OPTS ",fresnel,scene,light,spp,size,compensate,sampler,strategy,depth,exposure,threads,seed,"
