@@ -60,6 +60,9 @@ bench: build
 	@$(BUILD)/ggx_bench
 	@$(BUILD)/ggx_bench_fit
 	@$(BUILD)/ggx_bench_filter
+	@if [ -x $(BUILD)/ggx ]; then for m in bumps checker scratches sawtooth; do \
+	  $(BUILD)/ggx render --normal-map tests/data/normal_maps/$$m.png --alpha 0.1 --out $(BUILD)/normal-map-$$m.png; \
+	  echo; done; fi
 	@if [ -x $(BUILD)/ggx_bench_render ]; then $(BUILD)/ggx_bench_render; fi
 
 # The Python package's overhead: ns per element and microseconds per call against its bare native loops.
@@ -127,6 +130,9 @@ valgrind: deps-dev build
 	@cd $(BUILD)/tests && \
 	  GGX_WRAP="valgrind -q --error-exitcode=99 --leak-check=full --errors-for-leak-kinds=definite,indirect --suppressions=$(CURDIR)/tests/valgrind.supp" \
 	  sh ../../tests/mipmap_cli_test.sh $(CURDIR)/$(BUILD)/ggx
+	@cd $(BUILD)/tests && \
+	  GGX_WRAP="valgrind -q --error-exitcode=99 --leak-check=full --errors-for-leak-kinds=definite,indirect --suppressions=$(CURDIR)/tests/valgrind.supp" \
+	  sh ../../tests/render_mip_test.sh $(CURDIR)/$(BUILD)/ggx
 
 # libFuzzer: each target for FUZZ_SECONDS (default 60) from the committed corpus; new inputs go to build-fuzz/.
 FUZZ_SECONDS ?= 60

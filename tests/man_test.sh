@@ -16,6 +16,8 @@ for c in $("$ggx" --help | awk '/^commands:$/ {on = 1; next} on && /^$/ {exit} o
   usage=$("$ggx" "$c" --help | head -n 1)
   printf '%s\n' "$text" | grep -qF -- "$usage" || bad "'$c --help' usage line missing: $usage"
 done
+usage=$("$ggx" render --normal-map x --help | head -n 1)
+printf '%s\n' "$text" | grep -qF -- "$usage" || bad "'render --normal-map --help' usage line missing: $usage"
 for s in $("$ggx" sample --help | awk '/^samplers:$/ {on = 1; next} on && /^$/ {exit} on {print $1}'); do
   printf '%s\n' "$text" | grep -q "^ *$s  " || bad "sampler '$s' missing"
 done

@@ -37,6 +37,11 @@ commands=$(printf '%s\n' "$help" | awk '/^commands:$/ {on = 1; next} on && /^$/ 
     printf '.SS %s\n.nf\n' "$c"
     "$ggx" "$c" --help | esc
     printf '.fi\n'
+    if [ "$c" = render ]; then # its second form, a normal map's chain against its ground truth
+      printf '.SS render \\-\\-normal\\-map\n.nf\n'
+      "$ggx" render --normal-map x --help | esc
+      printf '.fi\n'
+    fi
   done
   printf '.SH SEE ALSO\nThe library'"'"'s headers\n.IR ggx/ggx.h ,\n.IR ggx/ggx_inline.h ,\n.I ggx/ggx_batch.h\n'
   printf 'and its README, which give the conventions (n = +z, unit directions pointing away from the surface)\n'

@@ -142,7 +142,9 @@ int cmd_render(int argc, char **argv)
     if (o.help) {
         printf("usage: ggx render [shape] [--fresnel F] [--scene sphere|plane] [--light sky|white|FILE|point:THETA,PHI[,E]]\n"
                "                  [--spp N] [--size W[xH]] [--compensate] [--sampler NAME] [--strategy mis|light|bsdf]\n"
-               "                  [--depth N] [--exposure EV] [--threads N] [--seed S] [--out FILE]\n\n"
+               "                  [--depth N] [--exposure EV] [--threads N] [--seed S] [--out FILE]\n"
+               "       ggx render --normal-map FILE ...: a normal map's filtered chain against its ground truth\n"
+               "                  (ggx render --normal-map x --help)\n\n"
                "An image of a unit sphere (default) or an infinite plane made of the material, path traced with the\n"
                "library's BSDFs, samplers and pdfs.\n"
                "  --fresnel F      one (default), conductor:ETA,K or schlick:F0: a reflector; dielectric:ETA: rough glass\n"
