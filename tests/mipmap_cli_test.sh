@@ -23,10 +23,14 @@ def write(name, w, h, f):
 write("const.csv", 10, 6, lambda i, j: (0.3, -0.2))
 write("checker.csv", 8, 8, lambda i, j: (0.3 if (i + j) % 2 else -0.3, 0.0))
 write("flat_edge.csv", 4, 4, lambda i, j: (0.6, 0.0, -0.8) if i == 0 and j == 0 else (0.0, 0.0))
+write("one.csv", 1, 1, lambda i, j: (0.3, -0.2))
+write("row.csv", 1, 3, lambda i, j: (0.3 * j, 0.0))
 EOF_PY
 if ! "$PY" "$ROOT/tests/fit_png_map.py" const.csv 10 6 const.png c1.csv ||
    ! "$PY" "$ROOT/tests/fit_png_map.py" checker.csv 8 8 checker.png c2.csv ||
-   ! "$PY" "$ROOT/tests/fit_png_map.py" flat_edge.csv 4 4 edge.png c3.csv; then
+   ! "$PY" "$ROOT/tests/fit_png_map.py" flat_edge.csv 4 4 edge.png c3.csv ||
+   ! "$PY" "$ROOT/tests/fit_png_map.py" one.csv 1 1 one.png c4.csv ||
+   ! "$PY" "$ROOT/tests/fit_png_map.py" row.csv 1 3 row.png c5.csv; then
     bad "writing the test maps"
 fi
 if "$GGX" mipmap --normal-map const.png --alpha 0.2 --out cm > cm.txt 2> cm.err; then
@@ -138,6 +142,12 @@ EOF_PY
     "$GGX" mipmap --normal-map checker.png --alpha 0.1 --fast --out kf > kf.txt &&
         awk -F'|' '/^\| [1-9]/ { split($4, t, ","); if (!($5 + 0 > 0.15) || t[1] + 0 > 1e-3 || t[1] + 0 < -1e-3) bad = 1 }
                    END { exit bad }' kf.txt && ok || bad "fast mode, checker: $(cat kf.txt)"
+    # maps of one texel and of one column: a chain of one level, and 1 x 3 -> 1 x 2 -> 1 x 1
+    "$GGX" mipmap --normal-map one.png --alpha 0.2 --out one > one.txt && [ "$(grep -c '^| [0-9]' one.txt)" -eq 1 ] &&
+        [ -s one/level-0.exr ] && [ ! -e one/level-1.exr ] && ok || bad "1 x 1 map: $(cat one.txt)"
+    "$GGX" mipmap --normal-map row.png --alpha 0.2 --out row > row.txt &&
+        [ "$(grep '^| [0-9]' row.txt | cut -d'|' -f3 | tr -d ' ' | tr '\n' ' ')" = "1x3 1x2 1x1 " ] && ok ||
+        bad "1 x 3 map: $(cat row.txt)"
     # a texel below the tangent plane is rejected and counted
     "$GGX" mipmap --normal-map edge.png --alpha 0.3 --out em > em.txt && grep -q "(1 rejected)" em.txt && ok ||
         bad "rejected texel: $(head -1 em.txt)"

@@ -249,8 +249,9 @@ static int exr_parse_part(exr_reader *r, size_t n, char *err, size_t errn)
     if (storage != EXR_STORAGE_SCANLINE && storage != EXR_STORAGE_TILED)
         return surface_fail(err, errn, EXR_UNREADABLE);
     int64_t w = (int64_t)dw.max.x - dw.min.x + 1, h = (int64_t)dw.max.y - dw.min.y + 1;
-    if (w < 2 || h < 2)
-        return surface_fail(err, errn, "%lld x %lld pixels: a surface needs at least 2 x 2", (long long)w,
+    /* a height field needs its neighbours; a normal map (or radiance) may be one texel */
+    if (w < 1 || h < 1 || ((w < 2 || h < 2) && r->o->want == SURFACE_HEIGHTS))
+        return surface_fail(err, errn, "%lld x %lld pixels: a height field needs at least 2 x 2", (long long)w,
                             (long long)h);
     if (w > EXR_MAX_SIDE || h > EXR_MAX_SIDE)
         return surface_fail(err, errn, "%lld x %lld pixels: too large (at most %d a side)", (long long)w,

@@ -64,9 +64,10 @@ int surface_parse_png(const unsigned char *data, size_t n, const surface_read_op
     depth = png_get_bit_depth(png, info);
     int ch = png_get_channels(png, info);
     size_t stride = png_get_rowbytes(png, info);
-    if (w < 2 || h < 2) {
+    if ((w < 2 || h < 2) && (o->want == SURFACE_HEIGHTS || ch == 1)) { /* a normal map may be one texel */
         png_destroy_read_struct(&png, &info, NULL);
-        return surface_fail(err, errn, "%u x %u pixels: a surface needs at least 2 x 2", (unsigned)w, (unsigned)h);
+        return surface_fail(err, errn, "%u x %u pixels: a height field needs at least 2 x 2", (unsigned)w,
+                            (unsigned)h);
     }
     pixels = malloc(stride * h);
     rows = malloc(h * sizeof *rows);
