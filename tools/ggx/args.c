@@ -270,6 +270,16 @@ void parse_options(int argc, char **argv, int first, options *o, const char *all
         } else if (strcmp(key, "exposure") == 0) {
             parse_list(a, val, &o->exposure, 1);
             if (!(fabs(o->exposure) <= 30)) die("%s: '%s' is not an exposure in stops within [-30, 30]", a, val);
+        } else if (strcmp(key, "kind") == 0) {
+            o->kind = val;
+        } else if (strcmp(key, "corr") == 0) {
+            parse_list(a, val, &o->corr, 1);
+            if (!(o->corr > 0)) die("%s: '%s' is not a positive length", a, val);
+        } else if (strcmp(key, "period") == 0) {
+            double v;
+            parse_list(a, val, &v, 1);
+            if (!(v >= 2 && v <= 4096) || v != floor(v)) die("%s: '%s' is not a whole number from 2 to 4096", a, val);
+            o->period = (int)v;
         } else if (strcmp(key, "level") == 0) {
             double v;
             parse_list(a, val, &v, 1);

@@ -46,6 +46,10 @@ typedef struct options {
     const char *roughness_map;
     int fast, perceptual;
     int level; /* ggx render --normal-map: the chain's level shown; -1 when not given */
+    /* ggx microsurface */
+    const char *kind;
+    double corr; /* 0 when not given */
+    int period;  /* 0 when not given */
     /* ggx render */
     const char *scene, *light, *strategy;
     long spp;
@@ -136,6 +140,7 @@ int cmd_fit(int argc, char **argv);
 int cmd_mipmap(int argc, char **argv);
 int cmd_render(int argc, char **argv);
 int render_normal_map(int argc, char **argv); /* ggx render --normal-map (render_mip.c) */
+int cmd_microsurface(int argc, char **argv);
 
 /* ---- checks (also used by demo) ---- */
 typedef struct check_result {

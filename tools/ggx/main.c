@@ -21,13 +21,14 @@ static const struct command {
     {"render", cmd_render, "an image of a sphere or plane of the material under a sky, an environment map or a light"},
     {"fit", cmd_fit, "the shape A of a measured height field, normal map or list of normals, by maximum likelihood"},
     {"mipmap", cmd_mipmap, "a normal map filtered into a mip chain of per-texel ellipsoids (OpenEXR per level)"},
+    {"microsurface", cmd_microsurface, "height fields with a chosen NDF (Gaussian Beckmann fields, V-grooves)"},
 };
 enum { NCOMMANDS = sizeof COMMANDS / sizeof COMMANDS[0] };
 
 static void usage(FILE *f)
 {
     fprintf(f, "usage: ggx <command> [options]   (ggx <command> --help for each)\n\ncommands:\n");
-    for (int i = 0; i < NCOMMANDS; i++) fprintf(f, "  %-8s %s\n", COMMANDS[i].name, COMMANDS[i].summary);
+    for (int i = 0; i < NCOMMANDS; i++) fprintf(f, "  %-12s %s\n", COMMANDS[i].name, COMMANDS[i].summary);
     fputs("\n"
           "options: --name VALUE or --name=VALUE; -n N counts; --out PATH (- or absent: stdout); --seed S;\n"
           "--help on every command; -V (--version) prints the version.\n"

@@ -87,6 +87,8 @@ int surface_write_pfm(const char *path, const surface *s, char *err, size_t errn
 /* The bytes of an OpenEXR file (surface_write_exr's) in *data (malloc'd, *n bytes), for callers that write them
  * through their own output; 0, or -1 with err. Radiance is written as R, G, B in FLOAT. */
 int surface_encode_exr(const surface *s, unsigned char **data, size_t *n, char *err, size_t errn);
+/* Heights as an x3p archive in memory (malloc'd), for writers that must put the file in place atomically. */
+int surface_encode_x3p(const surface *s, unsigned char **data, size_t *n, char *err, size_t errn);
 /* nch (1 to 4: grey, grey + alpha, RGB, RGBA) channels of nx x ny pixels from planes[k] (row-major, the top row
  * first), each value in [0, 1] (clamped; NaN as 0) rounded to 16-bit levels, as a PNG written to f. */
 int surface_write_png_channels(FILE *f, size_t nx, size_t ny, int nch, const double *const *planes, char *err,

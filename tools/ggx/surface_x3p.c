@@ -180,17 +180,23 @@ done:
     return rc;
 }
 
-int surface_write_x3p(const char *path, const surface *s, char *err, size_t errn)
+int surface_encode_x3p(const surface *s, unsigned char **data, size_t *n, char *err, size_t errn)
 {
-    remove(path);
-    int ze = 0;
-    zip_t *z = zip_open(path, ZIP_CREATE | ZIP_EXCL, &ze);
-    if (!z) return surface_fail(err, errn, "cannot write '%s'", path);
+    zip_error_t ze;
+    zip_error_init(&ze);
+    zip_source_t *mem = zip_source_buffer_create(NULL, 0, 0, &ze); /* the archive, in memory */
+    zip_t *z = mem ? zip_open_from_source(mem, ZIP_TRUNCATE, &ze) : NULL;
+    zip_error_fini(&ze);
+    if (!z) {
+        if (mem) zip_source_free(mem);
+        return surface_fail(err, errn, "x3p: cannot make the archive");
+    }
+    zip_source_keep(mem); /* kept past zip_close, to be read back */
     size_t count = s->nx * s->ny;
     char *xml = malloc(4096);
     unsigned char *bin = malloc(count * 8 + 1);
     if (!xml || !bin) {
-        free(xml), free(bin), zip_discard(z);
+        free(xml), free(bin), zip_discard(z), zip_source_free(mem);
         return surface_fail(err, errn, "out of memory");
     }
     snprintf(xml, 4096,
@@ -227,6 +233,30 @@ int surface_write_x3p(const char *path, const surface *s, char *err, size_t errn
     ok = ok && zip_close(z) == 0;
     if (!ok) zip_discard(z);
     free(xml), free(bin);
+    zip_int64_t len = -1;
+    unsigned char *out = NULL;
+    if (ok && zip_source_open(mem) == 0) {
+        if (zip_source_seek(mem, 0, SEEK_END) == 0 && (len = zip_source_tell(mem)) > 0 &&
+            zip_source_seek(mem, 0, SEEK_SET) == 0 && (out = malloc((size_t)len)) != NULL &&
+            zip_source_read(mem, out, (zip_uint64_t)len) != len)
+            free(out), out = NULL;
+        zip_source_close(mem);
+    }
+    zip_source_free(mem);
+    if (!out) return surface_fail(err, errn, "x3p: cannot encode the archive");
+    *data = out, *n = (size_t)len;
+    return 0;
+}
+
+int surface_write_x3p(const char *path, const surface *s, char *err, size_t errn)
+{
+    unsigned char *data;
+    size_t n;
+    if (surface_encode_x3p(s, &data, &n, err, errn) != 0) return -1;
+    FILE *f = fopen(path, "wb");
+    int ok = f && fwrite(data, 1, n, f) == n;
+    if (f && fclose(f) != 0) ok = 0;
+    free(data);
     return ok ? 0 : surface_fail(err, errn, "cannot write '%s'", path);
 }
 #else
@@ -239,6 +269,11 @@ int surface_parse_x3p(const unsigned char *data, size_t n, surface *s, char *err
 int surface_write_x3p(const char *path, const surface *s, char *err, size_t errn)
 {
     (void)path, (void)s;
+    return surface_fail(err, errn, "x3p support was not built (libzip and libxml2 missing)");
+}
+int surface_encode_x3p(const surface *s, unsigned char **data, size_t *n, char *err, size_t errn)
+{
+    (void)s, (void)data, (void)n;
     return surface_fail(err, errn, "x3p support was not built (libzip and libxml2 missing)");
 }
 #endif

@@ -1,0 +1,41 @@
+/* Microsurfaces with a chosen NDF, for checking the model against geometry (docs/design/microsurface.md): periodic
+ * height fields on an n x n grid of unit spacing, heights h[y n + x]. SPDX-License-Identifier: MIT */
+#ifndef GGX_LAB_MICROSURFACE_H
+#define GGX_LAB_MICROSURFACE_H
+
+#include <stddef.h>
+#include <stdint.h>
+
+/* A Gaussian random field whose facets have Beckmann slopes: every forward difference (h(x+1, y) - h(x, y),
+ * h(x, y+1) - h(x, y)), the slopes of the triangles of both triangulations of a cell, is Gaussian with covariance
+ * Sigma_s = R diag(alpha_x^2, alpha_y^2) R^T / 2 (R the rotation by phi), over the ensemble of fields (a field's own
+ * covariance scatters about it by about corr_len / n). Its autocorrelation is Gaussian, C(r) = sigma^2 exp(-r^T M r)
+ * sampled on the periodic lattice, sigma^2 = corr_len^2 sqrt(det Sigma_s) / 2 (corr_len in grid spacings): the
+ * continuous field of M0 = Sigma_s / (2 sigma^2), det(M0)^(-1/4) = corr_len, would have slopes of covariance
+ * Sigma_s; M is M0 corrected so that the forward differences have it (det(M)^(-1/4) within 2 % of corr_len for
+ * isotropic shapes and corr_len >= 8; 5.5 for 4 at alphas 0.2, 0.5). Periodic: h(n, y) = h(0, y). */
+typedef struct ms_gauss_spec {
+    size_t n;                     /* even, 8 to 16384 */
+    double alpha_x, alpha_y, phi; /* alphas in [1e-3, 10], phi any finite angle (radians) */
+    double corr_len;              /* in [4, n / 4]; refused where the lattice cannot carry the slopes (an axis'
+                                   * correlation length below about 3 spacings, or above about n / 4) */
+    uint64_t seed;
+} ms_gauss_spec;
+
+typedef struct ms_gauss_info {
+    double sigma;        /* the heights' standard deviation */
+    double metric[3];    /* M: M_xx, M_xy, M_yy */
+    double slope_cov[3]; /* the forward differences' covariance by the spectrum: Sigma_s to 1e-9 relative */
+    int iterations;      /* the corrections of M */
+} ms_gauss_info;
+
+/* Fills h (n * n doubles); info may be NULL. Returns 0, or -1 with a one-line reason in err (a bad spec, no memory,
+ * KISS FFT missing from the build). */
+int ms_gauss(const ms_gauss_spec *spec, double *h, ms_gauss_info *info, char *err, size_t errn);
+
+/* V-grooves (Torrance-Sparrow's V-cavities): grooves along y of period p texels (even, >= 2, dividing n) and slope
+ * +-s along x (0 < s <= 100), h(x, y) = s * (distance from x to the nearest multiple of p), so every facet has the
+ * normal (-s, 0, 1) / sqrt(1 + s^2) or (s, 0, 1) / sqrt(1 + s^2), each on half the area. Returns 0 or -1 with err. */
+int ms_vgroove(size_t n, size_t p, double s, double *h, char *err, size_t errn);
+
+#endif
