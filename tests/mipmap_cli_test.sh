@@ -135,6 +135,12 @@ EOF_PY
     "$GGX" mipmap --normal-map const.png --roughness-map r0.png --out r0 > r0.txt &&
         grep -q "(0 rejected)" r0.txt && awk -F'|' '/^\| 0 / { exit !($5 + 0 < 0.2 && $5 + 0 > 0.19) }' r0.txt && ok ||
         bad "a roughness map's 0: $(cat r0.txt)"
+    # a multi-channel OpenEXR (a level of a chain: six channels) is no roughness map
+    one_line "roughness map of six channels" "6 channels: give a one-channel OpenEXR" 2 "$GGX" mipmap \
+        --normal-map const.png --roughness-map cm/level-0.exr --out none
+    # the largest alpha: the chain holds Sigma's eigenvalues within GGX_ALPHA_MAX^2 at every level
+    "$GGX" mipmap --normal-map checker.png --alpha 1e4 --out big > big.txt && grep -q "^| 3 | 1 x 1" big.txt && ok ||
+        bad "alpha 1e4: $(cat big.txt)"
     # the fast mode: the constant map's levels are the same lobe, the checkerboard's widen as the exact filter's do
     "$GGX" mipmap --normal-map const.png --alpha 0.2 --fast --out cf > cf.txt &&
         [ "$(grep '^| [0-9]' cf.txt | cut -d'|' -f2-5)" = "$(grep '^| [0-9]' cm.txt | cut -d'|' -f2-5)" ] &&

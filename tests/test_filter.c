@@ -480,6 +480,23 @@ static void bad_input(void **state)
     opts[6].radial_nodes = 1, opts[7].angular_nodes = 2, opts[8].threads = -1, opts[9].threads = 1025;
     for (int i = 0; i < 10; i++) CHECK(ggx_filter_lobes(&s, f.lobe, w, 2, &opts[i], NULL) == GGX_ERR_RANGE, "option %d", i);
     CHECK(memcmp(&s, &keep, sizeof s) == 0, "out changed on error");
+    /* the largest alpha: Sigma's eigenvalues stay within GGX_ALPHA_MAX^2, so the fit is a shape and so is the next
+     * level's input (four tilts of alpha 1e4 once gave Sigma one ulp above it) */
+    {
+        const ggx_vec3 nm[4] = {{0.15728856207331002, 0.0078913520762041497, 1},
+                                {0.15590093740100125, -0.10727196553970171, 1},
+                                {0.27695781402218228, -0.060201280044757423, 1},
+                                {0.17742503232504159, 0.15906748503268131, 1}};
+        ggx_shape big[4], fit;
+        for (int i = 0; i < 4; i++) lobe_ok(&big[i], nm[i], 1e4, 1e4, 0);
+        CHECK(ggx_filter_lobes(&fit, big, NULL, 4, NULL, NULL) == GGX_OK, "alpha 1e4: the fit is not a shape");
+        double lv[4 * GGX_LOBE_PARAMS], wv[4], o1[GGX_LOBE_PARAMS], w1;
+        CHECK(ggx_texel_lobes(lv, wv, nm, 4, 1e4, 1e4, 0, NULL) == GGX_OK, "alpha 1e4 lobes");
+        CHECK(ggx_filter_downsample(o1, &w1, lv, wv, 2, 2, NULL) == GGX_OK, "alpha 1e4 level");
+        ggx_shape q;
+        CHECK(ggx_shape_from_slopes(&q, o1[0], o1[1], o1[2], o1[3], o1[4]) == GGX_OK, "alpha 1e4: Sigma %.17g, %.17g "
+              "is not a shape", o1[2], o1[4]);
+    }
     /* the extremes that are allowed: two radial nodes and four angles, one iteration */
     ggx_filter_options tiny = {0};
     tiny.radial_nodes = 2, tiny.angular_nodes = 4, tiny.max_iterations = 1;

@@ -32,8 +32,8 @@ extern "C" {
  * raised to it. Errors: GGX_ERR_NULL; GGX_ERR_NONFINITE (n, an
  * alpha or phi NaN or infinite); GGX_ERR_RANGE (n.z <= 0: the normal not above the tangent plane); GGX_ERR_ALPHA
  * as for ggx_shape_aniso; GGX_ERR_SINGULAR or GGX_ERR_RANGE from ggx_shape_from_slopes where the lobe is not a shape:
- * a steep normal with a small alpha (|t| / alpha beyond about 2e5: alpha 1e-4 at n.z 0.03) or alphas far apart
- * (1e-4 with 1e4). out is unchanged on error. */
+ * a steep normal with a small alpha (|t| beyond about 1e4 alpha^(2/3): n.z 0.03 at alpha 1e-4, 5e-4 at alpha 0.1,
+ * 1e-4 at alpha 1) or alphas far apart (1e-4 with 1e4). out is unchanged on error. */
 ggx_status ggx_texel_lobe(ggx_shape *out, ggx_vec3 n, double alpha_x, double alpha_y, double phi);
 
 /* Options; a zeroed struct (or NULL) means every default. */

@@ -108,7 +108,7 @@ int mc_compare(size_t w, size_t h, const ggx_vec3 *normals, const double *alpha,
         m.x /= l, m.y /= l, m.z /= l;
         nf_lobe e;
         if (nf_baseline(NF_NONE, m, a * a, NULL, &e) != 0) {
-            rc = fail(err, errn, "texel %zu: no shading frame", i);
+            rc = fail(err, errn, "texel %zu: GGX of alpha %g about its normal is not a shape", i, a);
             goto done;
         }
         s[S_W] = wi, s[S_N] = wi * m.x, s[S_N + 1] = wi * m.y, s[S_N + 2] = wi * m.z, s[S_A2] = wi * a * a;
@@ -145,7 +145,8 @@ int mc_compare(size_t w, size_t h, const ggx_vec3 *normals, const double *alpha,
             nf_lobe b[NF_BASELINES];
             for (int k = 0; k < NF_BASELINES; k++)
                 if (nf_baseline((nf_kind)k, m, s[S_A2] / sw, ce + 2, &b[k]) != 0) {
-                    rc = fail(err, errn, "level %d texel %zu: no shading frame", L, i);
+                    rc = fail(err, errn, "level %d texel %zu: %s is not a shape (mean alpha^2 %g)", L, i, nf_name[k],
+                              s[S_A2] / sw);
                     free(wcopy);
                     goto done;
                 }

@@ -8,6 +8,7 @@ const char *const nf_name[NF_BASELINES] = {"no filtering", "Toksvig", "variance 
 /* alpha'^2 of the isotropic baselines from the mean length len of the unit normals and the mean base alpha^2 */
 static double widened(nf_kind k, double len, double a2)
 {
+    if (a2 >= 1.0) return a2; /* both assume alpha <= 1 (a Blinn-Phong exponent >= 0; a saturated alpha^2 <= 1) */
     if (k == NF_TOKSVIG) {
         double sp = 2.0 / a2 - 2.0, ft = len / (len + sp * (1.0 - len));
         return 2.0 / (ft * sp + 2.0);

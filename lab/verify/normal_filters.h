@@ -15,6 +15,7 @@ typedef enum nf_kind {
                   * sigma^2 = 1 / kappa the per-axis variance of the von Mises-Fisher lobe of mean length |m|,
                   * kappa = (3 |m| - |m|^3) / (1 - |m|^2) */
     NF_UNSKEWED, /* our filtered lobe's scale Sigma without its location, about n: what an engine does with our shapes */
+    /* (Toksvig and variance widening leave a base alpha of 1 or more as it is: both assume alpha <= 1) */
     NF_BASELINES
 } nf_kind;
 extern const char *const nf_name[NF_BASELINES];

@@ -1345,6 +1345,8 @@ def mipmap(normal_map, alpha, alpha_y=None, threads=1, max_iterations=None, tole
         ay = ax if alpha_y is None else _real(alpha_y, "alpha_y")
         _check(_texel_lobes(lobes.ctypes.data, weights.ctypes.data, n.ctypes.data, h * w, ax, ay, 0.0, None))
     else:
+        if alpha is None:
+            raise ValueError("alpha: a number or a roughness map (h, w) is required")
         maps = []
         for name, m in (("alpha", alpha), ("alpha_y", alpha_y)):
             if m is None:

@@ -107,6 +107,8 @@ def test_mipmap_roughness_map_and_fast_mode():
     np.testing.assert_allclose(chain[0][0][3, 2, 2:], sigma, rtol=1e-12)
     with pytest.raises(ValueError):
         ggx.mipmap(m, np.full((5, 6), 0.3))
+    with pytest.raises(ValueError):
+        ggx.mipmap(m, None, alpha_y=r)
     # the fast mode: one EM step over 2 x 4 nodes, the same as those options given by hand, and near the exact fit
     fast, manual, exact = ggx.mipmap(m, 0.1, fast=True), ggx.mipmap(m, 0.1, max_iterations=1, nodes=(2, 4)), \
         ggx.mipmap(m, 0.1)

@@ -160,8 +160,9 @@ int filter_em(const filter_lobe *L, size_t n, const filter_rule *r, const filter
         s[1] += L[i].w * (L[i].sigma[1] + dx * dy);
         s[2] += L[i].w * (L[i].sigma[2] + dy * dy);
     }
-    /* Sigma's eigenvalues held in [GGX_ALPHA_MIN^2, GGX_ALPHA_MAX^2]: the constrained M step (docs/design/fit.md) */
-    const double lo = GGX_ALPHA_MIN * GGX_ALPHA_MIN, hi = GGX_ALPHA_MAX * GGX_ALPHA_MAX;
+    /* Sigma's eigenvalues held in [GGX_ALPHA_MIN^2, GGX_ALPHA_MAX^2]: the constrained M step (docs/design/fit.md);
+     * the top 1e-14 below it, so that Sigma rebuilt from its clamped eigenvalues, a few ulp off, stays a shape */
+    const double lo = GGX_ALPHA_MIN * GGX_ALPHA_MIN, hi = GGX_ALPHA_MAX * GGX_ALPHA_MAX * (1.0 - 1e-14);
     fit_clamp_sigma_range(s, lo, hi);
     int it = 0;
     double a[FIT_ESTEP_SUMS], p[3];

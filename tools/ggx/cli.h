@@ -141,6 +141,10 @@ int cmd_mipmap(int argc, char **argv);
 int cmd_render(int argc, char **argv);
 int render_normal_map(int argc, char **argv); /* ggx render --normal-map (render_mip.c) */
 int cmd_microsurface(int argc, char **argv);
+/* --roughness-map of the options as alpha per texel (malloc'd, nx * ny): a grey PNG's levels / (2^bits - 1) or a
+ * one-channel OpenEXR's values, squared with --perceptual; dies on another size, a multi-channel OpenEXR or an
+ * unreadable file (mipmap.c). */
+double *roughness_map_read(const options *o, size_t nx, size_t ny);
 
 /* ---- checks (also used by demo) ---- */
 typedef struct check_result {

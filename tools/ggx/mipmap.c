@@ -5,6 +5,7 @@
 #include <stdlib.h>
 #include <string.h>
 #include <time.h>
+#include <unistd.h>
 
 #include "cli.h"
 #include "ggx/ggx_filter.h"
@@ -79,6 +80,35 @@ static void write_level_png(const char *dir, int level, const double *lobes, con
     for (int k = 0; k < 7; k++) free(pl[k]);
 }
 
+double *roughness_map_read(const options *o, size_t nx, size_t ny)
+{
+    surface_read_options rr = {SURFACE_HEIGHTS, 0};
+    surface r;
+    char err[512];
+    if (surface_read(o->roughness_map, &rr, &r, err, sizeof err) != 0) die("--roughness-map: %s", err);
+    if (r.format == SURFACE_EXR && r.channels > 1)
+        die("--roughness-map %s: %d channels: give a one-channel OpenEXR or a grey PNG", o->roughness_map, r.channels);
+    if (r.nx != nx || r.ny != ny)
+        die("--roughness-map %s: %zu x %zu texels, the normal map %zu x %zu", o->roughness_map, r.nx, r.ny, nx, ny);
+    double scale = r.bits ? 1.0 / (ldexp(1.0, r.bits) - 1.0) : 1.0; /* PNG levels to [0, 1] */
+    for (size_t i = 0; i < nx * ny; i++) {
+        double v = r.h[i] * scale;
+        r.h[i] = o->perceptual && v >= 0.0 ? v * v : v; /* a negative value stays negative: rejected */
+    }
+    double *alpha = r.h;
+    r.h = NULL;
+    surface_free(&r);
+    return alpha;
+}
+
+/* The output folder when this command made it: removed (if still empty) on every exit before the chain is
+ * complete, so that a failed run leaves nothing. */
+static const char *made_dir;
+static void remove_made_dir(void)
+{
+    if (made_dir) rmdir(made_dir);
+}
+
 int cmd_mipmap(int argc, char **argv)
 {
     options o;
@@ -95,7 +125,8 @@ int cmd_mipmap(int argc, char **argv)
                "skewed ellipsoid, exactly), and each texel of a coarser level the ellipsoid closest (least KL\n"
                "divergence) to the mixture of its 2 x 2 texels above, by ggx_filter_downsample (odd sizes: the last\n"
                "column or row filters 2 x 1, 1 x 2 or 1 x 1 boxes). A texel whose normal is NaN, zero or not above\n"
-               "the tangent plane is rejected: weight 0, counted nowhere. --y-down: the green channel points down\n"
+               "the tangent plane is rejected: weight 0, counted nowhere (an RGB PNG whose blue is 0 everywhere is\n"
+               "read as two channels, z rebuilt). --y-down: the green channel points down\n"
                "(DirectX maps). Writes DIR/level-K.exr (default DIR: mipmap) for K = 0 to the 1 x 1 level, each\n"
                "with the float channels t.x, t.y (the slope location: the mean normal is (-t.x, -t.y, 1)\n"
                "normalised), sigma.xx, sigma.xy, sigma.yy (the slope scale, as ggx_shape_from_slopes takes them)\n"
@@ -130,25 +161,18 @@ int cmd_mipmap(int argc, char **argv)
     if (!lobes || !w || !next || !wn) die("out of memory");
     size_t rejected;
     if (o.roughness_map) {
-        surface_read_options rr = {SURFACE_HEIGHTS, 0};
-        surface r;
-        if (surface_read(o.roughness_map, &rr, &r, err, sizeof err) != 0) die("--roughness-map: %s", err);
-        if (r.nx != nx || r.ny != ny)
-            die("--roughness-map %s: %zu x %zu texels, the normal map %zu x %zu", o.roughness_map, r.nx, r.ny, nx, ny);
-        double scale = r.bits ? 1.0 / (ldexp(1.0, r.bits) - 1.0) : 1.0; /* PNG levels to [0, 1] */
-        for (size_t i = 0; i < count; i++) {
-            double v = r.h[i] * scale;
-            r.h[i] = o.perceptual ? (v >= 0.0 ? v * v : v) : v; /* a negative value stays negative: rejected */
-        }
-        st = ggx_texel_lobes_roughness(lobes, w, s.m, r.h, NULL, count, 0.0, &rejected);
-        surface_free(&r);
+        double *alpha = roughness_map_read(&o, nx, ny);
+        st = ggx_texel_lobes_roughness(lobes, w, s.m, alpha, NULL, count, 0.0, &rejected);
+        free(alpha);
     } else {
         st = ggx_texel_lobes(lobes, w, s.m, count, o.alpha[0], o.alpha[1], 0.0, &rejected);
     }
     if (st != GGX_OK) die("--alpha: %s", ggx_status_str(st));
     surface_free(&s);
     const char *dir = o.out ? o.out : "mipmap";
+    int made = access(dir, F_OK) != 0;
     ensure_dir(dir);
+    if (made) made_dir = dir, atexit(remove_made_dir);
     ggx_filter_options fo = {0};
     fo.threads = o.threads > 0 ? o.threads : 1;
     if (o.fast) fo.radial_nodes = 2, fo.angular_nodes = 4, fo.max_iterations = 1; /* ggx_filter.h's fast mode */
@@ -187,6 +211,7 @@ int cmd_mipmap(int argc, char **argv)
         lobes = next, w = wn, next = tl, wn = tw;
     }
     out_commit_set();
+    made_dir = NULL; /* complete: the folder stays */
     free(lobes), free(w), free(next), free(wn);
     return 0;
 }

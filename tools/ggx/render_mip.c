@@ -5,6 +5,7 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <strings.h>
 
 #include "figure.h"
 #include "mip_compare.h"
@@ -95,7 +96,7 @@ int render_normal_map(int argc, char **argv)
     mc_view given = {direction_of("--light", "45,180"), direction_of("--view", "45,0")}; /* mc_standard_views' first */
     if (o.light) given.wi = direction_of("--light", o.light);
     if (o.have_view) {
-        if (!(o.view.z > 0.0)) die("--view: the eye must be above the plane");
+        if (!(o.view.z > 1e-9)) die("--view: the eye must be above the plane (theta below 90 degrees)");
         given.wo = o.view;
     }
     mc_view views[MC_VIEWS];
@@ -103,7 +104,10 @@ int render_normal_map(int argc, char **argv)
     views[0] = given;
     int nviews = o.light || o.have_view ? 1 : MC_VIEWS;
     const char *path = o.out ? o.out : "normal-map.png";
-    if (format_of_path(path, FMT_PNG) != FMT_PNG) die("--out '%s': give a .png name", path);
+    size_t plen = strlen(path);
+    int to_stdout = strcmp(path, "-") == 0;
+    if (!to_stdout && !path_is_stream(path) && !(plen >= 4 && strcasecmp(path + plen - 4, ".png") == 0))
+        die("--out '%s': give a .png name (or - for standard output)", path);
     surface_read_options ro = {SURFACE_NORMALS, o.y_down};
     surface s;
     char err[512];
@@ -113,18 +117,7 @@ int render_normal_map(int argc, char **argv)
     size_t w = s.nx, h = s.ny;
     double *alpha = NULL;
     if (o.roughness_map) {
-        surface_read_options rr = {SURFACE_HEIGHTS, 0};
-        surface r;
-        if (surface_read(o.roughness_map, &rr, &r, err, sizeof err) != 0) die("--roughness-map: %s", err);
-        if (r.nx != w || r.ny != h)
-            die("--roughness-map %s: %zu x %zu texels, the normal map %zu x %zu", o.roughness_map, r.nx, r.ny, w, h);
-        double scale = r.bits ? 1.0 / (ldexp(1.0, r.bits) - 1.0) : 1.0;
-        for (size_t i = 0; i < w * h; i++) {
-            double v = r.h[i] * scale;
-            r.h[i] = o.perceptual && v >= 0.0 ? v * v : v;
-        }
-        alpha = r.h, r.h = NULL;
-        surface_free(&r);
+        alpha = roughness_map_read(&o, w, h);
     } else if (!(o.alpha[0] > 0.0 && o.alpha[0] <= GGX_ALPHA_MAX)) {
         die("--alpha: %g is not a roughness in (0, %g]", o.alpha[0], GGX_ALPHA_MAX);
     }
@@ -142,19 +135,20 @@ int render_normal_map(int argc, char **argv)
     char rough[600];
     if (o.roughness_map) snprintf(rough, sizeof rough, "roughness %s%s", o.roughness_map, o.perceptual ? " (perceptual)" : "");
     else snprintf(rough, sizeof rough, "alpha %g", o.alpha[0]);
-    printf("ggx render --normal-map: %s, %zu x %zu texels, %s; relative RMSE against the truth, %s\n\n", o.normal_map,
+    FILE *tab = to_stdout ? stderr : stdout; /* the figure on standard output: the table beside it */
+    fprintf(tab, "ggx render --normal-map: %s, %zu x %zu texels, %s; relative RMSE against the truth, %s\n\n", o.normal_map,
            w, h, rough, nviews == 1 ? "at the given light and eye" : "pooled over the 37 standard light-eye pairs");
     for (int table = 0; table < 2; table++) {
-        if (table) printf("\nagainst the engines' own truth (each base texel GGX about its normal as a shading normal):\n\n");
-        printf("| level | size |");
-        for (int k = 0; k < MC_METHODS; k++) printf(" %s |", mc_name[k]);
-        printf("\n|---|---|");
-        for (int k = 0; k < MC_METHODS; k++) printf("---|");
-        printf("\n");
+        if (table) fprintf(tab, "\nagainst the engines' own truth (each base texel GGX about its normal as a shading normal):\n\n");
+        fprintf(tab, "| level | size |");
+        for (int k = 0; k < MC_METHODS; k++) fprintf(tab, " %s |", mc_name[k]);
+        fprintf(tab, "\n|---|---|");
+        for (int k = 0; k < MC_METHODS; k++) fprintf(tab, "---|");
+        fprintf(tab, "\n");
         for (int l = 0; l < nl; l++) {
-            printf("| %d | %zu x %zu |", l, levels[l].w, levels[l].h);
-            for (int k = 0; k < MC_METHODS; k++) printf(" %.4f |", table ? levels[l].rmse_engine[k] : levels[l].rmse[k]);
-            printf("\n");
+            fprintf(tab, "| %d | %zu x %zu |", l, levels[l].w, levels[l].h);
+            for (int k = 0; k < MC_METHODS; k++) fprintf(tab, " %.4f |", table ? levels[l].rmse_engine[k] : levels[l].rmse[k]);
+            fprintf(tab, "\n");
         }
     }
     /* the figure: panels of the map's size at a scale of at least 160 pixels */

@@ -268,6 +268,7 @@ static int exr_parse_part(exr_reader *r, size_t n, char *err, size_t errn)
         if (k < 0) k = 0;
         r->want[0] = k, r->nwant = 1;
         r->s->kind = SURFACE_HEIGHTS;
+        r->s->channels = cl->num_channels; /* the file's: a caller that wants one channel alone can refuse more */
     } else if (r->o->want == SURFACE_RADIANCE) {
         /* R, G, B; else a grey image's Y (or its first channel) for all three */
         r->want[0] = exr_find_channel(cl, "R"), r->want[1] = exr_find_channel(cl, "G");
