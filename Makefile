@@ -10,12 +10,12 @@ MAKEFLAGS += --no-print-directory
 
 all: build
 
-# Debian packages: what `make run` needs (compiler, CMake, cairo and a font for the figures; libpng, libzip, libxml2 and OpenEXR for the surfaces `ggx fit` reads, stb_image for the .hdr environments of `ggx render`, KISS FFT for the Gaussian microsurfaces of `ggx microsurface`), and what the test suite adds (cmocka, g++ for the
+# Debian packages: what `make run` needs (compiler, CMake, cairo and a font for the figures; libpng, libzip, libxml2 and OpenEXR for the surfaces `ggx fit` reads, stb_image for the .hdr environments of `ggx render`, KISS FFT and Embree for the microsurfaces of `ggx microsurface` and their tracer), and what the test suite adds (cmocka, g++ for the
 # header's C++ test, make for the install test, xmllint and poppler (pdfinfo) for the figures, groff for the man page,
 # universal-ctags for the header index,
 # Python with numpy, pytest and matplotlib for the Python package's tests and its example).
 RUN_PKGS = cmake make gcc libc6-dev pkg-config libcairo2-dev fonts-dejavu-core libpng-dev libzip-dev libxml2-dev \
-           libopenexr-dev libstb-dev libkissfft-dev
+           libopenexr-dev libstb-dev libkissfft-dev libembree-dev
 TEST_PKGS = $(RUN_PKGS) g++ clang libcmocka-dev libxml2-utils poppler-utils groff-base universal-ctags python3 \
             python3-numpy python3-pytest python3-matplotlib
 
@@ -60,6 +60,7 @@ bench: build
 	@$(BUILD)/ggx_bench
 	@$(BUILD)/ggx_bench_fit
 	@$(BUILD)/ggx_bench_filter
+	@$(BUILD)/ggx_bench_microsurface
 	@if [ -x $(BUILD)/ggx ]; then for m in bumps checker scratches sawtooth; do \
 	  $(BUILD)/ggx render --normal-map tests/data/normal_maps/$$m.png --alpha 0.1 --out $(BUILD)/normal-map-$$m.png; \
 	  echo; done; fi

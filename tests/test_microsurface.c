@@ -1,7 +1,9 @@
 /* Microsurfaces (lab/microsurface/microsurface.h): the Gaussian field's spectrum gives the forward differences the
  * Beckmann slope covariance it promises; realisations scatter about it by their expected amount over seeds, are
  * Gaussian, periodic (the wrap's differences are the interior's), have the stated autocorrelation and repeat for a
- * seed; V-grooves have their two normals on half the area each; bad specs are refused. SPDX-License-Identifier: MIT */
+ * seed; V-grooves have their two normals on half the area each; the tracer meets the V-grooves' closed form, a flat
+ * surface is a mirror and the white furnace of all bounces loses nothing; bad specs are refused.
+ * SPDX-License-Identifier: MIT */
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -167,6 +169,114 @@ static void vgrooves(void **state)
           "slope 0 or NaN accepted");
 }
 
+/* 0 (with one line) where the build has no Embree */
+static ms_tracer *tracer_or_skip(const double *h, size_t n)
+{
+    char err[300];
+    ms_tracer *t = ms_tracer_new(h, n, err, sizeof err);
+    if (!t) {
+        CHECK(strstr(err, "not built") != NULL, "the tracer failed: %s", err);
+        printf("microsurface: %s\n", err);
+    }
+    return t;
+}
+
+static double uniform(uint64_t *s)
+{
+    *s ^= *s << 13, *s ^= *s >> 7, *s ^= *s << 17;
+    return (double)(*s >> 11) * 0x1p-53;
+}
+
+/* The tracer against V-grooves' closed form: from v at azimuth phi to the grooves' normal, the first hits on the
+ * facets facing away from v are the share (1 - s tan(theta) cos(phi)) / 2 of the rays, 0 once those facets face away
+ * (tan(theta) cos(phi) >= 1 / s), within 4 binomial standard deviations; every ray hits, the grazing ones after
+ * crossing many tiles (a 32 x 32 tile of period 8). */
+static void vgroove_trace(void **state)
+{
+    (void)state;
+    enum { N = 32, RAYS = 40000 };
+    double h[N * N];
+    char err[256];
+    CHECK(ms_vgroove(N, 8, 0.5, h, err, sizeof err) == 0, "%s", err);
+    ms_tracer *t = tracer_or_skip(h, N);
+    if (!t) return;
+    double zmin, zmax;
+    ms_tracer_bounds(t, &zmin, &zmax);
+    CHECK(zmin == 0.0 && zmax == 2.0, "bounds %g, %g", zmin, zmax);
+    uint64_t s = 88172645463325252ull;
+    const double thetas[] = {0, 20, 40, 60, 70, 85, 89}, phis[] = {0.0, 0.3, 1.2, 3.5};
+    for (int a = 0; a < 7; a++)
+        for (int b = 0; b < 4; b++) {
+            double th = thetas[a] * 3.14159265358979323846 / 180.0, ph = phis[b];
+            double d[3] = {-sin(th) * cos(ph), -sin(th) * sin(ph), -cos(th)};
+            long away = 0;
+            for (int i = 0; i < RAYS; i++) {
+                double o[3] = {uniform(&s) * N, uniform(&s) * N, zmax + 1.0};
+                ms_hit hit;
+                CHECK(ms_trace(t, o, d, &hit) == 1, "theta %g phi %g: a ray missed", thetas[a], ph);
+                /* the facet faces away from v where its normal's x has the sign of d's */
+                if ((hit.m[0] < 0.0) == (d[0] < 0.0) && d[0] != 0.0) away++;
+                if (d[0] == 0.0 && hit.m[0] < 0.0) away++;
+                CHECK(fabs(fabs(hit.m[0]) - 0.5 / sqrt(1.25)) < 1e-6 && fabs(hit.m[1]) < 1e-6, "normal %g %g %g",
+                      hit.m[0], hit.m[1], hit.m[2]);
+            }
+            double tp = tan(th) * fabs(cos(ph)), want = fmax(0.0, (1.0 - 0.5 * tp) / 2.0), got = (double)away / RAYS;
+            CHECK(fabs(got - want) <= 4.0 * sqrt(fmax(want * (1.0 - want), 1e-6) / RAYS) + 1e-9, "theta %g, phi %g: "
+                  "%g of the hits on the facets facing away, want %g", thetas[a], ph, got, want);
+        }
+    ms_tracer_free(t);
+}
+
+/* A flat surface is a mirror: every ray hits it at height 0 with the normal z. And with F = 1 the facets lose no
+ * energy: on a rough Gaussian field (alpha 1) every ray reflected specularly from facet to facet escapes upwards
+ * within 100 bounces, none leaves below it (white furnace of all bounces); the share that needs more than one
+ * bounce is printed. */
+static void mirror_and_furnace(void **state)
+{
+    (void)state;
+    enum { N = 64 };
+    static double h[N * N];
+    ms_tracer *t = tracer_or_skip(h, N);
+    if (!t) return;
+    uint64_t s = 12345;
+    for (int i = 0; i < 1000; i++) {
+        double th = 1.5 * uniform(&s), ph = 6.283 * uniform(&s);
+        double o[3] = {uniform(&s) * N, uniform(&s) * N, 1.0}, d[3] = {sin(th) * cos(ph), sin(th) * sin(ph), -cos(th)};
+        ms_hit hit;
+        CHECK(ms_trace(t, o, d, &hit) == 1 && fabs(hit.p[2]) < 1e-6 && hit.m[2] == 1.0, "flat: %g %g", hit.p[2],
+              hit.m[2]);
+    }
+    ms_tracer_free(t);
+    if (!gauss_built()) return;
+    enum { G = 128 };
+    static double g[G * G];
+    ms_gauss_spec sp = {G, 1.0, 1.0, 0.0, 8, 3};
+    char err[256];
+    CHECK(ms_gauss(&sp, g, NULL, err, sizeof err) == 0, "%s", err);
+    t = tracer_or_skip(g, G);
+    if (!t) return;
+    double zmin, zmax;
+    ms_tracer_bounds(t, &zmin, &zmax);
+    long multi = 0, rays = 20000;
+    for (long i = 0; i < rays; i++) {
+        double th = 1.4 * uniform(&s), ph = 6.283 * uniform(&s);
+        double o[3] = {uniform(&s) * G, uniform(&s) * G, zmax + 1.0}, d[3] = {sin(th) * cos(ph), sin(th) * sin(ph), -cos(th)};
+        int bounces = 0, r;
+        ms_hit hit;
+        while ((r = ms_trace(t, o, d, &hit)) == 1 && bounces < 100) {
+            double dm = d[0] * hit.m[0] + d[1] * hit.m[1] + d[2] * hit.m[2];
+            /* the next ray from just above the facet: the hit point carries the tracer's single precision */
+            for (int k = 0; k < 3; k++) d[k] -= 2.0 * dm * hit.m[k], o[k] = hit.p[k] + 1e-3 * hit.m[k];
+            bounces++;
+        }
+        CHECK(r == 0 && d[2] > 0.0, "ray %ld: %s after %d bounces", i, r < 0 ? "left below the surface" : "not out",
+              bounces);
+        multi += bounces > 1;
+    }
+    printf("furnace, alpha 1: %ld rays, all out; %.1f %% bounced more than once\n", rays, 100.0 * (double)multi / (double)rays);
+    ms_tracer_free(t);
+}
+
 static void bad_specs(void **state)
 {
     (void)state;
@@ -186,7 +296,8 @@ int main(int argc, char **argv)
 {
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(spectrum_moments), cmocka_unit_test(realisations), cmocka_unit_test(one_field),
-        cmocka_unit_test(vgrooves),         cmocka_unit_test(bad_specs),
+        cmocka_unit_test(vgrooves),         cmocka_unit_test(vgroove_trace),    cmocka_unit_test(mirror_and_furnace),
+        cmocka_unit_test(bad_specs),
     };
     int rc = cmocka_run_group_tests(tests, NULL, NULL);
     return rc | chi2_budget_end("microsurface", argc, argv);

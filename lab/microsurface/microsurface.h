@@ -38,4 +38,26 @@ int ms_gauss(const ms_gauss_spec *spec, double *h, ms_gauss_info *info, char *er
  * normal (-s, 0, 1) / sqrt(1 + s^2) or (s, 0, 1) / sqrt(1 + s^2), each on half the area. Returns 0 or -1 with err. */
 int ms_vgroove(size_t n, size_t p, double s, double *h, char *err, size_t errn);
 
+/* ---- the tracer (trace.c, Embree) ----
+ * A height field of ms_gauss or ms_vgroove as Embree grid geometry (each cell two triangles), tiled periodically:
+ * a ray that leaves the tile's side enters the opposite side, so the surface is infinite. Directions are unit
+ * vectors of the tangent frame (z up); a ray goes from its origin along d. */
+typedef struct ms_tracer ms_tracer;
+typedef struct ms_hit {
+    double p[3];     /* the hit point, x and y within the tile [0, n) */
+    double m[3];     /* the facet's unit normal, m.z > 0 */
+    size_t cell;     /* the cell hit: y n + x */
+} ms_hit;
+
+/* The tracer of h (n x n, kept by copy in single precision); NULL with err where Embree is not built or fails. */
+ms_tracer *ms_tracer_new(const double *h, size_t n, char *err, size_t errn);
+void ms_tracer_free(ms_tracer *t);
+/* The heights' range, for rays that start above the surface. */
+void ms_tracer_bounds(const ms_tracer *t, double *zmin, double *zmax);
+/* The first hit of the ray (o, d) on the tiled surface beyond a distance of 1e-4 (so that a ray leaving a hit point
+ * does not hit its own facet): 1 and *hit, or 0 where the ray escapes (it is above the surface's top going up, or
+ * d.z = 0 above it), or -1 where it leaves below the surface's bottom (which a tracer that works never does). The
+ * tracer may be used from any number of threads at once. */
+int ms_trace(const ms_tracer *t, const double o[3], const double d[3], ms_hit *hit);
+
 #endif

@@ -1,0 +1,143 @@
+/* The periodic microsurface tracer over Embree (microsurface.h; docs/design/microsurface.md).
+ * SPDX-License-Identifier: MIT */
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "microsurface.h"
+
+#ifdef GGX_HAVE_EMBREE
+#include <embree3/rtcore.h>
+
+struct ms_tracer {
+    RTCDevice device;
+    RTCScene scene;
+    size_t n;
+    double zmin, zmax;
+};
+
+ms_tracer *ms_tracer_new(const double *h, size_t n, char *err, size_t errn)
+{
+    if (n < 2 || n > 16384) {
+        snprintf(err, errn, "tracer: a size from 2 to 16384");
+        return NULL;
+    }
+    ms_tracer *t = calloc(1, sizeof *t);
+    if (!t) {
+        snprintf(err, errn, "tracer: out of memory");
+        return NULL;
+    }
+    t->n = n;
+    t->device = rtcNewDevice(NULL);
+    if (!t->device) {
+        snprintf(err, errn, "tracer: Embree did not start (error %d)", (int)rtcGetDeviceError(NULL));
+        free(t);
+        return NULL;
+    }
+    t->scene = rtcNewScene(t->device);
+    rtcSetSceneBuildQuality(t->scene, RTC_BUILD_QUALITY_HIGH);
+    RTCGeometry g = rtcNewGeometry(t->device, RTC_GEOMETRY_TYPE_GRID);
+    size_t side = n + 1; /* the wrap's copies of row 0 and column 0 close the tile */
+    float *v = rtcSetNewGeometryBuffer(g, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3, 3 * sizeof(float), side * side);
+    struct RTCGrid *grid = rtcSetNewGeometryBuffer(g, RTC_BUFFER_TYPE_GRID, 0, RTC_FORMAT_GRID, sizeof(struct RTCGrid), 1);
+    if (!v || !grid) {
+        snprintf(err, errn, "tracer: out of memory for %zu x %zu heights", n, n);
+        rtcReleaseGeometry(g);
+        ms_tracer_free(t);
+        return NULL;
+    }
+    t->zmin = HUGE_VAL, t->zmax = -HUGE_VAL;
+    for (size_t y = 0; y < side; y++)
+        for (size_t x = 0; x < side; x++) {
+            double z = h[(y % n) * n + x % n];
+            float *p = v + 3 * (y * side + x);
+            p[0] = (float)x, p[1] = (float)y, p[2] = (float)z;
+            t->zmin = fmin(t->zmin, (double)p[2]), t->zmax = fmax(t->zmax, (double)p[2]);
+        }
+    grid->startVertexID = 0, grid->stride = (unsigned)side;
+    grid->width = (unsigned short)side, grid->height = (unsigned short)side;
+    rtcCommitGeometry(g);
+    rtcAttachGeometry(t->scene, g);
+    rtcReleaseGeometry(g);
+    rtcCommitScene(t->scene);
+    if (rtcGetDeviceError(t->device) != RTC_ERROR_NONE) {
+        snprintf(err, errn, "tracer: Embree could not build the surface");
+        ms_tracer_free(t);
+        return NULL;
+    }
+    return t;
+}
+
+void ms_tracer_free(ms_tracer *t)
+{
+    if (!t) return;
+    if (t->scene) rtcReleaseScene(t->scene);
+    if (t->device) rtcReleaseDevice(t->device);
+    free(t);
+}
+
+void ms_tracer_bounds(const ms_tracer *t, double *zmin, double *zmax) { *zmin = t->zmin, *zmax = t->zmax; }
+
+int ms_trace(const ms_tracer *t, const double o[3], const double d[3], ms_hit *hit)
+{
+    double n = (double)t->n, x = o[0] - n * floor(o[0] / n), y = o[1] - n * floor(o[1] / n), z = o[2];
+    struct RTCIntersectContext ctx;
+    rtcInitIntersectContext(&ctx);
+    for (int step = 0; step < 1 << 20; step++) {
+        if (d[2] >= 0.0 && z > t->zmax) return 0;
+        if (d[2] < 0.0 && z < t->zmin) return -1;
+        /* the ray's part inside this tile's column: up to where it leaves a side (or the heights' slab) */
+        double tx = d[0] > 0.0 ? (n - x) / d[0] : d[0] < 0.0 ? -x / d[0] : HUGE_VAL;
+        double ty = d[1] > 0.0 ? (n - y) / d[1] : d[1] < 0.0 ? -y / d[1] : HUGE_VAL;
+        double tz = d[2] > 0.0 ? (t->zmax - z) / d[2] : d[2] < 0.0 ? (t->zmin - z) / d[2] : HUGE_VAL;
+        double tend = fmin(fmin(tx, ty), tz);
+        if (!(tend < HUGE_VAL)) return 0; /* horizontal, inside the slab, along no side: cannot happen */
+        struct RTCRayHit rh;
+        rh.ray.org_x = (float)x, rh.ray.org_y = (float)y, rh.ray.org_z = (float)z;
+        rh.ray.dir_x = (float)d[0], rh.ray.dir_y = (float)d[1], rh.ray.dir_z = (float)d[2];
+        rh.ray.tnear = step == 0 ? 1e-4f : 0.0f, rh.ray.tfar = (float)(tend * (1.0 + 1e-6) + 1e-6);
+        rh.ray.mask = 0xFFFFFFFFu, rh.ray.flags = 0, rh.ray.time = 0.0f;
+        rh.hit.geomID = RTC_INVALID_GEOMETRY_ID, rh.hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
+        rtcIntersect1(t->scene, &ctx, &rh);
+        if (rh.hit.geomID != RTC_INVALID_GEOMETRY_ID) {
+            double th = rh.ray.tfar, gx = rh.hit.Ng_x, gy = rh.hit.Ng_y, gz = rh.hit.Ng_z;
+            double l = sqrt(gx * gx + gy * gy + gz * gz);
+            if (gz < 0.0) l = -l; /* the upward normal: a height field's facets all face up */
+            hit->p[0] = x + th * d[0], hit->p[1] = y + th * d[1], hit->p[2] = z + th * d[2];
+            hit->m[0] = gx / l, hit->m[1] = gy / l, hit->m[2] = gz / l;
+            size_t cx = (size_t)fmin(fmax(floor(hit->p[0]), 0.0), n - 1);
+            size_t cy = (size_t)fmin(fmax(floor(hit->p[1]), 0.0), n - 1);
+            hit->cell = cy * t->n + cx;
+            return 1;
+        }
+        if (tend == tz) return d[2] > 0.0 ? 0 : -1; /* left the heights' slab: escaped (up), or through (down) */
+        /* into the next tile: move to the side and wrap the coordinate that crossed it */
+        x += tend * d[0], y += tend * d[1], z += tend * d[2];
+        if (tend == tx) x = d[0] > 0.0 ? 0.0 : n;
+        if (tend == ty) y = d[1] > 0.0 ? 0.0 : n;
+    }
+    return 0;
+}
+#else
+struct ms_tracer {
+    int unused;
+};
+ms_tracer *ms_tracer_new(const double *h, size_t n, char *err, size_t errn)
+{
+    (void)h, (void)n;
+    snprintf(err, errn, "the microsurface tracer is not built (Embree not found: apt-get install libembree-dev)");
+    return NULL;
+}
+void ms_tracer_free(ms_tracer *t) { free(t); }
+void ms_tracer_bounds(const ms_tracer *t, double *zmin, double *zmax)
+{
+    (void)t;
+    *zmin = *zmax = 0.0;
+}
+int ms_trace(const ms_tracer *t, const double o[3], const double d[3], ms_hit *hit)
+{
+    (void)t, (void)o, (void)d, (void)hit;
+    return 0;
+}
+#endif
