@@ -5,6 +5,7 @@
 set -u
 ROOT=$(cd "$(dirname "$0")/.." && pwd)
 . "$ROOT/tests/cli_common.sh"
+PY=/usr/bin/python3
 
 "$GGX" microsurface --help > h.txt && grep -q "usage: ggx microsurface generate" h.txt && ok || bad "--help"
 "$GGX" microsurface generate --help > g.txt && grep -q "kind beckmann|vgroove" g.txt && ok || bad "generate --help"
@@ -15,6 +16,15 @@ if "$GGX" microsurface generate --kind beckmann --alpha 0.3 --corr 8 --size 256 
     "$GGX" microsurface generate --kind beckmann --alpha 0.2,0.4 --rotate 30 --corr 8 --size 256 --out b.exr > /dev/null &&
         "$GGX" fit --heightfield b.exr --spacing 1 --z-scale 1 > fe.txt && grep -q "Beckmann.*\*\*best\*\*" fe.txt &&
         ok || bad "fit of the OpenEXR field: $(grep -i beckmann fe.txt)"
+    # measure a Gaussian field at 80 degrees: Smith's G1 for Beckmann slopes of the facets' covariance is the facets'
+    # G1 to 1e-2 (the ensemble is exactly Gaussian)
+    if "$GGX" microsurface measure --heightfield b.x3p --view 80,30 -n 40000 --threads 2 --format json > bm.json 2> err.txt; then
+        "$PY" -c "
+import json; d = json.load(open('bm.json')); g = d['g1']
+assert d['missed'] == 0 and abs(g['facets'] - g['smith_beckmann']) < 1e-2, g" && ok || bad "measure, Beckmann: $(head -c 400 bm.json)"
+    elif ! grep -q "not built" err.txt; then
+        bad "measure: $(cat err.txt)"
+    fi
     # the same seed, the same file
     "$GGX" microsurface generate --kind beckmann --alpha 0.3 --corr 8 --size 256 --seed 3 --out b2.x3p > /dev/null &&
         "$GGX" fit --heightfield b2.x3p > fit2.txt && [ "$(sed 1d fit.txt)" = "$(sed 1d fit2.txt)" ] && ok ||
@@ -30,6 +40,22 @@ if "$GGX" microsurface generate --kind vgroove --alpha 0.5 --period 8 --size 64 
     "$GGX" fit --heightfield v.x3p --format json > vf.json && grep -q '"used": 15876' vf.json &&
         grep -q '"sigma": \[[0-9.e-]*, 0, 1e-08\]' vf.json && ok ||
         bad "fit of the V-grooves: $(head -c 300 vf.json)"
+    # measure: V-grooves of slope 0.5 at 70 degrees hide the facets facing away (back-facing) and show of those
+    # facing v the Torrance-Sparrow share: G1 = 2 / (1 + s tan 70) = 0.842553, the same in their bin
+    if "$GGX" microsurface measure --heightfield v.x3p --view 70,0 -n 40000 --format json > vm.json 2> err.txt; then
+        "$PY" - <<'EOF_PY' && ok || bad "measure, V-grooves: $(cat vm.json)"
+import json, math
+d = json.load(open("vm.json"))
+want = 2 / (1 + 0.5 * math.tan(math.radians(70)))
+assert d["missed"] == 0 and abs(d["g1"]["facets"] - want) < 1e-6, d["g1"]
+bins = [b for b in d["bins"] if b["area"] > 0.01]
+assert len(bins) == 1 and abs(bins[0]["g1"] - want) < 0.01, bins
+EOF_PY
+    elif grep -q "not built" err.txt; then
+        echo "microsurface CLI: $(cat err.txt): measure is not tested"
+    else
+        bad "measure: $(cat err.txt)"
+    fi
 elif grep -q "not built" err.txt; then
     echo "microsurface CLI: x3p support is off, the V-grooves are not written"
 else
@@ -43,6 +69,20 @@ one_line "period with beckmann" "--period applies to --kind vgroove" 2 "$GGX" mi
 one_line "png out" "give a .exr or .x3p name" 2 "$GGX" microsurface generate --kind vgroove --size 64 --out n.png
 one_line "short correlation" "correlation length must be in" 2 "$GGX" microsurface generate --kind beckmann \
     --corr 2 --size 64 --out n.x3p
+one_line "measure, no view" "--view THETA,PHI is required" 2 "$GGX" microsurface measure --heightfield v.x3p
+one_line "measure, no file" "--heightfield FILE is required" 2 "$GGX" microsurface measure --view 30,0
+# a ramp is not periodic: the tracer would tile a cliff
+"$PY" - <<'EOF_PY'
+import struct, zlib
+raw = b"".join(b"\0" + bytes(4 * i for i in range(32)) for j in range(32))
+ch = lambda k, b: struct.pack(">I", len(b)) + k + b + struct.pack(">I", zlib.crc32(k + b) & 0xFFFFFFFF)
+open("ramp.png", "wb").write(b"\x89PNG\r\n\x1a\n" + ch(b"IHDR", struct.pack(">IIBBBBB", 32, 32, 8, 0, 0, 0, 0)) +
+                             ch(b"IDAT", zlib.compress(raw)) + ch(b"IEND", b""))
+EOF_PY
+if [ -e ramp.png ] && "$GGX" fit --heightfield ramp.png --spacing 1 --z-scale 0.01 > /dev/null 2>&1; then
+    one_line "not periodic" "not periodic" 2 "$GGX" microsurface measure --heightfield ramp.png --spacing 1 \
+        --z-scale 0.01 --view 30,0
+fi
 one_line "no subcommand" "give a subcommand" 2 "$GGX" microsurface
 one_line "bad subcommand" "unknown subcommand 'trace'" 2 "$GGX" microsurface trace
 [ ! -e n.x3p ] && [ ! -e n.png ] && ok || bad "a failed generate left a file"

@@ -277,6 +277,74 @@ static void mirror_and_furnace(void **state)
     ms_tracer_free(t);
 }
 
+/* The tracer's cells are cut along the diagonal from (x+1, y) to (x, y+1), as microsurface.h's facets are: with only
+ * the vertex (1, 1) raised to 1, the lower-left triangle of cell (1, 1) is the plane z = 3 - x - y, its upper-right
+ * one flat. */
+static void diagonal(void **state)
+{
+    (void)state;
+    double h[16] = {0};
+    h[1 * 4 + 1] = 1.0;
+    ms_tracer *t = tracer_or_skip(h, 4);
+    if (!t) return;
+    const double pts[4][2] = {{1.1, 1.2}, {1.1, 1.8}, {1.9, 1.8}, {1.6, 1.5}};
+    for (int i = 0; i < 4; i++) {
+        double o[3] = {pts[i][0], pts[i][1], 5.0}, d[3] = {0, 0, -1};
+        ms_hit hit;
+        CHECK(ms_trace(t, o, d, &hit) == 1 && hit.cell == 1 * 4 + 1, "point %d", i);
+        int lower = pts[i][0] + pts[i][1] < 3.0;
+        double want = lower ? 3.0 - pts[i][0] - pts[i][1] : 0.0;
+        CHECK(fabs(hit.p[2] - want) < 1e-5, "point %d: height %g, want %g", i, hit.p[2], want);
+        CHECK(lower ? fabs(hit.m[0] - 1.0 / sqrt(3.0)) < 1e-6 : hit.m[2] == 1.0, "point %d: normal %g %g %g", i,
+              hit.m[0], hit.m[1], hit.m[2]);
+    }
+    ms_tracer_free(t);
+}
+
+/* Rays that once passed through a surface (between the two triangles of a cell, or where they met it at a tile's
+ * side) hit it, and so does every one of 120,000 rays from random origins at six elevations to 88 degrees: none
+ * leaves below the surface. */
+static void watertight(void **state)
+{
+    (void)state;
+    if (!gauss_built()) return;
+    enum { N = 512 };
+    double *h = malloc(N * N * sizeof *h);
+    ms_gauss_spec sp = {N, 0.5, 0.5, 0.0, 8, 1};
+    char err[256];
+    CHECK(ms_gauss(&sp, h, NULL, err, sizeof err) == 0, "%s", err);
+    ms_tracer *t = tracer_or_skip(h, N);
+    if (!t) {
+        free(h);
+        return;
+    }
+    double zmin, zmax;
+    ms_tracer_bounds(t, &zmin, &zmax);
+    const double th = 75.0 * 3.14159265358979323846 / 180.0;
+    const double kept[2][3] = {{50.267035304383, 272.06969358390143, 0.0}, {10.99970490710092, 460.60041212330412, 0.74}};
+    for (int k = 0; k < 2; k++) {
+        double o[3] = {kept[k][0], kept[k][1], zmax + 1.0};
+        double d[3] = {-sin(th) * cos(kept[k][2]), -sin(th) * sin(kept[k][2]), -cos(th)};
+        ms_hit hit;
+        CHECK(ms_trace(t, o, d, &hit) == 1, "kept ray %d passed through", k);
+    }
+    uint64_t s = 0x9E3779B97F4A7C15ull;
+    const double elev[6] = {30, 60, 75, 80, 85, 88};
+    for (int a = 0; a < 6; a++) {
+        double e = elev[a] * 3.14159265358979323846 / 180.0, ph = 0.37 * a;
+        double d[3] = {-sin(e) * cos(ph), -sin(e) * sin(ph), -cos(e)};
+        for (int i = 0; i < 20000; i++) {
+            double o[3] = {uniform(&s) * N, uniform(&s) * N, zmax + 1.0};
+            ms_hit hit;
+            int r = ms_trace(t, o, d, &hit);
+            CHECK(r == 1 && hit.p[0] >= 0.0 && hit.p[0] < N && hit.p[1] >= 0.0 && hit.p[1] < N, "elevation %g: ray "
+                  "from %.17g, %.17g: %d", elev[a], o[0], o[1], r);
+        }
+    }
+    ms_tracer_free(t);
+    free(h);
+}
+
 static void bad_specs(void **state)
 {
     (void)state;
@@ -297,7 +365,7 @@ int main(int argc, char **argv)
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(spectrum_moments), cmocka_unit_test(realisations), cmocka_unit_test(one_field),
         cmocka_unit_test(vgrooves),         cmocka_unit_test(vgroove_trace),    cmocka_unit_test(mirror_and_furnace),
-        cmocka_unit_test(bad_specs),
+        cmocka_unit_test(diagonal),         cmocka_unit_test(watertight),       cmocka_unit_test(bad_specs),
     };
     int rc = cmocka_run_group_tests(tests, NULL, NULL);
     return rc | chi2_budget_end("microsurface", argc, argv);

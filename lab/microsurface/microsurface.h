@@ -39,7 +39,7 @@ int ms_gauss(const ms_gauss_spec *spec, double *h, ms_gauss_info *info, char *er
 int ms_vgroove(size_t n, size_t p, double s, double *h, char *err, size_t errn);
 
 /* ---- the tracer (trace.c, Embree) ----
- * A height field of ms_gauss or ms_vgroove as Embree grid geometry (each cell two triangles), tiled periodically:
+ * A height field of ms_gauss or ms_vgroove as Embree grid geometry (two triangles per cell), tiled periodically:
  * a ray that leaves the tile's side enters the opposite side, so the surface is infinite. Directions are unit
  * vectors of the tangent frame (z up); a ray goes from its origin along d. */
 typedef struct ms_tracer ms_tracer;
@@ -59,5 +59,32 @@ void ms_tracer_bounds(const ms_tracer *t, double *zmin, double *zmax);
  * d.z = 0 above it), or -1 where it leaves below the surface's bottom (which a tracer that works never does). The
  * tracer may be used from any number of threads at once. */
 int ms_trace(const ms_tracer *t, const double o[3], const double d[3], ms_hit *hit);
+
+/* ---- masking measured (measure.c) ----
+ * The facets of h (n x n, periodic): in each cell (x, y) the triangles Embree makes, split along the diagonal from
+ * (x + 1, y) to (x, y + 1), whose slopes are forward differences: the lower-left one (h(x+1, y) - h(x, y),
+ * h(x, y+1) - h(x, y)), the upper-right one (h(x+1, y+1) - h(x, y+1), h(x+1, y+1) - h(x+1, y)). Each has projected
+ * area 1/2 and projected area (v.z - s.v_xy) / 2 towards v where that is positive (front-facing).
+ * Normals are binned into rings of equal sin^2(theta_m) (rings of them in [0, 1]) times sectors of equal azimuth. */
+typedef struct ms_g1 {
+    double g1;            /* G1(v) of the facets: n^2 v.z / (their projected area towards v), exact for a height field */
+    double slope_cov[3];  /* the facets' slope covariance (the mean removed), for Beckmann's Smith form */
+    long rays, missed;    /* rays traced from above on a jittered grid, and those that hit nothing (0 if it works) */
+    int rings, sectors;
+    double *area;         /* per bin: the facets' projected area towards v (front-facing), per unit tile area */
+    double *visible;      /* per bin: the area of it that the rays see first, per unit tile area */
+} ms_g1;
+
+/* Traces about rays rays (a jittered grid of g x g origins, g = ceil(sqrt(rays))) from above along -v on threads
+ * threads and fills r (ms_g1_free releases it). Returns 0 or -1 with err. */
+int ms_measure_g1(const ms_tracer *t, const double *h, size_t n, const double v[3], long rays, int rings, int sectors,
+                  int threads, ms_g1 *r, char *err, size_t errn);
+void ms_g1_free(ms_g1 *r);
+/* Smith's G1(v) for Beckmann slopes of covariance cov (Sxx, Sxy, Syy, the mean removed): 1 / (1 + Lambda(a)),
+ * Lambda(a) = (erf(a) - 1) / 2 + exp(-a^2) / (2 a sqrt(pi)), a = 1 / (alpha_phi tan theta), alpha_phi^2 = 2 u^T cov u
+ * for the unit azimuth u of v. */
+double ms_beckmann_g1(const double cov[3], const double v[3]);
+/* The bin of a unit normal m (m.z > 0). */
+int ms_bin(const double m[3], int rings, int sectors);
 
 #endif

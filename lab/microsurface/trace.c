@@ -19,7 +19,7 @@ struct ms_tracer {
 
 ms_tracer *ms_tracer_new(const double *h, size_t n, char *err, size_t errn)
 {
-    if (n < 2 || n > 16384) {
+    if (n < 2 || n > 16384) { /* one grid primitive: at most 32767 vertices a side */
         snprintf(err, errn, "tracer: a size from 2 to 16384");
         return NULL;
     }
@@ -37,8 +37,14 @@ ms_tracer *ms_tracer_new(const double *h, size_t n, char *err, size_t errn)
     }
     t->scene = rtcNewScene(t->device);
     rtcSetSceneBuildQuality(t->scene, RTC_BUILD_QUALITY_HIGH);
+    rtcSetSceneFlags(t->scene, RTC_SCENE_FLAG_ROBUST); /* watertight: no ray through an edge between two triangles */
+    /* Embree's grid geometry over the tile and a border of one cell around it (the periodic copies), so that the
+     * tile's sides are inner edges: a ray that meets the surface exactly at a side then hits in one of the two tiles
+     * (a mesh's own border edges are not watertight). Each cell is two triangles cut along the diagonal from
+     * (x+1, y) to (x, y+1) (tests/test_microsurface.c checks it). Embree's robust mode keeps the inner edges
+     * watertight: without it a few rays in a million pass between two triangles (the test keeps two such rays). */
     RTCGeometry g = rtcNewGeometry(t->device, RTC_GEOMETRY_TYPE_GRID);
-    size_t side = n + 1; /* the wrap's copies of row 0 and column 0 close the tile */
+    size_t side = n + 3; /* vertices at -1 .. n + 1 */
     float *v = rtcSetNewGeometryBuffer(g, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3, 3 * sizeof(float), side * side);
     struct RTCGrid *grid = rtcSetNewGeometryBuffer(g, RTC_BUFFER_TYPE_GRID, 0, RTC_FORMAT_GRID, sizeof(struct RTCGrid), 1);
     if (!v || !grid) {
@@ -50,9 +56,9 @@ ms_tracer *ms_tracer_new(const double *h, size_t n, char *err, size_t errn)
     t->zmin = HUGE_VAL, t->zmax = -HUGE_VAL;
     for (size_t y = 0; y < side; y++)
         for (size_t x = 0; x < side; x++) {
-            double z = h[(y % n) * n + x % n];
+            double z = h[((y + n - 1) % n) * n + (x + n - 1) % n];
             float *p = v + 3 * (y * side + x);
-            p[0] = (float)x, p[1] = (float)y, p[2] = (float)z;
+            p[0] = (float)x - 1.0f, p[1] = (float)y - 1.0f, p[2] = (float)z;
             t->zmin = fmin(t->zmin, (double)p[2]), t->zmax = fmax(t->zmax, (double)p[2]);
         }
     grid->startVertexID = 0, grid->stride = (unsigned)side;
@@ -105,6 +111,11 @@ int ms_trace(const ms_tracer *t, const double o[3], const double d[3], ms_hit *h
             double l = sqrt(gx * gx + gy * gy + gz * gz);
             if (gz < 0.0) l = -l; /* the upward normal: a height field's facets all face up */
             hit->p[0] = x + th * d[0], hit->p[1] = y + th * d[1], hit->p[2] = z + th * d[2];
+            /* a hit in the border (within about 1e-5 of a side) is the same facet of the next tile */
+            if (hit->p[0] < 0.0) hit->p[0] += n;
+            if (hit->p[0] >= n) hit->p[0] -= n;
+            if (hit->p[1] < 0.0) hit->p[1] += n;
+            if (hit->p[1] >= n) hit->p[1] -= n;
             hit->m[0] = gx / l, hit->m[1] = gy / l, hit->m[2] = gz / l;
             size_t cx = (size_t)fmin(fmax(floor(hit->p[0]), 0.0), n - 1);
             size_t cy = (size_t)fmin(fmax(floor(hit->p[1]), 0.0), n - 1);
@@ -112,10 +123,13 @@ int ms_trace(const ms_tracer *t, const double o[3], const double d[3], ms_hit *h
             return 1;
         }
         if (tend == tz) return d[2] > 0.0 ? 0 : -1; /* left the heights' slab: escaped (up), or through (down) */
-        /* into the next tile: move to the side and wrap the coordinate that crossed it */
+        /* into the next tile: move to the side, wrap the coordinate that crossed it, and start a little before it
+         * (1e-3 back along the ray, outside the new tile's geometry), so that a crossing of the surface at the side
+         * itself, which single precision may give to neither tile, is inside the new segment */
         x += tend * d[0], y += tend * d[1], z += tend * d[2];
         if (tend == tx) x = d[0] > 0.0 ? 0.0 : n;
         if (tend == ty) y = d[1] > 0.0 ? 0.0 : n;
+        x -= 1e-3 * d[0], y -= 1e-3 * d[1], z -= 1e-3 * d[2];
     }
     return 0;
 }

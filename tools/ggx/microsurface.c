@@ -6,6 +6,7 @@
 #include <string.h>
 
 #include "cli.h"
+#include "ggx/ggx_fit.h"
 #include "microsurface.h"
 #include "surface.h"
 
@@ -90,17 +91,132 @@ static int generate(int argc, char **argv)
     return 0;
 }
 
+/* The height field of --heightfield in grid units (heights over the spacing, which must be equal along x and y). */
+static double *grid_heights(const options *o, size_t *n_out)
+{
+    surface_read_options ro = {SURFACE_HEIGHTS, 0};
+    surface s;
+    char err[512];
+    if (surface_read(o->heightfield, &ro, &s, err, sizeof err) != 0) die("%s", err);
+    if (s.nx != s.ny) die("%s: %zu x %zu heights: the tracer takes a square periodic tile", o->heightfield, s.nx, s.ny);
+    double dx = o->have_spacing ? o->spacing[0] : s.dx, dy = o->have_spacing ? o->spacing[1] : s.dy;
+    double zs = o->have_z_scale ? o->z_scale : s.z_scale > 0 ? s.z_scale : (s.dx > 0 ? 0 : 1);
+    if (!(dx > 0 && dy > 0)) die("%s: the file gives no grid spacing: give --spacing DX", o->heightfield);
+    if (!(zs > 0)) die("%s: the file gives no height unit: give --z-scale Z", o->heightfield);
+    if (fabs(dx - dy) > 1e-9 * dx) die("%s: spacing %g x %g: the tracer takes equal spacings", o->heightfield, dx, dy);
+    size_t n = s.nx, count = n * n;
+    double *h = s.h;
+    s.h = NULL;
+    surface_free(&s);
+    for (size_t i = 0; i < count; i++) {
+        if (!isfinite(h[i])) die("%s: height %zu is not finite", o->heightfield, i);
+        h[i] *= zs / dx;
+    }
+    /* periodic: the differences across the wrap are like the inner ones */
+    double in = 0.0, wrap = 0.0;
+    for (size_t y = 0; y < n; y++)
+        for (size_t x = 0; x < n; x++) {
+            double d = h[y * n + (x + 1) % n] - h[y * n + x], e = h[((y + 1) % n) * n + x] - h[y * n + x];
+            if (x == n - 1) wrap += d * d;
+            else in += d * d;
+            if (y == n - 1) wrap += e * e;
+            else in += e * e;
+        }
+    in /= 2.0 * (double)n * (double)(n - 1), wrap /= 2.0 * (double)n;
+    if (wrap > 9.0 * in + 1e-300)
+        die("%s: not periodic (the differences across its edges are %.3g times the inner ones in RMS): the tracer "
+            "tiles the surface", o->heightfield, sqrt(wrap / in));
+    *n_out = n;
+    return h;
+}
+
+static int measure(int argc, char **argv)
+{
+    options o;
+    parse_options(argc, argv, 3, &o, "heightfield,spacing,z-scale,view,n,threads,format,out");
+    if (o.help) {
+        printf("usage: ggx microsurface measure --heightfield FILE [--spacing D] [--z-scale Z] --view THETA,PHI\n"
+               "                                [-n RAYS] [--threads N] [--format md|json] [--out FILE]\n\n"
+               "Traces a periodic height field (ggx microsurface generate's, or any square tile whose edges wrap)\n"
+               "from the view v with RAYS rays (default 1e6) on a jittered grid of origins and reports the masking\n"
+               "against the model: G1(v) of the facets (exact for a height field: the footprint's projected area\n"
+               "over the facets'), Smith's G1 for Beckmann slopes of the facets' covariance and for GGX of the\n"
+               "ellipsoid fitted to the facets (ggx_fit_heightfield), and per normal bin (4 rings of equal\n"
+               "sin^2(theta_m) times 8 azimuth sectors) the traced G1(v, m), the visible share of the bin's\n"
+               "projected area, against G1(v): Smith's masking makes them equal. A tile whose edges do not wrap\n"
+               "(differences across them 3 times the inner ones in RMS) is refused.\n");
+        return 0;
+    }
+    if (!o.heightfield) die("--heightfield FILE is required");
+    if (!o.have_view) die("--view THETA,PHI is required");
+    if (!(o.view.z > 1e-9)) die("--view: the view must be above the plane");
+    size_t n;
+    double *h = grid_heights(&o, &n);
+    char err[400];
+    ms_tracer *t = ms_tracer_new(h, n, err, sizeof err);
+    if (!t) die("%s", err);
+    double v[3] = {o.view.x, o.view.y, o.view.z};
+    long rays = o.n > 0 ? o.n : 1000000;
+    int threads = o.threads > 0 ? o.threads : 1;
+    ms_g1 r;
+    if (ms_measure_g1(t, h, n, v, rays, 4, 8, threads, &r, err, sizeof err) != 0) die("%s", err);
+    ggx_shape fit;
+    ggx_fit_info fi;
+    ggx_status st = ggx_fit_heightfield(&fit, h, n, n, 1.0, 1.0, NULL, NULL, &fi);
+    double g_ggx = st == GGX_OK ? ggx_g1_smith(&fit, o.view) : NAN, g_b = ms_beckmann_g1(r.slope_cov, v);
+    int json = o.format && strcmp(o.format, "json") == 0;
+    if (o.format && !json && strcmp(o.format, "md") != 0) die("--format: '%s' is not md or json", o.format);
+    out_file f;
+    out_open(&f, o.out ? o.out : "-");
+    double theta = acos(v[2]) * 180.0 / 3.14159265358979323846, phi = atan2(v[1], v[0]) * 180.0 / 3.14159265358979323846;
+    if (json) {
+        fprintf(f.f, "{\n  \"input\": \"%s\", \"size\": %zu, \"view_deg\": [%.6g, %.6g], \"rays\": %ld, \"missed\": %ld,\n",
+                o.heightfield, n, theta, phi, r.rays, r.missed);
+        fprintf(f.f, "  \"slope_cov\": [%.10g, %.10g, %.10g],\n  \"g1\": {\"facets\": %.10g, \"smith_beckmann\": %.10g, "
+                     "\"smith_ggx_fit\": %.10g},\n  \"bins\": [", r.slope_cov[0], r.slope_cov[1], r.slope_cov[2], r.g1, g_b, g_ggx);
+    } else {
+        fprintf(f.f, "# ggx microsurface measure: %s, %zu x %zu, view theta %.4g, phi %.4g degrees\n\n", o.heightfield, n,
+                n, theta, phi);
+        fprintf(f.f, "%ld rays, %ld missed; the facets' slope covariance %.6g, %.6g, %.6g\n\n", r.rays, r.missed,
+                r.slope_cov[0], r.slope_cov[1], r.slope_cov[2]);
+        fprintf(f.f, "| G1(v) | value |\n|---|---|\n| the facets (exact) | %.6f |\n| Smith, Beckmann of the facets' "
+                     "covariance | %.6f |\n| Smith, GGX fitted (ggx_g1_smith) | %.6f |\n\n", r.g1, g_b, g_ggx);
+        fprintf(f.f, "| sin^2 theta_m | phi_m, degrees | projected area | traced G1(v, m) | / G1(v) |\n|---|---|---|---|---|\n");
+    }
+    int first = 1;
+    for (int b = 0; b < r.rings * r.sectors; b++) {
+        if (!(r.area[b] > 1e-4 * v[2])) continue; /* bins with under 1e-4 of the projected area: too few rays */
+        int ring = b / r.sectors, sec = b % r.sectors;
+        double g = r.visible[b] / r.area[b];
+        if (json)
+            fprintf(f.f, "%s\n    {\"ring\": %d, \"sector\": %d, \"area\": %.8g, \"g1\": %.8g}", first ? "" : ",", ring,
+                    sec, r.area[b], g);
+        else
+            fprintf(f.f, "| %.2f-%.2f | %.0f-%.0f | %.5f | %.5f | %.4f |\n", (double)ring / r.rings,
+                    (double)(ring + 1) / r.rings, 360.0 * sec / r.sectors, 360.0 * (sec + 1) / r.sectors, r.area[b], g,
+                    g / r.g1);
+        first = 0;
+    }
+    if (json) fprintf(f.f, "\n  ]\n}\n");
+    out_close(&f);
+    ms_g1_free(&r);
+    ms_tracer_free(t);
+    free(h);
+    return 0;
+}
+
 int cmd_microsurface(int argc, char **argv)
 {
     if (argc < 3 || strcmp(argv[2], "--help") == 0 || strcmp(argv[2], "-h") == 0) {
-        printf("usage: ggx microsurface generate [options]   (ggx microsurface generate --help)\n\n"
+        printf("usage: ggx microsurface generate|measure [options]   (ggx microsurface generate --help, ...)\n\n"
                "Microsurfaces with a chosen NDF, to check the model against geometry: generate writes a periodic\n"
                "height field (a Gaussian random field of Beckmann facets, or V-grooves) as OpenEXR or x3p, which\n"
-               "ggx fit reads.\n");
-        if (argc < 3) die("give a subcommand: generate");
+               "ggx fit reads; measure traces one and reports its masking against the model's.\n");
+        if (argc < 3) die("give a subcommand: generate or measure");
         return 0;
     }
     if (strcmp(argv[2], "generate") == 0) return generate(argc, argv);
-    die("microsurface: unknown subcommand '%s' (generate)", argv[2]);
+    if (strcmp(argv[2], "measure") == 0) return measure(argc, argv);
+    die("microsurface: unknown subcommand '%s' (generate, measure)", argv[2]);
     return 2;
 }

@@ -1,0 +1,154 @@
+/* Masking measured on a microsurface: G1(v) of its facets and the visible share of each normal bin by the tracer
+ * (microsurface.h; docs/design/microsurface.md). SPDX-License-Identifier: MIT */
+#include <math.h>
+#include <pthread.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "microsurface.h"
+
+static const double PI = 3.14159265358979323846;
+
+double ms_beckmann_g1(const double cov[3], const double v[3])
+{
+    double r = hypot(v[0], v[1]);
+    if (!(r > 0.0)) return 1.0;
+    double c = v[0] / r, s = v[1] / r, a2 = 2.0 * (c * c * cov[0] + 2.0 * c * s * cov[1] + s * s * cov[2]);
+    double a = v[2] / (r * sqrt(a2));
+    return 1.0 / (1.0 + 0.5 * (erf(a) - 1.0) + exp(-a * a) / (2.0 * a * sqrt(PI)));
+}
+
+int ms_bin(const double m[3], int rings, int sectors)
+{
+    double s2 = m[0] * m[0] + m[1] * m[1], l2 = s2 + m[2] * m[2];
+    int ring = (int)(s2 / l2 * rings);
+    if (ring >= rings) ring = rings - 1;
+    double phi = atan2(m[1], m[0]);
+    if (phi < 0.0) phi += 2.0 * PI;
+    int sector = (int)(phi / (2.0 * PI) * sectors);
+    if (sector >= sectors) sector = sectors - 1;
+    return ring * sectors + sector;
+}
+
+/* the slopes of the two triangles of cell (x, y) */
+static void cell_slopes(const double *h, size_t n, size_t x, size_t y, double s[2][2])
+{
+    size_t x1 = (x + 1) % n, y1 = (y + 1) % n;
+    double h00 = h[y * n + x], h10 = h[y * n + x1], h01 = h[y1 * n + x], h11 = h[y1 * n + x1];
+    s[0][0] = h10 - h00, s[0][1] = h01 - h00;
+    s[1][0] = h11 - h01, s[1][1] = h11 - h10;
+}
+
+static void normal_of(const double s[2], double m[3])
+{
+    double l = sqrt(1.0 + s[0] * s[0] + s[1] * s[1]);
+    m[0] = -s[0] / l, m[1] = -s[1] / l, m[2] = 1.0 / l;
+}
+
+typedef struct g1_job {
+    const ms_tracer *t;
+    const double *h;
+    size_t n;
+    const double *v;
+    long g, row0, row1;
+    int bins, rings, sectors;
+    long *hits, missed;
+} g1_job;
+
+static void *g1_rows(void *p)
+{
+    g1_job *j = p;
+    double zmin, zmax, d[3] = {-j->v[0], -j->v[1], -j->v[2]}, step = (double)j->n / (double)j->g;
+    ms_tracer_bounds(j->t, &zmin, &zmax);
+    uint64_t s = 0x9E3779B97F4A7C15ull ^ (uint64_t)j->row0;
+    for (long r = j->row0; r < j->row1; r++)
+        for (long c = 0; c < j->g; c++) {
+            s ^= s << 13, s ^= s >> 7, s ^= s << 17;
+            double u = (double)(s >> 11) * 0x1p-53;
+            s ^= s << 13, s ^= s >> 7, s ^= s << 17;
+            double w = (double)(s >> 11) * 0x1p-53;
+            double o[3] = {((double)c + u) * step, ((double)r + w) * step, zmax + 1.0};
+            ms_hit hit;
+            if (ms_trace(j->t, o, d, &hit) != 1) {
+                j->missed++;
+                continue;
+            }
+            size_t cx = hit.cell % j->n, cy = hit.cell / j->n;
+            double fx = hit.p[0] - (double)cx, fy = hit.p[1] - (double)cy, sl[2][2], m[3];
+            cell_slopes(j->h, j->n, cx, cy, sl);
+            normal_of(sl[fx + fy < 1.0 ? 0 : 1], m);
+            j->hits[ms_bin(m, j->rings, j->sectors)]++;
+        }
+    return NULL;
+}
+
+void ms_g1_free(ms_g1 *r)
+{
+    free(r->area);
+    r->area = r->visible = NULL;
+}
+
+int ms_measure_g1(const ms_tracer *t, const double *h, size_t n, const double v[3], long rays, int rings, int sectors,
+                  int threads, ms_g1 *r, char *err, size_t errn)
+{
+    memset(r, 0, sizeof *r);
+    if (!(v[2] > 0.0) || rays < 1 || rings < 1 || sectors < 1 || rings * sectors > 1 << 16 || threads < 1 ||
+        threads > 256) {
+        snprintf(err, errn, "masking: a view above the plane, rays, bins and threads are required");
+        return -1;
+    }
+    int bins = rings * sectors;
+    r->rings = rings, r->sectors = sectors;
+    r->area = calloc(2 * (size_t)bins, sizeof *r->area);
+    long *hits = calloc((size_t)bins * (size_t)threads, sizeof *hits);
+    g1_job *jobs = calloc((size_t)threads, sizeof *jobs);
+    pthread_t *th = calloc((size_t)threads, sizeof *th);
+    int *made = calloc((size_t)threads, sizeof *made);
+    if (!r->area || !hits || !jobs || !th || !made) {
+        free(hits), free(jobs), free(th), free(made), ms_g1_free(r);
+        snprintf(err, errn, "masking: out of memory");
+        return -1;
+    }
+    r->visible = r->area + bins;
+    /* the facets: projected areas towards v per bin, the slopes' moments */
+    double total = 0.0, mx = 0.0, my = 0.0, sxx = 0.0, sxy = 0.0, syy = 0.0, tile = (double)n * (double)n;
+    for (size_t y = 0; y < n; y++)
+        for (size_t x = 0; x < n; x++) {
+            double sl[2][2];
+            cell_slopes(h, n, x, y, sl);
+            for (int k = 0; k < 2; k++) {
+                double a = 0.5 * (v[2] - sl[k][0] * v[0] - sl[k][1] * v[1]), m[3];
+                mx += sl[k][0], my += sl[k][1];
+                sxx += sl[k][0] * sl[k][0], sxy += sl[k][0] * sl[k][1], syy += sl[k][1] * sl[k][1];
+                if (a <= 0.0) continue;
+                normal_of(sl[k], m);
+                r->area[ms_bin(m, rings, sectors)] += a / tile;
+                total += a;
+            }
+        }
+    double cnt = 2.0 * tile;
+    mx /= cnt, my /= cnt;
+    r->slope_cov[0] = sxx / cnt - mx * mx, r->slope_cov[1] = sxy / cnt - mx * my, r->slope_cov[2] = syy / cnt - my * my;
+    r->g1 = tile * v[2] / total;
+    long g = (long)ceil(sqrt((double)rays));
+    if (threads > g) threads = (int)g;
+    for (int k = 0; k < threads; k++) {
+        jobs[k] = (g1_job){t, h, n, v, g, g * k / threads, g * (k + 1) / threads, bins, rings, sectors,
+                           hits + (size_t)k * (size_t)bins, 0};
+        if (k > 0) made[k] = pthread_create(&th[k], NULL, g1_rows, &jobs[k]) == 0;
+    }
+    g1_rows(&jobs[0]);
+    for (int k = 1; k < threads; k++) {
+        if (made[k]) pthread_join(th[k], NULL);
+        else g1_rows(&jobs[k]); /* no thread to be had: its rows here */
+    }
+    r->rays = g * g;
+    double per = v[2] / (double)r->rays; /* each ray's projected area, per unit tile area */
+    for (int k = 0; k < threads; k++) {
+        r->missed += jobs[k].missed;
+        for (int b = 0; b < bins; b++) r->visible[b] += per * (double)hits[(size_t)k * (size_t)bins + (size_t)b];
+    }
+    free(hits), free(jobs), free(th), free(made);
+    return 0;
+}
