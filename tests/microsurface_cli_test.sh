@@ -8,7 +8,7 @@ ROOT=$(cd "$(dirname "$0")/.." && pwd)
 PY=/usr/bin/python3
 
 "$GGX" microsurface --help > h.txt && grep -q "usage: ggx microsurface generate" h.txt && ok || bad "--help"
-"$GGX" microsurface generate --help > g.txt && grep -q "kind beckmann|vgroove" g.txt && ok || bad "generate --help"
+"$GGX" microsurface generate --help > g.txt && grep -q "kind beckmann|ggx|vgroove" g.txt && ok || bad "generate --help"
 if "$GGX" microsurface generate --kind beckmann --alpha 0.3 --corr 8 --size 256 --seed 3 --out b.x3p > b.txt 2> err.txt; then
     grep -q "heights' sigma 1.2," b.txt && ok || bad "sigma: $(cat b.txt)"
     "$GGX" fit --heightfield b.x3p > fit.txt && grep -q "Beckmann.*\*\*best\*\*" fit.txt && ok ||
@@ -25,6 +25,12 @@ assert d['missed'] == 0 and abs(g['facets'] - g['smith_beckmann']) < 1e-2, g" &&
     elif ! grep -q "not built" err.txt; then
         bad "measure: $(cat err.txt)"
     fi
+    # GGX slopes: ggx fit prefers a GGX model to Beckmann, and reads back the roughness within 5 %
+    "$GGX" microsurface generate --kind ggx --alpha 0.3 --corr 8 --size 512 --out g.x3p > /dev/null &&
+        "$GGX" fit --heightfield g.x3p --model isotropic --format json > gf.json && "$PY" -c "
+import json; d = json.load(open('gf.json'))
+assert d['best'] != 'beckmann', d['best']
+assert abs(d['shape']['alpha'][0] / 0.3 - 1) < 0.05, d['shape']" && ok || bad "GGX field: $(head -c 400 gf.json)"
     # the same seed, the same file
     "$GGX" microsurface generate --kind beckmann --alpha 0.3 --corr 8 --size 256 --seed 3 --out b2.x3p > /dev/null &&
         "$GGX" fit --heightfield b2.x3p > fit2.txt && [ "$(sed 1d fit.txt)" = "$(sed 1d fit2.txt)" ] && ok ||
@@ -61,9 +67,12 @@ elif grep -q "not built" err.txt; then
 else
     bad "V-grooves: $(cat err.txt)"
 fi
-one_line "no kind" "--kind beckmann|vgroove is required" 2 "$GGX" microsurface generate --size 64 --out n.x3p
+one_line "no kind" "--kind beckmann|ggx|vgroove is required" 2 "$GGX" microsurface generate --size 64 --out n.x3p
 one_line "unknown kind" "unknown kind 'gauss'" 2 "$GGX" microsurface generate --kind gauss --size 64 --out n.x3p
 one_line "odd size" "an even size" 2 "$GGX" microsurface generate --kind vgroove --size 65 --out n.x3p
+one_line "mix with beckmann" "--mix applies to --kind ggx" 2 "$GGX" microsurface generate --kind beckmann --mix 64 \
+    --size 256 --out n.x3p
+one_line "mix too long" "the mixing length" 2 "$GGX" microsurface generate --kind ggx --corr 16 --size 256 --out n.x3p
 one_line "period with beckmann" "--period applies to --kind vgroove" 2 "$GGX" microsurface generate --kind beckmann \
     --period 8 --size 64 --out n.x3p
 one_line "png out" "give a .exr or .x3p name" 2 "$GGX" microsurface generate --kind vgroove --size 64 --out n.png

@@ -9,6 +9,8 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "ggx/ggx.h"
+#include "ggx/ggx_fit.h"
 #include "microsurface.h"
 #include "testlib.h"
 
@@ -24,11 +26,14 @@ static int gauss_built(void)
     return 0;
 }
 
-/* the covariance Beckmann (ax, ay) rotated by phi asks for */
+/* the covariance Beckmann (ax, ay) rotated by phi asks for: ggx_shape_ellipsoid's Sigma halved */
 static void target_cov(double ax, double ay, double phi, double t[3])
 {
-    double c = cos(phi), s = sin(phi), x = 0.5 * ax * ax, y = 0.5 * ay * ay;
-    t[0] = x * c * c + y * s * s, t[1] = (x - y) * c * s, t[2] = x * s * s + y * c * c;
+    ggx_shape sh; /* half the slope scale of the library's shape of the same rotation */
+    double tt[2];
+    CHECK(ggx_shape_ellipsoid(&sh, ax, ay, 0, 0, phi) == GGX_OK, "shape");
+    ggx_shape_slopes(&sh, tt, t);
+    for (int k = 0; k < 3; k++) t[k] *= 0.5;
 }
 
 /* the forward differences' sample covariance over the whole periodic field, the wrap included */
@@ -64,7 +69,7 @@ static void spectrum_moments(void **state)
             CHECK_CLOSE(info.slope_cov[k], t[k], 0, 1e-9 * sqrt(t[0] * t[2]), "case %zu entry %d", c, k);
         double det = info.metric[0] * info.metric[2] - info.metric[1] * info.metric[1];
         printf("case %zu: corr_len %g, the corrected metric's length %g\n", c, sp.corr_len, pow(det, -0.25));
-        if (sp.corr_len >= 8 || sp.alpha_x == sp.alpha_y) /* microsurface.h's bound on the correction */
+        if (sp.corr_len >= 16 || sp.alpha_x == sp.alpha_y) /* microsurface.h's bound on the correction */
             CHECK_CLOSE(pow(det, -0.25), sp.corr_len, 0.02, 0, "case %zu: the metric's length", c);
         CHECK_CLOSE(info.sigma * info.sigma, sp.corr_len * sp.corr_len * sqrt(t[0] * t[2] - t[1] * t[1]) / 2.0, 1e-12,
                     0, "case %zu: sigma", c);
@@ -277,6 +282,50 @@ static void mirror_and_furnace(void **state)
     ms_tracer_free(t);
 }
 
+/* GGX slopes (ms_ggx, 512^2, correlation length 8, mixing length 64): the facets' G1(v), from 45 to 85 degrees, is
+ * Smith's G1 of the shape asked for within 3 % (a Beckmann field of the same Sigma misses it by more at 85 degrees:
+ * the negative control), and ggx_fit_heightfield reads back its Sigma within 6 %, rotated shapes included. */
+static void ggx_field(void **state)
+{
+    (void)state;
+    if (!gauss_built()) return;
+    enum { N = 512 };
+    double *h = malloc(N * N * sizeof *h);
+    const double cases[2][3] = {{0.3, 0.3, 0.0}, {0.2, 0.5, 0.6}};
+    for (int c = 0; c < 2; c++) {
+        ms_ggx_spec sp = {N, cases[c][0], cases[c][1], cases[c][2], 8, 0, 21};
+        char err[256];
+        CHECK(ms_ggx(&sp, h, err, sizeof err) == 0, "%s", err);
+        ggx_shape want, fit;
+        CHECK(ggx_shape_ellipsoid(&want, sp.alpha_x, sp.alpha_y, 0, 0, sp.phi) == GGX_OK, "shape");
+        const double el[3] = {45, 70, 85};
+        for (int a = 0; a < 3; a++) {
+            double th = el[a] * 3.14159265358979323846 / 180.0, v[3] = {sin(th) * cos(0.3), sin(th) * sin(0.3), cos(th)};
+            ggx_vec3 vv = {v[0], v[1], v[2]};
+            double g = ms_facets_g1(h, N, v), s = ggx_g1_smith(&want, vv);
+            CHECK_CLOSE(g, s, 0.03, 0, "case %d, %g degrees: the facets' G1 %g, GGX's %g", c, el[a], g, s);
+        }
+        ggx_fit_info fi;
+        CHECK(ggx_fit_heightfield(&fit, h, N, N, 1.0, 1.0, NULL, NULL, &fi) == GGX_OK, "fit");
+        double t[2], sg[3], tw[2], sw[3];
+        ggx_shape_slopes(&fit, t, sg), ggx_shape_slopes(&want, tw, sw);
+        for (int k = 0; k < 3; k++)
+            CHECK_CLOSE(sg[k], sw[k], 0, 0.06 * sqrt(sw[0] * sw[2]), "case %d: Sigma entry %d %g, want %g", c, k, sg[k],
+                        sw[k]);
+    }
+    /* the negative control: a Beckmann field of slope covariance Sigma (not mixed) */
+    ms_gauss_spec bg = {N, 0.3 * sqrt(2.0), 0.3 * sqrt(2.0), 0.0, 8, 21};
+    char err[256];
+    CHECK(ms_gauss(&bg, h, NULL, err, sizeof err) == 0, "%s", err);
+    ggx_shape want;
+    ggx_shape_iso(&want, 0.3);
+    double th = 85.0 * 3.14159265358979323846 / 180.0, v[3] = {sin(th), 0, cos(th)};
+    ggx_vec3 vv = {v[0], v[1], v[2]};
+    double g = ms_facets_g1(h, N, v), s = ggx_g1_smith(&want, vv);
+    CHECK(fabs(g / s - 1.0) > 0.06, "negative control: a Beckmann field's G1 %g passes for GGX's %g", g, s);
+    free(h);
+}
+
 /* The tracer's cells are cut along the diagonal from (x+1, y) to (x, y+1), as microsurface.h's facets are: with only
  * the vertex (1, 1) raised to 1, the lower-left triangle of cell (1, 1) is the plane z = 3 - x - y, its upper-right
  * one flat. */
@@ -365,7 +414,7 @@ int main(int argc, char **argv)
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(spectrum_moments), cmocka_unit_test(realisations), cmocka_unit_test(one_field),
         cmocka_unit_test(vgrooves),         cmocka_unit_test(vgroove_trace),    cmocka_unit_test(mirror_and_furnace),
-        cmocka_unit_test(diagonal),         cmocka_unit_test(watertight),       cmocka_unit_test(bad_specs),
+        cmocka_unit_test(ggx_field),        cmocka_unit_test(diagonal),         cmocka_unit_test(watertight),       cmocka_unit_test(bad_specs),
     };
     int rc = cmocka_run_group_tests(tests, NULL, NULL);
     return rc | chi2_budget_end("microsurface", argc, argv);

@@ -83,7 +83,8 @@ int ms_gauss(const ms_gauss_spec *sp, double *h, ms_gauss_info *info, char *err,
     return fail(err, errn, "Gaussian surfaces are not built (KISS FFT not found: apt-get install libkissfft-dev)");
 #else
     double c = cos(sp->phi), s = sin(sp->phi), ax2 = 0.5 * sp->alpha_x * sp->alpha_x, ay2 = 0.5 * sp->alpha_y * sp->alpha_y;
-    const double target[3] = {ax2 * c * c + ay2 * s * s, (ax2 - ay2) * c * s, ax2 * s * s + ay2 * c * c};
+    /* the roughness axes turned as ggx_shape_ellipsoid's theta_z turns them: Sigma_xy = (ay^2 - ax^2) c s / 2 */
+    const double target[3] = {ax2 * c * c + ay2 * s * s, (ay2 - ax2) * c * s, ax2 * s * s + ay2 * c * c};
     double det_t = target[0] * target[2] - target[1] * target[1];
     double sigma2 = sp->corr_len * sp->corr_len * sqrt(det_t) / 2.0;
     double M[3] = {target[0] / (2.0 * sigma2), target[1] / (2.0 * sigma2), target[2] / (2.0 * sigma2)};

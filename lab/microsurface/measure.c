@@ -46,6 +46,41 @@ static void normal_of(const double s[2], double m[3])
     m[0] = -s[0] / l, m[1] = -s[1] / l, m[2] = 1.0 / l;
 }
 
+/* the facets' projected area towards v per bin (area may be NULL) and in all, G1 of the facets, and their slopes'
+ * covariance (cov may be NULL) */
+static void facets_towards(const double *h, size_t n, const double v[3], int rings, int sectors, double *area,
+                           double cov[3], double *g1)
+{
+    double total = 0.0, mx = 0.0, my = 0.0, sxx = 0.0, sxy = 0.0, syy = 0.0, tile = (double)n * (double)n;
+    for (size_t y = 0; y < n; y++)
+        for (size_t x = 0; x < n; x++) {
+            double sl[2][2];
+            cell_slopes(h, n, x, y, sl);
+            for (int k = 0; k < 2; k++) {
+                double a = 0.5 * (v[2] - sl[k][0] * v[0] - sl[k][1] * v[1]), m[3];
+                mx += sl[k][0], my += sl[k][1];
+                sxx += sl[k][0] * sl[k][0], sxy += sl[k][0] * sl[k][1], syy += sl[k][1] * sl[k][1];
+                if (a <= 0.0) continue;
+                if (area) {
+                    normal_of(sl[k], m);
+                    area[ms_bin(m, rings, sectors)] += a / tile;
+                }
+                total += a;
+            }
+        }
+    double cnt = 2.0 * tile;
+    mx /= cnt, my /= cnt;
+    if (cov) cov[0] = sxx / cnt - mx * mx, cov[1] = sxy / cnt - mx * my, cov[2] = syy / cnt - my * my;
+    *g1 = tile * v[2] / total;
+}
+
+double ms_facets_g1(const double *h, size_t n, const double v[3])
+{
+    double g1;
+    facets_towards(h, n, v, 1, 1, NULL, NULL, &g1);
+    return g1;
+}
+
 typedef struct g1_job {
     const ms_tracer *t;
     const double *h;
@@ -111,26 +146,7 @@ int ms_measure_g1(const ms_tracer *t, const double *h, size_t n, const double v[
         return -1;
     }
     r->visible = r->area + bins;
-    /* the facets: projected areas towards v per bin, the slopes' moments */
-    double total = 0.0, mx = 0.0, my = 0.0, sxx = 0.0, sxy = 0.0, syy = 0.0, tile = (double)n * (double)n;
-    for (size_t y = 0; y < n; y++)
-        for (size_t x = 0; x < n; x++) {
-            double sl[2][2];
-            cell_slopes(h, n, x, y, sl);
-            for (int k = 0; k < 2; k++) {
-                double a = 0.5 * (v[2] - sl[k][0] * v[0] - sl[k][1] * v[1]), m[3];
-                mx += sl[k][0], my += sl[k][1];
-                sxx += sl[k][0] * sl[k][0], sxy += sl[k][0] * sl[k][1], syy += sl[k][1] * sl[k][1];
-                if (a <= 0.0) continue;
-                normal_of(sl[k], m);
-                r->area[ms_bin(m, rings, sectors)] += a / tile;
-                total += a;
-            }
-        }
-    double cnt = 2.0 * tile;
-    mx /= cnt, my /= cnt;
-    r->slope_cov[0] = sxx / cnt - mx * mx, r->slope_cov[1] = sxy / cnt - mx * my, r->slope_cov[2] = syy / cnt - my * my;
-    r->g1 = tile * v[2] / total;
+    facets_towards(h, n, v, rings, sectors, r->area, r->slope_cov, &r->g1);
     long g = (long)ceil(sqrt((double)rays));
     if (threads > g) threads = (int)g;
     for (int k = 0; k < threads; k++) {

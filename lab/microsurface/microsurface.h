@@ -8,12 +8,14 @@
 
 /* A Gaussian random field whose facets have Beckmann slopes: every forward difference (h(x+1, y) - h(x, y),
  * h(x, y+1) - h(x, y)), the slopes of the triangles of both triangulations of a cell, is Gaussian with covariance
- * Sigma_s = R diag(alpha_x^2, alpha_y^2) R^T / 2 (R the rotation by phi), over the ensemble of fields (a field's own
+ * Sigma_s = half the slope scale of ggx_shape_ellipsoid(alpha_x, alpha_y, 0, 0, phi) (ggx_shape_slopes: Sigma_xx =
+ * (ax^2 c^2 + ay^2 s^2) / 2, Sigma_xy = (ay^2 - ax^2) c s / 2, c = cos phi, s = sin phi: the same axes as the
+ * library's shape of that rotation), over the ensemble of fields (a field's own
  * covariance scatters about it by about corr_len / n). Its autocorrelation is Gaussian, C(r) = sigma^2 exp(-r^T M r)
  * sampled on the periodic lattice, sigma^2 = corr_len^2 sqrt(det Sigma_s) / 2 (corr_len in grid spacings): the
  * continuous field of M0 = Sigma_s / (2 sigma^2), det(M0)^(-1/4) = corr_len, would have slopes of covariance
  * Sigma_s; M is M0 corrected so that the forward differences have it (det(M)^(-1/4) within 2 % of corr_len for
- * isotropic shapes and corr_len >= 8; 5.5 for 4 at alphas 0.2, 0.5). Periodic: h(n, y) = h(0, y). */
+ * isotropic shapes and for corr_len >= 16; 9 % off at 8 for alphas 0.1, 0.4). Periodic: h(n, y) = h(0, y). */
 typedef struct ms_gauss_spec {
     size_t n;                     /* even, 8 to 16384 */
     double alpha_x, alpha_y, phi; /* alphas in [1e-3, 10], phi any finite angle (radians) */
@@ -32,6 +34,21 @@ typedef struct ms_gauss_info {
 /* Fills h (n * n doubles); info may be NULL. Returns 0, or -1 with a one-line reason in err (a bad spec, no memory,
  * KISS FFT missing from the build). */
 int ms_gauss(const ms_gauss_spec *spec, double *h, ms_gauss_info *info, char *err, size_t errn);
+
+/* A field of GGX slopes: h = G / sqrt(W(x)), G an ms_gauss field of slope covariance Sigma (the scale of GGX's
+ * P22, ggx.h) and W(x) the chi^2_2 quantile of the rank of an independent
+ * Gaussian field of correlation length mix_len at x among the tile's points (Sigma that of ggx_shape_ellipsoid(alpha_x,
+ * alpha_y, 0, 0, phi)). Over the tile's area W is chi^2_2
+ * exactly (to the ranks' 1/n^2), and conditional on W the slopes are N(0, Sigma / W), whose mixture is GGX's
+ * P22(s) = 1 / (pi sqrt(det Sigma) (1 + s^T Sigma^-1 s)^2); where W varies slowly against G the facets follow it,
+ * the gradient's cross term G grad(W^-1/2) adding about corr_len / mix_len. mix_len 0: 8 corr_len, which
+ * measured best (docs/design/microsurface.md). Alphas in [1e-3, 7]; mix_len in [corr_len, n / 4]. */
+typedef struct ms_ggx_spec {
+    size_t n;
+    double alpha_x, alpha_y, phi, corr_len, mix_len;
+    uint64_t seed;
+} ms_ggx_spec;
+int ms_ggx(const ms_ggx_spec *spec, double *h, char *err, size_t errn);
 
 /* V-grooves (Torrance-Sparrow's V-cavities): grooves along y of period p texels (even, >= 2, dividing n) and slope
  * +-s along x (0 < s <= 100), h(x, y) = s * (distance from x to the nearest multiple of p), so every facet has the
@@ -80,6 +97,8 @@ typedef struct ms_g1 {
 int ms_measure_g1(const ms_tracer *t, const double *h, size_t n, const double v[3], long rays, int rings, int sectors,
                   int threads, ms_g1 *r, char *err, size_t errn);
 void ms_g1_free(ms_g1 *r);
+/* G1(v) of the facets alone (ms_g1's g1, no rays): n^2 v.z over their projected area towards v. */
+double ms_facets_g1(const double *h, size_t n, const double v[3]);
 /* Smith's G1(v) for Beckmann slopes of covariance cov (Sxx, Sxy, Syy, the mean removed): 1 / (1 + Lambda(a)),
  * Lambda(a) = (erf(a) - 1) / 2 + exp(-a^2) / (2 a sqrt(pi)), a = 1 / (alpha_phi tan theta), alpha_phi^2 = 2 u^T cov u
  * for the unit azimuth u of v. */

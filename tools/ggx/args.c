@@ -272,9 +272,10 @@ void parse_options(int argc, char **argv, int first, options *o, const char *all
             if (!(fabs(o->exposure) <= 30)) die("%s: '%s' is not an exposure in stops within [-30, 30]", a, val);
         } else if (strcmp(key, "kind") == 0) {
             o->kind = val;
-        } else if (strcmp(key, "corr") == 0) {
-            parse_list(a, val, &o->corr, 1);
-            if (!(o->corr > 0)) die("%s: '%s' is not a positive length", a, val);
+        } else if (strcmp(key, "corr") == 0 || strcmp(key, "mix") == 0) {
+            double *dst = key[0] == 'c' ? &o->corr : &o->mix;
+            parse_list(a, val, dst, 1);
+            if (!(*dst > 0)) die("%s: '%s' is not a positive length", a, val);
         } else if (strcmp(key, "period") == 0) {
             double v;
             parse_list(a, val, &v, 1);

@@ -48,7 +48,7 @@ typedef struct options {
     int level; /* ggx render --normal-map: the chain's level shown; -1 when not given */
     /* ggx microsurface */
     const char *kind;
-    double corr; /* 0 when not given */
+    double corr, mix; /* 0 when not given */
     int period;  /* 0 when not given */
     /* ggx render */
     const char *scene, *light, *strategy;

@@ -36,16 +36,20 @@ static void write_heights(const char *path, double *h, size_t n)
 static int generate(int argc, char **argv)
 {
     options o;
-    parse_options(argc, argv, 3, &o, "kind,alpha,rotate,corr,period,size,seed,out");
+    parse_options(argc, argv, 3, &o, "kind,alpha,rotate,corr,mix,period,size,seed,out");
     if (o.help) {
-        printf("usage: ggx microsurface generate --kind beckmann|vgroove [--alpha A[,AY]] [--rotate TZ] [--corr L]\n"
-               "                                 [--period P] --size N [--seed S] --out FILE.exr|FILE.x3p\n\n"
+        printf("usage: ggx microsurface generate --kind beckmann|ggx|vgroove [--alpha A[,AY]] [--rotate TZ] [--corr L]\n"
+               "                                 [--mix M] [--period P] --size N [--seed S] --out FILE.exr|FILE.x3p\n\n"
                "A periodic height field on an N x N grid of unit spacing (N even, 64 to 4096), whose facets (both\n"
                "triangulations of each cell, as ggx fit reads them) have a chosen NDF:\n"
                "  beckmann  a Gaussian random field: every facet's slope is Gaussian with covariance\n"
                "            R diag(AX^2, AY^2) R^T / 2 (Beckmann of roughness AX, AY, the axes rotated by TZ degrees),\n"
                "            its autocorrelation Gaussian with correlation length L grid spacings (default 16;\n"
                "            4 to N / 4), by FFT (KISS FFT); --seed S picks the field (default 1)\n"
+               "  ggx       GGX slopes of roughness AX, AY rotated by TZ (the shape ggx fit reads back): a Beckmann\n"
+               "            field of slope covariance Sigma divided by sqrt(W), W chi-square of 2 degrees of freedom\n"
+               "            over the tile's area, varying on the mixing length M (default 8 L, L to N / 4): the\n"
+               "            Gaussian scale mixture that GGX's slopes are\n"
                "  vgroove   V-grooves along y of period P spacings (even, default 16) and slope AX along x: two\n"
                "            facet normals, each on half the area (Torrance-Sparrow's V-cavities)\n"
                "OpenEXR holds the heights in one float channel Y (ggx fit --heightfield needs --spacing 1 --z-scale\n"
@@ -54,7 +58,7 @@ static int generate(int argc, char **argv)
                "exp(-r^T M r).\n");
         return 0;
     }
-    if (!o.kind) die("--kind beckmann|vgroove is required");
+    if (!o.kind) die("--kind beckmann|ggx|vgroove is required");
     if (!o.size) die("--size N is required");
     if (!o.out) die("--out FILE.exr|FILE.x3p is required");
     size_t n = (size_t)o.size;
@@ -65,6 +69,7 @@ static int generate(int argc, char **argv)
     char err[400];
     if (strcmp(o.kind, "beckmann") == 0) {
         if (o.period) die("--period applies to --kind vgroove");
+        if (o.mix > 0) die("--mix applies to --kind ggx");
         ms_gauss_spec sp = {n, o.alpha[0], o.alpha[1], o.rotate * 3.14159265358979323846 / 180.0,
                             o.corr > 0 ? o.corr : 16.0, o.seed};
         if (!o.have_alpha) sp.alpha_x = sp.alpha_y = 0.3;
@@ -75,8 +80,18 @@ static int generate(int argc, char **argv)
                "heights' sigma %.6g, M = [%.6g %.6g; %.6g %.6g], seed %llu\n",
                o.out, n, n, sp.alpha_x, sp.alpha_y, o.rotate, sp.corr_len, info.sigma, info.metric[0],
                info.metric[1], info.metric[1], info.metric[2], (unsigned long long)o.seed);
+    } else if (strcmp(o.kind, "ggx") == 0) {
+        if (o.period) die("--period applies to --kind vgroove");
+        ms_ggx_spec sp = {n, o.alpha[0], o.alpha[1], o.rotate * 3.14159265358979323846 / 180.0,
+                          o.corr > 0 ? o.corr : 8.0, o.mix, o.seed};
+        if (!o.have_alpha) sp.alpha_x = sp.alpha_y = 0.3;
+        if (ms_ggx(&sp, h, err, sizeof err) != 0) die("%s", err);
+        write_heights(o.out, h, n);
+        printf("ggx microsurface: %s, %zu x %zu, GGX alpha %g, %g rotated %g degrees, correlation length %g, mixing "
+               "length %g, seed %llu\n", o.out, n, n, sp.alpha_x, sp.alpha_y, o.rotate, sp.corr_len,
+               sp.mix_len > 0 ? sp.mix_len : 8.0 * sp.corr_len, (unsigned long long)o.seed);
     } else if (strcmp(o.kind, "vgroove") == 0) {
-        if (o.corr > 0 || o.have_rotate) die("--corr and --rotate apply to --kind beckmann");
+        if (o.corr > 0 || o.have_rotate || o.mix > 0) die("--corr, --mix and --rotate apply to --kind beckmann and ggx");
         if (o.have_alpha && o.alpha[0] != o.alpha[1]) die("--alpha: a V-groove has one slope");
         double slope = o.have_alpha ? o.alpha[0] : 0.5;
         size_t p = o.period ? (size_t)o.period : 16;
@@ -85,7 +100,7 @@ static int generate(int argc, char **argv)
         printf("ggx microsurface: %s, %zu x %zu, V-grooves of period %zu and slope %g (facet normals at %.6g "
                "degrees)\n", o.out, n, n, p, slope, atan(slope) * 180.0 / 3.14159265358979323846);
     } else {
-        die("--kind: unknown kind '%s' (beckmann, vgroove)", o.kind);
+        die("--kind: unknown kind '%s' (beckmann, ggx, vgroove)", o.kind);
     }
     free(h);
     return 0;
@@ -210,7 +225,7 @@ int cmd_microsurface(int argc, char **argv)
     if (argc < 3 || strcmp(argv[2], "--help") == 0 || strcmp(argv[2], "-h") == 0) {
         printf("usage: ggx microsurface generate|measure [options]   (ggx microsurface generate --help, ...)\n\n"
                "Microsurfaces with a chosen NDF, to check the model against geometry: generate writes a periodic\n"
-               "height field (a Gaussian random field of Beckmann facets, or V-grooves) as OpenEXR or x3p, which\n"
+               "height field (Beckmann or GGX facets, or V-grooves) as OpenEXR or x3p, which\n"
                "ggx fit reads; measure traces one and reports its masking against the model's.\n");
         if (argc < 3) die("give a subcommand: generate or measure");
         return 0;
