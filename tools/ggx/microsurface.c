@@ -5,8 +5,10 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "chi2.h"
 #include "cli.h"
 #include "ggx/ggx_fit.h"
+#include "ggx/ggx_samplers.h"
 #include "microsurface.h"
 #include "surface.h"
 
@@ -145,10 +147,30 @@ static double *grid_heights(const options *o, size_t *n_out)
     return h;
 }
 
+/* The visible normals' chi-square: the tracer as a sampler of normals (the first facet hit from v, from a random
+ * origin over the tile), against ggx_pdf_vndf of a shape, through the suite's harness (lab/verify/chi2.h). */
+typedef struct vndf_ctx {
+    normal_keys nk; /* first: the harness's keys and density */
+    const ms_tracer *t;
+    double d[3], n, zmax;
+} vndf_ctx;
+
+static int vndf_draw(void *p, rng *r, ggx_vec3 *w)
+{
+    vndf_ctx *c = p;
+    double o[3] = {rng_uniform(r) * c->n, rng_uniform(r) * c->n, c->zmax + 1.0};
+    ms_hit hit;
+    if (ms_trace(c->t, o, c->d, &hit) != 1) return 0;
+    *w = (ggx_vec3){hit.m[0], hit.m[1], hit.m[2]};
+    return 1;
+}
+
+static double vndf_pdf(const ggx_shape *s, ggx_vec3 v, ggx_vec3 m) { return ggx_pdf_vndf(s, v, m); }
+
 static int measure(int argc, char **argv)
 {
     options o;
-    parse_options(argc, argv, 3, &o, "heightfield,spacing,z-scale,view,n,threads,format,out");
+    parse_options(argc, argv, 3, &o, "heightfield,spacing,z-scale,view,n,threads,seed,format,out");
     if (o.help) {
         printf("usage: ggx microsurface measure --heightfield FILE [--spacing D] [--z-scale Z] --view THETA,PHI\n"
                "                                [-n RAYS] [--threads N] [--format md|json] [--out FILE]\n\n"
@@ -159,7 +181,9 @@ static int measure(int argc, char **argv)
                "ellipsoid fitted to the facets (ggx_fit_heightfield), and per normal bin (4 rings of equal\n"
                "sin^2(theta_m) times 8 azimuth sectors) the traced G1(v, m), the visible share of the bin's\n"
                "projected area, against G1(v): Smith's masking makes them equal. A tile whose edges do not wrap\n"
-               "(differences across them 3 times the inner ones in RMS) is refused.\n");
+               "(differences across them 3 times the inner ones in RMS) is refused. Then the visible normals: the\n"
+               "first facets hit by up to 200,000 rays from random origins (--seed S), chi-square against\n"
+               "ggx_pdf_vndf of the fitted shape (eq 33) on 16 x 16 cells of its sphere space.\n");
         return 0;
     }
     if (!o.heightfield) die("--heightfield FILE is required");
@@ -179,6 +203,16 @@ static int measure(int argc, char **argv)
     ggx_fit_info fi;
     ggx_status st = ggx_fit_heightfield(&fit, h, n, n, 1.0, 1.0, NULL, NULL, &fi);
     double g_ggx = st == GGX_OK ? ggx_g1_smith(&fit, o.view) : NAN, g_b = ms_beckmann_g1(r.slope_cov, v);
+    /* the visible normals against eq 33 for the fitted shape, 16 x 16 cells of its sphere space */
+    chi2_result cr = {0};
+    long vrays = rays < 200000 ? rays : 200000;
+    if (st == GGX_OK) {
+        double zmin, zmax;
+        ms_tracer_bounds(t, &zmin, &zmax);
+        vndf_ctx c = {{&fit, o.view, vndf_pdf}, t, {-v[0], -v[1], -v[2]}, (double)n, zmax};
+        chi2_problem p = {"traced visible normals", 1, vndf_draw, normal_keys_key, normal_keys_density, &c};
+        cr = chi2_run_quiet(&p, vrays, 16, 16, o.seed, 0.01);
+    }
     int json = o.format && strcmp(o.format, "json") == 0;
     if (o.format && !json && strcmp(o.format, "md") != 0) die("--format: '%s' is not md or json", o.format);
     out_file f;
@@ -188,7 +222,9 @@ static int measure(int argc, char **argv)
         fprintf(f.f, "{\n  \"input\": \"%s\", \"size\": %zu, \"view_deg\": [%.6g, %.6g], \"rays\": %ld, \"missed\": %ld,\n",
                 o.heightfield, n, theta, phi, r.rays, r.missed);
         fprintf(f.f, "  \"slope_cov\": [%.10g, %.10g, %.10g],\n  \"g1\": {\"facets\": %.10g, \"smith_beckmann\": %.10g, "
-                     "\"smith_ggx_fit\": %.10g},\n  \"bins\": [", r.slope_cov[0], r.slope_cov[1], r.slope_cov[2], r.g1, g_b, g_ggx);
+                     "\"smith_ggx_fit\": %.10g},\n", r.slope_cov[0], r.slope_cov[1], r.slope_cov[2], r.g1, g_b, g_ggx);
+        fprintf(f.f, "  \"vndf_chi2\": {\"rays\": %ld, \"stat\": %.6g, \"dof\": %d, \"pvalue\": %.6g, \"invalid\": %ld},\n"
+                     "  \"bins\": [", vrays, cr.stat, cr.dof, cr.pvalue, cr.invalid);
     } else {
         fprintf(f.f, "# ggx microsurface measure: %s, %zu x %zu, view theta %.4g, phi %.4g degrees\n\n", o.heightfield, n,
                 n, theta, phi);
@@ -196,6 +232,9 @@ static int measure(int argc, char **argv)
                 r.slope_cov[0], r.slope_cov[1], r.slope_cov[2]);
         fprintf(f.f, "| G1(v) | value |\n|---|---|\n| the facets (exact) | %.6f |\n| Smith, Beckmann of the facets' "
                      "covariance | %.6f |\n| Smith, GGX fitted (ggx_g1_smith) | %.6f |\n\n", r.g1, g_b, g_ggx);
+        fprintf(f.f, "visible normals of %ld rays against ggx_pdf_vndf of the fitted shape (eq 33): chi-square %.6g on %d "
+                     "degrees of freedom (%.3g per degree), p = %.3g\n\n", vrays, cr.stat, cr.dof,
+                cr.dof > 0 ? cr.stat / cr.dof : NAN, cr.pvalue);
         fprintf(f.f, "| sin^2 theta_m | phi_m, degrees | projected area | traced G1(v, m) | / G1(v) |\n|---|---|---|---|---|\n");
     }
     int first = 1;
