@@ -38,6 +38,14 @@ assert abs(d['shape']['alpha'][0] / 0.3 - 1) < 0.05, d['shape']" && ok || bad "G
 import json; a = json.load(open('g0.json'))['vndf_chi2']; b = json.load(open('g80.json'))['vndf_chi2']
 assert a['stat'] / a['dof'] < 3 and b['stat'] / b['dof'] > 5 * a['stat'] / a['dof'], (a, b)" && ok ||
         bad "visible normals: $(grep vndf g0.json g80.json)"
+    # the BRDF with F = 1: the white furnace of all bounces keeps every ray (none lost, none left bouncing), and at
+    # normal incidence the single-scattering BRDF is ggx_brdf_eval's within 10 % in L2
+    "$PY" -c "
+import json; a = json.load(open('g0.json'))['brdf']; b = json.load(open('g80.json'))['brdf']
+for r in (a, b):
+    assert r['lost'] == 0 and r['capped'] == 0 and abs(r['albedo_all'] - 1) < 1e-12 and r['albedo_single'] < 1, r
+assert a['l2_single'] < 0.1 and abs(a['albedo_single'] - a['albedo_model']) < 0.02, a" && ok ||
+        bad "BRDF: $(grep brdf g0.json g80.json)"
     # the same seed, the same file
     "$GGX" microsurface generate --kind beckmann --alpha 0.3 --corr 8 --size 256 --seed 3 --out b2.x3p > /dev/null &&
         "$GGX" fit --heightfield b2.x3p > fit2.txt && [ "$(sed 1d fit.txt)" = "$(sed 1d fit2.txt)" ] && ok ||

@@ -168,3 +168,102 @@ int ms_measure_g1(const ms_tracer *t, const double *h, size_t n, const double v[
     free(hits), free(jobs), free(th), free(made);
     return 0;
 }
+
+typedef struct brdf_job {
+    const ms_tracer *t;
+    size_t n;
+    const double *wi;
+    long g, row0, row1;
+    int rings, sectors, max_bounces;
+    long *single, *all, lost, capped;
+} brdf_job;
+
+static void *brdf_rows(void *p)
+{
+    brdf_job *j = p;
+    double zmin, zmax, step = (double)j->n / (double)j->g;
+    ms_tracer_bounds(j->t, &zmin, &zmax);
+    uint64_t s = 0xD1B54A32D192ED03ull ^ (uint64_t)j->row0;
+    for (long r = j->row0; r < j->row1; r++)
+        for (long c = 0; c < j->g; c++) {
+            s ^= s << 13, s ^= s >> 7, s ^= s << 17;
+            double u = (double)(s >> 11) * 0x1p-53;
+            s ^= s << 13, s ^= s >> 7, s ^= s << 17;
+            double w = (double)(s >> 11) * 0x1p-53;
+            double o[3] = {((double)c + u) * step, ((double)r + w) * step, zmax + 1.0};
+            double d[3] = {-j->wi[0], -j->wi[1], -j->wi[2]};
+            int bounces = 0, k;
+            ms_hit hit;
+            while ((k = ms_trace(j->t, o, d, &hit)) == 1 && bounces < j->max_bounces) {
+                double dm = d[0] * hit.m[0] + d[1] * hit.m[1] + d[2] * hit.m[2];
+                /* reflect; the next ray from just above the facet (the hit carries single precision) */
+                for (int q = 0; q < 3; q++) d[q] -= 2.0 * dm * hit.m[q], o[q] = hit.p[q] + 1e-3 * hit.m[q];
+                bounces++;
+            }
+            if (k < 0) {
+                j->lost++;
+                continue;
+            }
+            if (k == 1) {
+                j->capped++;
+                continue;
+            }
+            if (bounces == 0) continue; /* cannot happen: every ray from above hits */
+            int b = ms_bin(d, j->rings, j->sectors);
+            j->all[b]++;
+            if (bounces == 1) j->single[b]++;
+        }
+    return NULL;
+}
+
+void ms_brdf_free(ms_brdf *r)
+{
+    free(r->single);
+    r->single = r->all = NULL;
+}
+
+int ms_measure_brdf(const ms_tracer *t, size_t n, const double wi[3], long rays, int rings, int sectors,
+                    int max_bounces, int threads, ms_brdf *r, char *err, size_t errn)
+{
+    memset(r, 0, sizeof *r);
+    if (!(wi[2] > 0.0) || rays < 1 || rings < 1 || sectors < 1 || rings * sectors > 1 << 16 || threads < 1 ||
+        threads > 256 || max_bounces < 1) {
+        snprintf(err, errn, "BRDF: a light above the plane, rays, bins, bounces and threads are required");
+        return -1;
+    }
+    int bins = rings * sectors;
+    long g = (long)ceil(sqrt((double)rays));
+    if (threads > g) threads = (int)g;
+    r->rings = rings, r->sectors = sectors, r->rays = g * g;
+    r->single = calloc(2 * (size_t)bins, sizeof *r->single);
+    long *counts = calloc(2 * (size_t)bins * (size_t)threads, sizeof *counts);
+    brdf_job *jobs = calloc((size_t)threads, sizeof *jobs);
+    pthread_t *th = calloc((size_t)threads, sizeof *th);
+    int *made = calloc((size_t)threads, sizeof *made);
+    if (!r->single || !counts || !jobs || !th || !made) {
+        free(counts), free(jobs), free(th), free(made), ms_brdf_free(r);
+        snprintf(err, errn, "BRDF: out of memory");
+        return -1;
+    }
+    r->all = r->single + bins;
+    for (int k = 0; k < threads; k++) {
+        long *c = counts + 2 * (size_t)bins * (size_t)k;
+        jobs[k] = (brdf_job){t, n, wi, g, g * k / threads, g * (k + 1) / threads, rings, sectors, max_bounces, c,
+                             c + bins, 0, 0};
+        if (k > 0) made[k] = pthread_create(&th[k], NULL, brdf_rows, &jobs[k]) == 0;
+    }
+    brdf_rows(&jobs[0]);
+    for (int k = 1; k < threads; k++) {
+        if (made[k]) pthread_join(th[k], NULL);
+        else brdf_rows(&jobs[k]);
+    }
+    for (int k = 0; k < threads; k++) {
+        r->lost += jobs[k].lost, r->capped += jobs[k].capped;
+        for (int b = 0; b < bins; b++) {
+            r->single[b] += (double)jobs[k].single[b] / (double)r->rays;
+            r->all[b] += (double)jobs[k].all[b] / (double)r->rays;
+        }
+    }
+    free(counts), free(jobs), free(th), free(made);
+    return 0;
+}

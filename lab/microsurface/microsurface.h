@@ -97,6 +97,20 @@ typedef struct ms_g1 {
 int ms_measure_g1(const ms_tracer *t, const double *h, size_t n, const double v[3], long rays, int rings, int sectors,
                   int threads, ms_g1 *r, char *err, size_t errn);
 void ms_g1_free(ms_g1 *r);
+/* The BRDF of the tiled surface with F = 1, traced: rays from wi (a jittered grid of origins) reflect specularly at
+ * every facet they meet until they escape, at most max_bounces times. Outgoing directions are binned in rings of
+ * equal sin^2(theta_o) times sectors of equal azimuth, bins of equal projected solid angle pi / bins, so a bin's
+ * BRDF is its share of the rays times bins / pi. */
+typedef struct ms_brdf {
+    int rings, sectors;
+    long rays, lost, capped; /* lost: left below the surface (none if the tracer works); capped: still bouncing */
+    double *single;          /* per bin: the share of the rays that leave into it after one reflection */
+    double *all;             /* and after any number */
+} ms_brdf;
+int ms_measure_brdf(const ms_tracer *t, size_t n, const double wi[3], long rays, int rings, int sectors,
+                    int max_bounces, int threads, ms_brdf *r, char *err, size_t errn);
+void ms_brdf_free(ms_brdf *r);
+
 /* G1(v) of the facets alone (ms_g1's g1, no rays): n^2 v.z over their projected area towards v. */
 double ms_facets_g1(const double *h, size_t n, const double v[3]);
 /* Smith's G1(v) for Beckmann slopes of covariance cov (Sxx, Sxy, Syy, the mean removed): 1 / (1 + Lambda(a)),

@@ -167,6 +167,14 @@ static int vndf_draw(void *p, rng *r, ggx_vec3 *w)
 
 static double vndf_pdf(const ggx_shape *s, ggx_vec3 v, ggx_vec3 m) { return ggx_pdf_vndf(s, v, m); }
 
+/* a JSON number, or null for NaN and infinities (JSON has neither) */
+static const char *jnum(char buf[32], double x)
+{
+    if (isfinite(x)) snprintf(buf, 32, "%.10g", x);
+    else snprintf(buf, 32, "null");
+    return buf;
+}
+
 static int measure(int argc, char **argv)
 {
     options o;
@@ -183,7 +191,11 @@ static int measure(int argc, char **argv)
                "projected area, against G1(v): Smith's masking makes them equal. A tile whose edges do not wrap\n"
                "(differences across them 3 times the inner ones in RMS) is refused. Then the visible normals: the\n"
                "first facets hit by up to 200,000 rays from random origins (--seed S), chi-square against\n"
-               "ggx_pdf_vndf of the fitted shape (eq 33) on 16 x 16 cells of its sphere space.\n");
+               "ggx_pdf_vndf of the fitted shape (eq 33) on 16 x 16 cells of its sphere space. Then the BRDF with\n"
+               "F = 1 and the light at the view: RAYS rays reflected from facet to facet until they escape (at most\n"
+               "100 times), binned in 8 x 16 outgoing bins of equal projected solid angle; single scattering against\n"
+               "ggx_brdf_eval of the fitted shape (and its albedo against ggx_albedo), all bounces against\n"
+               "ggx_brdf_compensated_eval of the fitted scale without its skew (the white furnace: albedo 1).\n");
         return 0;
     }
     if (!o.heightfield) die("--heightfield FILE is required");
@@ -213,6 +225,40 @@ static int measure(int argc, char **argv)
         chi2_problem p = {"traced visible normals", 1, vndf_draw, normal_keys_key, normal_keys_density, &c};
         cr = chi2_run_quiet(&p, vrays, 16, 16, o.seed, 0.01);
     }
+    /* the BRDF with F = 1 from the light v: traced single and all bounces against ggx_brdf_eval of the fitted shape
+     * and the energy-compensated BRDF of the fitted scale without its (small) skew */
+    enum { BR = 8, BS = 16 };
+    ms_brdf br;
+    if (ms_measure_brdf(t, n, v, rays, BR, BS, 100, threads, &br, err, sizeof err) != 0) die("%s", err);
+    double e_single = 0.0, e_all = 0.0, d1 = 0.0, n1 = 0.0, d2 = 0.0, n2 = 0.0, e_model = NAN;
+    ggx_energy *en = NULL;
+    ggx_fresnel one;
+    ggx_fresnel_one(&one);
+    if (st == GGX_OK) {
+        double ts[2], ss[3];
+        ggx_shape flat;
+        ggx_shape_slopes(&fit, ts, ss);
+        if (ggx_shape_from_slopes(&flat, 0.0, 0.0, ss[0], ss[1], ss[2]) == GGX_OK) ggx_energy_create(&flat, &en);
+        e_model = ggx_albedo(&fit, o.view);
+    }
+    for (int b = 0; b < BR * BS; b++) {
+        double f1 = br.single[b] * BR * BS / 3.14159265358979323846, fa = br.all[b] * BR * BS / 3.14159265358979323846;
+        e_single += br.single[b], e_all += br.all[b];
+        if (st != GGX_OK) continue;
+        /* the model's mean over the bin (uniform in sin^2 theta and phi: uniform in projected solid angle) */
+        double m1 = 0.0, ma = 0.0;
+        int ring = b / BS, sec = b % BS;
+        for (int i = 0; i < 4; i++)
+            for (int k = 0; k < 4; k++) {
+                double u = ((double)ring + (i + 0.5) / 4.0) / BR, ph = 2.0 * 3.14159265358979323846 * ((double)sec + (k + 0.5) / 4.0) / BS;
+                ggx_vec3 wo = {sqrt(u) * cos(ph), sqrt(u) * sin(ph), sqrt(1.0 - u)};
+                m1 += ggx_brdf_eval(&fit, &one, o.view, wo) / 16.0;
+                if (en) ma += ggx_brdf_compensated_eval(en, &one, o.view, wo) / 16.0;
+            }
+        d1 += (f1 - m1) * (f1 - m1), n1 += m1 * m1, d2 += (fa - ma) * (fa - ma), n2 += ma * ma;
+    }
+    double l2_single = sqrt(d1 / n1), l2_all = en ? sqrt(d2 / n2) : NAN;
+    ggx_energy_free(en);
     int json = o.format && strcmp(o.format, "json") == 0;
     if (o.format && !json && strcmp(o.format, "md") != 0) die("--format: '%s' is not md or json", o.format);
     out_file f;
@@ -221,10 +267,15 @@ static int measure(int argc, char **argv)
     if (json) {
         fprintf(f.f, "{\n  \"input\": \"%s\", \"size\": %zu, \"view_deg\": [%.6g, %.6g], \"rays\": %ld, \"missed\": %ld,\n",
                 o.heightfield, n, theta, phi, r.rays, r.missed);
-        fprintf(f.f, "  \"slope_cov\": [%.10g, %.10g, %.10g],\n  \"g1\": {\"facets\": %.10g, \"smith_beckmann\": %.10g, "
-                     "\"smith_ggx_fit\": %.10g},\n", r.slope_cov[0], r.slope_cov[1], r.slope_cov[2], r.g1, g_b, g_ggx);
-        fprintf(f.f, "  \"vndf_chi2\": {\"rays\": %ld, \"stat\": %.6g, \"dof\": %d, \"pvalue\": %.6g, \"invalid\": %ld},\n"
-                     "  \"bins\": [", vrays, cr.stat, cr.dof, cr.pvalue, cr.invalid);
+        char b1[32], b2[32], b3[32], b4[32], b5[32];
+        fprintf(f.f, "  \"slope_cov\": [%.10g, %.10g, %.10g],\n  \"g1\": {\"facets\": %.10g, \"smith_beckmann\": %s, "
+                     "\"smith_ggx_fit\": %s},\n", r.slope_cov[0], r.slope_cov[1], r.slope_cov[2], r.g1, jnum(b1, g_b),
+                jnum(b2, g_ggx));
+        fprintf(f.f, "  \"vndf_chi2\": {\"rays\": %ld, \"stat\": %s, \"dof\": %d, \"pvalue\": %s, \"invalid\": %ld},\n",
+                vrays, jnum(b1, cr.stat), cr.dof, jnum(b2, cr.pvalue), cr.invalid);
+        fprintf(f.f, "  \"brdf\": {\"rays\": %ld, \"lost\": %ld, \"capped\": %ld, \"albedo_single\": %.8g, "
+                     "\"albedo_model\": %s, \"albedo_all\": %.8g, \"l2_single\": %s, \"l2_all\": %s},\n  \"bins\": [",
+                br.rays, br.lost, br.capped, e_single, jnum(b3, e_model), e_all, jnum(b4, l2_single), jnum(b5, l2_all));
     } else {
         fprintf(f.f, "# ggx microsurface measure: %s, %zu x %zu, view theta %.4g, phi %.4g degrees\n\n", o.heightfield, n,
                 n, theta, phi);
@@ -235,6 +286,11 @@ static int measure(int argc, char **argv)
         fprintf(f.f, "visible normals of %ld rays against ggx_pdf_vndf of the fitted shape (eq 33): chi-square %.6g on %d "
                      "degrees of freedom (%.3g per degree), p = %.3g\n\n", vrays, cr.stat, cr.dof,
                 cr.dof > 0 ? cr.stat / cr.dof : NAN, cr.pvalue);
+        fprintf(f.f, "the BRDF with F = 1 from the light at the view, %ld rays (%ld lost, %ld still bouncing after 100), "
+                     "%d x %d bins:\n\n| | traced | model | relative L2 of the BRDF over the bins |\n|---|---|---|---|\n"
+                     "| single scattering: albedo | %.5f | %.5f (ggx_albedo) | %.4f (ggx_brdf_eval) |\n"
+                     "| all bounces: albedo | %.5f | 1 (F = 1) | %.4f (ggx_brdf_compensated_eval) |\n\n", br.rays,
+                br.lost, br.capped, BR, BS, e_single, e_model, l2_single, e_all, l2_all);
         fprintf(f.f, "| sin^2 theta_m | phi_m, degrees | projected area | traced G1(v, m) | / G1(v) |\n|---|---|---|---|---|\n");
     }
     int first = 1;
@@ -254,6 +310,7 @@ static int measure(int argc, char **argv)
     if (json) fprintf(f.f, "\n  ]\n}\n");
     out_close(&f);
     ms_g1_free(&r);
+    ms_brdf_free(&br);
     ms_tracer_free(t);
     free(h);
     return 0;
