@@ -172,7 +172,8 @@ int ms_measure_g1(const ms_tracer *t, const double *h, size_t n, const double v[
 typedef struct brdf_job {
     const ms_tracer *t;
     size_t n;
-    const double *wi;
+    const double *wi; /* NULL: each ray's wi uniform in projected solid angle over the bin in_bin */
+    int in_bin;
     long g, row0, row1;
     int rings, sectors, max_bounces;
     long *single, *all, lost, capped;
@@ -190,8 +191,18 @@ static void *brdf_rows(void *p)
             double u = (double)(s >> 11) * 0x1p-53;
             s ^= s << 13, s ^= s >> 7, s ^= s << 17;
             double w = (double)(s >> 11) * 0x1p-53;
-            double o[3] = {((double)c + u) * step, ((double)r + w) * step, zmax + 1.0};
-            double d[3] = {-j->wi[0], -j->wi[1], -j->wi[2]};
+            double o[3] = {((double)c + u) * step, ((double)r + w) * step, zmax + 1.0}, d[3];
+            if (j->wi) {
+                d[0] = -j->wi[0], d[1] = -j->wi[1], d[2] = -j->wi[2];
+            } else {
+                s ^= s << 13, s ^= s >> 7, s ^= s << 17;
+                double a = (double)(s >> 11) * 0x1p-53;
+                s ^= s << 13, s ^= s >> 7, s ^= s << 17;
+                double b = (double)(s >> 11) * 0x1p-53;
+                double q = ((double)(j->in_bin / j->sectors) + a) / j->rings;
+                double ph = 2.0 * PI * ((double)(j->in_bin % j->sectors) + b) / j->sectors;
+                d[0] = -sqrt(q) * cos(ph), d[1] = -sqrt(q) * sin(ph), d[2] = -sqrt(1.0 - q);
+            }
             int bounces = 0, k;
             ms_hit hit;
             while ((k = ms_trace(j->t, o, d, &hit)) == 1 && bounces < j->max_bounces) {
@@ -222,11 +233,11 @@ void ms_brdf_free(ms_brdf *r)
     r->single = r->all = NULL;
 }
 
-int ms_measure_brdf(const ms_tracer *t, size_t n, const double wi[3], long rays, int rings, int sectors,
+static int brdf_run(const ms_tracer *t, size_t n, const double *wi, int in_bin, long rays, int rings, int sectors,
                     int max_bounces, int threads, ms_brdf *r, char *err, size_t errn)
 {
     memset(r, 0, sizeof *r);
-    if (!(wi[2] > 0.0) || rays < 1 || rings < 1 || sectors < 1 || rings * sectors > 1 << 16 || threads < 1 ||
+    if ((wi ? !(wi[2] > 0.0) : in_bin < 0 || in_bin >= rings * sectors) || rays < 1 || rings < 1 || sectors < 1 || rings * sectors > 1 << 16 || threads < 1 ||
         threads > 256 || max_bounces < 1) {
         snprintf(err, errn, "BRDF: a light above the plane, rays, bins, bounces and threads are required");
         return -1;
@@ -248,8 +259,8 @@ int ms_measure_brdf(const ms_tracer *t, size_t n, const double wi[3], long rays,
     r->all = r->single + bins;
     for (int k = 0; k < threads; k++) {
         long *c = counts + 2 * (size_t)bins * (size_t)k;
-        jobs[k] = (brdf_job){t, n, wi, g, g * k / threads, g * (k + 1) / threads, rings, sectors, max_bounces, c,
-                             c + bins, 0, 0};
+        jobs[k] = (brdf_job){t, n, wi, in_bin, g, g * k / threads, g * (k + 1) / threads, rings, sectors,
+                             max_bounces, c, c + bins, 0, 0};
         if (k > 0) made[k] = pthread_create(&th[k], NULL, brdf_rows, &jobs[k]) == 0;
     }
     brdf_rows(&jobs[0]);
@@ -266,4 +277,16 @@ int ms_measure_brdf(const ms_tracer *t, size_t n, const double wi[3], long rays,
     }
     free(counts), free(jobs), free(th), free(made);
     return 0;
+}
+
+int ms_measure_brdf(const ms_tracer *t, size_t n, const double wi[3], long rays, int rings, int sectors,
+                    int max_bounces, int threads, ms_brdf *r, char *err, size_t errn)
+{
+    return brdf_run(t, n, wi, -1, rays, rings, sectors, max_bounces, threads, r, err, errn);
+}
+
+int ms_measure_brdf_from_bin(const ms_tracer *t, size_t n, int bin, long rays, int rings, int sectors,
+                             int max_bounces, int threads, ms_brdf *r, char *err, size_t errn)
+{
+    return brdf_run(t, n, NULL, bin, rays, rings, sectors, max_bounces, threads, r, err, errn);
 }

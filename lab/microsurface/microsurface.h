@@ -109,6 +109,11 @@ typedef struct ms_brdf {
 } ms_brdf;
 int ms_measure_brdf(const ms_tracer *t, size_t n, const double wi[3], long rays, int rings, int sectors,
                     int max_bounces, int threads, ms_brdf *r, char *err, size_t errn);
+/* ms_measure_brdf with each ray's wi drawn uniformly in projected solid angle over the outgoing bin `bin`: share
+ * b of the result is then (1 / pi) times the double integral of f over bin x bin b in projected solid angles, times
+ * the bins' count; by reciprocity the same as share bin from bin b (the traced BRDF's reciprocity test). */
+int ms_measure_brdf_from_bin(const ms_tracer *t, size_t n, int bin, long rays, int rings, int sectors,
+                             int max_bounces, int threads, ms_brdf *r, char *err, size_t errn);
 void ms_brdf_free(ms_brdf *r);
 
 /* G1(v) of the facets alone (ms_g1's g1, no rays): n^2 v.z over their projected area towards v. */

@@ -76,7 +76,10 @@ static int generate(int argc, char **argv)
                             o.corr > 0 ? o.corr : 16.0, o.seed};
         if (!o.have_alpha) sp.alpha_x = sp.alpha_y = 0.3;
         ms_gauss_info info;
-        if (ms_gauss(&sp, h, &info, err, sizeof err) != 0) die("%s", err);
+        if (ms_gauss(&sp, h, &info, err, sizeof err) != 0) {
+            free(h); /* (die exits: nothing left to the leak checkers) */
+            die("%s", err);
+        }
         write_heights(o.out, h, n);
         printf("ggx microsurface: %s, %zu x %zu, Beckmann alpha %g, %g rotated %g degrees, correlation length %g: "
                "heights' sigma %.6g, M = [%.6g %.6g; %.6g %.6g], seed %llu\n",
@@ -87,7 +90,10 @@ static int generate(int argc, char **argv)
         ms_ggx_spec sp = {n, o.alpha[0], o.alpha[1], o.rotate * 3.14159265358979323846 / 180.0,
                           o.corr > 0 ? o.corr : 8.0, o.mix, o.seed};
         if (!o.have_alpha) sp.alpha_x = sp.alpha_y = 0.3;
-        if (ms_ggx(&sp, h, err, sizeof err) != 0) die("%s", err);
+        if (ms_ggx(&sp, h, err, sizeof err) != 0) {
+            free(h); /* (die exits: nothing left to the leak checkers) */
+            die("%s", err);
+        }
         write_heights(o.out, h, n);
         printf("ggx microsurface: %s, %zu x %zu, GGX alpha %g, %g rotated %g degrees, correlation length %g, mixing "
                "length %g, seed %llu\n", o.out, n, n, sp.alpha_x, sp.alpha_y, o.rotate, sp.corr_len,
@@ -97,7 +103,10 @@ static int generate(int argc, char **argv)
         if (o.have_alpha && o.alpha[0] != o.alpha[1]) die("--alpha: a V-groove has one slope");
         double slope = o.have_alpha ? o.alpha[0] : 0.5;
         size_t p = o.period ? (size_t)o.period : 16;
-        if (ms_vgroove(n, p, slope, h, err, sizeof err) != 0) die("%s", err);
+        if (ms_vgroove(n, p, slope, h, err, sizeof err) != 0) {
+            free(h); /* (die exits: nothing left to the leak checkers) */
+            die("%s", err);
+        }
         write_heights(o.out, h, n);
         printf("ggx microsurface: %s, %zu x %zu, V-grooves of period %zu and slope %g (facet normals at %.6g "
                "degrees)\n", o.out, n, n, p, slope, atan(slope) * 180.0 / 3.14159265358979323846);
@@ -126,7 +135,10 @@ static double *grid_heights(const options *o, size_t *n_out)
     s.h = NULL;
     surface_free(&s);
     for (size_t i = 0; i < count; i++) {
-        if (!isfinite(h[i])) die("%s: height %zu is not finite", o->heightfield, i);
+        if (!isfinite(h[i])) {
+            free(h); /* (die exits: nothing left to the leak checkers) */
+            die("%s: height %zu is not finite", o->heightfield, i);
+        }
         h[i] *= zs / dx;
     }
     /* periodic: the differences across the wrap are like the inner ones */
@@ -140,9 +152,12 @@ static double *grid_heights(const options *o, size_t *n_out)
             else in += e * e;
         }
     in /= 2.0 * (double)n * (double)(n - 1), wrap /= 2.0 * (double)n;
-    if (wrap > 9.0 * in + 1e-300)
+    if (wrap > 9.0 * in + 1e-300) {
+        double ratio = sqrt(wrap / in);
+        free(h);
         die("%s: not periodic (the differences across its edges are %.3g times the inner ones in RMS): the tracer "
-            "tiles the surface", o->heightfield, sqrt(wrap / in));
+            "tiles the surface", o->heightfield, ratio);
+    }
     *n_out = n;
     return h;
 }
@@ -205,7 +220,10 @@ static int measure(int argc, char **argv)
     double *h = grid_heights(&o, &n);
     char err[400];
     ms_tracer *t = ms_tracer_new(h, n, err, sizeof err);
-    if (!t) die("%s", err);
+    if (!t) {
+        free(h);
+        die("%s", err);
+    }
     double v[3] = {o.view.x, o.view.y, o.view.z};
     long rays = o.n > 0 ? o.n : 1000000;
     int threads = o.threads > 0 ? o.threads : 1;
