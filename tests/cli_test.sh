@@ -197,6 +197,14 @@ head -c 20 nan.pfm > short.pfm; : > empty.exr; printf 'v/1\001garbage' > bad.exr
 printf 'PF\n2 2\n-1.0\n' > neg.pfm; printf '\0\0\200\277%.0s' 1 2 3 4 5 6 7 8 9 10 11 12 >> neg.pfm
 "$GGX" render --size 64 --spp 1 --light neg.pfm --out neg.png 2> neg.err; [ $? -eq 2 ] && grep -q "black everywhere" neg.err &&
     grep -q "note: 12 negative values" neg.err && [ ! -e neg.png ] && ok || bad "render: negative environment: $(cat neg.err)"
+# bad input: exit 2, exactly one line on stderr starting with "ggx: ", no output file left behind
+expect2() { # description, expected-substring, command...
+    desc=$1; want=$2; shift 2
+    rm -f err.txt
+    "$@" > /dev/null 2> err.txt
+    rc=$?
+    if [ $rc -eq 2 ] && [ "$(wc -l < err.txt)" -eq 1 ] && grep -q "^ggx: .*$want" err.txt; then ok; else bad "$desc: rc $rc, stderr: $(cat err.txt)"; fi
+}
 expect2 "render --spp 0" "not a number of samples" "$GGX" render --spp 0 --out no.png
 expect2 "render --size 0" "is not a size" "$GGX" render --size 0 --out no.png
 expect2 "render absurd size" "is not a size" "$GGX" render --size 100000x100000 --out no.png
@@ -214,14 +222,8 @@ expect2 "render glass with another sampler" "own sampler" "$GGX" render --fresne
 expect2 "render compensated with another sampler" "compensation" "$GGX" render --compensate --sampler caps --out no.png
 [ ! -e no.png ] && [ ! -e no.jpg ] && ok || bad "render left a file after an error"
 
-# --- bad input: exit 2, exactly one line on stderr starting with "ggx: ", no output file left behind
-expect2() { # description, expected-substring, command...
-    desc=$1; want=$2; shift 2
-    rm -f err.txt
-    "$@" > /dev/null 2> err.txt
-    rc=$?
-    if [ $rc -eq 2 ] && [ "$(wc -l < err.txt)" -eq 1 ] && grep -q "^ggx: .*$want" err.txt; then ok; else bad "$desc: rc $rc, stderr: $(cat err.txt)"; fi
-}
+# --- bad input: exit 2, exactly one line on stderr starting with "ggx: ", no output file left behind (expect2,
+# defined above its first use)
 expect2 "unknown command" "unknown command" "$GGX" frobnicate
 expect2 "unknown option" "unknown option '--bogus'" "$GGX" eval --bogus 1
 expect2 "option of another command" "unknown option '--figure'" "$GGX" sample --figure ndf
