@@ -248,7 +248,7 @@ static int measure(int argc, char **argv)
     enum { BR = 8, BS = 16 };
     ms_brdf br;
     if (ms_measure_brdf(t, n, v, rays, BR, BS, 100, threads, &br, err, sizeof err) != 0) die("%s", err);
-    double e_single = 0.0, e_all = 0.0, d1 = 0.0, n1 = 0.0, d2 = 0.0, n2 = 0.0, e_model = NAN;
+    double e_single = 0.0, e_all = 0.0, d1 = 0.0, n1 = 0.0, d2 = 0.0, n2 = 0.0, e_model = NAN, e_hc = NAN;
     ggx_energy *en = NULL;
     ggx_fresnel one;
     ggx_fresnel_one(&one);
@@ -257,7 +257,7 @@ static int measure(int argc, char **argv)
         ggx_shape flat;
         ggx_shape_slopes(&fit, ts, ss);
         if (ggx_shape_from_slopes(&flat, 0.0, 0.0, ss[0], ss[1], ss[2]) == GGX_OK) ggx_energy_create(&flat, &en);
-        e_model = ggx_albedo(&fit, o.view);
+        e_model = ggx_albedo(&fit, o.view), e_hc = ggx_albedo_height_correlated(&fit, o.view);
     }
     for (int b = 0; b < BR * BS; b++) {
         double f1 = br.single[b] * BR * BS / 3.14159265358979323846, fa = br.all[b] * BR * BS / 3.14159265358979323846;
@@ -292,8 +292,9 @@ static int measure(int argc, char **argv)
         fprintf(f.f, "  \"vndf_chi2\": {\"rays\": %ld, \"stat\": %s, \"dof\": %d, \"pvalue\": %s, \"invalid\": %ld},\n",
                 vrays, jnum(b1, cr.stat), cr.dof, jnum(b2, cr.pvalue), cr.invalid);
         fprintf(f.f, "  \"brdf\": {\"rays\": %ld, \"lost\": %ld, \"capped\": %ld, \"albedo_single\": %.8g, "
-                     "\"albedo_model\": %s, \"albedo_all\": %.8g, \"l2_single\": %s, \"l2_all\": %s},\n  \"bins\": [",
-                br.rays, br.lost, br.capped, e_single, jnum(b3, e_model), e_all, jnum(b4, l2_single), jnum(b5, l2_all));
+                     "\"albedo_model\": %s, \"albedo_model_height_correlated\": %s, \"albedo_all\": %.8g, \"l2_single\": %s, "
+                     "\"l2_all\": %s},\n  \"bins\": [", br.rays, br.lost, br.capped, e_single, jnum(b3, e_model),
+                jnum(b1, e_hc), e_all, jnum(b4, l2_single), jnum(b5, l2_all));
     } else {
         fprintf(f.f, "# ggx microsurface measure: %s, %zu x %zu, view theta %.4g, phi %.4g degrees\n\n", o.heightfield, n,
                 n, theta, phi);
@@ -306,9 +307,10 @@ static int measure(int argc, char **argv)
                 cr.dof > 0 ? cr.stat / cr.dof : NAN, cr.pvalue);
         fprintf(f.f, "the BRDF with F = 1 from the light at the view, %ld rays (%ld lost, %ld still bouncing after 100), "
                      "%d x %d bins:\n\n| | traced | model | relative L2 of the BRDF over the bins |\n|---|---|---|---|\n"
-                     "| single scattering: albedo | %.5f | %.5f (ggx_albedo) | %.4f (ggx_brdf_eval) |\n"
+                     "| single scattering: albedo | %.5f | %.5f (ggx_albedo; height-correlated: %.5f) | %.4f "
+                     "(ggx_brdf_eval) |\n"
                      "| all bounces: albedo | %.5f | 1 (F = 1) | %.4f (ggx_brdf_compensated_eval) |\n\n", br.rays,
-                br.lost, br.capped, BR, BS, e_single, e_model, l2_single, e_all, l2_all);
+                br.lost, br.capped, BR, BS, e_single, e_model, e_hc, l2_single, e_all, l2_all);
         fprintf(f.f, "| sin^2 theta_m | phi_m, degrees | projected area | traced G1(v, m) | / G1(v) |\n|---|---|---|---|---|\n");
     }
     int first = 1;
