@@ -93,6 +93,14 @@ one_line "period with beckmann" "--period applies to --kind vgroove" 2 "$GGX" mi
 one_line "png out" "give a .exr or .x3p name" 2 "$GGX" microsurface generate --kind vgroove --size 64 --out n.png
 one_line "short correlation" "correlation length must be in" 2 "$GGX" microsurface generate --kind beckmann \
     --corr 2 --size 64 --out n.x3p
+# --bounces: one reflection leaves the rays that need more counted as still bouncing, none lost
+if [ -e g.x3p ] && "$GGX" microsurface measure --heightfield g.x3p --view 80,20 -n 20000 --bounces 1 --format json > g1b.json 2>/dev/null; then
+    "$PY" -c "
+import json; b = json.load(open('g1b.json'))['brdf']
+assert b['lost'] == 0 and b['capped'] > 0 and abs(b['albedo_all'] - b['albedo_single']) < 1e-7, b
+assert abs(b['albedo_all'] + b['capped'] / b['rays'] - 1) < 1e-7, b  # (8 digits in the JSON)" && ok || bad "--bounces 1: $(grep brdf g1b.json)"
+fi
+one_line "bad bounces" "not a number of bounces" 2 "$GGX" microsurface measure --heightfield v.x3p --view 30,0 --bounces 0
 one_line "measure, no view" "--view THETA,PHI is required" 2 "$GGX" microsurface measure --heightfield v.x3p
 one_line "measure, no file" "--heightfield FILE is required" 2 "$GGX" microsurface measure --view 30,0
 # a ramp is not periodic: the tracer would tile a cliff

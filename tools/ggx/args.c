@@ -267,6 +267,11 @@ void parse_options(int argc, char **argv, int first, options *o, const char *all
             parse_list(a, val, &v, 1);
             if (!(v >= 1 && v <= 1024) || v != floor(v)) die("%s: '%s' is not a path depth from 1 to 1024", a, val);
             o->depth = (int)v;
+        } else if (strcmp(key, "bounces") == 0) {
+            double v;
+            parse_list(a, val, &v, 1);
+            if (!(v >= 1 && v <= 10000) || v != floor(v)) die("%s: '%s' is not a number of bounces from 1 to 10000", a, val);
+            o->bounces = (int)v;
         } else if (strcmp(key, "exposure") == 0) {
             parse_list(a, val, &o->exposure, 1);
             if (!(fabs(o->exposure) <= 30)) die("%s: '%s' is not an exposure in stops within [-30, 30]", a, val);

@@ -50,6 +50,7 @@ typedef struct options {
     const char *kind;
     double corr, mix; /* 0 when not given */
     int period;  /* 0 when not given */
+    int bounces; /* ggx microsurface measure: the most reflections of a traced ray; 0 when not given */
     /* ggx render */
     const char *scene, *light, *strategy;
     long spp;

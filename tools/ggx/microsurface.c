@@ -193,10 +193,10 @@ static const char *jnum(char buf[32], double x)
 static int measure(int argc, char **argv)
 {
     options o;
-    parse_options(argc, argv, 3, &o, "heightfield,spacing,z-scale,view,n,threads,seed,format,out");
+    parse_options(argc, argv, 3, &o, "heightfield,spacing,z-scale,view,n,bounces,threads,seed,format,out");
     if (o.help) {
         printf("usage: ggx microsurface measure --heightfield FILE [--spacing D] [--z-scale Z] --view THETA,PHI\n"
-               "                                [-n RAYS] [--threads N] [--format md|json] [--out FILE]\n\n"
+               "                                [-n RAYS] [--bounces K] [--threads N] [--format md|json] [--out FILE]\n\n"
                "Traces a periodic height field (ggx microsurface generate's, or any square tile whose edges wrap)\n"
                "from the view v with RAYS rays (default 1e6) on a jittered grid of origins and reports the masking\n"
                "against the model: G1(v) of the facets (exact for a height field: the footprint's projected area\n"
@@ -208,8 +208,9 @@ static int measure(int argc, char **argv)
                "first facets hit by up to 200,000 rays from random origins (--seed S), chi-square against\n"
                "ggx_pdf_vndf of the fitted shape (eq 33) on 16 x 16 cells of its sphere space. Then the BRDF with\n"
                "F = 1 and the light at the view: RAYS rays reflected from facet to facet until they escape (at most\n"
-               "100 times), binned in 8 x 16 outgoing bins of equal projected solid angle; single scattering against\n"
-               "ggx_brdf_eval of the fitted shape (and its albedo against ggx_albedo), all bounces against\n"
+               "K times, default 100; the rest are counted as still bouncing), binned in 8 x 16 outgoing bins of\n"
+               "equal projected solid angle; single scattering against ggx_brdf_eval of the fitted shape (and its\n"
+               "albedo against ggx_albedo and ggx_albedo_height_correlated), all bounces against\n"
                "ggx_brdf_compensated_eval of the fitted scale without its skew (the white furnace: albedo 1).\n");
         return 0;
     }
@@ -247,7 +248,8 @@ static int measure(int argc, char **argv)
      * and the energy-compensated BRDF of the fitted scale without its (small) skew */
     enum { BR = 8, BS = 16 };
     ms_brdf br;
-    if (ms_measure_brdf(t, n, v, rays, BR, BS, 100, threads, &br, err, sizeof err) != 0) die("%s", err);
+    int bounces = o.bounces > 0 ? o.bounces : 100;
+    if (ms_measure_brdf(t, n, v, rays, BR, BS, bounces, threads, &br, err, sizeof err) != 0) die("%s", err);
     double e_single = 0.0, e_all = 0.0, d1 = 0.0, n1 = 0.0, d2 = 0.0, n2 = 0.0, e_model = NAN, e_hc = NAN;
     ggx_energy *en = NULL;
     ggx_fresnel one;
@@ -305,12 +307,12 @@ static int measure(int argc, char **argv)
         fprintf(f.f, "visible normals of %ld rays against ggx_pdf_vndf of the fitted shape (eq 33): chi-square %.6g on %d "
                      "degrees of freedom (%.3g per degree), p = %.3g\n\n", vrays, cr.stat, cr.dof,
                 cr.dof > 0 ? cr.stat / cr.dof : NAN, cr.pvalue);
-        fprintf(f.f, "the BRDF with F = 1 from the light at the view, %ld rays (%ld lost, %ld still bouncing after 100), "
+        fprintf(f.f, "the BRDF with F = 1 from the light at the view, %ld rays (%ld lost, %ld still bouncing after %d), "
                      "%d x %d bins:\n\n| | traced | model | relative L2 of the BRDF over the bins |\n|---|---|---|---|\n"
                      "| single scattering: albedo | %.5f | %.5f (ggx_albedo; height-correlated: %.5f) | %.4f "
                      "(ggx_brdf_eval) |\n"
                      "| all bounces: albedo | %.5f | 1 (F = 1) | %.4f (ggx_brdf_compensated_eval) |\n\n", br.rays,
-                br.lost, br.capped, BR, BS, e_single, e_model, e_hc, l2_single, e_all, l2_all);
+                br.lost, br.capped, bounces, BR, BS, e_single, e_model, e_hc, l2_single, e_all, l2_all);
         fprintf(f.f, "| sin^2 theta_m | phi_m, degrees | projected area | traced G1(v, m) | / G1(v) |\n|---|---|---|---|---|\n");
     }
     int first = 1;
