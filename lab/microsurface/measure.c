@@ -31,6 +31,34 @@ int ms_bin(const double m[3], int rings, int sectors)
     return ring * sectors + sector;
 }
 
+/* the next uniform in [0, 1) of a ray loop's xorshift stream */
+static double next_uniform(uint64_t *s)
+{
+    *s ^= *s << 13, *s ^= *s >> 7, *s ^= *s << 17;
+    return (double)(*s >> 11) * 0x1p-53;
+}
+
+/* runs fn over jobs[0 .. count) (each size bytes), job 0 here and the others on threads (or here, where no thread
+ * is to be had), and waits for all: 0, or -1 for no memory */
+static int run_jobs(void *(*fn)(void *), void *jobs, size_t size, int count)
+{
+    pthread_t *th = calloc((size_t)count, sizeof *th);
+    int *made = calloc((size_t)count, sizeof *made);
+    if (!th || !made) {
+        free(th), free(made);
+        return -1;
+    }
+    char *base = jobs;
+    for (int k = 1; k < count; k++) made[k] = pthread_create(&th[k], NULL, fn, base + size * (size_t)k) == 0;
+    fn(base);
+    for (int k = 1; k < count; k++) {
+        if (made[k]) pthread_join(th[k], NULL);
+        else fn(base + size * (size_t)k);
+    }
+    free(th), free(made);
+    return 0;
+}
+
 /* the slopes of the two triangles of cell (x, y) */
 static void cell_slopes(const double *h, size_t n, size_t x, size_t y, double s[2][2])
 {
@@ -99,10 +127,7 @@ static void *g1_rows(void *p)
     uint64_t s = 0x9E3779B97F4A7C15ull ^ (uint64_t)j->row0;
     for (long r = j->row0; r < j->row1; r++)
         for (long c = 0; c < j->g; c++) {
-            s ^= s << 13, s ^= s >> 7, s ^= s << 17;
-            double u = (double)(s >> 11) * 0x1p-53;
-            s ^= s << 13, s ^= s >> 7, s ^= s << 17;
-            double w = (double)(s >> 11) * 0x1p-53;
+            double u = next_uniform(&s), w = next_uniform(&s);
             double o[3] = {((double)c + u) * step, ((double)r + w) * step, zmax + 1.0};
             ms_hit hit;
             if (ms_trace(j->t, o, d, &hit) != 1) {
@@ -138,10 +163,8 @@ int ms_measure_g1(const ms_tracer *t, const double *h, size_t n, const double v[
     r->area = calloc(2 * (size_t)bins, sizeof *r->area);
     long *hits = calloc((size_t)bins * (size_t)threads, sizeof *hits);
     g1_job *jobs = calloc((size_t)threads, sizeof *jobs);
-    pthread_t *th = calloc((size_t)threads, sizeof *th);
-    int *made = calloc((size_t)threads, sizeof *made);
-    if (!r->area || !hits || !jobs || !th || !made) {
-        free(hits), free(jobs), free(th), free(made), ms_g1_free(r);
+    if (!r->area || !hits || !jobs) {
+        free(hits), free(jobs), ms_g1_free(r);
         snprintf(err, errn, "masking: out of memory");
         return -1;
     }
@@ -149,15 +172,13 @@ int ms_measure_g1(const ms_tracer *t, const double *h, size_t n, const double v[
     facets_towards(h, n, v, rings, sectors, r->area, r->slope_cov, &r->g1);
     long g = (long)ceil(sqrt((double)rays));
     if (threads > g) threads = (int)g;
-    for (int k = 0; k < threads; k++) {
+    for (int k = 0; k < threads; k++)
         jobs[k] = (g1_job){t, h, n, v, g, g * k / threads, g * (k + 1) / threads, bins, rings, sectors,
                            hits + (size_t)k * (size_t)bins, 0};
-        if (k > 0) made[k] = pthread_create(&th[k], NULL, g1_rows, &jobs[k]) == 0;
-    }
-    g1_rows(&jobs[0]);
-    for (int k = 1; k < threads; k++) {
-        if (made[k]) pthread_join(th[k], NULL);
-        else g1_rows(&jobs[k]); /* no thread to be had: its rows here */
+    if (run_jobs(g1_rows, jobs, sizeof *jobs, threads) != 0) {
+        free(hits), free(jobs), ms_g1_free(r);
+        snprintf(err, errn, "masking: out of memory");
+        return -1;
     }
     r->rays = g * g;
     double per = v[2] / (double)r->rays; /* each ray's projected area, per unit tile area */
@@ -165,7 +186,7 @@ int ms_measure_g1(const ms_tracer *t, const double *h, size_t n, const double v[
         r->missed += jobs[k].missed;
         for (int b = 0; b < bins; b++) r->visible[b] += per * (double)hits[(size_t)k * (size_t)bins + (size_t)b];
     }
-    free(hits), free(jobs), free(th), free(made);
+    free(hits), free(jobs);
     return 0;
 }
 
@@ -187,18 +208,12 @@ static void *brdf_rows(void *p)
     uint64_t s = 0xD1B54A32D192ED03ull ^ (uint64_t)j->row0;
     for (long r = j->row0; r < j->row1; r++)
         for (long c = 0; c < j->g; c++) {
-            s ^= s << 13, s ^= s >> 7, s ^= s << 17;
-            double u = (double)(s >> 11) * 0x1p-53;
-            s ^= s << 13, s ^= s >> 7, s ^= s << 17;
-            double w = (double)(s >> 11) * 0x1p-53;
+            double u = next_uniform(&s), w = next_uniform(&s);
             double o[3] = {((double)c + u) * step, ((double)r + w) * step, zmax + 1.0}, d[3];
             if (j->wi) {
                 d[0] = -j->wi[0], d[1] = -j->wi[1], d[2] = -j->wi[2];
             } else {
-                s ^= s << 13, s ^= s >> 7, s ^= s << 17;
-                double a = (double)(s >> 11) * 0x1p-53;
-                s ^= s << 13, s ^= s >> 7, s ^= s << 17;
-                double b = (double)(s >> 11) * 0x1p-53;
+                double a = next_uniform(&s), b = next_uniform(&s);
                 double q = ((double)(j->in_bin / j->sectors) + a) / j->rings;
                 double ph = 2.0 * PI * ((double)(j->in_bin % j->sectors) + b) / j->sectors;
                 d[0] = -sqrt(q) * cos(ph), d[1] = -sqrt(q) * sin(ph), d[2] = -sqrt(1.0 - q);
@@ -237,8 +252,9 @@ static int brdf_run(const ms_tracer *t, size_t n, const double *wi, int in_bin, 
                     int max_bounces, int threads, ms_brdf *r, char *err, size_t errn)
 {
     memset(r, 0, sizeof *r);
-    if ((wi ? !(wi[2] > 0.0) : in_bin < 0 || in_bin >= rings * sectors) || rays < 1 || rings < 1 || sectors < 1 || rings * sectors > 1 << 16 || threads < 1 ||
-        threads > 256 || max_bounces < 1) {
+    int bad_wi = wi ? !(wi[2] > 0.0) : in_bin < 0 || in_bin >= rings * sectors;
+    if (bad_wi || rays < 1 || rings < 1 || sectors < 1 || rings * sectors > 1 << 16 || threads < 1 || threads > 256 ||
+        max_bounces < 1) {
         snprintf(err, errn, "BRDF: a light above the plane, rays, bins, bounces and threads are required");
         return -1;
     }
@@ -249,10 +265,8 @@ static int brdf_run(const ms_tracer *t, size_t n, const double *wi, int in_bin, 
     r->single = calloc(2 * (size_t)bins, sizeof *r->single);
     long *counts = calloc(2 * (size_t)bins * (size_t)threads, sizeof *counts);
     brdf_job *jobs = calloc((size_t)threads, sizeof *jobs);
-    pthread_t *th = calloc((size_t)threads, sizeof *th);
-    int *made = calloc((size_t)threads, sizeof *made);
-    if (!r->single || !counts || !jobs || !th || !made) {
-        free(counts), free(jobs), free(th), free(made), ms_brdf_free(r);
+    if (!r->single || !counts || !jobs) {
+        free(counts), free(jobs), ms_brdf_free(r);
         snprintf(err, errn, "BRDF: out of memory");
         return -1;
     }
@@ -261,12 +275,11 @@ static int brdf_run(const ms_tracer *t, size_t n, const double *wi, int in_bin, 
         long *c = counts + 2 * (size_t)bins * (size_t)k;
         jobs[k] = (brdf_job){t, n, wi, in_bin, g, g * k / threads, g * (k + 1) / threads, rings, sectors,
                              max_bounces, c, c + bins, 0, 0};
-        if (k > 0) made[k] = pthread_create(&th[k], NULL, brdf_rows, &jobs[k]) == 0;
     }
-    brdf_rows(&jobs[0]);
-    for (int k = 1; k < threads; k++) {
-        if (made[k]) pthread_join(th[k], NULL);
-        else brdf_rows(&jobs[k]);
+    if (run_jobs(brdf_rows, jobs, sizeof *jobs, threads) != 0) {
+        free(counts), free(jobs), ms_brdf_free(r);
+        snprintf(err, errn, "BRDF: out of memory");
+        return -1;
     }
     for (int k = 0; k < threads; k++) {
         r->lost += jobs[k].lost, r->capped += jobs[k].capped;
@@ -275,7 +288,7 @@ static int brdf_run(const ms_tracer *t, size_t n, const double *wi, int in_bin, 
             r->all[b] += (double)jobs[k].all[b] / (double)r->rays;
         }
     }
-    free(counts), free(jobs), free(th), free(made);
+    free(counts), free(jobs);
     return 0;
 }
 

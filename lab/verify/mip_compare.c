@@ -120,8 +120,8 @@ int mc_compare(size_t w, size_t h, const ggx_vec3 *normals, const double *alpha,
     ggx_filter_options oe = {0}, of = {0};
     oe.threads = of.threads = threads;
     of.radial_nodes = 2, of.angular_nodes = 4, of.max_iterations = 1; /* ggx_filter.h's fast mode */
-    double *wcopy = malloc(n * sizeof *wcopy);
-    if (!wcopy) {
+    double *nw = malloc(n * sizeof *nw); /* the next level's weights */
+    if (!nw) {
         rc = fail(err, errn, "out of memory");
         goto done;
     }
@@ -147,7 +147,7 @@ int mc_compare(size_t w, size_t h, const ggx_vec3 *normals, const double *alpha,
                 if (nf_baseline((nf_kind)k, m, s[S_A2] / sw, ce + 2, &b[k]) != 0) {
                     rc = fail(err, errn, "level %d texel %zu: %s is not a shape (mean alpha^2 %g)", L, i, nf_name[k],
                               s[S_A2] / sw);
-                    free(wcopy);
+                    free(nw);
                     goto done;
                 }
             for (int v = 0; v < nviews; v++) {
@@ -178,28 +178,25 @@ int mc_compare(size_t w, size_t h, const ggx_vec3 *normals, const double *alpha,
         }
         if (w == 1 && h == 1) break;
         /* the next level: both chains from this one's lobes and weights, the sums by the same boxes */
-        memcpy(wcopy, wt, w * h * sizeof *wt);
-        double *nw = malloc(((w + 1) / 2) * ((h + 1) / 2) * sizeof *nw);
-        if (!nw || ggx_filter_downsample(next, nw, exact, wcopy, w, h, &oe) != GGX_OK) {
-            free(nw), free(wcopy);
+        if (ggx_filter_downsample(next, nw, exact, wt, w, h, &oe) != GGX_OK) {
+            free(nw);
             rc = fail(err, errn, "level %d: the filter failed", L + 1);
             goto done;
         }
         memcpy(exact, next, ((w + 1) / 2) * ((h + 1) / 2) * GGX_LOBE_PARAMS * sizeof *next);
-        if (ggx_filter_downsample(next, NULL, fast, wcopy, w, h, &of) != GGX_OK) {
-            free(nw), free(wcopy);
+        if (ggx_filter_downsample(next, NULL, fast, wt, w, h, &of) != GGX_OK) {
+            free(nw);
             rc = fail(err, errn, "level %d: the fast filter failed", L + 1);
             goto done;
         }
         memcpy(fast, next, ((w + 1) / 2) * ((h + 1) / 2) * GGX_LOBE_PARAMS * sizeof *next);
         memcpy(wt, nw, ((w + 1) / 2) * ((h + 1) / 2) * sizeof *nw);
-        free(nw);
         sums_down(sums, w, h, K, sums2);
         double *t = sums;
         sums = sums2, sums2 = t;
         w = (w + 1) / 2, h = (h + 1) / 2;
     }
-    free(wcopy);
+    free(nw);
 done:
     free(exact), free(fast), free(next), free(wt), free(sums), free(sums2);
     return rc;

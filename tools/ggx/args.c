@@ -87,6 +87,15 @@ int parse_direction(const char *text, ggx_vec3 *v)
     return 1;
 }
 
+/* The option's value as a whole number in [lo, hi]; dies "is not WHAT from LO to HI" otherwise. */
+static double whole_number(const char *a, const char *val, double lo, double hi, const char *what)
+{
+    double v;
+    parse_list(a, val, &v, 1);
+    if (!(v >= lo && v <= hi) || v != floor(v)) die("%s: '%s' is not %s from %.0f to %.0f", a, val, what, lo, hi);
+    return v;
+}
+
 static int allowed_has(const char *allowed, const char *name)
 {
     size_t n = strlen(name);
@@ -257,21 +266,11 @@ void parse_options(int argc, char **argv, int first, options *o, const char *all
         } else if (strcmp(key, "strategy") == 0) {
             o->strategy = val;
         } else if (strcmp(key, "spp") == 0) {
-            double v;
-            parse_list(a, val, &v, 1);
-            if (!(v >= 1 && v <= 1048576) || v != floor(v))
-                die("%s: '%s' is not a number of samples per pixel from 1 to 1048576", a, val);
-            o->spp = (long)v;
+            o->spp = (long)whole_number(a, val, 1, 1048576, "a number of samples per pixel");
         } else if (strcmp(key, "depth") == 0) {
-            double v;
-            parse_list(a, val, &v, 1);
-            if (!(v >= 1 && v <= 1024) || v != floor(v)) die("%s: '%s' is not a path depth from 1 to 1024", a, val);
-            o->depth = (int)v;
+            o->depth = (int)whole_number(a, val, 1, 1024, "a path depth");
         } else if (strcmp(key, "bounces") == 0) {
-            double v;
-            parse_list(a, val, &v, 1);
-            if (!(v >= 1 && v <= 10000) || v != floor(v)) die("%s: '%s' is not a number of bounces from 1 to 10000", a, val);
-            o->bounces = (int)v;
+            o->bounces = (int)whole_number(a, val, 1, 10000, "a number of bounces");
         } else if (strcmp(key, "exposure") == 0) {
             parse_list(a, val, &o->exposure, 1);
             if (!(fabs(o->exposure) <= 30)) die("%s: '%s' is not an exposure in stops within [-30, 30]", a, val);
@@ -282,19 +281,11 @@ void parse_options(int argc, char **argv, int first, options *o, const char *all
             parse_list(a, val, dst, 1);
             if (!(*dst > 0)) die("%s: '%s' is not a positive length", a, val);
         } else if (strcmp(key, "period") == 0) {
-            double v;
-            parse_list(a, val, &v, 1);
-            if (!(v >= 2 && v <= 4096) || v != floor(v)) die("%s: '%s' is not a whole number from 2 to 4096", a, val);
-            o->period = (int)v;
+            o->period = (int)whole_number(a, val, 2, 4096, "a whole number");
         } else if (strcmp(key, "level") == 0) {
-            double v;
-            parse_list(a, val, &v, 1);
-            if (!(v >= 0 && v <= 64) || v != floor(v)) die("%s: '%s' is not a level from 0 to 64", a, val);
-            o->level = (int)v;
+            o->level = (int)whole_number(a, val, 0, 64, "a level");
         } else if (strcmp(key, "downsample") == 0 || strcmp(key, "threads") == 0) {
-            double v;
-            parse_list(a, val, &v, 1);
-            if (!(v >= 1 && v <= 256) || v != floor(v)) die("%s: '%s' is not a whole number from 1 to 256", a, val);
+            double v = whole_number(a, val, 1, 256, "a whole number");
             if (key[0] == 'd') o->downsample = (int)v;
             else o->threads = (int)v;
         } else {

@@ -105,6 +105,8 @@ typedef struct out_file {
 void out_open(out_file *o, const char *path);
 void out_close(out_file *o); /* flush, check, rename; dies on error */
 void out_check(out_file *o); /* dies (or ends quietly on EPIPE) if a write has failed: for long outputs */
+/* out_open, the n bytes of data, out_close: a file made whole in memory (an encoded image), put in place the same way */
+void out_write_file(const char *path, const unsigned char *data, size_t n);
 void out_stdout_failed(void); /* a failed write to stdout: exit 141 on EPIPE, else die */
 void out_flush_stdout(void);  /* flushes stdout, out_stdout_failed() on any error so far */
 /* A set of files written all or none: after out_begin_set, out_close keeps each finished file under its temporary

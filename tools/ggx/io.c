@@ -232,6 +232,14 @@ void out_close(out_file *o)
     memset(o, 0, sizeof *o);
 }
 
+void out_write_file(const char *path, const unsigned char *data, size_t n)
+{
+    out_file f;
+    out_open(&f, path);
+    if (fwrite(data, 1, n, f.f) != n) out_check(&f);
+    out_close(&f);
+}
+
 void out_begin_set(void) { set_open = 1; }
 
 void out_commit_set(void)

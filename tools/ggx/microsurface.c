@@ -28,10 +28,7 @@ static void write_heights(const char *path, double *h, size_t n)
     int rc = x3p ? surface_encode_x3p(&s, &data, &bytes, err, sizeof err)
                  : surface_encode_exr(&s, &data, &bytes, err, sizeof err);
     if (rc != 0) die("cannot write '%s': %s", path, err);
-    out_file f;
-    out_open(&f, path);
-    if (fwrite(data, 1, bytes, f.f) != bytes) out_check(&f);
-    out_close(&f);
+    out_write_file(path, data, bytes);
     free(data);
 }
 

@@ -44,10 +44,7 @@ static void write_level(const char *path, const double *lobes, const double *w, 
     if (surface_encode_exr_channels(nx, ny, GGX_LOBE_PARAMS + 1, CHANNELS, plane, &data, &n, err, sizeof err) != 0)
         die("cannot write '%s': %s", path, err);
     for (int k = 0; k <= GGX_LOBE_PARAMS; k++) free(plane[k]);
-    out_file out;
-    out_open(&out, path);
-    if (fwrite(data, 1, n, out.f) != n) out_check(&out);
-    out_close(&out);
+    out_write_file(path, data, n);
     free(data);
 }
 

@@ -122,14 +122,6 @@ static void light_from_options(const options *o, render_spec *r, render_env *env
     r->env = env;
 }
 
-static void write_bytes(const char *path, const unsigned char *data, size_t n)
-{
-    out_file f;
-    out_open(&f, path);
-    if (fwrite(data, 1, n, f.f) != n) out_check(&f);
-    out_close(&f);
-}
-
 int cmd_render(int argc, char **argv)
 {
     for (int i = 2; i < argc; i++)
@@ -240,7 +232,7 @@ int cmd_render(int argc, char **argv)
         int rc = kind == OUT_EXR ? surface_encode_exr(&img, &data, &n, err, sizeof err)
                                  : surface_encode_pfm(&img, &data, &n, err, sizeof err);
         if (rc != 0) die("cannot write '%s': %s", path, err);
-        write_bytes(path, data, n);
+        out_write_file(path, data, n);
         free(data);
     }
     free(rgb);
