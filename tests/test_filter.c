@@ -368,7 +368,11 @@ static void optimum_and_baselines(void **state)
             }
         /* the fast mode (ggx_filter.h): one iteration over 2 x 4 nodes per lobe */
         ggx_filter_options fast = {0};
-        fast.radial_nodes = 2, fast.angular_nodes = 4, fast.max_iterations = 1;
+        fast.tolerance = 1e-3, fast.threads = 3; /* kept by ggx_filter_options_fast */
+        CHECK(ggx_filter_options_fast(&fast) == GGX_OK && fast.radial_nodes == 2 && fast.angular_nodes == 4 &&
+                  fast.max_iterations == 1 && fast.tolerance == 1e-3 && fast.threads == 3,
+              "ggx_filter_options_fast");
+        CHECK(ggx_filter_options_fast(NULL) == GGX_ERR_NULL, "NULL options");
         ggx_shape sf;
         CHECK(ggx_filter_lobes(&sf, f->lobe, f->w, (size_t)f->n, &fast, NULL) == GGX_OK, "fast");
         double kf = kl_of(&sf, f);

@@ -119,7 +119,7 @@ int mc_compare(size_t w, size_t h, const ggx_vec3 *normals, const double *alpha,
     }
     ggx_filter_options oe = {0}, of = {0};
     oe.threads = of.threads = threads;
-    of.radial_nodes = 2, of.angular_nodes = 4, of.max_iterations = 1; /* ggx_filter.h's fast mode */
+    ggx_filter_options_fast(&of);
     double *nw = malloc(n * sizeof *nw); /* the next level's weights */
     if (!nw) {
         rc = fail(err, errn, "out of memory");

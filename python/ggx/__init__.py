@@ -1279,8 +1279,8 @@ def _lobes(lobes, weights):
 
 def _filter_options(max_iterations, tolerance, nodes, fast=False):
     o = _FilterOptions(0, 0.0, 0, 0, 0)
-    if fast:  # the fast mode of ggx_filter.h: one EM step over 2 x 4 nodes, unless these are given
-        o.max_iterations, o.radial_nodes, o.angular_nodes = 1, 2, 4
+    if fast:  # ggx_filter_options_fast: one EM step over 2 x 4 nodes, unless these are given
+        _check(_filter_options_fast(ctypes.byref(o)))
     if max_iterations is not None:
         o.max_iterations = int(max_iterations)
     if tolerance is not None:
@@ -1320,6 +1320,7 @@ def filter_kl(shape, lobes, weights=None, nodes=None):
 
 
 _filter_downsample = _proto("ggx_filter_downsample", _i, _vp, _vp, _vp, _vp, _sz, _sz, ctypes.POINTER(_FilterOptions))
+_filter_options_fast = _proto("ggx_filter_options_fast", _i, ctypes.POINTER(_FilterOptions))
 _texel_lobes = _proto("ggx_texel_lobes", _i, _vp, _vp, _vp, _sz, _d, _d, _d, _vp)
 _texel_lobes_roughness = _proto("ggx_texel_lobes_roughness", _i, _vp, _vp, _vp, _vp, _vp, _sz, _d, _vp)
 

@@ -26,6 +26,13 @@ ggx_status filter_settings_of(const ggx_filter_options *opt, filter_settings *f)
     return GGX_OK;
 }
 
+GGX_API ggx_status ggx_filter_options_fast(ggx_filter_options *o)
+{
+    if (!o) return GGX_ERR_NULL;
+    o->radial_nodes = 2, o->angular_nodes = 4, o->max_iterations = 1;
+    return GGX_OK;
+}
+
 ggx_status filter_rule_make(const filter_settings *f, filter_rule *r)
 {
     int nr = f->radial, na = f->angular;

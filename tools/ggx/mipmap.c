@@ -172,7 +172,7 @@ int cmd_mipmap(int argc, char **argv)
     if (made) made_dir = dir, atexit(remove_made_dir);
     ggx_filter_options fo = {0};
     fo.threads = o.threads > 0 ? o.threads : 1;
-    if (o.fast) fo.radial_nodes = 2, fo.angular_nodes = 4, fo.max_iterations = 1; /* ggx_filter.h's fast mode */
+    if (o.fast) ggx_filter_options_fast(&fo);
     char rough[600];
     if (o.roughness_map) snprintf(rough, sizeof rough, "roughness %s%s", o.roughness_map, o.perceptual ? " (perceptual)" : "");
     else snprintf(rough, sizeof rough, "alpha %g, %g", o.alpha[0], o.alpha[1]);
