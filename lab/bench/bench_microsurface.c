@@ -70,7 +70,7 @@ int main(void)
             continue;
         }
         double t1 = now();
-        ms_tracer *t = ms_tracer_new(h, n, err, sizeof err);
+        ms_tracer *t = ms_tracer_new(h, n, NULL, err, sizeof err);
         double t2 = now();
         free(h);
         if (!t) {

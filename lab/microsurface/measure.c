@@ -59,11 +59,13 @@ static int run_jobs(void *(*fn)(void *), void *jobs, size_t size, int count)
     return 0;
 }
 
-/* the slopes of the two triangles of cell (x, y) */
-static void cell_slopes(const double *h, size_t n, size_t x, size_t y, double s[2][2])
+/* the slopes of the two triangles of cell (x, y), the heights across the tile's sides raised by the tilt times n
+ * (tilt may be NULL: none) */
+static void cell_slopes(const double *h, size_t n, const double *tilt, size_t x, size_t y, double s[2][2])
 {
     size_t x1 = (x + 1) % n, y1 = (y + 1) % n;
-    double h00 = h[y * n + x], h10 = h[y * n + x1], h01 = h[y1 * n + x], h11 = h[y1 * n + x1];
+    double ex = tilt && x1 == 0 ? tilt[0] * (double)n : 0.0, ey = tilt && y1 == 0 ? tilt[1] * (double)n : 0.0;
+    double h00 = h[y * n + x], h10 = h[y * n + x1] + ex, h01 = h[y1 * n + x] + ey, h11 = h[y1 * n + x1] + ex + ey;
     s[0][0] = h10 - h00, s[0][1] = h01 - h00;
     s[1][0] = h11 - h01, s[1][1] = h11 - h10;
 }
@@ -74,38 +76,82 @@ static void normal_of(const double s[2], double m[3])
     m[0] = -s[0] / l, m[1] = -s[1] / l, m[2] = 1.0 / l;
 }
 
-/* the facets' projected area towards v per bin (area may be NULL) and in all, G1 of the facets, and their slopes'
- * covariance (cov may be NULL) */
-static void facets_towards(const double *h, size_t n, const double v[3], int rings, int sectors, double *area,
-                           double cov[3], double *g1)
+/* Which axes of a sawtooth of period P have risers: the axis where the cells of columns (rows) P - 1 mod P step by
+ * more than 1 on average against the others (a step steeper than 45 degrees). */
+static void riser_axes(const double *h, size_t n, size_t P, int axes[2])
 {
-    double total = 0.0, mx = 0.0, my = 0.0, sxx = 0.0, sxy = 0.0, syy = 0.0, tile = (double)n * (double)n;
+    axes[0] = axes[1] = 0;
+    if (P < 2 || n % P != 0) return;
+    for (int ax = 0; ax < 2; ax++) {
+        double on = 0.0, off = 0.0;
+        for (size_t y = 0; y < n; y++)
+            for (size_t x = 0; x < n; x++) {
+                size_t i = ax == 0 ? x : y;
+                double d = ax == 0 ? h[y * n + (x + 1) % n] - h[y * n + x] : h[((y + 1) % n) * n + x] - h[y * n + x];
+                if (i % P == P - 1) on += d;
+                else off += d;
+            }
+        axes[ax] = fabs(on / ((double)n * (double)(n / P)) - off / ((double)n * (double)(n - n / P))) > 1.0;
+    }
+}
+
+static int is_riser(size_t P, const int axes[2], size_t x, size_t y)
+{
+    return P >= 2 && ((axes[0] && x % P == P - 1) || (axes[1] && y % P == P - 1));
+}
+
+int ms_riser_cell(const ms_g1 *r, size_t n, size_t cell)
+{
+    size_t x = cell % n, y = cell / n, px = r->risers[0], py = r->risers[1];
+    return (px >= 2 && x % px == px - 1) || (py >= 2 && y % py == py - 1);
+}
+
+/* the footprint's projected area towards v per unit tile area: v.z, less the tilt's share */
+static double footprint(const double *tilt, const double v[3])
+{
+    return tilt ? v[2] - tilt[0] * v[0] - tilt[1] * v[1] : v[2];
+}
+
+/* the facets off the risers: their projected area towards v per bin (area may be NULL) and their slopes' mean and
+ * covariance (mean, cov may be NULL); the risers' projected area towards v (riser may be NULL); G1 of all facets */
+static void facets_towards(const double *h, size_t n, const double *tilt, size_t P, const int axes[2],
+                           const double v[3], int rings, int sectors, double *area, double mean[2], double cov[3],
+                           double *riser, double *g1)
+{
+    double total = 0.0, mx = 0.0, my = 0.0, sxx = 0.0, sxy = 0.0, syy = 0.0, rs = 0.0, cnt = 0.0;
+    double tile = (double)n * (double)n;
     for (size_t y = 0; y < n; y++)
         for (size_t x = 0; x < n; x++) {
             double sl[2][2];
-            cell_slopes(h, n, x, y, sl);
+            int vertical = is_riser(P, axes, x, y);
+            cell_slopes(h, n, tilt, x, y, sl);
             for (int k = 0; k < 2; k++) {
                 double a = 0.5 * (v[2] - sl[k][0] * v[0] - sl[k][1] * v[1]), m[3];
-                mx += sl[k][0], my += sl[k][1];
+                if (a > 0.0) total += a;
+                if (vertical) {
+                    if (a > 0.0) rs += a / tile;
+                    continue;
+                }
+                cnt += 1.0, mx += sl[k][0], my += sl[k][1];
                 sxx += sl[k][0] * sl[k][0], sxy += sl[k][0] * sl[k][1], syy += sl[k][1] * sl[k][1];
-                if (a <= 0.0) continue;
-                if (area) {
+                if (a > 0.0 && area) {
                     normal_of(sl[k], m);
                     area[ms_bin(m, rings, sectors)] += a / tile;
                 }
-                total += a;
             }
         }
-    double cnt = 2.0 * tile;
     mx /= cnt, my /= cnt;
+    if (mean) mean[0] = mx, mean[1] = my;
     if (cov) cov[0] = sxx / cnt - mx * mx, cov[1] = sxy / cnt - mx * my, cov[2] = syy / cnt - my * my;
-    *g1 = tile * v[2] / total;
+    if (riser) *riser = rs;
+    *g1 = tile * footprint(tilt, v) / total;
 }
 
-double ms_facets_g1(const double *h, size_t n, const double v[3])
+double ms_facets_g1(const double *h, size_t n, const double tilt[2], const double v[3])
 {
     double g1;
-    facets_towards(h, n, v, 1, 1, NULL, NULL, &g1);
+    int axes[2] = {0, 0};
+    facets_towards(h, n, tilt, 0, axes, v, 1, 1, NULL, NULL, NULL, NULL, &g1);
     return g1;
 }
 
@@ -113,10 +159,12 @@ typedef struct g1_job {
     const ms_tracer *t;
     const double *h;
     size_t n;
-    const double *v;
+    const double *v, *tilt;
+    size_t P;
+    const int *axes;
     long g, row0, row1;
     int bins, rings, sectors;
-    long *hits, missed;
+    long *hits, missed, riser_hits;
 } g1_job;
 
 static void *g1_rows(void *p)
@@ -135,8 +183,12 @@ static void *g1_rows(void *p)
                 continue;
             }
             size_t cx = hit.cell % j->n, cy = hit.cell / j->n;
+            if (is_riser(j->P, j->axes, cx, cy)) {
+                j->riser_hits++;
+                continue;
+            }
             double fx = hit.p[0] - (double)cx, fy = hit.p[1] - (double)cy, sl[2][2], m[3];
-            cell_slopes(j->h, j->n, cx, cy, sl);
+            cell_slopes(j->h, j->n, j->tilt, cx, cy, sl);
             normal_of(sl[fx + fy < 1.0 ? 0 : 1], m);
             j->hits[ms_bin(m, j->rings, j->sectors)]++;
         }
@@ -150,9 +202,22 @@ void ms_g1_free(ms_g1 *r)
 }
 
 int ms_measure_g1(const ms_tracer *t, const double *h, size_t n, const double v[3], long rays, int rings, int sectors,
-                  int threads, ms_g1 *r, char *err, size_t errn)
+                  size_t risers, int threads, ms_g1 *r, char *err, size_t errn)
 {
     memset(r, 0, sizeof *r);
+    double tilt[2];
+    ms_tracer_tilt(t, tilt);
+    int axes[2];
+    if (risers != 0 && (risers < 2 || n % risers != 0 || risers > n / 2)) {
+        snprintf(err, errn, "masking: a sawtooth's period must divide the size and be from 2 to half of it");
+        return -1;
+    }
+    riser_axes(h, n, risers, axes);
+    r->risers[0] = axes[0] ? risers : 0, r->risers[1] = axes[1] ? risers : 0;
+    if (!(footprint(tilt, v) > 0.0)) {
+        snprintf(err, errn, "masking: the view must be above the tilted plane");
+        return -1;
+    }
     if (!(v[2] > 0.0) || rays < 1 || rings < 1 || sectors < 1 || rings * sectors > 1 << 16 || threads < 1 ||
         threads > 256) {
         snprintf(err, errn, "masking: a view above the plane, rays, bins and threads are required");
@@ -169,23 +234,30 @@ int ms_measure_g1(const ms_tracer *t, const double *h, size_t n, const double v[
         return -1;
     }
     r->visible = r->area + bins;
-    facets_towards(h, n, v, rings, sectors, r->area, r->slope_cov, &r->g1);
+    facets_towards(h, n, tilt, risers, axes, v, rings, sectors, r->area, r->slope_mean, r->slope_cov,
+                   &r->riser_area, &r->g1);
     long g = (long)ceil(sqrt((double)rays));
     if (threads > g) threads = (int)g;
     for (int k = 0; k < threads; k++)
-        jobs[k] = (g1_job){t, h, n, v, g, g * k / threads, g * (k + 1) / threads, bins, rings, sectors,
-                           hits + (size_t)k * (size_t)bins, 0};
+        jobs[k] = (g1_job){t, h, n, v, tilt, risers, axes, g, g * k / threads, g * (k + 1) / threads, bins, rings,
+                           sectors, hits + (size_t)k * (size_t)bins, 0, 0};
     if (run_jobs(g1_rows, jobs, sizeof *jobs, threads) != 0) {
         free(hits), free(jobs), ms_g1_free(r);
         snprintf(err, errn, "masking: out of memory");
         return -1;
     }
     r->rays = g * g;
-    double per = v[2] / (double)r->rays; /* each ray's projected area, per unit tile area */
+    /* each ray's projected area, per unit tile area: the rays from above the tile see the footprint of one tile
+     * (of a tilted patch too: its surface repeats, tile after tile, under parallel rays) */
+    double per = footprint(tilt, v) / (double)r->rays, seen = 0.0, front = 0.0;
+    long riser_hits = 0;
     for (int k = 0; k < threads; k++) {
-        r->missed += jobs[k].missed;
+        r->missed += jobs[k].missed, riser_hits += jobs[k].riser_hits;
         for (int b = 0; b < bins; b++) r->visible[b] += per * (double)hits[(size_t)k * (size_t)bins + (size_t)b];
     }
+    for (int b = 0; b < bins; b++) seen += r->visible[b], front += r->area[b];
+    r->riser_visible = per * (double)riser_hits;
+    r->g1_off_risers = seen / front;
     free(hits), free(jobs);
     return 0;
 }

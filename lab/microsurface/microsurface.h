@@ -6,6 +6,8 @@
 #include <stddef.h>
 #include <stdint.h>
 
+#include "ggx/ggx.h"
+
 /* A Gaussian random field whose facets have Beckmann slopes: every forward difference (h(x+1, y) - h(x, y),
  * h(x, y+1) - h(x, y)), the slopes of the triangles of both triangulations of a cell, is Gaussian with covariance
  * Sigma_s = half the slope scale of ggx_shape_ellipsoid(alpha_x, alpha_y, 0, 0, phi) (ggx_shape_slopes: Sigma_xx =
@@ -66,15 +68,20 @@ typedef struct ms_hit {
     size_t cell;     /* the cell hit: y n + x */
 } ms_hit;
 
-/* The tracer of h (n x n, kept by copy in single precision); NULL with err where Embree is not built or fails. */
-ms_tracer *ms_tracer_new(const double *h, size_t n, char *err, size_t errn);
+/* The tracer of h (n x n, kept by copy in single precision); NULL with err where Embree is not built or fails.
+ * tilt NULL: the tile repeats as it is; else an infinite tilted patch: the tile repeats raised by tilt[0] n a tile
+ * along x and tilt[1] n along y (h(x + n, y) = h(x, y) + tilt[0] n), finite, at most 100 in size. */
+ms_tracer *ms_tracer_new(const double *h, size_t n, const double tilt[2], char *err, size_t errn);
 void ms_tracer_free(ms_tracer *t);
-/* The heights' range, for rays that start above the surface. */
+/* The heights' range over the tile's column, for rays that start above the surface there. */
 void ms_tracer_bounds(const ms_tracer *t, double *zmin, double *zmax);
+/* The tilt it was made with (0, 0 for none). */
+void ms_tracer_tilt(const ms_tracer *t, double tilt[2]);
 /* The first hit of the ray (o, d) on the tiled surface beyond a distance of 1e-4 (so that a ray leaving a hit point
- * does not hit its own facet): 1 and *hit, or 0 where the ray escapes (it is above the surface's top going up, or
- * d.z = 0 above it), or -1 where it leaves below the surface's bottom (which a tracer that works never does). The
- * tracer may be used from any number of threads at once. */
+ * does not hit its own facet): 1 and *hit (its height that of the tile's copy at x, y in [0, n)), or 0 where the
+ * ray escapes (it is above the surface's top going up from the mean plane, or along it), or -1 where it leaves
+ * below the surface's bottom (which a tracer that works never does). The tracer may be used from any number of
+ * threads at once. */
 int ms_trace(const ms_tracer *t, const double o[3], const double d[3], ms_hit *hit);
 
 /* ---- masking measured (measure.c) ----
@@ -84,8 +91,15 @@ int ms_trace(const ms_tracer *t, const double o[3], const double d[3], ms_hit *h
  * area 1/2 and projected area (v.z - s.v_xy) / 2 towards v where that is positive (front-facing).
  * Normals are binned into rings of equal sin^2(theta_m) (rings of them in [0, 1]) times sectors of equal azimuth. */
 typedef struct ms_g1 {
-    double g1;            /* G1(v) of the facets: n^2 v.z / (their projected area towards v), exact for a height field */
-    double slope_cov[3];  /* the facets' slope covariance (the mean removed), for Beckmann's Smith form */
+    double g1;            /* G1(v) of all the facets: n^2 f / (their projected area towards v), exact for a height
+                           * field, f = v.z - tilt . (v.x, v.y) the footprint's projected area per unit tile area */
+    double g1_off_risers; /* G1(v) of the facets off a sawtooth's risers: their visible share by the rays (g1 to
+                           * Monte Carlo error where there are none) */
+    double riser_area, riser_visible; /* the risers' projected area towards v, and the part of it the rays see first,
+                                       * per unit tile area (0 where there are none) */
+    size_t risers[2];     /* the sawtooth's period along x and y where that axis has risers, else 0 */
+    double slope_mean[2]; /* the slopes' mean of the facets off the risers (the tilted patch's or ramp's tilt) */
+    double slope_cov[3];  /* and their covariance (the mean removed), for Beckmann's Smith form */
     long rays, missed;    /* rays traced from above on a jittered grid, and those that hit nothing (0 if it works) */
     int rings, sectors;
     double *area;         /* per bin: the facets' projected area towards v (front-facing), per unit tile area */
@@ -93,9 +107,13 @@ typedef struct ms_g1 {
 } ms_g1;
 
 /* Traces about rays rays (a jittered grid of g x g origins, g = ceil(sqrt(rays))) from above along -v on threads
- * threads and fills r (ms_g1_free releases it). Returns 0 or -1 with err. */
+ * threads and fills r (ms_g1_free releases it); the tracer's tilt applies (the tile's differences across its sides
+ * raised by it). risers: 0, or the period P of a sawtooth (P divides n, 2 <= P <= n / 2; ms_ramp's), whose cells in
+ * the columns x = P - 1 mod P are its risers where their x differences step from the others' by more than 1 on
+ * average (a step steeper than 45 degrees), and likewise the rows along y; their facets are counted apart from the
+ * others' (bins, covariance, g1_off_risers). Returns 0 or -1 with err (the view not above the tilted plane). */
 int ms_measure_g1(const ms_tracer *t, const double *h, size_t n, const double v[3], long rays, int rings, int sectors,
-                  int threads, ms_g1 *r, char *err, size_t errn);
+                  size_t risers, int threads, ms_g1 *r, char *err, size_t errn);
 void ms_g1_free(ms_g1 *r);
 /* The BRDF of the tiled surface with F = 1, traced: rays from wi (a jittered grid of origins) reflect specularly at
  * every facet they meet until they escape, at most max_bounces times. Outgoing directions are binned in rings of
@@ -116,12 +134,40 @@ int ms_measure_brdf_from_bin(const ms_tracer *t, size_t n, int bin, long rays, i
                              int max_bounces, int threads, ms_brdf *r, char *err, size_t errn);
 void ms_brdf_free(ms_brdf *r);
 
-/* G1(v) of the facets alone (ms_g1's g1, no rays): n^2 v.z over their projected area towards v. */
-double ms_facets_g1(const double *h, size_t n, const double v[3]);
+/* G1(v) of the facets alone (ms_g1's g1, no rays): n^2 f over their projected area towards v, f the footprint's as
+ * in ms_g1 (tilt as for ms_tracer_new, may be NULL). */
+double ms_facets_g1(const double *h, size_t n, const double tilt[2], const double v[3]);
 /* Smith's G1(v) for Beckmann slopes of covariance cov (Sxx, Sxy, Syy, the mean removed): 1 / (1 + Lambda(a)),
  * Lambda(a) = (erf(a) - 1) / 2 + exp(-a^2) / (2 a sqrt(pi)), a = 1 / (alpha_phi tan theta), alpha_phi^2 = 2 u^T cov u
  * for the unit azimuth u of v. */
 double ms_beckmann_g1(const double cov[3], const double v[3]);
+/* ---- skewed surfaces (skew.c) ----
+ * A skewed ellipsoid's slopes have a location t (ggx_shape_slopes), the mean slope of its facets, which no periodic
+ * height field has. Two surfaces carry it: a tilted patch, a field g plus the plane t . (x, y), repeated as an
+ * infinite tilted surface (ms_tracer_new's tilt); and a sawtooth, the ramp t . (x mod P, y mod P) over g, periodic,
+ * whose steps back down at x = P - 1 mod P (and y) are risers: near-vertical facets on 1 / P of the cells (Walter's
+ * remedy, section 5.1 of the seed: vertical area that brings the mean normal back to n).
+ * ms_ramp adds tx (x mod P) + ty (y mod P) to h; period 0: P = n, the tilted patch's plane over the tile. Returns 0,
+ * or -1 with err (slopes not finite or above 100, P below 2 or not dividing n). */
+int ms_ramp(double *h, size_t n, double tx, double ty, size_t period, char *err, size_t errn);
+
+/* The masking forms for a skewed shape s (slopes of location t and scale Sigma), unit v above the plane (else 0):
+ * - ms_g1_vertical_facets: Walter's remedy with Smith's masking: the facets of D and vertical facets of area |t| per
+ *   unit area facing along t, all masked alike, so that the visible projected area is v.z:
+ *   G1 = v.z / (v.z (1 + ggx_lambda(s, v)) + max(t . v_xy, 0));
+ * - ms_g1_tilted_base: Smith's masking of the roughness about the tilted mean plane: a vertical shear
+ *   z' = z - t . (x, y) takes the tilted surface to the unskewed one of scale Sigma and v to
+ *   v' = (v_xy, v.z - t . v_xy) / |...|, keeping what is seen; G1 = ggx_g1_smith(shape of (0, Sigma), v'),
+ *   0 where v' is at or below the plane;
+ * - ms_g1_sawtooth: min(ggx_g1_smith(s, v), ms_g1_tilted_base(s, v)): the ramp's facets of a sawtooth of long
+ *   period, whose risers mask the ramp behind them (t . v_xy < 0: the Smith form of eq 32, without Walter's min) and
+ *   otherwise face v unmasked, leaving the ramp the tilted plane's masking (docs/design/microsurface.md). */
+double ms_g1_vertical_facets(const ggx_shape *s, const double v[3]);
+double ms_g1_tilted_base(const ggx_shape *s, const double v[3]);
+double ms_g1_sawtooth(const ggx_shape *s, const double v[3]);
+
+/* 1 where cell (y n + x) of an n x n tile is one of the risers that ms_measure_g1 found (r->risers), else 0. */
+int ms_riser_cell(const ms_g1 *r, size_t n, size_t cell);
 /* The bin of a unit normal m (m.z > 0). */
 int ms_bin(const double m[3], int rings, int sectors);
 

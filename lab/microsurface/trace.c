@@ -14,11 +14,17 @@ struct ms_tracer {
     RTCDevice device;
     RTCScene scene;
     size_t n;
-    double zmin, zmax;
+    double tilt[2];
+    double zmin, zmax; /* the heights' range over the tile's column, its border included */
+    double rmin, rmax; /* the range of z - tilt . (x, y) over the surface: the band the rays cross */
 };
 
-ms_tracer *ms_tracer_new(const double *h, size_t n, char *err, size_t errn)
+ms_tracer *ms_tracer_new(const double *h, size_t n, const double tilt[2], char *err, size_t errn)
 {
+    if (tilt && !(isfinite(tilt[0]) && isfinite(tilt[1]) && fabs(tilt[0]) <= 100.0 && fabs(tilt[1]) <= 100.0)) {
+        snprintf(err, errn, "tracer: a finite tilt of at most 100");
+        return NULL;
+    }
     if (n < 2 || n > 16384) { /* one grid primitive: at most 32767 vertices a side */
         snprintf(err, errn, "tracer: a size from 2 to 16384");
         return NULL;
@@ -29,6 +35,7 @@ ms_tracer *ms_tracer_new(const double *h, size_t n, char *err, size_t errn)
         return NULL;
     }
     t->n = n;
+    if (tilt) t->tilt[0] = tilt[0], t->tilt[1] = tilt[1];
     t->device = rtcNewDevice(NULL);
     if (!t->device) {
         snprintf(err, errn, "tracer: Embree did not start (error %d)", (int)rtcGetDeviceError(NULL));
@@ -53,13 +60,18 @@ ms_tracer *ms_tracer_new(const double *h, size_t n, char *err, size_t errn)
         ms_tracer_free(t);
         return NULL;
     }
-    t->zmin = HUGE_VAL, t->zmax = -HUGE_VAL;
+    t->zmin = t->rmin = HUGE_VAL, t->zmax = t->rmax = -HUGE_VAL;
     for (size_t y = 0; y < side; y++)
         for (size_t x = 0; x < side; x++) {
-            double z = h[((y + n - 1) % n) * n + (x + n - 1) % n];
+            /* vertex (x - 1, y - 1): the tile's height there, raised by the tilt times the tiles crossed */
+            double X = (double)x - 1.0, Y = (double)y - 1.0;
+            double wx = X < 0.0 ? -1.0 : X >= (double)n ? 1.0 : 0.0, wy = Y < 0.0 ? -1.0 : Y >= (double)n ? 1.0 : 0.0;
+            double z = h[((y + n - 1) % n) * n + (x + n - 1) % n] + (t->tilt[0] * wx + t->tilt[1] * wy) * (double)n;
             float *p = v + 3 * (y * side + x);
-            p[0] = (float)x - 1.0f, p[1] = (float)y - 1.0f, p[2] = (float)z;
+            p[0] = (float)X, p[1] = (float)Y, p[2] = (float)z;
+            double r = (double)p[2] - t->tilt[0] * X - t->tilt[1] * Y;
             t->zmin = fmin(t->zmin, (double)p[2]), t->zmax = fmax(t->zmax, (double)p[2]);
+            t->rmin = fmin(t->rmin, r), t->rmax = fmax(t->rmax, r);
         }
     grid->startVertexID = 0, grid->stride = (unsigned)side;
     grid->width = (unsigned short)side, grid->height = (unsigned short)side;
@@ -85,20 +97,26 @@ void ms_tracer_free(ms_tracer *t)
 
 void ms_tracer_bounds(const ms_tracer *t, double *zmin, double *zmax) { *zmin = t->zmin, *zmax = t->zmax; }
 
+void ms_tracer_tilt(const ms_tracer *t, double tilt[2]) { tilt[0] = t->tilt[0], tilt[1] = t->tilt[1]; }
+
 int ms_trace(const ms_tracer *t, const double o[3], const double d[3], ms_hit *hit)
 {
-    double n = (double)t->n, x = o[0] - n * floor(o[0] / n), y = o[1] - n * floor(o[1] / n), z = o[2];
+    double n = (double)t->n, kx = floor(o[0] / n), ky = floor(o[1] / n);
+    double x = o[0] - n * kx, y = o[1] - n * ky, z = o[2] - (t->tilt[0] * kx + t->tilt[1] * ky) * n;
     struct RTCIntersectContext ctx;
     rtcInitIntersectContext(&ctx);
+    /* the ray's height over the tilted plane z = tilt . (x, y), and its rate along the ray */
+    double tx0 = t->tilt[0], ty0 = t->tilt[1], dr = d[2] - tx0 * d[0] - ty0 * d[1];
     for (int step = 0; step < 1 << 20; step++) {
-        if (d[2] >= 0.0 && z > t->zmax) return 0;
-        if (d[2] < 0.0 && z < t->zmin) return -1;
-        /* the ray's part inside this tile's column: up to where it leaves a side (or the heights' slab) */
+        double r = z - tx0 * x - ty0 * y;
+        if (dr >= 0.0 && r > t->rmax) return 0;
+        if (dr < 0.0 && r < t->rmin) return -1;
+        /* the ray's part inside this tile's column: up to where it leaves a side (or the heights' band) */
         double tx = d[0] > 0.0 ? (n - x) / d[0] : d[0] < 0.0 ? -x / d[0] : HUGE_VAL;
         double ty = d[1] > 0.0 ? (n - y) / d[1] : d[1] < 0.0 ? -y / d[1] : HUGE_VAL;
-        double tz = d[2] > 0.0 ? (t->zmax - z) / d[2] : d[2] < 0.0 ? (t->zmin - z) / d[2] : HUGE_VAL;
+        double tz = dr > 0.0 ? (t->rmax - r) / dr : dr < 0.0 ? (t->rmin - r) / dr : HUGE_VAL;
         double tend = fmin(fmin(tx, ty), tz);
-        if (!(tend < HUGE_VAL)) return 0; /* horizontal, inside the slab, along no side: cannot happen */
+        if (!(tend < HUGE_VAL)) return 0; /* along the plane, inside the band, along no side: cannot happen */
         struct RTCRayHit rh;
         rh.ray.org_x = (float)x, rh.ray.org_y = (float)y, rh.ray.org_z = (float)z;
         rh.ray.dir_x = (float)d[0], rh.ray.dir_y = (float)d[1], rh.ray.dir_z = (float)d[2];
@@ -112,23 +130,24 @@ int ms_trace(const ms_tracer *t, const double o[3], const double d[3], ms_hit *h
             if (gz < 0.0) l = -l; /* the upward normal: a height field's facets all face up */
             hit->p[0] = x + th * d[0], hit->p[1] = y + th * d[1], hit->p[2] = z + th * d[2];
             /* a hit in the border (within about 1e-5 of a side) is the same facet of the next tile */
-            if (hit->p[0] < 0.0) hit->p[0] += n;
-            if (hit->p[0] >= n) hit->p[0] -= n;
-            if (hit->p[1] < 0.0) hit->p[1] += n;
-            if (hit->p[1] >= n) hit->p[1] -= n;
+            if (hit->p[0] < 0.0) hit->p[0] += n, hit->p[2] += tx0 * n;
+            if (hit->p[0] >= n) hit->p[0] -= n, hit->p[2] -= tx0 * n;
+            if (hit->p[1] < 0.0) hit->p[1] += n, hit->p[2] += ty0 * n;
+            if (hit->p[1] >= n) hit->p[1] -= n, hit->p[2] -= ty0 * n;
             hit->m[0] = gx / l, hit->m[1] = gy / l, hit->m[2] = gz / l;
             size_t cx = (size_t)fmin(fmax(floor(hit->p[0]), 0.0), n - 1);
             size_t cy = (size_t)fmin(fmax(floor(hit->p[1]), 0.0), n - 1);
             hit->cell = cy * t->n + cx;
             return 1;
         }
-        if (tend == tz) return d[2] > 0.0 ? 0 : -1; /* left the heights' slab: escaped (up), or through (down) */
+        if (tend == tz) return dr > 0.0 ? 0 : -1; /* left the heights' band: escaped (up), or through (down) */
         /* into the next tile: move to the side, wrap the coordinate that crossed it, and start a little before it
          * (1e-3 back along the ray, outside the new tile's geometry), so that a crossing of the surface at the side
          * itself, which single precision may give to neither tile, is inside the new segment */
         x += tend * d[0], y += tend * d[1], z += tend * d[2];
-        if (tend == tx) x = d[0] > 0.0 ? 0.0 : n;
-        if (tend == ty) y = d[1] > 0.0 ? 0.0 : n;
+        /* (the tilt: the next tile's surface is tilt n higher along the way the ray goes) */
+        if (tend == tx) x = d[0] > 0.0 ? 0.0 : n, z -= (d[0] > 0.0 ? 1.0 : -1.0) * tx0 * n;
+        if (tend == ty) y = d[1] > 0.0 ? 0.0 : n, z -= (d[1] > 0.0 ? 1.0 : -1.0) * ty0 * n;
         x -= 1e-3 * d[0], y -= 1e-3 * d[1], z -= 1e-3 * d[2];
     }
     return 0;
@@ -137,9 +156,9 @@ int ms_trace(const ms_tracer *t, const double o[3], const double d[3], ms_hit *h
 struct ms_tracer {
     int unused;
 };
-ms_tracer *ms_tracer_new(const double *h, size_t n, char *err, size_t errn)
+ms_tracer *ms_tracer_new(const double *h, size_t n, const double tilt[2], char *err, size_t errn)
 {
-    (void)h, (void)n;
+    (void)h, (void)n, (void)tilt;
     snprintf(err, errn, "the microsurface tracer is not built (Embree not found: apt-get install libembree-dev)");
     return NULL;
 }
@@ -148,6 +167,11 @@ void ms_tracer_bounds(const ms_tracer *t, double *zmin, double *zmax)
 {
     (void)t;
     *zmin = *zmax = 0.0;
+}
+void ms_tracer_tilt(const ms_tracer *t, double tilt[2])
+{
+    (void)t;
+    tilt[0] = tilt[1] = 0.0;
 }
 int ms_trace(const ms_tracer *t, const double o[3], const double d[3], ms_hit *hit)
 {

@@ -142,13 +142,14 @@ void parse_options(int argc, char **argv, int first, options *o, const char *all
         /* flags */
         int flag = strcmp(key, "log") == 0 || strcmp(key, "progress") == 0 || strcmp(key, "no-progress") == 0 ||
                    strcmp(key, "keep-tilt") == 0 || strcmp(key, "y-down") == 0 || strcmp(key, "compensate") == 0 ||
-                   strcmp(key, "fast") == 0 || strcmp(key, "perceptual") == 0;
+                   strcmp(key, "fast") == 0 || strcmp(key, "perceptual") == 0 || strcmp(key, "tilted") == 0;
         if (flag && inline_val) die("option '%s' takes no value", a);
         if (strcmp(key, "keep-tilt") == 0) { o->keep_tilt = 1; continue; }
         if (strcmp(key, "y-down") == 0) { o->y_down = 1; continue; }
         if (strcmp(key, "compensate") == 0) { o->compensate = 1; continue; }
         if (strcmp(key, "fast") == 0) { o->fast = 1; continue; }
         if (strcmp(key, "perceptual") == 0) { o->perceptual = 1; continue; }
+        if (strcmp(key, "tilted") == 0) { o->tilted = 1; continue; }
         if (strcmp(key, "log") == 0) { o->log_scale = 1; continue; }
         if (strcmp(key, "progress") == 0) { o->progress = 1; continue; }
         if (strcmp(key, "no-progress") == 0) { o->progress = 0; continue; }
@@ -282,6 +283,8 @@ void parse_options(int argc, char **argv, int first, options *o, const char *all
             if (!(*dst > 0)) die("%s: '%s' is not a positive length", a, val);
         } else if (strcmp(key, "period") == 0) {
             o->period = (int)whole_number(a, val, 2, 4096, "a whole number");
+        } else if (strcmp(key, "risers") == 0) {
+            o->risers = (int)whole_number(a, val, 2, 8192, "a sawtooth's period");
         } else if (strcmp(key, "level") == 0) {
             o->level = (int)whole_number(a, val, 0, 64, "a level");
         } else if (strcmp(key, "downsample") == 0 || strcmp(key, "threads") == 0) {

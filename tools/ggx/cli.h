@@ -51,6 +51,8 @@ typedef struct options {
     double corr, mix; /* 0 when not given */
     int period;  /* 0 when not given */
     int bounces; /* ggx microsurface measure: the most reflections of a traced ray; 0 when not given */
+    int risers;  /* ggx microsurface: a sawtooth's period; 0 when not given */
+    int tilted;  /* ggx microsurface measure --tilted */
     /* ggx render */
     const char *scene, *light, *strategy;
     long spp;

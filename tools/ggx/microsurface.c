@@ -35,10 +35,11 @@ static void write_heights(const char *path, double *h, size_t n)
 static int generate(int argc, char **argv)
 {
     options o;
-    parse_options(argc, argv, 3, &o, "kind,alpha,rotate,corr,mix,period,size,seed,out");
+    parse_options(argc, argv, 3, &o, "kind,alpha,skew,rotate,corr,mix,period,risers,size,seed,out");
     if (o.help) {
-        printf("usage: ggx microsurface generate --kind beckmann|ggx|vgroove [--alpha A[,AY]] [--rotate TZ] [--corr L]\n"
-               "                                 [--mix M] [--period P] --size N [--seed S] --out FILE.exr|FILE.x3p\n\n"
+        printf("usage: ggx microsurface generate --kind beckmann|ggx|vgroove [--alpha A[,AY]] [--skew TX,TY]\n"
+               "                                 [--rotate TZ] [--corr L] [--mix M] [--period P] [--risers P]\n"
+               "                                 --size N [--seed S] --out FILE.exr|FILE.x3p\n\n"
                "A periodic height field on an N x N grid of unit spacing (N even, 64 to 4096), whose facets (both\n"
                "triangulations of each cell, as ggx fit reads them) have a chosen NDF:\n"
                "  beckmann  a Gaussian random field: every facet's slope is Gaussian with covariance\n"
@@ -49,6 +50,12 @@ static int generate(int argc, char **argv)
                "            field of slope covariance Sigma divided by sqrt(W), W chi-square of 2 degrees of freedom\n"
                "            over the tile's area, varying on the mixing length M (default 8 L, L to N / 4): the\n"
                "            Gaussian scale mixture that GGX's slopes are\n"
+               "            --skew TX,TY (degrees): the skewed ellipsoid of ggx_shape_ellipsoid(AX, AY, TX, TY, TZ),\n"
+               "            its slopes a Student t of location t and scale Sigma (ggx_shape_slopes): GGX of scale\n"
+               "            Sigma on the plane of slope t, t . (x, y) added over the tile. Repeated as it is, that\n"
+               "            tile is not periodic: measure it as a tilted patch (measure --tilted). --risers P makes\n"
+               "            it a periodic sawtooth: t . (x mod P, y mod P), each ramp of P spacings stepping back\n"
+               "            down in one cell, a near-vertical riser (P divides N, at most N / 2)\n"
                "  vgroove   V-grooves along y of period P spacings (even, default 16) and slope AX along x: two\n"
                "            facet normals, each on half the area (Torrance-Sparrow's V-cavities)\n"
                "OpenEXR holds the heights in one float channel Y (ggx fit --heightfield needs --spacing 1 --z-scale\n"
@@ -66,6 +73,18 @@ static int generate(int argc, char **argv)
     double *h = malloc(n * n * sizeof *h);
     if (!h) die("out of memory for %zu x %zu heights", n, n);
     char err[400];
+    if ((o.have_skew || o.risers) && strcmp(o.kind, "ggx") != 0) {
+        free(h);
+        die("--skew and --risers apply to --kind ggx");
+    }
+    if (o.risers && !o.have_skew) {
+        free(h);
+        die("--risers: give the skew (--skew TX,TY) whose ramps they step down from");
+    }
+    if (o.risers && ((size_t)o.risers > n / 2 || n % (size_t)o.risers != 0)) {
+        free(h);
+        die("--risers %d: a period that divides the size %zu and is at most half of it", o.risers, n);
+    }
     if (strcmp(o.kind, "beckmann") == 0) {
         if (o.period) die("--period applies to --kind vgroove");
         if (o.mix > 0) die("--mix applies to --kind ggx");
@@ -87,14 +106,36 @@ static int generate(int argc, char **argv)
         ms_ggx_spec sp = {n, o.alpha[0], o.alpha[1], o.rotate * 3.14159265358979323846 / 180.0,
                           o.corr > 0 ? o.corr : 8.0, o.mix, o.seed};
         if (!o.have_alpha) sp.alpha_x = sp.alpha_y = 0.3;
-        if (ms_ggx(&sp, h, err, sizeof err) != 0) {
+        double t[2] = {0.0, 0.0};
+        if (o.have_skew) {
+            /* the skewed shape's slopes: the scale Sigma as the unskewed shape's alphas and rotation, and t */
+            ggx_shape skewed, flat;
+            double sig[3], ax, ay, tz;
+            options so = o;
+            if (!so.have_alpha) so.alpha[0] = so.alpha[1] = 0.3;
+            shape_from_options(&so, &skewed);
+            ggx_shape_slopes(&skewed, t, sig);
+            if (ggx_shape_from_slopes(&flat, 0.0, 0.0, sig[0], sig[1], sig[2]) != GGX_OK) {
+                free(h);
+                die("--skew: the shape's scale is outside the alphas a surface can have");
+            }
+            ggx_shape_ellipsoid_params(&flat, &ax, &ay, NULL, NULL, &tz);
+            sp.alpha_x = ax, sp.alpha_y = ay, sp.phi = tz;
+        }
+        if (ms_ggx(&sp, h, err, sizeof err) != 0 ||
+            (o.have_skew && ms_ramp(h, n, t[0], t[1], (size_t)o.risers, err, sizeof err) != 0)) {
             free(h); /* (die exits: nothing left to the leak checkers) */
             die("%s", err);
         }
         write_heights(o.out, h, n);
         printf("ggx microsurface: %s, %zu x %zu, GGX alpha %g, %g rotated %g degrees, correlation length %g, mixing "
-               "length %g, seed %llu\n", o.out, n, n, sp.alpha_x, sp.alpha_y, o.rotate, sp.corr_len,
-               sp.mix_len > 0 ? sp.mix_len : 8.0 * sp.corr_len, (unsigned long long)o.seed);
+               "length %g, seed %llu\n", o.out, n, n, sp.alpha_x, sp.alpha_y, sp.phi * 180.0 / 3.14159265358979323846 + 0.0,
+               sp.corr_len, sp.mix_len > 0 ? sp.mix_len : 8.0 * sp.corr_len, (unsigned long long)o.seed);
+        if (o.have_skew)
+            printf("skewed %g, %g degrees: slopes of location t = (%.6g, %.6g) on %s\n", o.skew[0], o.skew[1], t[0] + 0.0,
+                   t[1] + 0.0, o.risers ? "a sawtooth of ramps stepping down on risers" : "a tilted patch (measure --tilted)");
+        if (o.risers) printf("sawtooth period %d: risers in the columns and rows %d mod %d\n", o.risers, o.risers - 1,
+                             o.risers);
     } else if (strcmp(o.kind, "vgroove") == 0) {
         if (o.corr > 0 || o.have_rotate || o.mix > 0) die("--corr, --mix and --rotate apply to --kind beckmann and ggx");
         if (o.have_alpha && o.alpha[0] != o.alpha[1]) die("--alpha: a V-groove has one slope");
@@ -114,8 +155,9 @@ static int generate(int argc, char **argv)
     return 0;
 }
 
-/* The height field of --heightfield in grid units (heights over the spacing, which must be equal along x and y). */
-static double *grid_heights(const options *o, size_t *n_out)
+/* The height field of --heightfield in grid units (heights over the spacing, which must be equal along x and y),
+ * checked to repeat as --tilted and --risers say, and the tilt (0, 0 unless --tilted). */
+static double *grid_heights(const options *o, size_t *n_out, double tilt[2])
 {
     surface_read_options ro = {SURFACE_HEIGHTS, 0};
     surface s;
@@ -127,10 +169,14 @@ static double *grid_heights(const options *o, size_t *n_out)
     if (!(dx > 0 && dy > 0)) die("%s: the file gives no grid spacing: give --spacing DX", o->heightfield);
     if (!(zs > 0)) die("%s: the file gives no height unit: give --z-scale Z", o->heightfield);
     if (fabs(dx - dy) > 1e-9 * dx) die("%s: spacing %g x %g: the tracer takes equal spacings", o->heightfield, dx, dy);
-    size_t n = s.nx, count = n * n;
+    size_t n = s.nx, count = n * n, P = (size_t)o->risers;
     double *h = s.h;
     s.h = NULL;
     surface_free(&s);
+    if (P && (P > n / 2 || n % P != 0)) {
+        free(h);
+        die("--risers %zu: a period that divides the size %zu and is at most half of it", P, n);
+    }
     for (size_t i = 0; i < count; i++) {
         if (!isfinite(h[i])) {
             free(h); /* (die exits: nothing left to the leak checkers) */
@@ -138,25 +184,58 @@ static double *grid_heights(const options *o, size_t *n_out)
         }
         h[i] *= zs / dx;
     }
-    /* periodic: the differences across the wrap are like the inner ones */
-    double in = 0.0, wrap = 0.0;
-    for (size_t y = 0; y < n; y++)
-        for (size_t x = 0; x < n; x++) {
-            double d = h[y * n + (x + 1) % n] - h[y * n + x], e = h[((y + 1) % n) * n + x] - h[y * n + x];
-            if (x == n - 1) wrap += d * d;
-            else in += d * d;
-            if (y == n - 1) wrap += e * e;
-            else in += e * e;
+    /* the edges wrap: along each axis the differences across the tile's edge (raised by the tilt times n for a
+     * tilted patch) are like the inner ones of the same phase (a sawtooth's risers: the rows P - 1 mod P; else all),
+     * their deviations from those ones' mean within 3 times those ones' RMS deviation */
+    for (int ax = 0; ax < 2; ax++) {
+        double sum = 0.0, ref = 0.0, ref2 = 0.0, cnt = 0.0, rcnt = 0.0;
+        for (size_t y = 0; y < n; y++)
+            for (size_t x = 0; x + 1 < n; x++) {
+                double d = ax == 0 ? h[y * n + x + 1] - h[y * n + x] : h[(x + 1) * n + y] - h[x * n + y];
+                sum += d, cnt += 1.0;
+                if (!P || x % P == P - 1) ref += d, ref2 += d * d, rcnt += 1.0;
+            }
+        tilt[ax] = o->tilted ? sum / cnt : 0.0;
+        double mean = ref / rcnt, var = fmax(ref2 / rcnt - mean * mean, 0.0), wrap = 0.0;
+        for (size_t y = 0; y < n; y++) {
+            double d = (ax == 0 ? h[y * n] - h[y * n + n - 1] : h[y] - h[(n - 1) * n + y]) + tilt[ax] * (double)n;
+            wrap += (d - mean) * (d - mean) / (double)n;
         }
-    in /= 2.0 * (double)n * (double)(n - 1), wrap /= 2.0 * (double)n;
-    if (wrap > 9.0 * in + 1e-300) {
-        double ratio = sqrt(wrap / in);
-        free(h);
-        die("%s: not periodic (the differences across its edges are %.3g times the inner ones in RMS): the tracer "
-            "tiles the surface", o->heightfield, ratio);
+        if (wrap > 9.0 * var + 1e-300) {
+            double ratio = sqrt(wrap / var);
+            free(h);
+            die("%s: not periodic along %c (the differences across its edges are %.3g times the inner ones' RMS "
+                "deviation): the tracer tiles the surface%s", o->heightfield, ax == 0 ? 'x' : 'y', ratio,
+                o->tilted || P ? "" : " (a tilted patch: --tilted; a sawtooth: --risers P)");
+        }
     }
     *n_out = n;
     return h;
+}
+
+/* The fitted shape of the facets off the risers (all four triangles of each inner cell, as ggx_fit_heightfield
+ * takes them), or of all the facets as given (not levelled: the tracer traces them as they are). */
+static ggx_status fit_facets(const double *h, size_t n, const ms_g1 *r, ggx_shape *fit)
+{
+    ggx_heightfield_options ho = {1, 0};
+    if (!r->risers[0] && !r->risers[1]) return ggx_fit_heightfield(fit, h, n, n, 1.0, 1.0, &ho, NULL, NULL);
+    ggx_vec3 *m = malloc(4 * (n - 1) * (n - 1) * sizeof *m);
+    if (!m) die("out of memory for the facets of %zu x %zu heights", n, n);
+    size_t k = 0;
+    for (size_t y = 0; y + 1 < n; y++)
+        for (size_t x = 0; x + 1 < n; x++) {
+            if (ms_riser_cell(r, n, y * n + x)) continue;
+            double h00 = h[y * n + x], h10 = h[y * n + x + 1], h01 = h[(y + 1) * n + x], h11 = h[(y + 1) * n + x + 1];
+            double sx[2] = {h10 - h00, h11 - h01}, sy[2] = {h01 - h00, h11 - h10};
+            for (int a = 0; a < 2; a++)
+                for (int b = 0; b < 2; b++) {
+                    double l = sqrt(1.0 + sx[a] * sx[a] + sy[b] * sy[b]);
+                    m[k++] = (ggx_vec3){-sx[a] / l, -sy[b] / l, 1.0 / l};
+                }
+        }
+    ggx_status st = ggx_fit_normals(fit, m, NULL, k, NULL, NULL);
+    free(m);
+    return st;
 }
 
 /* The visible normals' chi-square: the tracer as a sampler of normals (the first facet hit from v, from a random
@@ -164,15 +243,20 @@ static double *grid_heights(const options *o, size_t *n_out)
 typedef struct vndf_ctx {
     normal_keys nk; /* first: the harness's keys and density */
     const ms_tracer *t;
+    const ms_g1 *risers;
+    size_t size;
     double d[3], n, zmax;
 } vndf_ctx;
 
 static int vndf_draw(void *p, rng *r, ggx_vec3 *w)
 {
     vndf_ctx *c = p;
-    double o[3] = {rng_uniform(r) * c->n, rng_uniform(r) * c->n, c->zmax + 1.0};
     ms_hit hit;
-    if (ms_trace(c->t, o, c->d, &hit) != 1) return 0;
+    for (int tries = 0;; tries++) { /* the first facet hit off a sawtooth's risers (the facets of D) */
+        double o[3] = {rng_uniform(r) * c->n, rng_uniform(r) * c->n, c->zmax + 1.0};
+        if (ms_trace(c->t, o, c->d, &hit) != 1 || tries == 1000) return 0;
+        if (!ms_riser_cell(c->risers, c->size, hit.cell)) break;
+    }
     *w = (ggx_vec3){hit.m[0], hit.m[1], hit.m[2]};
     return 1;
 }
@@ -190,10 +274,13 @@ static const char *jnum(char buf[32], double x)
 static int measure(int argc, char **argv)
 {
     options o;
-    parse_options(argc, argv, 3, &o, "heightfield,spacing,z-scale,view,n,bounces,threads,seed,format,out");
+    parse_options(argc, argv, 3, &o, "heightfield,spacing,z-scale,tilted,risers," SHAPE_OPTS
+                                     ",view,n,bounces,threads,seed,format,out");
     if (o.help) {
-        printf("usage: ggx microsurface measure --heightfield FILE [--spacing D] [--z-scale Z] --view THETA,PHI\n"
-               "                                [-n RAYS] [--bounces K] [--threads N] [--format md|json] [--out FILE]\n\n"
+        printf("usage: ggx microsurface measure --heightfield FILE [--spacing D] [--z-scale Z] [--tilted | --risers P]\n"
+               "                                [--alpha A[,AY] [--skew TX,TY] [--rotate TZ] | --matrix M]\n"
+               "                                --view THETA,PHI [-n RAYS] [--bounces K] [--threads N] [--seed S]\n"
+               "                                [--format md|json] [--out FILE]\n\n"
                "Traces a periodic height field (ggx microsurface generate's, or any square tile whose edges wrap)\n"
                "from the view v with RAYS rays (default 1e6) on a jittered grid of origins and reports the masking\n"
                "against the model: G1(v) of the facets (exact for a height field: the footprint's projected area\n"
@@ -208,16 +295,27 @@ static int measure(int argc, char **argv)
                "K times, default 100; the rest are counted as still bouncing), binned in 8 x 16 outgoing bins of\n"
                "equal projected solid angle; single scattering against ggx_brdf_eval of the fitted shape (and its\n"
                "albedo against ggx_albedo and ggx_albedo_height_correlated), all bounces against\n"
-               "ggx_brdf_compensated_eval of the fitted scale without its skew (the white furnace: albedo 1).\n");
+               "ggx_brdf_compensated_eval of the fitted scale without its skew (the white furnace: albedo 1).\n"
+               "The model's shape is the fit, or the shape given (--alpha, --skew, --rotate or --matrix).\n\n"
+               "Skewed surfaces (generate --skew): --tilted traces the tile as an infinite tilted patch, each copy\n"
+               "raised by the tile's mean slope (its inner differences' mean) times N; --risers P as the sawtooth of\n"
+               "generate --risers P, whose risers (the cells of the columns and rows P - 1 mod P along an axis where\n"
+               "they step by more than 1) are counted apart. G1 of the other facets, traced, is then set beside\n"
+               "Walter's eq 6 (ggx_g1, with its min), the Smith form of eq 32 without it (ggx_g1_smith), vertical\n"
+               "facets (Walter's remedy with Smith's masking), the tilted base (Smith's masking about the plane of\n"
+               "slope t) and the sawtooth's (the least of the last two); and the risers' own visible share. A\n"
+               "tilted patch's BRDF is not measured (its directions are the tilted plane's).\n");
         return 0;
     }
     if (!o.heightfield) die("--heightfield FILE is required");
     if (!o.have_view) die("--view THETA,PHI is required");
     if (!(o.view.z > 1e-9)) die("--view: the view must be above the plane");
+    if (o.tilted && o.risers) die("--tilted and --risers: a surface is one or the other");
     size_t n;
-    double *h = grid_heights(&o, &n);
+    double tilt[2];
+    double *h = grid_heights(&o, &n, tilt);
     char err[400];
-    ms_tracer *t = ms_tracer_new(h, n, err, sizeof err);
+    ms_tracer *t = ms_tracer_new(h, n, o.tilted ? tilt : NULL, err, sizeof err);
     if (!t) {
         free(h);
         die("%s", err);
@@ -226,10 +324,12 @@ static int measure(int argc, char **argv)
     long rays = o.n > 0 ? o.n : 1000000;
     int threads = o.threads > 0 ? o.threads : 1;
     ms_g1 r;
-    if (ms_measure_g1(t, h, n, v, rays, 4, 8, threads, &r, err, sizeof err) != 0) die("%s", err);
+    if (ms_measure_g1(t, h, n, v, rays, 4, 8, (size_t)o.risers, threads, &r, err, sizeof err) != 0) die("%s", err);
     ggx_shape fit;
-    ggx_fit_info fi;
-    ggx_status st = ggx_fit_heightfield(&fit, h, n, n, 1.0, 1.0, NULL, NULL, &fi);
+    int given = o.have_alpha || o.have_skew || o.have_rotate || o.have_matrix;
+    ggx_status st = GGX_OK;
+    if (given) shape_from_options(&o, &fit);
+    else st = fit_facets(h, n, &r, &fit);
     double g_ggx = st == GGX_OK ? ggx_g1_smith(&fit, o.view) : NAN, g_b = ms_beckmann_g1(r.slope_cov, v);
     /* the visible normals against eq 33 for the fitted shape, 16 x 16 cells of its sphere space */
     chi2_result cr = {0};
@@ -237,7 +337,7 @@ static int measure(int argc, char **argv)
     if (st == GGX_OK) {
         double zmin, zmax;
         ms_tracer_bounds(t, &zmin, &zmax);
-        vndf_ctx c = {{&fit, o.view, vndf_pdf}, t, {-v[0], -v[1], -v[2]}, (double)n, zmax};
+        vndf_ctx c = {{&fit, o.view, vndf_pdf}, t, &r, n, {-v[0], -v[1], -v[2]}, (double)n, zmax};
         chi2_problem p = {"traced visible normals", 1, vndf_draw, normal_keys_key, normal_keys_density, &c};
         cr = chi2_run_quiet(&p, vrays, 16, 16, o.seed, 0.01);
     }
@@ -245,20 +345,21 @@ static int measure(int argc, char **argv)
      * and the energy-compensated BRDF of the fitted scale without its (small) skew */
     enum { BR = 8, BS = 16 };
     ms_brdf br;
-    int bounces = o.bounces > 0 ? o.bounces : 100;
-    if (ms_measure_brdf(t, n, v, rays, BR, BS, bounces, threads, &br, err, sizeof err) != 0) die("%s", err);
+    memset(&br, 0, sizeof br);
+    int bounces = o.bounces > 0 ? o.bounces : 100, brdf = !o.tilted;
+    if (brdf && ms_measure_brdf(t, n, v, rays, BR, BS, bounces, threads, &br, err, sizeof err) != 0) die("%s", err);
     double e_single = 0.0, e_all = 0.0, d1 = 0.0, n1 = 0.0, d2 = 0.0, n2 = 0.0, e_model = NAN, e_hc = NAN;
     ggx_energy *en = NULL;
     ggx_fresnel one;
     ggx_fresnel_one(&one);
-    if (st == GGX_OK) {
+    if (st == GGX_OK && brdf) {
         double ts[2], ss[3];
         ggx_shape flat;
         ggx_shape_slopes(&fit, ts, ss);
         if (ggx_shape_from_slopes(&flat, 0.0, 0.0, ss[0], ss[1], ss[2]) == GGX_OK) ggx_energy_create(&flat, &en);
         e_model = ggx_albedo(&fit, o.view), e_hc = ggx_albedo_height_correlated(&fit, o.view);
     }
-    for (int b = 0; b < BR * BS; b++) {
+    for (int b = 0; brdf && b < BR * BS; b++) {
         double f1 = br.single[b] * BR * BS / 3.14159265358979323846, fa = br.all[b] * BR * BS / 3.14159265358979323846;
         e_single += br.single[b], e_all += br.all[b];
         if (st != GGX_OK) continue;
@@ -274,8 +375,17 @@ static int measure(int argc, char **argv)
             }
         d1 += (f1 - m1) * (f1 - m1), n1 += m1 * m1, d2 += (fa - ma) * (fa - ma), n2 += ma * ma;
     }
-    double l2_single = sqrt(d1 / n1), l2_all = en ? sqrt(d2 / n2) : NAN;
+    double l2_single = brdf ? sqrt(d1 / n1) : NAN, l2_all = en ? sqrt(d2 / n2) : NAN;
     ggx_energy_free(en);
+    /* skewed surfaces: the facets off the risers against the masking forms (microsurface.h, skew.c) */
+    double ts[2] = {0.0, 0.0}, ss[3];
+    if (st == GGX_OK) ggx_shape_slopes(&fit, ts, ss);
+    double g_eq6 = st == GGX_OK ? ggx_g1(&fit, o.view, o.view) : NAN;
+    double g_vf = st == GGX_OK ? ms_g1_vertical_facets(&fit, v) : NAN;
+    double g_tb = st == GGX_OK ? ms_g1_tilted_base(&fit, v) : NAN, g_saw = st == GGX_OK ? ms_g1_sawtooth(&fit, v) : NAN;
+    double g_riser = r.riser_area > 0.0 ? r.riser_visible / r.riser_area : NAN;
+    int skewed = o.tilted || o.risers || hypot(ts[0], ts[1]) > 1e-6;
+    double g1v = r.risers[0] || r.risers[1] ? r.g1_off_risers : r.g1;
     int json = o.format && strcmp(o.format, "json") == 0;
     if (o.format && !json && strcmp(o.format, "md") != 0) die("--format: '%s' is not md or json", o.format);
     out_file f;
@@ -288,23 +398,51 @@ static int measure(int argc, char **argv)
         fprintf(f.f, "  \"slope_cov\": [%.10g, %.10g, %.10g],\n  \"g1\": {\"facets\": %.10g, \"smith_beckmann\": %s, "
                      "\"smith_ggx_fit\": %s},\n", r.slope_cov[0], r.slope_cov[1], r.slope_cov[2], r.g1, jnum(b1, g_b),
                 jnum(b2, g_ggx));
+        fprintf(f.f, "  \"tilt\": [%.10g, %.10g], \"risers\": [%zu, %zu], \"slope_mean\": [%.10g, %.10g], \"t\": [%s, %s],\n",
+                tilt[0], tilt[1], r.risers[0], r.risers[1], r.slope_mean[0], r.slope_mean[1], jnum(b1, ts[0]),
+                jnum(b2, ts[1]));
+        char b6[32], b7[32];
+        fprintf(f.f, "  \"skewed_g1\": {\"traced\": %.10g, \"eq6\": %s, \"smith\": %s, \"vertical_facets\": %s, "
+                     "\"tilted_base\": %s, \"sawtooth\": %s, \"risers_area\": %.10g, \"risers_visible\": %s},\n",
+                g1v, jnum(b1, g_eq6), jnum(b2, g_ggx), jnum(b3, g_vf), jnum(b4, g_tb), jnum(b5, g_saw), r.riser_area,
+                jnum(b6, g_riser));
+        (void)b7;
         fprintf(f.f, "  \"vndf_chi2\": {\"rays\": %ld, \"stat\": %s, \"dof\": %d, \"pvalue\": %s, \"invalid\": %ld},\n",
                 vrays, jnum(b1, cr.stat), cr.dof, jnum(b2, cr.pvalue), cr.invalid);
-        fprintf(f.f, "  \"brdf\": {\"rays\": %ld, \"lost\": %ld, \"capped\": %ld, \"albedo_single\": %.8g, "
-                     "\"albedo_model\": %s, \"albedo_model_height_correlated\": %s, \"albedo_all\": %.8g, \"l2_single\": %s, "
-                     "\"l2_all\": %s},\n  \"bins\": [", br.rays, br.lost, br.capped, e_single, jnum(b3, e_model),
-                jnum(b1, e_hc), e_all, jnum(b4, l2_single), jnum(b5, l2_all));
+        if (brdf)
+            fprintf(f.f, "  \"brdf\": {\"rays\": %ld, \"lost\": %ld, \"capped\": %ld, \"albedo_single\": %.8g, "
+                         "\"albedo_model\": %s, \"albedo_model_height_correlated\": %s, \"albedo_all\": %.8g, "
+                         "\"l2_single\": %s, \"l2_all\": %s},\n", br.rays, br.lost, br.capped, e_single, jnum(b3, e_model),
+                    jnum(b1, e_hc), e_all, jnum(b4, l2_single), jnum(b5, l2_all));
+        else
+            fprintf(f.f, "  \"brdf\": null,\n");
+        fprintf(f.f, "  \"bins\": [");
     } else {
         fprintf(f.f, "# ggx microsurface measure: %s, %zu x %zu, view theta %.4g, phi %.4g degrees\n\n", o.heightfield, n,
                 n, theta, phi);
         fprintf(f.f, "%ld rays, %ld missed; the facets' slope covariance %.6g, %.6g, %.6g\n\n", r.rays, r.missed,
                 r.slope_cov[0], r.slope_cov[1], r.slope_cov[2]);
         fprintf(f.f, "| G1(v) | value |\n|---|---|\n| the facets (exact) | %.6f |\n| Smith, Beckmann of the facets' "
-                     "covariance | %.6f |\n| Smith, GGX fitted (ggx_g1_smith) | %.6f |\n\n", r.g1, g_b, g_ggx);
+                     "covariance | %.6f |\n| Smith, GGX %s (ggx_g1_smith) | %.6f |\n\n", r.g1, g_b,
+                given ? "given" : "fitted", g_ggx);
+        if (skewed) {
+            fprintf(f.f, "skewed: %s; the facets off the risers have the mean slope %.6g, %.6g; the model's t = %.6g, "
+                         "%.6g\n\n", o.tilted ? "a tilted patch" : o.risers ? "a sawtooth" : "periodic", r.slope_mean[0],
+                    r.slope_mean[1], ts[0], ts[1]);
+            fprintf(f.f, "| G1(v) of the facets off the risers | value |\n|---|---|\n| traced | %.6f |\n"
+                         "| eq 6 with its min (ggx_g1) | %.6f |\n| Smith form of eq 32 (ggx_g1_smith) | %.6f |\n"
+                         "| vertical facets (Walter's remedy) | %.6f |\n| tilted base | %.6f |\n"
+                         "| sawtooth (the least of Smith and the tilted base) | %.6f |\n", g1v, g_eq6, g_ggx, g_vf, g_tb,
+                    g_saw);
+            if (r.riser_area > 0.0)
+                fprintf(f.f, "| the risers' visible share (projected area %.6f) | %.6f |\n", r.riser_area, g_riser);
+            fprintf(f.f, "\n");
+        }
         fprintf(f.f, "visible normals of %ld rays against ggx_pdf_vndf of the fitted shape (eq 33): chi-square %.6g on %d "
                      "degrees of freedom (%.3g per degree), p = %.3g\n\n", vrays, cr.stat, cr.dof,
                 cr.dof > 0 ? cr.stat / cr.dof : NAN, cr.pvalue);
-        fprintf(f.f, "the BRDF with F = 1 from the light at the view, %ld rays (%ld lost, %ld still bouncing after %d), "
+        if (!brdf) fprintf(f.f, "the BRDF is not measured on a tilted patch\n\n");
+        else fprintf(f.f, "the BRDF with F = 1 from the light at the view, %ld rays (%ld lost, %ld still bouncing after %d), "
                      "%d x %d bins:\n\n| | traced | model | relative L2 of the BRDF over the bins |\n|---|---|---|---|\n"
                      "| single scattering: albedo | %.5f | %.5f (ggx_albedo; height-correlated: %.5f) | %.4f "
                      "(ggx_brdf_eval) |\n"
@@ -323,7 +461,7 @@ static int measure(int argc, char **argv)
         else
             fprintf(f.f, "| %.2f-%.2f | %.0f-%.0f | %.5f | %.5f | %.4f |\n", (double)ring / r.rings,
                     (double)(ring + 1) / r.rings, 360.0 * sec / r.sectors, 360.0 * (sec + 1) / r.sectors, r.area[b], g,
-                    g / r.g1);
+                    g / g1v);
         first = 0;
     }
     if (json) fprintf(f.f, "\n  ]\n}\n");
