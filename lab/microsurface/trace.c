@@ -73,6 +73,9 @@ ms_tracer *ms_tracer_new(const double *h, size_t n, const double tilt[2], char *
             t->zmin = fmin(t->zmin, (double)p[2]), t->zmax = fmax(t->zmax, (double)p[2]);
             t->rmin = fmin(t->rmin, r), t->rmax = fmax(t->rmax, r);
         }
+    /* the band padded for single precision (a flat tilted plane's band is of no thickness) */
+    double pad = 1e-3 + 1e-5 * fmax(fabs(t->zmin), fabs(t->zmax));
+    t->rmin -= pad, t->rmax += pad;
     grid->startVertexID = 0, grid->stride = (unsigned)side;
     grid->width = (unsigned short)side, grid->height = (unsigned short)side;
     rtcCommitGeometry(g);
