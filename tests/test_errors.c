@@ -168,6 +168,8 @@ static void hot_functions_outside_domain(void **state)
             double vals[] = {ggx_ndf(s, b),           ggx_gaussian_curvature(s, b), ggx_projected_area(s, b),
                              ggx_lune_area(s, b, up), ggx_lune_area(s, up, b),      ggx_g1(s, b, up),
                              ggx_g1(s, up, b),        ggx_lambda(s, b),             ggx_g1_smith(s, b),
+                             ggx_g1_tilted(s, b, up), ggx_g1_tilted(s, up, b),      ggx_g1_risers(s, b, up),
+                             ggx_g1_risers(s, up, b),
                              ggx_g2(s, b, up, up),    ggx_g2_height_correlated(s, up, b, up),
                              ggx_pdf_vndf(s, b, up),  ggx_pdf_vndf(s, up, b),       ggx_brdf_eval(s, &f, b, up),
                              ggx_brdf_eval(s, &f, up, b),                          ggx_bsdf_eval(s, 1.5, b, up, GGX_RADIANCE),

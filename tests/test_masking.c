@@ -217,6 +217,78 @@ static void seed_g1_forms(void **state)
     CHECK_CLOSE(g1_blog(&u, v), ggx_g1_smith(&u, v), 1e-13, 0, "the two forms agree when unskewed");
 }
 
+/* The masking of skewed shapes read as surfaces (docs/design/microsurface.md, "Skewed surfaces"):
+ * - ggx_g1_tilted is Smith's G1 of the unskewed shape of the same scale seen from the view sheared with the plane of
+ *   slope t, (u_xy, u.z - t . u_xy) (the definition, transcribed independently here), to 1e-12 (times the
+ *   cancellation of u.z - t . u_xy near the mean plane);
+ * - it meets the projected-area constraint of the tilted plane: G1 times the lune's projected area over n's, (1 +
+ *   Lambda) u.z, is the tilted plane's footprint u.z - t . u_xy, to 1e-12;
+ * - it is ggx_g1 for unskewed shapes (and matrices scaled by 3), and 0 below the mean plane or for a back-facing m;
+ * - ggx_g1_risers is the Smith form where t . u_xy <= 0 (the risers behind) and the tilted form where t . u_xy > 0;
+ * - both lie in [0, 1] for every shape and view, and differ from ggx_g1 for skewed shapes (the test tells them
+ *   apart: some views off by more than 10 %). */
+static void skewed_surface_masking(void **state)
+{
+    (void)state;
+    rng r = {29};
+    int apart = 0;
+    for (int i = 0; i < 20000; i++) {
+        shape_params p = random_shape(&r, i < 2000 ? 0.0 : 0.6);
+        ggx_shape s, flat;
+        make_shape(&s, p);
+        double t[2], sg[3];
+        ggx_shape_slopes(&s, t, sg);
+        CHECK(ggx_shape_from_slopes(&flat, 0, 0, sg[0], sg[1], sg[2]) == GGX_OK, "flat");
+        ggx_vec3 u = random_view(&r), w = random_view(&r);
+        ggx_vec3 m = t_normalize(t_add(t_add(u, w), t_vec(0, 0, 1)));
+        double tu = t[0] * u.x + t[1] * u.y, fz = u.z - tu;
+        double gt = ggx_g1_tilted(&s, u, m), gr = ggx_g1_risers(&s, u, m), gs = ggx_g1_smith(&s, u);
+        CHECK(gt >= 0.0 && gt <= 1.0 && gr >= 0.0 && gr <= 1.0, "tilted %.17g, risers %.17g", gt, gr);
+        if (t_dot(u, m) < 0) {
+            CHECK(gt == 0.0 && gr == 0.0, "back-facing: %g %g", gt, gr);
+            continue;
+        }
+        if (!(fz > 1e-6 * u.z)) {
+            CHECK(fz > 0.0 || gt == 0.0, "below the mean plane: %g", gt);
+            continue;
+        }
+        double l = sqrt(u.x * u.x + u.y * u.y + fz * fz);
+        double want = ggx_g1_smith(&flat, t_vec(u.x / l, u.y / l, fz / l));
+        /* (u.z - t . u_xy cancels near the mean plane: both sides carry its rounding, relative u.z / fz) */
+        double cond = fmax(1.0, (u.z + fabs(tu)) / fz);
+        CHECK_CLOSE(gt, want, 1e-12 * cond, 1e-300, "the sheared view: %.17g, want %.17g (t %g %g)", gt, want, t[0],
+                    t[1]);
+        CHECK_CLOSE(gt * (1.0 + ggx_lambda(&s, u)) * u.z, fz, 1e-11 * cond, 1e-14 * u.z, "the tilted plane's footprint");
+        CHECK_CLOSE(gr, tu > 0 ? gt : gs, 1e-12, 1e-300, "risers: %.17g (t . u %g, tilted %g, Smith %g)", gr, tu, gt, gs);
+        if (i < 2000) {
+            CHECK_CLOSE(gt, ggx_g1(&s, u, m), 1e-12, 1e-300, "unskewed: tilted %.17g, eq 6 %.17g", gt, ggx_g1(&s, u, m));
+            double A[3][3];
+            ggx_ellipsoid_matrix(A, p.ax, p.ay, 0, 0, p.tz);
+            for (int a = 0; a < 3; a++)
+                for (int b = 0; b < 3; b++) A[a][b] *= 3.0;
+            ggx_shape big;
+            CHECK(ggx_shape_matrix(&big, (const double(*)[3])A) == GGX_OK, "scaled");
+            CHECK_CLOSE(ggx_g1_tilted(&big, u, m), gt, 1e-12, 1e-300, "scaled matrix");
+        } else {
+            apart += fabs(gt / ggx_g1(&s, u, m) - 1.0) > 0.1;
+        }
+    }
+    CHECK(apart > 100, "only %d skewed views tell ggx_g1_tilted from ggx_g1", apart);
+    ggx_shape s;
+    CHECK(ggx_shape_ellipsoid(&s, 0.3, 0.3, 0.35, 0.0, 0.0) == GGX_OK, "shape");
+    double t[2], sg[3];
+    ggx_shape_slopes(&s, t, sg);
+    ggx_vec3 n = t_vec(0, 0, 1), below = t_vec(0, 0, -1);
+    /* a view above the horizon but below the mean plane: u.z > 0 > u.z - t . u_xy */
+    double tl = hypot(t[0], t[1]);
+    ggx_vec3 under = t_normalize(t_vec(t[0] / tl, t[1] / tl, 0.5 * tl));
+    CHECK(ggx_g1_tilted(&s, under, n) == 0.0 && ggx_g1_risers(&s, under, n) == 0.0 && ggx_g1(&s, under, n) > 0,
+          "under the mean plane: %g", ggx_g1_tilted(&s, under, n));
+    CHECK(ggx_g1_tilted(&s, below, below) == 0.0 && ggx_g1_risers(&s, below, below) == 0.0, "below the horizon");
+    CHECK(ggx_g1_tilted(&s, n, t_vec(0, 0, 0)) == 0.0 && ggx_g1_tilted(&s, n, t_vec(NAN, 0, 1)) == 0.0, "no facet");
+    CHECK(ggx_g1_tilted(&s, t_vec(NAN, 0, 1), n) == 0.0 && ggx_g1_risers(&s, t_vec(NAN, 0, 1), n) == 0.0, "NaN u");
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -226,6 +298,7 @@ int main(void)
         cmocka_unit_test(vndf_pdf),
         cmocka_unit_test(g1_from_facets),
         cmocka_unit_test(seed_g1_forms),
+        cmocka_unit_test(skewed_surface_masking),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

@@ -435,11 +435,11 @@ static void watertight(void **state)
     free(h);
 }
 
-/* Skewed surfaces (skew.c): a GGX field (512^2, alpha 0.3) on the plane of slope t = (0, -0.3).
+/* Skewed surfaces (skew.c; ggx_g1_tilted and ggx_g1_risers): a GGX field (512^2, alpha 0.3) on the plane of slope t = (0, -0.3).
  * - The tracer's tilt: a flat tilted plane is a mirror, every ray from anywhere above it hitting it on the plane
  *   z = t . (x, y) with its normal; on the rough patch, rays reflected from facet to facet leave it (none below, at
  *   most 1 in 1000 still bouncing after 200 reflections, in the deep pit of the roughest patch).
- * - The shear that ms_g1_tilted_base rests on: the tilted patch's facets seen from v have exactly the G1 of the
+ * - The shear that ggx_g1_tilted rests on: the tilted patch's facets seen from v have exactly the G1 of the
  *   untilted field's facets seen from v' = (v_xy, v.z - t . v_xy) / |...|, to rounding.
  * - As an infinite tilted patch, the traced G1 is the tilted base's (of the fitted shape) within 2 % at 60 degrees
  *   on both sides of t (3 %: the construction's facets against GGX's Smith G1, ggx_field), and eq 6 misses it by
@@ -524,7 +524,8 @@ static void skewed_masking(void **state)
                     phis[a], gt, gs);
         ms_g1 r;
         CHECK(ms_measure_g1(t, h, N, v, RAYS, 2, 4, 0, 2, &r, err, sizeof err) == 0, "%s", err);
-        double tb = ms_g1_tilted_base(&fit, v), e6 = ggx_g1(&fit, (ggx_vec3){v[0], v[1], v[2]}, (ggx_vec3){0, 0, 1});
+        ggx_vec3 vv = {v[0], v[1], v[2]};
+        double tb = ggx_g1_tilted(&fit, vv, vv), e6 = ggx_g1(&fit, vv, vv);
         CHECK(r.missed == 0 && fabs(r.g1_off_risers - r.g1) < 4.0 * sqrt(r.g1 * (1.0 - r.g1 + 1e-3) / RAYS) + 2e-3,
               "phi %g: traced %g, the facets' exact %g (%ld missed)", phis[a], r.g1_off_risers, r.g1, r.missed);
         CHECK_CLOSE(r.g1_off_risers, tb, 0.03, 0, "phi %g: the tilted patch's G1 %g, the tilted base's %g", phis[a],
@@ -548,7 +549,8 @@ static void skewed_masking(void **state)
         CHECK(ms_measure_g1(t, h, N, v, RAYS, 2, 4, 256, 2, &r, err, sizeof err) == 0, "%s", err);
         CHECK(r.risers[0] == 0 && r.risers[1] == 256 && r.missed == 0, "risers found %zu, %zu; %ld missed",
               r.risers[0], r.risers[1], r.missed);
-        double saw = ms_g1_sawtooth(&fit, v), vf = ms_g1_vertical_facets(&fit, v), tb = ms_g1_tilted_base(&fit, v);
+        ggx_vec3 vv = {v[0], v[1], v[2]};
+        double saw = ggx_g1_risers(&fit, vv, vv), vf = ms_g1_vertical_facets(&fit, v), tb = ggx_g1_tilted(&fit, vv, vv);
         double seen = r.riser_visible / r.riser_area;
         CHECK_CLOSE(r.g1_off_risers, saw, 0.03, 0, "phi %g: the sawtooth's ramps' G1 %g, its form's %g", phis[a],
                     r.g1_off_risers, saw);

@@ -21,6 +21,7 @@ static void check_evals(const ggx_shape *s, ggx_vec3 v, ggx_vec3 m, const char *
     ggx_fresnel_conductor(&f, 0.2, 3.9);
     double r[] = {ggx_ndf(s, m),           ggx_gaussian_curvature(s, m), ggx_projected_area(s, v),
                   ggx_lune_area(s, v, m),  ggx_g1(s, v, m),              ggx_g1_smith(s, v),
+                  ggx_g1_tilted(s, v, m),  ggx_g1_risers(s, v, m),
                   ggx_g2(s, v, m, m),      ggx_g2_height_correlated(s, v, m, m),
                   ggx_pdf_vndf(s, v, m),   ggx_pdf_ndf(s, m),           ggx_brdf_eval(s, &f, v, m),
                   ggx_pdf_brdf(s, v, m),   ggx_bsdf_eval(s, 1.5, v, m, GGX_RADIANCE),
@@ -30,8 +31,9 @@ static void check_evals(const ggx_shape *s, ggx_vec3 v, ggx_vec3 m, const char *
         CHECK(isfinite(r[i]) && r[i] >= 0, "%s: function %u = %g for v (%.17g,%.17g,%.17g) m (%.17g,%.17g,%.17g)", what, i,
               r[i], v.x, v.y, v.z, m.x, m.y, m.z);
     CHECK(isfinite(ggx_lambda(s, v)), "%s: Lambda", what);
-    CHECK(ggx_g1(s, v, m) <= 1.0, "%s: G1 > 1", what);
-    n_checked += 18;
+    CHECK(ggx_g1(s, v, m) <= 1.0 && ggx_g1_tilted(s, v, m) <= 1.0 && ggx_g1_risers(s, v, m) <= 1.0, "%s: G1 > 1",
+          what);
+    n_checked += 20;
 }
 
 /* A sampler's output: the zero vector (invalid), or a unit vector with a finite pdf > 0. may_be_invalid: the zero

@@ -151,20 +151,12 @@ double ms_beckmann_g1(const double cov[3], const double v[3]);
  * or -1 with err (slopes not finite or above 100, P below 2 or not dividing n). */
 int ms_ramp(double *h, size_t n, double tx, double ty, size_t period, char *err, size_t errn);
 
-/* The masking forms for a skewed shape s (slopes of location t and scale Sigma), unit v above the plane (else 0):
- * - ms_g1_vertical_facets: Walter's remedy with Smith's masking: the facets of D and vertical facets of area |t| per
- *   unit area facing along t, all masked alike, so that the visible projected area is v.z:
- *   G1 = v.z / (v.z (1 + ggx_lambda(s, v)) + max(t . v_xy, 0));
- * - ms_g1_tilted_base: Smith's masking of the roughness about the tilted mean plane: a vertical shear
- *   z' = z - t . (x, y) takes the tilted surface to the unskewed one of scale Sigma and v to
- *   v' = (v_xy, v.z - t . v_xy) / |...|, keeping what is seen; G1 = ggx_g1_smith(shape of (0, Sigma), v'),
- *   0 where v' is at or below the plane;
- * - ms_g1_sawtooth: min(ggx_g1_smith(s, v), ms_g1_tilted_base(s, v)): the ramp's facets of a sawtooth of long
- *   period, whose risers mask the ramp behind them (t . v_xy < 0: the Smith form of eq 32, without Walter's min) and
- *   otherwise face v unmasked, leaving the ramp the tilted plane's masking (docs/design/microsurface.md). */
+/* Walter's remedy with Smith's masking, for a skewed shape s (slopes of location t and scale Sigma), unit v above the
+ * plane (else 0): the facets of D and vertical facets of area |t| per unit area facing along t, all masked alike,
+ * so that the visible projected area is v.z: G1 = v.z / (v.z (1 + ggx_lambda(s, v)) + max(t . v_xy, 0)). The
+ * tracer rejects it where the risers face v (they are seen unmasked there); the library's forms for skewed surfaces
+ * are ggx_g1_tilted (a tilted patch) and ggx_g1_risers (the sawtooth). */
 double ms_g1_vertical_facets(const ggx_shape *s, const double v[3]);
-double ms_g1_tilted_base(const ggx_shape *s, const double v[3]);
-double ms_g1_sawtooth(const ggx_shape *s, const double v[3]);
 
 /* 1 where cell (y n + x) of an n x n tile is one of the risers that ms_measure_g1 found (r->risers), else 0. */
 int ms_riser_cell(const ms_g1 *r, size_t n, size_t cell);

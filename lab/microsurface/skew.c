@@ -1,5 +1,5 @@
 /* Skewed microsurfaces: a ramp under a field (a tilted patch or a sawtooth with risers), and the masking forms that
- * the tracer decides between for them (microsurface.h; docs/design/microsurface.md, "Skewed surfaces").
+ * the tracer decides between for them, besides the library's ggx_g1, ggx_g1_tilted and ggx_g1_risers (microsurface.h; docs/design/microsurface.md, "Skewed surfaces").
  * SPDX-License-Identifier: MIT */
 #include <math.h>
 #include <stdio.h>
@@ -18,31 +18,12 @@ int ms_ramp(double *h, size_t n, double tx, double ty, size_t period, char *err,
     return 0;
 }
 
-/* the location t and the view's part (v.x, v.y) along it: t . v_xy */
-static double along_tilt(const ggx_shape *s, const double v[3], double t[2], double sigma[3])
-{
-    ggx_shape_slopes(s, t, sigma);
-    return t[0] * v[0] + t[1] * v[1];
-}
-
 double ms_g1_vertical_facets(const ggx_shape *s, const double v[3])
 {
     if (!(v[2] > 0.0)) return 0.0;
-    double t[2], sigma[3], tv = along_tilt(s, v, t, sigma);
+    double t[2], sigma[3];
+    ggx_shape_slopes(s, t, sigma);
+    double tv = t[0] * v[0] + t[1] * v[1];
     double lit = v[2] * (1.0 + ggx_lambda(s, (ggx_vec3){v[0], v[1], v[2]})); /* the lune's projected area, eq 28 */
     return v[2] / (lit + fmax(tv, 0.0));
-}
-
-double ms_g1_tilted_base(const ggx_shape *s, const double v[3])
-{
-    double t[2], sigma[3], tv = along_tilt(s, v, t, sigma);
-    double z = v[2] - tv, l = sqrt(v[0] * v[0] + v[1] * v[1] + z * z);
-    ggx_shape flat;
-    if (!(z > 0.0) || ggx_shape_from_slopes(&flat, 0.0, 0.0, sigma[0], sigma[1], sigma[2]) != GGX_OK) return 0.0;
-    return ggx_g1_smith(&flat, (ggx_vec3){v[0] / l, v[1] / l, z / l});
-}
-
-double ms_g1_sawtooth(const ggx_shape *s, const double v[3])
-{
-    return fmin(ggx_g1_smith(s, (ggx_vec3){v[0], v[1], v[2]}), ms_g1_tilted_base(s, v));
 }

@@ -33,6 +33,7 @@ import numpy as np
 __all__ = [
     "Shape", "Fresnel", "Energy", "SamplerInfo", "BrdfSample", "DirectionSample", "samplers", "status_message",
     "ndf", "ndf_spherical", "p22", "gaussian_curvature", "projected_area", "lune_area", "lambda_", "g1", "g1_smith",
+    "g1_tilted", "g1_risers",
     "g2", "pdf_ndf", "pdf_vndf", "brdf", "bsdf", "albedo", "albedo_avg", "bsdf_albedo", "albedo_iso_table",
     "albedo_avg_iso_table", "bsdf_albedo_iso_table", "albedo_aniso_table",
     "sample", "pdf", "sample_inverse", "sample_ndf", "sample_vndf", "sample_brdf",
@@ -592,6 +593,18 @@ def g1(shape, u, m, dtype=np.float64):
 def g1_smith(shape, u, dtype=np.float64):
     """1 / (1 + Lambda(u)) (ggx_g1_smith)."""
     return _as(_scalar(_eval("ggx_g1_smith", shape, (u, "u", 3))[1]), dtype)
+
+
+def g1_tilted(shape, u, m, dtype=np.float64):
+    """Masking of a skewed shape read as GGX on a tilted mean plane (ggx_g1_tilted): in [0, 1]; ggx_g1 for unskewed
+    shapes; 0 for u.z <= 0, u at or below the mean plane, or u.m < 0."""
+    return _as(_scalar(_eval("ggx_g1_tilted", shape, (u, "u", 3), (m, "m", 3))[1]), dtype)
+
+
+def g1_risers(shape, u, m, dtype=np.float64):
+    """Masking of a skewed shape on a sawtooth of ramps and vertical risers (ggx_g1_risers): the least of
+    g1_smith and the tilted base's term, in [0, 1]."""
+    return _as(_scalar(_eval("ggx_g1_risers", shape, (u, "u", 3), (m, "m", 3))[1]), dtype)
 
 
 def g2(shape, wi, wo, m, height_correlated=False, dtype=np.float64):

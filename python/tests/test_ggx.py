@@ -46,7 +46,8 @@ def c():
         "ggx_ndf": (D, P, Vec3), "ggx_pdf_ndf": (D, P, Vec3), "ggx_lambda": (D, P, Vec3),
         "ggx_g1_smith": (D, P, Vec3), "ggx_projected_area": (D, P, Vec3), "ggx_gaussian_curvature": (D, P, Vec3),
         "ggx_albedo": (D, P, Vec3), "ggx_albedo_height_correlated": (D, P, Vec3),
-        "ggx_g1": (D, P, Vec3, Vec3), "ggx_pdf_vndf": (D, P, Vec3, Vec3), "ggx_lune_area": (D, P, Vec3, Vec3),
+        "ggx_g1": (D, P, Vec3, Vec3), "ggx_g1_tilted": (D, P, Vec3, Vec3), "ggx_g1_risers": (D, P, Vec3, Vec3),
+        "ggx_pdf_vndf": (D, P, Vec3, Vec3), "ggx_lune_area": (D, P, Vec3, Vec3),
         "ggx_pdf_brdf": (D, P, Vec3, Vec3), "ggx_pdf_brdf_bounded": (D, P, Vec3, Vec3),
         "ggx_pdf_brdf_bounded_azimuth": (D, P, Vec3, Vec3),
         "ggx_g2": (D, P, Vec3, Vec3, Vec3), "ggx_g2_height_correlated": (D, P, Vec3, Vec3, Vec3),
@@ -143,7 +144,8 @@ def test_evaluations_match_c_bit_for_bit(c, p):
     for py, cn in one:
         want = [getattr(c, cn)(cs, v3(x)) for x in a]
         assert same(getattr(ggx, py)(s, a), want), py
-    two = [("g1", "ggx_g1"), ("pdf_vndf", "ggx_pdf_vndf"), ("lune_area", "ggx_lune_area")]
+    two = [("g1", "ggx_g1"), ("pdf_vndf", "ggx_pdf_vndf"), ("lune_area", "ggx_lune_area"),
+           ("g1_tilted", "ggx_g1_tilted"), ("g1_risers", "ggx_g1_risers")]
     for py, cn in two:
         want = [getattr(c, cn)(cs, v3(x), v3(y)) for x, y in zip(b, m)]
         assert same(getattr(ggx, py)(s, b, m), want), py

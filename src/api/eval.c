@@ -11,6 +11,8 @@ GGX_API GGX_HOT double ggx_lune_area(const ggx_shape *s, ggx_vec3 u, ggx_vec3 v)
 GGX_API GGX_HOT double ggx_lambda(const ggx_shape *s, ggx_vec3 u) { return ggx_lambda_d(s, u); }
 GGX_API GGX_HOT double ggx_g1_smith(const ggx_shape *s, ggx_vec3 u) { return ggx_g1_smith_d(s, u); }
 GGX_API GGX_HOT double ggx_g1(const ggx_shape *s, ggx_vec3 u, ggx_vec3 m) { return ggx_g1_d(s, u, m); }
+GGX_API GGX_HOT double ggx_g1_tilted(const ggx_shape *s, ggx_vec3 u, ggx_vec3 m) { return ggx_g1_tilted_d(s, u, m); }
+GGX_API GGX_HOT double ggx_g1_risers(const ggx_shape *s, ggx_vec3 u, ggx_vec3 m) { return ggx_g1_risers_d(s, u, m); }
 GGX_API GGX_HOT double ggx_g2(const ggx_shape *s, ggx_vec3 wi, ggx_vec3 wo, ggx_vec3 m) { return ggx_g2_d(s, wi, wo, m); }
 GGX_API GGX_HOT double ggx_g2_height_correlated(const ggx_shape *s, ggx_vec3 wi, ggx_vec3 wo, ggx_vec3 m)
 {

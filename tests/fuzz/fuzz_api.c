@@ -214,6 +214,7 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
     double eta = next_double(&b);
     double r[] = {ggx_ndf(&s, m),          ggx_gaussian_curvature(&s, m), ggx_projected_area(&s, v),
                   ggx_lune_area(&s, v, m), ggx_g1(&s, v, m),              ggx_g1_smith(&s, v),
+                  ggx_g1_tilted(&s, v, m), ggx_g1_risers(&s, v, m),
                   ggx_g2(&s, v, m, m),     ggx_g2_height_correlated(&s, v, m, m),
                   ggx_pdf_vndf(&s, v, m),  ggx_pdf_ndf(&s, m),            ggx_brdf_eval(&s, &f, v, m),
                   ggx_pdf_brdf(&s, v, m),  ggx_bsdf_eval(&s, eta, v, m, GGX_RADIANCE),

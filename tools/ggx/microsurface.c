@@ -302,8 +302,8 @@ static int measure(int argc, char **argv)
                "generate --risers P, whose risers (the cells of the columns and rows P - 1 mod P along an axis where\n"
                "they step by more than 1) are counted apart. G1 of the other facets, traced, is then set beside\n"
                "Walter's eq 6 (ggx_g1, with its min), the Smith form of eq 32 without it (ggx_g1_smith), vertical\n"
-               "facets (Walter's remedy with Smith's masking), the tilted base (Smith's masking about the plane of\n"
-               "slope t) and the sawtooth's (the least of the last two); and the risers' own visible share. A\n"
+               "facets (Walter's remedy with Smith's masking), the tilted base (ggx_g1_tilted: Smith's masking\n"
+               "about the plane of slope t) and the sawtooth's (ggx_g1_risers); and the risers' own visible share. A\n"
                "tilted patch's BRDF is not measured (its directions are the tilted plane's).\n");
         return 0;
     }
@@ -382,7 +382,8 @@ static int measure(int argc, char **argv)
     if (st == GGX_OK) ggx_shape_slopes(&fit, ts, ss);
     double g_eq6 = st == GGX_OK ? ggx_g1(&fit, o.view, o.view) : NAN;
     double g_vf = st == GGX_OK ? ms_g1_vertical_facets(&fit, v) : NAN;
-    double g_tb = st == GGX_OK ? ms_g1_tilted_base(&fit, v) : NAN, g_saw = st == GGX_OK ? ms_g1_sawtooth(&fit, v) : NAN;
+    double g_tb = st == GGX_OK ? ggx_g1_tilted(&fit, o.view, o.view) : NAN;
+    double g_saw = st == GGX_OK ? ggx_g1_risers(&fit, o.view, o.view) : NAN;
     double g_riser = r.riser_area > 0.0 ? r.riser_visible / r.riser_area : NAN;
     int skewed = o.tilted || o.risers || hypot(ts[0], ts[1]) > 1e-6;
     double g1v = r.risers[0] || r.risers[1] ? r.g1_off_risers : r.g1;
@@ -431,8 +432,8 @@ static int measure(int argc, char **argv)
                     r.slope_mean[1], ts[0], ts[1]);
             fprintf(f.f, "| G1(v) of the facets off the risers | value |\n|---|---|\n| traced | %.6f |\n"
                          "| eq 6 with its min (ggx_g1) | %.6f |\n| Smith form of eq 32 (ggx_g1_smith) | %.6f |\n"
-                         "| vertical facets (Walter's remedy) | %.6f |\n| tilted base | %.6f |\n"
-                         "| sawtooth (the least of Smith and the tilted base) | %.6f |\n", g1v, g_eq6, g_ggx, g_vf, g_tb,
+                         "| vertical facets (Walter's remedy, Smith's masking) | %.6f |\n| tilted base (ggx_g1_tilted) | %.6f |\n"
+                         "| sawtooth (ggx_g1_risers) | %.6f |\n", g1v, g_eq6, g_ggx, g_vf, g_tb,
                     g_saw);
             if (r.riser_area > 0.0)
                 fprintf(f.f, "| the risers' visible share (projected area %.6f) | %.6f |\n", r.riser_area, g_riser);
