@@ -165,6 +165,7 @@ typedef struct g1_job {
     long g, row0, row1;
     int bins, rings, sectors;
     long *hits, missed, riser_hits;
+    int failed; /* no memory for a row */
 } g1_job;
 
 static void *g1_rows(void *p)
@@ -173,25 +174,40 @@ static void *g1_rows(void *p)
     double zmin, zmax, d[3] = {-j->v[0], -j->v[1], -j->v[2]}, step = (double)j->n / (double)j->g;
     ms_tracer_bounds(j->t, &zmin, &zmax);
     uint64_t s = 0x9E3779B97F4A7C15ull ^ (uint64_t)j->row0;
-    for (long r = j->row0; r < j->row1; r++)
-        for (long c = 0; c < j->g; c++) {
+    size_t g = (size_t)j->g;
+    double *o = malloc(3 * g * sizeof *o);
+    ms_hit *hits = malloc(g * sizeof *hits);
+    int *res = malloc(g * sizeof *res);
+    if (!o || !hits || !res) {
+        free(o), free(hits), free(res);
+        j->failed = 1;
+        return NULL;
+    }
+    for (long r = j->row0; r < j->row1; r++) {
+        /* a row of the jittered grid, traced as one stream of coherent rays */
+        for (size_t c = 0; c < g; c++) {
             double u = next_uniform(&s), w = next_uniform(&s);
-            double o[3] = {((double)c + u) * step, ((double)r + w) * step, zmax + 1.0};
-            ms_hit hit;
-            if (ms_trace(j->t, o, d, &hit) != 1) {
+            o[3 * c] = ((double)c + u) * step, o[3 * c + 1] = ((double)r + w) * step, o[3 * c + 2] = zmax + 1.0;
+        }
+        ms_trace_coherent(j->t, g, o, d, hits, res);
+        for (size_t c = 0; c < g; c++) {
+            if (res[c] != 1) {
                 j->missed++;
                 continue;
             }
-            size_t cx = hit.cell % j->n, cy = hit.cell / j->n;
+            ms_hit *hit = &hits[c];
+            size_t cx = hit->cell % j->n, cy = hit->cell / j->n;
             if (is_riser(j->P, j->axes, cx, cy)) {
                 j->riser_hits++;
                 continue;
             }
-            double fx = hit.p[0] - (double)cx, fy = hit.p[1] - (double)cy, sl[2][2], m[3];
+            double fx = hit->p[0] - (double)cx, fy = hit->p[1] - (double)cy, sl[2][2], m[3];
             cell_slopes(j->h, j->n, j->tilt, cx, cy, sl);
             normal_of(sl[fx + fy < 1.0 ? 0 : 1], m);
             j->hits[ms_bin(m, j->rings, j->sectors)]++;
         }
+    }
+    free(o), free(hits), free(res);
     return NULL;
 }
 
@@ -240,8 +256,10 @@ int ms_measure_g1(const ms_tracer *t, const double *h, size_t n, const double v[
     if (threads > g) threads = (int)g;
     for (int k = 0; k < threads; k++)
         jobs[k] = (g1_job){t, h, n, v, tilt, risers, axes, g, g * k / threads, g * (k + 1) / threads, bins, rings,
-                           sectors, hits + (size_t)k * (size_t)bins, 0, 0};
-    if (run_jobs(g1_rows, jobs, sizeof *jobs, threads) != 0) {
+                           sectors, hits + (size_t)k * (size_t)bins, 0, 0, 0};
+    int failed = run_jobs(g1_rows, jobs, sizeof *jobs, threads) != 0;
+    for (int k = 0; k < threads; k++) failed |= jobs[k].failed;
+    if (failed) {
         free(hits), free(jobs), ms_g1_free(r);
         snprintf(err, errn, "masking: out of memory");
         return -1;

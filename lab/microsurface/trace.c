@@ -102,58 +102,123 @@ void ms_tracer_bounds(const ms_tracer *t, double *zmin, double *zmax) { *zmin = 
 
 void ms_tracer_tilt(const ms_tracer *t, double tilt[2]) { tilt[0] = t->tilt[0], tilt[1] = t->tilt[1]; }
 
-int ms_trace(const ms_tracer *t, const double o[3], const double d[3], ms_hit *hit)
+/* One ray's walk through the tiles: its position in the tile's frame, the steps taken, and the end of the segment
+ * being traced (where it leaves the tile's column or the heights' band). */
+typedef struct walk {
+    double x, y, z, dr, tx, ty, tz, tend;
+    int step;
+} walk;
+
+static void walk_begin(const ms_tracer *t, const double o[3], const double d[3], walk *w)
 {
     double n = (double)t->n, kx = floor(o[0] / n), ky = floor(o[1] / n);
-    double x = o[0] - n * kx, y = o[1] - n * ky, z = o[2] - (t->tilt[0] * kx + t->tilt[1] * ky) * n;
+    w->x = o[0] - n * kx, w->y = o[1] - n * ky, w->z = o[2] - (t->tilt[0] * kx + t->tilt[1] * ky) * n;
+    /* the ray's height over the tilted plane z = tilt . (x, y) changes at the rate dr along the ray */
+    w->dr = d[2] - t->tilt[0] * d[0] - t->tilt[1] * d[1];
+    w->step = 0;
+}
+
+/* The next segment of the ray as Embree's ray: 2, or 0 (escaped) or -1 (left below) before any. */
+static int walk_segment(const ms_tracer *t, const double d[3], walk *w, struct RTCRayHit *rh)
+{
+    double n = (double)t->n, r = w->z - t->tilt[0] * w->x - t->tilt[1] * w->y, dr = w->dr;
+    if (w->step >= 1 << 20) return 0;
+    if (dr >= 0.0 && r > t->rmax) return 0;
+    if (dr < 0.0 && r < t->rmin) return -1;
+    /* the ray's part inside this tile's column: up to where it leaves a side (or the heights' band) */
+    w->tx = d[0] > 0.0 ? (n - w->x) / d[0] : d[0] < 0.0 ? -w->x / d[0] : HUGE_VAL;
+    w->ty = d[1] > 0.0 ? (n - w->y) / d[1] : d[1] < 0.0 ? -w->y / d[1] : HUGE_VAL;
+    w->tz = dr > 0.0 ? (t->rmax - r) / dr : dr < 0.0 ? (t->rmin - r) / dr : HUGE_VAL;
+    w->tend = fmin(fmin(w->tx, w->ty), w->tz);
+    if (!(w->tend < HUGE_VAL)) return 0; /* along the plane, inside the band, along no side: cannot happen */
+    rh->ray.org_x = (float)w->x, rh->ray.org_y = (float)w->y, rh->ray.org_z = (float)w->z;
+    rh->ray.dir_x = (float)d[0], rh->ray.dir_y = (float)d[1], rh->ray.dir_z = (float)d[2];
+    rh->ray.tnear = w->step == 0 ? 1e-4f : 0.0f, rh->ray.tfar = (float)(w->tend * (1.0 + 1e-6) + 1e-6);
+    rh->ray.mask = 0xFFFFFFFFu, rh->ray.flags = 0, rh->ray.time = 0.0f;
+    rh->hit.geomID = RTC_INVALID_GEOMETRY_ID, rh->hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
+    return 2;
+}
+
+/* After Embree traced the segment: 1 and *hit, 0 or -1 (escaped, left below), or 2 (into the next tile). */
+static int walk_after(const ms_tracer *t, const double d[3], walk *w, const struct RTCRayHit *rh, ms_hit *hit)
+{
+    double n = (double)t->n, tx0 = t->tilt[0], ty0 = t->tilt[1];
+    if (rh->hit.geomID != RTC_INVALID_GEOMETRY_ID) {
+        double th = rh->ray.tfar, gx = rh->hit.Ng_x, gy = rh->hit.Ng_y, gz = rh->hit.Ng_z;
+        double l = sqrt(gx * gx + gy * gy + gz * gz);
+        if (gz < 0.0) l = -l; /* the upward normal: a height field's facets all face up */
+        hit->p[0] = w->x + th * d[0], hit->p[1] = w->y + th * d[1], hit->p[2] = w->z + th * d[2];
+        /* a hit in the border (within about 1e-5 of a side) is the same facet of the next tile */
+        if (hit->p[0] < 0.0) hit->p[0] += n, hit->p[2] += tx0 * n;
+        if (hit->p[0] >= n) hit->p[0] -= n, hit->p[2] -= tx0 * n;
+        if (hit->p[1] < 0.0) hit->p[1] += n, hit->p[2] += ty0 * n;
+        if (hit->p[1] >= n) hit->p[1] -= n, hit->p[2] -= ty0 * n;
+        hit->m[0] = gx / l, hit->m[1] = gy / l, hit->m[2] = gz / l;
+        size_t cx = (size_t)fmin(fmax(floor(hit->p[0]), 0.0), n - 1);
+        size_t cy = (size_t)fmin(fmax(floor(hit->p[1]), 0.0), n - 1);
+        hit->cell = cy * t->n + cx;
+        return 1;
+    }
+    if (w->tend == w->tz) return w->dr > 0.0 ? 0 : -1; /* left the heights' band: escaped (up), or through (down) */
+    /* into the next tile: move to the side, wrap the coordinate that crossed it, and start a little before it
+     * (1e-3 back along the ray, outside the new tile's geometry), so that a crossing of the surface at the side
+     * itself, which single precision may give to neither tile, is inside the new segment; the tilt: the next
+     * tile's surface is tilt n higher along the way the ray goes */
+    double te = w->tend;
+    w->x += te * d[0], w->y += te * d[1], w->z += te * d[2];
+    if (te == w->tx) w->x = d[0] > 0.0 ? 0.0 : n, w->z -= (d[0] > 0.0 ? 1.0 : -1.0) * tx0 * n;
+    if (te == w->ty) w->y = d[1] > 0.0 ? 0.0 : n, w->z -= (d[1] > 0.0 ? 1.0 : -1.0) * ty0 * n;
+    w->x -= 1e-3 * d[0], w->y -= 1e-3 * d[1], w->z -= 1e-3 * d[2];
+    w->step++;
+    return 2;
+}
+
+static int walk_on(const ms_tracer *t, const double d[3], walk *w, ms_hit *hit)
+{
     struct RTCIntersectContext ctx;
     rtcInitIntersectContext(&ctx);
-    /* the ray's height over the tilted plane z = tilt . (x, y), and its rate along the ray */
-    double tx0 = t->tilt[0], ty0 = t->tilt[1], dr = d[2] - tx0 * d[0] - ty0 * d[1];
-    for (int step = 0; step < 1 << 20; step++) {
-        double r = z - tx0 * x - ty0 * y;
-        if (dr >= 0.0 && r > t->rmax) return 0;
-        if (dr < 0.0 && r < t->rmin) return -1;
-        /* the ray's part inside this tile's column: up to where it leaves a side (or the heights' band) */
-        double tx = d[0] > 0.0 ? (n - x) / d[0] : d[0] < 0.0 ? -x / d[0] : HUGE_VAL;
-        double ty = d[1] > 0.0 ? (n - y) / d[1] : d[1] < 0.0 ? -y / d[1] : HUGE_VAL;
-        double tz = dr > 0.0 ? (t->rmax - r) / dr : dr < 0.0 ? (t->rmin - r) / dr : HUGE_VAL;
-        double tend = fmin(fmin(tx, ty), tz);
-        if (!(tend < HUGE_VAL)) return 0; /* along the plane, inside the band, along no side: cannot happen */
+    for (;;) {
         struct RTCRayHit rh;
-        rh.ray.org_x = (float)x, rh.ray.org_y = (float)y, rh.ray.org_z = (float)z;
-        rh.ray.dir_x = (float)d[0], rh.ray.dir_y = (float)d[1], rh.ray.dir_z = (float)d[2];
-        rh.ray.tnear = step == 0 ? 1e-4f : 0.0f, rh.ray.tfar = (float)(tend * (1.0 + 1e-6) + 1e-6);
-        rh.ray.mask = 0xFFFFFFFFu, rh.ray.flags = 0, rh.ray.time = 0.0f;
-        rh.hit.geomID = RTC_INVALID_GEOMETRY_ID, rh.hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
+        int k = walk_segment(t, d, w, &rh);
+        if (k != 2) return k;
         rtcIntersect1(t->scene, &ctx, &rh);
-        if (rh.hit.geomID != RTC_INVALID_GEOMETRY_ID) {
-            double th = rh.ray.tfar, gx = rh.hit.Ng_x, gy = rh.hit.Ng_y, gz = rh.hit.Ng_z;
-            double l = sqrt(gx * gx + gy * gy + gz * gz);
-            if (gz < 0.0) l = -l; /* the upward normal: a height field's facets all face up */
-            hit->p[0] = x + th * d[0], hit->p[1] = y + th * d[1], hit->p[2] = z + th * d[2];
-            /* a hit in the border (within about 1e-5 of a side) is the same facet of the next tile */
-            if (hit->p[0] < 0.0) hit->p[0] += n, hit->p[2] += tx0 * n;
-            if (hit->p[0] >= n) hit->p[0] -= n, hit->p[2] -= tx0 * n;
-            if (hit->p[1] < 0.0) hit->p[1] += n, hit->p[2] += ty0 * n;
-            if (hit->p[1] >= n) hit->p[1] -= n, hit->p[2] -= ty0 * n;
-            hit->m[0] = gx / l, hit->m[1] = gy / l, hit->m[2] = gz / l;
-            size_t cx = (size_t)fmin(fmax(floor(hit->p[0]), 0.0), n - 1);
-            size_t cy = (size_t)fmin(fmax(floor(hit->p[1]), 0.0), n - 1);
-            hit->cell = cy * t->n + cx;
-            return 1;
-        }
-        if (tend == tz) return dr > 0.0 ? 0 : -1; /* left the heights' band: escaped (up), or through (down) */
-        /* into the next tile: move to the side, wrap the coordinate that crossed it, and start a little before it
-         * (1e-3 back along the ray, outside the new tile's geometry), so that a crossing of the surface at the side
-         * itself, which single precision may give to neither tile, is inside the new segment */
-        x += tend * d[0], y += tend * d[1], z += tend * d[2];
-        /* (the tilt: the next tile's surface is tilt n higher along the way the ray goes) */
-        if (tend == tx) x = d[0] > 0.0 ? 0.0 : n, z -= (d[0] > 0.0 ? 1.0 : -1.0) * tx0 * n;
-        if (tend == ty) y = d[1] > 0.0 ? 0.0 : n, z -= (d[1] > 0.0 ? 1.0 : -1.0) * ty0 * n;
-        x -= 1e-3 * d[0], y -= 1e-3 * d[1], z -= 1e-3 * d[2];
+        k = walk_after(t, d, w, &rh, hit);
+        if (k != 2) return k;
     }
-    return 0;
+}
+
+int ms_trace(const ms_tracer *t, const double o[3], const double d[3], ms_hit *hit)
+{
+    walk w;
+    walk_begin(t, o, d, &w);
+    return walk_on(t, d, &w, hit);
+}
+
+void ms_trace_coherent(const ms_tracer *t, size_t count, const double *o, const double d[3], ms_hit *hits,
+                       int *result)
+{
+    enum { M = 64 };
+    struct RTCIntersectContext ctx;
+    rtcInitIntersectContext(&ctx);
+    ctx.flags = RTC_INTERSECT_CONTEXT_FLAG_COHERENT;
+    for (size_t first = 0; first < count; first += M) {
+        size_t m = count - first < M ? count - first : M, live = 0;
+        walk w[M];
+        struct RTCRayHit rh[M];
+        size_t idx[M];
+        /* the first segments of up to M rays in one stream; a ray that goes on into the next tile then walks alone */
+        for (size_t i = 0; i < m; i++) {
+            walk_begin(t, o + 3 * (first + i), d, &w[i]);
+            int k = walk_segment(t, d, &w[i], &rh[live]);
+            if (k != 2) result[first + i] = k;
+            else w[live] = w[i], idx[live++] = first + i;
+        }
+        rtcIntersect1M(t->scene, &ctx, rh, (unsigned)live, sizeof rh[0]);
+        for (size_t i = 0; i < live; i++) {
+            int k = walk_after(t, d, &w[i], &rh[i], &hits[idx[i]]);
+            result[idx[i]] = k == 2 ? walk_on(t, d, &w[i], &hits[idx[i]]) : k;
+        }
+    }
 }
 #else
 struct ms_tracer {
@@ -180,5 +245,11 @@ int ms_trace(const ms_tracer *t, const double o[3], const double d[3], ms_hit *h
 {
     (void)t, (void)o, (void)d, (void)hit;
     return 0;
+}
+void ms_trace_coherent(const ms_tracer *t, size_t count, const double *o, const double d[3], ms_hit *hits,
+                       int *result)
+{
+    (void)t, (void)o, (void)d, (void)hits;
+    for (size_t i = 0; i < count; i++) result[i] = 0;
 }
 #endif
