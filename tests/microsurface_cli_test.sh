@@ -38,13 +38,15 @@ assert abs(d['shape']['alpha'][0] / 0.3 - 1) < 0.05, d['shape']" && ok || bad "G
 import json; a = json.load(open('g0.json'))['vndf_chi2']; b = json.load(open('g80.json'))['vndf_chi2']
 assert a['stat'] / a['dof'] < 3 and b['stat'] / b['dof'] > 5 * a['stat'] / a['dof'], (a, b)" && ok ||
         bad "visible normals: $(grep vndf g0.json g80.json)"
-    # the BRDF with F = 1: the white furnace of all bounces keeps every ray (none lost, none left bouncing), and at
-    # normal incidence the single-scattering BRDF is ggx_brdf_eval's within 10 % in L2
+    # the BRDF with F = 1: the white furnace of all bounces keeps every ray (none lost, none left bouncing), at
+    # normal incidence the single-scattering BRDF is ggx_brdf_eval's within 10 % in L2, and at 80 degrees the
+    # height-correlated G2 puts the lobe nearer the traced one than eq 5's
     "$PY" -c "
 import json; a = json.load(open('g0.json'))['brdf']; b = json.load(open('g80.json'))['brdf']
 for r in (a, b):
     assert r['lost'] == 0 and r['capped'] == 0 and abs(r['albedo_all'] - 1) < 1e-12 and r['albedo_single'] < 1, r
-assert a['l2_single'] < 0.1 and abs(a['albedo_single'] - a['albedo_model']) < 0.02, a" && ok ||
+assert a['l2_single'] < 0.1 and abs(a['albedo_single'] - a['albedo_model']) < 0.02, a
+assert b['l2_single_height_correlated'] < 0.9 * b['l2_single'], b" && ok ||
         bad "BRDF: $(grep brdf g0.json g80.json)"
     # skewed GGX (docs/design/microsurface.md, "Skewed surfaces"): a tilted patch is refused as periodic; traced as
     # an infinite tilted patch its G1 is the tilted base's within 3 % and eq 6 misses it by over 20 %; as a sawtooth

@@ -293,8 +293,9 @@ static int measure(int argc, char **argv)
                "ggx_pdf_vndf of the fitted shape (eq 33) on 16 x 16 cells of its sphere space. Then the BRDF with\n"
                "F = 1 and the light at the view: RAYS rays reflected from facet to facet until they escape (at most\n"
                "K times, default 100; the rest are counted as still bouncing), binned in 8 x 16 outgoing bins of\n"
-               "equal projected solid angle; single scattering against ggx_brdf_eval of the fitted shape (and its\n"
-               "albedo against ggx_albedo and ggx_albedo_height_correlated), all bounces against\n"
+               "equal projected solid angle; single scattering against ggx_brdf_eval of the fitted shape and the\n"
+               "same with the height-correlated G2 in place of eq 5's (its albedo against ggx_albedo and\n"
+               "ggx_albedo_height_correlated), all bounces against\n"
                "ggx_brdf_compensated_eval of the fitted scale without its skew (the white furnace: albedo 1).\n"
                "The model's shape is the fit, or the shape given (--alpha, --skew, --rotate or --matrix).\n\n"
                "Skewed surfaces (generate --skew): --tilted traces the tile as an infinite tilted patch, each copy\n"
@@ -348,7 +349,8 @@ static int measure(int argc, char **argv)
     memset(&br, 0, sizeof br);
     int bounces = o.bounces > 0 ? o.bounces : 100, brdf = !o.tilted;
     if (brdf && ms_measure_brdf(t, n, v, rays, BR, BS, bounces, threads, &br, err, sizeof err) != 0) die("%s", err);
-    double e_single = 0.0, e_all = 0.0, d1 = 0.0, n1 = 0.0, d2 = 0.0, n2 = 0.0, e_model = NAN, e_hc = NAN;
+    double e_single = 0.0, e_all = 0.0, d1 = 0.0, n1 = 0.0, d2 = 0.0, n2 = 0.0, d3 = 0.0, n3 = 0.0;
+    double e_model = NAN, e_hc = NAN;
     ggx_energy *en = NULL;
     ggx_fresnel one;
     ggx_fresnel_one(&one);
@@ -364,18 +366,23 @@ static int measure(int argc, char **argv)
         e_single += br.single[b], e_all += br.all[b];
         if (st != GGX_OK) continue;
         /* the model's mean over the bin (uniform in sin^2 theta and phi: uniform in projected solid angle) */
-        double m1 = 0.0, ma = 0.0;
+        double m1 = 0.0, ma = 0.0, mh = 0.0;
         int ring = b / BS, sec = b % BS;
         for (int i = 0; i < 4; i++)
             for (int k = 0; k < 4; k++) {
                 double u = ((double)ring + (i + 0.5) / 4.0) / BR, ph = 2.0 * 3.14159265358979323846 * ((double)sec + (k + 0.5) / 4.0) / BS;
                 ggx_vec3 wo = {sqrt(u) * cos(ph), sqrt(u) * sin(ph), sqrt(1.0 - u)};
-                m1 += ggx_brdf_eval(&fit, &one, o.view, wo) / 16.0;
+                double f = ggx_brdf_eval(&fit, &one, o.view, wo) / 16.0;
+                /* the height-correlated G2 in place of eq 5's: the same BRDF times their ratio at the half vector */
+                ggx_vec3 hv = ggx_half_reflect(o.view, wo);
+                double g2 = ggx_g2(&fit, o.view, wo, hv);
+                m1 += f, mh += g2 > 0.0 ? f * ggx_g2_height_correlated(&fit, o.view, wo, hv) / g2 : 0.0;
                 if (en) ma += ggx_brdf_compensated_eval(en, &one, o.view, wo) / 16.0;
             }
         d1 += (f1 - m1) * (f1 - m1), n1 += m1 * m1, d2 += (fa - ma) * (fa - ma), n2 += ma * ma;
+        d3 += (f1 - mh) * (f1 - mh), n3 += mh * mh;
     }
-    double l2_single = brdf ? sqrt(d1 / n1) : NAN, l2_all = en ? sqrt(d2 / n2) : NAN;
+    double l2_single = brdf ? sqrt(d1 / n1) : NAN, l2_all = en ? sqrt(d2 / n2) : NAN, l2_hc = brdf ? sqrt(d3 / n3) : NAN;
     ggx_energy_free(en);
     /* skewed surfaces: the facets off the risers against the masking forms (microsurface.h, skew.c) */
     double ts[2] = {0.0, 0.0}, ss[3];
@@ -413,8 +420,9 @@ static int measure(int argc, char **argv)
         if (brdf)
             fprintf(f.f, "  \"brdf\": {\"rays\": %ld, \"lost\": %ld, \"capped\": %ld, \"albedo_single\": %.8g, "
                          "\"albedo_model\": %s, \"albedo_model_height_correlated\": %s, \"albedo_all\": %.8g, "
-                         "\"l2_single\": %s, \"l2_all\": %s},\n", br.rays, br.lost, br.capped, e_single, jnum(b3, e_model),
-                    jnum(b1, e_hc), e_all, jnum(b4, l2_single), jnum(b5, l2_all));
+                         "\"l2_single\": %s, \"l2_single_height_correlated\": %s, \"l2_all\": %s},\n", br.rays, br.lost,
+                    br.capped, e_single, jnum(b3, e_model), jnum(b1, e_hc), e_all, jnum(b4, l2_single), jnum(b6, l2_hc),
+                    jnum(b5, l2_all));
         else
             fprintf(f.f, "  \"brdf\": null,\n");
         fprintf(f.f, "  \"bins\": [");
@@ -446,9 +454,9 @@ static int measure(int argc, char **argv)
         else fprintf(f.f, "the BRDF with F = 1 from the light at the view, %ld rays (%ld lost, %ld still bouncing after %d), "
                      "%d x %d bins:\n\n| | traced | model | relative L2 of the BRDF over the bins |\n|---|---|---|---|\n"
                      "| single scattering: albedo | %.5f | %.5f (ggx_albedo; height-correlated: %.5f) | %.4f "
-                     "(ggx_brdf_eval) |\n"
+                     "(ggx_brdf_eval; with the height-correlated G2: %.4f) |\n"
                      "| all bounces: albedo | %.5f | 1 (F = 1) | %.4f (ggx_brdf_compensated_eval) |\n\n", br.rays,
-                br.lost, br.capped, bounces, BR, BS, e_single, e_model, e_hc, l2_single, e_all, l2_all);
+                br.lost, br.capped, bounces, BR, BS, e_single, e_model, e_hc, l2_single, l2_hc, e_all, l2_all);
         fprintf(f.f, "| sin^2 theta_m | phi_m, degrees | projected area | traced G1(v, m) | / G1(v) |\n|---|---|---|---|---|\n");
     }
     int first = 1;
