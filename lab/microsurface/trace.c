@@ -82,8 +82,10 @@ ms_tracer *ms_tracer_new(const double *h, size_t n, const double tilt[2], char *
     rtcAttachGeometry(t->scene, g);
     rtcReleaseGeometry(g);
     rtcCommitScene(t->scene);
-    if (rtcGetDeviceError(t->device) != RTC_ERROR_NONE) {
-        snprintf(err, errn, "tracer: Embree could not build the surface");
+    enum RTCError e = rtcGetDeviceError(t->device);
+    if (e != RTC_ERROR_NONE) {
+        snprintf(err, errn, "tracer: Embree could not build the surface of %zu x %zu heights (%s)", n, n,
+                 e == RTC_ERROR_OUT_OF_MEMORY ? "out of memory" : "Embree error");
         ms_tracer_free(t);
         return NULL;
     }
