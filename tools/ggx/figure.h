@@ -53,6 +53,25 @@ int figure_has_grey(const figure_spec *f);
  * visible half is not a sliver (phi_v = 90 on the seeds' shape, narrow along x). */
 double figure_default_from(const figure_spec *f);
 
+/* A line plot's series: points joined by a line in the palette's colour and dashes, or (marks) measured points
+ * drawn as open circles in the text's colour. */
+#define LINE_MAX_POINTS 360
+typedef struct plot_series {
+    double x[LINE_MAX_POINTS], y[LINE_MAX_POINTS];
+    int n, marks;
+    char label[96];
+} plot_series;
+/* Its axes: labels, a log scale for y, x over [-90, 90] (slice) or [0, 90], the points beyond range_x_max left out
+ * of the y range, and the y range's top at 1.05 times the highest point (free_top) or at least 1.05. */
+typedef struct plot_axes {
+    const char *xlabel, *ylabel;
+    int logy, slice, free_top;
+    double range_x_max;
+} plot_axes;
+/* Draws the series into (x, y, w, h) of cr with font size F, a legend at the right. */
+void plot_draw(cairo_t *cr, const theme *th, double x, double y, double w, double h, double F, const plot_series *sr,
+               int ns, const plot_axes *ax);
+
 /* Curve k of a line figure (FIG_G1 and after): its first max points into x, y and its legend into label (n bytes);
  * returns the number of points written, or -1 when the figure has no curve k. Not thread-safe. */
 int figure_curve(const figure_spec *f, int k, double *x, double *y, int max, char *label, size_t n);

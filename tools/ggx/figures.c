@@ -580,12 +580,7 @@ static void draw_hemisphere(cairo_t *cr, const theme *th, double x, double y, do
  * Line plots
  * --------------------------------------------------------------------------------------------------------------- */
 
-#define LINE_MAX_POINTS 360
-typedef struct series {
-    double x[LINE_MAX_POINTS], y[LINE_MAX_POINTS];
-    int n;
-    char label[96];
-} series;
+typedef plot_series series;
 
 /* Okabe and Ito's colour-blind-safe palette, with dashes so that print in grey still tells the curves apart. */
 const double FIGURE_PALETTE[6][3] = {{0.0, 0.447, 0.698}, {0.835, 0.369, 0.0}, {0.0, 0.62, 0.451},
@@ -718,27 +713,37 @@ int figure_curve(const figure_spec *f, int k, double *x, double *y, int max, cha
 static void draw_lines(cairo_t *cr, const theme *th, double x, double y, double w, double h, const figure_spec *f)
 {
     static series sr[8];
-    const char *xlabel, *ylabel;
-    int logy, ns = line_series(f, sr, &xlabel, &ylabel, &logy);
+    plot_axes ax = {0};
+    int ns = line_series(f, sr, &ax.xlabel, &ax.ylabel, &ax.logy);
     double F = figure_font(w, h);
     double cap = figure_draw_caption(cr, th, x, y, w, F, f, CAPTION_LINES);
+    ax.slice = f->kind == FIG_NDF_SLICE;
+    ax.range_x_max = f->kind == FIG_LAMBDA ? 85 : INFINITY; /* the scale of the curve; the asymptote leaves the box */
+    ax.free_top = f->kind == FIG_LAMBDA;
+    plot_draw(cr, th, x, y + cap, w, h - cap, F, sr, ns, &ax);
+}
+
+void plot_draw(cairo_t *cr, const theme *th, double x, double y, double w, double h, double F, const plot_series *sr,
+               int ns, const plot_axes *ax)
+{
+    int logy = ax->logy;
     double legend_w = 0;
     text_font(cr, 0.8 * F, 0);
     for (int i = 0; i < ns; i++) legend_w = fmax(legend_w, text_width(cr, sr[i].label));
     legend_w += 3.6 * F;
-    double px = x + 5.0 * F, py = y + cap + 0.6 * F, pw = w - 5.0 * F - legend_w - 0.8 * F, ph = h - cap - 4.2 * F;
+    double px = x + 5.0 * F, py = y + 0.6 * F, pw = w - 5.0 * F - legend_w - 0.8 * F, ph = h - 4.2 * F;
     double xlo = 1e300, xhi = -1e300, ylo = 1e300, yhi = -1e300;
     for (int i = 0; i < ns; i++)
         for (int k = 0; k < sr[i].n; k++) {
-            if (f->kind == FIG_LAMBDA && sr[i].x[k] > 85) continue; /* the scale of the curve; the asymptote leaves the box */
+            if (sr[i].x[k] > ax->range_x_max) continue;
             xlo = fmin(xlo, sr[i].x[k]), xhi = fmax(xhi, sr[i].x[k]);
             double v = logy ? log10(sr[i].y[k]) : sr[i].y[k];
             if (isfinite(v)) ylo = fmin(ylo, v), yhi = fmax(yhi, v);
         }
-    if (f->kind == FIG_NDF_SLICE) xlo = -90, xhi = 90;
+    if (ax->slice) xlo = -90, xhi = 90;
     else xlo = 0, xhi = 90;
     if (logy) ylo = floor(fmax(ylo, yhi - 6)), yhi = ceil(yhi);
-    else ylo = fmin(0.0, ylo), yhi = (f->kind == FIG_LAMBDA) ? yhi * 1.05 : fmax(1.0, yhi) * 1.05;
+    else ylo = fmin(0.0, ylo), yhi = ax->free_top ? yhi * 1.05 : fmax(1.0, yhi) * 1.05;
     if (!logy && ylo < 0) ylo -= 0.05 * (yhi - ylo); /* a negative curve (Lambda of a skewed shape) clear of the frame */
     if (!(yhi > ylo)) yhi = ylo + 1;
 #define MAPX(v) (px + pw * ((v) - xlo) / (xhi - xlo))
@@ -748,7 +753,7 @@ static void draw_lines(cairo_t *cr, const theme *th, double x, double y, double 
     cairo_set_line_width(cr, fmax(0.4, 0.05 * F));
     text_font(cr, 0.8 * F, 0);
     int nt = 7; /* every 15 degrees over [0, 90], every 30 over [-90, 90] */
-    for (int i = 0; i < nt; i++) ticks[i] = f->kind == FIG_NDF_SLICE ? -90 + 30 * i : 15 * i;
+    for (int i = 0; i < nt; i++) ticks[i] = ax->slice ? -90 + 30 * i : 15 * i;
     for (int i = 0; i < nt; i++) {
         double X = MAPX(ticks[i]);
         cairo_set_source_rgba(cr, th->faint[0], th->faint[1], th->faint[2], 0.35);
@@ -775,9 +780,9 @@ static void draw_lines(cairo_t *cr, const theme *th, double x, double y, double 
     cairo_rectangle(cr, px, py, pw, ph);
     cairo_stroke(cr);
     text_font(cr, 0.85 * F, 0);
-    text_at(cr, px + 0.5 * pw, py + ph + 2.0 * F, 0.5, 0, xlabel);
-    text_vertical(cr, x + 1.0 * F, py + 0.5 * ph, ylabel);
-    /* the curves, clipped to the box */
+    text_at(cr, px + 0.5 * pw, py + ph + 2.0 * F, 0.5, 0, ax->xlabel);
+    text_vertical(cr, x + 1.0 * F, py + 0.5 * ph, ax->ylabel);
+    /* the curves, clipped to the box; a series of marks as open circles */
     cairo_save(cr);
     cairo_rectangle(cr, px, py, pw, ph);
     cairo_clip(cr);
@@ -785,12 +790,18 @@ static void draw_lines(cairo_t *cr, const theme *th, double x, double y, double 
     cairo_set_line_join(cr, CAIRO_LINE_JOIN_ROUND);
     for (int i = 0; i < ns; i++) {
         double dashes[2] = {0.7 * F * (i % 3), 0.35 * F};
-        set_rgb(cr, FIGURE_PALETTE[i % 6]);
-        cairo_set_dash(cr, dashes, i % 3 ? 2 : 0, 0);
+        set_rgb(cr, sr[i].marks ? th->fg : FIGURE_PALETTE[i % 6]);
+        cairo_set_dash(cr, dashes, i % 3 && !sr[i].marks ? 2 : 0, 0);
         for (int k = 0; k < sr[i].n; k++) {
             double Y = MAPY(logy ? log10(sr[i].y[k]) : sr[i].y[k]);
-            if (k == 0) cairo_move_to(cr, MAPX(sr[i].x[k]), Y);
-            else cairo_line_to(cr, MAPX(sr[i].x[k]), Y);
+            if (sr[i].marks) {
+                cairo_new_sub_path(cr);
+                cairo_arc(cr, MAPX(sr[i].x[k]), Y, 0.3 * F, 0, 2 * 3.14159265358979323846);
+            } else if (k == 0) {
+                cairo_move_to(cr, MAPX(sr[i].x[k]), Y);
+            } else {
+                cairo_line_to(cr, MAPX(sr[i].x[k]), Y);
+            }
         }
         cairo_stroke(cr);
     }
@@ -800,11 +811,17 @@ static void draw_lines(cairo_t *cr, const theme *th, double x, double y, double 
     for (int i = 0; i < ns; i++) {
         double lx = px + pw + 0.8 * F, ly = py + 0.6 * F + 1.4 * F * i;
         double dashes[2] = {0.7 * F * (i % 3), 0.35 * F};
-        set_rgb(cr, FIGURE_PALETTE[i % 6]);
+        set_rgb(cr, sr[i].marks ? th->fg : FIGURE_PALETTE[i % 6]);
         cairo_set_line_width(cr, fmax(1.0, 0.14 * F));
-        cairo_set_dash(cr, dashes, i % 3 ? 2 : 0, 0);
-        cairo_move_to(cr, lx, ly), cairo_line_to(cr, lx + 2.4 * F, ly), cairo_stroke(cr);
-        cairo_set_dash(cr, NULL, 0, 0);
+        if (sr[i].marks) {
+            cairo_new_sub_path(cr);
+            cairo_arc(cr, lx + 1.2 * F, ly, 0.3 * F, 0, 2 * 3.14159265358979323846);
+            cairo_stroke(cr);
+        } else {
+            cairo_set_dash(cr, dashes, i % 3 ? 2 : 0, 0);
+            cairo_move_to(cr, lx, ly), cairo_line_to(cr, lx + 2.4 * F, ly), cairo_stroke(cr);
+            cairo_set_dash(cr, NULL, 0, 0);
+        }
         set_rgb(cr, th->fg);
         text_at(cr, lx + 2.9 * F, ly, 0, 0.5, sr[i].label);
     }
