@@ -103,6 +103,17 @@ assert abs(g['traced'] / g['sawtooth'] - 1) < 0.03 and abs(g['vertical_facets'] 
             bad "measure without memory"
         rm -f big.exr
     fi
+    # the figure: a PNG of the size asked and an SVG; bad input refused with one line
+    "$GGX" microsurface figure --heightfield sw.exr --spacing 1 --z-scale 1 --risers 256 -n 2000 --size 600x360 \
+        --out f.png 2> /dev/null && "$PY" -c "
+import struct; b = open('f.png', 'rb').read(24)
+assert b[:8] == b'\\x89PNG\\r\\n\\x1a\\n' and struct.unpack('>II', b[16:24]) == (600, 360), b" && ok || bad "figure PNG"
+    "$GGX" microsurface figure --heightfield g.x3p -n 2000 --out f.svg 2> /dev/null && grep -q "<svg" f.svg && ok ||
+        bad "figure SVG"
+    one_line "figure, no output" "--out FILE.png|svg|pdf is required" 2 "$GGX" microsurface figure --heightfield g.x3p
+    one_line "figure, a tilted patch as periodic" "not periodic along y" 2 "$GGX" microsurface figure \
+        --heightfield tp.exr --spacing 1 --z-scale 1 --out n.png
+    [ ! -e n.png ] && ok || bad "a refused figure left a file"
     # the same seed, the same file
     "$GGX" microsurface generate --kind beckmann --alpha 0.3 --corr 8 --size 256 --seed 3 --out b2.x3p > /dev/null &&
         "$GGX" fit --heightfield b2.x3p > fit2.txt && [ "$(sed 1d fit.txt)" = "$(sed 1d fit2.txt)" ] && ok ||

@@ -10,6 +10,7 @@
 #include "ggx/ggx_fit.h"
 #include "ggx/ggx_samplers.h"
 #include "microsurface.h"
+#include "microsurface_cmd.h"
 #include "surface.h"
 
 static void write_heights(const char *path, double *h, size_t n)
@@ -157,7 +158,7 @@ static int generate(int argc, char **argv)
 
 /* The height field of --heightfield in grid units (heights over the spacing, which must be equal along x and y),
  * checked to repeat as --tilted and --risers say, and the tilt (0, 0 unless --tilted). */
-static double *grid_heights(const options *o, size_t *n_out, double tilt[2])
+double *microsurface_heights(const options *o, size_t *n_out, double tilt[2])
 {
     surface_read_options ro = {SURFACE_HEIGHTS, 0};
     surface s;
@@ -215,7 +216,7 @@ static double *grid_heights(const options *o, size_t *n_out, double tilt[2])
 
 /* The fitted shape of the facets off the risers (all four triangles of each inner cell, as ggx_fit_heightfield
  * takes them), or of all the facets as given (not levelled: the tracer traces them as they are). */
-static ggx_status fit_facets(const double *h, size_t n, const ms_g1 *r, ggx_shape *fit)
+ggx_status microsurface_fit(const double *h, size_t n, const ms_g1 *r, ggx_shape *fit)
 {
     ggx_heightfield_options ho = {1, 0};
     if (!r->risers[0] && !r->risers[1]) return ggx_fit_heightfield(fit, h, n, n, 1.0, 1.0, &ho, NULL, NULL);
@@ -314,7 +315,7 @@ static int measure(int argc, char **argv)
     if (o.tilted && o.risers) die("--tilted and --risers: a surface is one or the other");
     size_t n;
     double tilt[2];
-    double *h = grid_heights(&o, &n, tilt);
+    double *h = microsurface_heights(&o, &n, tilt);
     char err[400];
     ms_tracer *t = ms_tracer_new(h, n, o.tilted ? tilt : NULL, err, sizeof err);
     if (!t) {
@@ -330,7 +331,7 @@ static int measure(int argc, char **argv)
     int given = o.have_alpha || o.have_skew || o.have_rotate || o.have_matrix;
     ggx_status st = GGX_OK;
     if (given) shape_from_options(&o, &fit);
-    else st = fit_facets(h, n, &r, &fit);
+    else st = microsurface_fit(h, n, &r, &fit);
     double g_ggx = st == GGX_OK ? ggx_g1_smith(&fit, o.view) : NAN, g_b = ms_beckmann_g1(r.slope_cov, v);
     /* the visible normals against eq 33 for the fitted shape, 16 x 16 cells of its sphere space */
     chi2_result cr = {0};
@@ -392,7 +393,7 @@ static int measure(int argc, char **argv)
     double g_tb = st == GGX_OK ? ggx_g1_tilted(&fit, o.view, o.view) : NAN;
     double g_saw = st == GGX_OK ? ggx_g1_risers(&fit, o.view, o.view) : NAN;
     double g_riser = r.riser_area > 0.0 ? r.riser_visible / r.riser_area : NAN;
-    int skewed = o.tilted || o.risers || hypot(ts[0], ts[1]) > 1e-6;
+    int skewed = o.tilted || o.risers || (given && hypot(ts[0], ts[1]) > 1e-9); /* a periodic tile has no mean slope */
     double g1v = r.risers[0] || r.risers[1] ? r.g1_off_risers : r.g1;
     int json = o.format && strcmp(o.format, "json") == 0;
     if (o.format && !json && strcmp(o.format, "md") != 0) die("--format: '%s' is not md or json", o.format);
@@ -485,15 +486,17 @@ static int measure(int argc, char **argv)
 int cmd_microsurface(int argc, char **argv)
 {
     if (argc < 3 || strcmp(argv[2], "--help") == 0 || strcmp(argv[2], "-h") == 0) {
-        printf("usage: ggx microsurface generate|measure [options]   (ggx microsurface generate --help, ...)\n\n"
+        printf("usage: ggx microsurface generate|measure|figure [options]   (ggx microsurface generate --help, ...)\n\n"
                "Microsurfaces with a chosen NDF, to check the model against geometry: generate writes a periodic\n"
-               "height field (Beckmann or GGX facets, or V-grooves) as OpenEXR or x3p, which\n"
-               "ggx fit reads; measure traces one and reports its masking against the model's.\n");
-        if (argc < 3) die("give a subcommand: generate or measure");
+               "height field (Beckmann or GGX facets, skewed ones, V-grooves) as OpenEXR or x3p, which\n"
+               "ggx fit reads; measure traces one and reports its masking, visible normals and BRDF against the\n"
+               "model's; figure draws its traced G1 over the views of a plane beside the model's forms.\n");
+        if (argc < 3) die("give a subcommand: generate, measure or figure");
         return 0;
     }
     if (strcmp(argv[2], "generate") == 0) return generate(argc, argv);
     if (strcmp(argv[2], "measure") == 0) return measure(argc, argv);
-    die("microsurface: unknown subcommand '%s' (generate, measure)", argv[2]);
+    if (strcmp(argv[2], "figure") == 0) return microsurface_figure(argc, argv);
+    die("microsurface: unknown subcommand '%s' (generate, measure, figure)", argv[2]);
     return 2;
 }

@@ -1,0 +1,19 @@
+/* The parts of ggx microsurface that its subcommands share (tools/ggx/microsurface.c, microsurface_figure.c).
+ * SPDX-License-Identifier: MIT */
+#ifndef GGX_TOOL_MICROSURFACE_CMD_H
+#define GGX_TOOL_MICROSURFACE_CMD_H
+
+#include <stddef.h>
+
+#include "cli.h"
+#include "microsurface.h"
+
+/* The height field of --heightfield in grid units, checked to repeat as --tilted and --risers say (dies with one
+ * line otherwise), and the tilt (0, 0 unless --tilted). */
+double *microsurface_heights(const options *o, size_t *n_out, double tilt[2]);
+/* The shape fitted to the facets off the risers that r found (all of them where there are none), as given. */
+ggx_status microsurface_fit(const double *h, size_t n, const ms_g1 *r, ggx_shape *fit);
+/* ggx microsurface figure. */
+int microsurface_figure(int argc, char **argv);
+
+#endif
