@@ -232,6 +232,22 @@ static void vgroove_trace(void **state)
     ms_tracer_free(t);
 }
 
+/* A ray from o along d reflected from facet to facet (F = 1) until it escapes, leaves below or has bounced max
+ * times: ms_trace's last result (1 when still bouncing), with d the last direction and *bounces the count. */
+static int bounce_out(const ms_tracer *t, double o[3], double d[3], int max, int *bounces)
+{
+    int r;
+    ms_hit hit;
+    *bounces = 0;
+    while ((r = ms_trace(t, o, d, &hit)) == 1 && *bounces < max) {
+        double dm = d[0] * hit.m[0] + d[1] * hit.m[1] + d[2] * hit.m[2];
+        /* the next ray from just above the facet: the hit point carries the tracer's single precision */
+        for (int k = 0; k < 3; k++) d[k] -= 2.0 * dm * hit.m[k], o[k] = hit.p[k] + 1e-3 * hit.m[k];
+        (*bounces)++;
+    }
+    return r;
+}
+
 /* A flat surface is a mirror: every ray hits it at height 0 with the normal z. And with F = 1 the facets lose no
  * energy: on a rough Gaussian field (alpha 1) every ray reflected specularly from facet to facet escapes upwards
  * within 100 bounces, none leaves below it (white furnace of all bounces); the share that needs more than one
@@ -266,14 +282,7 @@ static void mirror_and_furnace(void **state)
     for (long i = 0; i < rays; i++) {
         double th = 1.4 * uniform(&s), ph = 6.283 * uniform(&s);
         double o[3] = {uniform(&s) * G, uniform(&s) * G, zmax + 1.0}, d[3] = {sin(th) * cos(ph), sin(th) * sin(ph), -cos(th)};
-        int bounces = 0, r;
-        ms_hit hit;
-        while ((r = ms_trace(t, o, d, &hit)) == 1 && bounces < 100) {
-            double dm = d[0] * hit.m[0] + d[1] * hit.m[1] + d[2] * hit.m[2];
-            /* the next ray from just above the facet: the hit point carries the tracer's single precision */
-            for (int k = 0; k < 3; k++) d[k] -= 2.0 * dm * hit.m[k], o[k] = hit.p[k] + 1e-3 * hit.m[k];
-            bounces++;
-        }
+        int bounces, r = bounce_out(t, o, d, 100, &bounces);
         CHECK(r == 0 && d[2] > 0.0, "ray %ld: %s after %d bounces", i, r < 0 ? "left below the surface" : "not out",
               bounces);
         multi += bounces > 1;
@@ -500,13 +509,7 @@ static void skewed_masking(void **state)
     for (int i = 0; i < 3000; i++) {
         double th = 1.3 * uniform(&s), ph = 6.283 * uniform(&s), o[3] = {uniform(&s) * N, uniform(&s) * N, zmax + 1};
         double d[3] = {sin(th) * cos(ph), sin(th) * sin(ph), -cos(th)};
-        int bounces = 0, r;
-        ms_hit hit;
-        while ((r = ms_trace(t, o, d, &hit)) == 1 && bounces < 200) {
-            double dm = d[0] * hit.m[0] + d[1] * hit.m[1] + d[2] * hit.m[2];
-            for (int k = 0; k < 3; k++) d[k] -= 2.0 * dm * hit.m[k], o[k] = hit.p[k] + 1e-3 * hit.m[k];
-            bounces++;
-        }
+        int bounces, r = bounce_out(t, o, d, 200, &bounces);
         CHECK(r >= 0 && (r == 1 || d[2] - tilt[1] * d[1] > 0.0), "tilted furnace, ray %d: %s after %d bounces", i,
               r < 0 ? "left below the surface" : "escaped into the plane", bounces);
         capped += r == 1;

@@ -239,6 +239,27 @@ ggx_status microsurface_fit(const double *h, size_t n, const ms_g1 *r, ggx_shape
     return st;
 }
 
+ms_tracer *microsurface_open(const options *o, double **h, size_t *n, double tilt[2])
+{
+    if (o->tilted && o->risers) die("--tilted and --risers: a surface is one or the other");
+    *h = microsurface_heights(o, n, tilt);
+    char err[400];
+    ms_tracer *t = ms_tracer_new(*h, *n, o->tilted ? tilt : NULL, err, sizeof err);
+    if (!t) {
+        free(*h); /* (die exits: nothing left to the leak checkers) */
+        die("%s", err);
+    }
+    return t;
+}
+
+ggx_status microsurface_model(const options *o, const double *h, size_t n, const ms_g1 *r, ggx_shape *s, int *given)
+{
+    *given = o->have_alpha || o->have_skew || o->have_rotate || o->have_matrix;
+    if (!*given) return microsurface_fit(h, n, r, s);
+    shape_from_options(o, s);
+    return GGX_OK;
+}
+
 /* The visible normals' chi-square: the tracer as a sampler of normals (the first facet hit from v, from a random
  * origin over the tile), against ggx_pdf_vndf of a shape, through the suite's harness (lab/verify/chi2.h). */
 typedef struct vndf_ctx {
@@ -312,26 +333,18 @@ static int measure(int argc, char **argv)
     if (!o.heightfield) die("--heightfield FILE is required");
     if (!o.have_view) die("--view THETA,PHI is required");
     if (!(o.view.z > 1e-9)) die("--view: the view must be above the plane");
-    if (o.tilted && o.risers) die("--tilted and --risers: a surface is one or the other");
     size_t n;
-    double tilt[2];
-    double *h = microsurface_heights(&o, &n, tilt);
+    double tilt[2], *h;
+    ms_tracer *t = microsurface_open(&o, &h, &n, tilt);
     char err[400];
-    ms_tracer *t = ms_tracer_new(h, n, o.tilted ? tilt : NULL, err, sizeof err);
-    if (!t) {
-        free(h);
-        die("%s", err);
-    }
     double v[3] = {o.view.x, o.view.y, o.view.z};
     long rays = o.n > 0 ? o.n : 1000000;
     int threads = o.threads > 0 ? o.threads : 1;
     ms_g1 r;
     if (ms_measure_g1(t, h, n, v, rays, 4, 8, (size_t)o.risers, threads, &r, err, sizeof err) != 0) die("%s", err);
     ggx_shape fit;
-    int given = o.have_alpha || o.have_skew || o.have_rotate || o.have_matrix;
-    ggx_status st = GGX_OK;
-    if (given) shape_from_options(&o, &fit);
-    else st = microsurface_fit(h, n, &r, &fit);
+    int given;
+    ggx_status st = microsurface_model(&o, h, n, &r, &fit, &given);
     double g_ggx = st == GGX_OK ? ggx_g1_smith(&fit, o.view) : NAN, g_b = ms_beckmann_g1(r.slope_cov, v);
     /* the visible normals against eq 33 for the fitted shape, 16 x 16 cells of its sphere space */
     chi2_result cr = {0};

@@ -38,16 +38,10 @@ int microsurface_figure(int argc, char **argv)
     }
     if (!o.heightfield) die("--heightfield FILE is required");
     if (!o.out) die("--out FILE.png|svg|pdf is required");
-    if (o.tilted && o.risers) die("--tilted and --risers: a surface is one or the other");
     size_t n;
-    double tilt[2];
-    double *h = microsurface_heights(&o, &n, tilt);
+    double tilt[2], *h;
+    ms_tracer *t = microsurface_open(&o, &h, &n, tilt);
     char err[400];
-    ms_tracer *t = ms_tracer_new(h, n, o.tilted ? tilt : NULL, err, sizeof err);
-    if (!t) {
-        free(h);
-        die("%s", err);
-    }
     long rays = o.n > 0 ? o.n : 100000;
     int threads = o.threads > 0 ? o.threads : 1;
     /* the model's shape: fitted to the facets off the risers (which a first measurement finds), or given */
@@ -55,9 +49,8 @@ int microsurface_figure(int argc, char **argv)
     double up[3] = {0.0, 0.0, 1.0};
     if (ms_measure_g1(t, h, n, up, 1, 1, 1, (size_t)o.risers, 1, &r0, err, sizeof err) != 0) die("%s", err);
     ggx_shape fit;
-    int given = o.have_alpha || o.have_skew || o.have_rotate || o.have_matrix;
-    if (given) shape_from_options(&o, &fit);
-    else if (microsurface_fit(h, n, &r0, &fit) != GGX_OK) die("%s: no shape fits its facets", o.heightfield);
+    int given;
+    if (microsurface_model(&o, h, n, &r0, &fit, &given) != GGX_OK) die("%s: no shape fits its facets", o.heightfield);
     double ts[2], ss[3];
     ggx_shape_slopes(&fit, ts, ss);
     /* (a periodic tile has no mean slope: a fit's small t there is the sampling's) */
