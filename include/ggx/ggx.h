@@ -236,7 +236,7 @@ double ggx_g1_smith(const ggx_shape *s, ggx_vec3 u);
  * unskewed shapes. It is Smith's G1 of the unskewed shape of the same scale Sigma (ggx_shape_slopes) seen from
  * (u_xy, u.z - t . u_xy), the view sheared with the plane of slope t. Domain: u.z > 0 above the mean plane,
  * (A u).(A n) > 0; else 0 (also for a zero or non-finite m). Traced on explicit GGX patches (alpha 0.3 and 0.6)
- * tilted by |t| = 0.33 and 0.22 (docs/design/microsurface.md, "Skewed surfaces"), it holds within 1.7 % where the
+ * tilted by |t| = 0.33 and 0.22 (docs/design/microsurface.md, "Skewed surfaces"), it holds within 2 % where the
  * sheared view is within 80 degrees of the tilted plane's normal and within 4.5 % to 88 degrees, as Smith's G1 does
  * on the untilted surfaces, where ggx_g1 is off by up to a factor of 5. */
 double ggx_g1_tilted(const ggx_shape *s, ggx_vec3 u, ggx_vec3 m);
@@ -246,7 +246,7 @@ double ggx_g1_tilted(const ggx_shape *s, ggx_vec3 u, ggx_vec3 m);
  * ggx_g1_tilted) X+(u.m), in [0, 1]: where the risers face away from u they shadow the ramps as eq 32 without its
  * min says; where they face u they are seen unmasked and the ramps keep the tilted plane's masking. It is the limit
  * of ramps long against the roughness: traced on sawtooths of period 512 (docs/design/microsurface.md), within
- * 1.7 % with the risers behind, at every view to 80 degrees, and within 3.5 % with the risers in front where the
+ * 2 % with the risers behind, at every view to 80 degrees, and within 4 % with the risers in front where the
  * sheared view is within 76 degrees of the ramps' normal; nearer their plane the ramps' ends, unmasked by the
  * roughness beyond a riser's top, raise the traced G1 above it (33 % at 88 degrees). Domain and edge cases as
  * ggx_g1_tilted. */

@@ -155,6 +155,10 @@ double ms_beckmann_g1(const double cov[3], const double v[3]);
  * ms_ramp adds tx (x mod P) + ty (y mod P) to h; period 0: P = n, the tilted patch's plane over the tile. Returns 0,
  * or -1 with err (slopes not finite or above 100, P below 2 or not dividing n). */
 int ms_ramp(double *h, size_t n, double tx, double ty, size_t period, char *err, size_t errn);
+/* The GGX surface of a skewed shape s: ms_ggx of its scale Sigma (as the alphas and rotation of the unskewed shape of
+ * (0, Sigma), written into spec) under ms_ramp of its location t (into t) and period. Returns 0 or -1 with err. */
+int ms_ggx_skewed(const ggx_shape *s, ms_ggx_spec *spec, size_t period, double *h, double t[2], char *err,
+                  size_t errn);
 
 /* Walter's remedy with Smith's masking, for a skewed shape s (slopes of location t and scale Sigma), unit v above the
  * plane (else 0): the facets of D and vertical facets of area |t| per unit area facing along t, all masked alike,

@@ -18,6 +18,23 @@ int ms_ramp(double *h, size_t n, double tx, double ty, size_t period, char *err,
     return 0;
 }
 
+int ms_ggx_skewed(const ggx_shape *s, ms_ggx_spec *spec, size_t period, double *h, double t[2], char *err,
+                  size_t errn)
+{
+    /* the skewed shape's slopes: the scale Sigma as the unskewed shape's alphas and rotation, and t */
+    double sig[3], ax, ay, tz;
+    ggx_shape flat;
+    ggx_shape_slopes(s, t, sig);
+    if (ggx_shape_from_slopes(&flat, 0.0, 0.0, sig[0], sig[1], sig[2]) != GGX_OK) {
+        snprintf(err, errn, "skewed surface: the shape's scale is outside the alphas a surface can have");
+        return -1;
+    }
+    ggx_shape_ellipsoid_params(&flat, &ax, &ay, NULL, NULL, &tz);
+    spec->alpha_x = ax, spec->alpha_y = ay, spec->phi = tz;
+    if (ms_ggx(spec, h, err, errn) != 0) return -1;
+    return ms_ramp(h, spec->n, t[0], t[1], period, err, errn);
+}
+
 double ms_g1_vertical_facets(const ggx_shape *s, const double v[3])
 {
     if (!(v[2] > 0.0)) return 0.0;

@@ -108,23 +108,17 @@ static int generate(int argc, char **argv)
                           o.corr > 0 ? o.corr : 8.0, o.mix, o.seed};
         if (!o.have_alpha) sp.alpha_x = sp.alpha_y = 0.3;
         double t[2] = {0.0, 0.0};
+        int rc;
         if (o.have_skew) {
-            /* the skewed shape's slopes: the scale Sigma as the unskewed shape's alphas and rotation, and t */
-            ggx_shape skewed, flat;
-            double sig[3], ax, ay, tz;
+            ggx_shape skewed;
             options so = o;
             if (!so.have_alpha) so.alpha[0] = so.alpha[1] = 0.3;
             shape_from_options(&so, &skewed);
-            ggx_shape_slopes(&skewed, t, sig);
-            if (ggx_shape_from_slopes(&flat, 0.0, 0.0, sig[0], sig[1], sig[2]) != GGX_OK) {
-                free(h);
-                die("--skew: the shape's scale is outside the alphas a surface can have");
-            }
-            ggx_shape_ellipsoid_params(&flat, &ax, &ay, NULL, NULL, &tz);
-            sp.alpha_x = ax, sp.alpha_y = ay, sp.phi = tz;
+            rc = ms_ggx_skewed(&skewed, &sp, (size_t)o.risers, h, t, err, sizeof err);
+        } else {
+            rc = ms_ggx(&sp, h, err, sizeof err);
         }
-        if (ms_ggx(&sp, h, err, sizeof err) != 0 ||
-            (o.have_skew && ms_ramp(h, n, t[0], t[1], (size_t)o.risers, err, sizeof err) != 0)) {
+        if (rc != 0) {
             free(h); /* (die exits: nothing left to the leak checkers) */
             die("%s", err);
         }
