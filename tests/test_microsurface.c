@@ -450,12 +450,12 @@ static void watertight(void **state)
  *   most 1 in 1000 still bouncing after 200 reflections, in the deep pit of the roughest patch).
  * - The shear that ggx_g1_tilted rests on: the tilted patch's facets seen from v have exactly the G1 of the
  *   untilted field's facets seen from v' = (v_xy, v.z - t . v_xy) / |...|, to rounding.
- * - As an infinite tilted patch, the traced G1 is the tilted base's (of the fitted shape) within 2 % at 60 degrees
- *   on both sides of t (3 %: the construction's facets against GGX's Smith G1, ggx_field), and eq 6 misses it by
+ * - As an infinite tilted patch, the traced G1 is the tilted base's (of the fitted shape) within 3 % at 60 degrees
+ *   on both sides of t (the construction's facets against GGX's Smith G1, as in ggx_field), and eq 6 misses it by
  *   more than 20 % (the negative control); as a sawtooth of period 256, the ramps' traced G1 is the sawtooth form's
- *   within 3 % (with risers facing v: the tilted base of the ramps' own facets within 1.5 %, the period's edge), where the vertical-facet form misses it by more than
- *   10 % (risers facing v) and the tilted base by more than 20 % (risers facing away), and the risers facing v are
- *   seen over 95 % of their area. */
+ *   within 3 % (with the risers facing v: the tilted base of the ramps' own facets within 1.5 %, the period's edge),
+ *   where the vertical-facet form misses it by more than 10 % (risers facing v) and the tilted base by more than 20 %
+ *   (risers facing away), and the risers facing v are seen over 95 % of their area. */
 static void skewed_masking(void **state)
 {
     (void)state;
@@ -481,7 +481,8 @@ static void skewed_masking(void **state)
         if (d[2] - tilt[1] * d[1] >= -1e-3) continue; /* not towards the plane */
         ms_hit hit;
         int rc = ms_trace(t, o, d, &hit);
-        CHECK(rc == 1, "the tilted mirror: ray %d missed (%d): o %.9g %.9g %.9g d %.9g %.9g %.9g", i, rc, o[0], o[1], o[2], d[0], d[1], d[2]);
+        CHECK(rc == 1, "the tilted mirror: ray %d missed (%d): o %.9g %.9g %.9g d %.9g %.9g %.9g", i, rc, o[0], o[1],
+              o[2], d[0], d[1], d[2]);
         /* the hit, brought back to the origin's copy of the tile, lies on the plane */
         double along = (o[2] - tilt[1] * o[1] - 0.0) / (tilt[1] * d[1] - d[2]);
         double py = o[1] + along * d[1], wy = py - N * floor(py / N);
@@ -722,10 +723,10 @@ static void bad_specs(void **state)
 int main(int argc, char **argv)
 {
     const struct CMUnitTest tests[] = {
-        cmocka_unit_test(spectrum_moments), cmocka_unit_test(realisations), cmocka_unit_test(one_field),
+        cmocka_unit_test(spectrum_moments), cmocka_unit_test(realisations),     cmocka_unit_test(one_field),
         cmocka_unit_test(vgrooves),         cmocka_unit_test(vgroove_trace),    cmocka_unit_test(mirror_and_furnace),
-        cmocka_unit_test(ggx_field),        cmocka_unit_test(diagonal),         cmocka_unit_test(watertight),       cmocka_unit_test(reciprocity),
-        cmocka_unit_test(skewed_masking),   cmocka_unit_test(skewed_claims),
+        cmocka_unit_test(ggx_field),        cmocka_unit_test(diagonal),         cmocka_unit_test(watertight),
+        cmocka_unit_test(reciprocity),      cmocka_unit_test(skewed_masking),   cmocka_unit_test(skewed_claims),
         cmocka_unit_test(coherent_streams), cmocka_unit_test(bad_specs),
     };
     int rc = cmocka_run_group_tests(tests, NULL, NULL);

@@ -1,6 +1,6 @@
-/* Skewed microsurfaces: a ramp under a field (a tilted patch or a sawtooth with risers), and the masking forms that
- * the tracer decides between for them, besides the library's ggx_g1, ggx_g1_tilted and ggx_g1_risers (microsurface.h; docs/design/microsurface.md, "Skewed surfaces").
- * SPDX-License-Identifier: MIT */
+/* Skewed microsurfaces: a ramp under a field (a tilted patch or a sawtooth with risers), the GGX surface of a skewed
+ * shape, and the vertical-facet masking form that the tracer sets beside the library's ggx_g1, ggx_g1_tilted and
+ * ggx_g1_risers (microsurface.h; docs/design/microsurface.md, "Skewed surfaces"). SPDX-License-Identifier: MIT */
 #include <math.h>
 #include <stdio.h>
 

@@ -128,7 +128,8 @@ static int generate(int argc, char **argv)
                sp.corr_len, sp.mix_len > 0 ? sp.mix_len : 8.0 * sp.corr_len, (unsigned long long)o.seed);
         if (o.have_skew)
             printf("skewed %g, %g degrees: slopes of location t = (%.6g, %.6g) on %s\n", o.skew[0], o.skew[1], t[0] + 0.0,
-                   t[1] + 0.0, o.risers ? "a sawtooth of ramps stepping down on risers" : "a tilted patch (measure --tilted)");
+                   t[1] + 0.0,
+                   o.risers ? "a sawtooth of ramps stepping down on risers" : "a tilted patch (measure --tilted)");
         if (o.risers) printf("sawtooth period %d: risers in the columns and rows %d mod %d\n", o.risers, o.risers - 1,
                              o.risers);
     } else if (strcmp(o.kind, "vgroove") == 0) {
@@ -414,7 +415,8 @@ static int measure(int argc, char **argv)
         fprintf(f.f, "  \"slope_cov\": [%.10g, %.10g, %.10g],\n  \"g1\": {\"facets\": %.10g, \"smith_beckmann\": %s, "
                      "\"smith_ggx_fit\": %s},\n", r.slope_cov[0], r.slope_cov[1], r.slope_cov[2], r.g1, jnum(b1, g_b),
                 jnum(b2, g_ggx));
-        fprintf(f.f, "  \"tilt\": [%.10g, %.10g], \"risers\": [%zu, %zu], \"slope_mean\": [%.10g, %.10g], \"t\": [%s, %s],\n",
+        fprintf(f.f, "  \"tilt\": [%.10g, %.10g], \"risers\": [%zu, %zu], \"slope_mean\": [%.10g, %.10g], "
+                     "\"t\": [%s, %s],\n",
                 tilt[0], tilt[1], r.risers[0], r.risers[1], r.slope_mean[0], r.slope_mean[1], jnum(b1, ts[0]),
                 jnum(b2, ts[1]));
         char b6[32], b7[32];
@@ -448,7 +450,8 @@ static int measure(int argc, char **argv)
                     r.slope_mean[1], ts[0], ts[1]);
             fprintf(f.f, "| G1(v) of the facets off the risers | value |\n|---|---|\n| traced | %.6f |\n"
                          "| eq 6 with its min (ggx_g1) | %.6f |\n| Smith form of eq 32 (ggx_g1_smith) | %.6f |\n"
-                         "| vertical facets (Walter's remedy, Smith's masking) | %.6f |\n| tilted base (ggx_g1_tilted) | %.6f |\n"
+                         "| vertical facets (Walter's remedy, Smith's masking) | %.6f |\n"
+                         "| tilted base (ggx_g1_tilted) | %.6f |\n"
                          "| sawtooth (ggx_g1_risers) | %.6f |\n", g1v, g_eq6, g_ggx, g_vf, g_tb,
                     g_saw);
             if (r.riser_area > 0.0)
@@ -459,7 +462,8 @@ static int measure(int argc, char **argv)
                      "degrees of freedom (%.3g per degree), p = %.3g\n\n", vrays, cr.stat, cr.dof,
                 cr.dof > 0 ? cr.stat / cr.dof : NAN, cr.pvalue);
         if (!brdf) fprintf(f.f, "the BRDF is not measured on a tilted patch\n\n");
-        else fprintf(f.f, "the BRDF with F = 1 from the light at the view, %ld rays (%ld lost, %ld still bouncing after %d), "
+        else fprintf(f.f, "the BRDF with F = 1 from the light at the view, %ld rays (%ld lost, %ld still bouncing "
+                          "after %d), "
                      "%d x %d bins:\n\n| | traced | model | relative L2 of the BRDF over the bins |\n|---|---|---|---|\n"
                      "| single scattering: albedo | %.5f | %.5f (ggx_albedo; height-correlated: %.5f) | %.4f "
                      "(ggx_brdf_eval; with the height-correlated G2: %.4f) |\n"

@@ -21,7 +21,8 @@ static ggx_vec3 plane_view(double a, double phi)
 int microsurface_figure(int argc, char **argv)
 {
     options o;
-    parse_options(argc, argv, 3, &o, "heightfield,spacing,z-scale,tilted,risers," SHAPE_OPTS ",from,n,threads,size,dark,out");
+    parse_options(argc, argv, 3, &o,
+                  "heightfield,spacing,z-scale,tilted,risers," SHAPE_OPTS ",from,n,threads,size,dark,out");
     if (o.help) {
         printf("usage: ggx microsurface figure --heightfield FILE [--spacing D] [--z-scale Z] [--tilted | --risers P]\n"
                "                               [--alpha A[,AY] [--skew TX,TY] [--rotate TZ] | --matrix M] [--from PHI]\n"
