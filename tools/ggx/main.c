@@ -21,7 +21,7 @@ static const struct command {
     {"render", cmd_render, "an image of a sphere or plane of the material under a sky, an environment map or a light"},
     {"fit", cmd_fit, "the shape A of a measured height field, normal map or list of normals, by maximum likelihood"},
     {"mipmap", cmd_mipmap, "a normal map filtered into a mip chain of per-texel ellipsoids (OpenEXR per level)"},
-    {"microsurface", cmd_microsurface, "height fields with a chosen NDF (Gaussian Beckmann fields, V-grooves)"},
+    {"microsurface", cmd_microsurface, "height fields with a chosen NDF, traced against the model's masking"},
 };
 enum { NCOMMANDS = sizeof COMMANDS / sizeof COMMANDS[0] };
 
