@@ -134,6 +134,9 @@ valgrind: deps-dev build
 	@cd $(BUILD)/tests && \
 	  GGX_WRAP="valgrind -q --error-exitcode=99 --leak-check=full --errors-for-leak-kinds=definite,indirect --suppressions=$(CURDIR)/tests/valgrind.supp" \
 	  sh ../../tests/render_mip_test.sh $(CURDIR)/$(BUILD)/ggx
+	@cd $(BUILD)/tests && \
+	  GGX_WRAP="valgrind -q --error-exitcode=99 --leak-check=full --errors-for-leak-kinds=definite,indirect --suppressions=$(CURDIR)/tests/valgrind.supp" \
+	  sh ../../tests/microsurface_cli_test.sh $(CURDIR)/$(BUILD)/ggx
 
 # libFuzzer: each target for FUZZ_SECONDS (default 60) from the committed corpus; new inputs go to build-fuzz/.
 FUZZ_SECONDS ?= 60
