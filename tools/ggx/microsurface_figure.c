@@ -22,11 +22,11 @@ int microsurface_figure(int argc, char **argv)
 {
     options o;
     parse_options(argc, argv, 3, &o,
-                  "heightfield,spacing,z-scale,tilted,risers," SHAPE_OPTS ",from,n,threads,size,dark,out");
+                  "heightfield,spacing,z-scale,tilted,risers," SHAPE_OPTS ",from,n,threads,size,theme,out");
     if (o.help) {
         printf("usage: ggx microsurface figure --heightfield FILE [--spacing D] [--z-scale Z] [--tilted | --risers P]\n"
                "                               [--alpha A[,AY] [--skew TX,TY] [--rotate TZ] | --matrix M] [--from PHI]\n"
-               "                               [-n RAYS] [--threads N] [--size WxH] [--dark] --out FILE.png|svg|pdf\n\n"
+               "                               [-n RAYS] [--threads N] [--size WxH] [--theme light|dark] --out FILE.png|svg|pdf\n\n"
                "G1(v) of a height field's facets, traced with RAYS rays (default 100,000) from each view every 5\n"
                "degrees of the plane of azimuth PHI (default: the skew's direction t, else 0), from 85 degrees on\n"
                "the side of PHI + 180 (drawn left) to 85 degrees on the side of PHI (right), as marks, beside the\n"
