@@ -90,6 +90,21 @@ assert abs(g['traced'] / g['sawtooth'] - 1) < 0.03 and abs(g['vertical_facets'] 
         --z-scale 1 --tilted --risers 256 --view 60,90
     one_line "measure, risers not dividing" "a period that divides" 2 "$GGX" microsurface measure --heightfield \
         sw.exr --spacing 1 --z-scale 1 --risers 100 --view 60,90
+    one_line "measure, another period's risers" "not a sawtooth of period 128" 2 "$GGX" microsurface measure \
+        --heightfield sw.exr --spacing 1 --z-scale 1 --risers 128 --view 60,90 -n 1000
+    one_line "measure, risers of a plain tile" "no risers of period 64" 2 "$GGX" microsurface measure \
+        --heightfield g.x3p --risers 64 --view 60,90 -n 1000
+    one_line "measure, a view grazing the tilted plane" "0.06 degrees above the tilted plane" 2 "$GGX" \
+        microsurface measure --heightfield tp.exr --spacing 1 --z-scale 1 --tilted --view 71.87,270 -n 1000
+    one_line "measure, a view grazing the plane" "0.06 degrees above the plane" 2 "$GGX" microsurface measure \
+        --heightfield g.x3p --view 89.99,0 -n 1000
+    one_line "figure, no format" "does not name a format" 2 "$GGX" microsurface figure --heightfield g.x3p \
+        --out f.txt
+    [ ! -e f.txt ] && ok || bad "a refused figure left f.txt"
+    one_line "generate, alpha out of range" "a GGX surface takes alphas in" 2 "$GGX" microsurface generate --kind ggx \
+        --alpha 1e-6 --skew 10,5 --size 64 --out n.exr
+    "$GGX" microsurface measure --heightfield g.x3p --view 30,0 -n 1 > m1.txt && grep -q "too few for a chi-square" \
+        m1.txt && ! grep -q nan m1.txt && ok || bad "measure -n 1: $(grep -i 'visible\|nan' m1.txt)"
     # surfaces too large for the memory given: one line, exit 2, no file (not under a wrapper, which needs memory)
     if [ -z "${GGX_WRAP:-}" ]; then
         # (one_line in a subshell, for the limit: its verdict comes back as the subshell's status)

@@ -223,7 +223,8 @@ static void seed_g1_forms(void **state)
  *   cancellation of u.z - t . u_xy near the mean plane);
  * - it meets the projected-area constraint of the tilted plane: G1 times the lune's projected area over n's, (1 +
  *   Lambda) u.z, is the tilted plane's footprint u.z - t . u_xy, to 1e-12;
- * - it is ggx_g1 for unskewed shapes (and matrices scaled by 3), and 0 below the mean plane or for a back-facing m;
+ * - it is ggx_g1 for unskewed shapes (and matrices scaled by 3), exactly, grazing views included, and 0 below the
+ *   mean plane or for a back-facing m; it stays in [0, 1] for a tiny u that is not unit;
  * - ggx_g1_risers is the Smith form where t . u_xy <= 0 (the risers behind) and the tilted form where t . u_xy > 0;
  * - both lie in [0, 1] for every shape and view, and differ from ggx_g1 for skewed shapes (the test tells them
  *   apart: some views off by more than 10 %). */
@@ -287,6 +288,42 @@ static void skewed_surface_masking(void **state)
     CHECK(ggx_g1_tilted(&s, below, below) == 0.0 && ggx_g1_risers(&s, below, below) == 0.0, "below the horizon");
     CHECK(ggx_g1_tilted(&s, n, t_vec(0, 0, 0)) == 0.0 && ggx_g1_tilted(&s, n, t_vec(NAN, 0, 1)) == 0.0, "no facet");
     CHECK(ggx_g1_tilted(&s, t_vec(NAN, 0, 1), n) == 0.0 && ggx_g1_risers(&s, t_vec(NAN, 0, 1), n) == 0.0, "NaN u");
+    /* a tiny u that is not unit (||A u|| underflows): still at most 1 */
+    const double tiny[] = {1e-320, 1e-310, 1e-200};
+    for (int i = 0; i < 3; i++) {
+        ggx_vec3 u = t_vec(tiny[i], 0.0, tiny[i]);
+        double gt = ggx_g1_tilted(&s, u, n), gr = ggx_g1_risers(&s, u, n);
+        CHECK(gt >= 0.0 && gt <= 1.0 && gr >= 0.0 && gr <= 1.0, "u of %g: tilted %.17g, risers %.17g", tiny[i], gt, gr);
+    }
+    /* unskewed shapes carry rounding residues in A'; the forms are still ggx_g1's exactly, grazing u included, for
+     * shapes from angles and for rotated diagonal matrices */
+    rng r2 = {31};
+    for (int i = 0; i < 3000; i++) {
+        shape_params p = random_shape(&r2, 0.0);
+        ggx_shape e, q, w;
+        CHECK(ggx_shape_ellipsoid(&e, p.ax, p.ay, 0, 0, p.tz) == GGX_OK, "shape");
+        double c = cos(p.tz), sn = sin(p.tz), A[3][3] = {{p.ax * c, -p.ax * sn, 0}, {p.ay * sn, p.ay * c, 0}, {0, 0, 1}};
+        /* A = diag(ax, ay, 1) R: R a rotation about n, rounded */
+        CHECK(ggx_shape_matrix(&q, (const double(*)[3])A) == GGX_OK, "matrix");
+        /* A = Q diag(ax, ay, 1), Q any rotation (Rz Rx of random angles): the same distribution as diag's */
+        double a1 = 6.283 * (i % 89) / 89.0, a2 = 3.1 * (i % 53) / 53.0, c1 = cos(a1), s1 = sin(a1), c2 = cos(a2);
+        double s2 = sin(a2), Q[3][3] = {{c1, -s1 * c2, s1 * s2}, {s1, c1 * c2, -c1 * s2}, {0, s2, c2}}, B[3][3];
+        for (int a = 0; a < 3; a++)
+            for (int b = 0; b < 3; b++) B[a][b] = Q[a][b] * (b == 0 ? p.ax : b == 1 ? p.ay : 1.0);
+        CHECK(ggx_shape_matrix(&w, (const double(*)[3])B) == GGX_OK, "rotated matrix");
+        const double zs[] = {1.0, 0.3, 1e-6, 1e-12, 1e-18, 1e-300};
+        for (int k = 0; k < 6; k++) {
+            double ph = 6.283185307179586 * (i % 97) / 97.0, z = zs[k], st = sqrt(1.0 - z * z);
+            ggx_vec3 u = t_vec(st * cos(ph), st * sin(ph), z);
+            const ggx_shape *sh[3] = {&e, &q, &w};
+            for (int j = 0; j < 3; j++)
+                CHECK(sh[j]->kind == GGX_SHAPE_SKEWED ||
+                          (ggx_g1_tilted(sh[j], u, n) == ggx_g1(sh[j], u, n) &&
+                           ggx_g1_risers(sh[j], u, n) == ggx_g1(sh[j], u, n)),
+                      "unskewed (%g, %g, %g), u.z %g: tilted %.17g, risers %.17g, eq 6 %.17g", p.ax, p.ay, p.tz, z,
+                      ggx_g1_tilted(sh[j], u, n), ggx_g1_risers(sh[j], u, n), ggx_g1(sh[j], u, n));
+        }
+    }
 }
 
 int main(void)

@@ -76,28 +76,64 @@ static void normal_of(const double s[2], double m[3])
     m[0] = -s[0] / l, m[1] = -s[1] / l, m[2] = 1.0 / l;
 }
 
-/* Which axes of a sawtooth of period P have risers: the axis where the cells of columns (rows) P - 1 mod P step by
- * more than 1 on average against the others (a step steeper than 45 degrees). */
-static void riser_axes(const double *h, size_t n, size_t P, int axes[2])
+static int cmp_double(const void *a, const void *b)
+{
+    double x = *(const double *)a, y = *(const double *)b;
+    return (x > y) - (x < y);
+}
+
+/* Which axes of a sawtooth of period P have risers: along x, the columns x = P - 1 mod P whose differences (their
+ * median, which a steep pit does not move) step from the other columns' median by more than 1 (a step steeper
+ * than 45 degrees); likewise the rows along y. An axis is a riser axis where all those columns step and no other
+ * does, and has none where none steps; else the tile is no sawtooth of period P (-1). 0, or -1 for no memory too. */
+static int riser_axes(const double *h, size_t n, size_t P, int axes[2])
 {
     axes[0] = axes[1] = 0;
-    if (P < 2 || n % P != 0) return;
-    for (int ax = 0; ax < 2; ax++) {
-        double on = 0.0, off = 0.0;
-        for (size_t y = 0; y < n; y++)
-            for (size_t x = 0; x < n; x++) {
-                size_t i = ax == 0 ? x : y;
-                double d = ax == 0 ? h[y * n + (x + 1) % n] - h[y * n + x] : h[((y + 1) % n) * n + x] - h[y * n + x];
-                if (i % P == P - 1) on += d;
-                else off += d;
-            }
-        axes[ax] = fabs(on / ((double)n * (double)(n / P)) - off / ((double)n * (double)(n - n / P))) > 1.0;
+    if (P < 2 || n % P != 0) return 0;
+    double *col = malloc(n * sizeof *col), *med = malloc(n * sizeof *med), *off = malloc(n * sizeof *off);
+    if (!col || !med || !off) {
+        free(col), free(med), free(off);
+        return -1;
     }
+    int ok = 1;
+    for (int ax = 0; ax < 2 && ok; ax++) {
+        size_t k = 0, steps_on = 0, steps_off = 0;
+        for (size_t i = 0; i < n; i++) {
+            for (size_t j = 0; j < n; j++)
+                col[j] = ax == 0 ? h[j * n + (i + 1) % n] - h[j * n + i] : h[((i + 1) % n) * n + j] - h[i * n + j];
+            qsort(col, n, sizeof *col, cmp_double);
+            med[i] = 0.5 * (col[(n - 1) / 2] + col[n / 2]);
+            if (i % P != P - 1) off[k++] = med[i];
+        }
+        qsort(off, k, sizeof *off, cmp_double);
+        double base = 0.5 * (off[(k - 1) / 2] + off[k / 2]);
+        for (size_t i = 0; i < n; i++) {
+            int step = fabs(med[i] - base) > 1.0;
+            if (i % P == P - 1) steps_on += (size_t)step;
+            else steps_off += (size_t)step;
+        }
+        axes[ax] = steps_on == n / P;
+        ok = steps_off == 0 && (steps_on == 0 || steps_on == n / P);
+    }
+    free(col), free(med), free(off);
+    return ok ? 0 : -1;
 }
 
 static int is_riser(size_t P, const int axes[2], size_t x, size_t y)
 {
     return P >= 2 && ((axes[0] && x % P == P - 1) || (axes[1] && y % P == P - 1));
+}
+
+/* the footprint's projected area towards v per unit tile area: v.z, less the tilt's share */
+static double footprint(const double *tilt, const double v[3])
+{
+    return tilt ? v[2] - tilt[0] * v[0] - tilt[1] * v[1] : v[2];
+}
+
+int ms_view_clear(const double tilt[2], const double v[3])
+{
+    double z = footprint(tilt, v);
+    return z > 1e-3 * sqrt(v[0] * v[0] + v[1] * v[1] + z * z);
 }
 
 int ms_riser_cell(const ms_g1 *r, size_t n, size_t cell)
@@ -106,11 +142,6 @@ int ms_riser_cell(const ms_g1 *r, size_t n, size_t cell)
     return (px >= 2 && x % px == px - 1) || (py >= 2 && y % py == py - 1);
 }
 
-/* the footprint's projected area towards v per unit tile area: v.z, less the tilt's share */
-static double footprint(const double *tilt, const double v[3])
-{
-    return tilt ? v[2] - tilt[0] * v[0] - tilt[1] * v[1] : v[2];
-}
 
 /* the facets off the risers: their projected area towards v per bin (area may be NULL) and their slopes' mean and
  * covariance (mean, cov may be NULL); the risers' projected area towards v (riser may be NULL); G1 of all facets */
@@ -228,10 +259,20 @@ int ms_measure_g1(const ms_tracer *t, const double *h, size_t n, const double v[
         snprintf(err, errn, "masking: a sawtooth's period must divide the size and be from 2 to half of it");
         return -1;
     }
-    riser_axes(h, n, risers, axes);
+    if (riser_axes(h, n, risers, axes) != 0) {
+        snprintf(err, errn, "masking: not a sawtooth of period %zu: steps steeper than 45 degrees in other columns or "
+                 "rows than %zu mod %zu, or in only some of those", risers, risers - 1, risers);
+        return -1;
+    }
+    if (risers && !axes[0] && !axes[1]) {
+        snprintf(err, errn, "masking: no risers of period %zu: the columns and rows %zu mod %zu step like the others",
+                 risers, risers - 1, risers);
+        return -1;
+    }
     r->risers[0] = axes[0] ? risers : 0, r->risers[1] = axes[1] ? risers : 0;
-    if (!(footprint(tilt, v) > 0.0)) {
-        snprintf(err, errn, "masking: the view must be above the tilted plane");
+    if (!ms_view_clear(tilt, v)) {
+        snprintf(err, errn, "masking: the view must be at least 0.06 degrees above the %splane (rays that graze it "
+                 "cross tiles without end)", tilt[0] != 0.0 || tilt[1] != 0.0 ? "tilted " : "");
         return -1;
     }
     if (!(v[2] > 0.0) || rays < 1 || rings < 1 || sectors < 1 || rings * sectors > 1 << 16 || threads < 1 ||

@@ -114,9 +114,11 @@ typedef struct ms_g1 {
 /* Traces about rays rays (a jittered grid of g x g origins, g = ceil(sqrt(rays))) from above along -v on threads
  * threads and fills r (ms_g1_free releases it); the tracer's tilt applies (the tile's differences across its sides
  * raised by it). risers: 0, or the period P of a sawtooth (P divides n, 2 <= P <= n / 2; ms_ramp's), whose cells in
- * the columns x = P - 1 mod P are its risers where their x differences step from the others' by more than 1 on
- * average (a step steeper than 45 degrees), and likewise the rows along y; their facets are counted apart from the
- * others' (bins, covariance, g1_off_risers). Returns 0 or -1 with err (the view not above the tilted plane). */
+ * the columns x = P - 1 mod P are its risers where their x differences step from the other columns' by more than 1
+ * (medians: a step steeper than 45 degrees), and likewise the rows along y; their facets are counted apart from the
+ * others' (bins, covariance, g1_off_risers). Returns 0 or -1 with err: the view not clear of the plane
+ * (ms_view_clear), a tile that is no sawtooth of period P (other columns step, or only some of those) or has no
+ * risers of it. */
 int ms_measure_g1(const ms_tracer *t, const double *h, size_t n, const double v[3], long rays, int rings, int sectors,
                   size_t risers, int threads, ms_g1 *r, char *err, size_t errn);
 void ms_g1_free(ms_g1 *r);
@@ -167,6 +169,9 @@ int ms_ggx_skewed(const ggx_shape *s, ms_ggx_spec *spec, size_t period, double *
  * are ggx_g1_tilted (a tilted patch) and ggx_g1_risers (the sawtooth). */
 double ms_g1_vertical_facets(const ggx_shape *s, const double v[3]);
 
+/* 1 where the view v is at least 1e-3 in cosine (0.06 degrees) above the plane of slope tilt (may be NULL: the
+ * horizontal plane), the views ms_measure_g1 takes: rays nearer the plane cross tiles without end. */
+int ms_view_clear(const double tilt[2], const double v[3]);
 /* 1 where cell (y n + x) of an n x n tile is one of the risers that ms_measure_g1 found (r->risers), else 0. */
 int ms_riser_cell(const ms_g1 *r, size_t n, size_t cell);
 /* The bin of a unit normal m (m.z > 0). */

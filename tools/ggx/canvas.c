@@ -31,6 +31,15 @@ const theme *theme_get(int dark) { return dark ? &DARK : &LIGHT; }
 
 void set_rgb(cairo_t *cr, const double c[3]) { cairo_set_source_rgb(cr, c[0], c[1], c[2]); }
 
+canvas_format figure_format_of(const char *path, canvas_format deflt)
+{
+    canvas_format fmt = format_of_path(path, deflt);
+    size_t pl = strlen(path);
+    if (!path_is_stream(path) && (pl < 4 || strcmp(path + pl - 4, format_ext(fmt)) != 0))
+        die("--out: '%s' does not name a format: end it in .png, .svg or .pdf (or give - for standard output)", path);
+    return fmt;
+}
+
 canvas_format format_of_path(const char *path, canvas_format fallback)
 {
     size_t n = path ? strlen(path) : 0;

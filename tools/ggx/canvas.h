@@ -20,6 +20,9 @@ canvas_format format_of_path(const char *path, canvas_format fallback);
 const char *format_ext(canvas_format f);
 /* 1 for "-" (standard output) and for what is not a regular file (a device, a FIFO): written in any format. */
 int path_is_stream(const char *path);
+/* The format of a figure's --out: its name's (.png, .svg, .pdf), or deflt for a stream; dies with one line for a
+ * file name that ends in none of them. */
+canvas_format figure_format_of(const char *path, canvas_format deflt);
 
 /* A surface of w x h pixels (PNG) or points (SVG, PDF; 1 pt = 1/72 in) written to path through out_open: the file
  * appears complete at canvas_close or not at all. canvas_page starts a new page (PDF; the other formats keep one). */

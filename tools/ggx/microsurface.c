@@ -109,6 +109,10 @@ static int generate(int argc, char **argv)
         if (!o.have_alpha) sp.alpha_x = sp.alpha_y = 0.3;
         double t[2] = {0.0, 0.0};
         int rc;
+        if (o.have_alpha && !(o.alpha[0] >= 1e-3 && o.alpha[0] <= 7.0 && o.alpha[1] >= 1e-3 && o.alpha[1] <= 7.0)) {
+            free(h);
+            die("--alpha: a GGX surface takes alphas in [0.001, 7]");
+        }
         if (o.have_skew) {
             ggx_shape skewed;
             options so = o;
@@ -458,9 +462,12 @@ static int measure(int argc, char **argv)
                 fprintf(f.f, "| the risers' visible share (projected area %.6f) | %.6f |\n", r.riser_area, g_riser);
             fprintf(f.f, "\n");
         }
-        fprintf(f.f, "visible normals of %ld rays against ggx_pdf_vndf of the fitted shape (eq 33): chi-square %.6g on %d "
-                     "degrees of freedom (%.3g per degree), p = %.3g\n\n", vrays, cr.stat, cr.dof,
-                cr.dof > 0 ? cr.stat / cr.dof : NAN, cr.pvalue);
+        if (cr.dof > 0)
+            fprintf(f.f, "visible normals of %ld rays against ggx_pdf_vndf of the %s shape (eq 33): chi-square %.6g on %d "
+                         "degrees of freedom (%.3g per degree), p = %.3g\n\n", vrays, given ? "given" : "fitted",
+                    cr.stat, cr.dof, cr.stat / cr.dof, cr.pvalue);
+        else
+            fprintf(f.f, "visible normals of %ld rays: too few for a chi-square against ggx_pdf_vndf\n\n", vrays);
         if (!brdf) fprintf(f.f, "the BRDF is not measured on a tilted patch\n\n");
         else fprintf(f.f, "the BRDF with F = 1 from the light at the view, %ld rays (%ld lost, %ld still bouncing "
                           "after %d), "

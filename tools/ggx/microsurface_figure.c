@@ -39,6 +39,7 @@ int microsurface_figure(int argc, char **argv)
     }
     if (!o.heightfield) die("--heightfield FILE is required");
     if (!o.out) die("--out FILE.png|svg|pdf is required");
+    canvas_format fmt = figure_format_of(o.out, FMT_PNG);
     size_t n;
     double tilt[2], *h;
     ms_tracer *t = microsurface_open(&o, &h, &n, tilt);
@@ -86,11 +87,10 @@ int microsurface_figure(int argc, char **argv)
     m->n = 0, m->marks = 1;
     snprintf(m->label, sizeof m->label, "traced (%ld rays a view)", rays);
     for (int i = 0; i <= 34; i++) {
-        double a = -85.0 + 5.0 * i, tv = 0.0;
+        double a = -85.0 + 5.0 * i;
         ggx_vec3 v = plane_view(a, phi);
         double vv[3] = {v.x, v.y, v.z};
-        if (o.tilted) tv = tilt[0] * v.x + tilt[1] * v.y;
-        if (!(v.z - tv > 1e-3)) continue; /* below (or along) the tilted plane */
+        if (!ms_view_clear(o.tilted ? tilt : NULL, vv)) continue; /* below (or along) the tilted plane */
         ms_g1 r;
         if (ms_measure_g1(t, h, n, vv, rays, 1, 1, (size_t)o.risers, threads, &r, err, sizeof err) != 0)
             die("%s", err);
@@ -102,7 +102,7 @@ int microsurface_figure(int argc, char **argv)
     /* the figure */
     int W = o.size ? o.size : 900, H = o.size_h ? o.size_h : (int)lround(W * 0.6);
     canvas c;
-    canvas_open(&c, o.out, format_of_path(o.out, FMT_PNG), W, H, o.dark);
+    canvas_open(&c, o.out, fmt, W, H, o.dark);
     cairo_t *cr = c.cr;
     double F = figure_font(W, H);
     char l1[200], l2[400], l3[200];
@@ -122,6 +122,6 @@ int microsurface_figure(int argc, char **argv)
                     o.risers ? "G1(v) of the facets off the risers" : "G1(v)", 0, 1, 0, INFINITY};
     plot_draw(cr, c.th, 0, 4.2 * F, W, H - 4.2 * F, F, sr, nc + 1, &ax);
     canvas_close(&c);
-    fprintf(stderr, "ggx: wrote %s (%d x %d)\n", o.out, W, H);
+    if (strcmp(o.out, "-") != 0) fprintf(stderr, "ggx: wrote %s (%d x %d)\n", o.out, W, H);
     return 0;
 }

@@ -68,10 +68,7 @@ int cmd_plot(int argc, char **argv)
     const char *path = o.out ? o.out : fallback;
     /* a file name says its format; standard output ("-") and what is not a regular file (a device, a FIFO) take
      * the figure's default format */
-    canvas_format fmt = format_of_path(path, deflt);
-    size_t pl = strlen(path);
-    if (!path_is_stream(path) && (pl < 4 || strcmp(path + pl - 4, format_ext(fmt)) != 0))
-        die("--out: '%s' does not name a format: end it in .png, .svg or .pdf (or give - for standard output)", path);
+    canvas_format fmt = figure_format_of(path, deflt);
     if (o.have_eta && k != FIG_POLAR) die("--eta is for --figure polar (the BSDF)");
     if (k == FIG_POLAR && o.have_eta && o.eta == 1.0) die("--eta 1: no interface, no BSDF to plot");
     figure_spec f = {k, &s, o.view, smp, o.log_scale, o.dark, o.from * DEG, "", "", o.have_eta ? o.eta : 0.0, o.phi_d * DEG};
