@@ -232,13 +232,13 @@ double ggx_g1_smith(const ggx_shape *s, ggx_vec3 u);
 
 /* Masking of a skewed shape read as GGX on a tilted mean plane (a patch of a tilted surface, a normal-mapped texel):
  * G1(u, m) = 2 (A u).(A n) / (||A u|| ||A n|| + (A u).(A n)) X+(u.m), the projected area of the ellipsoid's cut (the
- * plane perpendicular to A^T A n, eq 23) towards u over the lune's (eq 28), in [0, 1]; the same as ggx_g1 for
- * unskewed shapes. It is Smith's G1 of the unskewed shape of the same scale Sigma (ggx_shape_slopes) seen from
+ * plane perpendicular to A^T A n, eq 23) towards u over the lune's (eq 28), in [0, 1]; exactly ggx_g1 for unskewed
+ * shapes. It is Smith's G1 of the unskewed shape of the same scale Sigma (ggx_shape_slopes) seen from
  * (u_xy, u.z - t . u_xy), the view sheared with the plane of slope t. Domain: u.z > 0 above the mean plane,
  * (A u).(A n) > 0; else 0 (also for a zero or non-finite m). Traced on explicit GGX patches (alpha 0.3 and 0.6)
  * tilted by |t| = 0.33 and 0.22 (docs/design/microsurface.md, "Skewed surfaces"), it holds within 2 % where the
- * sheared view is within 80 degrees of the tilted plane's normal and within 4.5 % to 88 degrees, as Smith's G1 does
- * on the untilted surfaces, where ggx_g1 is off by up to a factor of 5. */
+ * sheared view is within 80 degrees of the tilted plane's normal and within 4.5 % to 88 degrees (as Smith's G1 does
+ * on the untilted surfaces); ggx_g1 is off there by up to a factor of 5. */
 double ggx_g1_tilted(const ggx_shape *s, ggx_vec3 u, ggx_vec3 m);
 
 /* Masking of a skewed shape on a flat surface made by Walter's remedy (section 5.1): ramps of the skewed NDF that
