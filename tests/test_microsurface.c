@@ -527,7 +527,7 @@ static void skewed_masking(void **state)
         CHECK_CLOSE(gt, gs, 1e-9, 0, "phi %g: the shear: the tilted patch's facets' G1 %.12g, the sheared view's %.12g",
                     phis[a], gt, gs);
         ms_g1 r;
-        CHECK(ms_measure_g1(t, h, N, v, RAYS, 2, 4, 0, 2, &r, err, sizeof err) == 0, "%s", err);
+        CHECK(ms_measure_g1(t, h, N, v, RAYS, 2, 4, NULL, 2, &r, err, sizeof err) == 0, "%s", err);
         ggx_vec3 vv = {v[0], v[1], v[2]};
         double tb = ggx_g1_tilted(&fit, vv, vv), e6 = ggx_g1(&fit, vv, vv);
         CHECK(r.missed == 0 && fabs(r.g1_off_risers - r.g1) < 4.0 * sqrt(r.g1 * (1.0 - r.g1 + 1e-3) / RAYS) + 2e-3,
@@ -546,13 +546,21 @@ static void skewed_masking(void **state)
     CHECK(ms_ramp(h, N, tilt[0], tilt[1], 256, err, sizeof err) == 0, "%s", err);
     t = ms_tracer_new(h, N, NULL, err, sizeof err);
     CHECK(t != NULL, "%s", err);
+    size_t risers[2];
+    CHECK(ms_find_risers(h, N, 256, risers, err, sizeof err) == 0 && risers[0] == 0 && risers[1] == 256,
+          "risers found %zu, %zu (%s)", risers[0], risers[1], err);
+    /* another period, and a tile without risers, are no sawtooth of that period */
+    size_t other[2];
+    CHECK(ms_find_risers(h, N, 128, other, err, sizeof err) != 0 && strstr(err, "not a sawtooth of period 128"),
+          "period 128 taken: %s", err);
+    CHECK(ms_find_risers(g, N, 256, other, err, sizeof err) != 0 && strstr(err, "no risers of period 256"),
+          "the plain field's risers: %s", err);
     for (int a = 0; a < 2; a++) {
         double th = 60.0 * PI_ / 180.0, ph = phis[a] * PI_ / 180.0;
         double v[3] = {sin(th) * cos(ph), sin(th) * sin(ph), cos(th)};
         ms_g1 r;
-        CHECK(ms_measure_g1(t, h, N, v, RAYS, 2, 4, 256, 2, &r, err, sizeof err) == 0, "%s", err);
-        CHECK(r.risers[0] == 0 && r.risers[1] == 256 && r.missed == 0, "risers found %zu, %zu; %ld missed",
-              r.risers[0], r.risers[1], r.missed);
+        CHECK(ms_measure_g1(t, h, N, v, RAYS, 2, 4, risers, 2, &r, err, sizeof err) == 0, "%s", err);
+        CHECK(r.missed == 0, "%ld missed", r.missed);
         ggx_vec3 vv = {v[0], v[1], v[2]};
         double saw = ggx_g1_risers(&fit, vv, vv), vf = ms_g1_vertical_facets(&fit, v), tb = ggx_g1_tilted(&fit, vv, vv);
         double seen = r.riser_visible / r.riser_area;
@@ -610,25 +618,13 @@ static void skewed_claims(void **state)
                 return;
             }
             ms_g1 r;
-            double up[3] = {0, 0, 1}, worst = 0.0;
-            CHECK(ms_measure_g1(tr, h, N, up, 1, 1, 1, saw ? 512 : 0, 1, &r, err, sizeof err) == 0, "%s", err);
+            size_t risers[2];
+            double worst = 0.0;
+            CHECK(ms_find_risers(h, N, saw ? 512 : 0, risers, err, sizeof err) == 0, "%s", err);
             /* the fit of the facets off the risers, as ggx microsurface measure makes it */
-            size_t k = 0;
             ggx_vec3 *m = malloc(4 * (size_t)(N - 1) * (N - 1) * sizeof *m);
             CHECK(m != NULL, "memory");
-            for (size_t y = 0; y + 1 < N; y++)
-                for (size_t x = 0; x + 1 < N; x++) {
-                    if (ms_riser_cell(&r, N, y * N + x)) continue;
-                    double h00 = h[y * N + x], h10 = h[y * N + x + 1], h01 = h[(y + 1) * N + x];
-                    double h11 = h[(y + 1) * N + x + 1], sx[2] = {h10 - h00, h11 - h01}, sy[2] = {h01 - h00, h11 - h10};
-                    for (int i = 0; i < 2; i++)
-                        for (int j = 0; j < 2; j++) {
-                            double l = sqrt(1.0 + sx[i] * sx[i] + sy[j] * sy[j]);
-                            m[k++] = (ggx_vec3){-sx[i] / l, -sy[j] / l, 1.0 / l};
-                        }
-                }
-            ms_g1_free(&r);
-            CHECK(ggx_fit_normals(&fit, m, NULL, k, NULL, NULL) == GGX_OK, "fit");
+            CHECK(ggx_fit_normals(&fit, m, NULL, ms_facet_normals(h, N, risers, m), NULL, NULL) == GGX_OK, "fit");
             free(m);
             double ft[2], fs[3];
             ggx_shape_slopes(&fit, ft, fs);
@@ -643,7 +639,7 @@ static void skewed_claims(void **state)
                     double tol = saw ? (front ? (sheared <= 76.0 ? 0.04 : -1.0) : 0.02)
                                      : (sheared <= 80.0 ? 0.02 : sheared <= 88.0 ? 0.045 : -1.0);
                     if (tol < 0) continue;
-                    CHECK(ms_measure_g1(tr, h, N, v, RAYS, 1, 1, saw ? 512 : 0, 2, &r, err, sizeof err) == 0, "%s", err);
+                    CHECK(ms_measure_g1(tr, h, N, v, RAYS, 1, 1, risers, 2, &r, err, sizeof err) == 0, "%s", err);
                     ggx_vec3 vv = {v[0], v[1], v[2]};
                     double want = saw ? ggx_g1_risers(&fit, vv, vv) : ggx_g1_tilted(&fit, vv, vv);
                     CHECK_CLOSE(r.g1_off_risers, want, tol, 0, "alpha %g, %s, %d degrees from %s (sheared %.1f): "

@@ -82,17 +82,18 @@ static int cmp_double(const void *a, const void *b)
     return (x > y) - (x < y);
 }
 
-/* Which axes of a sawtooth of period P have risers: along x, the columns x = P - 1 mod P whose differences (their
- * median, which a steep pit does not move) step from the other columns' median by more than 1 (a step steeper
- * than 45 degrees); likewise the rows along y. An axis is a riser axis where all those columns step and no other
- * does, and has none where none steps; else the tile is no sawtooth of period P (-1). 0, or -1 for no memory too. */
-static int riser_axes(const double *h, size_t n, size_t P, int axes[2])
+int ms_find_risers(const double *h, size_t n, size_t P, size_t risers[2], char *err, size_t errn)
 {
-    axes[0] = axes[1] = 0;
-    if (P < 2 || n % P != 0) return 0;
+    risers[0] = risers[1] = 0;
+    if (P == 0) return 0;
+    if (P < 2 || n % P != 0 || P > n / 2) {
+        snprintf(err, errn, "masking: a sawtooth's period must divide the size and be from 2 to half of it");
+        return -1;
+    }
     double *col = malloc(n * sizeof *col), *med = malloc(n * sizeof *med), *off = malloc(n * sizeof *off);
     if (!col || !med || !off) {
         free(col), free(med), free(off);
+        snprintf(err, errn, "masking: out of memory");
         return -1;
     }
     int ok = 1;
@@ -112,17 +113,24 @@ static int riser_axes(const double *h, size_t n, size_t P, int axes[2])
             if (i % P == P - 1) steps_on += (size_t)step;
             else steps_off += (size_t)step;
         }
-        axes[ax] = steps_on == n / P;
+        risers[ax] = steps_on == n / P ? P : 0;
         ok = steps_off == 0 && (steps_on == 0 || steps_on == n / P);
     }
     free(col), free(med), free(off);
-    return ok ? 0 : -1;
+    if (!ok) {
+        risers[0] = risers[1] = 0;
+        snprintf(err, errn, "masking: not a sawtooth of period %zu: steps steeper than 45 degrees in other columns or "
+                 "rows than %zu mod %zu, or in only some of those", P, P - 1, P);
+        return -1;
+    }
+    if (!risers[0] && !risers[1]) {
+        snprintf(err, errn, "masking: no risers of period %zu: the columns and rows %zu mod %zu step like the others",
+                 P, P - 1, P);
+        return -1;
+    }
+    return 0;
 }
 
-static int is_riser(size_t P, const int axes[2], size_t x, size_t y)
-{
-    return P >= 2 && ((axes[0] && x % P == P - 1) || (axes[1] && y % P == P - 1));
-}
 
 /* the footprint's projected area towards v per unit tile area: v.z, less the tilt's share */
 static double footprint(const double *tilt, const double v[3])
@@ -136,17 +144,32 @@ int ms_view_clear(const double tilt[2], const double v[3])
     return z > 1e-3 * sqrt(v[0] * v[0] + v[1] * v[1] + z * z);
 }
 
-int ms_riser_cell(const ms_g1 *r, size_t n, size_t cell)
+int ms_riser_cell(const size_t risers[2], size_t n, size_t cell)
 {
-    size_t x = cell % n, y = cell / n, px = r->risers[0], py = r->risers[1];
+    size_t x = cell % n, y = cell / n, px = risers[0], py = risers[1];
     return (px >= 2 && x % px == px - 1) || (py >= 2 && y % py == py - 1);
 }
 
+size_t ms_facet_normals(const double *h, size_t n, const size_t risers[2], ggx_vec3 *m)
+{
+    size_t k = 0;
+    for (size_t y = 0; y + 1 < n; y++)
+        for (size_t x = 0; x + 1 < n; x++) {
+            if (ms_riser_cell(risers, n, y * n + x)) continue;
+            double h00 = h[y * n + x], h10 = h[y * n + x + 1], h01 = h[(y + 1) * n + x], h11 = h[(y + 1) * n + x + 1];
+            double sx[2] = {h10 - h00, h11 - h01}, sy[2] = {h01 - h00, h11 - h10};
+            for (int a = 0; a < 2; a++)
+                for (int b = 0; b < 2; b++) {
+                    double l = sqrt(1.0 + sx[a] * sx[a] + sy[b] * sy[b]);
+                    m[k++] = (ggx_vec3){-sx[a] / l, -sy[b] / l, 1.0 / l};
+                }
+        }
+    return k;
+}
 
 /* the facets off the risers: their projected area towards v per bin (area may be NULL) and their slopes' mean and
  * covariance (mean, cov may be NULL); the risers' projected area towards v (riser may be NULL); G1 of all facets */
-static void facets_towards(const double *h, size_t n, const double *tilt, size_t P, const int axes[2],
-                           const double v[3], int rings, int sectors, double *area, double mean[2], double cov[3],
+static void facets_towards(const double *h, size_t n, const double *tilt, const size_t risers[2], const double v[3], int rings, int sectors, double *area, double mean[2], double cov[3],
                            double *riser, double *g1)
 {
     double total = 0.0, mx = 0.0, my = 0.0, sxx = 0.0, sxy = 0.0, syy = 0.0, rs = 0.0, cnt = 0.0;
@@ -154,7 +177,7 @@ static void facets_towards(const double *h, size_t n, const double *tilt, size_t
     for (size_t y = 0; y < n; y++)
         for (size_t x = 0; x < n; x++) {
             double sl[2][2];
-            int vertical = is_riser(P, axes, x, y);
+            int vertical = ms_riser_cell(risers, n, y * n + x);
             cell_slopes(h, n, tilt, x, y, sl);
             for (int k = 0; k < 2; k++) {
                 double a = 0.5 * (v[2] - sl[k][0] * v[0] - sl[k][1] * v[1]), m[3];
@@ -181,8 +204,8 @@ static void facets_towards(const double *h, size_t n, const double *tilt, size_t
 double ms_facets_g1(const double *h, size_t n, const double tilt[2], const double v[3])
 {
     double g1;
-    int axes[2] = {0, 0};
-    facets_towards(h, n, tilt, 0, axes, v, 1, 1, NULL, NULL, NULL, NULL, &g1);
+    const size_t none[2] = {0, 0};
+    facets_towards(h, n, tilt, none, v, 1, 1, NULL, NULL, NULL, NULL, &g1);
     return g1;
 }
 
@@ -191,8 +214,7 @@ typedef struct g1_job {
     const double *h;
     size_t n;
     const double *v, *tilt;
-    size_t P;
-    const int *axes;
+    const size_t *risers;
     long g, row0, row1;
     int bins, rings, sectors;
     long *hits, missed, riser_hits;
@@ -228,7 +250,7 @@ static void *g1_rows(void *p)
             }
             ms_hit *hit = &hits[c];
             size_t cx = hit->cell % j->n, cy = hit->cell / j->n;
-            if (is_riser(j->P, j->axes, cx, cy)) {
+            if (ms_riser_cell(j->risers, j->n, hit->cell)) {
                 j->riser_hits++;
                 continue;
             }
@@ -249,27 +271,12 @@ void ms_g1_free(ms_g1 *r)
 }
 
 int ms_measure_g1(const ms_tracer *t, const double *h, size_t n, const double v[3], long rays, int rings, int sectors,
-                  size_t risers, int threads, ms_g1 *r, char *err, size_t errn)
+                  const size_t risers[2], int threads, ms_g1 *r, char *err, size_t errn)
 {
     memset(r, 0, sizeof *r);
     double tilt[2];
     ms_tracer_tilt(t, tilt);
-    int axes[2];
-    if (risers != 0 && (risers < 2 || n % risers != 0 || risers > n / 2)) {
-        snprintf(err, errn, "masking: a sawtooth's period must divide the size and be from 2 to half of it");
-        return -1;
-    }
-    if (riser_axes(h, n, risers, axes) != 0) {
-        snprintf(err, errn, "masking: not a sawtooth of period %zu: steps steeper than 45 degrees in other columns or "
-                 "rows than %zu mod %zu, or in only some of those", risers, risers - 1, risers);
-        return -1;
-    }
-    if (risers && !axes[0] && !axes[1]) {
-        snprintf(err, errn, "masking: no risers of period %zu: the columns and rows %zu mod %zu step like the others",
-                 risers, risers - 1, risers);
-        return -1;
-    }
-    r->risers[0] = axes[0] ? risers : 0, r->risers[1] = axes[1] ? risers : 0;
+    if (risers) r->risers[0] = risers[0], r->risers[1] = risers[1];
     if (!ms_view_clear(tilt, v)) {
         snprintf(err, errn, "masking: the view must be at least 0.06 degrees above the %splane (rays that graze it "
                  "cross tiles without end)", tilt[0] != 0.0 || tilt[1] != 0.0 ? "tilted " : "");
@@ -291,12 +298,12 @@ int ms_measure_g1(const ms_tracer *t, const double *h, size_t n, const double v[
         return -1;
     }
     r->visible = r->area + bins;
-    facets_towards(h, n, tilt, risers, axes, v, rings, sectors, r->area, r->slope_mean, r->slope_cov,
-                   &r->riser_area, &r->g1);
+    facets_towards(h, n, tilt, r->risers, v, rings, sectors, r->area, r->slope_mean, r->slope_cov, &r->riser_area,
+                   &r->g1);
     long g = (long)ceil(sqrt((double)rays));
     if (threads > g) threads = (int)g;
     for (int k = 0; k < threads; k++)
-        jobs[k] = (g1_job){t, h, n, v, tilt, risers, axes, g, g * k / threads, g * (k + 1) / threads, bins, rings,
+        jobs[k] = (g1_job){t, h, n, v, tilt, r->risers, g, g * k / threads, g * (k + 1) / threads, bins, rings,
                            sectors, hits + (size_t)k * (size_t)bins, 0, 0, 0};
     int failed = run_jobs(g1_rows, jobs, sizeof *jobs, threads) != 0;
     for (int k = 0; k < threads; k++) failed |= jobs[k].failed;

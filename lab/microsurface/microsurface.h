@@ -113,14 +113,17 @@ typedef struct ms_g1 {
 
 /* Traces about rays rays (a jittered grid of g x g origins, g = ceil(sqrt(rays))) from above along -v on threads
  * threads and fills r (ms_g1_free releases it); the tracer's tilt applies (the tile's differences across its sides
- * raised by it). risers: 0, or the period P of a sawtooth (P divides n, 2 <= P <= n / 2; ms_ramp's), whose cells in
- * the columns x = P - 1 mod P are its risers where their x differences step from the other columns' by more than 1
- * (medians: a step steeper than 45 degrees), and likewise the rows along y; their facets are counted apart from the
+ * raised by it). risers (may be NULL: none): ms_find_risers' periods, whose cells' facets are counted apart from the
  * others' (bins, covariance, g1_off_risers). Returns 0 or -1 with err: the view not clear of the plane
- * (ms_view_clear), a tile that is no sawtooth of period P (other columns step, or only some of those) or has no
- * risers of it. */
+ * (ms_view_clear). */
 int ms_measure_g1(const ms_tracer *t, const double *h, size_t n, const double v[3], long rays, int rings, int sectors,
-                  size_t risers, int threads, ms_g1 *r, char *err, size_t errn);
+                  const size_t risers[2], int threads, ms_g1 *r, char *err, size_t errn);
+/* The risers of a sawtooth of period P (P divides n, 2 <= P <= n / 2; ms_ramp's): along x, the columns x = P - 1
+ * mod P where the median of their differences (which a steep pit does not move) steps from the other columns' by
+ * more than 1 (a step steeper than 45 degrees), and likewise the rows along y. risers[0] and risers[1] receive P
+ * for an axis with risers, else 0; P 0: none (0, 0). Returns 0, or -1 with err: P out of range, a tile that is no
+ * sawtooth of period P (other columns step, or only some of those), one that has no risers of it, no memory. */
+int ms_find_risers(const double *h, size_t n, size_t P, size_t risers[2], char *err, size_t errn);
 void ms_g1_free(ms_g1 *r);
 /* The BRDF of the tiled surface with F = 1, traced: rays from wi (a jittered grid of origins) reflect specularly at
  * every facet they meet until they escape, at most max_bounces times. Outgoing directions are binned in rings of
@@ -172,8 +175,11 @@ double ms_g1_vertical_facets(const ggx_shape *s, const double v[3]);
 /* 1 where the view v is at least 1e-3 in cosine (0.06 degrees) above the plane of slope tilt (may be NULL: the
  * horizontal plane), the views ms_measure_g1 takes: rays nearer the plane cross tiles without end. */
 int ms_view_clear(const double tilt[2], const double v[3]);
-/* 1 where cell (y n + x) of an n x n tile is one of the risers that ms_measure_g1 found (r->risers), else 0. */
-int ms_riser_cell(const ms_g1 *r, size_t n, size_t cell);
+/* 1 where cell (y n + x) of an n x n tile is one of the risers of ms_find_risers' periods, else 0. */
+int ms_riser_cell(const size_t risers[2], size_t n, size_t cell);
+/* The unit normals of the four triangles of each inner cell off the risers (both triangulations, as
+ * ggx_fit_heightfield takes them) into m (room for 4 (n - 1)^2); returns how many. */
+size_t ms_facet_normals(const double *h, size_t n, const size_t risers[2], ggx_vec3 *m);
 /* The bin of a unit normal m (m.z > 0). */
 int ms_bin(const double m[3], int rings, int sectors);
 

@@ -213,36 +213,28 @@ double *microsurface_heights(const options *o, size_t *n_out, double tilt[2])
     return h;
 }
 
-/* The fitted shape of the facets off the risers (all four triangles of each inner cell, as ggx_fit_heightfield
- * takes them), or of all the facets as given (not levelled: the tracer traces them as they are). */
-ggx_status microsurface_fit(const double *h, size_t n, const ms_g1 *r, ggx_shape *fit)
+/* The fitted shape of the facets off the risers (ms_facet_normals), or of all the facets as given (not levelled:
+ * the tracer traces them as they are). */
+ggx_status microsurface_fit(const double *h, size_t n, const size_t risers[2], ggx_shape *fit)
 {
     ggx_heightfield_options ho = {1, 0};
-    if (!r->risers[0] && !r->risers[1]) return ggx_fit_heightfield(fit, h, n, n, 1.0, 1.0, &ho, NULL, NULL);
+    if (!risers[0] && !risers[1]) return ggx_fit_heightfield(fit, h, n, n, 1.0, 1.0, &ho, NULL, NULL);
     ggx_vec3 *m = malloc(4 * (n - 1) * (n - 1) * sizeof *m);
     if (!m) die("out of memory for the facets of %zu x %zu heights", n, n);
-    size_t k = 0;
-    for (size_t y = 0; y + 1 < n; y++)
-        for (size_t x = 0; x + 1 < n; x++) {
-            if (ms_riser_cell(r, n, y * n + x)) continue;
-            double h00 = h[y * n + x], h10 = h[y * n + x + 1], h01 = h[(y + 1) * n + x], h11 = h[(y + 1) * n + x + 1];
-            double sx[2] = {h10 - h00, h11 - h01}, sy[2] = {h01 - h00, h11 - h10};
-            for (int a = 0; a < 2; a++)
-                for (int b = 0; b < 2; b++) {
-                    double l = sqrt(1.0 + sx[a] * sx[a] + sy[b] * sy[b]);
-                    m[k++] = (ggx_vec3){-sx[a] / l, -sy[b] / l, 1.0 / l};
-                }
-        }
-    ggx_status st = ggx_fit_normals(fit, m, NULL, k, NULL, NULL);
+    ggx_status st = ggx_fit_normals(fit, m, NULL, ms_facet_normals(h, n, risers, m), NULL, NULL);
     free(m);
     return st;
 }
 
-ms_tracer *microsurface_open(const options *o, double **h, size_t *n, double tilt[2])
+ms_tracer *microsurface_open(const options *o, double **h, size_t *n, double tilt[2], size_t risers[2])
 {
     if (o->tilted && o->risers) die("--tilted and --risers: a surface is one or the other");
     *h = microsurface_heights(o, n, tilt);
     char err[400];
+    if (ms_find_risers(*h, *n, (size_t)o->risers, risers, err, sizeof err) != 0) {
+        free(*h); /* (die exits: nothing left to the leak checkers) */
+        die("%s", err);
+    }
     ms_tracer *t = ms_tracer_new(*h, *n, o->tilted ? tilt : NULL, err, sizeof err);
     if (!t) {
         free(*h); /* (die exits: nothing left to the leak checkers) */
@@ -251,10 +243,11 @@ ms_tracer *microsurface_open(const options *o, double **h, size_t *n, double til
     return t;
 }
 
-ggx_status microsurface_model(const options *o, const double *h, size_t n, const ms_g1 *r, ggx_shape *s, int *given)
+ggx_status microsurface_model(const options *o, const double *h, size_t n, const size_t risers[2], ggx_shape *s,
+                              int *given)
 {
     *given = o->have_alpha || o->have_skew || o->have_rotate || o->have_matrix;
-    if (!*given) return microsurface_fit(h, n, r, s);
+    if (!*given) return microsurface_fit(h, n, risers, s);
     shape_from_options(o, s);
     return GGX_OK;
 }
@@ -264,7 +257,7 @@ ggx_status microsurface_model(const options *o, const double *h, size_t n, const
 typedef struct vndf_ctx {
     normal_keys nk; /* first: the harness's keys and density */
     const ms_tracer *t;
-    const ms_g1 *risers;
+    const size_t *risers;
     size_t size;
     double d[3], n, zmax;
 } vndf_ctx;
@@ -334,16 +327,17 @@ static int measure(int argc, char **argv)
     if (!(o.view.z > 1e-9)) die("--view: the view must be above the plane");
     size_t n;
     double tilt[2], *h;
-    ms_tracer *t = microsurface_open(&o, &h, &n, tilt);
+    size_t risers[2];
+    ms_tracer *t = microsurface_open(&o, &h, &n, tilt, risers);
     char err[400];
     double v[3] = {o.view.x, o.view.y, o.view.z};
     long rays = o.n > 0 ? o.n : 1000000;
     int threads = o.threads > 0 ? o.threads : 1;
     ms_g1 r;
-    if (ms_measure_g1(t, h, n, v, rays, 4, 8, (size_t)o.risers, threads, &r, err, sizeof err) != 0) die("%s", err);
+    if (ms_measure_g1(t, h, n, v, rays, 4, 8, risers, threads, &r, err, sizeof err) != 0) die("%s", err);
     ggx_shape fit;
     int given;
-    ggx_status st = microsurface_model(&o, h, n, &r, &fit, &given);
+    ggx_status st = microsurface_model(&o, h, n, risers, &fit, &given);
     double g_ggx = st == GGX_OK ? ggx_g1_smith(&fit, o.view) : NAN, g_b = ms_beckmann_g1(r.slope_cov, v);
     /* the visible normals against eq 33 for the fitted shape, 16 x 16 cells of its sphere space */
     chi2_result cr = {0};
@@ -351,7 +345,7 @@ static int measure(int argc, char **argv)
     if (st == GGX_OK) {
         double zmin, zmax;
         ms_tracer_bounds(t, &zmin, &zmax);
-        vndf_ctx c = {{&fit, o.view, vndf_pdf}, t, &r, n, {-v[0], -v[1], -v[2]}, (double)n, zmax};
+        vndf_ctx c = {{&fit, o.view, vndf_pdf}, t, risers, n, {-v[0], -v[1], -v[2]}, (double)n, zmax};
         chi2_problem p = {"traced visible normals", 1, vndf_draw, normal_keys_key, normal_keys_density, &c};
         cr = chi2_run_quiet(&p, vrays, 16, 16, o.seed, 0.01);
     }
@@ -406,7 +400,7 @@ static int measure(int argc, char **argv)
     double g_saw = st == GGX_OK ? ggx_g1_risers(&fit, o.view, o.view) : NAN;
     double g_riser = r.riser_area > 0.0 ? r.riser_visible / r.riser_area : NAN;
     int skewed = o.tilted || o.risers || (given && hypot(ts[0], ts[1]) > 1e-9); /* a periodic tile has no mean slope */
-    double g1v = r.risers[0] || r.risers[1] ? r.g1_off_risers : r.g1;
+    double g1v = risers[0] || risers[1] ? r.g1_off_risers : r.g1;
     int json = o.format && strcmp(o.format, "json") == 0;
     if (o.format && !json && strcmp(o.format, "md") != 0) die("--format: '%s' is not md or json", o.format);
     out_file f;
@@ -423,12 +417,11 @@ static int measure(int argc, char **argv)
                      "\"t\": [%s, %s],\n",
                 tilt[0], tilt[1], r.risers[0], r.risers[1], r.slope_mean[0], r.slope_mean[1], jnum(b1, ts[0]),
                 jnum(b2, ts[1]));
-        char b6[32], b7[32];
+        char b6[32];
         fprintf(f.f, "  \"skewed_g1\": {\"traced\": %.10g, \"eq6\": %s, \"smith\": %s, \"vertical_facets\": %s, "
                      "\"tilted_base\": %s, \"sawtooth\": %s, \"risers_area\": %.10g, \"risers_visible\": %s},\n",
                 g1v, jnum(b1, g_eq6), jnum(b2, g_ggx), jnum(b3, g_vf), jnum(b4, g_tb), jnum(b5, g_saw), r.riser_area,
                 jnum(b6, g_riser));
-        (void)b7;
         fprintf(f.f, "  \"vndf_chi2\": {\"rays\": %ld, \"stat\": %s, \"dof\": %d, \"pvalue\": %s, \"invalid\": %ld},\n",
                 vrays, jnum(b1, cr.stat), cr.dof, jnum(b2, cr.pvalue), cr.invalid);
         if (brdf)

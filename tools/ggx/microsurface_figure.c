@@ -40,30 +40,43 @@ int microsurface_figure(int argc, char **argv)
     if (!o.heightfield) die("--heightfield FILE is required");
     if (!o.out) die("--out FILE.png|svg|pdf is required");
     canvas_format fmt = figure_format_of(o.out, FMT_PNG);
-    size_t n;
+    size_t n, risers[2];
     double tilt[2], *h;
-    ms_tracer *t = microsurface_open(&o, &h, &n, tilt);
+    ms_tracer *t = microsurface_open(&o, &h, &n, tilt, risers);
     char err[400];
     long rays = o.n > 0 ? o.n : 100000;
     int threads = o.threads > 0 ? o.threads : 1;
-    /* the model's shape: fitted to the facets off the risers (which a first measurement finds), or given */
-    ms_g1 r0;
-    double up[3] = {0.0, 0.0, 1.0};
-    if (ms_measure_g1(t, h, n, up, 1, 1, 1, (size_t)o.risers, 1, &r0, err, sizeof err) != 0) die("%s", err);
+    /* the model's shape: fitted to the facets off the risers, or given */
     ggx_shape fit;
     int given;
-    if (microsurface_model(&o, h, n, &r0, &fit, &given) != GGX_OK) die("%s: no shape fits its facets", o.heightfield);
+    if (microsurface_model(&o, h, n, risers, &fit, &given) != GGX_OK) die("%s: no shape fits its facets", o.heightfield);
     double ts[2], ss[3];
     ggx_shape_slopes(&fit, ts, ss);
     /* (a periodic tile has no mean slope: a fit's small t there is the sampling's) */
     int skewed = o.tilted || o.risers || (given && hypot(ts[0], ts[1]) > 1e-9);
     double phi = isfinite(o.from) ? o.from : skewed ? atan2(ts[1], ts[0]) * 180.0 / PI : 0.0;
-    /* the curves, every half degree */
     enum { CURVES = 5 };
     static plot_series sr[CURVES + 1];
+    int nc = skewed ? CURVES : 2;
+    /* the traced marks, after the curves; the facets' slope covariance (the same at every view) for Beckmann's */
+    plot_series *m = &sr[nc];
+    m->n = 0, m->marks = 1;
+    snprintf(m->label, sizeof m->label, "traced (%ld rays a view)", rays);
+    double cov[3] = {0.0, 0.0, 0.0};
+    for (int i = 0; i <= 34; i++) {
+        double a = -85.0 + 5.0 * i;
+        ggx_vec3 v = plane_view(a, phi);
+        double vv[3] = {v.x, v.y, v.z};
+        if (!ms_view_clear(o.tilted ? tilt : NULL, vv)) continue; /* below (or along) the tilted plane */
+        ms_g1 r;
+        if (ms_measure_g1(t, h, n, vv, rays, 1, 1, risers, threads, &r, err, sizeof err) != 0) die("%s", err);
+        m->x[m->n] = a, m->y[m->n++] = r.g1_off_risers;
+        memcpy(cov, r.slope_cov, sizeof cov);
+        ms_g1_free(&r);
+    }
+    /* the curves, every half degree */
     const char *names[CURVES] = {"eq 6 (ggx_g1)", "eq 32 without min", "vertical facets", "tilted base (ggx_g1_tilted)",
                                  "sawtooth (ggx_g1_risers)"};
-    int nc = skewed ? CURVES : 2;
     for (int c = 0; c < nc; c++) {
         plot_series *s = &sr[c];
         s->n = 0, s->marks = 0;
@@ -72,7 +85,7 @@ int microsurface_figure(int argc, char **argv)
             double a = -85.0 + 0.5 * i;
             ggx_vec3 v = plane_view(a, phi);
             double vv[3] = {v.x, v.y, v.z}, g;
-            if (!skewed) g = c == 0 ? ggx_g1_smith(&fit, v) : ms_beckmann_g1(r0.slope_cov, vv);
+            if (!skewed) g = c == 0 ? ggx_g1_smith(&fit, v) : ms_beckmann_g1(cov, vv);
             else if (c == 0) g = ggx_g1(&fit, v, v);
             else if (c == 1) g = ggx_g1_smith(&fit, v);
             else if (c == 2) g = ms_g1_vertical_facets(&fit, vv);
@@ -80,22 +93,6 @@ int microsurface_figure(int argc, char **argv)
             else g = ggx_g1_risers(&fit, v, v);
             s->x[s->n] = a, s->y[s->n++] = g;
         }
-    }
-    ms_g1_free(&r0);
-    /* the traced marks */
-    plot_series *m = &sr[nc];
-    m->n = 0, m->marks = 1;
-    snprintf(m->label, sizeof m->label, "traced (%ld rays a view)", rays);
-    for (int i = 0; i <= 34; i++) {
-        double a = -85.0 + 5.0 * i;
-        ggx_vec3 v = plane_view(a, phi);
-        double vv[3] = {v.x, v.y, v.z};
-        if (!ms_view_clear(o.tilted ? tilt : NULL, vv)) continue; /* below (or along) the tilted plane */
-        ms_g1 r;
-        if (ms_measure_g1(t, h, n, vv, rays, 1, 1, (size_t)o.risers, threads, &r, err, sizeof err) != 0)
-            die("%s", err);
-        m->x[m->n] = a, m->y[m->n++] = r.g1_off_risers;
-        ms_g1_free(&r);
     }
     ms_tracer_free(t);
     free(h);
