@@ -90,12 +90,12 @@ readelf -d "$libdir/$soname" | grep -q "(SONAME).*\[$soname\]" || { readelf -d "
 test -L "$libdir/libggx.so" || fail "no libggx.so link"
 test ! -e "$libdir/libggx.a" || fail "a shared build installed libggx.a"
 test ! -e "$tmp/p-shared/bin/ggx" || fail "the tool was installed with GGX_BUILD_TOOL=OFF"
-# The lab is not in the product: no symbol of lab/verify/ (or of the tools) in the library, nothing else installed.
+# The lab is not in the product: no symbol of libs/verify/ (or of the tools) in the library, nothing else installed.
 if nm -D --defined-only "$libdir/$soname" | awk '{print $3}' | grep -v '^ggx_' | grep -v '^_' | grep -q .; then
     nm -D --defined-only "$libdir/$soname" | grep -v ' ggx_'; fail "the library exports names outside ggx_*"
 fi
 if nm "$libdir/$soname" | grep -qE ' (chi2_run|quad_adapt|audit_run|verify_pdf_ndf|au_add|rng_uniform)$'; then
-    fail "lab/verify/ code in the installed library"
+    fail "libs/verify/ code in the installed library"
 fi
 files=$(cd "$tmp/p-shared" && find . -type f | grep -v '^./include/ggx/' | sort | tr '\n' ' ')
 case $files in *python*|*bin/*|*man1*) fail "a library-only install has $files" ;; esac

@@ -1,4 +1,4 @@
-/* Seed audit: runs lab/verify/audit.c for the command's three default shapes (diagonal, theta_z-rotated, skewed) and
+/* Seed audit: runs libs/verify/audit.c for the command's three default shapes (diagonal, theta_z-rotated, skewed) and
  * asserts every verdict, so that docs/audit.md (the command's output, compared by tests/cli_test.sh) stays true: a
  * claim recorded as failing must keep failing. SPDX-License-Identifier: MIT */
 #include <stdio.h>
@@ -34,18 +34,18 @@ static const struct {
     {"vndf-eq33", {H, H, H}},     {"sggx", {H, H, H}},      {"hessian", {H, H, H}},     {"normalize-derivative", {H, H, H}},
     {"stretch-inverse", {H, N, N}}, {"equal-area-grid", {H, N, N}}, {"inversion-forms", {H, N, N}},
     {"spherical-form", {H, N, N}}, {"det-sr", {H, H, H}},    {"an-is-n", {H, H, N}},
-    /* lab/verify/audit_ellipsoid.c */
+    /* libs/verify/audit_ellipsoid.c */
     {"normal-point", {H, H, H}},  {"gauss-map", {H, H, H}}, {"silhouette", {H, H, H}},  {"surface-integrals", {H, H, H}},
     {"lune-sphere", {H, H, H}},   {"ce-cancels", {H, H, H}}, {"semi-axes", {H, N, N}},  {"skew-max", {H, H, H}},
     {"ndf-along-u", {H, N, N}},   {"sin-jacobian", {H, H, H}}, {"ellipsoid-map", {H, N, N}},
-    /* lab/verify/audit_sampling.c */
+    /* libs/verify/audit_sampling.c */
     {"lift", {H, N, N}},          {"sphere-disk", {H, H, H}}, {"crescent-sphere", {H, H, H}},
     {"concentric-walter", {H, H, H}}, {"squeeze-walter", {H, H, H}}, {"frame-eq42", {H, H, H}}, {"lune-point", {H, H, H}}, {"walter-v1", {H, H, H}},
     {"pm-blog", {H, H, H}},       {"vndf-total-jacobian", {H, N, N}}, {"project-jacobian", {H, H, H}},
-    /* lab/verify/audit_scattering.c */
+    /* libs/verify/audit_scattering.c */
     {"smith-integral", {C, C, F}}, {"eq7-transmission", {H, H, H}}, {"weight-formula", {H, H, H}},
     {"g-approx", {H, N, N}},      {"brdf-form", {H, N, N}}, {"reflect-below", {H, N, N}},
-    /* lab/verify/audit_stretch.c */
+    /* libs/verify/audit_stretch.c */
     {"vector-identities", {H, H, H}}, {"det-scale", {H, N, N}}, {"stretch-total-jacobian", {H, N, N}},
     {"slope-stretch", {H, N, N}}, {"d-slope", {H, N, N}},   {"iso", {H, N, N}},
 };

@@ -275,7 +275,7 @@ static void bumps(footprint *f, rng *r, int side, double amplitude, double alpha
     }
 }
 
-/* The baselines (lab/verify/normal_filters.h) as shapes of the tangent frame: their lobes about the renormalised
+/* The baselines (libs/verify/normal_filters.h) as shapes of the tangent frame: their lobes about the renormalised
  * mean normal, rotated from the shading frame; sigma, our fit's scale, for the one without skew. */
 static void baseline(const footprint *f, int kind, const double sigma[3], ggx_shape *s)
 {

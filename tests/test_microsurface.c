@@ -1,4 +1,4 @@
-/* Microsurfaces (lab/microsurface/microsurface.h): the Gaussian field's spectrum gives the forward differences the
+/* Microsurfaces (libs/microsurface/microsurface.h): the Gaussian field's spectrum gives the forward differences the
  * Beckmann slope covariance it promises; realisations scatter about it by their expected amount over seeds, are
  * Gaussian, periodic (the wrap's differences are the interior's), have the stated autocorrelation and repeat for a
  * seed; V-grooves have their two normals on half the area each; the tracer meets the V-grooves' closed form, a flat

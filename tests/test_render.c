@@ -1,4 +1,4 @@
-/* The renderer (tools/ggx/render*.c) as a proof: the white furnace with and without compensation against the
+/* The renderer (libs/render) as a proof: the white furnace with and without compensation against the
  * library's albedos, for the glass sphere too; light, BSDF and MIS sampling converge to one image; a distant light on
  * the plane equals the BRDF; the environment's sampling distribution; the image is the same for any thread count;
  * radiance files round-trip. Arguments and measured margins: docs/design/render.md. SPDX-License-Identifier: MIT */

@@ -1,4 +1,4 @@
-/* The readers of measured surfaces (tools/ggx/surface*.c): every format written and read back, the normal maps'
+/* The readers of measured surfaces (libs/surface): every format written and read back, the normal maps'
  * conventions, and every malformed case refused with a reason and nothing left allocated. SPDX-License-Identifier: MIT */
 #define _POSIX_C_SOURCE 200809L
 #include <math.h>

@@ -1,4 +1,4 @@
-/* Benchmark of the microsurfaces (lab/microsurface): the time to make a Gaussian field (n = 1024 to 4096), the
+/* Benchmark of the microsurfaces (libs/microsurface): the time to make a Gaussian field (n = 1024 to 4096), the
  * tracer's build, and first-hit rays per second from a 45 degree view on 1 and 2 threads, from random origins over
  * the tile, from a jittered grid of origins taken row by row (coherent rays), one ray at a time and in streams, and
  * from one origin a cell in streams, with the process's peak memory. Prints; never fails.

@@ -1,4 +1,4 @@
-/* Benchmark of the renderer (tools/ggx/render.h): the time of a 512 x 512 conductor sphere under the built-in sky at
+/* Benchmark of the renderer (libs/render/render.h): the time of a 512 x 512 conductor sphere under the built-in sky at
  * 64 samples per pixel on 1 and 2 threads, and the noise of the reflection samplers in a picture: the RMSE of 64-spp
  * images against a 4096-spp reference, and the efficiency 1 / (RMSE^2 x seconds), for brdf (VNDF reflection) against
  * the bounded samplers. Prints; never fails. SPDX-License-Identifier: MIT */

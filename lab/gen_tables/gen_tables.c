@@ -13,9 +13,9 @@
 #include <string.h>
 #include <unistd.h>
 
-#include "../../src/api/internal.h"
-#include "../../src/tables/aniso_grid.h"
-#include "../../src/tables/bsdf_grid.h"
+#include "api/internal.h"
+#include "tables/aniso_grid.h"
+#include "tables/bsdf_grid.h"
 
 /* Each node to 1e-8 absolute: the interpolation error (2.5e-4) dominates by far. */
 #define GEN_TOL 1e-8

@@ -1180,7 +1180,7 @@ def read_surface(path, kind="heights", y_down=False):
                    int(meta[5]), uv)
 
 
-# ---- images of the material (tools/ggx/render.h, docs/design/render.md) ----
+# ---- images of the material (libs/render/render.h, docs/design/render.md) ----
 
 _render = _proto("ggxpy_render", _i, _vp, _vp, ctypes.c_char_p, _i, _i, _i, ctypes.c_char_p, _vp, _d, _i, _i, _i,
                  _i, _i, ctypes.c_ulonglong, _i, _i, _vp, _vp, ctypes.c_char_p, _sz)

@@ -225,7 +225,7 @@ EXPORT void ggxpy_energy_sample(int compensated, const ggx_energy *e, const ggx_
     }
 }
 
-/* ---- fits (ggx/ggx_fit.h) and measured surfaces (tools/ggx/surface.h) ----
+/* ---- fits (ggx/ggx_fit.h) and measured surfaces (libs/surface/surface.h) ----
  * ggx_fit_info reaches Python as one flat array of doubles whose fields are listed once, here: FIT_FIELDS gives each
  * field's name and length, ggxpy_fit_fields() the names as "name:length,..." for the Python side to unpack. */
 #include <stdlib.h>
@@ -356,7 +356,7 @@ EXPORT void ggxpy_surface_close(void *handle)
     free(handle);
 }
 
-/* ---- images of the material (tools/ggx/render.h) ----
+/* ---- images of the material (libs/render/render.h) ----
  * ggx.render: light 0 the built-in sky, 1 the white furnace, 2 the environment file at path, 3 a distant light from
  * dir (unit, world frame) of irradiance E; sampler a registry name or NULL. Fills rgb (and var unless NULL) with
  * 3 w h floats; returns 0, or -1 with a one-line reason in err. */

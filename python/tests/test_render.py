@@ -1,4 +1,4 @@
-"""ggx.render against the promises of its docstring: the image of the C renderer (tools/ggx/render.h), the white
+"""ggx.render against the promises of its docstring: the image of the C renderer (libs/render/render.h), the white
 furnace, a distant light as the BRDF, thread invariance, PFM environments, and bad arguments as ValueError."""
 
 import math

@@ -17,8 +17,8 @@
 #include <math.h>
 #include <pthread.h>
 
-#include "../common/eig3.h"
-#include "../common/gauss.h"
+#include "common/eig3.h"
+#include "common/gauss.h"
 #include "internal.h"
 
 enum { MAX_PANELS = 400, KINK_SCAN = 16 };

@@ -10,8 +10,8 @@
 #include <pthread.h>
 #include <stdlib.h>
 
-#include "../common/albedo_rows.h"
-#include "../common/gauss.h"
+#include "common/albedo_rows.h"
+#include "common/gauss.h"
 #include "energy_table.h"
 
 /* Table size. Shapes whose nodes come from a shipped table take its rows: isotropic ones 65 rows and one column,

@@ -20,7 +20,7 @@
 #include <pthread.h>
 #include <stdlib.h>
 
-#include "../tables/bsdf_grid.h"
+#include "tables/bsdf_grid.h"
 #include "energy_table.h"
 
 /* The nodes are computed to TABLE_TOL; the lookup's error is dominated by the interpolation (docs/design/energy.md). */

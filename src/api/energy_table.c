@@ -22,9 +22,9 @@
 #include <pthread.h>
 #include <stdlib.h>
 
-#include "../common/albedo_rows.h"
-#include "../common/gauss.h"
-#include "../common/interp.h"
+#include "common/albedo_rows.h"
+#include "common/gauss.h"
+#include "common/interp.h"
 #include "energy_table.h"
 
 enum { CELL_GL = 4 };

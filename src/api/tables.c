@@ -4,11 +4,11 @@
 #include <math.h>
 #include <stddef.h>
 
-#include "../common/interp.h"
-#include "../tables/iso_grid.h"
+#include "common/interp.h"
+#include "tables/iso_grid.h"
 #include "internal.h"
 
-#include "../tables/albedo_iso.inc"
+#include "tables/albedo_iso.inc"
 
 /* Node (i, j) of masking hc, with ghosts: past the pole a row continues as the row mirrored about it (isotropic E
  * is even in theta through n), below grazing linear extrapolation, outside the alpha range cubic extrapolation (a
@@ -93,8 +93,8 @@ GGX_API double ggx_albedo_avg_iso_table(double alpha, ggx_masking g)
 
 /* The rough dielectric's table (src/tables/bsdf_iso.inc, grid src/tables/bsdf_grid.h): tricubic Catmull-Rom in
  * (y, alpha, eta_r) of I = E / P, times P. */
-#include "../tables/bsdf_grid.h"
-#include "../tables/bsdf_iso.inc"
+#include "tables/bsdf_grid.h"
+#include "tables/bsdf_iso.inc"
 
 /* Node (k, j, i) of half h, with ghosts: past the pole a row continues mirrored (E is even in theta through n),
  * below grazing linear extrapolation, beyond either end in alpha or eta_r quadratic extrapolation (a linear one left
@@ -152,9 +152,9 @@ GGX_API double ggx_bsdf_albedo_iso_table(double alpha, double eta, double mu)
 
 /* The anisotropic table (src/tables/albedo_aniso.inc, grid src/tables/aniso_grid.h): Catmull-Rom in (y, phi,
  * alpha_x, alpha_y) of I = E / P, times P. */
-#include "../common/albedo_rows.h"
-#include "../tables/albedo_aniso.inc"
-#include "../tables/aniso_grid.h"
+#include "common/albedo_rows.h"
+#include "tables/albedo_aniso.inc"
+#include "tables/aniso_grid.h"
 #include "energy_table.h"
 
 /* Node at roughness indices (ax, ay) in [-1, ANI_NA], row i and azimuth column p, with ghosts: beyond either end of

@@ -4,7 +4,7 @@
 #include <stdatomic.h>
 #include <string.h>
 
-#include "../api/internal.h"
+#include "api/internal.h"
 #include "ggx/ggx_batch.h"
 #include "internal.h"
 

@@ -4,7 +4,7 @@
 
 #include <stddef.h>
 
-#include "../api/internal.h"
+#include "api/internal.h"
 
 /* Every loop takes [begin, end) of the caller's arrays. */
 typedef struct batch_args {

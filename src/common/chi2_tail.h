@@ -1,5 +1,5 @@
 /* The upper tail of the chi-square distribution, written once for the fit's goodness of fit (src/fit/) and the
- * verification library's chi-square tests (lab/verify/chi2.c). Header-only, static; no global state (lgamma's signgam
+ * verification library's chi-square tests (libs/verify/chi2.c). Header-only, static; no global state (lgamma's signgam
  * is avoided: dof / 2 is an integer or a half-integer, whose log-gamma is a sum of logs). SPDX-License-Identifier: MIT */
 #ifndef GGX_COMMON_CHI2_TAIL_H
 #define GGX_COMMON_CHI2_TAIL_H

@@ -1,5 +1,5 @@
 /* Gauss-Legendre rules and global adaptive quadrature, written once for the library's albedo (src/api/albedo.c) and
- * the verification library (lab/verify/verify.c). Header-only, static functions; each includer keeps its own rule
+ * the verification library (libs/verify/verify.c). Header-only, static functions; each includer keeps its own rule
  * tables (computed once, by pthread_once there). SPDX-License-Identifier: MIT */
 #ifndef GGX_COMMON_GAUSS_H
 #define GGX_COMMON_GAUSS_H

@@ -6,7 +6,7 @@
 
 #include <stddef.h>
 
-#include "../fit/fit.h"
+#include "fit/fit.h"
 #include "ggx/ggx_filter.h"
 
 enum { FILTER_MAX_RADIAL = 1024, FILTER_MAX_ANGULAR = 4096, FILTER_MAX_THREADS = 1024 };

@@ -5,7 +5,7 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "../common/gauss.h"
+#include "common/gauss.h"
 #include "filter.h"
 
 ggx_status filter_settings_of(const ggx_filter_options *opt, filter_settings *f)

@@ -5,7 +5,7 @@
 
 #include <stddef.h>
 
-#include "../api/internal.h"
+#include "api/internal.h"
 #include "ggx/ggx_fit.h"
 
 /* Samples are read in chunks of FIT_CHUNK into the pass's buffers; the sums are taken over units of FIT_UNIT samples

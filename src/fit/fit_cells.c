@@ -5,7 +5,7 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "../common/gauss.h"
+#include "common/gauss.h"
 #include "fit.h"
 
 enum { CELL_Q = 8 }; /* CELL_Q x CELL_Q Gauss-Legendre points per cell */

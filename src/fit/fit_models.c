@@ -2,7 +2,7 @@
  * goodness of fit of the chosen one. SPDX-License-Identifier: MIT */
 #include <string.h>
 
-#include "../common/chi2_tail.h"
+#include "common/chi2_tail.h"
 #include "fit.h"
 
 ggx_status fit_settings(const ggx_fit_options *opt, fit_data *d, ggx_fit_model *model)

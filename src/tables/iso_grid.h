@@ -11,7 +11,7 @@
 #include <math.h>
 
 #include "ggx/ggx.h"
-#include "../common/albedo_rows.h"
+#include "common/albedo_rows.h"
 
 enum { ISO_NY = 65, ISO_NA = 97 };
 #define ISO_AMIN 1e-3

@@ -1,4 +1,4 @@
-/* libFuzzer target: the readers of measured surfaces (tools/ggx/surface*.c) on arbitrary bytes. The first byte picks
+/* libFuzzer target: the readers of measured surfaces (libs/surface) on arbitrary bytes. The first byte picks
  * the format, heights or normals and the y convention; the rest is the file. A reader must refuse (with a reason and
  * nothing allocated) or return a consistent surface; ASan, UBSan and LeakSanitizer catch the rest.
  * SPDX-License-Identifier: MIT */

@@ -7,7 +7,7 @@
 
 #include "figure.h"
 #include "ggx/ggx_inline.h"
-#include "../../src/common/eig3.h"
+#include "common/eig3.h"
 
 static int is_side(figure_kind k) { return k == FIG_NDF_SIDE || k == FIG_VNDF_SIDE || k == FIG_GRID_SIDE; }
 static int is_grid(figure_kind k) { return k == FIG_GRID || k == FIG_GRID_SIDE; }

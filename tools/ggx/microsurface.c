@@ -1,4 +1,4 @@
-/* ggx microsurface: height fields with a chosen NDF (lab/microsurface), written as OpenEXR or x3p for ggx fit and the
+/* ggx microsurface: height fields with a chosen NDF (libs/microsurface), written as OpenEXR or x3p for ggx fit and the
  * tracer. SPDX-License-Identifier: MIT */
 #include <math.h>
 #include <stdio.h>
@@ -253,7 +253,7 @@ ggx_status microsurface_model(const options *o, const double *h, size_t n, const
 }
 
 /* The visible normals' chi-square: the tracer as a sampler of normals (the first facet hit from v, from a random
- * origin over the tile), against ggx_pdf_vndf of a shape, through the suite's harness (lab/verify/chi2.h). */
+ * origin over the tile), against ggx_pdf_vndf of a shape, through the suite's harness (libs/verify/chi2.h). */
 typedef struct vndf_ctx {
     normal_keys nk; /* first: the harness's keys and density */
     const ms_tracer *t;

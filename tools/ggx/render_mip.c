@@ -1,5 +1,5 @@
 /* ggx render --normal-map: a plane textured with a normal map's filtered chain at one level beside the full-resolution
- * map supersampled (the ground truth), for our filter and the engines' (lab/verify/mip_compare.h), with the
+ * map supersampled (the ground truth), for our filter and the engines' (libs/verify/mip_compare.h), with the
  * difference images and the RMSE of every level. SPDX-License-Identifier: MIT */
 #include <math.h>
 #include <stdio.h>

@@ -1,5 +1,5 @@
 /* The seed audit's shared parts: the row vocabulary, the chi-square runs, and the geometric checks that the claim
- * files (lab/verify/audit*.c) use. Internal to the verification library. SPDX-License-Identifier: MIT */
+ * files (libs/verify/audit*.c) use. Internal to the verification library. SPDX-License-Identifier: MIT */
 #ifndef GGX_AUDIT_INTERNAL_H
 #define GGX_AUDIT_INTERNAL_H
 
@@ -136,7 +136,7 @@ void au_kin_alphas(const au_kin *K, double *ax, double *ay);
  * writes the point into at. The verdict for shape k: holds if every error is <= tol over `points` points on each of
  * AU_KIN shapes; else fails, with the counterexample on the smallest failing shape (least |theta_z| for a rotated
  * kind, least offdiag for a skewed one), whose skew (or rotation) is then halved 30 times, reporting the smallest
- * scale at which the claim still fails (the smallest counterexample found; lab/verify/audit_util.c says how). */
+ * scale at which the claim still fails (the smallest counterexample found; libs/verify/audit_util.c says how). */
 typedef double (*au_err_fn)(const au_kin *K, rng *g, void *ctx, char *at, size_t nat);
 void au_verdict_kin(audit_row *r, int k, const ggx_shape *s0, const double A0[3][3], au_err_fn err, void *ctx,
                     int points, double tol, const char *what);
@@ -148,7 +148,7 @@ void au_kin_row(const au_ctx *c, audit_row *r, int unskewed_only, au_err_fn err,
 double au_kin_worst(const ggx_shape *s0, const double A0[3][3], au_err_fn err, void *ctx, int points, double tol,
                     char *example, size_t nexample);
 
-/* ---- the rows of each subject (lab/verify/audit_*.c), in the order audit_run calls them ---- */
+/* ---- the rows of each subject (libs/verify/audit_*.c), in the order audit_run calls them ---- */
 void au_rows_ellipsoid(const au_ctx *c);
 void au_rows_sampling(const au_ctx *c);
 void au_rows_scattering(const au_ctx *c);

@@ -1,5 +1,5 @@
 /* The seed audit: audit_run, the claims of the first 54 rows, and the writer. The later claims are in
- * lab/verify/audit_*.c by subject; their shared parts in lab/verify/audit_internal.h. SPDX-License-Identifier: MIT */
+ * libs/verify/audit_*.c by subject; their shared parts in libs/verify/audit_internal.h. SPDX-License-Identifier: MIT */
 #include "audit.h"
 
 #include <math.h>
@@ -307,7 +307,7 @@ static ggx_vec3 map_normalize(const void *ctx, double a, double b) /* p(a, b) = 
     return t_normalize(t_add(f[0], t_add(t_scale(f[1], a), t_scale(f[2], b))));
 }
 
-/* ---- claims about every point of every shape of a kind, checked on the families of lab/verify/audit_util.c ---- */
+/* ---- claims about every point of every shape of a kind, checked on the families of libs/verify/audit_util.c ---- */
 static const ggx_vec3 N_UP = {0, 0, 1};
 static double err_ggx(const au_kin *K, rng *g, void *ctx, char *at, size_t nat)
 {

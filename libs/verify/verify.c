@@ -3,7 +3,7 @@
 
 #include "ggx/ggx_inline.h"
 
-#include "../../src/common/gauss.h"
+#include "common/gauss.h"
 
 #include <math.h>
 #include <pthread.h>

@@ -1,7 +1,7 @@
 /* SPDX-License-Identifier: MIT */
 #include "chi2.h"
 
-#include "../../src/common/chi2_tail.h"
+#include "common/chi2_tail.h"
 
 #include <math.h>
 #include <stdio.h>

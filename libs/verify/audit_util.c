@@ -1,4 +1,4 @@
-/* The seed audit's shared parts (lab/verify/audit_internal.h). SPDX-License-Identifier: MIT */
+/* The seed audit's shared parts (libs/verify/audit_internal.h). SPDX-License-Identifier: MIT */
 #include <math.h>
 #include <stdarg.h>
 #include <stdio.h>

@@ -1,5 +1,5 @@
 /* The seed audit: Engstad's Elliptic Stretch (engstad-stretch), the identities and formulas of its derivation, each checked
- * at random points of every shape of a kind (lab/verify/audit_internal.h). SPDX-License-Identifier: MIT */
+ * at random points of every shape of a kind (libs/verify/audit_internal.h). SPDX-License-Identifier: MIT */
 #include <math.h>
 #include <stdio.h>
 
