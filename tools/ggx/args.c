@@ -9,23 +9,6 @@
 
 jmp_buf *cli_die_jump;
 
-static const char *const FIGURES[] = {"ndf", "ndf-side", "vndf", "vndf-side", "grid", "grid-side",
-                                      "g1", "lambda", "ndf-slice", "furnace", "polar", "slice"};
-enum { FIGURE_COUNT = sizeof FIGURES / sizeof FIGURES[0] };
-_Static_assert(FIGURE_COUNT == FIG_SLICE + 1, "a name for every figure_kind");
-
-figure_kind figure_from_name(const char *name)
-{
-    char names[256] = "";
-    for (unsigned i = 0; i < FIGURE_COUNT; i++) {
-        if (name && strcmp(name, FIGURES[i]) == 0) return (figure_kind)i;
-        snprintf(names + strlen(names), sizeof names - strlen(names), "%s%s", i ? ", " : "", FIGURES[i]);
-    }
-    die("--figure: unknown figure '%s' (%s)", name ? name : "", names);
-}
-
-const char *figure_name(figure_kind k) { return FIGURES[k]; }
-
 const char SHAPE_HELP[] =
     "shape (one syntax for every subcommand):\n"
     "  --alpha AX[,AY]       roughness (default 0.15,0.5); one value for isotropic\n"

@@ -124,15 +124,6 @@ int progress_wanted(int option);
 void progress_show(const char *label, long done, long total);
 void progress_end(const char *label, long total);
 
-/* ---- figures (drawn in figures.c, figure.h) ---- */
-typedef enum figure_kind {
-    FIG_NDF, FIG_NDF_SIDE, FIG_VNDF, FIG_VNDF_SIDE, FIG_GRID, FIG_GRID_SIDE, /* the seeds' hemisphere figures */
-    FIG_G1, FIG_LAMBDA, FIG_NDF_SLICE, FIG_FURNACE, FIG_POLAR, FIG_SLICE      /* line plots, the polar plot, the slice */
-} figure_kind;
-/* The figure named on the command line (dies on an unknown name, listing the names); figure_name is its inverse. */
-figure_kind figure_from_name(const char *name);
-const char *figure_name(figure_kind k);
-
 /* ---- subcommands ---- */
 int cmd_demo(int argc, char **argv);
 int cmd_eval(int argc, char **argv);
@@ -144,11 +135,10 @@ int cmd_audit(int argc, char **argv);
 int cmd_fit(int argc, char **argv);
 int cmd_mipmap(int argc, char **argv);
 int cmd_render(int argc, char **argv);
-int render_normal_map(int argc, char **argv); /* ggx render --normal-map (render_mip.c) */
 int cmd_microsurface(int argc, char **argv);
 /* --roughness-map of the options as alpha per texel (malloc'd, nx * ny): a grey PNG's levels / (2^bits - 1) or a
  * one-channel OpenEXR's values, squared with --perceptual; dies on another size, a multi-channel OpenEXR or an
- * unreadable file (mipmap.c). */
+ * unreadable file (cmd_mipmap.c). */
 double *roughness_map_read(const options *o, size_t nx, size_t ny);
 
 /* ---- checks (also used by demo) ---- */

@@ -8,7 +8,7 @@
 #include <string.h>
 
 #include "fit_figure.h"
-#include "figure.h"
+#include "figure_out.h"
 
 enum { RES = 160 }; /* pixels across each panel's histogram */
 
@@ -97,7 +97,7 @@ void fit_figure_write(const char *path, const fit_samples *src, const ggx_shape 
 
     const int W = 1100, H = 1130;
     canvas c;
-    canvas_open(&c, path, format_of_path(path, FMT_PNG), W, H, 0);
+    canvas_open_file(&c, path, format_of_path(path, FMT_PNG), W, H, 0);
     cairo_t *cr = c.cr;
     const theme *th = c.th;
     set_rgb(cr, th->fg);
@@ -159,6 +159,6 @@ void fit_figure_write(const char *path, const fit_samples *src, const ggx_shape 
     else
         snprintf(line, sizeof line, "%zu samples (too few for the goodness of fit)", info->used);
     text_at(cr, W / 2.0, H - 22, 0.5, 0.5, line);
-    canvas_close(&c);
+    canvas_close_file(&c);
     free(p);
 }

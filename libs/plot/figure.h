@@ -1,10 +1,20 @@
-/* The figures of the ggx command: the seeds' hemisphere figures and the line plots researchers make of the model,
- * drawn with cairo into any rectangle of a canvas (a file of its own, or a page of figures.pdf).
+/* The figures of the model: the seeds' hemisphere figures and the line plots researchers make of the model, drawn
+ * with cairo into any rectangle of a canvas (a file of its own, or a page of a PDF).
  * SPDX-License-Identifier: MIT */
-#ifndef GGX_FIGURE_H
-#define GGX_FIGURE_H
+#ifndef GGX_PLOT_FIGURE_H
+#define GGX_PLOT_FIGURE_H
 
 #include "canvas.h"
+#include "ggx/ggx_samplers.h"
+
+typedef enum figure_kind {
+    FIG_NDF, FIG_NDF_SIDE, FIG_VNDF, FIG_VNDF_SIDE, FIG_GRID, FIG_GRID_SIDE, /* the seeds' hemisphere figures */
+    FIG_G1, FIG_LAMBDA, FIG_NDF_SLICE, FIG_FURNACE, FIG_POLAR, FIG_SLICE,     /* line plots, the polar plot, the slice */
+    FIG_COUNT
+} figure_kind;
+/* The figure's name ("ndf", "vndf-side", ...: the names of ggx plot --figure) and its inverse, -1 for no figure. */
+const char *figure_name(figure_kind k);
+int figure_kind_of(const char *name);
 
 /* What a figure shows. */
 typedef struct figure_spec {
@@ -103,16 +113,5 @@ double figure_aspect(figure_kind k);
 int figure_height(figure_kind k, int width);
 /* The captions' words for a shape given by its alphas and angles (degrees). */
 void figure_shape_caption(char *buf, size_t n, double ax, double ay, double tx, double ty, double tz);
-/* Writes the figure to path: PNG, SVG or PDF as its name says (standard output and devices: fmt), w x h exactly. */
-void figure_write(const figure_spec *f, const char *path, canvas_format fmt, int w, int h);
-
-/* ---- rendered images (render_cmd.c) ---- */
-#include "render.h"
-/* Paints a linear RGB image (w x h, the top row first) at (x, y), each pixel scale units wide, as 8-bit sRGB of
- * min(1, 2^exposure L) per channel. */
-void render_paint(cairo_t *cr, double x, double y, double scale, const float *rgb, int w, int h, double exposure);
-/* The caption's words for the material (and its compensation) and the scene's tangent frame. */
-void render_material_words(const render_spec *r, char *buf, size_t n);
-const char *render_frame_words(render_scene scene);
 
 #endif

@@ -7,7 +7,7 @@
 #include <unistd.h>
 
 #include "chi2.h"
-#include "figure.h"
+#include "cmd_render.h"
 
 /* The samplers the demo checks on a shape: those of normals, where the shape is in their domain. */
 static int checked(const ggx_sampler_info *smp, const ggx_shape *s)
@@ -109,9 +109,9 @@ static void write_spheres(const char *path, float *img[NSPHERES], int px, int wi
 {
     canvas c;
     double h = (width - 24) / (double)NSPHERES + 2.4 * fmax(8.0, (width - 24) / (double)NSPHERES / 22) + 20;
-    canvas_open(&c, path, FMT_PNG, width, (int)ceil(h), 0);
+    canvas_open_file(&c, path, FMT_PNG, width, (int)ceil(h), 0);
     draw_spheres(c.cr, c.th, 12, 12, width - 24, img, px);
-    canvas_close(&c);
+    canvas_close_file(&c);
 }
 
 /* figures.pdf: one page per figure, the seeds' shape at the left and the skewed one at the right; then the spheres. */
@@ -119,7 +119,7 @@ static void write_pdf(const char *path, ggx_shape sh[2], float *img[NSPHERES], i
 {
     const double W = 842, H = 595; /* A4 landscape, points */
     canvas c;
-    canvas_open(&c, path, FMT_PDF, (int)W, (int)H, 0);
+    canvas_open_file(&c, path, FMT_PDF, (int)W, (int)H, 0);
     for (int i = 0; i < NFIGS; i++) {
         if (i) canvas_page(&c);
         const struct demo_figure *d = &FIGS[i];
@@ -145,7 +145,7 @@ static void write_pdf(const char *path, ggx_shape sh[2], float *img[NSPHERES], i
     text_font(c.cr, 10, 0);
     for (int i = 0; i < 2; i++) text_at(c.cr, 28, 46 + 14 * i, 0, 0, SPHERES_NOTE[i]);
     draw_spheres(c.cr, c.th, 28, 90, W - 56, img, px);
-    canvas_close(&c);
+    canvas_close_file(&c);
 }
 
 int cmd_demo(int argc, char **argv)

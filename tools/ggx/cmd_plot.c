@@ -2,7 +2,7 @@
 #include <math.h>
 #include <string.h>
 
-#include "figure.h"
+#include "figure_out.h"
 
 /* The caption's description of the shape given on the command line. */
 void shape_caption(const options *o, char *buf, size_t n)

@@ -5,7 +5,6 @@
 #include <math.h>
 #include <stdio.h>
 
-#include "cli.h"
 #include "figure.h"
 
 enum { POLAR_INCIDENCE = 4, POLAR_STEPS = 720 };

@@ -1,9 +1,8 @@
-/* Drawing surfaces of the ggx command (cairo): PNG, SVG and PDF files written through the command's atomic output,
- * the themes, text, the colour map and the colour bar. SPDX-License-Identifier: MIT */
+/* Drawing surfaces for the figures (canvas.h): PNG, SVG and PDF through a caller's writer, the themes, text, the
+ * colour map and the colour bar. SPDX-License-Identifier: MIT */
 #include <math.h>
 #include <stdio.h>
 #include <string.h>
-#include <sys/stat.h>
 
 #include <cairo-pdf.h>
 #include <cairo-svg.h>
@@ -31,15 +30,6 @@ const theme *theme_get(int dark) { return dark ? &DARK : &LIGHT; }
 
 void set_rgb(cairo_t *cr, const double c[3]) { cairo_set_source_rgb(cr, c[0], c[1], c[2]); }
 
-canvas_format figure_format_of(const char *path, canvas_format deflt)
-{
-    canvas_format fmt = format_of_path(path, deflt);
-    size_t pl = strlen(path);
-    if (!path_is_stream(path) && (pl < 4 || strcmp(path + pl - 4, format_ext(fmt)) != 0))
-        die("--out: '%s' does not name a format: end it in .png, .svg or .pdf (or give - for standard output)", path);
-    return fmt;
-}
-
 canvas_format format_of_path(const char *path, canvas_format fallback)
 {
     size_t n = path ? strlen(path) : 0;
@@ -51,39 +41,39 @@ canvas_format format_of_path(const char *path, canvas_format fallback)
 
 const char *format_ext(canvas_format f) { return f == FMT_PNG ? ".png" : f == FMT_SVG ? ".svg" : ".pdf"; }
 
-int path_is_stream(const char *path)
-{
-    struct stat st;
-    return !path || strcmp(path, "-") == 0 || (stat(path, &st) == 0 && !S_ISREG(st.st_mode) && !S_ISDIR(st.st_mode));
-}
-
-/* cairo's writer: into the command's output file, whose errors out_close reports (one line, exit 2 or 141). */
+/* cairo's writer: into the caller's, remembering a refusal (canvas_close reports it). */
 static cairo_status_t write_out(void *closure, const unsigned char *data, unsigned int length)
 {
-    FILE *f = closure;
-    return fwrite(data, 1, length, f) == length ? CAIRO_STATUS_SUCCESS : CAIRO_STATUS_WRITE_ERROR;
+    canvas *c = closure;
+    if (c->write(c->closure, data, length) == 0) return CAIRO_STATUS_SUCCESS;
+    c->write_failed = 1;
+    return CAIRO_STATUS_WRITE_ERROR;
 }
 
-static void check_surface(canvas *c)
+static int canvas_error(canvas *c, cairo_status_t st)
 {
-    cairo_status_t st = cairo_surface_status(c->surface);
-    if (st == CAIRO_STATUS_WRITE_ERROR || ferror(c->out.f)) out_check(&c->out);
-    if (st != CAIRO_STATUS_SUCCESS) die("cannot write '%s': %s", c->path, cairo_status_to_string(st));
+    snprintf(c->error, sizeof c->error, "%s", cairo_status_to_string(st));
+    return -1;
 }
 
-void canvas_open(canvas *c, const char *path, canvas_format fmt, int w, int h, int dark)
+int canvas_open(canvas *c, canvas_format fmt, int w, int h, int dark, canvas_write_fn write, void *closure)
 {
     memset(c, 0, sizeof *c);
-    c->format = fmt, c->w = w, c->h = h, c->th = theme_get(dark);
-    snprintf(c->path, sizeof c->path, "%s", path ? path : "-");
-    out_open(&c->out, path);
+    c->format = fmt, c->w = w, c->h = h, c->th = theme_get(dark), c->write = write, c->closure = closure;
     if (fmt == FMT_PNG) c->surface = cairo_image_surface_create(CAIRO_FORMAT_RGB24, w, h);
-    else if (fmt == FMT_SVG) c->surface = cairo_svg_surface_create_for_stream(write_out, c->out.f, w, h);
-    else c->surface = cairo_pdf_surface_create_for_stream(write_out, c->out.f, w, h);
+    else if (fmt == FMT_SVG) c->surface = cairo_svg_surface_create_for_stream(write_out, c, w, h);
+    else c->surface = cairo_pdf_surface_create_for_stream(write_out, c, w, h);
     if (fmt == FMT_PDF) cairo_pdf_surface_set_metadata(c->surface, CAIRO_PDF_METADATA_CREATOR, "ggx (libggx)");
     c->cr = cairo_create(c->surface);
-    if (cairo_status(c->cr) != CAIRO_STATUS_SUCCESS) die("cannot draw '%s': %s", c->path, cairo_status_to_string(cairo_status(c->cr)));
+    if (cairo_status(c->cr) != CAIRO_STATUS_SUCCESS) {
+        cairo_status_t st = cairo_status(c->cr);
+        cairo_destroy(c->cr);
+        cairo_surface_destroy(c->surface);
+        c->cr = NULL, c->surface = NULL;
+        return canvas_error(c, st);
+    }
     canvas_clear(c);
+    return 0;
 }
 
 void canvas_clear(canvas *c)
@@ -98,22 +88,20 @@ void canvas_page(canvas *c)
     canvas_clear(c);
 }
 
-void canvas_close(canvas *c)
+int canvas_close(canvas *c)
 {
     cairo_destroy(c->cr);
+    cairo_status_t st;
     if (c->format == FMT_PNG) {
         cairo_surface_flush(c->surface);
-        cairo_status_t st = cairo_surface_write_to_png_stream(c->surface, write_out, c->out.f);
-        if (st != CAIRO_STATUS_SUCCESS) {
-            if (ferror(c->out.f)) out_check(&c->out);
-            die("cannot write '%s': %s", c->path, cairo_status_to_string(st));
-        }
+        st = cairo_surface_write_to_png_stream(c->surface, write_out, c);
     } else {
         cairo_surface_finish(c->surface);
-        check_surface(c);
+        st = cairo_surface_status(c->surface);
     }
     cairo_surface_destroy(c->surface);
-    out_close(&c->out);
+    c->cr = NULL, c->surface = NULL;
+    return st == CAIRO_STATUS_SUCCESS ? 0 : canvas_error(c, st);
 }
 
 void text_font(cairo_t *cr, double size, int bold)

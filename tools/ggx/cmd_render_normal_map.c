@@ -7,7 +7,7 @@
 #include <string.h>
 #include <strings.h>
 
-#include "figure.h"
+#include "cmd_render.h"
 #include "mip_compare.h"
 #include "surface.h"
 
@@ -163,7 +163,7 @@ int render_normal_map(int argc, char **argv)
     if (!(peak > 0.0)) peak = mean = 1.0;
     if (!(dmax > 0.0)) dmax = peak;
     canvas c;
-    canvas_open(&c, path, FMT_PNG, W, H, 0);
+    canvas_open_file(&c, path, FMT_PNG, W, H, 0);
     canvas_clear(&c);
     cairo_t *cr = c.cr;
     set_rgb(cr, c.th->fg);
@@ -192,7 +192,7 @@ int render_normal_map(int argc, char **argv)
         }
     }
     colour_bar(cr, c.th, gap + cols * (pw + gap), top + ph + label, 10, ph, dmax / peak, 0, 0, "of the truth's peak", 9);
-    canvas_close(&c);
+    canvas_close_file(&c);
     free(levels), free(img), free(full), free(alpha);
     surface_free(&s);
     return 0;

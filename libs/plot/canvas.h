@@ -1,10 +1,15 @@
-/* Drawing surfaces of the ggx command: cairo over the command's atomic output files. SPDX-License-Identifier: MIT */
-#ifndef GGX_CANVAS_H
-#define GGX_CANVAS_H
+/* Drawing surfaces for the figures: cairo surfaces (PNG, SVG, PDF) whose encoded bytes go to a writer the caller
+ * gives (a file, memory), the themes, text, the colour map and the colour bar. SPDX-License-Identifier: MIT */
+#ifndef GGX_PLOT_CANVAS_H
+#define GGX_PLOT_CANVAS_H
 
 #include <cairo.h>
+#include <stddef.h>
 
-#include "cli.h"
+#include "ggx/ggx.h"
+
+/* Degrees to radians: the figures' angles are in degrees. */
+#define DEG (GGX_PI / 180.0)
 
 typedef enum canvas_format { FMT_PNG, FMT_SVG, FMT_PDF } canvas_format;
 
@@ -15,30 +20,32 @@ typedef struct theme {
 const theme *theme_get(int dark);
 void set_rgb(cairo_t *cr, const double c[3]);
 
-/* The format a file name asks for (.png, .svg, .pdf), else fallback. */
+/* The format a file name asks for (.png, .svg, .pdf), else fallback; format_ext is its extension with the dot. */
 canvas_format format_of_path(const char *path, canvas_format fallback);
 const char *format_ext(canvas_format f);
-/* 1 for "-" (standard output) and for what is not a regular file (a device, a FIFO): written in any format. */
-int path_is_stream(const char *path);
-/* The format of a figure's --out: its name's (.png, .svg, .pdf), or deflt for a stream; dies with one line for a
- * file name that ends in none of them. */
-canvas_format figure_format_of(const char *path, canvas_format deflt);
 
-/* A surface of w x h pixels (PNG) or points (SVG, PDF; 1 pt = 1/72 in) written to path through out_open: the file
- * appears complete at canvas_close or not at all. canvas_page starts a new page (PDF; the other formats keep one). */
+/* Where a canvas's encoded bytes go, in order: returns 0 when all n bytes were taken, else nonzero. */
+typedef int (*canvas_write_fn)(void *closure, const unsigned char *data, size_t n);
+
+/* A surface of w x h pixels (PNG) or points (SVG, PDF; 1 pt = 1/72 in) whose bytes go to write(closure, ...): SVG
+ * and PDF as they are drawn, PNG at canvas_close. canvas_page starts a new page (PDF; the other formats keep one).
+ * canvas_open and canvas_close return 0, or -1 with cairo's reason in error (canvas_close: write_failed set when
+ * the writer refused bytes); canvas_close frees the surface either way. */
 typedef struct canvas {
     cairo_surface_t *surface;
     cairo_t *cr;
     canvas_format format;
     int w, h;
     const theme *th;
-    out_file out;
-    char path[1024];
+    canvas_write_fn write;
+    void *closure;
+    int write_failed;
+    char error[128];
 } canvas;
-void canvas_open(canvas *c, const char *path, canvas_format fmt, int w, int h, int dark);
+int canvas_open(canvas *c, canvas_format fmt, int w, int h, int dark, canvas_write_fn write, void *closure);
 void canvas_clear(canvas *c);
 void canvas_page(canvas *c);
-void canvas_close(canvas *c);
+int canvas_close(canvas *c);
 
 /* viridis at t in [0, 1] (clamped; NaN gives its darkest colour) */
 void colormap(double t, double rgb[3]);

@@ -5,8 +5,7 @@
 #include <string.h>
 #include <unistd.h>
 
-#include "figure.h"
-#include "render.h"
+#include "cmd_render.h"
 #include "surface.h"
 
 #define CAPTION_MIN_WIDTH 256
@@ -205,7 +204,7 @@ int cmd_render(int argc, char **argv)
         int caption = r.width >= CAPTION_MIN_WIDTH;
         int band = caption ? (int)ceil(CAPTION_LINES * 1.45 * CAPTION_FONT + 8) : 0;
         canvas c;
-        canvas_open(&c, path, FMT_PNG, r.width, r.height + band, 0);
+        canvas_open_file(&c, path, FMT_PNG, r.width, r.height + band, 0);
         render_paint(c.cr, 0, 0, 1, rgb, r.width, r.height, o.exposure);
         if (caption) {
             char shape[200], mat[200], cam[200], line[400];
@@ -225,7 +224,7 @@ int cmd_render(int argc, char **argv)
             for (int i = 0; i < CAPTION_LINES; i++)
                 text_at(c.cr, 6, r.height + 5 + (i + 0.75) * 1.45 * CAPTION_FONT, 0, 0.5, lines[i]);
         }
-        canvas_close(&c);
+        canvas_close_file(&c);
     } else {
         unsigned char *data;
         size_t n;

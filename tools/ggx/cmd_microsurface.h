@@ -1,7 +1,7 @@
-/* The parts of ggx microsurface that its subcommands share (tools/ggx/microsurface.c, microsurface_figure.c).
+/* The parts of ggx microsurface that its subcommands share (cmd_microsurface.c, cmd_microsurface_figure.c).
  * SPDX-License-Identifier: MIT */
-#ifndef GGX_TOOL_MICROSURFACE_CMD_H
-#define GGX_TOOL_MICROSURFACE_CMD_H
+#ifndef GGX_TOOL_CMD_MICROSURFACE_H
+#define GGX_TOOL_CMD_MICROSURFACE_H
 
 #include <stddef.h>
 

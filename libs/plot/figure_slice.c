@@ -4,7 +4,6 @@
 #include <math.h>
 #include <stdio.h>
 
-#include "cli.h"
 #include "figure.h"
 
 enum { SLICE_CELLS = 180 }; /* cells per axis over [0, 90) degrees */

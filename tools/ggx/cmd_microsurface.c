@@ -10,7 +10,7 @@
 #include "ggx/ggx_fit.h"
 #include "ggx/ggx_samplers.h"
 #include "microsurface.h"
-#include "microsurface_cmd.h"
+#include "cmd_microsurface.h"
 #include "surface.h"
 
 static void write_heights(const char *path, double *h, size_t n)

@@ -6,7 +6,7 @@
 #include <string.h>
 
 #include "cli.h"
-#include "canvas.h"
+#include "figure_out.h"
 #include "fit_figure.h"
 #include "ggx/ggx_fit.h"
 #include "surface.h"

@@ -5,9 +5,8 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "canvas.h"
-#include "figure.h"
-#include "microsurface_cmd.h"
+#include "figure_out.h"
+#include "cmd_microsurface.h"
 
 static const double PI = 3.14159265358979323846;
 
@@ -99,7 +98,7 @@ int microsurface_figure(int argc, char **argv)
     /* the figure */
     int W = o.size ? o.size : 900, H = o.size_h ? o.size_h : (int)lround(W * 0.6);
     canvas c;
-    canvas_open(&c, o.out, fmt, W, H, o.dark);
+    canvas_open_file(&c, o.out, fmt, W, H, o.dark);
     cairo_t *cr = c.cr;
     double F = figure_font(W, H);
     char l1[200], l2[400], l3[200];
@@ -118,7 +117,7 @@ int microsurface_figure(int argc, char **argv)
     plot_axes ax = {"view polar angle in the plane (degrees; left: the opposite azimuth)",
                     o.risers ? "G1(v) of the facets off the risers" : "G1(v)", 0, 1, 0, INFINITY};
     plot_draw(cr, c.th, 0, 4.2 * F, W, H - 4.2 * F, F, sr, nc + 1, &ax);
-    canvas_close(&c);
+    canvas_close_file(&c);
     if (strcmp(o.out, "-") != 0) fprintf(stderr, "ggx: wrote %s (%d x %d)\n", o.out, W, H);
     return 0;
 }

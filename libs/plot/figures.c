@@ -2,12 +2,26 @@
  * engstad-vndf-proof's grey region) and the line plots (G1, Lambda, NDF slices, furnace and albedo), drawn with cairo.
  * SPDX-License-Identifier: MIT */
 #include <math.h>
+#include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 
 #include "figure.h"
 #include "ggx/ggx_inline.h"
 #include "common/eig3.h"
+
+static const char *const FIGURE_NAMES[] = {"ndf", "ndf-side", "vndf", "vndf-side", "grid", "grid-side",
+                                           "g1", "lambda", "ndf-slice", "furnace", "polar", "slice"};
+_Static_assert(sizeof FIGURE_NAMES / sizeof FIGURE_NAMES[0] == FIG_COUNT, "a name for every figure_kind");
+
+const char *figure_name(figure_kind k) { return k >= 0 && k < FIG_COUNT ? FIGURE_NAMES[k] : ""; }
+
+int figure_kind_of(const char *name)
+{
+    for (int i = 0; i < FIG_COUNT; i++)
+        if (name && strcmp(name, FIGURE_NAMES[i]) == 0) return i;
+    return -1;
+}
 
 static int is_side(figure_kind k) { return k == FIG_NDF_SIDE || k == FIG_VNDF_SIDE || k == FIG_GRID_SIDE; }
 static int is_grid(figure_kind k) { return k == FIG_GRID || k == FIG_GRID_SIDE; }
@@ -862,12 +876,4 @@ int figure_height(figure_kind k, int width) { return (int)lround(width * figure_
 void figure_shape_caption(char *buf, size_t n, double ax, double ay, double tx, double ty, double tz)
 {
     snprintf(buf, n, "αx %.4g, αy %.4g  ·  θx %.4g°, θy %.4g°, θz %.4g°", ax, ay, tx, ty, tz);
-}
-
-void figure_write(const figure_spec *f, const char *path, canvas_format fmt, int w, int h)
-{
-    canvas c;
-    canvas_open(&c, path, fmt, w, h, f->dark);
-    figure_draw(c.cr, c.th, 0, 0, w, h, f, NULL);
-    canvas_close(&c);
 }
