@@ -110,8 +110,8 @@ tsan: deps
 	@CC=$(TSAN_CC) cmake -S . -B build-tsan -DCMAKE_BUILD_TYPE=RelWithDebInfo -DGGX_WERROR=ON -DGGX_BUILD_TOOL=OFF \
 	  -DGGX_BUILD_EXAMPLES=OFF -DCMAKE_C_FLAGS="$(TSAN_CFLAGS)" -DCMAKE_EXE_LINKER_FLAGS="$(TSAN_FLAGS)" \
 	  -DCMAKE_SHARED_LINKER_FLAGS="$(TSAN_FLAGS)" >/dev/null
-	@cmake --build build-tsan -j $(JOBS) --target test_batch test_batch_threads test_fit_threads
-	@cd build-tsan && GGX_TEST_SCALE=0.1 TSAN_OPTIONS=halt_on_error=1 ctest --output-on-failure -R '^(batch|fit_threads)'
+	@cmake --build build-tsan -j $(JOBS) --target test_batch test_batch_threads test_fit_threads test_parallel
+	@cd build-tsan && GGX_TEST_SCALE=0.1 TSAN_OPTIONS=halt_on_error=1 ctest --output-on-failure -R '^(batch|fit_threads|parallel)'
 
 # The whole build (library, command, tests, Python module) with clang and clang++, and the suite at a tenth of its
 # sample counts: clang is a first-class compiler (the default build is gcc's).

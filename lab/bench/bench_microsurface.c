@@ -5,13 +5,13 @@
  * SPDX-License-Identifier: MIT */
 #define _POSIX_C_SOURCE 200809L
 #include <math.h>
-#include <pthread.h>
 #include <stdint.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <sys/resource.h>
 #include <time.h>
 
+#include "common/parallel.h"
 #include "microsurface.h"
 
 static double now(void)
@@ -80,6 +80,19 @@ static void *shoot(void *p)
     return NULL;
 }
 
+/* share k of a timed run: job k, by rows of streams or ray by ray */
+typedef struct bench_run {
+    job *jobs;
+    int stream;
+} bench_run;
+
+static void bench_share(void *ctx, int k)
+{
+    const bench_run *b = ctx;
+    if (b->stream) shoot_rows(&b->jobs[k]);
+    else shoot(&b->jobs[k]);
+}
+
 int main(void)
 {
     printf("libggx microsurface benchmark: Gaussian fields (alpha 0.3, correlation length 16) and first hits\n\n");
@@ -113,15 +126,14 @@ int main(void)
             int threads = 1 + mode % 2, coherent = mode / 2 >= 1, stream = mode / 2 >= 2;
             long g = mode / 2 == 3 ? (long)n : 1000, rays = stream ? g * g : 1000000;
             job jobs[2];
-            pthread_t th[2];
             double s0 = now();
             for (int i = 0; i < threads; i++) {
                 int r0 = (int)(g * i / threads), r1 = (int)(g * (i + 1) / threads);
                 jobs[i] = (job){t, n, 1000000 / threads, 0, 99u + (uint64_t)i, coherent, stream ? r0 : 1000 / threads * i,
                                 stream ? r1 - r0 : 1000 / threads, g};
-                pthread_create(&th[i], NULL, stream ? shoot_rows : shoot, &jobs[i]);
             }
-            for (int i = 0; i < threads; i++) pthread_join(th[i], NULL);
+            bench_run run = {jobs, stream};
+            ggx_internal_parallel_for(threads, bench_share, &run);
             rate[mode] = (double)rays / (now() - s0) / 1e6;
         }
         struct rusage ru;

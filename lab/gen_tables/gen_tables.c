@@ -7,13 +7,13 @@
  * Usage: ggx_gen_tables [--bsdf | --aniso] [--every K]   (K > 1: only the lines (--aniso: the pairs of
  * roughnesses) with index % K == 0, for the test)
  * SPDX-License-Identifier: MIT */
-#include <pthread.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 #include <unistd.h>
 
 #include "api/internal.h"
+#include "common/parallel.h"
 #include "tables/aniso_grid.h"
 #include "tables/bsdf_grid.h"
 
@@ -39,21 +39,18 @@ static void column(int hc, int j)
 /* Lines of values computed by worker threads on all cores, which take lines in turn; each value depends on its
  * node alone, so the output does not depend on the threads. Only the lines with index % every == 0 are computed. */
 typedef struct par_job {
-    pthread_mutex_t lock;
     int next, every, lines, width;
     void (*line)(int line, float *out);
     float *val;
 } par_job;
 
-static void *par_worker(void *vj)
+static void par_worker(void *vj, int k)
 {
     par_job *b = vj;
+    (void)k;
     for (;;) {
-        pthread_mutex_lock(&b->lock);
-        int line = b->next;
-        b->next += b->every;
-        pthread_mutex_unlock(&b->lock);
-        if (line >= b->lines) return NULL;
+        int line = __atomic_fetch_add(&b->next, b->every, __ATOMIC_RELAXED);
+        if (line >= b->lines) return;
         b->line(line, b->val + (size_t)line * b->width);
     }
 }
@@ -62,14 +59,9 @@ static float *par_lines(int lines, int width, int every, void (*fn)(int, float *
 {
     float *val = calloc((size_t)lines * width, sizeof *val);
     if (!val) exit(1);
-    par_job b = {PTHREAD_MUTEX_INITIALIZER, 0, every, lines, width, fn, val};
+    par_job b = {0, every, lines, width, fn, val};
     long ncpu = sysconf(_SC_NPROCESSORS_ONLN);
-    int nt = ncpu > 1 ? (ncpu < 64 ? (int)ncpu : 64) : 1, started = 0;
-    pthread_t th[64];
-    for (int t = 1; t < nt; t++)
-        if (pthread_create(&th[started], NULL, par_worker, &b) == 0) started++;
-    par_worker(&b);
-    for (int t = 0; t < started; t++) pthread_join(th[t], NULL);
+    ggx_internal_parallel_for(ncpu > 1 ? (ncpu < 64 ? (int)ncpu : 64) : 1, par_worker, &b);
     return val;
 }
 

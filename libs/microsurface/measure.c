@@ -1,11 +1,11 @@
 /* Masking measured on a microsurface: G1(v) of its facets and the visible share of each normal bin by the tracer
  * (microsurface.h; docs/design/microsurface.md). SPDX-License-Identifier: MIT */
 #include <math.h>
-#include <pthread.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 
+#include "common/parallel.h"
 #include "microsurface.h"
 
 static const double PI = 3.14159265358979323846;
@@ -38,25 +38,24 @@ static double next_uniform(uint64_t *s)
     return (double)(*s >> 11) * 0x1p-53;
 }
 
-/* runs fn over jobs[0 .. count) (each size bytes), job 0 here and the others on threads (or here, where no thread
- * is to be had), and waits for all: 0, or -1 for no memory */
-static int run_jobs(void *(*fn)(void *), void *jobs, size_t size, int count)
+/* the jobs of a ray loop: job k is jobs + k size bytes */
+typedef struct job_array {
+    void (*fn)(void *job);
+    char *jobs;
+    size_t size;
+} job_array;
+
+static void run_job(void *ctx, int k)
 {
-    pthread_t *th = calloc((size_t)count, sizeof *th);
-    int *made = calloc((size_t)count, sizeof *made);
-    if (!th || !made) {
-        free(th), free(made);
-        return -1;
-    }
-    char *base = jobs;
-    for (int k = 1; k < count; k++) made[k] = pthread_create(&th[k], NULL, fn, base + size * (size_t)k) == 0;
-    fn(base);
-    for (int k = 1; k < count; k++) {
-        if (made[k]) pthread_join(th[k], NULL);
-        else fn(base + size * (size_t)k);
-    }
-    free(th), free(made);
-    return 0;
+    const job_array *a = ctx;
+    a->fn(a->jobs + a->size * (size_t)k);
+}
+
+/* runs fn over jobs[0 .. count) (each size bytes), one a thread, and waits for all */
+static void run_jobs(void (*fn)(void *), void *jobs, size_t size, int count)
+{
+    job_array a = {fn, jobs, size};
+    ggx_internal_parallel_for(count, run_job, &a);
 }
 
 /* the slopes of the two triangles of cell (x, y), the heights across the tile's sides raised by the tilt times n
@@ -221,7 +220,7 @@ typedef struct g1_job {
     int failed; /* no memory for a row */
 } g1_job;
 
-static void *g1_rows(void *p)
+static void g1_rows(void *p)
 {
     g1_job *j = p;
     double zmin, zmax, d[3] = {-j->v[0], -j->v[1], -j->v[2]}, step = (double)j->n / (double)j->g;
@@ -234,7 +233,7 @@ static void *g1_rows(void *p)
     if (!o || !hits || !res) {
         free(o), free(hits), free(res);
         j->failed = 1;
-        return NULL;
+        return;
     }
     for (long r = j->row0; r < j->row1; r++) {
         /* a row of the jittered grid, traced as one stream of coherent rays */
@@ -261,7 +260,6 @@ static void *g1_rows(void *p)
         }
     }
     free(o), free(hits), free(res);
-    return NULL;
 }
 
 void ms_g1_free(ms_g1 *r)
@@ -305,7 +303,8 @@ int ms_measure_g1(const ms_tracer *t, const double *h, size_t n, const double v[
     for (int k = 0; k < threads; k++)
         jobs[k] = (g1_job){t, h, n, v, tilt, r->risers, g, g * k / threads, g * (k + 1) / threads, bins, rings,
                            sectors, hits + (size_t)k * (size_t)bins, 0, 0, 0};
-    int failed = run_jobs(g1_rows, jobs, sizeof *jobs, threads) != 0;
+    run_jobs(g1_rows, jobs, sizeof *jobs, threads);
+    int failed = 0;
     for (int k = 0; k < threads; k++) failed |= jobs[k].failed;
     if (failed) {
         free(hits), free(jobs), ms_g1_free(r);
@@ -338,7 +337,7 @@ typedef struct brdf_job {
     long *single, *all, lost, capped;
 } brdf_job;
 
-static void *brdf_rows(void *p)
+static void brdf_rows(void *p)
 {
     brdf_job *j = p;
     double zmin, zmax, step = (double)j->n / (double)j->g;
@@ -377,7 +376,6 @@ static void *brdf_rows(void *p)
             j->all[b]++;
             if (bounces == 1) j->single[b]++;
         }
-    return NULL;
 }
 
 void ms_brdf_free(ms_brdf *r)
@@ -414,11 +412,7 @@ static int brdf_run(const ms_tracer *t, size_t n, const double *wi, int in_bin, 
         jobs[k] = (brdf_job){t, n, wi, in_bin, g, g * k / threads, g * (k + 1) / threads, rings, sectors,
                              max_bounces, c, c + bins, 0, 0};
     }
-    if (run_jobs(brdf_rows, jobs, sizeof *jobs, threads) != 0) {
-        free(counts), free(jobs), ms_brdf_free(r);
-        snprintf(err, errn, "BRDF: out of memory");
-        return -1;
-    }
+    run_jobs(brdf_rows, jobs, sizeof *jobs, threads);
     for (int k = 0; k < threads; k++) {
         r->lost += jobs[k].lost, r->capped += jobs[k].capped;
         for (int b = 0; b < bins; b++) {

@@ -1,11 +1,11 @@
 /* The renderer of render.h: the camera, the sphere and the plane, the path tracer with light and BSDF sampling
  * combined by the power heuristic, and the tiles shared among threads. SPDX-License-Identifier: MIT */
 #include <math.h>
-#include <pthread.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 
+#include "common/parallel.h"
 #include "ggx/ggx_inline.h"
 #include "render.h"
 #include "surface.h"
@@ -345,17 +345,22 @@ static void render_tile(job *j, int tile)
     __atomic_fetch_add(&j->done, px, __ATOMIC_RELAXED);
 }
 
-static void *worker(void *arg)
+/* worker k: tiles taken in turn from the shared counter until none is left; worker 0 (the calling thread) reports
+ * progress between its tiles */
+static void worker(void *ctx, int k)
 {
-    job *j = arg;
+    job *j = ctx;
+    long total = (long)j->r->width * j->r->height;
     for (;;) {
         int t = __atomic_fetch_add(&j->next, 1, __ATOMIC_RELAXED);
-        if (t >= j->tiles) return NULL;
+        if (t >= j->tiles) return;
         render_tile(j, t);
+        if (k == 0 && j->r->progress)
+            j->r->progress(j->r->progress_ctx, __atomic_load_n(&j->done, __ATOMIC_RELAXED), total);
     }
 }
 
-int render_image(const render_spec *r, float *rgb, float *var)
+void render_image(const render_spec *r, float *rgb, float *var)
 {
     job j;
     memset(&j, 0, sizeof j);
@@ -363,25 +368,6 @@ int render_image(const render_spec *r, float *rgb, float *var)
     j.tiles_x = (r->width + TILE - 1) / TILE;
     j.tiles = j.tiles_x * ((r->height + TILE - 1) / TILE);
     long total = (long)r->width * r->height;
-    int n = r->threads > j.tiles ? j.tiles : r->threads, started = 0, rc = 0;
-    pthread_t *th = n > 1 ? calloc((size_t)n - 1, sizeof *th) : NULL;
-    if (n > 1 && !th) return -1;
-    for (int i = 0; i + 1 < n; i++) {
-        if (pthread_create(&th[i], NULL, worker, &j) != 0) {
-            rc = -1;
-            break;
-        }
-        started++;
-    }
-    /* the calling thread works too, and reports progress between its tiles */
-    for (;;) {
-        int t = __atomic_fetch_add(&j.next, 1, __ATOMIC_RELAXED);
-        if (t >= j.tiles) break;
-        render_tile(&j, t);
-        if (r->progress) r->progress(r->progress_ctx, __atomic_load_n(&j.done, __ATOMIC_RELAXED), total);
-    }
-    for (int i = 0; i < started; i++) pthread_join(th[i], NULL);
-    free(th);
+    ggx_internal_parallel_for(r->threads > j.tiles ? j.tiles : r->threads, worker, &j);
     if (r->progress) r->progress(r->progress_ctx, total, total);
-    return rc;
 }

@@ -396,7 +396,7 @@ EXPORT int ggxpy_render(const ggx_shape *s, const ggx_fresnel *f, const char *sa
     }
     if (rc == 0 && light <= 2) r.env = &env;
     if (rc == 0) rc = render_prepare(&r, err, errn);
-    if (rc == 0 && render_image(&r, rgb, var) != 0) rc = surface_fail(err, errn, "cannot start %d threads", threads);
+    if (rc == 0) render_image(&r, rgb, var);
     render_release(&r);
     render_env_free(&env);
     return rc;

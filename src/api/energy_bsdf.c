@@ -17,9 +17,9 @@
  * and since 1 - F_avg,0 = eta^2 (1 - F_avg,1) (the transmittance of a smooth interface, from both sides), that is
  * t = (1 - F_avg,1) / max(L_0, L_1): the side that loses more transmits exactly its Fresnel share, the other less. */
 #include <math.h>
-#include <pthread.h>
 #include <stdlib.h>
 
+#include "common/parallel.h"
 #include "tables/bsdf_grid.h"
 #include "energy_table.h"
 
@@ -60,14 +60,14 @@ static double bsdf_node(void *vc, ggx_vec3 v, double y)
     return ggx_internal_bsdf_albedo(&c->e->s, c->e->eta, u, TABLE_TOL) / ggx_internal_albedo_scale(&c->e->s, v);
 }
 
-static void *build_side(void *vc)
+/* side k of the table: k = 0 from above (c[0]), 1 from below (c[1]) */
+static void build_side(void *vc, int k)
 {
-    bsdf_nodes *c = vc;
+    bsdf_nodes *c = (bsdf_nodes *)vc + k;
     /* uniform azimuths: the warp that serves the conductor (denser at the axes) left 4.0e-3 here from below, for
      * (0.1, 1) rotated, eta 1.5, at 86 degrees, where the uniform columns leave 3.9e-4 */
     ggx_internal_etab_build(&c->e->side[c->sgn > 0 ? 0 : 1], &c->e->s, ROWS, COLUMNS, 1.0, !c->shipped, c->storage,
                             bsdf_node, c);
-    return NULL;
 }
 
 static double transmittance_avg(double eta_rel)
@@ -97,14 +97,9 @@ GGX_API ggx_status ggx_bsdf_energy_create(const ggx_shape *s, double eta, ggx_bs
     int shipped = ggx_internal_is_isotropic(s) && s->alpha_x >= BSDF_PROMISE_AMIN &&
                   ggx_internal_bsdf_iso_table_i(s->alpha_x, eta, 1.0, &probe);
     bsdf_nodes c[2] = {{e, 1.0, (double *)(e + 1), shipped}, {e, -1.0, (double *)(e + 1) + n, shipped}};
-    pthread_t th;
     /* a second thread only when there are quadratures to share */
-    int threaded = !shipped && pthread_create(&th, NULL, build_side, &c[1]) == 0;
-    build_side(&c[0]);
-    if (threaded)
-        pthread_join(th, NULL);
-    else
-        build_side(&c[1]);
+    ggx_internal_parallel_for(shipped ? 1 : 2, build_side, c);
+    if (shipped) build_side(c, 1);
     /* the check of the interpolation (energy_table.c): a shape whose E has features narrower than the nodes */
     if (e->side[0].check_err > TABLE_PROMISE || e->side[1].check_err > TABLE_PROMISE) {
         free(e);

@@ -5,6 +5,7 @@
 #include <string.h>
 
 #include "api/internal.h"
+#include "common/parallel.h"
 #include "ggx/ggx_batch.h"
 #include "internal.h"
 
@@ -87,21 +88,22 @@ GGX_API ggx_status ggx_batch_set_threads(int threads)
 typedef struct job {
     batch_loop loop;
     const batch_args *a;
-    size_t begin, end;
+    size_t n, chunk;
 } job;
 
-static void *thread_main(void *p)
+/* chunk k of [0, n) */
+static void run_chunk(void *ctx, int k)
 {
-    const job *j = p;
-    j->loop(j->a, j->begin, j->end);
-    return NULL;
+    const job *j = ctx;
+    size_t begin = (size_t)k * j->chunk < j->n ? (size_t)k * j->chunk : j->n;
+    size_t end = begin + j->chunk < j->n ? begin + j->chunk : j->n;
+    j->loop(j->a, begin, end);
 }
 
 enum { THREAD_MIN = 65536 };
 
-/* Runs the loop chosen from the path read once at the start, on [0, n): on this thread, or split over the threads
- * for large n (the calling thread takes the first chunk; a thread that cannot be created is replaced by running its
- * chunk here). */
+/* Runs the loop chosen from the path read once at the start, on [0, n): on this thread, or split into one chunk a
+ * thread for large n (the calling thread takes the first chunk). */
 static void run(batch_loop loop, const batch_args *a, size_t n)
 {
     int t = atomic_load(&nthreads);
@@ -109,21 +111,8 @@ static void run(batch_loop loop, const batch_args *a, size_t n)
         loop(a, 0, n);
         return;
     }
-    job jobs[256];
-    pthread_t tid[256];
-    int started[256] = {0};
-    size_t chunk = (n + (size_t)t - 1) / (size_t)t;
-    for (int i = 0; i < t; i++) {
-        jobs[i].loop = loop, jobs[i].a = a;
-        jobs[i].begin = (size_t)i * chunk < n ? (size_t)i * chunk : n;
-        jobs[i].end = jobs[i].begin + chunk < n ? jobs[i].begin + chunk : n;
-    }
-    for (int i = 1; i < t; i++) started[i] = pthread_create(&tid[i], NULL, thread_main, &jobs[i]) == 0;
-    loop(a, jobs[0].begin, jobs[0].end);
-    for (int i = 1; i < t; i++) {
-        if (started[i]) pthread_join(tid[i], NULL);
-        else loop(a, jobs[i].begin, jobs[i].end);
-    }
+    job j = {loop, a, n, (n + (size_t)t - 1) / (size_t)t};
+    ggx_internal_parallel_for(t, run_chunk, &j);
 }
 
 #define LOOP(name) (table_of(ggx_batch_get_isa())->name)

@@ -1,25 +1,28 @@
 /* One level of a mip chain of lobes (ggx_filter_downsample): each coarser texel the filter of its box of finer
- * texels, rows split over POSIX threads. SPDX-License-Identifier: MIT */
+ * texels, rows split over threads. SPDX-License-Identifier: MIT */
 #include <math.h>
-#include <pthread.h>
 #include <stdint.h>
 #include <stdlib.h>
 #include <string.h>
 
+#include "common/parallel.h"
 #include "filter.h"
 
 typedef struct mip_job {
     double *out, *w_out;
     const double *in, *w_in;
-    size_t w, h, w2, y0, y1;
+    size_t w, h, w2, h2;
+    int shares;
     const filter_rule *rule;
     const filter_settings *f;
 } mip_job;
 
-static void *mip_rows(void *p)
+/* share k of the coarser level's rows: rows h2 k / shares to h2 (k + 1) / shares */
+static void mip_rows(void *ctx, int k)
 {
-    const mip_job *j = p;
-    for (size_t y = j->y0; y < j->y1; y++)
+    const mip_job *j = ctx;
+    size_t y0 = j->h2 * (size_t)k / (size_t)j->shares, y1 = j->h2 * (size_t)(k + 1) / (size_t)j->shares;
+    for (size_t y = y0; y < y1; y++)
         for (size_t x = 0; x < j->w2; x++) {
             filter_lobe L[4];
             size_t n = 0, xs = 2 * x, ys = 2 * y, nx = xs + 1 < j->w ? 2 : 1, ny = ys + 1 < j->h ? 2 : 1, one = 0;
@@ -49,7 +52,6 @@ static void *mip_rows(void *p)
             int converged;
             filter_em(L, n, j->rule, j->f, o, o + 2, &converged, NULL);
         }
-    return NULL;
 }
 
 GGX_API ggx_status ggx_filter_downsample(double *out, double *w_out, const double *in, const double *w_in, size_t w,
@@ -70,25 +72,8 @@ GGX_API ggx_status ggx_filter_downsample(double *out, double *w_out, const doubl
     if ((st = filter_rule_make(&f, &r)) != GGX_OK) return st;
     size_t w2 = (w + 1) / 2, h2 = (h + 1) / 2;
     int nt = (size_t)f.threads < h2 ? f.threads : (int)h2;
-    mip_job *jobs = malloc((size_t)nt * sizeof *jobs);
-    pthread_t *th = malloc((size_t)nt * sizeof *th);
-    int *created = calloc((size_t)nt, sizeof *created);
-    if (!jobs || !th || !created) {
-        free(jobs), free(th), free(created);
-        filter_rule_free(&r);
-        return GGX_ERR_MEMORY;
-    }
-    for (int k = 0; k < nt; k++) {
-        jobs[k] = (mip_job){out, w_out, in, w_in, w, h, w2, h2 * (size_t)k / (size_t)nt, h2 * (size_t)(k + 1) / (size_t)nt,
-                            &r, &f};
-        if (k > 0) created[k] = pthread_create(&th[k], NULL, mip_rows, &jobs[k]) == 0;
-    }
-    mip_rows(&jobs[0]);
-    for (int k = 1; k < nt; k++) {
-        if (created[k]) pthread_join(th[k], NULL);
-        else mip_rows(&jobs[k]); /* no thread to be had: its rows here */
-    }
-    free(jobs), free(th), free(created);
+    mip_job job = {out, w_out, in, w_in, w, h, w2, h2, nt, &r, &f};
+    ggx_internal_parallel_for(nt, mip_rows, &job);
     filter_rule_free(&r);
     return GGX_OK;
 }

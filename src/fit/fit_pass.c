@@ -1,10 +1,10 @@
 /* The fits' passes over a source of slopes: fixed units of samples, each unit's sums kept apart and added in unit
  * order, so that any thread count gives the same bits. SPDX-License-Identifier: MIT */
-#include <pthread.h>
 #include <stdint.h>
 #include <stdlib.h>
 #include <string.h>
 
+#include "common/parallel.h"
 #include "fit.h"
 
 static int pass_sums(fit_pass_kind kind, const fit_point *at)
@@ -195,18 +195,18 @@ typedef struct pass_job {
     fit_pass_kind kind;
     const fit_point *at;
     double *unit;
-    int nsums, first, stride;
+    int nsums, stride;
     size_t units;
 } pass_job;
 
-static void *pass_thread(void *arg)
+/* share k of the pass: units k, k + stride, ... (each unit's sums in its own row, combined in unit order) */
+static void pass_share(void *ctx, int k)
 {
-    const pass_job *j = arg;
-    for (size_t u = (size_t)j->first; u < j->units; u += (size_t)j->stride) {
+    const pass_job *j = ctx;
+    for (size_t u = (size_t)k; u < j->units; u += (size_t)j->stride) {
         size_t i0 = u * FIT_UNIT, i1 = i0 + FIT_UNIT < j->src->n ? i0 + FIT_UNIT : j->src->n;
         unit_sums(j->src, j->kind, j->at, i0, i1, j->unit + u * (size_t)j->nsums);
     }
-    return NULL;
 }
 
 ggx_status fit_pass(const fit_source *src, int threads, fit_pass_kind kind, const fit_point *at, double *sums)
@@ -219,18 +219,8 @@ ggx_status fit_pass(const fit_source *src, int threads, fit_pass_kind kind, cons
     if (!unit) return GGX_ERR_MEMORY;
     int t = threads < 1 ? 1 : threads;
     if ((size_t)t > units) t = (int)units;
-    pass_job jobs[256];
-    pthread_t tid[256];
-    int started[256] = {0};
-    for (int i = 0; i < t; i++) jobs[i] = (pass_job){src, kind, at, unit, ns, i, t, units};
-    for (int i = 1; i < t; i++) started[i] = pthread_create(&tid[i], NULL, pass_thread, &jobs[i]) == 0;
-    pass_thread(&jobs[0]);
-    for (int i = 1; i < t; i++) {
-        if (started[i])
-            pthread_join(tid[i], NULL);
-        else
-            pass_thread(&jobs[i]); /* a thread that could not start: its units run here */
-    }
+    pass_job job = {src, kind, at, unit, ns, t, units};
+    ggx_internal_parallel_for(t, pass_share, &job);
     for (size_t u = 0; u < units; u++)
         for (int j = 0; j < ns; j++) sums[j] += unit[u * (size_t)ns + j];
     free(unit);
