@@ -39,7 +39,7 @@ build: configure
 
 # Regenerates the shipped albedo tables (src/tables/albedo_iso.inc, about a minute; src/tables/bsdf_iso.inc and
 # src/tables/albedo_aniso.inc, about 4 minutes each on 2 cores); a file is replaced only when the generator
-# succeeds. tests/tables_test.sh checks that a share of each file's lines regenerates bit for bit.
+# succeeds. tests/unit/tables_test.sh checks that a share of each file's lines regenerates bit for bit.
 tables: deps-dev configure
 	@cmake --build $(BUILD) -j $(JOBS) --target ggx_gen_tables
 	@$(BUILD)/ggx_gen_tables > src/tables/albedo_iso.inc.tmp && mv src/tables/albedo_iso.inc.tmp src/tables/albedo_iso.inc
@@ -97,11 +97,11 @@ sanitize: deps
 	@cmake -S . -B build-san -DCMAKE_BUILD_TYPE=RelWithDebInfo -DGGX_WERROR=ON -DCMAKE_C_FLAGS="$(SAN_FLAGS)" \
 	  -DCMAKE_CXX_FLAGS="$(SAN_FLAGS)" -DCMAKE_EXE_LINKER_FLAGS="$(SAN_FLAGS)" -DCMAKE_SHARED_LINKER_FLAGS="$(SAN_FLAGS)" >/dev/null
 	@cmake --build build-san -j $(JOBS)
-	@cd build-san && GGX_TEST_SCALE=0.1 GGX_CLI_QUICK=1 ASAN_OPTIONS=detect_leaks=1:abort_on_error=1 LSAN_OPTIONS=suppressions=$(CURDIR)/tests/lsan.supp:print_suppressions=0 \
+	@cd build-san && GGX_TEST_SCALE=0.1 GGX_CLI_QUICK=1 ASAN_OPTIONS=detect_leaks=1:abort_on_error=1 LSAN_OPTIONS=suppressions=$(CURDIR)/tests/support/lsan.supp:print_suppressions=0 \
 	  UBSAN_OPTIONS=print_stacktrace=1 ctest --output-on-failure -j $(JOBS) -E 'install|consumer|python'
 
 # The batch tests under ThreadSanitizer (gcc; TSAN_CC=clang works too where its runtime is installed): batch calls
-# from many threads, the first calls of a process included (tests/test_batch_threads.c), must be free of data races.
+# from many threads, the first calls of a process included (tests/unit/test_batch_threads.c), must be free of data races.
 TSAN_CC ?= gcc
 TSAN_FLAGS = -fsanitize=thread -fno-omit-frame-pointer -g
 # (no ifunc clones: their resolvers run during relocation, before the ThreadSanitizer runtime is up, and crash)
@@ -123,20 +123,20 @@ test-clang: deps
 # The CLI tests with every ggx run under valgrind (memcheck, leak check); any error fails the test.
 valgrind: deps-dev build
 	@cd $(BUILD)/tests && GGX_CLI_QUICK=1 \
-	  GGX_WRAP="valgrind -q --error-exitcode=99 --leak-check=full --errors-for-leak-kinds=definite,indirect --suppressions=$(CURDIR)/tests/valgrind.supp" \
-	  sh ../../tests/cli_test.sh $(CURDIR)/$(BUILD)/ggx $(CURDIR)/$(BUILD)/tests/png_info
+	  GGX_WRAP="valgrind -q --error-exitcode=99 --leak-check=full --errors-for-leak-kinds=definite,indirect --suppressions=$(CURDIR)/tests/support/valgrind.supp" \
+	  sh ../../tests/cli/cli_test.sh $(CURDIR)/$(BUILD)/ggx $(CURDIR)/$(BUILD)/tests/png_info
 	@cd $(BUILD)/tests && \
-	  GGX_WRAP="valgrind -q --error-exitcode=99 --leak-check=full --errors-for-leak-kinds=definite,indirect --suppressions=$(CURDIR)/tests/valgrind.supp" \
-	  sh ../../tests/fit_cli_test.sh $(CURDIR)/$(BUILD)/ggx
+	  GGX_WRAP="valgrind -q --error-exitcode=99 --leak-check=full --errors-for-leak-kinds=definite,indirect --suppressions=$(CURDIR)/tests/support/valgrind.supp" \
+	  sh ../../tests/cli/fit_cli_test.sh $(CURDIR)/$(BUILD)/ggx
 	@cd $(BUILD)/tests && \
-	  GGX_WRAP="valgrind -q --error-exitcode=99 --leak-check=full --errors-for-leak-kinds=definite,indirect --suppressions=$(CURDIR)/tests/valgrind.supp" \
-	  sh ../../tests/mipmap_cli_test.sh $(CURDIR)/$(BUILD)/ggx
+	  GGX_WRAP="valgrind -q --error-exitcode=99 --leak-check=full --errors-for-leak-kinds=definite,indirect --suppressions=$(CURDIR)/tests/support/valgrind.supp" \
+	  sh ../../tests/cli/mipmap_cli_test.sh $(CURDIR)/$(BUILD)/ggx
 	@cd $(BUILD)/tests && \
-	  GGX_WRAP="valgrind -q --error-exitcode=99 --leak-check=full --errors-for-leak-kinds=definite,indirect --suppressions=$(CURDIR)/tests/valgrind.supp" \
-	  sh ../../tests/render_mip_test.sh $(CURDIR)/$(BUILD)/ggx
+	  GGX_WRAP="valgrind -q --error-exitcode=99 --leak-check=full --errors-for-leak-kinds=definite,indirect --suppressions=$(CURDIR)/tests/support/valgrind.supp" \
+	  sh ../../tests/cli/render_mip_test.sh $(CURDIR)/$(BUILD)/ggx
 	@cd $(BUILD)/tests && \
-	  GGX_WRAP="valgrind -q --error-exitcode=99 --leak-check=full --errors-for-leak-kinds=definite,indirect --suppressions=$(CURDIR)/tests/valgrind.supp" \
-	  sh ../../tests/microsurface_cli_test.sh $(CURDIR)/$(BUILD)/ggx
+	  GGX_WRAP="valgrind -q --error-exitcode=99 --leak-check=full --errors-for-leak-kinds=definite,indirect --suppressions=$(CURDIR)/tests/support/valgrind.supp" \
+	  sh ../../tests/cli/microsurface_cli_test.sh $(CURDIR)/$(BUILD)/ggx
 
 # libFuzzer: each target for FUZZ_SECONDS (default 60) from the committed corpus; new inputs go to build-fuzz/.
 FUZZ_SECONDS ?= 60

@@ -21,7 +21,7 @@
  *   validation beyond what is stated; the shape must come from a successful setup call.
  * - Threads: any number of threads may call any function at once; the objects passed by const pointer are only read.
  *
- * The numerical contract (tests/test_robust.c: an adversarial table and 10^7 random inputs per function;
+ * The numerical contract (tests/unit/test_robust.c: an adversarial table and 10^7 random inputs per function;
  * tests/fuzz/: raw bytes to every function under AddressSanitizer and UndefinedBehaviorSanitizer)
  * - Evaluations return a finite value >= 0 for any input (ggx_lambda: finite, and negative only for skewed shapes);
  *   outside the documented domain (a direction below the horizon where that is not allowed, a zero vector) exactly 0.
@@ -137,7 +137,7 @@ ggx_status ggx_shape_ellipsoid(ggx_shape *s, double alpha_x, double alpha_y, dou
 
 /* The matrix A of ggx_shape_ellipsoid (eq 2-3), row-major, as a user writes it (the shape stores Q A instead). Same
  * domain, alpha below GGX_ALPHA_MIN raised to it; ggx_shape_matrix of the result is ggx_shape_ellipsoid's shape, bit
- * for bit (tests/test_errors.c). Each entry is within 2 ulp of the exact product of the sines and cosines of the
+ * for bit (tests/unit/test_errors.c). Each entry is within 2 ulp of the exact product of the sines and cosines of the
  * rounded angles. Errors: GGX_ERR_NULL (A NULL), GGX_ERR_NONFINITE (an angle or alpha NaN or infinite),
  * GGX_ERR_ALPHA, GGX_ERR_ANGLE; never GGX_ERR_SINGULAR. A is unchanged on error. */
 ggx_status ggx_ellipsoid_matrix(double A[3][3], double alpha_x, double alpha_y, double theta_x, double theta_y,
@@ -155,7 +155,7 @@ ggx_status ggx_shape_matrix(ggx_shape *s, const double A[3][3]);
  * exactly for unskewed shapes), Sigma = alpha^2 I for isotropic GGX, and the shapes are exactly the pairs (t, Sigma)
  * with Sigma positive definite. Each entry is within a few ulp of the products of the stored A'; D rebuilt from them
  * matches ggx_ndf to 1e-12 + 2e-15 kappa(A)^2 relative, kappa(A) = max(ax, ay, 1) / min(ax, ay, 1) for
- * ggx_shape_ellipsoid (tests/test_slopes.c: alphas from 1e-3 to 10, skews to GGX_SKEW_MAX). Errors: GGX_ERR_NULL
+ * ggx_shape_ellipsoid (tests/unit/test_slopes.c: alphas from 1e-3 to 10, skews to GGX_SKEW_MAX). Errors: GGX_ERR_NULL
  * (any pointer NULL). */
 ggx_status ggx_shape_slopes(const ggx_shape *s, double t[2], double sigma[3]);
 
@@ -371,7 +371,7 @@ double ggx_bsdf_eval(const ggx_shape *s, double eta, ggx_vec3 wi, ggx_vec3 wo, g
 
 /* Directional albedo of ggx_brdf_eval with F = 1 (separable G, eq 5): E(v) = int f_r(v, w) w.z dw over the upper
  * hemisphere, for any shape and v.z > 0 (v is normalised first; a zero, non-finite or v.z <= 0 vector gives 0). In
- * [0, 1], absolute error <= 1e-6 (tests/test_albedo.c: against an independent quadrature over w, the closed form
+ * [0, 1], absolute error <= 1e-6 (tests/unit/test_albedo.c: against an independent quadrature over w, the closed form
  * 2 (1 - ln 2) / (1 + v.z) at alpha_x = alpha_y = 1 for every rotation, and Monte Carlo with ggx_sample_brdf). */
 double ggx_albedo(const ggx_shape *s, ggx_vec3 v);
 
@@ -510,7 +510,7 @@ double ggx_pdf_brdf(const ggx_shape *s, ggx_vec3 wi, ggx_vec3 wo);
  * ggx_sample_brdf, but the caps sampler's cap starts at a height b below which every cap point reflects wi below the
  * horizon (for isotropic shapes the lowest one that reflects above it: no invalid samples at wi = n, nor at any view
  * for alpha = 1), so fewer samples are invalid. pdf = ggx_pdf_brdf / kappa, kappa = (1 - b) / (1 + vs.z) in (0, 1]
- * (proved in the document and by tests/test_sample_dir.c), weight = kappa x ggx_sample_brdf's weight (<= 1, eq 52).
+ * (proved in the document and by tests/unit/test_sample_dir.c), weight = kappa x ggx_sample_brdf's weight (<= 1, eq 52).
  * Same domain, invalid samples and contract as ggx_sample_brdf; u1, u2 in [0, 1) (clamped). */
 ggx_sample ggx_sample_brdf_bounded(const ggx_shape *s, const ggx_fresnel *f, ggx_vec3 wi, double u1, double u2);
 /* The pdf of ggx_sample_brdf_bounded for a given pair: ggx_pdf_brdf / kappa, since every removed cap point reflects
@@ -525,13 +525,13 @@ double ggx_pdf_brdf_bounded(const ggx_shape *s, ggx_vec3 wi, ggx_vec3 wo);
  * ggx_sample_brdf's weight (<= 1): the variance is never above ggx_sample_brdf's. b(phi), and so the pdf, jumps
  * across some curves of directions; near them and near the cap's pole (where phi is ill-conditioned) the float
  * sampler (ggx_inline.h) may take another bound than the double one: it agrees within 1e-4 per direction component,
- * 2e-4 relative in pdf and 4e-4 in weight for all but a fraction 1e-3 of samples (tests/test_sample_dir.c). Same
+ * 2e-4 relative in pdf and 4e-4 in weight for all but a fraction 1e-3 of samples (tests/unit/test_sample_dir.c). Same
  * domain, invalid samples and contract as ggx_sample_brdf; u1, u2 in [0, 1) (clamped). */
 ggx_sample ggx_sample_brdf_bounded_azimuth(const ggx_shape *s, const ggx_fresnel *f, ggx_vec3 wi, double u1,
                                            double u2);
 /* The pdf of ggx_sample_brdf_bounded_azimuth for a given pair: ggx_pdf_brdf / kappa(phi), phi the azimuth of the cap
  * point of wo's half vector (phi = 0 at the pole, a single point); 0 unless wi.z > 0 and wo.z > 0. At a direction
- * the sampler drew, it agrees with the sample's pdf within 1e-6 relative for u2 >= 1e-3 (tests/test_sample_dir.c).
+ * the sampler drew, it agrees with the sample's pdf within 1e-6 relative for u2 >= 1e-3 (tests/unit/test_sample_dir.c).
  * Near the pole of the cap (u2 kappa -> 0) the recovered azimuth is ill-conditioned: up to 2e-5 there, and up to a
  * few percent for shapes whose alphas differ by a factor 1e5 or more. */
 double ggx_pdf_brdf_bounded_azimuth(const ggx_shape *s, ggx_vec3 wi, ggx_vec3 wo);
@@ -595,7 +595,7 @@ double ggx_albedo_aniso_table(double alpha_x, double alpha_y, ggx_vec3 v);
  * with E a per-shape table of ggx_albedo (separable G, the library's BRDF) built by ggx_energy_create and read by
  * interpolation, and E_avg the table's own average. With F = 1 the compensated albedo is then 1 + (E - E_table)(wi):
  * within 1e-3 of 1 (so never above 1 + 1e-3) for views with wi.z >= 0.0175 (89 degrees) and every shape that
- * ggx_energy_create accepts (tests/test_energy.c, tests/test_energy_domain.c: alpha 1e-4 to 2, anisotropy to 1:200,
+ * ggx_energy_create accepts (tests/unit/test_energy.c, tests/unit/test_energy_domain.c: alpha 1e-4 to 2, anisotropy to 1:200,
  * skews to 1.2 rad); for unskewed anisotropic shapes read from the shipped table, within that table's 1.1e-3. A shape
  * whose E has a feature narrower than the table's nodes resolve (the mirror horizon of a sharp skewed lobe) is
  * refused, so that no table underestimates E by more than that. Beyond 89 degrees the table is not promised
@@ -668,7 +668,7 @@ double ggx_pdf_brdf_compensated(const ggx_energy *e, const ggx_fresnel *f, ggx_v
  * E_a is a per-(shape, eta) table of ggx_bsdf_albedo for each side, built by ggx_bsdf_energy_create and read by
  * interpolation, so that a non-absorbing interface keeps R + T = 1 + (E_a - E_a,table)(wi): within 1e-3 of 1 from
  * both sides for views with |wi.z| >= 0.0175 (89 degrees), for every (shape, eta) that ggx_bsdf_energy_create accepts
- * and that tests/test_energy_bsdf.c and tests/test_energy_domain.c try (isotropic alpha 0.05 to 1, anisotropic to
+ * and that tests/unit/test_energy_bsdf.c and tests/unit/test_energy_domain.c try (isotropic alpha 0.05 to 1, anisotropic to
  * 1:10, rotated, skewed to 0.5 rad; eta 1.001 to 2 and below 1). Tables whose nodes are computed are checked as the
  * conductor's are, and refused where the check fails.
  * Sides, directions and modes as for ggx_bsdf_eval: eta = eta_below / eta_above, directions point away from the

@@ -11,7 +11,7 @@
  *   exactly 0 outside the domain (below the horizon, NaN), samplers a unit vector or the zero vector. Unlike the
  *   double API, a NaN or infinite u gives the zero vector (an invalid sample) rather than being read as 0.
  * Accuracy against the double API, on every instruction-set path, for alpha >= 0.05, skews to 0.5 rad and inputs
- * with m.z, v.z >= 0.02 (tests/test_batch.c: n from 0 to 300, misaligned pointers; tests/test_float_regress.c):
+ * with m.z, v.z >= 0.02 (tests/unit/test_batch.c: n from 0 to 300, misaligned pointers; tests/unit/test_float_regress.c):
  * - ggx_batch_ndf, _g1, _brdf and _pdf_vndf: relative error <= 2e-5 (_pdf_vndf where m.v >= 0.01: the pdf is
  *   proportional to m.v, which a float dot product resolves to ~1e-7 absolute);
  * - sampled directions: within 1e-4 per component of the double sampler's for the same (u1, u2), for every sampler

@@ -28,7 +28,7 @@ extern "C" {
  * roughness with its axis x at angle phi (radians) in the tangent plane (phi = 0, alpha_x = alpha_y: isotropic).
  * For n = +z and phi = 0 it has ggx_shape_aniso's distribution; in general P22 of the result is the GGX P22 of
  * (alpha_x, alpha_y, phi) translated by t, within ggx_shape_from_slopes' 1e-12 + 2e-15 kappa^2 relative, kappa =
- * max(alpha_x, alpha_y, 1) / min(alpha_x, alpha_y, 1) (tests/test_filter.c). Alphas below GGX_ALPHA_MIN are
+ * max(alpha_x, alpha_y, 1) / min(alpha_x, alpha_y, 1) (tests/unit/test_filter.c). Alphas below GGX_ALPHA_MIN are
  * raised to it. Errors: GGX_ERR_NULL; GGX_ERR_NONFINITE (n, an
  * alpha or phi NaN or infinite); GGX_ERR_RANGE (n.z <= 0: the normal not above the tangent plane); GGX_ERR_ALPHA
  * as for ggx_shape_aniso; GGX_ERR_SINGULAR or GGX_ERR_RANGE from ggx_shape_from_slopes where the lobe is not a shape:
@@ -48,7 +48,7 @@ typedef struct ggx_filter_options {
 } ggx_filter_options;
 /* The fast mode, which ggx_filter_options_fast sets: radial_nodes 2, angular_nodes 4, max_iterations 1, one EM
  * step from the start of ggx_filter_lobes, 30 to 80 times faster than the defaults. Its KL from the mixture exceeds the converged fit's by
- * at most 0.005 nats on the footprints of tests/test_filter.c (against 0.02 to 2.4 nats by which the engines'
+ * at most 0.005 nats on the footprints of tests/unit/test_filter.c (against 0.02 to 2.4 nats by which the engines'
  * filters exceed it there), and by up to 0.035 on random 2 x 2 footprints whose slopes spread over 8 alpha (alpha 0.05). */
 
 /* Sets o's rule and iterations to the fast mode above, leaving its tolerance and threads. Errors: GGX_ERR_NULL. */
@@ -66,7 +66,7 @@ typedef struct ggx_filter_info {
  * each lobe's expectations by a product rule in its own standardised slopes: radial_nodes Gauss-Legendre nodes in s,
  * where u = 1 - (1 - s)^2 is the lobe's radial probability, times angular_nodes equal angles. The rule integrates
  * the E-step of a lobe at its own parameters exactly, so n equal lobes (a constant normal map) give that lobe back
- * to rounding: D within ggx_shape_from_slopes' 1e-12 + 2e-15 kappa^2 relative (tests/test_filter.c); its error for
+ * to rounding: D within ggx_shape_from_slopes' 1e-12 + 2e-15 kappa^2 relative (tests/unit/test_filter.c); its error for
  * distinct lobes, measured against 64 x 128 nodes, is in docs/design/filter.md. Each iteration never lowers the
  * objective as the rule computes it (to rounding). Starts from t = the weighted mean of the lobes' t_i, Sigma = the
  * weighted mean of Sigma_i + (t_i - t)(t_i - t)^T. Sigma's eigenvalues are held in [GGX_ALPHA_MIN^2,

@@ -18,7 +18,7 @@
  *   ggx_gaussian_curvature_f) are those of the normalised matrix. Everything else is scale-free and equal to the
  *   double API's result.
  * - Accuracy against the double API with the same (float) inputs, for alpha >= 0.05, skews to 0.5 rad and
- *   directions with z >= 0.02 (tests/test_float_regress.c, every sampler of the registry): the bounds of
+ *   directions with z >= 0.02 (tests/unit/test_float_regress.c, every sampler of the registry): the bounds of
  *   ggx_batch.h. The _d kernels agree with the double API (which may run an FMA build of the same source) to
  *   1e-14 kappa^2, kappa the condition number of A (max / min of alpha_x, alpha_y and 1 for ggx_shape_ellipsoid):
  *   per component of a sampled normal, and relative for D, the VNDF pdf and the BRDF where the normal is at least

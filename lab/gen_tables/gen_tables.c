@@ -2,7 +2,7 @@
  * src/tables/albedo_iso.inc (the conductor's E, both maskings); with --bsdf, src/tables/bsdf_iso.inc (the rough
  * dielectric's R + T); with --aniso, src/tables/albedo_aniso.inc (the conductor's E of diagonal anisotropic shapes).
  * Linked against the baseline build of the library (no FMA clones), so the output is the same
- * bit for bit on every x86-64 machine with the same libm; tests/tables_test.sh regenerates a share of the lines and
+ * bit for bit on every x86-64 machine with the same libm; tests/unit/tables_test.sh regenerates a share of the lines and
  * compares the text.
  * Usage: ggx_gen_tables [--bsdf | --aniso] [--every K]   (K > 1: only the lines (--aniso: the pairs of
  * roughnesses) with index % K == 0, for the test)

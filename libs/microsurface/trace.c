@@ -48,7 +48,7 @@ ms_tracer *ms_tracer_new(const double *h, size_t n, const double tilt[2], char *
     /* Embree's grid geometry over the tile and a border of one cell around it (the periodic copies), so that the
      * tile's sides are inner edges: a ray that meets the surface exactly at a side then hits in one of the two tiles
      * (a mesh's own border edges are not watertight). Each cell is two triangles cut along the diagonal from
-     * (x+1, y) to (x, y+1) (tests/test_microsurface.c checks it). Embree's robust mode keeps the inner edges
+     * (x+1, y) to (x, y+1) (tests/unit/test_microsurface.c checks it). Embree's robust mode keeps the inner edges
      * watertight: without it a few rays in a million pass between two triangles (the test keeps two such rays). */
     RTCGeometry g = rtcNewGeometry(t->device, RTC_GEOMETRY_TYPE_GRID);
     size_t side = n + 3; /* vertices at -1 .. n + 1 */

@@ -1267,7 +1267,7 @@ void audit_write(FILE *f, audit_format fmt, const audit_row *rows, int n, const 
     fprintf(f, "# Seed audit\n\n"
                "Written by `ggx audit` (its defaults; `ggx audit --format md > docs/audit.md`); `make test-full` "
                "checks that this file is the command's output and `make test` asserts every verdict "
-               "(tests/test_audit.c). Each claim names its seed by the short name of [references.md](references.md), "
+               "(tests/unit/test_audit.c). Each claim names its seed by the short name of [references.md](references.md), "
                "where it is in that text, and the shapes the seed states it for. Verdicts: "
                "**holds**; **holds with a correction** (the seed's formula fails as written, the evidence states the "
                "form that holds); **fails** (with the counterexample found); **not claimed** for this shape (the "
@@ -1280,7 +1280,7 @@ void audit_write(FILE *f, audit_format fmt, const audit_row *rows, int n, const 
                "(the other chi-square rows at the first; phi = 2.5 where Walter's min must be active). "
                "Chi-square: 10^6 samples, 100 x 200 equal-area cells in sphere space, Sidak level %.2g. Areas by rays "
                "shot at the ellipsoid itself, curvature and Jacobians by finite differences; more of them in "
-               "tests/test_ndf.c and tests/test_sample_map.c.\n\n",
+               "tests/unit/test_ndf.c and tests/test_sample_map.c.\n\n",
             AU_KIN, AU_KIN - 1, au_alpha_level());
     fprintf(f, "| # | id | claim | seed, where | scope | %s | %s | %s |\n|---|---|---|---|---|---|---|---|\n",
             labels[0], labels[1], labels[2]);

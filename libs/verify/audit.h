@@ -1,5 +1,5 @@
 /* The seed audit: one check per claim of the seeds, for a diagonal, a theta_z-rotated and a skewed A. Shared by
- * tests/test_audit.c (which asserts the verdicts) and `ggx audit` (which prints them). SPDX-License-Identifier: MIT */
+ * tests/unit/test_audit.c (which asserts the verdicts) and `ggx audit` (which prints them). SPDX-License-Identifier: MIT */
 #ifndef GGX_AUDIT_H
 #define GGX_AUDIT_H
 
@@ -32,7 +32,7 @@ typedef struct audit_row {
  * No global state: threads may run audits at once. */
 int audit_run(const double A[AUDIT_SHAPES][3][3], audit_row *rows, int progress);
 /* audit_run judging each chi-square run at the per-run level alpha instead of the command's
- * chi2_sidak(CHI2_SUITE_RUNS): the test suite's own level (tests/testlib.h). */
+ * chi2_sidak(CHI2_SUITE_RUNS): the test suite's own level (tests/support/testlib.h). */
 int audit_run_at(const double A[AUDIT_SHAPES][3][3], audit_row *rows, int progress, double alpha);
 
 const char *audit_verdict_name(audit_verdict v); /* "holds", "holds with a correction", "fails", "not claimed" */

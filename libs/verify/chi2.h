@@ -65,7 +65,7 @@ double chi2_pvalue(double x, int dof);
 double chi2_sidak(int runs);
 
 /* The number of chi2_run and chi2_run_quiet calls this process has made, from any thread: what a test counts
- * against its share of the suite's chi-square budget (tests/testlib.h). */
+ * against its share of the suite's chi-square budget (tests/support/testlib.h). */
 long chi2_runs_made(void);
 
 /* The number of runs behind the Sidak level at which `ggx audit` judges its chi-square runs (audit_run). The test

@@ -1,4 +1,4 @@
-/* The engines' normal-map filters, the baselines that ggx_filter_lobes is measured against (tests/test_filter.c, the
+/* The engines' normal-map filters, the baselines that ggx_filter_lobes is measured against (tests/unit/test_filter.c, the
  * rendered comparison of libs/verify/mip_compare.c, ggx render --normal-map). Each keeps a shading normal: the
  * renormalised mean n = m / |m| of a footprint's unit normals (m their weighted mean), and an unskewed GGX lobe in the
  * frame of n, evaluated there with the cosine about n as engines do. docs/design/filter.md states them and their

@@ -11,7 +11,7 @@
 #include "ggx/ggx_samplers.h"
 
 /* Every public function is defined with GGX_API; the library is built with hidden visibility, so libggx.so exports
- * exactly the public ggx_* API (tests/exports.sh checks it). */
+ * exactly the public ggx_* API (tests/packaging/exports.sh checks it). */
 #if defined(__GNUC__)
 #define GGX_API __attribute__((visibility("default")))
 #else

@@ -44,7 +44,7 @@
  * than about 1e-6 (for |A| ~ 1) take the slow path. */
 #define GGX_FACE_FLOOR(bar, mu2) ((bar) >= GGX_C(1e-37))
 /* sin and cos of x in [-pi/4, pi/4] by minimax polynomials of degree 7 and 8: the float evaluation is within 6.9e-8
- * of sin and cos (tests/test_float_regress.c checks it against libm; the fit: docs/design/kernels.md, "The turn
+ * of sin and cos (tests/unit/test_float_regress.c checks it against libm; the fit: docs/design/kernels.md, "The turn
  * sincos"). */
 #define GGX_SIN_POLY(x, x2)                                                                                       \
     ((x) * (1.0f + (x2) * (-1.666665077e-01f + (x2) * (8.331978694e-03f + (x2) * -1.949564612e-04f))))

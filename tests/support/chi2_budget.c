@@ -1,5 +1,5 @@
 /* The suite's one chi-square budget: the share of each ctest entry, the level derived from their sum, and the count
- * each program checks against its share (tests/testlib.h). SPDX-License-Identifier: MIT */
+ * each program checks against its share (tests/support/testlib.h). SPDX-License-Identifier: MIT */
 #include <stdio.h>
 #include <string.h>
 
@@ -51,11 +51,11 @@ int chi2_budget_end(const char *program, int argc, char **argv)
     printf("chi-square checks in '%s': %ld of its share %d (suite budget %d runs, per-run level %.3g)\n", entry,
            checks, share, budget_total(), test_chi2_level());
     if (!found && checks > 0) {
-        printf("FAIL: '%s' made chi-square checks but has no share in tests/chi2_budget.c\n", entry);
+        printf("FAIL: '%s' made chi-square checks but has no share in tests/support/chi2_budget.c\n", entry);
         return 1;
     }
     if (checks > share) {
-        printf("FAIL: '%s' made %ld chi-square checks, more than its share %d (tests/chi2_budget.c)\n", entry, checks,
+        printf("FAIL: '%s' made %ld chi-square checks, more than its share %d (tests/support/chi2_budget.c)\n", entry, checks,
                share);
         return 1;
     }

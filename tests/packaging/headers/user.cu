@@ -1,4 +1,4 @@
-/* A user's CUDA translation unit: the header and two kernels, compiled by tests/header_matrix.sh under nvcc with the
+/* A user's CUDA translation unit: the header and two kernels, compiled by tests/packaging/header_matrix.sh under nvcc with the
  * host compilers it finds, every host warning an error. SPDX-License-Identifier: MIT */
 #include "ggx/ggx_inline.h"
 

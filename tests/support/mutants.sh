@@ -5,7 +5,7 @@
 # sanitize, without the install, command, man page, Python and CUDA tests, and without the energy tables, the seed
 # audit and the figures, whose minutes no mutant below targets) to fail. A mutant whose text is no longer in the
 # source counts as survived.
-# Usage: sh tests/mutants.sh   (from the repository root; about a minute per mutant on 2 cores)
+# Usage: sh tests/support/mutants.sh   (from the repository root; about a minute per mutant on 2 cores)
 set -u
 root=$(pwd)
 work=$(mktemp -d)

@@ -1,6 +1,6 @@
 #!/bin/bash
 # shellcheck disable=SC2317 # functions called from the traps
-# tests/fresh_machine.sh: the README on a fresh Debian 12 machine.
+# tests/packaging/fresh_machine.sh: the README on a fresh Debian 12 machine.
 #
 # Builds a minimal Debian 12 (bookworm) root with `debootstrap --variant=minbase` in a scratch folder, installs only
 # git and make in it, clones the repository's committed HEAD (not the working tree) into it with that git, and runs
@@ -17,7 +17,7 @@
 #     in /etc/apt/sources.list.d/*.sources, or /etc/apt/sources.list), else http://deb.debian.org/debian;
 #   - about 1.5 GB of disk in the scratch folder and a few minutes (measured on 2 cores with a near mirror: 2.5 min).
 #
-# Usage: tests/fresh_machine.sh [--keep] [--dir DIR]
+# Usage: tests/packaging/fresh_machine.sh [--keep] [--dir DIR]
 #   --keep     keep the root (DIR/root) afterwards, its mounts undone; default: remove it, keeping only the logs
 #   --dir DIR  scratch folder (created if absent; DIR/root must not exist); default: a new mktemp -d folder in /tmp
 # Environment:
@@ -343,7 +343,7 @@ run_step clone "${IN_ROOT[@]}" "git clone -c advice.detachedHead=false /tmp/libg
 rm -f "$R/tmp/libggx.bundle"
 # The project's CI puts ../shared beside the clone; copy it only if the build or the tests refer to it.
 if git -C "$TOP" grep -q -e '\.\./shared' "$SHA" -- Makefile CMakeLists.txt cmake tests tools src \
-     ':!tests/fresh_machine.sh' 2>/dev/null; then
+     ':!tests/packaging/fresh_machine.sh' 2>/dev/null; then
   if [ -d "$TOP/../shared" ]; then cp -a "$TOP/../shared" "$R/work/shared" && say "copied ../shared beside the clone"
   else say "warning: the build refers to ../shared but $TOP/../shared does not exist"; fi
 else

@@ -26,7 +26,7 @@ void make_shape(ggx_shape *s, shape_params p); /* fails the test if setup fails 
 ggx_vec3 random_view(rng *r);
 
 /* kappa(A) = max(ax, ay, 1) / min(ax, ay, 1) of ggx_shape_ellipsoid's A (its singular values are ax, ay and 1), and
- * ggx.h's bound on D rebuilt from (t, Sigma), 1e-12 + 2e-15 kappa^2 relative (ggx_shape_slopes, tests/test_slopes.c):
+ * ggx.h's bound on D rebuilt from (t, Sigma), 1e-12 + 2e-15 kappa^2 relative (ggx_shape_slopes, tests/unit/test_slopes.c):
  * the kappa^2 term is the rounding of Sigma's entries, which carry det Sigma to about 1e-16 cond(Sigma). */
 double shape_kappa(double ax, double ay);
 double slopes_bound(double ax, double ay);
@@ -41,9 +41,9 @@ int test_quick(void);
 long chi2_samples(void);
 void chi2_grid(long n, int *ntheta, int *nphi);
 
-/* ---- the suite's one chi-square budget (tests/chi2_budget.c) ----
+/* ---- the suite's one chi-square budget (tests/support/chi2_budget.c) ----
  * Every chi-square check of the suite that must pass is made at one per-run level, test_chi2_level(): the Sidak
- * level for a family-wise 0.01 over the sum of the shares tests/chi2_budget.c lists for each ctest entry. A negative
+ * level for a family-wise 0.01 over the sum of the shares tests/support/chi2_budget.c lists for each ctest entry. A negative
  * control, which must be rejected, compares with the same level and is not counted. */
 double test_chi2_level(void);
 int chi2_accepts(double p);          /* p >= test_chi2_level(); counts one check */

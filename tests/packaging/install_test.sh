@@ -33,7 +33,7 @@ done
 for f in "$soname" libggx.so cmake/ggx/ggxConfig.cmake cmake/ggx/ggxConfigVersion.cmake pkgconfig/ggx.pc; do
   test -e "$libdir/$f" || { echo "install: $libdir/$f missing" >&2; exit 1; }
 done
-# the library of a shared build only (BUILD_SHARED_LIBS=OFF: tests/consumer_test.sh)
+# the library of a shared build only (BUILD_SHARED_LIBS=OFF: tests/packaging/consumer_test.sh)
 test ! -e "$libdir/libggx.a" || { echo "install: a shared build installed libggx.a too" >&2; exit 1; }
 if [ -n "$tool" ]; then
   [ "$("$prefix/bin/ggx" --version)" = "ggx $version" ] || { echo "install: ggx --version is not ggx $version" >&2; exit 1; }

@@ -79,7 +79,7 @@ void check_chi2_coverage(const variant *var, unsigned families);
 
 /* int f(w) |w.z| dw over the upper hemisphere (below = 0) or the lower one, by nested adaptive quadrature in
  * (theta, phi): 8 panels of theta to tolerance 1e-8, each line 8 panels of phi to 1e-9. For the energy tables'
- * smooth multiple-scattering lobes (tests/test_energy.c, tests/test_energy_bsdf.c). */
+ * smooth multiple-scattering lobes (tests/unit/test_energy.c, tests/unit/test_energy_bsdf.c). */
 double hemisphere_cos_quad(double (*f)(ggx_vec3 w, void *ctx), void *ctx, int below);
 
 /* Chi-square of a sampler of directions whose pdf has jumps (the energy tables' cells), which the harness's per-cell

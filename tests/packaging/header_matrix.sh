@@ -1,12 +1,12 @@
 #!/bin/sh
-# The inline API compiles warning-free wherever a user includes it: tests/headers/user.c as C99, C11 and C17 and as
+# The inline API compiles warning-free wherever a user includes it: tests/packaging/headers/user.c as C99, C11 and C17 and as
 # C++11, C++17 and C++20 under gcc/g++ and clang/clang++ with -Wall -Wextra -Wpedantic -Werror, and
-# tests/headers/user.cu under nvcc (where it is installed) with each host compiler found, host warnings errors.
+# tests/packaging/headers/user.cu under nvcc (where it is installed) with each host compiler found, host warnings errors.
 # A compiler that is not installed is named and skipped; GGX_REQUIRE_CLANG=1 makes a missing clang a failure (CI).
 # SPDX-License-Identifier: MIT
 set -u
 src=$(cd "$(dirname "$0")" && pwd)
-inc="$src/../include"
+inc="$src/../../include"
 tmp=$(mktemp -d)
 trap 'rm -rf "$tmp"' EXIT
 fail=0 ran=0

@@ -1,5 +1,5 @@
 /* Seed audit: runs libs/verify/audit.c for the command's three default shapes (diagonal, theta_z-rotated, skewed) and
- * asserts every verdict, so that docs/audit.md (the command's output, compared by tests/cli_test.sh) stays true: a
+ * asserts every verdict, so that docs/audit.md (the command's output, compared by tests/cli/cli_test.sh) stays true: a
  * claim recorded as failing must keep failing. SPDX-License-Identifier: MIT */
 #include <stdio.h>
 #include <stdlib.h>

@@ -4,8 +4,8 @@
 # line on stderr, no output file. Usage: fit_cli_test.sh GGX
 # SPDX-License-Identifier: MIT
 set -u
-ROOT=$(cd "$(dirname "$0")/.." && pwd) # for the README
-. "$ROOT/tests/cli_common.sh"
+ROOT=$(cd "$(dirname "$0")/../.." && pwd) # for the README
+. "$ROOT/tests/support/cli_common.sh"
 near() { awk -v a="$1" -v b="$2" -v t="$3" 'BEGIN { d = a - b; if (d < 0) d = -d; exit !(d <= t) }'; }
 
 "$GGX" fit --help > h.txt && grep -q "usage: ggx fit" h.txt && ok || bad "ggx fit --help"
@@ -92,7 +92,7 @@ PY=$(command -v /usr/bin/python3 || command -v python3)
 "$GGX" sample --sampler stretch -n 20000 --alpha 0.006,0.004 --rotate 30 --seed 5 | cut -d, -f1-3 > m8.csv
 if [ -z "$PY" ]; then
     echo "fit CLI: no python3, the 8-bit map is not tested"
-elif "$PY" "$ROOT/tests/fit_png_map.py" m8.csv 200 100 m8.png m8c.csv && "$GGX" fit --normal-map m8.png --format json \
+elif "$PY" "$ROOT/tests/support/fit_png_map.py" m8.csv 200 100 m8.png m8c.csv && "$GGX" fit --normal-map m8.png --format json \
     > m8.json 2> m8.err; then
     a=$(sed -n 's/.*"alpha": \[\([^,]*\), \([^]]*\)\].*/\1 \2/p' m8.json)
     set -- $a

@@ -4,12 +4,12 @@
 # chain (odd sizes included), rejected texels are counted, and malformed input exits 2 with one line and no files.
 # Usage: mipmap_cli_test.sh GGX   SPDX-License-Identifier: MIT
 set -u
-ROOT=$(cd "$(dirname "$0")/.." && pwd)
-. "$ROOT/tests/cli_common.sh"
+ROOT=$(cd "$(dirname "$0")/../.." && pwd)
+. "$ROOT/tests/support/cli_common.sh"
 PY=/usr/bin/python3
 
 "$GGX" mipmap --help > h.txt && grep -q "usage: ggx mipmap" h.txt && ok || bad "ggx mipmap --help"
-# maps as CSVs of normals (x,y,z), written as 8-bit PNGs by tests/fit_png_map.py
+# maps as CSVs of normals (x,y,z), written as 8-bit PNGs by tests/support/fit_png_map.py
 "$PY" - <<'EOF_PY'
 import math
 def write(name, w, h, f):
@@ -26,11 +26,11 @@ write("flat_edge.csv", 4, 4, lambda i, j: (0.6, 0.0, -0.8) if i == 0 and j == 0 
 write("one.csv", 1, 1, lambda i, j: (0.3, -0.2))
 write("row.csv", 1, 3, lambda i, j: (0.3 * j, 0.0))
 EOF_PY
-if ! "$PY" "$ROOT/tests/fit_png_map.py" const.csv 10 6 const.png c1.csv ||
-   ! "$PY" "$ROOT/tests/fit_png_map.py" checker.csv 8 8 checker.png c2.csv ||
-   ! "$PY" "$ROOT/tests/fit_png_map.py" flat_edge.csv 4 4 edge.png c3.csv ||
-   ! "$PY" "$ROOT/tests/fit_png_map.py" one.csv 1 1 one.png c4.csv ||
-   ! "$PY" "$ROOT/tests/fit_png_map.py" row.csv 1 3 row.png c5.csv; then
+if ! "$PY" "$ROOT/tests/support/fit_png_map.py" const.csv 10 6 const.png c1.csv ||
+   ! "$PY" "$ROOT/tests/support/fit_png_map.py" checker.csv 8 8 checker.png c2.csv ||
+   ! "$PY" "$ROOT/tests/support/fit_png_map.py" flat_edge.csv 4 4 edge.png c3.csv ||
+   ! "$PY" "$ROOT/tests/support/fit_png_map.py" one.csv 1 1 one.png c4.csv ||
+   ! "$PY" "$ROOT/tests/support/fit_png_map.py" row.csv 1 3 row.png c5.csv; then
     bad "writing the test maps"
 fi
 if "$GGX" mipmap --normal-map const.png --alpha 0.2 --out cm > cm.txt 2> cm.err; then

@@ -5,10 +5,10 @@
 # GGX_WRAP runs every ggx under a wrapper (make valgrind); GGX_CLI_QUICK=1 uses small sample counts there.
 set -u
 PNG_INFO=$(cd "$(dirname "$2")" && pwd)/$(basename "$2")
-ROOT=$(cd "$(dirname "$0")/.." && pwd) # for include/ggx/ggx_samplers.h, the sampler registry
+ROOT=$(cd "$(dirname "$0")/../.." && pwd) # for include/ggx/ggx_samplers.h, the sampler registry
 N=""
 [ "${GGX_CLI_QUICK:-0}" = 1 ] && N="-n 20000"
-. "$ROOT/tests/cli_common.sh"
+. "$ROOT/tests/support/cli_common.sh"
 
 # --- every subcommand on defaults
 "$GGX" --help > help.txt && grep -q "commands:" help.txt && ok || bad "ggx --help"
@@ -103,7 +103,7 @@ if [ "${GGX_CLI_QUICK:-0}" = 1 ]; then # 16 chi-square runs of 10^6 samples: min
 else
     # The one audit of the tier: the line of docs/cli.md's Examples, three files from one run. docs/audit.md is the
     # command's output on its defaults, byte for byte; its rows are numbered 1 to the number of claims, which the
-    # other formats must match (tests/test_audit.c lists the claims and asserts the count)
+    # other formats must match (tests/unit/test_audit.c lists the claims and asserts the count)
     AUDIT_LINE='ggx audit --out audit.md --out audit.csv --out audit.json'
     "$GGX" audit --out audit.md --out audit.csv --out audit.json && CLAIMS=$(grep -c '^| [0-9]' audit.md) &&
         [ "$CLAIMS" -gt 0 ] && [ "$(grep '^| [0-9]' audit.md | tail -1 | cut -d' ' -f2)" = "$CLAIMS" ] &&

@@ -552,7 +552,7 @@ static chi2_result run(smp_ctx *c, const char *name, uint64_t seed)
 
 static int part_ms = 1, part_comp = 1; /* which samplers sampling_chi2 runs (ctest runs them as two entries) */
 
-/* The lobe sampler's pdf is piecewise constant with jumps on the table's cells: binned_chi2 (tests/samplers.h). */
+/* The lobe sampler's pdf is piecewise constant with jumps on the table's cells: binned_chi2 (tests/support/samplers.h). */
 static double binned_pdf(void *vc, ggx_vec3 w) { return smp_pdf(vc, w); }
 static double binned(smp_ctx *c, uint64_t seed, int *dof)
 {

@@ -1,5 +1,5 @@
 /* A user's translation unit of the inline API: two kernels per precision, the bounded samplers among them (their
- * selects are where compilers' parenthesis warnings bite). Compiled as C and as C++ by tests/header_matrix.sh with
+ * selects are where compilers' parenthesis warnings bite). Compiled as C and as C++ by tests/packaging/header_matrix.sh with
  * every warning an error. SPDX-License-Identifier: MIT */
 #include "ggx/ggx_inline.h"
 

@@ -3,8 +3,8 @@
 # ggx fit, which prefers Beckmann to every GGX model by BIC; V-grooves give two facet normals; bad input exits 2 with
 # one line and no file. Usage: microsurface_cli_test.sh GGX   SPDX-License-Identifier: MIT
 set -u
-ROOT=$(cd "$(dirname "$0")/.." && pwd)
-. "$ROOT/tests/cli_common.sh"
+ROOT=$(cd "$(dirname "$0")/../.." && pwd)
+. "$ROOT/tests/support/cli_common.sh"
 PY=/usr/bin/python3
 
 "$GGX" microsurface --help > h.txt && grep -q "usage: ggx microsurface generate" h.txt && ok || bad "--help"

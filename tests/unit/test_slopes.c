@@ -37,7 +37,7 @@ static ggx_vec3 test_normal(rng *r, const ggx_shape *s, int i)
     return (ggx_vec3){q * cos(ph), q * sin(ph), z};
 }
 
-/* ggx.h's bound on D rebuilt from (t, Sigma) (slopes_bound, tests/testlib.h), measured against D of the user's A in
+/* ggx.h's bound on D rebuilt from (t, Sigma) (slopes_bound, tests/support/testlib.h), measured against D of the user's A in
  * __float128 on these shapes: 5.9e-16 kappa^2 at most; ggx_ndf itself 8.3e-16 kappa^2. */
 static double kappa_of(shape_params p) { return shape_kappa(p.ax, p.ay); }
 static double slopes_tol(shape_params p) { return slopes_bound(p.ax, p.ay); }

@@ -3,7 +3,7 @@
 # include/ggx/ggx_inline.h (the index that lab/gen_inline_index.py derives from the kernels is current), ctags finds
 # a tag for every ggx_*_f and ggx_*_d kernel and every batch function (with the repository's .ctags.d options), and
 # no public header holds a date.
-# Usage: sh tests/header_index.sh SOURCE_DIR C_COMPILER PYTHON
+# Usage: sh tests/packaging/header_index.sh SOURCE_DIR C_COMPILER PYTHON
 set -u
 cd "$1" || exit 1
 CC=$2

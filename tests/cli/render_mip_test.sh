@@ -5,9 +5,9 @@
 # below every engine filter's at every level; the figure is written; bad input exits 2 with one line and no file.
 # Prints the tables. Usage: render_mip_test.sh GGX   SPDX-License-Identifier: MIT
 set -u
-ROOT=$(cd "$(dirname "$0")/.." && pwd)
+ROOT=$(cd "$(dirname "$0")/../.." && pwd)
 MAPS=$ROOT/tests/data/normal_maps
-. "$ROOT/tests/cli_common.sh"
+. "$ROOT/tests/support/cli_common.sh"
 PY=/usr/bin/python3
 
 mkdir fresh && "$PY" "$MAPS/make_maps.py" fresh && ok || bad "make_maps.py"
