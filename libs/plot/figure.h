@@ -15,6 +15,12 @@ typedef enum figure_kind {
 /* The figure's name ("ndf", "vndf-side", ...: the names of ggx plot --figure) and its inverse, -1 for no figure. */
 const char *figure_name(figure_kind k);
 int figure_kind_of(const char *name);
+/* The kinds' families: seen from the side, equal-area grids, VNDF densities, line plots (and the polar plot and
+ * the slice). */
+static inline int figure_is_side(figure_kind k) { return k == FIG_NDF_SIDE || k == FIG_VNDF_SIDE || k == FIG_GRID_SIDE; }
+static inline int figure_is_grid(figure_kind k) { return k == FIG_GRID || k == FIG_GRID_SIDE; }
+static inline int figure_is_vndf(figure_kind k) { return k == FIG_VNDF || k == FIG_VNDF_SIDE; }
+static inline int figure_is_line(figure_kind k) { return k >= FIG_G1; }
 
 /* What a figure shows. */
 typedef struct figure_spec {
@@ -86,8 +92,13 @@ void plot_draw(cairo_t *cr, const theme *th, double x, double y, double w, doubl
  * returns the number of points written, or -1 when the figure has no curve k. Not thread-safe. */
 int figure_curve(const figure_spec *f, int k, double *x, double *y, int max, char *label, size_t n);
 
-/* What the figures share (figures.c): the caption (returns its height; at most max_lines lines), the font size for a
- * rectangle, and the curves' colour-blind-safe palette. */
+/* What the figures share (figure_common.c): the caption (returns its height; at most max_lines lines, of at most
+ * FIGURE_CAPTION_LINES: title, shape and view, grey region, log scale, seed note), the font size for a rectangle,
+ * the curves' colour-blind-safe palette, an azimuth (radians) in degrees in (-180, 180], and a horizontal
+ * direction's name ("x", "-y", or its azimuth). */
+enum { FIGURE_CAPTION_LINES = 5 };
+double figure_azimuth_deg(double rad);
+void figure_direction_name(ggx_vec3 d, char *buf, size_t n);
 double figure_draw_caption(cairo_t *cr, const theme *th, double x, double y, double w, double F, const figure_spec *f,
                            int max_lines);
 double figure_font(double w, double h);

@@ -10,23 +10,6 @@
 #include "ggx/ggx_inline.h"
 #include "common/eig3.h"
 
-static const char *const FIGURE_NAMES[] = {"ndf", "ndf-side", "vndf", "vndf-side", "grid", "grid-side",
-                                           "g1", "lambda", "ndf-slice", "furnace", "polar", "slice"};
-_Static_assert(sizeof FIGURE_NAMES / sizeof FIGURE_NAMES[0] == FIG_COUNT, "a name for every figure_kind");
-
-const char *figure_name(figure_kind k) { return k >= 0 && k < FIG_COUNT ? FIGURE_NAMES[k] : ""; }
-
-int figure_kind_of(const char *name)
-{
-    for (int i = 0; i < FIG_COUNT; i++)
-        if (name && strcmp(name, FIGURE_NAMES[i]) == 0) return i;
-    return -1;
-}
-
-static int is_side(figure_kind k) { return k == FIG_NDF_SIDE || k == FIG_VNDF_SIDE || k == FIG_GRID_SIDE; }
-static int is_grid(figure_kind k) { return k == FIG_GRID || k == FIG_GRID_SIDE; }
-static int is_vndf(figure_kind k) { return k == FIG_VNDF || k == FIG_VNDF_SIDE; }
-static int is_line(figure_kind k) { return k >= FIG_G1; }
 
 /* ---------------------------------------------------------------------------------------------------------------
  * The hemisphere's projection
@@ -69,7 +52,7 @@ static void hemi_set_from(hemi_proj *p, double from)
 
 double figure_density(const figure_spec *f, ggx_vec3 m)
 {
-    return is_vndf(f->kind) ? ggx_pdf_vndf(f->s, f->view, m) : ggx_pdf_ndf(f->s, m);
+    return figure_is_vndf(f->kind) ? ggx_pdf_vndf(f->s, f->view, m) : ggx_pdf_ndf(f->s, m);
 }
 
 double figure_peak(const figure_spec *f, ggx_vec3 *where)
@@ -102,10 +85,7 @@ double figure_peak(const figure_spec *f, ggx_vec3 *where)
 
 int figure_grey(ggx_vec3 v, ggx_vec3 m) { return 2.0 * ggx_k_dot_d(m, v) * m.z - v.z > 0; }
 
-int figure_has_grey(const figure_spec *f)
-{
-    return is_vndf(f->kind) || (is_grid(f->kind) && f->sampler && f->sampler->family == GGX_FAMILY_VNDF);
-}
+
 
 /* The grey region's boundary at azimuth phi: the polar angle where 2 (m.v) m.z = v.z (docs/figures.md). */
 ggx_vec3 figure_grey_boundary(ggx_vec3 v, double phi)
@@ -130,7 +110,7 @@ static double lobe_width(const ggx_shape *s, double azimuth)
 double figure_default_from(const figure_spec *f)
 {
     double lobe; /* the azimuth the lobe leans toward */
-    if (is_vndf(f->kind) || figure_has_grey(f)) {
+    if (figure_is_vndf(f->kind) || figure_has_grey(f)) {
         lobe = atan2(f->view.y, f->view.x);
     } else {
         figure_spec nd = *f;
@@ -232,99 +212,6 @@ static void grey_contour(cairo_t *cr, const hemi_proj *hp, ggx_vec3 v)
  * Captions and marks
  * --------------------------------------------------------------------------------------------------------------- */
 
-static void direction_name(ggx_vec3 d, char *buf, size_t n)
-{
-    static const struct {
-        double x, y;
-        const char *name;
-    } axes[] = {{1, 0, "x"}, {-1, 0, "−x"}, {0, 1, "y"}, {0, -1, "−y"}};
-    for (unsigned i = 0; i < 4; i++)
-        if (d.x * axes[i].x + d.y * axes[i].y > 1 - 1e-9) {
-            snprintf(buf, n, "%s", axes[i].name);
-            return;
-        }
-    snprintf(buf, n, "φ %.0f°", fmod(atan2(d.y, d.x) / DEG + 360.0, 360.0));
-}
-
-static double azimuth_deg(double rad)
-{
-    double d = fmod(rad / DEG, 360.0);
-    if (d > 180) d -= 360;
-    if (d <= -180) d += 360;
-    return fabs(d) < 1e-9 ? 0.0 : d;
-}
-
-static void view_text(ggx_vec3 v, char *buf, size_t n)
-{
-    snprintf(buf, n, "view v: θ %.4g°, φ %.4g°", acos(fmax(-1, fmin(1, v.z))) / DEG, azimuth_deg(atan2(v.y, v.x)));
-}
-
-enum { CAPTION_LINES = 5 }; /* title, shape and view, grey region, log scale, seed note */
-static int caption_lines(const figure_spec *f, char lines[CAPTION_LINES][400])
-{
-    const char *what;
-    char where[96] = "", view[96];
-    switch (f->kind) {
-    case FIG_NDF: case FIG_NDF_SIDE: what = "NDF pdf D(m) (m·n)"; break;
-    case FIG_VNDF: case FIG_VNDF_SIDE:
-        /* for skewed shapes Walter's clamped G1 does not normalise the G1 form: name eq 33 */
-        what = f->s->kind == GGX_SHAPE_SKEWED ? "VNDF pdf D(m) (m·v)⁺ / ∫ D (m'·v)⁺ dm' (Walter eq 33)"
-                                              : "VNDF pdf G1(v) D(m) (m·v)⁺ / (v·n)";
-        break;
-    case FIG_GRID: case FIG_GRID_SIDE: what = "Equal-area 10 × 10 grid of the unit square"; break;
-    case FIG_G1: what = "Masking G1(v) against the view's polar angle"; break;
-    case FIG_LAMBDA: what = "Smith Λ(v) against the view's polar angle"; break;
-    case FIG_NDF_SLICE: what = "D(m) along the principal planes through its peak"; break;
-    case FIG_POLAR:
-        what = f->eta > 0 ? "BSDF f |cos θo| in the incidence plane (solid) and across it (dashed), radiance"
-                          : "BRDF f cos θo (F = 1) in the incidence plane (solid) and across it (dashed)";
-        break;
-    case FIG_SLICE: what = "BRDF f_r (F = 1) over (θh, θd), Rusinkiewicz's coordinates, log scale"; break;
-    default: what = "Weak white furnace and directional albedo (F = 1)"; break;
-    }
-    int n = 0;
-    if (is_side(f->kind)) snprintf(where, sizeof where, ", from the side (seen from φ %.4g°)", azimuth_deg(f->from));
-    else if (!is_line(f->kind)) snprintf(where, sizeof where, ", from above");
-    snprintf(lines[n++], 400, "%s%s", what, where);
-    view_text(f->view, view, sizeof view);
-    if (is_grid(f->kind))
-        snprintf(lines[n++], 400, "%s  ·  mapped by sampler '%s'%s%s", f->shape_text, f->sampler->name,
-                 f->sampler->family == GGX_FAMILY_VNDF ? "  ·  " : "", f->sampler->family == GGX_FAMILY_VNDF ? view : "");
-    else if (is_vndf(f->kind)) snprintf(lines[n++], 400, "%s  ·  %s", f->shape_text, view);
-    else if (f->kind == FIG_SLICE)
-        snprintf(lines[n++], 400, "%s  ·  φd %.4g°, half vector at φh 0°", f->shape_text, f->phi_d / DEG);
-    else if (f->kind == FIG_POLAR && f->eta > 0) snprintf(lines[n++], 400, "%s  ·  η %.4g", f->shape_text, f->eta);
-    else snprintf(lines[n++], 400, "%s", f->shape_text);
-    if (figure_has_grey(f))
-        snprintf(lines[n++], 400, "%s: normals m that reflect v above the horizon (2 (m·v) m·n > v·n)%s",
-                 is_grid(f->kind) ? "grey" : "hatched grey", is_grid(f->kind) ? "; blank: m·v < 0, never sampled" : "");
-    if (f->log_scale && !is_grid(f->kind) && !is_line(f->kind)) snprintf(lines[n++], 400, "log scale: blank where the pdf is 0");
-    if (f->note[0]) snprintf(lines[n++], 400, "%s", f->note);
-    return n;
-}
-
-/* Draws the caption at the top of the rectangle; returns its height. */
-double figure_draw_caption(cairo_t *cr, const theme *th, double x, double y, double w, double F, const figure_spec *f,
-                           int max_lines)
-{
-    char lines[CAPTION_LINES][400];
-    int n = caption_lines(f, lines);
-    if (n > max_lines) n = max_lines;
-    set_rgb(cr, th->fg);
-    double yy = y + 0.7 * F;
-    for (int i = 0; i < n; i++) {
-        text_font(cr, i == 0 ? 1.05 * F : 0.86 * F, i == 0);
-        /* shrink a line that would not fit the width */
-        double tw = text_width(cr, lines[i]);
-        if (tw > w - F) text_font(cr, (i == 0 ? 1.05 * F : 0.86 * F) * (w - F) / tw, i == 0);
-        text_at(cr, x + 0.5 * F, yy, 0, 0, lines[i]);
-        yy += (i == 0 ? 1.5 : 1.3) * F;
-    }
-    return yy - y + 0.2 * F;
-}
-
-double figure_font(double w, double h) { return fmax(6.0, fmin(26.0, 0.021 * fmin(w, 1.6 * h))); }
-
 /* Text in the theme's colour on a halo of the background's, readable over the density and off it. */
 static void text_halo(cairo_t *cr, const theme *th, double x, double y, double ax, double ay, const char *s)
 {
@@ -367,7 +254,7 @@ static void draw_marks(cairo_t *cr, const theme *th, const hemi_proj *hp, const 
         cairo_line_to(cr, cx + R, cy);
         cairo_stroke(cr);
         arrow(cr, cx + R, cy, cx + R + 1.1 * F, cy, 0.45 * F);
-        direction_name(hp->right, name, sizeof name);
+        figure_direction_name(hp->right, name, sizeof name);
         text_at(cr, cx + R + 0.15 * F, cy - 0.55 * F, 0, 1, name);
         arrow(cr, cx, cy - R, cx, cy - R - 1.1 * F, 0.45 * F);
         text_at(cr, cx + 0.45 * F, cy - R - 0.8 * F, 0, 0.5, "n");
@@ -523,12 +410,12 @@ static void draw_hemisphere(cairo_t *cr, const theme *th, double x, double y, do
     double F = figure_font(w, h);
     /* a small figure (an icon, a thumbnail) keeps the picture, its marks and the title; the rest would be unreadable */
     int compact = w < 300 || h < 200;
-    double cap = figure_draw_caption(cr, th, x, y, w, F, f, compact ? 1 : CAPTION_LINES);
-    int density = !is_grid(f->kind);
+    double cap = figure_draw_caption(cr, th, x, y, w, F, f, compact ? 1 : FIGURE_CAPTION_LINES);
+    int density = !figure_is_grid(f->kind);
     double band = density && !compact ? 7.4 * F : 0.0, margin = 1.8 * F;
     double bx = x, by = y + cap, bw = w - band, bh = h - cap - 0.4 * F;
     hemi_proj hp = {0};
-    hp.side = is_side(f->kind);
+    hp.side = figure_is_side(f->kind);
     hemi_set_from(&hp, isnan(f->from) ? -GGX_PI / 2 : f->from);
     if (!hp.side) {
         hp.R = fmax(1.0, 0.5 * fmin(bw - 2 * margin, bh - 2 * margin));
@@ -574,12 +461,12 @@ static void draw_hemisphere(cairo_t *cr, const theme *th, double x, double y, do
         cairo_set_source_rgba(cr, th->fg[0], th->fg[1], th->fg[2], 0.75);
         grey_contour(cr, &hp, f->view);
     }
-    draw_marks(cr, th, &hp, f, F, is_vndf(f->kind) || figure_has_grey(f));
+    draw_marks(cr, th, &hp, f, F, figure_is_vndf(f->kind) || figure_has_grey(f));
     if (hp.side && !compact) {
         set_rgb(cr, th->faint);
         text_font(cr, 0.8 * F, 0);
         char seen[96];
-        snprintf(seen, sizeof seen, "seen from φ %.4g°", azimuth_deg(hp.from));
+        snprintf(seen, sizeof seen, "seen from φ %.4g°", figure_azimuth_deg(hp.from));
         text_at(cr, hp.cx, hp.cy + 0.6 * F, 0.5, 0, seen);
     }
     if (band > 0) {
@@ -595,10 +482,6 @@ static void draw_hemisphere(cairo_t *cr, const theme *th, double x, double y, do
  * --------------------------------------------------------------------------------------------------------------- */
 
 typedef plot_series series;
-
-/* Okabe and Ito's colour-blind-safe palette, with dashes so that print in grey still tells the curves apart. */
-const double FIGURE_PALETTE[6][3] = {{0.0, 0.447, 0.698}, {0.835, 0.369, 0.0}, {0.0, 0.62, 0.451},
-                                     {0.8, 0.475, 0.655}, {0.337, 0.706, 0.914}, {0.902, 0.624, 0.0}};
 
 static ggx_vec3 dir_deg(double theta, double phi)
 {
@@ -642,7 +525,7 @@ static int line_series(const figure_spec *f, series *sr, const char **xlabel, co
         for (int a = 0; a < na; a++, ns++) {
             series *s = &sr[ns];
             s->n = 0;
-            snprintf(s->label, sizeof s->label, "φ %.4g°", azimuth_deg(phi[a] * DEG));
+            snprintf(s->label, sizeof s->label, "φ %.4g°", figure_azimuth_deg(phi[a] * DEG));
             for (int i = 0; i <= 179; i++) {
                 double th = fmin(0.5 * i, 89.9);
                 ggx_vec3 v = dir_deg(th, phi[a]);
@@ -668,7 +551,7 @@ static int line_series(const figure_spec *f, series *sr, const char **xlabel, co
             ggx_vec3 t = ax[i];
             if (t.x + 1e-9 * t.y < 0) t = ggx_k_v3_d(-t.x, -t.y, -t.z);
             double alpha = sqrt(eig[top] / eig[i]);
-            snprintf(s->label, sizeof s->label, "toward φ %.4g° (α %.3g)", azimuth_deg(atan2(t.y, t.x)), alpha);
+            snprintf(s->label, sizeof s->label, "toward φ %.4g° (α %.3g)", figure_azimuth_deg(atan2(t.y, t.x)), alpha);
             for (int k = 0; k <= 358; k++) {
                 double g = (-89.5 + 0.5 * k) * DEG;
                 ggx_vec3 m = ggx_k_v3_d(cos(g) * pk.x + sin(g) * t.x, cos(g) * pk.y + sin(g) * t.y, cos(g) * pk.z + sin(g) * t.z);
@@ -682,8 +565,8 @@ static int line_series(const figure_spec *f, series *sr, const char **xlabel, co
             double p = phi[a == 0 ? 0 : 2]; /* unskewed: the principal axes; skewed: 0 and 180 degrees */
             series *w = &sr[ns++], *e = &sr[ns++];
             w->n = e->n = 0;
-            snprintf(w->label, sizeof w->label, "weak furnace, φ %.4g°", azimuth_deg(p * DEG));
-            snprintf(e->label, sizeof e->label, "albedo E(v), φ %.4g°", azimuth_deg(p * DEG));
+            snprintf(w->label, sizeof w->label, "weak furnace, φ %.4g°", figure_azimuth_deg(p * DEG));
+            snprintf(e->label, sizeof e->label, "albedo E(v), φ %.4g°", figure_azimuth_deg(p * DEG));
             for (int i = 0; i <= 179; i++) {
                 double th = fmin(0.5 * i, 89.9);
                 ggx_vec3 v = dir_deg(th, p);
@@ -730,7 +613,7 @@ static void draw_lines(cairo_t *cr, const theme *th, double x, double y, double 
     plot_axes ax = {0};
     int ns = line_series(f, sr, &ax.xlabel, &ax.ylabel, &ax.logy);
     double F = figure_font(w, h);
-    double cap = figure_draw_caption(cr, th, x, y, w, F, f, CAPTION_LINES);
+    double cap = figure_draw_caption(cr, th, x, y, w, F, f, FIGURE_CAPTION_LINES);
     ax.slice = f->kind == FIG_NDF_SLICE;
     ax.range_x_max = f->kind == FIG_LAMBDA ? 85 : INFINITY; /* the scale of the curve; the asymptote leaves the box */
     ax.free_top = f->kind == FIG_LAMBDA;
@@ -851,13 +734,13 @@ void figure_draw(cairo_t *cr, const theme *th, double x, double y, double w, dou
                  hemi_proj *proj)
 {
     figure_spec f = *fin;
-    if (is_side(f.kind) && isnan(f.from)) f.from = figure_default_from(&f);
+    if (figure_is_side(f.kind) && isnan(f.from)) f.from = figure_default_from(&f);
     cairo_save(cr);
     cairo_rectangle(cr, x, y, w, h);
     cairo_clip(cr);
     if (f.kind == FIG_POLAR) polar_draw(cr, th, x, y, w, h, &f);
     else if (f.kind == FIG_SLICE) slice_draw(cr, th, x, y, w, h, &f);
-    else if (is_line(f.kind)) draw_lines(cr, th, x, y, w, h, &f);
+    else if (figure_is_line(f.kind)) draw_lines(cr, th, x, y, w, h, &f);
     else draw_hemisphere(cr, th, x, y, w, h, &f, proj);
     cairo_restore(cr);
 }
@@ -866,9 +749,9 @@ double figure_aspect(figure_kind k)
 {
     if (k == FIG_POLAR) return 0.7;
     if (k == FIG_SLICE) return 0.82;
-    if (is_line(k)) return 0.62;
-    if (is_side(k)) return is_grid(k) ? 0.68 : 0.62;
-    return is_grid(k) ? 1.0 : 0.86;
+    if (figure_is_line(k)) return 0.62;
+    if (figure_is_side(k)) return figure_is_grid(k) ? 0.68 : 0.62;
+    return figure_is_grid(k) ? 1.0 : 0.86;
 }
 
 int figure_height(figure_kind k, int width) { return (int)lround(width * figure_aspect(k)); }

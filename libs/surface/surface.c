@@ -10,15 +10,6 @@
 #include <string.h>
 #include <strings.h>
 
-int surface_fail(char *err, size_t errn, const char *fmt, ...)
-{
-    va_list ap;
-    va_start(ap, fmt);
-    if (err && errn) vsnprintf(err, errn, fmt, ap);
-    va_end(ap);
-    return -1;
-}
-
 static const char *ext_of(const char *name)
 {
     const char *dot = name ? strrchr(name, '.') : NULL, *slash = name ? strrchr(name, '/') : NULL;
@@ -53,28 +44,6 @@ const char *surface_format_name(surface_format f)
     static const char *const names[] = {"CSV normals", "ASCII matrix", "XYZ text", "Gwyddion .gsf", "PNG",
                                         "OpenEXR", "x3p", "Radiance .hdr", "PFM", "unknown"};
     return names[f <= SURFACE_UNKNOWN ? f : SURFACE_UNKNOWN];
-}
-
-void surface_free(surface *s)
-{
-    free(s->h);
-    free(s->m);
-    free(s->w);
-    free(s->uv);
-    free(s->rgb);
-    memset(s, 0, sizeof *s);
-}
-
-ggx_vec3 surface_texel_normal(const double *c, int channels, int y_down)
-{
-    ggx_vec3 z = {0.0, 0.0, 0.0};
-    double x = c[0], y = y_down ? -c[1] : c[1], w;
-    if (channels >= 3) w = c[2];
-    else w = sqrt(fmax(0.0, 1.0 - x * x - y * y));
-    if (!isfinite(x) || !isfinite(y) || !isfinite(w)) return z;
-    double l = sqrt(x * x + y * y + w * w);
-    if (!(l > 0.0)) return z;
-    return (ggx_vec3){x / l, y / l, w / l};
 }
 
 int surface_parse(surface_format f, const unsigned char *data, size_t n, const surface_read_options *o, surface *s,

@@ -1,4 +1,5 @@
-/* The parts of ggx microsurface that its subcommands share (cmd_microsurface.c, cmd_microsurface_figure.c).
+/* The parts of ggx microsurface that its subcommands share (microsurface_open.c; the subcommands in
+ * cmd_microsurface.c and cmd_microsurface_figure.c).
  * SPDX-License-Identifier: MIT */
 #ifndef GGX_TOOL_CMD_MICROSURFACE_H
 #define GGX_TOOL_CMD_MICROSURFACE_H

@@ -1,4 +1,5 @@
-/* ggx render's images in the command's figures (cmd_render.c): demo, render and render --normal-map draw them.
+/* ggx render's images in the command's figures (render_out.c): demo, render and render --normal-map draw
+ * them.
  * SPDX-License-Identifier: MIT */
 #ifndef GGX_TOOL_CMD_RENDER_H
 #define GGX_TOOL_CMD_RENDER_H
