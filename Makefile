@@ -37,8 +37,8 @@ configure: deps
 build: configure
 	@cmake --build $(BUILD) -j $(JOBS)
 
-# Regenerates the shipped albedo tables (src/tables/albedo_iso.inc, about a minute; src/tables/bsdf_iso.inc and
-# src/tables/albedo_aniso.inc, about 4 minutes each on 2 cores); a file is replaced only when the generator
+# Regenerates the shipped albedo tables (src/tables/albedo_iso.inc, src/tables/bsdf_iso.inc and
+# src/tables/albedo_aniso.inc); a file is replaced only when the generator
 # succeeds. tests/unit/tables_test.sh checks that a share of each file's lines regenerates bit for bit.
 tables: deps-dev configure
 	@cmake --build $(BUILD) -j $(JOBS) --target ggx_gen_tables
@@ -85,7 +85,7 @@ test: build
 test-full: build
 	@cd $(BUILD) && GGX_TEST_SCALE=1 ctest --output-on-failure -j $(JOBS)
 
-# The property tests at ten times their size (about 5 minutes).
+# The property tests at ten times their size.
 test-long: build
 	@cd $(BUILD) && GGX_TEST_SCALE=10 ctest --output-on-failure -R robust
 

@@ -243,7 +243,7 @@ static void bound_ceiling(const ggx_shape *s, ggx_vec3 v, int np, int nz, double
     *meridian = wm / np, *plane = wp / np;
 }
 
-/* Bounded reflection sampling against reflection sampling (issue 12): per shape and view, the fraction of samples
+/* Bounded reflection sampling against reflection sampling: per shape and view, the fraction of samples
  * wasted (reflected below the horizon) and the variance of the one-sample albedo estimator (F = 1: its weight),
  * n samples each with the same random numbers. */
 static void bounded_table(long n, int np, int nz)

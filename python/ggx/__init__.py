@@ -642,7 +642,7 @@ def bsdf(shape, eta, wi, wo, mode="radiance", dtype=np.float64):
 
 def albedo(shape, v, masking="separable", dtype=np.float64):
     """Directional albedo E(v) with F = 1 (ggx_albedo, or ggx_albedo_height_correlated for
-    masking='height-correlated'): deterministic quadrature, absolute error <= 1e-6, 0.1 to 5 ms per element."""
+    masking='height-correlated'): deterministic quadrature, absolute error <= 1e-6, a quadrature per element (slow: milliseconds)."""
     name = "ggx_albedo" if _choice(masking, _MASKINGS, "masking") == 0 else "ggx_albedo_height_correlated"
     return _as(_scalar(_eval(name, shape, (v, "v", 3))[1]), dtype)
 

@@ -141,7 +141,7 @@ GGX_API double ggx_fresnel_avg(const ggx_fresnel *f)
 }
 
 /* F_avg of f, remembered per thread for the last few Fresnel terms: a renderer evaluates the same few (one per colour
- * channel) again and again, and the quadrature of a conductor's or dielectric's F costs about 200 ns. Fields compare
+ * channel) again and again, and the quadrature of a conductor's or dielectric's F costs far more than a lookup. Fields compare
  * by value (a NaN never matches, and is recomputed). */
 static double fresnel_avg_cached(const ggx_fresnel *f)
 {

@@ -2,7 +2,7 @@
  * libggx CUDA build: every public float kernel of ggx_inline.h in a __global__ loop over arrays (src/cuda/loops.cu),
  * with the same per-element code callable on the host, and its double twin (the _d kernels on the same inputs) as a
  * reference, so that a test can compare the three. Not part of libggx and not installed: it is the CUDA compile
- * check of issue 9 and the harness of tests/cuda/test_cuda.c. Plain C, so that the test is C11 like the rest of the
+ * check and the harness of tests/cuda/test_cuda.c. Plain C, so that the test is C11 like the rest of the
  * suite. SPDX-License-Identifier: MIT
  */
 #ifndef GGX_CUDA_H

@@ -1,5 +1,5 @@
 /*
- * libggx CUDA build (issue 9 item 6): every public float kernel of ggx_inline.h in a __global__ grid-stride loop
+ * libggx CUDA build: every public float kernel of ggx_inline.h in a __global__ grid-stride loop
  * over struct-of-arrays inputs, the same per-element code run on the host, and its double twin as a reference (see
  * ggx_cuda.h). The samplers come from GGX_SAMPLER_LIST, so a new line of the registry is compiled for the device
  * here without an edit.

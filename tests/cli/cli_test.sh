@@ -264,7 +264,7 @@ echo previous > keep.csv
 "$GGX" sample --sampler magic --out keep.csv 2>/dev/null
 [ "$(cat keep.csv)" = "previous" ] && ok || bad "existing file was modified by a failing command"
 
-# --- output the way users break it (issue 10): every write checked, devices and FIFOs in place, links kept,
+# --- output the way users break it: every write checked, devices and FIFOs in place, links kept,
 # permissions kept, temporaries removed on errors and signals, figures all or none
 if [ -w /dev/full ]; then
     "$GGX" sample -n 100 > /dev/full 2> err.txt; [ $? -eq 2 ] && grep -q "cannot write to standard output" err.txt && ok || bad "sample >/dev/full: $(cat err.txt)"

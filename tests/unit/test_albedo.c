@@ -441,7 +441,7 @@ static void threads(void **state)
             CHECK(args[i].out[k] == ggx_albedo(&s, t_dir(0.3 * k, 0.2)), "thread %d view %d differs", i, k);
 }
 
-/* Parts, run as separate ctest entries (about 15 s each): 1 the deterministic checks, 2 Monte Carlo of E and of
+/* Parts, run as separate ctest entries: 1 the deterministic checks, 2 Monte Carlo of E and of
  * the unskewed E_avg, 3 the skewed E_avg; 0 everything. */
 int main(int argc, char **argv)
 {

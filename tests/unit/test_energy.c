@@ -112,7 +112,7 @@ static void table_against_albedo(void **state)
         }
         printf("%-36s max |E_table - E| = %.2e\n", SHAPES[i].name, shape_worst);
         if (shape_worst > worst) worst = shape_worst;
-        /* E_avg of the table against the exact one. A skewed E_avg costs about 15 s each, so for the two skewed
+        /* E_avg of the table against the exact one. A skewed E_avg is a long quadrature, so for the two skewed
          * shapes the values are ggx_albedo_avg's, computed once (1e-6 promised, docs/design/albedo.md). */
         double exact = i == 2 ? 0.467027305 : i == 6 ? 0.312155710 : ggx_albedo_avg(&shapes[i]);
         CHECK_CLOSE(ggx_energy_albedo_avg(tables[i]), exact, 0, TABLE_PROMISE, "%s: E_avg", SHAPES[i].name);

@@ -26,7 +26,7 @@ int cmd_audit(int argc, char **argv)
                "diagonal one then takes its alphas when it has them). --format md (default: the document\n"
                "docs/audit.md, which is this command's output on its defaults), csv (a header row, one row per claim\n"
                "and shape, each naming its seeds) or json. --out may be given up to four times: one run then writes\n"
-               "every file, each in the format its name ends with (.md, .csv or .json), all or none. Takes about 15 s.\n");
+               "every file, each in the format its name ends with (.md, .csv or .json), all or none.\n");
         return 0;
     }
     /* one output in the format of --format, or several, each in the format its name ends with */
