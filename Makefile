@@ -6,7 +6,7 @@ JOBS ?= 2
 MAKEFLAGS += --no-print-directory
 
 .PHONY: all deps deps-run deps-dev configure configure-run build run example bench bench-python test test-full test-long test-clang sanitize tsan tables \
-        valgrind fuzz fuzz-ci install clean
+        valgrind fuzz fuzz-ci install clean format format-check
 
 all: build
 
@@ -137,6 +137,16 @@ valgrind: deps-dev build
 	@cd $(BUILD)/tests && \
 	  GGX_WRAP="valgrind -q --error-exitcode=99 --leak-check=full --errors-for-leak-kinds=definite,indirect --suppressions=$(CURDIR)/tests/support/valgrind.supp" \
 	  sh ../../tests/cli/microsurface_cli_test.sh $(CURDIR)/$(BUILD)/ggx
+
+# The C style: .clang-format (120 columns). make format rewrites the sources, make format-check (in CI) fails on
+# any that differ.
+format:
+	@sh cmake/install-deps.sh clang-format
+	@sh cmake/format.sh fix
+
+format-check:
+	@sh cmake/install-deps.sh clang-format
+	@sh cmake/format.sh check
 
 # libFuzzer: each target for FUZZ_SECONDS (default 60) from the committed corpus; new inputs go to build-fuzz/.
 FUZZ_SECONDS ?= 60

@@ -26,8 +26,7 @@ int main(void)
     printf("libggx %d.%d.%d example: ellipsoid NDF, alpha = (0.15, 0.5), theta = (10, -5, 30) deg (skewed),\n"
            "conductor Fresnel eta = 0.2 + 3.9i. Angles in degrees; wi is fixed at (theta 40, phi 0).\n\n",
            GGX_VERSION_MAJOR, GGX_VERSION_MINOR, GGX_VERSION_PATCH);
-    printf("%-14s %14s %14s %14s %14s %14s\n", "wo (th, ph)", "D(h)", "G1(wi,h)", "G1(wo,h)", "pdf_vndf(h)",
-           "BRDF");
+    printf("%-14s %14s %14s %14s %14s %14s\n", "wo (th, ph)", "D(h)", "G1(wi,h)", "G1(wo,h)", "pdf_vndf(h)", "BRDF");
     ggx_vec3 wi = dir(40.0, 0.0);
     const double wo_angles[][2] = {{0, 0}, {40, 180}, {60, 180}, {20, 90}, {75, 200}, {89, 180}};
     for (unsigned k = 0; k < sizeof wo_angles / sizeof wo_angles[0]; k++) {
@@ -39,7 +38,6 @@ int main(void)
                ggx_g1(&s, wo, h), ggx_pdf_vndf(&s, wi, h), ggx_brdf_eval(&s, &f, wi, wo));
     }
     printf("\nProjected area A_e(n) = %.6g, lune area A_l(wi, n) = %.6g (Ce = 1), Lambda(wi) = %.6g\n",
-           ggx_projected_area(&s, (ggx_vec3){0, 0, 1}), ggx_lune_area(&s, wi, (ggx_vec3){0, 0, 1}),
-           ggx_lambda(&s, wi));
+           ggx_projected_area(&s, (ggx_vec3){0, 0, 1}), ggx_lune_area(&s, wi, (ggx_vec3){0, 0, 1}), ggx_lambda(&s, wi));
     return 0;
 }

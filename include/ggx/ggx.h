@@ -77,16 +77,16 @@ typedef struct ggx_vec3 {
 
 typedef enum ggx_status {
     GGX_OK = 0,
-    GGX_ERR_NULL,        /* a required pointer argument is NULL */
-    GGX_ERR_NONFINITE,   /* a parameter is NaN or infinite */
-    GGX_ERR_ALPHA,       /* a roughness is <= 0 or > GGX_ALPHA_MAX */
-    GGX_ERR_ANGLE,       /* |theta_x| or |theta_y| > GGX_SKEW_MAX */
-    GGX_ERR_SINGULAR,    /* the shape matrix is singular or too close to singular */
-    GGX_ERR_ETA,         /* an index of refraction is <= 0 or above 1e300 (or 1 where a function refuses it) */
-    GGX_ERR_RANGE,       /* a parameter is outside its documented range (e.g. Schlick f0 outside [0, 1]), or an
+    GGX_ERR_NULL,      /* a required pointer argument is NULL */
+    GGX_ERR_NONFINITE, /* a parameter is NaN or infinite */
+    GGX_ERR_ALPHA,     /* a roughness is <= 0 or > GGX_ALPHA_MAX */
+    GGX_ERR_ANGLE,     /* |theta_x| or |theta_y| > GGX_SKEW_MAX */
+    GGX_ERR_SINGULAR,  /* the shape matrix is singular or too close to singular */
+    GGX_ERR_ETA,       /* an index of refraction is <= 0 or above 1e300 (or 1 where a function refuses it) */
+    GGX_ERR_RANGE,     /* a parameter is outside its documented range (e.g. Schlick f0 outside [0, 1]), or an
                           * energy table would not meet its promise (ggx_energy_create) */
-    GGX_ERR_MEMORY,      /* memory could not be allocated (ggx_energy_create) */
-    GGX_ERR_DATA         /* too few usable samples to fit (ggx_fit.h: fewer than 5 normals above the horizon with
+    GGX_ERR_MEMORY,    /* memory could not be allocated (ggx_energy_create) */
+    GGX_ERR_DATA       /* too few usable samples to fit (ggx_fit.h: fewer than 5 normals above the horizon with
                           * finite components and a positive weight) */
 } ggx_status;
 
@@ -282,7 +282,7 @@ double ggx_fresnel_conductor_eval(double cos_i, double eta, double k);
 double ggx_fresnel_schlick_eval(double cos_i, double f0);
 
 typedef enum ggx_fresnel_kind {
-    GGX_FRESNEL_ONE = 0,  /* F = 1: a perfect reflector (used for energy tests) */
+    GGX_FRESNEL_ONE = 0, /* F = 1: a perfect reflector (used for energy tests) */
     GGX_FRESNEL_DIELECTRIC,
     GGX_FRESNEL_CONDUCTOR,
     GGX_FRESNEL_SCHLICK
@@ -297,9 +297,9 @@ typedef struct ggx_fresnel {
 } ggx_fresnel;
 
 ggx_status ggx_fresnel_one(ggx_fresnel *f);
-ggx_status ggx_fresnel_dielectric(ggx_fresnel *f, double eta);        /* eta > 0 finite, else GGX_ERR_ETA */
+ggx_status ggx_fresnel_dielectric(ggx_fresnel *f, double eta);          /* eta > 0 finite, else GGX_ERR_ETA */
 ggx_status ggx_fresnel_conductor(ggx_fresnel *f, double eta, double k); /* eta > 0, k >= 0 finite */
-ggx_status ggx_fresnel_schlick(ggx_fresnel *f, double f0);            /* f0 in [0, 1], else GGX_ERR_RANGE */
+ggx_status ggx_fresnel_schlick(ggx_fresnel *f, double f0);              /* f0 in [0, 1], else GGX_ERR_RANGE */
 
 /* F(cos_i) for the configured term, in [0, 1]. */
 double ggx_fresnel_eval(const ggx_fresnel *f, double cos_i);
@@ -344,7 +344,7 @@ double ggx_brdf_eval(const ggx_shape *s, const ggx_fresnel *f, ggx_vec3 wi, ggx_
 
 /* Which quantity the BSDF transports (Veach 1997, Walter 2007 section 5.2). */
 typedef enum ggx_transport {
-    GGX_RADIANCE = 0, /* f(wi -> wo): radiance arriving along wi (from the light) leaves along wo */
+    GGX_RADIANCE = 0,  /* f(wi -> wo): radiance arriving along wi (from the light) leaves along wo */
     GGX_IMPORTANCE = 1 /* the adjoint: f*(wi, wo) = f(wo -> wi), for light tracing / importance */
 } ggx_transport;
 
@@ -477,10 +477,8 @@ typedef double (*ggx_uniform_fn)(void *state);
  * acceptance rate is 1 / mean(trials)). After 100000 rejected candidates the zero vector is returned: version 1 needs
  * about alpha^2 candidates viewed from n for alpha >> 1, so from alpha ~1e3 most samples near n give up
  * (docs/design/kernels.md, "What version 1 costs"). */
-ggx_vec3 ggx_sample_vndf_walter_v1(const ggx_shape *s, ggx_vec3 v, ggx_uniform_fn next, void *state,
-                                   unsigned *trials);
-ggx_vec3 ggx_sample_vndf_walter_v2(const ggx_shape *s, ggx_vec3 v, ggx_uniform_fn next, void *state,
-                                   unsigned *trials);
+ggx_vec3 ggx_sample_vndf_walter_v1(const ggx_shape *s, ggx_vec3 v, ggx_uniform_fn next, void *state, unsigned *trials);
+ggx_vec3 ggx_sample_vndf_walter_v2(const ggx_shape *s, ggx_vec3 v, ggx_uniform_fn next, void *state, unsigned *trials);
 
 /* --- Directions --- */
 
@@ -527,8 +525,7 @@ double ggx_pdf_brdf_bounded(const ggx_shape *s, ggx_vec3 wi, ggx_vec3 wo);
  * sampler (ggx_inline.h) may take another bound than the double one: it agrees within 1e-4 per direction component,
  * 2e-4 relative in pdf and 4e-4 in weight for all but a fraction 1e-3 of samples (tests/unit/test_sample_dir.c). Same
  * domain, invalid samples and contract as ggx_sample_brdf; u1, u2 in [0, 1) (clamped). */
-ggx_sample ggx_sample_brdf_bounded_azimuth(const ggx_shape *s, const ggx_fresnel *f, ggx_vec3 wi, double u1,
-                                           double u2);
+ggx_sample ggx_sample_brdf_bounded_azimuth(const ggx_shape *s, const ggx_fresnel *f, ggx_vec3 wi, double u1, double u2);
 /* The pdf of ggx_sample_brdf_bounded_azimuth for a given pair: ggx_pdf_brdf / kappa(phi), phi the azimuth of the cap
  * point of wo's half vector (phi = 0 at the pole, a single point); 0 unless wi.z > 0 and wo.z > 0. At a direction
  * the sampler drew, it agrees with the sample's pdf within 1e-6 relative for u2 >= 1e-3 (tests/unit/test_sample_dir.c).

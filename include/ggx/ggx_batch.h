@@ -79,9 +79,8 @@ void ggx_batch_sample_vndf(float *mx, float *my, float *mz, size_t n, const ggx_
                            const float *vy, const float *vz, const float *u1, const float *u2);
 
 /* Visible normals of per-element anisotropic GGX (alpha_x[i], alpha_y[i], R = I): roughness from a texture. */
-void ggx_batch_sample_vndf_aniso(float *mx, float *my, float *mz, size_t n, const float *alpha_x,
-                                 const float *alpha_y, const float *vx, const float *vy, const float *vz,
-                                 const float *u1, const float *u2);
+void ggx_batch_sample_vndf_aniso(float *mx, float *my, float *mz, size_t n, const float *alpha_x, const float *alpha_y,
+                                 const float *vx, const float *vy, const float *vz, const float *u1, const float *u2);
 
 /* Normals with pdf D(m) m.z by the elliptic stretch (ggx_sample_ndf_stretch). */
 void ggx_batch_sample_ndf(float *mx, float *my, float *mz, size_t n, const ggx_shape *s, const float *u1,
@@ -96,14 +95,14 @@ ggx_status ggx_batch_sample_normals(ggx_sampler_id sampler, float *mx, float *my
                                     const float *u1, const float *u2);
 
 /* The BRDF f_r(wi, wo) (ggx_brdf_eval) with the Fresnel term f (any kind). */
-void ggx_batch_brdf(float *f_r, size_t n, const ggx_shape *s, const ggx_fresnel *f, const float *wix,
-                    const float *wiy, const float *wiz, const float *wox, const float *woy, const float *woz);
+void ggx_batch_brdf(float *f_r, size_t n, const ggx_shape *s, const ggx_fresnel *f, const float *wix, const float *wiy,
+                    const float *wiz, const float *wox, const float *woy, const float *woz);
 
 /* Reflection sampling (ggx_sample_brdf): direction, pdf and weight; invalid samples are written as w = 0, pdf = 0,
  * weight = 0. */
-void ggx_batch_sample_brdf(float *wox, float *woy, float *woz, float *pdf, float *weight, size_t n,
-                           const ggx_shape *s, const ggx_fresnel *f, const float *wix, const float *wiy,
-                           const float *wiz, const float *u1, const float *u2);
+void ggx_batch_sample_brdf(float *wox, float *woy, float *woz, float *pdf, float *weight, size_t n, const ggx_shape *s,
+                           const ggx_fresnel *f, const float *wix, const float *wiy, const float *wiz, const float *u1,
+                           const float *u2);
 
 /* Directions from any sampler of the registry with batch = 1 and family DIRECTION: reflection sampling
  * (GGX_SAMPLER_BRDF, as ggx_batch_sample_brdf) and bounded reflection sampling (GGX_SAMPLER_BRDF_BOUNDED, the loop of

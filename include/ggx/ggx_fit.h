@@ -48,15 +48,15 @@ typedef int (*ggx_fit_progress_fn)(void *ctx, int iteration, double log_likeliho
 
 /* Options; a zeroed struct (or NULL) means every default. */
 typedef struct ggx_fit_options {
-    ggx_fit_model model;         /* the family of `out`: GGX_FIT_ELLIPSOID (default), _ANISOTROPIC or _ISOTROPIC */
-    int max_iterations;          /* EM iterations at most per model; 0: 1000 */
-    double tolerance;            /* stop when the Newton decrement of the total log-likelihood is below it: one more
+    ggx_fit_model model;          /* the family of `out`: GGX_FIT_ELLIPSOID (default), _ANISOTROPIC or _ISOTROPIC */
+    int max_iterations;           /* EM iterations at most per model; 0: 1000 */
+    double tolerance;             /* stop when the Newton decrement of the total log-likelihood is below it: one more
                                   * Newton step would move the parameters by about that many standard errors and
                                   * raise log L by about half its square; 0: 1e-6 */
-    int threads;                 /* POSIX threads for the passes over the samples; 0: 1 */
+    int threads;                  /* POSIX threads for the passes over the samples; 0: 1 */
     ggx_fit_progress_fn progress; /* may be NULL */
     void *progress_ctx;
-    int full_em;                 /* 0 (default): above 2^22 samples, EM runs on 2^20 of them (pieces of 64 spread
+    int full_em; /* 0 (default): above 2^22 samples, EM runs on 2^20 of them (pieces of 64 spread
                                   * evenly over the data) and Newton steps on all samples finish the fit (each
                                   * accepted step keeps the likelihood within rounding; the decrement is measured on
                                   * all samples; the other models of the comparison to a decrement of 1e-2, their
@@ -102,7 +102,7 @@ typedef struct ggx_fit_info {
     double effective_n;       /* n_eff */
     int clamped;              /* an eigenvalue of Sigma was held at GGX_ALPHA_MIN^2 (e.g. all normals equal) */
     ggx_fit_model_result models[GGX_FIT_MODELS]; /* every model fitted to the same samples, indexed by ggx_fit_model */
-    ggx_fit_model best;       /* the model of least BIC */
+    ggx_fit_model best;                          /* the model of least BIC */
 } ggx_fit_info;
 
 /* Fits the shape of n normals m (weights `weight`, or all 1 when NULL) by maximum likelihood in the family

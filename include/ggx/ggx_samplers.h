@@ -24,35 +24,35 @@ extern "C" {
  * - domain: ANY shape, or UNSKEWED shapes only (a skewed shape gives the zero vector);
  * - batch: 1 when the float batch API has it (ggx_batch_sample_normals for NDF and VNDF, ggx_batch_sample_directions
  *   for DIRECTION). */
-#define GGX_SAMPLER_LIST(X)                                                                                       \
-    X(STRETCH, "stretch", sample_ndf_stretch, NDF, ANY, 1, 1, "NDF: cosine hemisphere + elliptic stretch (Engstad)") \
-    X(ELLIPSE, "ellipse", sample_ndf_ellipse, NDF, ANY, 0, 0,                                                      \
-      "NDF: projected ellipse lifted to the ellipsoid (blog Part 2)")                                              \
-    X(INVERSION, "inversion", sample_ndf_inversion, NDF, UNSKEWED, 0, 0,                                           \
-      "NDF: closed-form theta, phi (unskewed shapes only)")                                                        \
-    X(VISIBLE, "visible", sample_ndf_visible, NDF, ANY, 0, 1, "NDF: visible-normal sampling from n (any shape)")    \
-    X(CAPS, "caps", sample_vndf_caps, VNDF, ANY, 1, 1, "VNDF: spherical caps (default)")                           \
-    X(CRESCENT, "crescent", sample_vndf_crescent, VNDF, ANY, 1, 1, "VNDF: Walter version 3, concentric disk")       \
-    X(CRESCENT_POLAR, "crescent-polar", sample_vndf_crescent_polar, VNDF, ANY, 1, 1,                               \
-      "VNDF: Walter version 3, polar disk")                                                                        \
-    X(HEITZ, "heitz", sample_vndf_heitz, VNDF, ANY, 1, 1, "VNDF: Heitz / Engstad five steps")                      \
-    X(WALTER_V1, "walter-v1", sample_vndf_walter_v1, REJECTION, ANY, 0, 0,                                         \
-      "VNDF: Walter version 1 (rejection, bounding sphere)")                                                       \
-    X(WALTER_V2, "walter-v2", sample_vndf_walter_v2, REJECTION, ANY, 0, 0,                                         \
-      "VNDF: Walter version 2 (rejection, sphere space)")                                                          \
-    X(BRDF, "brdf", sample_brdf, DIRECTION, ANY, 0, 1, "directions: reflection sampling (eq 47-50), view = wi")    \
-    X(BRDF_BOUNDED, "brdf-bounded", sample_brdf_bounded, DIRECTION, ANY, 0, 1,                                   \
-      "directions: bounded reflection sampling (caps from the horizon bound), view = wi")                         \
-    X(BRDF_BOUNDED_AZIMUTH, "brdf-bounded-azimuth", sample_brdf_bounded_azimuth, DIRECTION, ANY, 0, 0,           \
-      "directions: bounded reflection sampling, bound per azimuth of the cap point, view = wi")                   \
-    X(BSDF, "bsdf", sample_bsdf, DIRECTION, ANY, 0, 0,                                                             \
+#define GGX_SAMPLER_LIST(X)                                                                                            \
+    X(STRETCH, "stretch", sample_ndf_stretch, NDF, ANY, 1, 1, "NDF: cosine hemisphere + elliptic stretch (Engstad)")   \
+    X(ELLIPSE, "ellipse", sample_ndf_ellipse, NDF, ANY, 0, 0,                                                          \
+      "NDF: projected ellipse lifted to the ellipsoid (blog Part 2)")                                                  \
+    X(INVERSION, "inversion", sample_ndf_inversion, NDF, UNSKEWED, 0, 0,                                               \
+      "NDF: closed-form theta, phi (unskewed shapes only)")                                                            \
+    X(VISIBLE, "visible", sample_ndf_visible, NDF, ANY, 0, 1, "NDF: visible-normal sampling from n (any shape)")       \
+    X(CAPS, "caps", sample_vndf_caps, VNDF, ANY, 1, 1, "VNDF: spherical caps (default)")                               \
+    X(CRESCENT, "crescent", sample_vndf_crescent, VNDF, ANY, 1, 1, "VNDF: Walter version 3, concentric disk")          \
+    X(CRESCENT_POLAR, "crescent-polar", sample_vndf_crescent_polar, VNDF, ANY, 1, 1,                                   \
+      "VNDF: Walter version 3, polar disk")                                                                            \
+    X(HEITZ, "heitz", sample_vndf_heitz, VNDF, ANY, 1, 1, "VNDF: Heitz / Engstad five steps")                          \
+    X(WALTER_V1, "walter-v1", sample_vndf_walter_v1, REJECTION, ANY, 0, 0,                                             \
+      "VNDF: Walter version 1 (rejection, bounding sphere)")                                                           \
+    X(WALTER_V2, "walter-v2", sample_vndf_walter_v2, REJECTION, ANY, 0, 0,                                             \
+      "VNDF: Walter version 2 (rejection, sphere space)")                                                              \
+    X(BRDF, "brdf", sample_brdf, DIRECTION, ANY, 0, 1, "directions: reflection sampling (eq 47-50), view = wi")        \
+    X(BRDF_BOUNDED, "brdf-bounded", sample_brdf_bounded, DIRECTION, ANY, 0, 1,                                         \
+      "directions: bounded reflection sampling (caps from the horizon bound), view = wi")                              \
+    X(BRDF_BOUNDED_AZIMUTH, "brdf-bounded-azimuth", sample_brdf_bounded_azimuth, DIRECTION, ANY, 0, 0,                 \
+      "directions: bounded reflection sampling, bound per azimuth of the cap point, view = wi")                        \
+    X(BSDF, "bsdf", sample_bsdf, DIRECTION, ANY, 0, 0,                                                                 \
       "directions: rough dielectric (Walter 2007), view = known direction, --eta")
 
 typedef enum ggx_sampler_id {
 #define GGX_SAMPLER_ENUM_(ID, name, stem, family, domain, inverse, batch, help) GGX_SAMPLER_##ID,
     GGX_SAMPLER_LIST(GGX_SAMPLER_ENUM_)
 #undef GGX_SAMPLER_ENUM_
-    GGX_SAMPLER_COUNT
+        GGX_SAMPLER_COUNT
 } ggx_sampler_id;
 
 typedef enum ggx_sampler_family {

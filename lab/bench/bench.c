@@ -110,17 +110,17 @@ typedef struct sctx {
     ggx_shapef sf;                             /* s in float, for the inline float kernels */
 } sctx;
 
-#define SCALAR_BENCH(name, expr)                                                                                  \
-    static void name(void *vc, long n)                                                                            \
-    {                                                                                                             \
-        sctx *c = vc;                                                                                             \
-        double acc = 0;                                                                                           \
-        for (long i = 0; i < n; i++) {                                                                            \
-            long k = i & (NS - 1);                                                                                \
-            (void)k;                                                                                              \
-            acc += expr;                                                                                          \
-        }                                                                                                         \
-        sink = acc;                                                                                               \
+#define SCALAR_BENCH(name, expr)                                                                                       \
+    static void name(void *vc, long n)                                                                                 \
+    {                                                                                                                  \
+        sctx *c = vc;                                                                                                  \
+        double acc = 0;                                                                                                \
+        for (long i = 0; i < n; i++) {                                                                                 \
+            long k = i & (NS - 1);                                                                                     \
+            (void)k;                                                                                                   \
+            acc += expr;                                                                                               \
+        }                                                                                                              \
+        sink = acc;                                                                                                    \
     }
 SCALAR_BENCH(b_ndf, ggx_ndf(c->s, c->m[k]))
 SCALAR_BENCH(b_g1, ggx_g1(c->s, c->v[k], c->m[k]))
@@ -139,12 +139,15 @@ static const ggx_energy *bench_energy;
 SCALAR_BENCH(b_ealb, ggx_energy_albedo(bench_energy, c->v[k]))
 SCALAR_BENCH(b_ms, ggx_brdf_ms_eval(bench_energy, &c->f, c->v[k], c->m[k]))
 SCALAR_BENCH(b_comp, ggx_brdf_compensated_eval(bench_energy, &c->f, c->v[k], c->m[k]))
-SCALAR_BENCH(b_scomp, ggx_sample_brdf_compensated(bench_energy, &c->f, c->v[k], c->u1[k], c->u2[k], c->u1[(k + 1) & (NS - 1)]).weight)
+SCALAR_BENCH(
+    b_scomp,
+    ggx_sample_brdf_compensated(bench_energy, &c->f, c->v[k], c->u1[k], c->u2[k], c->u1[(k + 1) & (NS - 1)]).weight)
 SCALAR_BENCH(b_isotab, ggx_albedo_iso_table(0.05 + c->u1[k], c->v[k].z, GGX_MASKING_SEPARABLE))
 SCALAR_BENCH(b_fresnel_avg, ggx_fresnel_avg(&c->f))
 /* the dielectric's table from both sides (v.z of either sign), eta 1.2 to 2.2 */
 SCALAR_BENCH(b_anitab, ggx_albedo_aniso_table(0.05 + c->u1[k], 0.05 + 0.9 * c->u2[k], c->v[k]))
-SCALAR_BENCH(b_bsdftab, ggx_bsdf_albedo_iso_table(0.05 + c->u1[k], 1.2 + c->u2[k], c->u2[k] < 0.5 ? c->v[k].z : -c->v[k].z))
+SCALAR_BENCH(b_bsdftab,
+             ggx_bsdf_albedo_iso_table(0.05 + c->u1[k], 1.2 + c->u2[k], c->u2[k] < 0.5 ? c->v[k].z : -c->v[k].z))
 
 /* Energy compensation against the single-scattering functions it adds to, same run; the setup it needs; the shipped
  * isotropic table against the quadrature it replaces. */
@@ -199,7 +202,8 @@ static void energy_table(sctx *sc, const ggx_shape *diag, const ggx_shape *skew,
     t0 = now();
     for (int i = 0; i < 20; i++) sink = ggx_albedo(&an, sc->v[i]);
     tq = (now() - t0) / 20 * 1e9;
-    printf("ggx_albedo_aniso_table %.1f ns, ggx_albedo (quadrature, alpha (0.15, 0.5)) %.0f ns: %.0fx\n", ta, tq, tq / ta);
+    printf("ggx_albedo_aniso_table %.1f ns, ggx_albedo (quadrature, alpha (0.15, 0.5)) %.0f ns: %.0fx\n", ta, tq,
+           tq / ta);
     double tb = time_it(b_bsdftab, sc, ns / 4, NULL);
     t0 = now();
     for (int i = 0; i < 20; i++) sink = ggx_bsdf_albedo(&iso, 1.5, sc->v[i], NULL, NULL);
@@ -251,13 +255,20 @@ static void bounded_table(long n, int np, int nz)
     static const struct {
         const char *name;
         double ax, ay, tx, ty, tz;
-    } shapes[] = {{"iso 0.05", 0.05, 0.05, 0, 0, 0},     {"iso 0.1", 0.1, 0.1, 0, 0, 0},
-                  {"iso 0.3", 0.3, 0.3, 0, 0, 0},        {"iso 0.6", 0.6, 0.6, 0, 0, 0},
-                  {"iso 1", 1, 1, 0, 0, 0},              {"aniso 0.15:0.5", 0.15, 0.5, 0, 0, 0},
-                  {"aniso 0.3:1 rot", 0.3, 1, 0, 0, 0.6}, {"skew 0.3:0.6", 0.3, 0.6, 0.4, -0.3, 0.5},
-                  {"skew 0.6:0.6", 0.6, 0.6, 0.3, 0.2, 0}, {"skew 1:1", 1, 1, 0.4, -0.3, 0.5},
-                  {"aniso 0.1:1", 0.1, 1, 0, 0, 0},       {"aniso 0.05:0.5", 0.05, 0.5, 0, 0, 0},
-                  {"skew 0.1:1", 0.1, 1, 0.5, 0.5, 0.3},  {"skew 0.05:0.3", 0.05, 0.3, -0.5, 0.5, 1.2}};
+    } shapes[] = {{"iso 0.05", 0.05, 0.05, 0, 0, 0},
+                  {"iso 0.1", 0.1, 0.1, 0, 0, 0},
+                  {"iso 0.3", 0.3, 0.3, 0, 0, 0},
+                  {"iso 0.6", 0.6, 0.6, 0, 0, 0},
+                  {"iso 1", 1, 1, 0, 0, 0},
+                  {"aniso 0.15:0.5", 0.15, 0.5, 0, 0, 0},
+                  {"aniso 0.3:1 rot", 0.3, 1, 0, 0, 0.6},
+                  {"skew 0.3:0.6", 0.3, 0.6, 0.4, -0.3, 0.5},
+                  {"skew 0.6:0.6", 0.6, 0.6, 0.3, 0.2, 0},
+                  {"skew 1:1", 1, 1, 0.4, -0.3, 0.5},
+                  {"aniso 0.1:1", 0.1, 1, 0, 0, 0},
+                  {"aniso 0.05:0.5", 0.05, 0.5, 0, 0, 0},
+                  {"skew 0.1:1", 0.1, 1, 0.5, 0.5, 0.3},
+                  {"skew 0.05:0.3", 0.05, 0.3, -0.5, 0.5, 1.2}};
     static const double views[] = {0, 30, 45, 60, 70, 80, 89};
     ggx_fresnel one;
     ggx_fresnel_one(&one);
@@ -267,8 +278,8 @@ static void bounded_table(long n, int np, int nz)
            "half of plain's where plain wastes more than 5%%; best: the waste of the best per-meridian bound and of\n"
            "the best plane (bound_ceiling, %d x %d grid), which no sampler of this form can beat\n",
            n, np, nz);
-    printf("%-16s %5s %8s %8s %8s %8s %8s %8s %8s %8s %7s\n", "shape", "view", "plain", "plane", "azimuth",
-           "best mer", "best pl", "var pl", "var az", "albedo", "halved");
+    printf("%-16s %5s %8s %8s %8s %8s %8s %8s %8s %8s %7s\n", "shape", "view", "plain", "plane", "azimuth", "best mer",
+           "best pl", "var pl", "var az", "albedo", "halved");
     double worst_var = 0;
     int misses = 0, cases = 0, plane_halved = 0, best_halved = 0, best_plane_halved = 0;
     for (unsigned i = 0; i < sizeof shapes / sizeof shapes[0]; i++) {
@@ -391,19 +402,32 @@ static void b_batch(void *vc, long reps)
     bctx *c = vc;
     for (long r = 0; r < reps; r += (long)c->n) {
         switch (c->op) {
-        case 0: ggx_batch_sample_vndf(c->out[0], c->out[1], c->out[2], c->n, c->s, c->in[0], c->in[1], c->in[2], c->in[3], c->in[4]); break;
-        case 1: ggx_batch_pdf_vndf(c->out[0], c->n, c->s, c->in[0], c->in[1], c->in[2], c->in[5], c->in[6], c->in[2]); break;
+        case 0:
+            ggx_batch_sample_vndf(c->out[0], c->out[1], c->out[2], c->n, c->s, c->in[0], c->in[1], c->in[2], c->in[3],
+                                  c->in[4]);
+            break;
+        case 1:
+            ggx_batch_pdf_vndf(c->out[0], c->n, c->s, c->in[0], c->in[1], c->in[2], c->in[5], c->in[6], c->in[2]);
+            break;
         case 2: ggx_batch_ndf(c->out[0], c->n, c->s, c->in[5], c->in[6], c->in[2]); break;
         case 3: ggx_batch_g1(c->out[0], c->n, c->s, c->in[0], c->in[1], c->in[2], c->in[5], c->in[6], c->in[2]); break;
         case 4: ggx_batch_sample_ndf(c->out[0], c->out[1], c->out[2], c->n, c->s, c->in[3], c->in[4]); break;
-        case 5: ggx_batch_brdf(c->out[0], c->n, c->s, &c->f, c->in[0], c->in[1], c->in[2], c->in[5], c->in[6], c->in[2]); break;
-        case 6: ggx_batch_sample_brdf(c->out[0], c->out[1], c->out[2], c->out[3], c->out[4], c->n, c->s, &c->f, c->in[0], c->in[1], c->in[2], c->in[3], c->in[4]); break;
-        case 7: ggx_batch_sample_directions(GGX_SAMPLER_BRDF_BOUNDED, c->out[0], c->out[1], c->out[2], c->out[3], c->out[4], c->n, c->s, &c->f, c->in[0], c->in[1], c->in[2], c->in[3], c->in[4]); break;
+        case 5:
+            ggx_batch_brdf(c->out[0], c->n, c->s, &c->f, c->in[0], c->in[1], c->in[2], c->in[5], c->in[6], c->in[2]);
+            break;
+        case 6:
+            ggx_batch_sample_brdf(c->out[0], c->out[1], c->out[2], c->out[3], c->out[4], c->n, c->s, &c->f, c->in[0],
+                                  c->in[1], c->in[2], c->in[3], c->in[4]);
+            break;
+        case 7:
+            ggx_batch_sample_directions(GGX_SAMPLER_BRDF_BOUNDED, c->out[0], c->out[1], c->out[2], c->out[3], c->out[4],
+                                        c->n, c->s, &c->f, c->in[0], c->in[1], c->in[2], c->in[3], c->in[4]);
+            break;
         }
     }
 }
-static const char *BATCH_NAMES[] = {"sample_vndf", "pdf_vndf", "ndf", "g1", "sample_ndf", "brdf", "sample_brdf",
-                                    "brdf_bounded"};
+static const char *BATCH_NAMES[] = {"sample_vndf", "pdf_vndf", "ndf",         "g1",
+                                    "sample_ndf",  "brdf",     "sample_brdf", "brdf_bounded"};
 static const int BATCH_BYTES[] = {32, 28, 16, 28, 20, 28, 40, 40}; /* floats read + written per element, x 4 */
 enum { BATCH_OPS = sizeof BATCH_NAMES / sizeof BATCH_NAMES[0] };
 
@@ -499,11 +523,16 @@ int main(int argc, char **argv)
     struct {
         const char *name;
         bench_fn f;
-    } sb[] = {{"ggx_ndf", b_ndf},         {"ggx_g1", b_g1},
-              {"ggx_pdf_vndf", b_pdf},    {"ggx_brdf_eval", b_brdf},
-              {"ggx_sample_vndf_caps", b_caps}, {"ggx_sample_vndf_crescent", b_crescent},
-              {"ggx_sample_vndf_heitz", b_heitz}, {"ggx_sample_ndf_stretch", b_stretch},
-              {"ggx_sample_brdf", b_sbrdf}, {"ggx_sample_brdf_bounded", b_sbrdfb},
+    } sb[] = {{"ggx_ndf", b_ndf},
+              {"ggx_g1", b_g1},
+              {"ggx_pdf_vndf", b_pdf},
+              {"ggx_brdf_eval", b_brdf},
+              {"ggx_sample_vndf_caps", b_caps},
+              {"ggx_sample_vndf_crescent", b_crescent},
+              {"ggx_sample_vndf_heitz", b_heitz},
+              {"ggx_sample_ndf_stretch", b_stretch},
+              {"ggx_sample_brdf", b_sbrdf},
+              {"ggx_sample_brdf_bounded", b_sbrdfb},
               {"ggx_sample_brdf_bounded_azimuth", b_sbrdfa}};
     double caps_diag = 0, caps_skew = 0, res[11][2];
     for (unsigned k = 0; k < sizeof sb / sizeof sb[0]; k++) {
@@ -515,7 +544,8 @@ int main(int argc, char **argv)
     }
     caps_diag = res[4][0], caps_skew = res[4][1];
     printf("\nsamplers relative to caps      diagonal A    skewed A\n");
-    for (int k = 5; k <= 6; k++) printf("%-28s %10.2f %11.2f\n", sb[k].name, res[k][0] / res[4][0], res[k][1] / res[4][1]);
+    for (int k = 5; k <= 6; k++)
+        printf("%-28s %10.2f %11.2f\n", sb[k].name, res[k][0] / res[4][0], res[k][1] / res[4][1]);
     printf("skewed caps / diagonal caps: %.2f (target <= 1.2)\n", caps_skew / caps_diag);
     /* the ratios timed alternately (time_pair), as the reference table's */
     double q[2][2], t0, t1;
@@ -523,8 +553,9 @@ int main(int argc, char **argv)
         q[b][0] = time_pair(b_sbrdf, &diag, b ? b_sbrdfa : b_sbrdfb, &diag, &sc.s, &sc, ns, &t0, &t1);
         q[b][1] = time_pair(b_sbrdf, &skew, b ? b_sbrdfa : b_sbrdfb, &skew, &sc.s, &sc, ns, &t0, &t1);
     }
-    printf("ggx_sample_brdf_bounded / ggx_sample_brdf: %.2f diagonal, %.2f skewed (target <= 1.15; timed alternately)\n",
-           q[0][0], q[0][1]);
+    printf(
+        "ggx_sample_brdf_bounded / ggx_sample_brdf: %.2f diagonal, %.2f skewed (target <= 1.15; timed alternately)\n",
+        q[0][0], q[0][1]);
     printf("ggx_sample_brdf_bounded_azimuth / ggx_sample_brdf: %.2f diagonal, %.2f skewed (target <= 1.15)\n", q[1][0],
            q[1][1]);
     bounded_table(quick ? 100000 : 400000, quick ? 128 : 512, quick ? 500 : 2000);
@@ -538,18 +569,18 @@ int main(int argc, char **argv)
         const char *name, *lib_name;
         bench_fn ref, lib;
         const ggx_shape *s, *lib_s; /* the reference's shape and the library's */
-    } rb[] = {{"caps plain double (skewed)", "ggx_sample_vndf", r_caps, b_vndf, &skew, &skew},
-              {"Dupuy-Benyoub float (diagonal)", "ggx_sample_vndf", r_caps_f, b_vndf, &diag, &diag},
-              {"Dupuy-Benyoub float (diagonal)", "ggx_sample_vndf_f (diagonal)", r_caps_f, b_vndf_f, &diag, &diag},
-              {"Dupuy-Benyoub float (diagonal)", "ggx_sample_vndf_f (skewed)", r_caps_f, b_vndf_f, &diag, &skew},
+    } rb[] = {
+        {"caps plain double (skewed)", "ggx_sample_vndf", r_caps, b_vndf, &skew, &skew},
+        {"Dupuy-Benyoub float (diagonal)", "ggx_sample_vndf", r_caps_f, b_vndf, &diag, &diag},
+        {"Dupuy-Benyoub float (diagonal)", "ggx_sample_vndf_f (diagonal)", r_caps_f, b_vndf_f, &diag, &diag},
+        {"Dupuy-Benyoub float (diagonal)", "ggx_sample_vndf_f (skewed)", r_caps_f, b_vndf_f, &diag, &skew},
 #ifdef GGX_BENCH_V3
-              {"Dupuy-Benyoub float, v3 (diag)", "ggx_sample_vndf_f, v3 (diag)", r_caps_f_v3, b_vndf_f_v3, &diag, &diag},
-              {"Dupuy-Benyoub float, v3 (diag)", "ggx_sample_vndf_f, v3 (skewed)", r_caps_f_v3, b_vndf_f_v3, &diag,
-               &skew},
+        {"Dupuy-Benyoub float, v3 (diag)", "ggx_sample_vndf_f, v3 (diag)", r_caps_f_v3, b_vndf_f_v3, &diag, &diag},
+        {"Dupuy-Benyoub float, v3 (diag)", "ggx_sample_vndf_f, v3 (skewed)", r_caps_f_v3, b_vndf_f_v3, &diag, &skew},
 #endif
-              {"eq 6 plain (skewed)", "ggx_g1", r_g1, b_g1, &skew, &skew},
-              {"eq 33 plain (skewed)", "ggx_pdf_vndf", r_pdf, b_pdf, &skew, &skew},
-              {"sqrtf + sinf/cosf", NULL, r_floor, NULL, &diag, &diag}};
+        {"eq 6 plain (skewed)", "ggx_g1", r_g1, b_g1, &skew, &skew},
+        {"eq 33 plain (skewed)", "ggx_pdf_vndf", r_pdf, b_pdf, &skew, &skew},
+        {"sqrtf + sinf/cosf", NULL, r_floor, NULL, &diag, &diag}};
     for (unsigned k = 0; k < sizeof rb / sizeof rb[0]; k++) {
 #ifdef GGX_BENCH_V3
         if ((rb[k].ref == r_caps_f_v3) && !bench_v3_supported()) continue;
@@ -570,7 +601,8 @@ int main(int argc, char **argv)
     sqrt_div_cost(&ns_sqrt, &ns_div);
     double bw = copy_bandwidth();
     printf("\nmachine: FMA peak %.1f GFLOP/s per core; 8-wide sqrt %.2f ns, 8-wide div %.2f ns (throughput); "
-           "copy bandwidth %.1f GB/s\n", peak, ns_sqrt, ns_div, bw);
+           "copy bandwidth %.1f GB/s\n",
+           peak, ns_sqrt, ns_div, bw);
     size_t big = (64u << 20) / 32; /* 64 MiB of sample_vndf data (5 inputs + 3 outputs) */
     size_t sizes[2] = {512, big};
     float *in[7], *out[5];
@@ -604,7 +636,8 @@ int main(int argc, char **argv)
             char ins[32];
             if (instr >= 0) snprintf(ins, sizeof ins, "%.1f", instr);
             else snprintf(ins, sizeof ins, "n/a");
-            printf("%-14s %-8s %18.3f %12.3f %12.3f   %s\n", BATCH_NAMES[op], ggx_batch_isa_name(isas[k]), t[0], t[1], t[2], ins);
+            printf("%-14s %-8s %18.3f %12.3f %12.3f   %s\n", BATCH_NAMES[op], ggx_batch_isa_name(isas[k]), t[0], t[1],
+                   t[2], ins);
             if (op == 0 && t[0] < vndf_best) vndf_best = t[0];
             if (op == 0 && isas[k] == GGX_ISA_SCALAR) vndf_scalar_isa = t[0];
         }
@@ -618,7 +651,8 @@ int main(int argc, char **argv)
     double arith = fmax(flop_t, div_t);
     double mem = 32.0 / bw;
     printf("\nbatch sample_vndf floors per element: arithmetic %.3f ns (FMA %.3f, sqrt/div %.3f), memory %.3f ns "
-           "(larger: %.3f ns)\n", arith, flop_t, div_t, mem, fmax(arith, mem));
+           "(larger: %.3f ns)\n",
+           arith, flop_t, div_t, mem, fmax(arith, mem));
     printf("best batch sample_vndf (L1, 1 thread) %.3f ns = %.2f x the larger floor\n", vndf_best,
            vndf_best / fmax(arith, mem));
     printf("speed-up over scalar double ggx_sample_vndf_caps (skewed): %.1f x (baseline-ISA batch: %.1f x)\n",

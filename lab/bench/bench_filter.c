@@ -47,8 +47,8 @@ int main(void)
         int radial, angular;
         double tol;
         int iterations;
-    } settings[] = {{8, 16, 0, 0}, {8, 16, 1e-6, 0}, {4, 8, 1e-4, 0}, {2, 4, 1e-3, 0}, {16, 32, 0, 0}, {4, 8, 0, 1},
-                    {2, 4, 0, 1}, {2, 4, 0, 2}};
+    } settings[] = {{8, 16, 0, 0},  {8, 16, 1e-6, 0}, {4, 8, 1e-4, 0}, {2, 4, 1e-3, 0},
+                    {16, 32, 0, 0}, {4, 8, 0, 1},     {2, 4, 0, 1},    {2, 4, 0, 2}};
     printf("libggx filter benchmark: ggx_filter_lobes of 2 x 2 texels (alpha 0.05 to 0.5), one thread\n\n");
     printf("%-8s %9s %12s %10s %14s %16s %14s\n", "rule", "tolerance", "iterations", "us/call", "lobes/s",
            "4096^2 chain, s", "error");
@@ -75,7 +75,8 @@ int main(void)
                4096.0 * 4096.0 / 3.0 * best, err);
     }
     /* whole chains: the default rule on 512 x 512 (times 64 for 4096^2), the fast mode on 4096 x 4096 itself */
-    printf("\nwhole chains of a map of waves (alpha 0.1), level 0 by ggx_texel_lobes, the rest by ggx_filter_downsample:\n");
+    printf("\nwhole chains of a map of waves (alpha 0.1), level 0 by ggx_texel_lobes, the rest by "
+           "ggx_filter_downsample:\n");
     printf("%-34s %8s %14s %14s %18s\n", "settings", "threads", "level 0, s", "the rest, s", "4096^2 chain, s");
     const struct {
         const char *name;
@@ -84,7 +85,8 @@ int main(void)
     for (size_t c = 0; c < sizeof chains / sizeof chains[0]; c++) {
         size_t side = (size_t)chains[c].side, count = side * side;
         double *lv = malloc(count * GGX_LOBE_PARAMS * sizeof *lv), *wv = malloc(count * sizeof *wv);
-        double *nx = malloc(count * GGX_LOBE_PARAMS * sizeof *nx), *wn = malloc(count * sizeof *wn); /* either may hold level 0 */
+        double *nx = malloc(count * GGX_LOBE_PARAMS * sizeof *nx),
+               *wn = malloc(count * sizeof *wn); /* either may hold level 0 */
         ggx_vec3 *nm = malloc(count * sizeof *nm);
         /* written before the clock starts (not with zeros, which the compiler may turn into calloc): the kernel's
          * zeroing of fresh pages is not the filter's time */

@@ -70,8 +70,9 @@ int main(int argc, char **argv)
     for (size_t j = 1; j < ny; j++) G[j] = G[j - 1] + 0.1 * (rnd(&seed) - 0.5);
     for (size_t j = 0; j < ny; j++)
         for (size_t i = 0; i < nx; i++) h[j * nx + i] = F[i] + G[j];
-    printf("\nggx_fit_heightfield, %zu x %zu heights (%zu facets; above 2^22 samples: EM on 2^20, then steps on all):\n",
-           nx, ny, 4 * (nx - 1) * (ny - 1));
+    printf(
+        "\nggx_fit_heightfield, %zu x %zu heights (%zu facets; above 2^22 samples: EM on 2^20, then steps on all):\n",
+        nx, ny, 4 * (nx - 1) * (ny - 1));
     printf("%-8s %10s %14s\n", "threads", "seconds", "ns per facet");
     for (int t = 1; t <= 2; t++) {
         ggx_fit_options o;

@@ -26,9 +26,9 @@ typedef struct job {
     size_t n;
     long rays, hits;
     uint64_t seed;
-    int coherent;       /* origins on a jittered 1000 x 1000 grid over the tile, row by row (this job's rows) */
+    int coherent; /* origins on a jittered 1000 x 1000 grid over the tile, row by row (this job's rows) */
     int row0, rows;
-    long g;             /* shoot_rows: the grid's side */
+    long g; /* shoot_rows: the grid's side */
 } job;
 
 /* rows of origins through ms_trace_coherent: a jittered grid of g x g origins over the tile (this job's rows) */
@@ -99,8 +99,8 @@ int main(void)
     printf("Mrays/s: 10^6 rays from random origins over the tile; (scan) from a jittered 1000 x 1000 grid of origins\n"
            "row by row; (stream) the same rows through ms_trace_coherent (Embree's streams of coherent rays); (dense)\n"
            "n x n origins, one a cell, row by row through ms_trace_coherent\n");
-    printf("%-6s %9s %9s %8s %8s %8s %8s %8s %8s %8s %8s %8s\n", "n", "gen, s", "build, s", "1 thr", "2 thr",
-           "scan 1", "scan 2", "strm 1", "strm 2", "dense 1", "dense 2", "peak MB");
+    printf("%-6s %9s %9s %8s %8s %8s %8s %8s %8s %8s %8s %8s\n", "n", "gen, s", "build, s", "1 thr", "2 thr", "scan 1",
+           "scan 2", "strm 1", "strm 2", "dense 1", "dense 2", "peak MB");
     const size_t sizes[] = {1024, 2048, 4096};
     for (int k = 0; k < 3; k++) {
         size_t n = sizes[k];
@@ -129,8 +129,15 @@ int main(void)
             double s0 = now();
             for (int i = 0; i < threads; i++) {
                 int r0 = (int)(g * i / threads), r1 = (int)(g * (i + 1) / threads);
-                jobs[i] = (job){t, n, 1000000 / threads, 0, 99u + (uint64_t)i, coherent, stream ? r0 : 1000 / threads * i,
-                                stream ? r1 - r0 : 1000 / threads, g};
+                jobs[i] = (job){t,
+                                n,
+                                1000000 / threads,
+                                0,
+                                99u + (uint64_t)i,
+                                coherent,
+                                stream ? r0 : 1000 / threads * i,
+                                stream ? r1 - r0 : 1000 / threads,
+                                g};
             }
             bench_run run = {jobs, stream};
             ggx_internal_parallel_for(threads, bench_share, &run);
@@ -138,8 +145,8 @@ int main(void)
         }
         struct rusage ru;
         getrusage(RUSAGE_SELF, &ru);
-        printf("%-6zu %9.2f %9.2f %8.2f %8.2f %8.2f %8.2f %8.2f %8.2f %8.2f %8.2f %8.0f\n", n, t1 - t0, t2 - t1, rate[0],
-               rate[1], rate[2], rate[3], rate[4], rate[5], rate[6], rate[7], (double)ru.ru_maxrss / 1024.0);
+        printf("%-6zu %9.2f %9.2f %8.2f %8.2f %8.2f %8.2f %8.2f %8.2f %8.2f %8.2f %8.0f\n", n, t1 - t0, t2 - t1,
+               rate[0], rate[1], rate[2], rate[3], rate[4], rate[5], rate[6], rate[7], (double)ru.ru_maxrss / 1024.0);
         ms_tracer_free(t);
     }
     return 0;

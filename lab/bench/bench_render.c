@@ -34,8 +34,8 @@ int main(int argc, char **argv)
     char err[300];
     double t0 = now();
     if (render_env_default_sky(&sky, err, sizeof err) != 0) return fprintf(stderr, "%s\n", err), 0;
-    printf("libggx render benchmark (%s)\n\nthe built-in sky (512 x 256, alias table): %.3f s\n\n", quick ? "quick" : "full",
-           now() - t0);
+    printf("libggx render benchmark (%s)\n\nthe built-in sky (512 x 256, alias table): %.3f s\n\n",
+           quick ? "quick" : "full", now() - t0);
     render_spec r;
     render_spec_defaults(&r);
     ggx_shape_ellipsoid(&r.shape, 0.15, 0.5, 0, 0, 0);
@@ -72,7 +72,8 @@ int main(int argc, char **argv)
     render_prepare(&q, err, sizeof err);
     t0 = now();
     render_image(&q, ref, NULL);
-    printf("\nnoise of 64-spp images against a %d-spp reference (MIS, %.1f s), 128 x 128, alpha 0.5, 0.9, theta_z 30,\nunder the sky without its sun:\n",
+    printf("\nnoise of 64-spp images against a %d-spp reference (MIS, %.1f s), 128 x 128, alpha 0.5, 0.9, theta_z "
+           "30,\nunder the sky without its sun:\n",
            q.spp, now() - t0);
     printf("%-22s %-10s %10s %10s %14s %12s\n", "sampler", "strategy", "seconds", "RMSE", "1/(RMSE^2 s)", "vs brdf");
     const int ids[] = {GGX_SAMPLER_BRDF, GGX_SAMPLER_BRDF_BOUNDED, GGX_SAMPLER_BRDF_BOUNDED_AZIMUTH, GGX_SAMPLER_CAPS};

@@ -45,8 +45,7 @@ static rvec3f normalize_f(rvec3f a)
     return r;
 }
 
-void REF_FN(ref_caps_vndf_f_diag)(float ax, float ay, float vx, float vy, float vz, float u1, float u2,
-                                  float out[3])
+void REF_FN(ref_caps_vndf_f_diag)(float ax, float ay, float vx, float vy, float vz, float u1, float u2, float out[3])
 {
     rvec3f wi = normalize_f((rvec3f){ax * vx, ay * vy, vz});
     float phi = 2.0f * (float)GGX_PI * u1;
@@ -74,8 +73,7 @@ double REF_FN(ref_g1_eq6)(const double A[3][3], ggx_vec3 u, ggx_vec3 m)
 
 /* Walter eq 33: D_v(m) = A_e(n) / A_l(v, n) X+(m.v) D(m) (m.v), with D(m) = X+(m.n) / (pi |A| ||A n||
  * ||A^{-T} m||^4) (eq 1) and the area ratio from eq 26 and 28 as in ref_g1_eq6. */
-double REF_FN(ref_pdf_vndf_eq33)(const double A[3][3], const double AinvT[3][3], double det, ggx_vec3 v,
-                                 ggx_vec3 m)
+double REF_FN(ref_pdf_vndf_eq33)(const double A[3][3], const double AinvT[3][3], double det, ggx_vec3 v, ggx_vec3 m)
 {
     double nx = A[0][2], ny = A[1][2], nz = A[2][2];
     double vx = A[0][0] * v.x + A[0][1] * v.y + A[0][2] * v.z;

@@ -31,7 +31,10 @@ static void normals(uint64_t *s, double *a, double *b)
 }
 
 /* the lattice's wave number of index i: 2 pi i / n folded into (-pi, pi] */
-static double wave(size_t i, size_t n) { return 2.0 * PI * (double)(i <= n / 2 ? (double)i : (double)i - (double)n) / (double)n; }
+static double wave(size_t i, size_t n)
+{
+    return 2.0 * PI * (double)(i <= n / 2 ? (double)i : (double)i - (double)n) / (double)n;
+}
 
 /* S(k) = exp(-k^T M^-1 k / 4), the Gaussian autocorrelation's spectrum up to a constant, and from it the variance of
  * the heights and the covariance of the forward differences of Re sum_k A(k) W(k) e^{i k.x}, A = sqrt(c S), E|W|^2 =
@@ -82,7 +85,8 @@ int ms_gauss(const ms_gauss_spec *sp, double *h, ms_gauss_info *info, char *err,
     (void)h, (void)info;
     return fail(err, errn, "Gaussian surfaces are not built (KISS FFT not found: apt-get install libkissfft-dev)");
 #else
-    double c = cos(sp->phi), s = sin(sp->phi), ax2 = 0.5 * sp->alpha_x * sp->alpha_x, ay2 = 0.5 * sp->alpha_y * sp->alpha_y;
+    double c = cos(sp->phi), s = sin(sp->phi), ax2 = 0.5 * sp->alpha_x * sp->alpha_x,
+           ay2 = 0.5 * sp->alpha_y * sp->alpha_y;
     /* the roughness axes turned as ggx_shape_ellipsoid's theta_z turns them: Sigma_xy = (ay^2 - ax^2) c s / 2 */
     const double target[3] = {ax2 * c * c + ay2 * s * s, (ay2 - ax2) * c * s, ax2 * s * s + ay2 * c * c};
     double det_t = target[0] * target[2] - target[1] * target[1];
@@ -104,8 +108,9 @@ int ms_gauss(const ms_gauss_spec *sp, double *h, ms_gauss_info *info, char *err,
         if (e < 1e-10) break;
         for (int k = 0; k < 3; k++) M[k] += (target[k] - cov[k]) / (2.0 * sigma2);
         if (!(M[0] > 0.0 && M[2] > 0.0 && M[0] * M[2] > M[1] * M[1]))
-            return fail(err, errn, "Gaussian surface: no spectrum of this size gives these slopes at this correlation "
-                                   "length (too anisotropic for it: give a larger size or correlation length)");
+            return fail(err, errn,
+                        "Gaussian surface: no spectrum of this size gives these slopes at this correlation "
+                        "length (too anisotropic for it: give a larger size or correlation length)");
     }
     size_t count = n * n;
     kiss_fft_cpx *buf = malloc(count * sizeof *buf), *out = malloc(count * sizeof *out);

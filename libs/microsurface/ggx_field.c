@@ -24,8 +24,10 @@ int ms_ggx(const ms_ggx_spec *sp, double *h, char *err, size_t errn)
     size_t n = sp->n, count = n * n;
     double mix = sp->mix_len > 0.0 ? sp->mix_len : 8.0 * sp->corr_len;
     if (!(mix >= sp->corr_len && mix <= (double)n / 4.0)) {
-        snprintf(err, errn, "GGX surface: the mixing length %g must be in [the correlation length, size / 4]: give a "
-                 "larger size or a shorter correlation length", mix);
+        snprintf(err, errn,
+                 "GGX surface: the mixing length %g must be in [the correlation length, size / 4]: give a "
+                 "larger size or a shorter correlation length",
+                 mix);
         return -1;
     }
     /* G: slopes N(0, Sigma), Sigma = R diag(alpha_x^2, alpha_y^2) R^T, i.e. Beckmann of sqrt(2) alpha */

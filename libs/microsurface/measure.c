@@ -118,8 +118,10 @@ int ms_find_risers(const double *h, size_t n, size_t P, size_t risers[2], char *
     free(col), free(med), free(off);
     if (!ok) {
         risers[0] = risers[1] = 0;
-        snprintf(err, errn, "masking: not a sawtooth of period %zu: steps steeper than 45 degrees in other columns or "
-                 "rows than %zu mod %zu, or in only some of those", P, P - 1, P);
+        snprintf(err, errn,
+                 "masking: not a sawtooth of period %zu: steps steeper than 45 degrees in other columns or "
+                 "rows than %zu mod %zu, or in only some of those",
+                 P, P - 1, P);
         return -1;
     }
     if (!risers[0] && !risers[1]) {
@@ -168,8 +170,9 @@ size_t ms_facet_normals(const double *h, size_t n, const size_t risers[2], ggx_v
 
 /* the facets off the risers: their projected area towards v per bin (area may be NULL) and their slopes' mean and
  * covariance (mean, cov may be NULL); the risers' projected area towards v (riser may be NULL); G1 of all facets */
-static void facets_towards(const double *h, size_t n, const double *tilt, const size_t risers[2], const double v[3], int rings, int sectors, double *area, double mean[2], double cov[3],
-                           double *riser, double *g1)
+static void facets_towards(const double *h, size_t n, const double *tilt, const size_t risers[2], const double v[3],
+                           int rings, int sectors, double *area, double mean[2], double cov[3], double *riser,
+                           double *g1)
 {
     double total = 0.0, mx = 0.0, my = 0.0, sxx = 0.0, sxy = 0.0, syy = 0.0, rs = 0.0, cnt = 0.0;
     double tile = (double)n * (double)n;
@@ -276,8 +279,10 @@ int ms_measure_g1(const ms_tracer *t, const double *h, size_t n, const double v[
     ms_tracer_tilt(t, tilt);
     if (risers) r->risers[0] = risers[0], r->risers[1] = risers[1];
     if (!ms_view_clear(tilt, v)) {
-        snprintf(err, errn, "masking: the view must be at least 0.06 degrees above the %splane (rays that graze it "
-                 "cross tiles without end)", tilt[0] != 0.0 || tilt[1] != 0.0 ? "tilted " : "");
+        snprintf(err, errn,
+                 "masking: the view must be at least 0.06 degrees above the %splane (rays that graze it "
+                 "cross tiles without end)",
+                 tilt[0] != 0.0 || tilt[1] != 0.0 ? "tilted " : "");
         return -1;
     }
     if (!(v[2] > 0.0) || rays < 1 || rings < 1 || sectors < 1 || rings * sectors > 1 << 16 || threads < 1 ||
@@ -301,8 +306,22 @@ int ms_measure_g1(const ms_tracer *t, const double *h, size_t n, const double v[
     long g = (long)ceil(sqrt((double)rays));
     if (threads > g) threads = (int)g;
     for (int k = 0; k < threads; k++)
-        jobs[k] = (g1_job){t, h, n, v, tilt, r->risers, g, g * k / threads, g * (k + 1) / threads, bins, rings,
-                           sectors, hits + (size_t)k * (size_t)bins, 0, 0, 0};
+        jobs[k] = (g1_job){t,
+                           h,
+                           n,
+                           v,
+                           tilt,
+                           r->risers,
+                           g,
+                           g * k / threads,
+                           g * (k + 1) / threads,
+                           bins,
+                           rings,
+                           sectors,
+                           hits + (size_t)k * (size_t)bins,
+                           0,
+                           0,
+                           0};
     run_jobs(g1_rows, jobs, sizeof *jobs, threads);
     int failed = 0;
     for (int k = 0; k < threads; k++) failed |= jobs[k].failed;
@@ -409,8 +428,9 @@ static int brdf_run(const ms_tracer *t, size_t n, const double *wi, int in_bin, 
     r->all = r->single + bins;
     for (int k = 0; k < threads; k++) {
         long *c = counts + 2 * (size_t)bins * (size_t)k;
-        jobs[k] = (brdf_job){t, n, wi, in_bin, g, g * k / threads, g * (k + 1) / threads, rings, sectors,
-                             max_bounces, c, c + bins, 0, 0};
+        jobs[k] = (brdf_job){
+            t,           n, wi,       in_bin, g, g * k / threads, g * (k + 1) / threads, rings, sectors,
+            max_bounces, c, c + bins, 0,      0};
     }
     run_jobs(brdf_rows, jobs, sizeof *jobs, threads);
     for (int k = 0; k < threads; k++) {
@@ -430,8 +450,8 @@ int ms_measure_brdf(const ms_tracer *t, size_t n, const double wi[3], long rays,
     return brdf_run(t, n, wi, -1, rays, rings, sectors, max_bounces, threads, r, err, errn);
 }
 
-int ms_measure_brdf_from_bin(const ms_tracer *t, size_t n, int bin, long rays, int rings, int sectors,
-                             int max_bounces, int threads, ms_brdf *r, char *err, size_t errn)
+int ms_measure_brdf_from_bin(const ms_tracer *t, size_t n, int bin, long rays, int rings, int sectors, int max_bounces,
+                             int threads, ms_brdf *r, char *err, size_t errn)
 {
     return brdf_run(t, n, NULL, bin, rays, rings, sectors, max_bounces, threads, r, err, errn);
 }

@@ -63,9 +63,9 @@ int ms_vgroove(size_t n, size_t p, double s, double *h, char *err, size_t errn);
  * vectors of the tangent frame (z up); a ray goes from its origin along d. */
 typedef struct ms_tracer ms_tracer;
 typedef struct ms_hit {
-    double p[3];     /* the hit point, x and y within the tile [0, n) */
-    double m[3];     /* the facet's unit normal, m.z > 0 */
-    size_t cell;     /* the cell hit: y n + x */
+    double p[3]; /* the hit point, x and y within the tile [0, n) */
+    double m[3]; /* the facet's unit normal, m.z > 0 */
+    size_t cell; /* the cell hit: y n + x */
 } ms_hit;
 
 /* The tracer of h (n x n, kept by copy in single precision); NULL with err where Embree is not built or fails.
@@ -86,8 +86,7 @@ int ms_trace(const ms_tracer *t, const double o[3], const double d[3], ms_hit *h
 /* ms_trace of count rays of one direction d from the origins o[3 i .. 3 i + 2], into hits[i] and result[i]: the
  * same hits, their first segments traced in streams of 64 (Embree's coherent rays), which is faster where
  * neighbouring origins are near (a row of a jittered grid). */
-void ms_trace_coherent(const ms_tracer *t, size_t count, const double *o, const double d[3], ms_hit *hits,
-                       int *result);
+void ms_trace_coherent(const ms_tracer *t, size_t count, const double *o, const double d[3], ms_hit *hits, int *result);
 
 /* ---- masking measured (measure.c) ----
  * The facets of h (n x n, periodic): in each cell (x, y) the triangles Embree makes, split along the diagonal from
@@ -102,13 +101,13 @@ typedef struct ms_g1 {
                            * Monte Carlo error where there are none) */
     double riser_area, riser_visible; /* the risers' projected area towards v, and the part of it the rays see first,
                                        * per unit tile area (0 where there are none) */
-    size_t risers[2];     /* the sawtooth's period along x and y where that axis has risers, else 0 */
+    size_t risers[2];                 /* the sawtooth's period along x and y where that axis has risers, else 0 */
     double slope_mean[2]; /* the slopes' mean of the facets off the risers (the tilted patch's or ramp's tilt) */
     double slope_cov[3];  /* and their covariance (the mean removed), for Beckmann's Smith form */
     long rays, missed;    /* rays traced from above on a jittered grid, and those that hit nothing (0 if it works) */
     int rings, sectors;
-    double *area;         /* per bin: the facets' projected area towards v (front-facing), per unit tile area */
-    double *visible;      /* per bin: the area of it that the rays see first, per unit tile area */
+    double *area;    /* per bin: the facets' projected area towards v (front-facing), per unit tile area */
+    double *visible; /* per bin: the area of it that the rays see first, per unit tile area */
 } ms_g1;
 
 /* Traces about rays rays (a jittered grid of g x g origins, g = ceil(sqrt(rays))) from above along -v on threads
@@ -140,8 +139,8 @@ int ms_measure_brdf(const ms_tracer *t, size_t n, const double wi[3], long rays,
 /* ms_measure_brdf with each ray's wi drawn uniformly in projected solid angle over the outgoing bin `bin`: share
  * b of the result is then (1 / pi) times the double integral of f over bin x bin b in projected solid angles, times
  * the bins' count; by reciprocity the same as share bin from bin b (the traced BRDF's reciprocity test). */
-int ms_measure_brdf_from_bin(const ms_tracer *t, size_t n, int bin, long rays, int rings, int sectors,
-                             int max_bounces, int threads, ms_brdf *r, char *err, size_t errn);
+int ms_measure_brdf_from_bin(const ms_tracer *t, size_t n, int bin, long rays, int rings, int sectors, int max_bounces,
+                             int threads, ms_brdf *r, char *err, size_t errn);
 void ms_brdf_free(ms_brdf *r);
 
 /* G1(v) of the facets alone (ms_g1's g1, no rays): n^2 f over their projected area towards v, f the footprint's as
@@ -162,8 +161,7 @@ double ms_beckmann_g1(const double cov[3], const double v[3]);
 int ms_ramp(double *h, size_t n, double tx, double ty, size_t period, char *err, size_t errn);
 /* The GGX surface of a skewed shape s: ms_ggx of its scale Sigma (as the alphas and rotation of the unskewed shape of
  * (0, Sigma), written into spec) under ms_ramp of its location t (into t) and period. Returns 0 or -1 with err. */
-int ms_ggx_skewed(const ggx_shape *s, ms_ggx_spec *spec, size_t period, double *h, double t[2], char *err,
-                  size_t errn);
+int ms_ggx_skewed(const ggx_shape *s, ms_ggx_spec *spec, size_t period, double *h, double t[2], char *err, size_t errn);
 
 /* Walter's remedy with Smith's masking, for a skewed shape s (slopes of location t and scale Sigma), unit v above the
  * plane (else 0): the facets of D and vertical facets of area |t| per unit area facing along t, all masked alike,

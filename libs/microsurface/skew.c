@@ -18,8 +18,7 @@ int ms_ramp(double *h, size_t n, double tx, double ty, size_t period, char *err,
     return 0;
 }
 
-int ms_ggx_skewed(const ggx_shape *s, ms_ggx_spec *spec, size_t period, double *h, double t[2], char *err,
-                  size_t errn)
+int ms_ggx_skewed(const ggx_shape *s, ms_ggx_spec *spec, size_t period, double *h, double t[2], char *err, size_t errn)
 {
     /* the skewed shape's slopes: the scale Sigma as the unskewed shape's alphas and rotation, and t */
     double sig[3], ax, ay, tz;

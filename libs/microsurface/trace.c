@@ -53,7 +53,8 @@ ms_tracer *ms_tracer_new(const double *h, size_t n, const double tilt[2], char *
     RTCGeometry g = rtcNewGeometry(t->device, RTC_GEOMETRY_TYPE_GRID);
     size_t side = n + 3; /* vertices at -1 .. n + 1 */
     float *v = rtcSetNewGeometryBuffer(g, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3, 3 * sizeof(float), side * side);
-    struct RTCGrid *grid = rtcSetNewGeometryBuffer(g, RTC_BUFFER_TYPE_GRID, 0, RTC_FORMAT_GRID, sizeof(struct RTCGrid), 1);
+    struct RTCGrid *grid = rtcSetNewGeometryBuffer(g, RTC_BUFFER_TYPE_GRID, 0, RTC_FORMAT_GRID, sizeof(struct RTCGrid),
+                                                   1);
     if (!v || !grid) {
         snprintf(err, errn, "tracer: out of memory for %zu x %zu heights", n, n);
         rtcReleaseGeometry(g);
@@ -196,8 +197,7 @@ int ms_trace(const ms_tracer *t, const double o[3], const double d[3], ms_hit *h
     return walk_on(t, d, &w, hit);
 }
 
-void ms_trace_coherent(const ms_tracer *t, size_t count, const double *o, const double d[3], ms_hit *hits,
-                       int *result)
+void ms_trace_coherent(const ms_tracer *t, size_t count, const double *o, const double d[3], ms_hit *hits, int *result)
 {
     enum { M = 64 };
     struct RTCIntersectContext ctx;
@@ -248,8 +248,7 @@ int ms_trace(const ms_tracer *t, const double o[3], const double d[3], ms_hit *h
     (void)t, (void)o, (void)d, (void)hit;
     return 0;
 }
-void ms_trace_coherent(const ms_tracer *t, size_t count, const double *o, const double d[3], ms_hit *hits,
-                       int *result)
+void ms_trace_coherent(const ms_tracer *t, size_t count, const double *o, const double d[3], ms_hit *hits, int *result)
 {
     (void)t, (void)o, (void)d, (void)hits;
     for (size_t i = 0; i < count; i++) result[i] = 0;

@@ -25,7 +25,8 @@ void colormap(double t, double rgb[3])
 }
 
 static const theme LIGHT = {{1, 1, 1}, {0.08, 0.08, 0.1}, {0.45, 0.45, 0.5}, {0.93, 0.93, 0.94}, {0.55, 0.55, 0.58}};
-static const theme DARK = {{0.09, 0.09, 0.11}, {0.92, 0.92, 0.93}, {0.6, 0.6, 0.65}, {0.16, 0.16, 0.19}, {0.45, 0.45, 0.5}};
+static const theme DARK = {
+    {0.09, 0.09, 0.11}, {0.92, 0.92, 0.93}, {0.6, 0.6, 0.65}, {0.16, 0.16, 0.19}, {0.45, 0.45, 0.5}};
 const theme *theme_get(int dark) { return dark ? &DARK : &LIGHT; }
 
 void set_rgb(cairo_t *cr, const double c[3]) { cairo_set_source_rgb(cr, c[0], c[1], c[2]); }
@@ -106,7 +107,8 @@ int canvas_close(canvas *c)
 
 void text_font(cairo_t *cr, double size, int bold)
 {
-    cairo_select_font_face(cr, "DejaVu Sans", CAIRO_FONT_SLANT_NORMAL, bold ? CAIRO_FONT_WEIGHT_BOLD : CAIRO_FONT_WEIGHT_NORMAL);
+    cairo_select_font_face(cr, "DejaVu Sans", CAIRO_FONT_SLANT_NORMAL,
+                           bold ? CAIRO_FONT_WEIGHT_BOLD : CAIRO_FONT_WEIGHT_NORMAL);
     cairo_set_font_size(cr, size);
 }
 
@@ -116,7 +118,8 @@ static const char *typeset(const char *s, char *out, size_t n)
 {
     size_t k = 0;
     for (const char *p = s; *p && k + 4 < n; p++) {
-        int number = p[0] == '-' && (p[1] >= '0' && p[1] <= '9') && (p == s || p[-1] == ' ' || p[-1] == '(' || p[-1] == ',');
+        int number = p[0] == '-' && (p[1] >= '0' && p[1] <= '9') &&
+                     (p == s || p[-1] == ' ' || p[-1] == '(' || p[-1] == ',');
         if (number) out[k++] = '\xe2', out[k++] = '\x88', out[k++] = '\x92';
         else out[k++] = *p;
     }
@@ -197,7 +200,8 @@ void colour_bar(cairo_t *cr, const theme *th, double x, double y, double w, doub
     int nt;
     if (log_scale) {
         nt = 0;
-        for (double d = ceil(log10(vmin_log) - 1e-9); d <= log10(vmax) + 1e-9 && nt < 32; d += 1) ticks[nt++] = pow(10, d);
+        for (double d = ceil(log10(vmin_log) - 1e-9); d <= log10(vmax) + 1e-9 && nt < 32; d += 1)
+            ticks[nt++] = pow(10, d);
     } else {
         nt = nice_ticks(0, vmax, 5, ticks, 32);
     }

@@ -8,8 +8,18 @@
 #include "ggx/ggx_samplers.h"
 
 typedef enum figure_kind {
-    FIG_NDF, FIG_NDF_SIDE, FIG_VNDF, FIG_VNDF_SIDE, FIG_GRID, FIG_GRID_SIDE, /* the seeds' hemisphere figures */
-    FIG_G1, FIG_LAMBDA, FIG_NDF_SLICE, FIG_FURNACE, FIG_POLAR, FIG_SLICE,     /* line plots, the polar plot, the slice */
+    FIG_NDF,
+    FIG_NDF_SIDE,
+    FIG_VNDF,
+    FIG_VNDF_SIDE,
+    FIG_GRID,
+    FIG_GRID_SIDE, /* the seeds' hemisphere figures */
+    FIG_G1,
+    FIG_LAMBDA,
+    FIG_NDF_SLICE,
+    FIG_FURNACE,
+    FIG_POLAR,
+    FIG_SLICE, /* line plots, the polar plot, the slice */
     FIG_COUNT
 } figure_kind;
 /* The figure's name ("ndf", "vndf-side", ...: the names of ggx plot --figure) and its inverse, -1 for no figure. */
@@ -17,7 +27,10 @@ const char *figure_name(figure_kind k);
 int figure_kind_of(const char *name);
 /* The kinds' families: seen from the side, equal-area grids, VNDF densities, line plots (and the polar plot and
  * the slice). */
-static inline int figure_is_side(figure_kind k) { return k == FIG_NDF_SIDE || k == FIG_VNDF_SIDE || k == FIG_GRID_SIDE; }
+static inline int figure_is_side(figure_kind k)
+{
+    return k == FIG_NDF_SIDE || k == FIG_VNDF_SIDE || k == FIG_GRID_SIDE;
+}
 static inline int figure_is_grid(figure_kind k) { return k == FIG_GRID || k == FIG_GRID_SIDE; }
 static inline int figure_is_vndf(figure_kind k) { return k == FIG_VNDF || k == FIG_VNDF_SIDE; }
 static inline int figure_is_line(figure_kind k) { return k >= FIG_G1; }
@@ -26,14 +39,14 @@ static inline int figure_is_line(figure_kind k) { return k >= FIG_G1; }
 typedef struct figure_spec {
     figure_kind kind;
     const ggx_shape *s;
-    ggx_vec3 view;                    /* VNDF figures and VNDF samplers' grids; above the horizon */
+    ggx_vec3 view;                   /* VNDF figures and VNDF samplers' grids; above the horizon */
     const ggx_sampler_info *sampler; /* grids: the map of the unit square */
     int log_scale, dark;
-    double from;                      /* side views: the azimuth of the viewer (radians); NAN: the default */
-    char shape_text[192];             /* the caption's shape, e.g. "αx 0.15, αy 0.5, θx 0°, θy 0°, θz 0°" */
-    char note[192];                   /* one more caption line (the seed figure reproduced), or "" */
-    double eta;                       /* polar: 0 for the BRDF, else the BSDF's relative index of refraction */
-    double phi_d;                     /* slice: the difference angle phi_d (radians) */
+    double from;          /* side views: the azimuth of the viewer (radians); NAN: the default */
+    char shape_text[192]; /* the caption's shape, e.g. "αx 0.15, αy 0.5, θx 0°, θy 0°, θz 0°" */
+    char note[192];       /* one more caption line (the seed figure reproduced), or "" */
+    double eta;           /* polar: 0 for the BRDF, else the BSDF's relative index of refraction */
+    double phi_d;         /* slice: the difference angle phi_d (radians) */
 } figure_spec;
 
 /* The hemisphere's projection in a figure: from above (x right, y up) or from the side, seen from the horizontal

@@ -7,8 +7,8 @@
 
 #include "figure.h"
 
-static const char *const FIGURE_NAMES[] = {"ndf", "ndf-side", "vndf", "vndf-side", "grid", "grid-side",
-                                           "g1", "lambda", "ndf-slice", "furnace", "polar", "slice"};
+static const char *const FIGURE_NAMES[] = {"ndf", "ndf-side", "vndf",      "vndf-side", "grid",  "grid-side",
+                                           "g1",  "lambda",   "ndf-slice", "furnace",   "polar", "slice"};
 _Static_assert(sizeof FIGURE_NAMES / sizeof FIGURE_NAMES[0] == FIG_COUNT, "a name for every figure_kind");
 
 const char *figure_name(figure_kind k) { return k >= 0 && k < FIG_COUNT ? FIGURE_NAMES[k] : ""; }
@@ -49,7 +49,8 @@ double figure_azimuth_deg(double rad)
 
 static void view_text(ggx_vec3 v, char *buf, size_t n)
 {
-    snprintf(buf, n, "view v: θ %.4g°, φ %.4g°", acos(fmax(-1, fmin(1, v.z))) / DEG, figure_azimuth_deg(atan2(v.y, v.x)));
+    snprintf(buf, n, "view v: θ %.4g°, φ %.4g°", acos(fmax(-1, fmin(1, v.z))) / DEG,
+             figure_azimuth_deg(atan2(v.y, v.x)));
 }
 
 static int caption_lines(const figure_spec *f, char lines[FIGURE_CAPTION_LINES][400])
@@ -57,13 +58,16 @@ static int caption_lines(const figure_spec *f, char lines[FIGURE_CAPTION_LINES][
     const char *what;
     char where[96] = "", view[96];
     switch (f->kind) {
-    case FIG_NDF: case FIG_NDF_SIDE: what = "NDF pdf D(m) (m·n)"; break;
-    case FIG_VNDF: case FIG_VNDF_SIDE:
+    case FIG_NDF:
+    case FIG_NDF_SIDE: what = "NDF pdf D(m) (m·n)"; break;
+    case FIG_VNDF:
+    case FIG_VNDF_SIDE:
         /* for skewed shapes Walter's clamped G1 does not normalise the G1 form: name eq 33 */
         what = f->s->kind == GGX_SHAPE_SKEWED ? "VNDF pdf D(m) (m·v)⁺ / ∫ D (m'·v)⁺ dm' (Walter eq 33)"
                                               : "VNDF pdf G1(v) D(m) (m·v)⁺ / (v·n)";
         break;
-    case FIG_GRID: case FIG_GRID_SIDE: what = "Equal-area 10 × 10 grid of the unit square"; break;
+    case FIG_GRID:
+    case FIG_GRID_SIDE: what = "Equal-area 10 × 10 grid of the unit square"; break;
     case FIG_G1: what = "Masking G1(v) against the view's polar angle"; break;
     case FIG_LAMBDA: what = "Smith Λ(v) against the view's polar angle"; break;
     case FIG_NDF_SLICE: what = "D(m) along the principal planes through its peak"; break;
@@ -75,13 +79,15 @@ static int caption_lines(const figure_spec *f, char lines[FIGURE_CAPTION_LINES][
     default: what = "Weak white furnace and directional albedo (F = 1)"; break;
     }
     int n = 0;
-    if (figure_is_side(f->kind)) snprintf(where, sizeof where, ", from the side (seen from φ %.4g°)", figure_azimuth_deg(f->from));
+    if (figure_is_side(f->kind))
+        snprintf(where, sizeof where, ", from the side (seen from φ %.4g°)", figure_azimuth_deg(f->from));
     else if (!figure_is_line(f->kind)) snprintf(where, sizeof where, ", from above");
     snprintf(lines[n++], 400, "%s%s", what, where);
     view_text(f->view, view, sizeof view);
     if (figure_is_grid(f->kind))
         snprintf(lines[n++], 400, "%s  ·  mapped by sampler '%s'%s%s", f->shape_text, f->sampler->name,
-                 f->sampler->family == GGX_FAMILY_VNDF ? "  ·  " : "", f->sampler->family == GGX_FAMILY_VNDF ? view : "");
+                 f->sampler->family == GGX_FAMILY_VNDF ? "  ·  " : "",
+                 f->sampler->family == GGX_FAMILY_VNDF ? view : "");
     else if (figure_is_vndf(f->kind)) snprintf(lines[n++], 400, "%s  ·  %s", f->shape_text, view);
     else if (f->kind == FIG_SLICE)
         snprintf(lines[n++], 400, "%s  ·  φd %.4g°, half vector at φh 0°", f->shape_text, f->phi_d / DEG);
@@ -89,8 +95,10 @@ static int caption_lines(const figure_spec *f, char lines[FIGURE_CAPTION_LINES][
     else snprintf(lines[n++], 400, "%s", f->shape_text);
     if (figure_has_grey(f))
         snprintf(lines[n++], 400, "%s: normals m that reflect v above the horizon (2 (m·v) m·n > v·n)%s",
-                 figure_is_grid(f->kind) ? "grey" : "hatched grey", figure_is_grid(f->kind) ? "; blank: m·v < 0, never sampled" : "");
-    if (f->log_scale && !figure_is_grid(f->kind) && !figure_is_line(f->kind)) snprintf(lines[n++], 400, "log scale: blank where the pdf is 0");
+                 figure_is_grid(f->kind) ? "grey" : "hatched grey",
+                 figure_is_grid(f->kind) ? "; blank: m·v < 0, never sampled" : "");
+    if (f->log_scale && !figure_is_grid(f->kind) && !figure_is_line(f->kind))
+        snprintf(lines[n++], 400, "log scale: blank where the pdf is 0");
     if (f->note[0]) snprintf(lines[n++], 400, "%s", f->note);
     return n;
 }
@@ -118,5 +126,5 @@ double figure_draw_caption(cairo_t *cr, const theme *th, double x, double y, dou
 double figure_font(double w, double h) { return fmax(6.0, fmin(26.0, 0.021 * fmin(w, 1.6 * h))); }
 
 /* Okabe and Ito's colour-blind-safe palette, with dashes so that print in grey still tells the curves apart. */
-const double FIGURE_PALETTE[6][3] = {{0.0, 0.447, 0.698}, {0.835, 0.369, 0.0}, {0.0, 0.62, 0.451},
+const double FIGURE_PALETTE[6][3] = {{0.0, 0.447, 0.698}, {0.835, 0.369, 0.0},   {0.0, 0.62, 0.451},
                                      {0.8, 0.475, 0.655}, {0.337, 0.706, 0.914}, {0.902, 0.624, 0.0}};

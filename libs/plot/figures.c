@@ -86,7 +86,6 @@ double figure_peak(const figure_spec *f, ggx_vec3 *where)
 int figure_grey(ggx_vec3 v, ggx_vec3 m) { return 2.0 * ggx_k_dot_d(m, v) * m.z - v.z > 0; }
 
 
-
 /* The grey region's boundary at azimuth phi: the polar angle where 2 (m.v) m.z = v.z (docs/figures.md). */
 ggx_vec3 figure_grey_boundary(ggx_vec3 v, double phi)
 {
@@ -148,7 +147,10 @@ static int clip_front(const ggx_vec3 *p, int n, ggx_vec3 e, ggx_vec3 *out, int m
 {
     int start = -1;
     for (int i = 0; i < n; i++)
-        if (ggx_k_dot_d(p[i], e) >= 0) { start = i; break; }
+        if (ggx_k_dot_d(p[i], e) >= 0) {
+            start = i;
+            break;
+        }
     if (start < 0) return 0;
     int k = 0;
     ggx_vec3 exit_pt = p[start];
@@ -158,7 +160,8 @@ static int clip_front(const ggx_vec3 *p, int n, ggx_vec3 e, ggx_vec3 *out, int m
         if (da >= 0 && k < max) out[k++] = a;
         if ((da >= 0) != (db >= 0)) {
             double t = da / (da - db);
-            ggx_vec3 x = ggx_k_normalize_d(ggx_k_v3_d(a.x + t * (b.x - a.x), a.y + t * (b.y - a.y), a.z + t * (b.z - a.z)));
+            ggx_vec3 x = ggx_k_normalize_d(
+                ggx_k_v3_d(a.x + t * (b.x - a.x), a.y + t * (b.y - a.y), a.z + t * (b.z - a.z)));
             if (da >= 0) {
                 exit_pt = x;
                 if (k < max) out[k++] = x;
@@ -377,8 +380,10 @@ static void draw_grid(cairo_t *cr, const theme *th, const hemi_proj *hp, const f
     static const double colours[2][3] = {{0.23, 0.32, 0.55}, {0.99, 0.72, 0.30}};
     for (int i = 0; i < CELLS; i++)
         for (int j = 0; j < CELLS; j++) {
-            const double c1[5] = {(double)i / CELLS, (i + 1.0) / CELLS, (i + 1.0) / CELLS, (double)i / CELLS, (double)i / CELLS};
-            const double c2[5] = {(double)j / CELLS, (double)j / CELLS, (j + 1.0) / CELLS, (j + 1.0) / CELLS, (double)j / CELLS};
+            const double c1[5] = {(double)i / CELLS, (i + 1.0) / CELLS, (i + 1.0) / CELLS, (double)i / CELLS,
+                                  (double)i / CELLS};
+            const double c2[5] = {(double)j / CELLS, (double)j / CELLS, (j + 1.0) / CELLS, (j + 1.0) / CELLS,
+                                  (double)j / CELLS};
             int n = 0;
             ggx_vec3 prev = f->sampler->sample(f->s, f->view, c1[0], c2[0]);
             for (int e = 0; e < 4; e++)
@@ -554,7 +559,8 @@ static int line_series(const figure_spec *f, series *sr, const char **xlabel, co
             snprintf(s->label, sizeof s->label, "toward φ %.4g° (α %.3g)", figure_azimuth_deg(atan2(t.y, t.x)), alpha);
             for (int k = 0; k <= 358; k++) {
                 double g = (-89.5 + 0.5 * k) * DEG;
-                ggx_vec3 m = ggx_k_v3_d(cos(g) * pk.x + sin(g) * t.x, cos(g) * pk.y + sin(g) * t.y, cos(g) * pk.z + sin(g) * t.z);
+                ggx_vec3 m = ggx_k_v3_d(cos(g) * pk.x + sin(g) * t.x, cos(g) * pk.y + sin(g) * t.y,
+                                        cos(g) * pk.z + sin(g) * t.z);
                 double d = ggx_ndf(f->s, m);
                 if (d > 0) s->x[s->n] = g / DEG, s->y[s->n++] = d;
             }
@@ -641,10 +647,11 @@ void plot_draw(cairo_t *cr, const theme *th, double x, double y, double w, doubl
     else xlo = 0, xhi = 90;
     if (logy) ylo = floor(fmax(ylo, yhi - 6)), yhi = ceil(yhi);
     else ylo = fmin(0.0, ylo), yhi = ax->free_top ? yhi * 1.05 : fmax(1.0, yhi) * 1.05;
-    if (!logy && ylo < 0) ylo -= 0.05 * (yhi - ylo); /* a negative curve (Lambda of a skewed shape) clear of the frame */
+    if (!logy && ylo < 0)
+        ylo -= 0.05 * (yhi - ylo); /* a negative curve (Lambda of a skewed shape) clear of the frame */
     if (!(yhi > ylo)) yhi = ylo + 1;
-#define MAPX(v) (px + pw * ((v) - xlo) / (xhi - xlo))
-#define MAPY(v) (py + ph * (1 - ((v) - ylo) / (yhi - ylo)))
+#define MAPX(v) (px + pw * ((v)-xlo) / (xhi - xlo))
+#define MAPY(v) (py + ph * (1 - ((v)-ylo) / (yhi - ylo)))
     /* axes, grid lines and ticks */
     double ticks[64];
     cairo_set_line_width(cr, fmax(0.4, 0.05 * F));

@@ -58,8 +58,7 @@ void render_camera_words(const render_spec *r, char *buf, size_t n)
 {
     if (r->scene == RENDER_SPHERE)
         snprintf(buf, n, "camera 4 units from the unit sphere, 10° up, on −y; 34° field of view");
-    else
-        snprintf(buf, n, "camera 3.2 units from the origin, 35° up, azimuth 60°; 50° field of view");
+    else snprintf(buf, n, "camera 3.2 units from the origin, 35° up, azimuth 60°; 50° field of view");
 }
 
 static ggx_vec3 camera_dir(const render_spec *r, const camera *c, double x, double y)
@@ -84,7 +83,10 @@ static void frame_at(const render_spec *r, ggx_vec3 p, render_hit *h)
     h->b = ggx_k_cross_d(h->n, h->t);
 }
 
-static ggx_vec3 to_local(const render_hit *h, ggx_vec3 w) { return ggx_k_v3_d(ggx_k_dot_d(w, h->t), ggx_k_dot_d(w, h->b), ggx_k_dot_d(w, h->n)); }
+static ggx_vec3 to_local(const render_hit *h, ggx_vec3 w)
+{
+    return ggx_k_v3_d(ggx_k_dot_d(w, h->t), ggx_k_dot_d(w, h->b), ggx_k_dot_d(w, h->n));
+}
 static ggx_vec3 to_world(const render_hit *h, ggx_vec3 w)
 {
     return ggx_k_add_d(ggx_k_scale_d(h->t, w.x), ggx_k_add_d(ggx_k_scale_d(h->b, w.y), ggx_k_scale_d(h->n, w.z)));
@@ -142,8 +144,7 @@ static int bsdf_sample(const render_spec *r, ggx_vec3 v, stream *rs, ggx_vec3 *w
     if (is_glass(r))
         x = r->bsdf_energy ? ggx_sample_bsdf_compensated(r->bsdf_energy, v, u1, u2, u3, GGX_RADIANCE)
                            : ggx_sample_bsdf(&r->shape, r->fresnel.eta, v, u1, u2, u3, GGX_RADIANCE);
-    else if (r->energy)
-        x = ggx_sample_brdf_compensated(r->energy, &r->fresnel, v, u1, u2, u3);
+    else if (r->energy) x = ggx_sample_brdf_compensated(r->energy, &r->fresnel, v, u1, u2, u3);
     else if (r->sampler->family == GGX_FAMILY_DIRECTION)
         x = r->sampler->sample_direction(&r->shape, &r->fresnel, r->fresnel.eta, v, u1, u2, u3, GGX_RADIANCE);
     else {
@@ -151,7 +152,7 @@ static int bsdf_sample(const render_spec *r, ggx_vec3 v, stream *rs, ggx_vec3 *w
         const ggx_sampler_info *smp = r->sampler;
         unsigned trials;
         ggx_vec3 m = smp->family == GGX_FAMILY_REJECTION ? smp->sample_reject(&r->shape, v, uniform_cb, rs, &trials)
-                                                        : smp->sample(&r->shape, v, u1, u2);
+                                                         : smp->sample(&r->shape, v, u1, u2);
         double vm = ggx_k_dot_d(v, m);
         if (!(vm > 0)) return 0;
         ggx_vec3 o = ggx_reflect(v, m);
@@ -278,7 +279,8 @@ int render_prepare(render_spec *r, char *err, size_t errn)
     const ggx_sampler_info *bounded = ggx_sampler_get(GGX_SAMPLER_BRDF_BOUNDED);
     if (is_glass(r)) {
         if (r->sampler && r->sampler->id != GGX_SAMPLER_BSDF)
-            return surface_fail(err, errn, "the rough glass samples by its own sampler, bsdf (not %s)", r->sampler->name);
+            return surface_fail(err, errn, "the rough glass samples by its own sampler, bsdf (not %s)",
+                                r->sampler->name);
         r->sampler = ggx_sampler_get(GGX_SAMPLER_BSDF);
     } else {
         if (!r->sampler) r->sampler = bounded;
@@ -289,14 +291,16 @@ int render_prepare(render_spec *r, char *err, size_t errn)
                                 r->sampler->name);
     }
     if (r->compensate && !is_glass(r) && r->sampler != bounded)
-        return surface_fail(err, errn, "with compensation a reflector samples by ggx_sample_brdf_compensated, whose "
-                                       "single-scattering lobe is brdf-bounded (not %s)", r->sampler->name);
+        return surface_fail(err, errn,
+                            "with compensation a reflector samples by ggx_sample_brdf_compensated, whose "
+                            "single-scattering lobe is brdf-bounded (not %s)",
+                            r->sampler->name);
     if (!r->compensate) return 0;
     ggx_status st = is_glass(r) ? ggx_bsdf_energy_create(&r->shape, r->fresnel.eta, &r->bsdf_energy)
                                 : ggx_energy_create(&r->shape, &r->energy);
     if (st != GGX_OK)
-        return surface_fail(err, errn, "no energy compensation for this %s: %s", is_glass(r) ? "shape and eta" : "shape",
-                            ggx_status_str(st));
+        return surface_fail(err, errn, "no energy compensation for this %s: %s",
+                            is_glass(r) ? "shape and eta" : "shape", ggx_status_str(st));
     return 0;
 }
 
@@ -336,9 +340,9 @@ static void render_tile(job *j, int tile)
                 double mean = sum[k] / r->spp;
                 j->rgb[3 * pixel + k] = (float)mean;
                 if (j->var)
-                    j->var[3 * pixel + k] =
-                        r->spp > 1 ? (float)(fmax(0.0, sq[k] - r->spp * mean * mean) / ((double)r->spp * (r->spp - 1)))
-                                   : 0.0f;
+                    j->var[3 * pixel + k] = r->spp > 1 ? (float)(fmax(0.0, sq[k] - r->spp * mean * mean) /
+                                                                 ((double)r->spp * (r->spp - 1)))
+                                                       : 0.0f;
             }
         }
     long px = (long)((x0 + TILE < r->width ? TILE : r->width - x0) * (y0 + TILE < r->height ? TILE : r->height - y0));

@@ -28,8 +28,8 @@ typedef struct render_texel {
     float pdf_scale; /* p_ij w h / (2 pi^2): the pdf times sin theta (radiance and pdf in one cache line) */
 } render_texel;
 typedef struct render_alias {
-    float keep;      /* the probability of keeping pixel k ... */
-    uint32_t other;  /* ... and the pixel taken otherwise */
+    float keep;     /* the probability of keeping pixel k ... */
+    uint32_t other; /* ... and the pixel taken otherwise */
 } render_alias;
 typedef struct render_env {
     int w, h;
@@ -80,18 +80,18 @@ typedef struct render_spec {
      * NULL: GGX_SAMPLER_BRDF_BOUNDED. With compensation, reflectors sample by ggx_sample_brdf_compensated and
      * glass by ggx_sample_bsdf_compensated, and sampler must be NULL or GGX_SAMPLER_BRDF_BOUNDED. */
     const ggx_sampler_info *sampler;
-    int compensate;           /* add the library's multiple-scattering lobes (ggx_energy / ggx_bsdf_energy) */
+    int compensate; /* add the library's multiple-scattering lobes (ggx_energy / ggx_bsdf_energy) */
     render_scene scene;
     render_light light;
-    const render_env *env;    /* RENDER_LIGHT_ENV */
-    ggx_vec3 light_dir;       /* RENDER_LIGHT_DIRECTIONAL: unit, towards the light, world frame */
-    double light_irradiance;  /* RENDER_LIGHT_DIRECTIONAL: at normal incidence, every channel */
+    const render_env *env;   /* RENDER_LIGHT_ENV */
+    ggx_vec3 light_dir;      /* RENDER_LIGHT_DIRECTIONAL: unit, towards the light, world frame */
+    double light_irradiance; /* RENDER_LIGHT_DIRECTIONAL: at normal incidence, every channel */
     render_strategy strategy;
-    int width, height, spp;   /* >= 1 each */
-    int depth;                /* the most surface interactions a path has (>= 1; the glass sphere needs 2 to pass) */
+    int width, height, spp; /* >= 1 each */
+    int depth;              /* the most surface interactions a path has (>= 1; the glass sphere needs 2 to pass) */
     uint64_t seed;
-    int threads;              /* >= 1; the image does not depend on it */
-    int jitter;               /* 1: each sample at a uniform point of its pixel; 0: every sample at the centre */
+    int threads; /* >= 1; the image does not depend on it */
+    int jitter;  /* 1: each sample at a uniform point of its pixel; 0: every sample at the centre */
     /* Called from the calling thread with the pixels done so far (may be NULL). */
     void (*progress)(void *ctx, long done, long total);
     void *progress_ctx;

@@ -9,10 +9,7 @@
 #include "surface.h"
 
 
-static int env_fail(char *err, size_t errn, const char *msg)
-{
-    return surface_fail(err, errn, "%s", msg);
-}
+static int env_fail(char *err, size_t errn, const char *msg) { return surface_fail(err, errn, "%s", msg); }
 
 void render_env_free(render_env *e)
 {
@@ -72,8 +69,9 @@ int render_env_init(render_env *e, int w, int h, float *rgb, long *negatives, ch
     if (!(total > 0) || !isfinite(total)) {
         free(p), free(work);
         render_env_free(e);
-        return env_fail(err, errn, total > 0 ? "the environment's radiance sums to more than a double holds"
-                                             : "the environment is black everywhere (nothing to light with)");
+        return env_fail(err, errn,
+                        total > 0 ? "the environment's radiance sums to more than a double holds"
+                                  : "the environment is black everywhere (nothing to light with)");
     }
     /* Vose's alias method: p scaled to mean 1; the small ones (below 1) each take the rest of their column from a
      * large one. work holds the small indices from the front and the large from the back. */
@@ -90,8 +88,14 @@ int render_env_init(render_env *e, int w, int h, float *rgb, long *negatives, ch
         p[l] -= 1 - p[s];
         if (p[l] < 1) nl--, work[ns++] = l;
     }
-    while (nl) { uint32_t l = work[count - nl--]; e->alias[l].keep = 1, e->alias[l].other = l; }
-    while (ns) { uint32_t s = work[--ns]; e->alias[s].keep = 1, e->alias[s].other = s; } /* rounding's leftovers */
+    while (nl) {
+        uint32_t l = work[count - nl--];
+        e->alias[l].keep = 1, e->alias[l].other = l;
+    }
+    while (ns) {
+        uint32_t s = work[--ns];
+        e->alias[s].keep = 1, e->alias[s].other = s;
+    } /* rounding's leftovers */
     free(p), free(work);
     return 0;
 }

@@ -41,8 +41,8 @@ surface_format surface_format_of(const char *name, const unsigned char *data, si
 
 const char *surface_format_name(surface_format f)
 {
-    static const char *const names[] = {"CSV normals", "ASCII matrix", "XYZ text", "Gwyddion .gsf", "PNG",
-                                        "OpenEXR", "x3p", "Radiance .hdr", "PFM", "unknown"};
+    static const char *const names[] = {"CSV normals", "ASCII matrix", "XYZ text",      "Gwyddion .gsf", "PNG",
+                                        "OpenEXR",     "x3p",          "Radiance .hdr", "PFM",           "unknown"};
     return names[f <= SURFACE_UNKNOWN ? f : SURFACE_UNKNOWN];
 }
 
@@ -64,9 +64,10 @@ int surface_parse(surface_format f, const unsigned char *data, size_t n, const s
     case SURFACE_HDR: rc = surface_parse_hdr(data, n, s, err, errn); break;
     case SURFACE_PFM: rc = surface_parse_pfm(data, n, s, err, errn); break;
     default:
-        return surface_fail(err, errn, o->want == SURFACE_RADIANCE
-                                           ? "unknown format (give .exr, .hdr or .pfm)"
-                                           : "unknown format (give .csv, .txt/.asc, .xyz, .gsf, .png, .exr or .x3p)");
+        return surface_fail(err, errn,
+                            o->want == SURFACE_RADIANCE
+                                ? "unknown format (give .exr, .hdr or .pfm)"
+                                : "unknown format (give .csv, .txt/.asc, .xyz, .gsf, .png, .exr or .x3p)");
     }
     if (rc != 0) {
         surface_free(s);

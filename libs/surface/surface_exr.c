@@ -80,9 +80,13 @@ static int exr_grow(exr_reader *r, size_t rows)
     if (want < 64) want = 64;
     if (want > r->ny) want = r->ny;
     surface *o = r->s;
-    size_t elem = o->kind == SURFACE_HEIGHTS ? sizeof *o->h : o->kind == SURFACE_NORMALS ? sizeof *o->m : 3 * sizeof *o->rgb;
+    size_t elem = o->kind == SURFACE_HEIGHTS   ? sizeof *o->h
+                  : o->kind == SURFACE_NORMALS ? sizeof *o->m
+                                               : 3 * sizeof *o->rgb;
     if (want > SIZE_MAX / elem / r->nx) return -1;
-    void **slot = o->kind == SURFACE_HEIGHTS ? (void **)&o->h : o->kind == SURFACE_NORMALS ? (void **)&o->m : (void **)&o->rgb;
+    void **slot = o->kind == SURFACE_HEIGHTS   ? (void **)&o->h
+                  : o->kind == SURFACE_NORMALS ? (void **)&o->m
+                                               : (void **)&o->rgb;
     void *p = realloc(*slot, want * r->nx * elem);
     if (!p) return -1;
     *slot = p;
@@ -199,7 +203,8 @@ static int exr_read_scanlines(exr_reader *r, const exr_attr_box2i_t *dw, char *e
         if (exr_read_scanline_chunk_info(r->ctx, 0, (int)y, &ci) != EXR_ERR_SUCCESS)
             return surface_fail(err, errn, EXR_UNREADABLE);
         int64_t first = ci.start_y, next = (int64_t)ci.start_y + ci.height;
-        if (ci.height <= 0 || first > y || next <= y || first < dw->min.y) return surface_fail(err, errn, EXR_UNREADABLE);
+        if (ci.height <= 0 || first > y || next <= y || first < dw->min.y)
+            return surface_fail(err, errn, EXR_UNREADABLE);
         size_t py = (size_t)(first - dw->min.y), rows = (size_t)(next - first);
         if (rows > r->ny - py) rows = r->ny - py;
         if (exr_decode_chunk(r, &ci, 0, py, r->nx, rows, err, errn) != 0) return -1;
@@ -240,22 +245,20 @@ static int exr_parse_part(exr_reader *r, size_t n, char *err, size_t errn)
     int32_t chunks = 0;
     if (exr_get_count(r->ctx, &parts) != EXR_ERR_SUCCESS || parts < 1 ||
         exr_get_storage(r->ctx, 0, &storage) != EXR_ERR_SUCCESS ||
-        exr_get_data_window(r->ctx, 0, &dw) != EXR_ERR_SUCCESS ||
-        exr_get_channels(r->ctx, 0, &cl) != EXR_ERR_SUCCESS || !cl || cl->num_channels < 1 || !cl->entries ||
-        exr_get_compression(r->ctx, 0, &r->comp) != EXR_ERR_SUCCESS)
+        exr_get_data_window(r->ctx, 0, &dw) != EXR_ERR_SUCCESS || exr_get_channels(r->ctx, 0, &cl) != EXR_ERR_SUCCESS ||
+        !cl || cl->num_channels < 1 || !cl->entries || exr_get_compression(r->ctx, 0, &r->comp) != EXR_ERR_SUCCESS)
         return surface_fail(err, errn, EXR_UNREADABLE);
     if (storage == EXR_STORAGE_DEEP_SCANLINE || storage == EXR_STORAGE_DEEP_TILED)
         return surface_fail(err, errn, "a deep OpenEXR image is not a surface");
-    if (storage != EXR_STORAGE_SCANLINE && storage != EXR_STORAGE_TILED)
-        return surface_fail(err, errn, EXR_UNREADABLE);
+    if (storage != EXR_STORAGE_SCANLINE && storage != EXR_STORAGE_TILED) return surface_fail(err, errn, EXR_UNREADABLE);
     int64_t w = (int64_t)dw.max.x - dw.min.x + 1, h = (int64_t)dw.max.y - dw.min.y + 1;
     /* a height field needs its neighbours; a normal map (or radiance) may be one texel */
     if (w < 1 || h < 1 || ((w < 2 || h < 2) && r->o->want == SURFACE_HEIGHTS))
         return surface_fail(err, errn, "%lld x %lld pixels: a height field needs at least 2 x 2", (long long)w,
                             (long long)h);
     if (w > EXR_MAX_SIDE || h > EXR_MAX_SIDE)
-        return surface_fail(err, errn, "%lld x %lld pixels: too large (at most %d a side)", (long long)w,
-                            (long long)h, EXR_MAX_SIDE);
+        return surface_fail(err, errn, "%lld x %lld pixels: too large (at most %d a side)", (long long)w, (long long)h,
+                            EXR_MAX_SIDE);
     r->nx = (size_t)w, r->ny = (size_t)h;
     if (r->nx > SIZE_MAX / r->ny || r->nx * r->ny > SIZE_MAX / sizeof(ggx_vec3))
         return surface_fail(err, errn, "%lld x %lld pixels: too large", (long long)w, (long long)h);
@@ -440,7 +443,9 @@ int surface_encode_exr(const surface *s, unsigned char **data, size_t *n, char *
     int heights = s->kind == SURFACE_HEIGHTS, nch = heights ? 1 : 3;
     if (s->nx < 1 || s->ny < 1 || s->nx > INT32_MAX || s->ny > INT32_MAX || s->nx > SIZE_MAX / s->ny ||
         s->nx * s->ny > SIZE_MAX / sizeof(float) / 3 ||
-        (heights ? !s->h : s->kind == SURFACE_NORMALS ? !s->m : !s->rgb))
+        (heights                      ? !s->h
+         : s->kind == SURFACE_NORMALS ? !s->m
+                                      : !s->rgb))
         return surface_fail(err, errn, "no surface, or too large for OpenEXR");
     size_t count = s->nx * s->ny;
     static const char *const rgb[3] = {"R", "G", "B"}, *const y[1] = {"Y"};

@@ -13,8 +13,11 @@
 /* The factor of a unit name into metres (1 for "m"); 0 when not a length unit. */
 static double unit_factor(const char *u)
 {
-    static const struct { const char *u; double f; } units[] = {
-        {"m", 1.0}, {"mm", 1e-3}, {"um", 1e-6}, {"\xc2\xb5m", 1e-6}, {"nm", 1e-9}, {"pm", 1e-12}, {"A", 1e-10}};
+    static const struct {
+        const char *u;
+        double f;
+    } units[] = {{"m", 1.0},   {"mm", 1e-3},  {"um", 1e-6}, {"\xc2\xb5m", 1e-6},
+                 {"nm", 1e-9}, {"pm", 1e-12}, {"A", 1e-10}};
     for (unsigned i = 0; i < sizeof units / sizeof units[0]; i++)
         if (strcmp(u, units[i].u) == 0) return units[i].f;
     return 0.0;
@@ -47,7 +50,8 @@ int surface_parse_gsf(const unsigned char *data, size_t n, surface *s, char *err
     }
     free(hdr);
     if (!(xres >= 2 && yres >= 2 && xres <= 1e6 && yres <= 1e6) || xres != floor(xres) || yres != floor(yres))
-        return surface_fail(err, errn, "XRes and YRes must be whole numbers from 2 to 10^6 (%g x %g given)", xres, yres);
+        return surface_fail(err, errn, "XRes and YRes must be whole numbers from 2 to 10^6 (%g x %g given)", xres,
+                            yres);
     if (!(xreal > 0 && yreal > 0 && isfinite(xreal) && isfinite(yreal)))
         return surface_fail(err, errn, "XReal and YReal must be positive (%g, %g given)", xreal, yreal);
     size_t nx = (size_t)xres, ny = (size_t)yres, count = nx * ny;

@@ -38,6 +38,7 @@ int surface_parse_hdr(const unsigned char *data, size_t n, surface *s, char *err
 int surface_parse_hdr(const unsigned char *data, size_t n, surface *s, char *err, size_t errn)
 {
     (void)data, (void)n, (void)s;
-    return surface_fail(err, errn, "Radiance .hdr support was not built (stb_image missing: apt-get install libstb-dev)");
+    return surface_fail(err, errn,
+                        "Radiance .hdr support was not built (stb_image missing: apt-get install libstb-dev)");
 }
 #endif

@@ -49,7 +49,8 @@ int surface_parse_pfm(const unsigned char *data, size_t n, surface *s, char *err
         if (!pfm_token(data, n, &at, tok)) return surface_fail(err, errn, "a PFM header cut short");
         errno = 0;
         v[k] = strtod(tok, &end);
-        if (*end || errno || !isfinite(v[k])) return surface_fail(err, errn, "a PFM header value '%s' is not a number", tok);
+        if (*end || errno || !isfinite(v[k]))
+            return surface_fail(err, errn, "a PFM header value '%s' is not a number", tok);
     }
     if (v[0] != floor(v[0]) || v[1] != floor(v[1]) || v[0] < 1 || v[1] < 1 || v[2] == 0)
         return surface_fail(err, errn, "a PFM header of %g x %g pixels, scale %g: not an image", v[0], v[1], v[2]);
@@ -87,8 +88,8 @@ int surface_encode_pfm(const surface *s, unsigned char **data, size_t *n, char *
 {
     *data = NULL, *n = 0;
     int ch = s->kind == SURFACE_RADIANCE ? 3 : 1;
-    if (s->kind == SURFACE_NORMALS || (ch == 3 ? !s->rgb : !s->h) || s->nx < 1 || s->ny < 1 ||
-        s->nx > PFM_MAX_SIDE || s->ny > PFM_MAX_SIDE)
+    if (s->kind == SURFACE_NORMALS || (ch == 3 ? !s->rgb : !s->h) || s->nx < 1 || s->ny < 1 || s->nx > PFM_MAX_SIDE ||
+        s->ny > PFM_MAX_SIDE)
         return surface_fail(err, errn, "PFM holds radiance or heights of at most %d pixels a side", PFM_MAX_SIDE);
     char head[64];
     int hn = snprintf(head, sizeof head, "%s\n%zu %zu\n-1.0\n", ch == 3 ? "PF" : "Pf", s->nx, s->ny);

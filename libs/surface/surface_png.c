@@ -66,8 +66,7 @@ int surface_parse_png(const unsigned char *data, size_t n, const surface_read_op
     size_t stride = png_get_rowbytes(png, info);
     if ((w < 2 || h < 2) && (o->want == SURFACE_HEIGHTS || ch == 1)) { /* a normal map may be one texel */
         png_destroy_read_struct(&png, &info, NULL);
-        return surface_fail(err, errn, "%u x %u pixels: a height field needs at least 2 x 2", (unsigned)w,
-                            (unsigned)h);
+        return surface_fail(err, errn, "%u x %u pixels: a height field needs at least 2 x 2", (unsigned)w, (unsigned)h);
     }
     pixels = malloc(stride * h);
     rows = malloc(h * sizeof *rows);
@@ -78,8 +77,9 @@ int surface_parse_png(const unsigned char *data, size_t n, const surface_read_op
     png_destroy_read_struct(&png, &info, NULL);
     size_t count = (size_t)w * h;
     const double max = depth == 16 ? 65535.0 : 255.0;
-#define LEVEL(i, c) (depth == 16 ? (double)(pixels[2 * ((i) * ch + (c))] << 8 | pixels[2 * ((i) * ch + (c)) + 1]) \
-                                 : (double)pixels[(i) * ch + (c)])
+#define LEVEL(i, c)                                                                                                    \
+    (depth == 16 ? (double)(pixels[2 * ((i)*ch + (c))] << 8 | pixels[2 * ((i)*ch + (c)) + 1])                          \
+                 : (double)pixels[(i)*ch + (c)])
     /* rows have no padding beyond ch * depth / 8 bytes per pixel: stride = w * ch * depth / 8 */
     int rc = 0;
     s->nx = w, s->ny = h, s->bits = depth;

@@ -38,8 +38,10 @@ static double metres(const char *text)
     double v = strtod(text, &end);
     if (end == text || !isfinite(v)) return 0.0;
     while (*end == ' ') end++;
-    static const struct { const char *u; double f; } units[] = {
-        {"m", 1.0}, {"mm", 1e-3}, {"\xc2\xb5m", 1e-6}, {"um", 1e-6}, {"nm", 1e-9}, {"pm", 1e-12}};
+    static const struct {
+        const char *u;
+        double f;
+    } units[] = {{"m", 1.0}, {"mm", 1e-3}, {"\xc2\xb5m", 1e-6}, {"um", 1e-6}, {"nm", 1e-9}, {"pm", 1e-12}};
     for (unsigned i = 0; i < sizeof units / sizeof units[0]; i++) {
         size_t l = strlen(units[i].u);
         if (strncmp(end, units[i].u, l) == 0 && (end[l] == '\0' || end[l] == '\r' || end[l] == ' '))
@@ -184,8 +186,10 @@ int surface_parse_text(surface_format f, const unsigned char *data, size_t n, su
             size_t nx = np ? grid_axis(xs, np, &x0, &sx) : 0, ny = np ? grid_axis(ys, np, &y0, &sy) : 0;
             free(xs), free(ys);
             if (nx < 2 || ny < 2 || nx * ny != np || !(sx > 0) || !(sy > 0)) {
-                rc = surface_fail(err, errn, "%zu points are not a regular grid of at least 2 x 2 (x: %zu values, "
-                                  "y: %zu values)", np, nx, ny);
+                rc = surface_fail(err, errn,
+                                  "%zu points are not a regular grid of at least 2 x 2 (x: %zu values, "
+                                  "y: %zu values)",
+                                  np, nx, ny);
             } else if (!(s->h = malloc(np * sizeof *s->h))) {
                 goto oom;
             } else {

@@ -95,8 +95,8 @@ int surface_parse_x3p(const unsigned char *data, size_t n, surface *s, char *err
         rc = surface_fail(err, errn, "no main.xml in the archive");
         goto done;
     }
-    doc = xmlReadMemory((const char *)xml, (int)xl, "main.xml", NULL, XML_PARSE_NONET | XML_PARSE_NOERROR |
-                                                                          XML_PARSE_NOWARNING);
+    doc = xmlReadMemory((const char *)xml, (int)xl, "main.xml", NULL,
+                        XML_PARSE_NONET | XML_PARSE_NOERROR | XML_PARSE_NOWARNING);
     xmlNode *root = doc ? xmlDocGetRootElement(doc) : NULL;
     if (!root) {
         rc = surface_fail(err, errn, "main.xml is not well-formed XML");
@@ -136,16 +136,20 @@ int surface_parse_x3p(const unsigned char *data, size_t n, surface *s, char *err
         rc = surface_fail(err, errn, "the x and y increments must be positive ('%s', '%s')", ix, iy);
         goto done;
     }
-    int size = strcmp(ztype, "D") == 0 ? 8 : strcmp(ztype, "F") == 0 || strcmp(ztype, "L") == 0 ? 4
-             : strcmp(ztype, "I") == 0 ? 2 : 0;
+    int size = strcmp(ztype, "D") == 0                              ? 8
+               : strcmp(ztype, "F") == 0 || strcmp(ztype, "L") == 0 ? 4
+               : strcmp(ztype, "I") == 0                            ? 2
+                                                                    : 0;
     if (!size) {
         rc = surface_fail(err, errn, "CZ DataType '%s' is not D, F, L or I", ztype);
         goto done;
     }
     size_t nx = (size_t)nxd, ny = (size_t)nyd, count = nx * ny;
     if (!link[0] || !(bin = member(z, link, count * (size_t)size, 0, &dl))) {
-        rc = surface_fail(err, errn, "the point data '%s' is not in the archive, or is not %zu x %zu points of type %s "
-                          "(%zu bytes) once inflated", link, nx, ny, ztype, count * (size_t)size);
+        rc = surface_fail(err, errn,
+                          "the point data '%s' is not in the archive, or is not %zu x %zu points of type %s "
+                          "(%zu bytes) once inflated",
+                          link, nx, ny, ztype, count * (size_t)size);
         goto done;
     }
     if (vlink[0] && (!(valid = member(z, vlink, (count + 7) / 8, 0, &vl)))) {
@@ -263,8 +267,9 @@ int surface_write_x3p(const char *path, const surface *s, char *err, size_t errn
 int surface_parse_x3p(const unsigned char *data, size_t n, surface *s, char *err, size_t errn)
 {
     (void)data, (void)n, (void)s;
-    return surface_fail(err, errn, "x3p support was not built (libzip and libxml2 missing: apt-get install "
-                                   "libzip-dev libxml2-dev)");
+    return surface_fail(err, errn,
+                        "x3p support was not built (libzip and libxml2 missing: apt-get install "
+                        "libzip-dev libxml2-dev)");
 }
 int surface_write_x3p(const char *path, const surface *s, char *err, size_t errn)
 {

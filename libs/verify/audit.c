@@ -47,15 +47,6 @@ ggx_vec3 verify_crescent_blog_s(const ggx_shape *s, ggx_vec3 v, double u1, doubl
 }
 
 
-
-
-
-
-
-
-
-
-
 /* After a row's checks: a shape outside the seed's scope gets "not claimed", its evidence kept as what happens when
  * the claim is applied anyway. */
 static void apply_scope(audit_row *r, const ggx_shape sh[AUDIT_SHAPES])
@@ -64,7 +55,8 @@ static void apply_scope(audit_row *r, const ggx_shape sh[AUDIT_SHAPES])
         if (au_in_scope(r->scope, &sh[k]) || r->verdict[k] == AUDIT_NOT_CLAIMED) continue;
         char t[AUDIT_TEXT];
         snprintf(t, sizeof t, "%s", r->text[k]);
-        au_set(r, k, AUDIT_NOT_CLAIMED, "applied anyway, it %s: %s", r->verdict[k] == AUDIT_FAILS ? "fails" : "holds", t);
+        au_set(r, k, AUDIT_NOT_CLAIMED, "applied anyway, it %s: %s", r->verdict[k] == AUDIT_FAILS ? "fails" : "holds",
+               t);
     }
 }
 
@@ -83,9 +75,9 @@ typedef struct sampler_claim {
 } sampler_claim;
 
 static const sampler_claim CLAIMS[GGX_SAMPLER_COUNT] = {
-    [GGX_SAMPLER_STRETCH] = {"cosine hemisphere + elliptic stretch m = normalize(A s) has pdf D(m)(m.n)",
-                             SEED_STRETCH, "Introduction; Analyzing the Normalizing Function", AUDIT_SCOPE_DIAGONAL,
-                             81, literal_stretch, "m = normalize(A^T c), c cosine-weighted about A n", NULL},
+    [GGX_SAMPLER_STRETCH] = {"cosine hemisphere + elliptic stretch m = normalize(A s) has pdf D(m)(m.n)", SEED_STRETCH,
+                             "Introduction; Analyzing the Normalizing Function", AUDIT_SCOPE_DIAGONAL, 81,
+                             literal_stretch, "m = normalize(A^T c), c cosine-weighted about A n", NULL},
     [GGX_SAMPLER_ELLIPSE] = {"uniform point of the projected ellipse lifted to the ellipsoid has pdf D(m)(m.n)",
                              SEED_BLOG2, "Sampling the NDF (generalised Malley)", AUDIT_SCOPE_ANY, 84, NULL, NULL,
                              " (the silhouette ellipse of the general A, by its Schur complement)"},
@@ -96,9 +88,10 @@ static const sampler_claim CLAIMS[GGX_SAMPLER_COUNT] = {
                                NULL},
     [GGX_SAMPLER_CRESCENT] = {"crescent factor s = (1 + Av.An / (|Av| |An|)) / 2 gives the VNDF (version 3)",
                               SEED_WALTER, "eq 34-46", AUDIT_SCOPE_ANY, 88, NULL, NULL, NULL},
-    [GGX_SAMPLER_HEITZ] = {"Heitz / Engstad five steps (frame, disk, squish by (1 + z)/2, lift, unstretch) give the VNDF",
-                           SEED_VNDF, "sections 1-3 (A diagonal, section 1.2)", AUDIT_SCOPE_DIAGONAL, 92, au_literal_heitz,
-                           "m = normalize(A'^T nh) in the canonical frame, A' n along n (Walter eq 46)", NULL},
+    [GGX_SAMPLER_HEITZ] =
+        {"Heitz / Engstad five steps (frame, disk, squish by (1 + z)/2, lift, unstretch) give the VNDF", SEED_VNDF,
+         "sections 1-3 (A diagonal, section 1.2)", AUDIT_SCOPE_DIAGONAL, 92, au_literal_heitz,
+         "m = normalize(A'^T nh) in the canonical frame, A' n along n (Walter eq 46)", NULL},
 };
 
 /* The chi-square p-values of c's sampler at each view (the first view with the row's seed, so that its value is
@@ -112,7 +105,11 @@ static double chi2_views(au_actx *c, const ggx_vec3 *views, int nv, uint64_t see
         double p = au_chi2_p(c, seed + 1000 * (uint64_t)j, progress);
         pmin = fmin(pmin, p);
         size_t l = strlen(text);
-        snprintf(text + l, nt - l, nv == 1 ? "%.2g" : j ? ", %.2g at theta %.2f" : "%.2g at theta %.2f", p, acos(views[j].z));
+        snprintf(text + l, nt - l,
+                 nv == 1 ? "%.2g"
+                 : j     ? ", %.2g at theta %.2f"
+                         : "%.2g at theta %.2f",
+                 p, acos(views[j].z));
     }
     return pmin;
 }
@@ -144,9 +141,9 @@ static void sampler_rows(audit_row *rows, int *nr, ggx_sampler_family family, co
                 c.literal = NULL;
                 double p = chi2_views(&c, views, nv, seed + 1, progress, pl, sizeof pl);
                 if (p >= au_alpha_level() && au_in_scope(cl->scope, &sh[k]))
-                    au_set(r, k, AUDIT_CORRECTED, "as written chi-square p = %s; holds as %s (p = %s)", ps, cl->library, pl);
-                else
-                    au_append(r, k, "; holds as %s (p = %s)", cl->library, pl);
+                    au_set(r, k, AUDIT_CORRECTED, "as written chi-square p = %s; holds as %s (p = %s)", ps, cl->library,
+                           pl);
+                else au_append(r, k, "; holds as %s (p = %s)", cl->library, pl);
             }
             if (cl->note_skewed && sh[k].kind == GGX_SHAPE_SKEWED) au_append(r, k, "%s", cl->note_skewed);
         }
@@ -199,9 +196,10 @@ static void verdict_rays(audit_row *r, int k, const double A[3][3], const ggx_sh
         ok &= fabs(got - want) <= 5 * sig;
         if (fabs(got / want - 1) > worst) worst = fabs(got / want - 1), worst_sig = sig / want;
     }
-    au_set(r, k, ok ? AUDIT_HOLDS : AUDIT_FAILS, "10^6 rays at the ellipsoid from each of 4 directions%s: worst |rays / formula - 1| = "
-        "%.1e (%s 5 sigma = %.1e)", lune ? " (lunes with v = n and v at 57 degrees)" : "", worst, ok ? "within" : "beyond",
-        5 * worst_sig);
+    au_set(r, k, ok ? AUDIT_HOLDS : AUDIT_FAILS,
+           "10^6 rays at the ellipsoid from each of 4 directions%s: worst |rays / formula - 1| = "
+           "%.1e (%s 5 sigma = %.1e)",
+           lune ? " (lunes with v = n and v at 57 degrees)" : "", worst, ok ? "within" : "beyond", 5 * worst_sig);
 }
 
 
@@ -229,7 +227,6 @@ static double mean_f(ggx_vec3 m, void *vc)
     /* shifted to stay positive (the quadrature's tolerance is relative): 1 + m_axis, or 1 for axis 3 */
     return ggx_ndf(c->s, m) * (1 + (c->axis == 0 ? m.x : c->axis == 1 ? m.y : c->axis == 2 ? m.z : 0.0));
 }
-
 
 
 /* The mean of m under the VNDF pdf for v, its polar angle (radians): how far the visible normals lean. */
@@ -269,7 +266,8 @@ typedef struct stretch_ctx {
     const double (*A)[3];
     ggx_vec3 s, t1, t2; /* the direction s and its tangent frame */
 } stretch_ctx;
-static ggx_vec3 map_stretch(const void *ctx, double a, double b) /* s -> m = normalize(A^T s), s moved in its tangent plane */
+static ggx_vec3 map_stretch(const void *ctx, double a,
+                            double b) /* s -> m = normalize(A^T s), s moved in its tangent plane */
 {
     const stretch_ctx *c = ctx;
     ggx_vec3 s = t_normalize(t_add(c->s, t_add(t_scale(c->t1, a), t_scale(c->t2, b))));
@@ -294,7 +292,9 @@ static double eq33_f(ggx_vec3 m, void *vc)
 {
     eq33_ctx *c = vc;
     double mv = t_dot(m, c->v);
-    return mv > 0 ? ggx_projected_area(c->s, t_vec(0, 0, 1)) / ggx_lune_area(c->s, c->v, t_vec(0, 0, 1)) * ggx_ndf(c->s, m) * mv : 0.0;
+    return mv > 0 ? ggx_projected_area(c->s, t_vec(0, 0, 1)) / ggx_lune_area(c->s, c->v, t_vec(0, 0, 1)) *
+                        ggx_ndf(c->s, m) * mv
+                  : 0.0;
 }
 static double eq33_integral(const ggx_shape *s, ggx_vec3 v)
 {
@@ -335,8 +335,10 @@ static double err_unit_norms(const au_kin *K, rng *g, void *ctx, char *at, size_
     double Ait[3][3];
     au_inv_t((const double(*)[3])K->A, Ait);
     double a = au_norm_of((const double(*)[3])K->A, N_UP), b = au_norm_of((const double(*)[3])Ait, N_UP);
-    snprintf(at, nat, "||An|| = %.6g, ||A^-T n|| = %.6g, product %.6g (>= 1 by Cauchy-Schwarz, 1 only where A^T A n is "
-             "along n)", a, b, a * b);
+    snprintf(at, nat,
+             "||An|| = %.6g, ||A^-T n|| = %.6g, product %.6g (>= 1 by Cauchy-Schwarz, 1 only where A^T A n is "
+             "along n)",
+             a, b, a * b);
     return fmax(fabs(a - 1), fabs(b - 1));
 }
 static double err_sm_su(const au_kin *K, rng *g, void *ctx, char *at, size_t nat)
@@ -363,7 +365,8 @@ static double err_invariance(const au_kin *K, rng *g, void *ctx, char *at, size_
             for (int l = 0; l < 3; l++) QA[i][j] += Q[i][l] * K->A[l][j];
         }
     ggx_shape sc, sq;
-    if (ggx_shape_matrix(&sc, (const double(*)[3])cA) != GGX_OK || ggx_shape_matrix(&sq, (const double(*)[3])QA) != GGX_OK)
+    if (ggx_shape_matrix(&sc, (const double(*)[3])cA) != GGX_OK ||
+        ggx_shape_matrix(&sq, (const double(*)[3])QA) != GGX_OK)
         return NAN;
     ggx_vec3 m = au_random_upper(g);
     double d = ggx_ndf(&K->s, m);
@@ -403,10 +406,12 @@ static double err_curvature(const au_kin *K, rng *g, void *ctx, char *at, size_t
     ggx_vec3 m = au_random_upper(g), t1, t2;
     t_frame(m, &t1, &t2);
     const double h = 1e-5;
-    ggx_vec3 pa = t_add(au_point_of_normal((const double(*)[3])Ait, t_normalize(t_add(m, t_scale(t1, h)))),
-                        t_scale(au_point_of_normal((const double(*)[3])Ait, t_normalize(t_add(m, t_scale(t1, -h)))), -1));
-    ggx_vec3 pb = t_add(au_point_of_normal((const double(*)[3])Ait, t_normalize(t_add(m, t_scale(t2, h)))),
-                        t_scale(au_point_of_normal((const double(*)[3])Ait, t_normalize(t_add(m, t_scale(t2, -h)))), -1));
+    ggx_vec3 pa = t_add(
+        au_point_of_normal((const double(*)[3])Ait, t_normalize(t_add(m, t_scale(t1, h)))),
+        t_scale(au_point_of_normal((const double(*)[3])Ait, t_normalize(t_add(m, t_scale(t1, -h)))), -1));
+    ggx_vec3 pb = t_add(
+        au_point_of_normal((const double(*)[3])Ait, t_normalize(t_add(m, t_scale(t2, h)))),
+        t_scale(au_point_of_normal((const double(*)[3])Ait, t_normalize(t_add(m, t_scale(t2, -h)))), -1));
     ggx_vec3 c = t_cross(pa, pb);
     double kfd = 4 * h * h / sqrt(t_dot(c, c)), q = au_norm_of((const double(*)[3])Ait, m);
     snprintf(at, nat, "m = (%.3g, %.3g, %.3g)", m.x, m.y, m.z);
@@ -419,7 +424,8 @@ static double err_cross(const au_kin *K, rng *g, void *ctx, char *at, size_t nat
     double Ait[3][3];
     au_inv_t(A, Ait);
     ggx_vec3 a = au_random_upper(g), b = au_random_upper(g);
-    ggx_vec3 l = t_cross(t_matvec(A, a), t_matvec(A, b)), rr = t_scale(t_matvec((const double(*)[3])Ait, t_cross(a, b)), K->s.det);
+    ggx_vec3 l = t_cross(t_matvec(A, a), t_matvec(A, b)),
+             rr = t_scale(t_matvec((const double(*)[3])Ait, t_cross(a, b)), K->s.det);
     ggx_vec3 d = t_add(l, t_scale(rr, -1));
     snprintf(at, nat, "a = (%.3g, %.3g, %.3g)", a.x, a.y, a.z);
     return sqrt(t_dot(d, d) / t_dot(l, l));
@@ -453,7 +459,8 @@ static double err_det_sr(const au_kin *K, rng *g, void *ctx, char *at, size_t na
     (void)g, (void)ctx;
     /* S's entries are the norms of A's rows (R's rows are unit vectors) */
     double rn[3];
-    for (int i = 0; i < 3; i++) rn[i] = sqrt(K->A[i][0] * K->A[i][0] + K->A[i][1] * K->A[i][1] + K->A[i][2] * K->A[i][2]);
+    for (int i = 0; i < 3; i++)
+        rn[i] = sqrt(K->A[i][0] * K->A[i][0] + K->A[i][1] * K->A[i][1] + K->A[i][2] * K->A[i][2]);
     snprintf(at, nat, "|det A| = %.6g, ax ay = %.6g", K->s.det, rn[0] * rn[1] * rn[2]);
     return fabs(K->s.det / (rn[0] * rn[1] * rn[2]) - 1);
 }
@@ -491,42 +498,46 @@ static int run_claims(const double A[AUDIT_SHAPES][3][3], audit_row *rows, int p
     const au_ctx ctx = {rows, &nr, sh, A, progress};
 
     r = au_add(rows, &nr, "norm", "D(m) is normalised: the integral of D(m)(m.n) is 1", SEED_WALTER ", " SEED_BLOG1,
-            "Walter eq 1, 9; blog Part 1", AUDIT_SCOPE_ANY);
+               "Walter eq 1, 9; blog Part 1", AUDIT_SCOPE_ANY);
     for (int k = 0; k < AUDIT_SHAPES; k++) {
         double I = quad_hemisphere(&sh[k], ndf_cos, &sh[k], NULL, 0, 1e-11, NULL);
         au_set(r, k, fabs(I - 1) < 1e-9 ? AUDIT_HOLDS : AUDIT_FAILS, "|integral - 1| = %.1e", fabs(I - 1));
     }
 
     r = au_add(rows, &nr, "ggx", "R = I gives anisotropic GGX 1 / (pi ax ay (mx^2/ax^2 + my^2/ay^2 + mz^2)^2)",
-            SEED_WALTER ", " SEED_BLOG1, "Walter section 1; blog Part 1", AUDIT_SCOPE_DIAGONAL);
-    au_kin_row(&ctx, r, 1, err_ggx, NULL, 50, 1e-12, "the formula in x and y (for a rotated A, not in its rotated axes) "
+               SEED_WALTER ", " SEED_BLOG1, "Walter section 1; blog Part 1", AUDIT_SCOPE_DIAGONAL);
+    au_kin_row(&ctx, r, 1, err_ggx, NULL, 50, 1e-12,
+               "the formula in x and y (for a rotated A, not in its rotated axes) "
                "against D: relative difference");
 
-    r = au_add(rows, &nr, "area", "projected area of the ellipsoid seen from u: pi ||Au|| / |A|", SEED_WALTER ", " SEED_BLOG1,
-            "Walter eq 26; blog Part 1 eq A_perp_expression", AUDIT_SCOPE_ANY);
+    r = au_add(rows, &nr, "area", "projected area of the ellipsoid seen from u: pi ||Au|| / |A|",
+               SEED_WALTER ", " SEED_BLOG1, "Walter eq 26; blog Part 1 eq A_perp_expression", AUDIT_SCOPE_ANY);
     for (int k = 0; k < AUDIT_SHAPES; k++) verdict_rays(r, k, A[k], &sh[k], 0);
 
-    r = au_add(rows, &nr, "lune", "projected area of the lune m.u >= 0, m.v >= 0: pi (||Au|| ||Av|| + Au.Av) / (2 |A| ||Av||)",
-            SEED_WALTER, "eq 28", AUDIT_SCOPE_ANY);
+    r = au_add(rows, &nr, "lune",
+               "projected area of the lune m.u >= 0, m.v >= 0: pi (||Au|| ||Av|| + Au.Av) / (2 |A| ||Av||)",
+               SEED_WALTER, "eq 28", AUDIT_SCOPE_ANY);
     for (int k = 0; k < AUDIT_SHAPES; k++) verdict_rays(r, k, A[k], &sh[k], 1);
 
-    r = au_add(rows, &nr, "g1-blog", "G1 = 2 ||An|| (v.n) / (||Av|| + ||An|| (v.n)), a ratio of projected areas", SEED_BLOG2,
-            "masking as a ratio of projected areas", AUDIT_SCOPE_ANY);
-    for (int k = 0; k < AUDIT_SHAPES; k++) au_verdict_views(r, k, blog_g1_integral, &sh[k], 1e-6, "the VNDF built with it");
+    r = au_add(rows, &nr, "g1-blog", "G1 = 2 ||An|| (v.n) / (||Av|| + ||An|| (v.n)), a ratio of projected areas",
+               SEED_BLOG2, "masking as a ratio of projected areas", AUDIT_SCOPE_ANY);
+    for (int k = 0; k < AUDIT_SHAPES; k++)
+        au_verdict_views(r, k, blog_g1_integral, &sh[k], 1e-6, "the VNDF built with it");
 
-    r = au_add(rows, &nr, "g1-walter", "G1 = min(1, 2 ||An||^2 |u.n| / (||Au|| ||An|| + Au.An)) X+(u.m) conserves energy",
-            SEED_WALTER, "eq 6, 31-32", AUDIT_SCOPE_ANY);
+    r = au_add(rows, &nr, "g1-walter",
+               "G1 = min(1, 2 ||An||^2 |u.n| / (||Au|| ||An|| + Au.An)) X+(u.m) conserves energy", SEED_WALTER,
+               "eq 6, 31-32", AUDIT_SCOPE_ANY);
     for (int k = 0; k < AUDIT_SHAPES; k++) {
         vis_ctx c = {&sh[k], v_clip, 1};
         double W = quad_hemisphere(&sh[k], vis_f, &c, &v_clip, 1, 1e-11, NULL);
         au_set(r, k, W <= 1 + 1e-9 ? AUDIT_HOLDS : AUDIT_FAILS, "weak furnace %.6f%s", W,
-            W < 1 - 1e-6 ? " < 1: the min is active" : " = 1");
+               W < 1 - 1e-6 ? " < 1: the min is active" : " = 1");
     }
 
     sampler_rows(rows, &nr, GGX_FAMILY_NDF, sh, A, v, progress);
 
     r = au_add(rows, &nr, "vndf-g1", "VNDF pdf = G1(v) D(m) (m.v)+ / (v.n)", SEED_BLOG2 ", " SEED_VNDF,
-            "blog Part 2 (VNDF); Engstad's proof, final pdf", AUDIT_SCOPE_ANY);
+               "blog Part 2 (VNDF); Engstad's proof, final pdf", AUDIT_SCOPE_ANY);
     /* every view of the grid for each shape; where it holds also the caps sampler against it (chi-square) */
     for (int k = 0; k < AUDIT_SHAPES; k++) {
         au_verdict_views(r, k, g1_form_integral, &sh[k], 1e-6, "with Walter's G1 it");
@@ -539,16 +550,19 @@ static int run_claims(const double A[AUDIT_SHAPES][3][3], audit_row *rows, int p
     sampler_rows(rows, &nr, GGX_FAMILY_VNDF, sh, A, v, progress);
 
     r = au_add(rows, &nr, "crescent-blog", "crescent factor with A^-T n: s = (1 + Av.A^-T n / (|Av| |A^-T n|)) / 2",
-            SEED_BLOG2, "VNDF sampling, the crescent's squish factor", AUDIT_SCOPE_ANY);
+               SEED_BLOG2, "VNDF sampling, the crescent's squish factor", AUDIT_SCOPE_ANY);
     for (int k = 0; k < AUDIT_SHAPES; k++) {
-        au_verdict_p(r, k, au_chi2_sampler(&sh[k], v, verify_crescent_blog_s, ggx_pdf_vndf, 90 + 2 * (uint64_t)k, progress));
+        au_verdict_p(r, k,
+                     au_chi2_sampler(&sh[k], v, verify_crescent_blog_s, ggx_pdf_vndf, 90 + 2 * (uint64_t)k, progress));
         if (sh[k].kind == GGX_SHAPE_SKEWED)
-            au_append(r, k, " in Walter's construction (truncation m.n >= 0); the blog's s belongs with its own truncation, "
+            au_append(r, k,
+                      " in Walter's construction (truncation m.n >= 0); the blog's s belongs with its own truncation, "
                       "the ellipsoid cut by z = 0 in position space, where its pdf holds (row pm-blog)");
     }
 
-    r = au_add(rows, &nr, "jacobian-blog", "solid-angle Jacobian |d omega' / d omega| = |A| ||A^-T m|| for m' = normalize(A^-T m)",
-            SEED_BLOG2, "VNDF pdf derivation", AUDIT_SCOPE_ANY);
+    r = au_add(rows, &nr, "jacobian-blog",
+               "solid-angle Jacobian |d omega' / d omega| = |A| ||A^-T m|| for m' = normalize(A^-T m)", SEED_BLOG2,
+               "VNDF pdf derivation", AUDIT_SCOPE_ANY);
     for (int k = 0; k < AUDIT_SHAPES; k++) {
         rng g = {72};
         double worst_blog = 0, worst_true = 0;
@@ -575,21 +589,23 @@ static int run_claims(const double A[AUDIT_SHAPES][3][3], audit_row *rows, int p
         ggx_vec3 av = t_matvec((const double(*)[3])sh[k].a, v), an = t_matvec((const double(*)[3])sh[k].a, n);
         double avl = sqrt(t_dot(av, av)), sw = 0.5 * (1 + t_dot(av, an) / (avl * sqrt(t_dot(an, an))));
         for (int i = 0; i < 200; i++) {
-            ggx_vec3 m = t_dir(acos(rng_uniform(&g)), 2 * GGX_PI * rng_uniform(&g)), q = t_matvec((const double(*)[3])sh[k].ainv_t, m);
+            ggx_vec3 m = t_dir(acos(rng_uniform(&g)), 2 * GGX_PI * rng_uniform(&g)),
+                     q = t_matvec((const double(*)[3])sh[k].ainv_t, m);
             double mv = t_dot(m, v), ql = sqrt(t_dot(q, q));
             if (!(mv > 0)) continue;
             double p_blog = sh[k].det / (GGX_PI * avl * ql * ql * ql * ql) * mv / sw;
             double x = p_blog / ggx_pdf_vndf(&sh[k], v, m) / (sh[k].det * sh[k].det);
             lo = fmin(lo, x), hi = fmax(hi, x);
         }
-        au_set(r, k, worst_blog < 1e-6 ? AUDIT_HOLDS : AUDIT_FAILS,
+        au_set(
+            r, k, worst_blog < 1e-6 ? AUDIT_HOLDS : AUDIT_FAILS,
             "off by up to %.0f %% (finite differences, 200 normals); 1 / (|A| ||A^-T m||^3) holds to %.0e. Its D(m, v) "
             "step errs by the inverse factor: the final p(m) = D(m,v)(m.v)/s is |A|^2 VNDF to %.0e",
             100 * worst_blog, worst_true, fmax(fabs(lo - 1), fabs(hi - 1)));
     }
 
     r = au_add(rows, &nr, "weight", "reflection weight G1 G1 F A_l(v,n) / (|v.n| A_e(n)) never exceeds 1", SEED_WALTER,
-            "eq 49-52", AUDIT_SCOPE_ANY);
+               "eq 49-52", AUDIT_SCOPE_ANY);
     for (int k = 0; k < AUDIT_SHAPES; k++) {
         rng g = {73};
         double wmax = 0, ratio_min = 2;
@@ -604,13 +620,15 @@ static int run_claims(const double A[AUDIT_SHAPES][3][3], audit_row *rows, int p
         }
         audit_verdict vd = wmax <= 1 + 1e-12 ? AUDIT_HOLDS : AUDIT_FAILS;
         if (ratio_min > 1 - 1e-9)
-            au_set(r, k, vd, "largest weight 1 %+.0e over 2e5 samples; weight = G1(wo) F to %.0e", wmax - 1, fabs(1 - ratio_min));
+            au_set(r, k, vd, "largest weight 1 %+.0e over 2e5 samples; weight = G1(wo) F to %.0e", wmax - 1,
+                   fabs(1 - ratio_min));
         else
-            au_set(r, k, vd, "largest weight 1 %+.0e over 2e5 samples; weight / G1(wo) F goes down to %.3f", wmax - 1, ratio_min);
+            au_set(r, k, vd, "largest weight 1 %+.0e over 2e5 samples; weight / G1(wo) F goes down to %.3f", wmax - 1,
+                   ratio_min);
     }
 
-    r = au_add(rows, &nr, "below", "reflected directions can fall below the horizon, so w.n > 0 must be checked", SEED_VNDF,
-            "the rejection check w.n > 0", AUDIT_SCOPE_DIAGONAL);
+    r = au_add(rows, &nr, "below", "reflected directions can fall below the horizon, so w.n > 0 must be checked",
+               SEED_VNDF, "the rejection check w.n > 0", AUDIT_SCOPE_DIAGONAL);
     for (int k = 0; k < AUDIT_SHAPES; k++) {
         rng g = {74};
         long below = 0, n_all = 200000;
@@ -618,12 +636,13 @@ static int run_claims(const double A[AUDIT_SHAPES][3][3], audit_row *rows, int p
         ggx_vec3 wi = t_dir(80 * GGX_PI / 180, 0.3);
         for (long i = 0; i < n_all; i++)
             below += ggx_sample_brdf(&sh[k], &one, wi, rng_uniform(&g), rng_uniform(&g)).event == GGX_EVENT_INVALID;
-        au_set(r, k, below > 0 ? AUDIT_HOLDS : AUDIT_FAILS, "%.1f %% of reflections below the horizon at an 80 degree view",
-            100.0 * (double)below / (double)n_all);
+        au_set(r, k, below > 0 ? AUDIT_HOLDS : AUDIT_FAILS,
+               "%.1f %% of reflections below the horizon at an 80 degree view", 100.0 * (double)below / (double)n_all);
     }
 
-    r = au_add(rows, &nr, "rejection", "version 2 (ellipsoid as its own bound) rejects less than version 1 (bounding sphere)",
-            SEED_WALTER, "section 4, versions 1 and 2", AUDIT_SCOPE_ANY);
+    r = au_add(rows, &nr, "rejection",
+               "version 2 (ellipsoid as its own bound) rejects less than version 1 (bounding sphere)", SEED_WALTER,
+               "section 4, versions 1 and 2", AUDIT_SCOPE_ANY);
     for (int k = 0; k < AUDIT_SHAPES; k++) {
         rng g = {75};
         unsigned t;
@@ -637,31 +656,39 @@ static int run_claims(const double A[AUDIT_SHAPES][3][3], audit_row *rows, int p
         }
         double want2 = ggx_lune_area(&sh[k], v, n) / ggx_projected_area(&sh[k], v), got2 = N / t2;
         int match = fabs(got2 - want2) < 5 * sqrt(want2 * (1 - want2) / N) + 1e-9;
-        au_set(r, k, N / t1 <= got2 && match ? AUDIT_HOLDS : AUDIT_FAILS, "acceptance %.3f vs %.3f; v2 %s A_l(v,n)/A_e(v) = %.3f",
-            N / t1, got2, match ? "matches" : "differs from", want2);
+        au_set(r, k, N / t1 <= got2 && match ? AUDIT_HOLDS : AUDIT_FAILS,
+               "acceptance %.3f vs %.3f; v2 %s A_l(v,n)/A_e(v) = %.3f", N / t1, got2,
+               match ? "matches" : "differs from", want2);
     }
     /* ---- blog Part 1 ---- */
-    r = au_add(rows, &nr, "p22", "D(m) = P22(p, q) / cos^4 theta with P22 = 1 / (pi ax ay (1 + p^2/ax^2 + q^2/ay^2)^2), p, q the slopes",
-            SEED_BLOG1, "eq (1) and eq:p_22", AUDIT_SCOPE_DIAGONAL);
-    au_kin_row(&ctx, r, 1, err_p22, NULL, 50, 1e-9, "the slopes along x and y (for a rotated A, not its rotated axes), "
+    r = au_add(rows, &nr, "p22",
+               "D(m) = P22(p, q) / cos^4 theta with P22 = 1 / (pi ax ay (1 + p^2/ax^2 + q^2/ay^2)^2), p, q the slopes",
+               SEED_BLOG1, "eq (1) and eq:p_22", AUDIT_SCOPE_DIAGONAL);
+    au_kin_row(&ctx, r, 1, err_p22, NULL, 50, 1e-9,
+               "the slopes along x and y (for a rotated A, not its rotated axes), "
                "against Walter eq 1: relative difference");
 
     /* ---- blog Part 2 ---- */
-    r = au_add(rows, &nr, "unit-norms", "with n = +z, ||An|| = ||A^-T n|| = 1 (the step from the blog's pdf to the G1 form)",
-            SEED_BLOG2, "text before eq:g1-equality", AUDIT_SCOPE_ANY);
+    r = au_add(rows, &nr, "unit-norms",
+               "with n = +z, ||An|| = ||A^-T n|| = 1 (the step from the blog's pdf to the G1 form)", SEED_BLOG2,
+               "text before eq:g1-equality", AUDIT_SCOPE_ANY);
     au_kin_row(&ctx, r, 0, err_unit_norms, NULL, 1, 1e-12, "| ||An|| - 1 | and | ||A^-T n|| - 1 |:");
 
     r = au_add(rows, &nr, "sm-lt-su", "for any v not along n, S_m < S_u, i.e. ||An|| (v.n) < ||Av||", SEED_BLOG2,
-            "text after eq:masked-projection", AUDIT_SCOPE_ANY);
+               "text after eq:masked-projection", AUDIT_SCOPE_ANY);
     for (int k = 0; k < AUDIT_SHAPES; k++) {
         double largest = 0;
-        au_verdict_kin(r, k, &sh[k], A[k], err_sm_su, &largest, 2000, 1e-12, "||An|| (v.n) / ||Av|| - 1 where positive:");
-        au_append(r, k, "; the largest ratio %.4f (Walter footnote 4: the microsurface's projected area can be below the "
-                  "footprint's)", largest);
+        au_verdict_kin(r, k, &sh[k], A[k], err_sm_su, &largest, 2000, 1e-12,
+                       "||An|| (v.n) / ||Av|| - 1 where positive:");
+        au_append(r, k,
+                  "; the largest ratio %.4f (Walter footnote 4: the microsurface's projected area can be below the "
+                  "footprint's)",
+                  largest);
     }
 
-    r = au_add(rows, &nr, "su", "S_u, the area that the visible upper half projects along v, = (A_perp(v) + A_perp(n) (v.n)) / 2",
-            SEED_BLOG2, "eq:unmasked-projection", AUDIT_SCOPE_ANY);
+    r = au_add(rows, &nr, "su",
+               "S_u, the area that the visible upper half projects along v, = (A_perp(v) + A_perp(n) (v.n)) / 2",
+               SEED_BLOG2, "eq:unmasked-projection", AUDIT_SCOPE_ANY);
     for (int k = 0; k < AUDIT_SHAPES; k++) {
         static const double dirs[3][2] = {{0.7, 0.4}, {1.2, -2.0}, {1.5, 2.6}};
         double worst = 0, worst_sig = 0;
@@ -673,17 +700,20 @@ static int run_claims(const double A[AUDIT_SHAPES][3][3], audit_row *rows, int p
             ok &= fabs(got - lit) <= 5 * sig;
             if (fabs(lit / got - 1) > worst) worst = fabs(lit / got - 1), worst_sig = sig / got;
         }
-        au_set(r, k, ok ? AUDIT_HOLDS : AUDIT_FAILS, "against 10^6 rays at the ellipsoid from each of 3 views: worst |formula / "
-            "rays - 1| = %.1e (5 sigma = %.1e)%s", worst, 5 * worst_sig, ok ? "" : "; Walter eq 28's A_l(v, n) holds (row lune)");
+        au_set(r, k, ok ? AUDIT_HOLDS : AUDIT_FAILS,
+               "against 10^6 rays at the ellipsoid from each of 3 views: worst |formula / "
+               "rays - 1| = %.1e (5 sigma = %.1e)%s",
+               worst, 5 * worst_sig, ok ? "" : "; Walter eq 28's A_l(v, n) holds (row lune)");
     }
 
     /* ---- Walter ---- */
-    r = au_add(rows, &nr, "invariance", "D is unchanged by A -> c A and A -> Q A, Q orthogonal (with |A| read as |det A|)",
-            SEED_WALTER, "section 1, after eq 1", AUDIT_SCOPE_ANY);
+    r = au_add(rows, &nr, "invariance",
+               "D is unchanged by A -> c A and A -> Q A, Q orthogonal (with |A| read as |det A|)", SEED_WALTER,
+               "section 1, after eq 1", AUDIT_SCOPE_ANY);
     au_kin_row(&ctx, r, 0, err_invariance, NULL, 50, 1e-12, "the relative change of D (c = 3.7, Q a reflection):");
 
-    r = au_add(rows, &nr, "rotate-z", "theta_z rotates the distribution in the tangent plane: D_{S Rz}(m) = D_S(Rz m)", SEED_WALTER,
-            "eq 3 and text", AUDIT_SCOPE_ROTATED);
+    r = au_add(rows, &nr, "rotate-z", "theta_z rotates the distribution in the tangent plane: D_{S Rz}(m) = D_S(Rz m)",
+               SEED_WALTER, "eq 3 and text", AUDIT_SCOPE_ROTATED);
     for (int k = 0; k < AUDIT_SHAPES; k++) {
         double ax, ay;
         if (!au_diag_alphas(&sh[k], &ax, &ay)) {
@@ -693,8 +723,9 @@ static int run_claims(const double A[AUDIT_SHAPES][3][3], audit_row *rows, int p
         au_verdict_kin(r, k, &sh[k], A[k], err_rotate_z, NULL, 50, 1e-12, "relative difference");
     }
 
-    r = au_add(rows, &nr, "min-inactive", "for theta_x = theta_y = 0 the min in G1 never acts: A_e(n) |u.n| <= A_l(u, n) for all u",
-            SEED_WALTER, "eq 31 and text", AUDIT_SCOPE_ROTATED);
+    r = au_add(rows, &nr, "min-inactive",
+               "for theta_x = theta_y = 0 the min in G1 never acts: A_e(n) |u.n| <= A_l(u, n) for all u", SEED_WALTER,
+               "eq 31 and text", AUDIT_SCOPE_ROTATED);
     for (int k = 0; k < AUDIT_SHAPES; k++) {
         double largest = 0;
         au_verdict_kin(r, k, &sh[k], A[k], err_min_inactive, &largest, 2000, 1e-12,
@@ -702,8 +733,9 @@ static int run_claims(const double A[AUDIT_SHAPES][3][3], audit_row *rows, int p
         au_append(r, k, "; the largest ratio %.6f", largest);
     }
 
-    r = au_add(rows, &nr, "mean-normal", "the average microsurface normal, int_{m.n > 0} D(m) m dm, points along A^T A n",
-            SEED_WALTER, "section 5.1", AUDIT_SCOPE_ANY);
+    r = au_add(rows, &nr, "mean-normal",
+               "the average microsurface normal, int_{m.n > 0} D(m) m dm, points along A^T A n", SEED_WALTER,
+               "section 5.1", AUDIT_SCOPE_ANY);
     for (int k = 0; k < AUDIT_SHAPES; k++) {
         double c[4];
         for (int a = 0; a < 4; a++) {
@@ -714,12 +746,14 @@ static int run_claims(const double A[AUDIT_SHAPES][3][3], audit_row *rows, int p
         ggx_vec3 got = t_normalize(t_vec(c[0], c[1], c[2])), want = t_normalize(t_mattvec(A[k], t_matvec(A[k], n)));
         ggx_vec3 x = t_cross(got, want);
         double ang = atan2(sqrt(t_dot(x, x)), t_dot(got, want));
-        au_set(r, k, ang < 1e-7 ? AUDIT_HOLDS : AUDIT_FAILS, "angle between the quadrature's mean normal and A^T A n %.1e rad; "
-            "the mean normal leans %.4g degrees from n", ang, acos(fmin(1.0, got.z)) * 180 / GGX_PI);
+        au_set(r, k, ang < 1e-7 ? AUDIT_HOLDS : AUDIT_FAILS,
+               "angle between the quadrature's mean normal and A^T A n %.1e rad; "
+               "the mean normal leans %.4g degrees from n",
+               ang, acos(fmin(1.0, got.z)) * 180 / GGX_PI);
     }
 
-    r = au_add(rows, &nr, "reciprocity", "the BRDF (eq 4 with G of eq 5, 6) is reciprocal: f_r(i, o) = f_r(o, i)", SEED_WALTER,
-            "section 1.1", AUDIT_SCOPE_ANY);
+    r = au_add(rows, &nr, "reciprocity", "the BRDF (eq 4 with G of eq 5, 6) is reciprocal: f_r(i, o) = f_r(o, i)",
+               SEED_WALTER, "section 1.1", AUDIT_SCOPE_ANY);
     for (int k = 0; k < AUDIT_SHAPES; k++) {
         rng g = {81};
         double worst = 0;
@@ -730,12 +764,14 @@ static int run_claims(const double A[AUDIT_SHAPES][3][3], audit_row *rows, int p
             double a = ggx_brdf_eval(&sh[k], &fr, wi, wo), b = ggx_brdf_eval(&sh[k], &fr, wo, wi);
             if (a > 0 || b > 0) worst = fmax(worst, fabs(a - b) / fmax(a, b));
         }
-        au_set(r, k, worst < 1e-12 ? AUDIT_HOLDS : AUDIT_FAILS, "largest relative difference over 10^4 pairs %.1e (dielectric "
-            "Fresnel 1.5)", worst);
+        au_set(r, k, worst < 1e-12 ? AUDIT_HOLDS : AUDIT_FAILS,
+               "largest relative difference over 10^4 pairs %.1e (dielectric "
+               "Fresnel 1.5)",
+               worst);
     }
 
-    r = au_add(rows, &nr, "energy", "with G of eq 5, 6 the BRDF conserves energy: the albedo (F = 1) is at most 1", SEED_WALTER,
-            "section 1.1", AUDIT_SCOPE_ANY);
+    r = au_add(rows, &nr, "energy", "with G of eq 5, 6 the BRDF conserves energy: the albedo (F = 1) is at most 1",
+               SEED_WALTER, "section 1.1", AUDIT_SCOPE_ANY);
     for (int k = 0; k < AUDIT_SHAPES; k++) {
         double emax = 0, at = 0, lo = 1;
         for (int i = 0; i < 12; i++) {
@@ -744,13 +780,16 @@ static int run_claims(const double A[AUDIT_SHAPES][3][3], audit_row *rows, int p
             if (e > emax) emax = e, at = acos(u.z);
             lo = fmin(lo, e);
         }
-        au_set(r, k, emax <= 1 + 1e-6 ? AUDIT_HOLDS : AUDIT_FAILS, "albedo from %.4f to %.4f over 12 views (largest at theta %.2f "
-            "rad)", lo, emax, at);
+        au_set(r, k, emax <= 1 + 1e-6 ? AUDIT_HOLDS : AUDIT_FAILS,
+               "albedo from %.4f to %.4f over 12 views (largest at theta %.2f "
+               "rad)",
+               lo, emax, at);
     }
 
     /* ---- Engstad, Elliptic Stretch ---- */
-    r = au_add(rows, &nr, "stretch-omega", "cosine-weighting toward omega, then stretching: p(m) = |m.omega| D(m) / ||m_||",
-            SEED_STRETCH, "GGX composition (end)", AUDIT_SCOPE_DIAGONAL);
+    r = au_add(rows, &nr, "stretch-omega",
+               "cosine-weighting toward omega, then stretching: p(m) = |m.omega| D(m) / ||m_||", SEED_STRETCH,
+               "GGX composition (end)", AUDIT_SCOPE_DIAGONAL);
     for (int k = 0; k < AUDIT_SHAPES; k++) {
         double ax, ay;
         if (!au_alphas_or_skip(r, k, &sh[k], &ax, &ay)) continue;
@@ -760,21 +799,25 @@ static int run_claims(const double A[AUDIT_SHAPES][3][3], audit_row *rows, int p
         double worst_lit = 0, worst_fix = 0;
         for (int i = 0; i < 1000; i++) {
             ggx_vec3 m = au_random_upper(&g);
-            double sinv = sqrt(m.x * m.x / (ax * ax) + m.y * m.y / (ay * ay) + m.z * m.z), d = au_ggx_formula(ax, ay, m);
+            double sinv = sqrt(m.x * m.x / (ax * ax) + m.y * m.y / (ay * ay) + m.z * m.z),
+                   d = au_ggx_formula(ax, ay, m);
             double lit = m.z * d * sinv, fix = (m.z / sinv) * d * sinv, want = ggx_pdf_ndf(&sh[k], m);
             worst_lit = fmax(worst_lit, fabs(lit / want - 1)), worst_fix = fmax(worst_fix, fabs(fix / want - 1));
         }
-        if (worst_lit < 1e-9) au_set(r, k, AUDIT_HOLDS, "at omega = n: largest relative difference from D(m) (m.n) %.1e", worst_lit);
+        if (worst_lit < 1e-9)
+            au_set(r, k, AUDIT_HOLDS, "at omega = n: largest relative difference from D(m) (m.n) %.1e", worst_lit);
         else
-            au_set(r, k, worst_fix < 1e-9 ? AUDIT_CORRECTED : AUDIT_FAILS, "at omega = n it is off D(m) (m.n) by up to %.0f %%; "
-                "with the cosine of the pre-stretch direction, p(m) = |s.omega| D(m) / ||m_||, by %.0e",
-                100 * worst_lit, worst_fix);
+            au_set(r, k, worst_fix < 1e-9 ? AUDIT_CORRECTED : AUDIT_FAILS,
+                   "at omega = n it is off D(m) (m.n) by up to %.0f %%; "
+                   "with the cosine of the pre-stretch direction, p(m) = |s.omega| D(m) / ||m_||, by %.0e",
+                   100 * worst_lit, worst_fix);
     }
 
     /* ---- Engstad, visible GGX ---- */
-    r = au_add(rows, &nr, "disk-concentric", "the concentric map as written (polar(a, pi b / 4a) if |a| > |b|, polar(b, pi a / 4b) "
-            "if |a| < |b|, else (a, b)) is uniform on the disk, Jacobian pi", SEED_VNDF, "step 2, sample a disk",
-            AUDIT_SCOPE_ANY);
+    r = au_add(rows, &nr, "disk-concentric",
+               "the concentric map as written (polar(a, pi b / 4a) if |a| > |b|, polar(b, pi a / 4b) "
+               "if |a| < |b|, else (a, b)) is uniform on the disk, Jacobian pi",
+               SEED_VNDF, "step 2, sample a disk", AUDIT_SCOPE_ANY);
     {
         rng g = {83};
         long N = 200000, top_lit = 0, top_fix = 0, off = 0;
@@ -791,13 +834,18 @@ static int run_claims(const double A[AUDIT_SHAPES][3][3], audit_row *rows, int p
         /* (a, b) with |a| = |b| != 0 lies off the disk: a set of measure zero, hit here only if the sampler hits it */
         double f_lit = (double)top_lit / (double)N, f_fix = (double)top_fix / (double)N, sig = sqrt(0.25 / (double)N);
         for (int k = 0; k < AUDIT_SHAPES; k++)
-            au_set(r, k, fabs(f_fix - 0.5) < 5 * sig ? AUDIT_CORRECTED : AUDIT_FAILS, "as written no point reaches the top and "
-                "bottom quarters |t| > |s| (fraction %.4f of 2e5, uniform: 0.5; %ld off the disk); with the second branch "
-                "polar(b, pi/2 - pi a / 4b) the fraction is %.4f", f_lit, off, f_fix);
+            au_set(r, k, fabs(f_fix - 0.5) < 5 * sig ? AUDIT_CORRECTED : AUDIT_FAILS,
+                   "as written no point reaches the top and "
+                   "bottom quarters |t| > |s| (fraction %.4f of 2e5, uniform: 0.5; %ld off the disk); with the second "
+                   "branch "
+                   "polar(b, pi/2 - pi a / 4b) the fraction is %.4f",
+                   f_lit, off, f_fix);
     }
 
-    r = au_add(rows, &nr, "vndf-support", "p_vGGX(m) = D(m) (m.v) G1(v) / (v.n) on {m.v > 0} integrates to 1 (D as written, with "
-            "no m.n > 0)", SEED_VNDF, "vGGX Sampling", AUDIT_SCOPE_DIAGONAL);
+    r = au_add(rows, &nr, "vndf-support",
+               "p_vGGX(m) = D(m) (m.v) G1(v) / (v.n) on {m.v > 0} integrates to 1 (D as written, with "
+               "no m.n > 0)",
+               SEED_VNDF, "vGGX Sampling", AUDIT_SCOPE_DIAGONAL);
     for (int k = 0; k < AUDIT_SHAPES; k++) {
         double ax, ay;
         if (!au_diag_alphas(&sh[k], &ax, &ay) || sh[k].kind != GGX_SHAPE_DIAGONAL) {
@@ -809,12 +857,16 @@ static int run_claims(const double A[AUDIT_SHAPES][3][3], audit_row *rows, int p
         ggx_vec3 cut = t_scale(vv, -1);
         double lower = quad_hemisphere(&sh[k], lower_f, &lc, &cut, 1, 1e-10, NULL) * ggx_g1(&sh[k], vv, n) / vv.z;
         double upper = g1_form_integral(&sh[k], vv);
-        au_set(r, k, fabs(1 + lower - 1) < 1e-6 ? AUDIT_HOLDS : AUDIT_CORRECTED, "at theta_v = 75 degrees it integrates to %.4f; "
-            "holds with m.n > 0 in the support (%.6f)", upper + lower, upper);
+        au_set(r, k, fabs(1 + lower - 1) < 1e-6 ? AUDIT_HOLDS : AUDIT_CORRECTED,
+               "at theta_v = 75 degrees it integrates to %.4f; "
+               "holds with m.n > 0 in the support (%.6f)",
+               upper + lower, upper);
     }
 
-    r = au_add(rows, &nr, "lambda-zz", "Lambda(v) = -1/2 + sqrt((ax^2 vx^2 + ay^2 vy^2) / vz^2 + 1) / 2 and G1 = 2 z_z / (1 + z_z), "
-            "z_z = v.n / ||Av||", SEED_VNDF, "vGGX Sampling; Solving for z_z", AUDIT_SCOPE_DIAGONAL);
+    r = au_add(rows, &nr, "lambda-zz",
+               "Lambda(v) = -1/2 + sqrt((ax^2 vx^2 + ay^2 vy^2) / vz^2 + 1) / 2 and G1 = 2 z_z / (1 + z_z), "
+               "z_z = v.n / ||Av||",
+               SEED_VNDF, "vGGX Sampling; Solving for z_z", AUDIT_SCOPE_DIAGONAL);
     for (int k = 0; k < AUDIT_SHAPES; k++) {
         double ax, ay;
         if (!au_alphas_or_skip(r, k, &sh[k], &ax, &ay)) continue;
@@ -826,16 +878,21 @@ static int run_claims(const double A[AUDIT_SHAPES][3][3], audit_row *rows, int p
             double zz = u.z / au_norm_of(A[k], u), g1 = ggx_g1(&sh[k], u, n);
             wl = fmax(wl, fabs(1 / (1 + lam) / g1 - 1)), wz = fmax(wz, fabs(2 * zz / (1 + zz) / g1 - 1));
         }
-        au_set(r, k, fmax(wl, wz) < 1e-9 ? AUDIT_HOLDS : AUDIT_FAILS, "largest relative difference from Walter's G1: the Lambda form "
-            "%.1e, the z_z form %.1e, over 1000 views", wl, wz);
+        au_set(r, k, fmax(wl, wz) < 1e-9 ? AUDIT_HOLDS : AUDIT_FAILS,
+               "largest relative difference from Walter's G1: the Lambda form "
+               "%.1e, the z_z form %.1e, over 1000 views",
+               wl, wz);
     }
-    r = au_add(rows, &nr, "curvature", "Gaussian curvature of the ellipsoid at the point with normal m: K(m) = |A|^2 ||A^-T m||^4",
-            SEED_WALTER ", " SEED_BLOG1, "Walter eq 20; blog Part 1 eq:k_g", AUDIT_SCOPE_ANY);
-    au_kin_row(&ctx, r, 0, err_curvature, NULL, 20, 1e-6, "against the Gauss map's finite-difference Jacobian: "
+    r = au_add(rows, &nr, "curvature",
+               "Gaussian curvature of the ellipsoid at the point with normal m: K(m) = |A|^2 ||A^-T m||^4",
+               SEED_WALTER ", " SEED_BLOG1, "Walter eq 20; blog Part 1 eq:k_g", AUDIT_SCOPE_ANY);
+    au_kin_row(&ctx, r, 0, err_curvature, NULL, 20, 1e-6,
+               "against the Gauss map's finite-difference Jacobian: "
                "relative difference");
 
-    r = au_add(rows, &nr, "dof", "of the 9 entries of A only 5 are useful degrees of freedom (3 of rotation, 2 of scale)",
-            SEED_WALTER, "section 1", AUDIT_SCOPE_ANY);
+    r = au_add(rows, &nr, "dof",
+               "of the 9 entries of A only 5 are useful degrees of freedom (3 of rotation, 2 of scale)", SEED_WALTER,
+               "section 1", AUDIT_SCOPE_ANY);
     for (int k = 0; k < AUDIT_SHAPES; k++) {
         /* the rank of the Jacobian of (D(m_1), ..., D(m_40)) with respect to A's 9 entries, by central differences:
          * the eigenvalues of J^T J, counted above 1e-8 of the largest */
@@ -850,7 +907,8 @@ static int run_claims(const double A[AUDIT_SHAPES][3][3], audit_row *rows, int p
             memcpy(Ap, A[k], sizeof Ap), memcpy(Am, A[k], sizeof Am);
             Ap[e / 3][e % 3] += h, Am[e / 3][e % 3] -= h;
             ggx_shape sp, sm;
-            bad |= ggx_shape_matrix(&sp, (const double(*)[3])Ap) != GGX_OK || ggx_shape_matrix(&sm, (const double(*)[3])Am) != GGX_OK;
+            bad |= ggx_shape_matrix(&sp, (const double(*)[3])Ap) != GGX_OK ||
+                   ggx_shape_matrix(&sm, (const double(*)[3])Am) != GGX_OK;
             for (int i = 0; i < NM && !bad; i++)
                 J[i][e] = (ggx_ndf(&sp, ms[i]) - ggx_ndf(&sm, ms[i])) / (2 * h) / ggx_ndf(&sh[k], ms[i]);
         }
@@ -872,23 +930,32 @@ static int run_claims(const double A[AUDIT_SHAPES][3][3], audit_row *rows, int p
             if (ev[i] > 1e-8 * top) rank++, gap_lo = fmin(gap_lo, ev[i] / top);
             else gap_hi = fmax(gap_hi, ev[i] / top);
         }
-        au_set(r, k, rank == 5 ? AUDIT_HOLDS : AUDIT_FAILS, "rank of d D(m_i) / d A over 40 normals: %d (eigenvalues of J^T J: "
-            "smallest kept %.1e, largest dropped %.1e of the largest)", rank, gap_lo, gap_hi);
+        au_set(r, k, rank == 5 ? AUDIT_HOLDS : AUDIT_FAILS,
+               "rank of d D(m_i) / d A over 40 normals: %d (eigenvalues of J^T J: "
+               "smallest kept %.1e, largest dropped %.1e of the largest)",
+               rank, gap_lo, gap_hi);
     }
 
-    r = au_add(rows, &nr, "vndf-phi90", "at theta_v = 75 degrees the VNDF leans toward the view more for phi_v = 90 than for phi_v = "
-            "0, since ay > ax (figures 1-8)", SEED_VNDF, "figures, alpha (0.15, 0.5)", AUDIT_SCOPE_DIAGONAL);
+    r = au_add(rows, &nr, "vndf-phi90",
+               "at theta_v = 75 degrees the VNDF leans toward the view more for phi_v = 90 than for phi_v = "
+               "0, since ay > ax (figures 1-8)",
+               SEED_VNDF, "figures, alpha (0.15, 0.5)", AUDIT_SCOPE_DIAGONAL);
     for (int k = 0; k < AUDIT_SHAPES; k++) {
-        double l0 = vndf_lean(&sh[k], t_dir(75 * GGX_PI / 180, 0)), l90 = vndf_lean(&sh[k], t_dir(75 * GGX_PI / 180, GGX_PI / 2));
-        double ax = hypot(A[k][0][0], hypot(A[k][0][1], A[k][0][2])), ay = hypot(A[k][1][0], hypot(A[k][1][1], A[k][1][2]));
+        double l0 = vndf_lean(&sh[k], t_dir(75 * GGX_PI / 180, 0)),
+               l90 = vndf_lean(&sh[k], t_dir(75 * GGX_PI / 180, GGX_PI / 2));
+        double ax = hypot(A[k][0][0], hypot(A[k][0][1], A[k][0][2])),
+               ay = hypot(A[k][1][0], hypot(A[k][1][1], A[k][1][2]));
         int want = ay > ax;
-        au_set(r, k, (l90 > l0) == want ? AUDIT_HOLDS : AUDIT_FAILS, "mean visible normal %.2f degrees from n for phi_v = 0, %.2f "
-            "for phi_v = 90 (n leans %.2f degrees without a view)", l0 * 180 / GGX_PI, l90 * 180 / GGX_PI,
-            acos(fmin(1.0, t_normalize(t_mattvec(A[k], t_matvec(A[k], n))).z)) * 180 / GGX_PI);
+        au_set(r, k, (l90 > l0) == want ? AUDIT_HOLDS : AUDIT_FAILS,
+               "mean visible normal %.2f degrees from n for phi_v = 0, %.2f "
+               "for phi_v = 90 (n leans %.2f degrees without a view)",
+               l0 * 180 / GGX_PI, l90 * 180 / GGX_PI,
+               acos(fmin(1.0, t_normalize(t_mattvec(A[k], t_matvec(A[k], n))).z)) * 180 / GGX_PI);
     }
     /* ---- Jacobians the seeds state, by finite differences of the maps themselves ---- */
-    r = au_add(rows, &nr, "cosine-jacobian", "the cosine-weighted map s(u, v) has |ds / d(u, v)| = pi / s_z, so p(s) = (s.n) / pi",
-            SEED_STRETCH, "Cosine-Weighted Half-Sphere", AUDIT_SCOPE_ANY);
+    r = au_add(rows, &nr, "cosine-jacobian",
+               "the cosine-weighted map s(u, v) has |ds / d(u, v)| = pi / s_z, so p(s) = (s.n) / pi", SEED_STRETCH,
+               "Cosine-Weighted Half-Sphere", AUDIT_SCOPE_ANY);
     {
         rng g = {87};
         double worst = 0;
@@ -897,12 +964,14 @@ static int run_claims(const double A[AUDIT_SHAPES][3][3], audit_row *rows, int p
             worst = fmax(worst, fabs(au_fd_jacobian(au_map_cosine, NULL, u, w, 1e-6) / (GGX_PI / sqrt(1 - u)) - 1));
         }
         for (int k = 0; k < AUDIT_SHAPES; k++)
-            au_set(r, k, worst < 1e-6 ? AUDIT_HOLDS : AUDIT_FAILS, "largest relative difference from the finite-difference "
-                "Jacobian %.1e over 1000 points (the map does not depend on A)", worst);
+            au_set(r, k, worst < 1e-6 ? AUDIT_HOLDS : AUDIT_FAILS,
+                   "largest relative difference from the finite-difference "
+                   "Jacobian %.1e over 1000 points (the map does not depend on A)",
+                   worst);
     }
 
-    r = au_add(rows, &nr, "slope-jacobian", "the slope map m = normalize(x, y, 1) has |dm / d(x, y)| = m_z^3", SEED_STRETCH,
-            "Relation to slope-space", AUDIT_SCOPE_ANY);
+    r = au_add(rows, &nr, "slope-jacobian", "the slope map m = normalize(x, y, 1) has |dm / d(x, y)| = m_z^3",
+               SEED_STRETCH, "Relation to slope-space", AUDIT_SCOPE_ANY);
     {
         rng g = {88};
         double worst = 0;
@@ -912,12 +981,16 @@ static int run_claims(const double A[AUDIT_SHAPES][3][3], audit_row *rows, int p
             worst = fmax(worst, fabs(au_fd_jacobian(map_slope, NULL, x, y, 1e-6) / (m.z * m.z * m.z) - 1));
         }
         for (int k = 0; k < AUDIT_SHAPES; k++)
-            au_set(r, k, worst < 1e-6 ? AUDIT_HOLDS : AUDIT_FAILS, "largest relative difference from the finite-difference "
-                "Jacobian %.1e over 1000 slopes in [-3, 3]^2 (the map does not depend on A)", worst);
+            au_set(r, k, worst < 1e-6 ? AUDIT_HOLDS : AUDIT_FAILS,
+                   "largest relative difference from the finite-difference "
+                   "Jacobian %.1e over 1000 slopes in [-3, 3]^2 (the map does not depend on A)",
+                   worst);
     }
 
-    r = au_add(rows, &nr, "squish-jacobian", "the crescent squish (s, t) -> (s, (1 - z) sqrt(1 - s^2) + z t) has Jacobian z",
-            SEED_VNDF ", " SEED_BLOG2 ", " SEED_WALTER, "the VNDF proof, step 3; blog Part 2; Walter eq 38-41", AUDIT_SCOPE_ANY);
+    r = au_add(rows, &nr, "squish-jacobian",
+               "the crescent squish (s, t) -> (s, (1 - z) sqrt(1 - s^2) + z t) has Jacobian z",
+               SEED_VNDF ", " SEED_BLOG2 ", " SEED_WALTER, "the VNDF proof, step 3; blog Part 2; Walter eq 38-41",
+               AUDIT_SCOPE_ANY);
     {
         rng g = {89};
         double worst = 0;
@@ -926,12 +999,16 @@ static int run_claims(const double A[AUDIT_SHAPES][3][3], audit_row *rows, int p
             worst = fmax(worst, fabs(au_fd_jacobian(map_squish, &z, sx, t, 1e-6) / z - 1));
         }
         for (int k = 0; k < AUDIT_SHAPES; k++)
-            au_set(r, k, worst < 1e-6 ? AUDIT_HOLDS : AUDIT_FAILS, "largest relative difference from the finite-difference "
-                "Jacobian %.1e over 1000 points, z in [1/2, 1]", worst);
+            au_set(r, k, worst < 1e-6 ? AUDIT_HOLDS : AUDIT_FAILS,
+                   "largest relative difference from the finite-difference "
+                   "Jacobian %.1e over 1000 points, z in [1/2, 1]",
+                   worst);
     }
 
-    r = au_add(rows, &nr, "stretch-jacobian", "the elliptic stretch m = normalize(A s) has solid-angle Jacobian |dm / ds| = ax ay "
-            "||A^-1 m||^3", SEED_STRETCH ", " SEED_VNDF, "GGX composition; the VNDF proof, Elliptic Stretch", AUDIT_SCOPE_DIAGONAL);
+    r = au_add(rows, &nr, "stretch-jacobian",
+               "the elliptic stretch m = normalize(A s) has solid-angle Jacobian |dm / ds| = ax ay "
+               "||A^-1 m||^3",
+               SEED_STRETCH ", " SEED_VNDF, "GGX composition; the VNDF proof, Elliptic Stretch", AUDIT_SCOPE_DIAGONAL);
     for (int k = 0; k < AUDIT_SHAPES; k++) {
         double ax, ay;
         if (!au_alphas_or_skip(r, k, &sh[k], &ax, &ay)) continue;
@@ -946,16 +1023,19 @@ static int run_claims(const double A[AUDIT_SHAPES][3][3], audit_row *rows, int p
             t_frame(c.s, &c.t1, &c.t2);
             double J = au_fd_jacobian(map_stretch, &c, 0, 0, 1e-6);
             ggx_vec3 m = map_stretch(&c, 0, 0);
-            double qd = sqrt(m.x * m.x / (ax * ax) + m.y * m.y / (ay * ay) + m.z * m.z), q = au_norm_of((const double(*)[3])Ait, m);
+            double qd = sqrt(m.x * m.x / (ax * ax) + m.y * m.y / (ay * ay) + m.z * m.z),
+                   q = au_norm_of((const double(*)[3])Ait, m);
             worst_lit = fmax(worst_lit, fabs(ax * ay * qd * qd * qd / J - 1));
             worst_gen = fmax(worst_gen, fabs(sh[k].det * q * q * q / J - 1));
         }
-        au_set(r, k, worst_lit < 1e-6 ? AUDIT_HOLDS : AUDIT_FAILS, "largest relative difference from the finite-difference Jacobian "
-            "%.1e over 1000 directions (for any A, |A| ||A^-T m||^3 with m = normalize(A^T s): %.1e)", worst_lit, worst_gen);
+        au_set(r, k, worst_lit < 1e-6 ? AUDIT_HOLDS : AUDIT_FAILS,
+               "largest relative difference from the finite-difference Jacobian "
+               "%.1e over 1000 directions (for any A, |A| ||A^-T m||^3 with m = normalize(A^T s): %.1e)",
+               worst_lit, worst_gen);
     }
 
-    r = au_add(rows, &nr, "reflect-jacobian", "the reflection omega = 2 (psi.m) m - psi has |d omega / dm| = 4 |psi.m|", SEED_WALTER,
-            "eq 47-48", AUDIT_SCOPE_ANY);
+    r = au_add(rows, &nr, "reflect-jacobian", "the reflection omega = 2 (psi.m) m - psi has |d omega / dm| = 4 |psi.m|",
+               SEED_WALTER, "eq 47-48", AUDIT_SCOPE_ANY);
     {
         rng g = {91};
         double worst = 0;
@@ -966,24 +1046,30 @@ static int run_claims(const double A[AUDIT_SHAPES][3][3], audit_row *rows, int p
             worst = fmax(worst, fabs(au_fd_jacobian(map_reflect, &c, 0, 0, 1e-6) / (4 * t_dot(c.psi, c.m)) - 1));
         }
         for (int k = 0; k < AUDIT_SHAPES; k++)
-            au_set(r, k, worst < 1e-6 ? AUDIT_HOLDS : AUDIT_FAILS, "largest relative difference from the finite-difference "
-                "Jacobian %.1e over 1000 pairs (the map does not depend on A)", worst);
+            au_set(r, k, worst < 1e-6 ? AUDIT_HOLDS : AUDIT_FAILS,
+                   "largest relative difference from the finite-difference "
+                   "Jacobian %.1e over 1000 pairs (the map does not depend on A)",
+                   worst);
     }
 
     /* ---- identities at random points, on the matrix given ---- */
-    r = au_add(rows, &nr, "cross-product", "(M a) x (M b) = |M| M^-T (a x b) for a non-singular M", SEED_WALTER, "eq 25",
-            AUDIT_SCOPE_ANY);
+    r = au_add(rows, &nr, "cross-product", "(M a) x (M b) = |M| M^-T (a x b) for a non-singular M", SEED_WALTER,
+               "eq 25", AUDIT_SCOPE_ANY);
     for (int k = 0; k < AUDIT_SHAPES; k++) {
         au_verdict_kin(r, k, &sh[k], A[k], err_cross, NULL, 50, 1e-12, "with M = A: relative difference");
         au_append(r, k, " (det A > 0 here: with det < 0 the right side flips sign)");
     }
 
-    r = au_add(rows, &nr, "sphere-normal", "m' = A^-T m / ||A^-T m|| is the sphere's normal at A p, p the ellipsoid point with normal m; "
-            "m'.v' = (m.v) / (||Av|| ||A^-T m||)", SEED_BLOG2, "eq:m-to-m-prime, eq:mv-sphere-to-ellipsoid", AUDIT_SCOPE_ANY);
+    r = au_add(rows, &nr, "sphere-normal",
+               "m' = A^-T m / ||A^-T m|| is the sphere's normal at A p, p the ellipsoid point with normal m; "
+               "m'.v' = (m.v) / (||Av|| ||A^-T m||)",
+               SEED_BLOG2, "eq:m-to-m-prime, eq:mv-sphere-to-ellipsoid", AUDIT_SCOPE_ANY);
     au_kin_row(&ctx, r, 0, err_sphere_normal, NULL, 50, 1e-12, "difference");
 
-    r = au_add(rows, &nr, "half-cut", "the half of the ellipsoid with m.n > 0 is the half cut by the plane through its centre "
-            "perpendicular to A^T A n", SEED_WALTER, "sections 2.3, 5.1", AUDIT_SCOPE_ANY);
+    r = au_add(rows, &nr, "half-cut",
+               "the half of the ellipsoid with m.n > 0 is the half cut by the plane through its centre "
+               "perpendicular to A^T A n",
+               SEED_WALTER, "sections 2.3, 5.1", AUDIT_SCOPE_ANY);
     for (int k = 0; k < AUDIT_SHAPES; k++) {
         double Ait[3][3];
         au_inv_t(A[k], Ait);
@@ -996,11 +1082,14 @@ static int run_claims(const double A[AUDIT_SHAPES][3][3], audit_row *rows, int p
             ggx_vec3 m = t_normalize(t_mattvec(A[k], t_matvec(A[k], p)));
             disagree += (m.z > 0) != (t_dot(ata, p) > 0);
         }
-        au_set(r, k, disagree == 0 ? AUDIT_HOLDS : AUDIT_FAILS, "%ld of 10^5 random surface points on the wrong side", disagree);
+        au_set(r, k, disagree == 0 ? AUDIT_HOLDS : AUDIT_FAILS, "%ld of 10^5 random surface points on the wrong side",
+               disagree);
     }
 
-    r = au_add(rows, &nr, "g1-pdf-identity", "(1/s) ||An|| / ||Av|| = 2 ||An|| ||A^-T n|| / (||Av|| ||A^-T n|| + v.n), with the blog's "
-            "s and (Av).(A^-T n) = v.n", SEED_BLOG2, "eq:g1-pdf", AUDIT_SCOPE_ANY);
+    r = au_add(rows, &nr, "g1-pdf-identity",
+               "(1/s) ||An|| / ||Av|| = 2 ||An|| ||A^-T n|| / (||Av|| ||A^-T n|| + v.n), with the blog's "
+               "s and (Av).(A^-T n) = v.n",
+               SEED_BLOG2, "eq:g1-pdf", AUDIT_SCOPE_ANY);
     for (int k = 0; k < AUDIT_SHAPES; k++) {
         double Ait[3][3];
         au_inv_t(A[k], Ait);
@@ -1013,33 +1102,41 @@ static int run_claims(const double A[AUDIT_SHAPES][3][3], audit_row *rows, int p
             double lhs = anl / avl / sb, rhs = 2 * anl * atl / (avl * atl + vv.z);
             worst = fmax(worst, fabs(lhs / rhs - 1));
         }
-        au_set(r, k, worst < 1e-12 ? AUDIT_HOLDS : AUDIT_FAILS, "largest relative difference %.1e over 1000 views (an identity for "
-            "every A; the next step needs ||An|| ||A^-T n|| = 1, row unit-norms)", worst);
+        au_set(r, k, worst < 1e-12 ? AUDIT_HOLDS : AUDIT_FAILS,
+               "largest relative difference %.1e over 1000 views (an identity for "
+               "every A; the next step needs ||An|| ||A^-T n|| = 1, row unit-norms)",
+               worst);
     }
 
-    r = au_add(rows, &nr, "vndf-frame", "z = Av / ||Av||, x = (-z_y, z_x, 0) / ||.||, y = z x x is orthonormal with y.n >= 0",
-            SEED_VNDF, "step 1, make a frame", AUDIT_SCOPE_DIAGONAL);
+    r = au_add(rows, &nr, "vndf-frame",
+               "z = Av / ||Av||, x = (-z_y, z_x, 0) / ||.||, y = z x x is orthonormal with y.n >= 0", SEED_VNDF,
+               "step 1, make a frame", AUDIT_SCOPE_DIAGONAL);
     for (int k = 0; k < AUDIT_SHAPES; k++) {
         rng g = {96};
         double worst = 0, ymin = 1;
         for (int i = 0; i < 1000; i++) {
-            ggx_vec3 z = t_normalize(t_matvec(A[k], au_random_upper(&g))), x = t_normalize(t_vec(-z.y, z.x, 0)), y = t_cross(z, x);
+            ggx_vec3 z = t_normalize(t_matvec(A[k], au_random_upper(&g))), x = t_normalize(t_vec(-z.y, z.x, 0)),
+                     y = t_cross(z, x);
             worst = fmax(worst, fmax(fabs(t_dot(x, z)), fmax(fabs(t_dot(y, y) - 1), fabs(t_dot(x, y)))));
             ymin = fmin(ymin, y.z);
         }
-        au_set(r, k, worst < 1e-12 && ymin >= 0 ? AUDIT_HOLDS : AUDIT_FAILS, "orthonormal to %.0e over 1000 views; smallest y.n "
-            "%.3f", fmax(worst, 1e-17), ymin);
+        au_set(r, k, worst < 1e-12 && ymin >= 0 ? AUDIT_HOLDS : AUDIT_FAILS,
+               "orthonormal to %.0e over 1000 views; smallest y.n "
+               "%.3f",
+               fmax(worst, 1e-17), ymin);
     }
-    r = au_add(rows, &nr, "vndf-eq33", "p_h(m) = (A_e(n) / A_l(psi, n)) X+(m.psi) D(m) |m.psi| integrates to 1 over m", SEED_WALTER,
-            "eq 33 (as fixed in May 2016)", AUDIT_SCOPE_ANY);
+    r = au_add(rows, &nr, "vndf-eq33", "p_h(m) = (A_e(n) / A_l(psi, n)) X+(m.psi) D(m) |m.psi| integrates to 1 over m",
+               SEED_WALTER, "eq 33 (as fixed in May 2016)", AUDIT_SCOPE_ANY);
     for (int k = 0; k < AUDIT_SHAPES; k++) au_verdict_views(r, k, eq33_integral, &sh[k], 1e-6, "it");
 
-    r = au_add(rows, &nr, "sggx", "the ellipsoid NDF is SGGX with S = A^T A: D_SGGX(m) = 1 / (pi sqrt|S| (m^T S^-1 m)^2) = ||An|| D(m)",
-            SEED_WALTER, "section 5.2", AUDIT_SCOPE_ANY);
+    r = au_add(rows, &nr, "sggx",
+               "the ellipsoid NDF is SGGX with S = A^T A: D_SGGX(m) = 1 / (pi sqrt|S| (m^T S^-1 m)^2) = ||An|| D(m)",
+               SEED_WALTER, "section 5.2", AUDIT_SCOPE_ANY);
     au_kin_row(&ctx, r, 0, err_sggx, NULL, 50, 1e-12, "relative difference");
 
-    r = au_add(rows, &nr, "hessian", "with H = 2 A^T A: |H| = 8 |A|^2, adj(H) = |H| H^-1 and m^T H^-1 m = ||A^-T m||^2 / 2", SEED_WALTER,
-            "eq 11-19", AUDIT_SCOPE_ANY);
+    r = au_add(rows, &nr, "hessian",
+               "with H = 2 A^T A: |H| = 8 |A|^2, adj(H) = |H| H^-1 and m^T H^-1 m = ||A^-T m||^2 / 2", SEED_WALTER,
+               "eq 11-19", AUDIT_SCOPE_ANY);
     for (int k = 0; k < AUDIT_SHAPES; k++) {
         double H[3][3], Hinv_t[3][3];
         for (int i = 0; i < 3; i++)
@@ -1048,7 +1145,8 @@ static int run_claims(const double A[AUDIT_SHAPES][3][3], audit_row *rows, int p
                 for (int l = 0; l < 3; l++) H[i][j] += 2 * A[k][l][i] * A[k][l][j];
             }
         au_inv_t((const double(*)[3])H, Hinv_t); /* H symmetric: H^-T = H^-1 */
-        double detH = H[0][0] * (H[1][1] * H[2][2] - H[1][2] * H[2][1]) - H[0][1] * (H[1][0] * H[2][2] - H[1][2] * H[2][0]) +
+        double detH = H[0][0] * (H[1][1] * H[2][2] - H[1][2] * H[2][1]) -
+                      H[0][1] * (H[1][0] * H[2][2] - H[1][2] * H[2][0]) +
                       H[0][2] * (H[1][0] * H[2][1] - H[1][1] * H[2][0]);
         double worst = fabs(detH / (8 * sh[k].det * sh[k].det) - 1);
         for (int i = 0; i < 3; i++)
@@ -1061,36 +1159,47 @@ static int run_claims(const double A[AUDIT_SHAPES][3][3], audit_row *rows, int p
         au_inv_t(A[k], Ait);
         rng g = {98};
         for (int i = 0; i < 1000; i++) {
-            ggx_vec3 m = au_random_upper(&g), hm = t_matvec((const double(*)[3])Hinv_t, m), q = t_matvec((const double(*)[3])Ait, m);
+            ggx_vec3 m = au_random_upper(&g), hm = t_matvec((const double(*)[3])Hinv_t, m),
+                     q = t_matvec((const double(*)[3])Ait, m);
             worst = fmax(worst, fabs(t_dot(m, hm) / (0.5 * t_dot(q, q)) - 1));
         }
-        au_set(r, k, worst < 1e-10 ? AUDIT_HOLDS : AUDIT_FAILS, "largest relative difference %.1e (|H|, the adjugate, 1000 normals)",
-            worst);
+        au_set(r, k, worst < 1e-10 ? AUDIT_HOLDS : AUDIT_FAILS,
+               "largest relative difference %.1e (|H|, the adjugate, 1000 normals)", worst);
     }
 
-    r = au_add(rows, &nr, "normalize-derivative", "d(p / ||p||) = p x (dp x p) / ||p||^3, and the normalizing Jacobian |d p^ / d(u, v)| "
-            "= |p.(p_u x p_v)| / ||p||^3", SEED_STRETCH, "Differentiation; the Normalizing Jacobian formula", AUDIT_SCOPE_ANY);
+    r = au_add(rows, &nr, "normalize-derivative",
+               "d(p / ||p||) = p x (dp x p) / ||p||^3, and the normalizing Jacobian |d p^ / d(u, v)| "
+               "= |p.(p_u x p_v)| / ||p||^3",
+               SEED_STRETCH, "Differentiation; the Normalizing Jacobian formula", AUDIT_SCOPE_ANY);
     {
         rng g = {99};
         double worst = 0;
         for (int i = 0; i < 1000; i++) {
-            ggx_vec3 f[3] = {t_scale(au_random_upper(&g), 0.5 + 2 * rng_uniform(&g)), au_random_upper(&g), au_random_upper(&g)};
+            ggx_vec3 f[3] = {t_scale(au_random_upper(&g), 0.5 + 2 * rng_uniform(&g)), au_random_upper(&g),
+                             au_random_upper(&g)};
             f[1] = t_scale(f[1], 2 * rng_uniform(&g) - 1), f[2] = t_scale(f[2], 2 * rng_uniform(&g) - 1);
             double pl = sqrt(t_dot(f[0], f[0])), J = au_fd_jacobian(map_normalize, f, 0, 0, 1e-6);
             double want = fabs(t_dot(f[0], t_cross(f[1], f[2]))) / (pl * pl * pl);
             if (want > 1e-3) worst = fmax(worst, fabs(J / want - 1));
             ggx_vec3 d = t_scale(t_add(map_normalize(f, 1e-6, 0), t_scale(map_normalize(f, -1e-6, 0), -1)), 0.5e6);
-            ggx_vec3 dw = t_scale(t_cross(f[0], t_cross(f[1], f[0])), 1 / (pl * pl * pl)), e = t_add(d, t_scale(dw, -1));
+            ggx_vec3 dw = t_scale(t_cross(f[0], t_cross(f[1], f[0])), 1 / (pl * pl * pl)),
+                     e = t_add(d, t_scale(dw, -1));
             worst = fmax(worst, sqrt(t_dot(e, e)) / fmax(1e-3, sqrt(t_dot(dw, dw))));
         }
         for (int k = 0; k < AUDIT_SHAPES; k++)
-            au_set(r, k, worst < 1e-6 ? AUDIT_HOLDS : AUDIT_FAILS, "largest relative difference from finite differences %.1e over "
-                "1000 random planes (the formula does not depend on A)", worst);
+            au_set(r, k, worst < 1e-6 ? AUDIT_HOLDS : AUDIT_FAILS,
+                   "largest relative difference from finite differences %.1e over "
+                   "1000 random planes (the formula does not depend on A)",
+                   worst);
     }
 
-    r = au_add(rows, &nr, "stretch-inverse", "s = A^-1 m / ||A^-1 m|| inverts m = A s / ||A s||, and |s_z| = |m_z| ||m_||, "
-            "mx^2/ax^2 + my^2/ay^2 + mz^2 = 1 / ||m_||^2 (m_ = A s)", SEED_VNDF ", " SEED_STRETCH, "the VNDF proof, Elliptic Stretch; Elliptic "
-            "Stretch", AUDIT_SCOPE_DIAGONAL);
+    r = au_add(rows, &nr, "stretch-inverse",
+               "s = A^-1 m / ||A^-1 m|| inverts m = A s / ||A s||, and |s_z| = |m_z| ||m_||, "
+               "mx^2/ax^2 + my^2/ay^2 + mz^2 = 1 / ||m_||^2 (m_ = A s)",
+               SEED_VNDF ", " SEED_STRETCH,
+               "the VNDF proof, Elliptic Stretch; Elliptic "
+               "Stretch",
+               AUDIT_SCOPE_DIAGONAL);
     for (int k = 0; k < AUDIT_SHAPES; k++) {
         double ax, ay;
         if (!au_alphas_or_skip(r, k, &sh[k], &ax, &ay)) continue;
@@ -1100,16 +1209,20 @@ static int run_claims(const double A[AUDIT_SHAPES][3][3], audit_row *rows, int p
         double worst = 0;
         for (int i = 0; i < 1000; i++) {
             ggx_vec3 sv = au_random_upper(&g), mb = t_matvec(A[k], sv), m = t_normalize(mb);
-            ggx_vec3 back = t_normalize(t_mattvec((const double(*)[3])Ait, m)), d = t_add(back, t_scale(sv, -1)); /* A^-1 m */
+            ggx_vec3 back = t_normalize(t_mattvec((const double(*)[3])Ait, m)),
+                     d = t_add(back, t_scale(sv, -1)); /* A^-1 m */
             double ml = sqrt(t_dot(mb, mb)), q = m.x * m.x / (ax * ax) + m.y * m.y / (ay * ay) + m.z * m.z;
-            worst = fmax(worst, fmax(sqrt(t_dot(d, d)), fmax(fabs(fabs(sv.z) / (fabs(m.z) * ml) - 1), fabs(q * ml * ml - 1))));
+            worst = fmax(worst,
+                         fmax(sqrt(t_dot(d, d)), fmax(fabs(fabs(sv.z) / (fabs(m.z) * ml) - 1), fabs(q * ml * ml - 1))));
         }
         au_set(r, k, worst < 1e-12 ? AUDIT_HOLDS : AUDIT_FAILS, "largest difference %.1e over 1000 directions%s", worst,
-            sh[k].kind == GGX_SHAPE_UNSKEWED ? " (the norm in x, y, not the rotated axes)" : "");
+               sh[k].kind == GGX_SHAPE_UNSKEWED ? " (the norm in x, y, not the rotated axes)" : "");
     }
 
-    r = au_add(rows, &nr, "equal-area-grid", "the 10 x 10 grid of the unit square maps to 100 cells of equal probability under "
-            "D(m)(m.n) (the figures, alpha 0.15, 0.5)", SEED_STRETCH, "Visualization", AUDIT_SCOPE_DIAGONAL);
+    r = au_add(rows, &nr, "equal-area-grid",
+               "the 10 x 10 grid of the unit square maps to 100 cells of equal probability under "
+               "D(m)(m.n) (the figures, alpha 0.15, 0.5)",
+               SEED_STRETCH, "Visualization", AUDIT_SCOPE_DIAGONAL);
     for (int k = 0; k < AUDIT_SHAPES; k++) {
         /* normals drawn by an independent sampler (the ellipse lift), mapped back to the unit square by the stretch's
          * inverse; the 100 cells' counts against 1/100 each (chi-square, 99 degrees of freedom) */
@@ -1117,19 +1230,25 @@ static int run_claims(const double A[AUDIT_SHAPES][3][3], audit_row *rows, int p
         enum { NS = 200000 };
         long cells[100] = {0};
         for (int i = 0; i < NS; i++) {
-            ggx_vec2 u = ggx_sample_ndf_stretch_inv(&sh[k], ggx_sample_ndf_ellipse(&sh[k], rng_uniform(&g), rng_uniform(&g)));
+            ggx_vec2 u = ggx_sample_ndf_stretch_inv(&sh[k],
+                                                    ggx_sample_ndf_ellipse(&sh[k], rng_uniform(&g), rng_uniform(&g)));
             int a = (int)(u.x * 10), b = (int)(u.y * 10);
             cells[(a < 0 ? 0 : a > 9 ? 9 : a) * 10 + (b < 0 ? 0 : b > 9 ? 9 : b)]++;
         }
         double x2 = 0, e = NS / 100.0;
         for (int i = 0; i < 100; i++) x2 += ((double)cells[i] - e) * ((double)cells[i] - e) / e;
         /* 99 degrees of freedom: mean 99, sd 14; beyond 99 + 6 sd = 183 the cells are not equal */
-        au_set(r, k, x2 < 183 ? AUDIT_HOLDS : AUDIT_FAILS, "chi-square %.1f over the 100 cells with 99 degrees of freedom (2e5 normals "
-            "from the ellipse lift, mapped back by the stretch's inverse)", x2);
+        au_set(r, k, x2 < 183 ? AUDIT_HOLDS : AUDIT_FAILS,
+               "chi-square %.1f over the 100 cells with 99 degrees of freedom (2e5 normals "
+               "from the ellipse lift, mapped back by the stretch's inverse)",
+               x2);
     }
-    r = au_add(rows, &nr, "inversion-forms", "for the lifted normal: cos phi_m = ax cos 2 pi xi2 / N, sin phi_m = ay sin 2 pi xi2 / N and "
-            "tan theta_m = sqrt(xi1 / (1 - xi1)) N = sqrt(xi1 / ((1 - xi1)(cos^2 phi_m / ax^2 + sin^2 phi_m / ay^2))), N^2 = "
-            "ax^2 cos^2 + ay^2 sin^2", SEED_BLOG2, "Sampling Normals; eq:theta_m_sample", AUDIT_SCOPE_DIAGONAL);
+    r = au_add(rows, &nr, "inversion-forms",
+               "for the lifted normal: cos phi_m = ax cos 2 pi xi2 / N, sin phi_m = ay sin 2 pi xi2 / N and "
+               "tan theta_m = sqrt(xi1 / (1 - xi1)) N = sqrt(xi1 / ((1 - xi1)(cos^2 phi_m / ax^2 + sin^2 phi_m / "
+               "ay^2))), N^2 = "
+               "ax^2 cos^2 + ay^2 sin^2",
+               SEED_BLOG2, "Sampling Normals; eq:theta_m_sample", AUDIT_SCOPE_DIAGONAL);
     for (int k = 0; k < AUDIT_SHAPES; k++) {
         if (sh[k].kind != GGX_SHAPE_DIAGONAL) {
             au_set(r, k, AUDIT_NOT_CLAIMED, "cannot be applied (written in x and y for a diagonal A)");
@@ -1143,36 +1262,44 @@ static int run_claims(const double A[AUDIT_SHAPES][3][3], audit_row *rows, int p
             /* the normal at the point lifted from (a r cos t, b r sin t), a = 1 / ax, b = 1 / ay: the gradient A^T A p */
             ggx_vec3 p = t_vec(sqrt(x1) * c / ax, sqrt(x1) * sn / ay, sqrt(1 - x1));
             ggx_vec3 m = t_normalize(t_mattvec(A[k], t_matvec(A[k], p)));
-            double N = sqrt(ax * ax * c * c + ay * ay * sn * sn), ph = atan2(m.y, m.x), th = atan2(hypot(m.x, m.y), m.z);
+            double N = sqrt(ax * ax * c * c + ay * ay * sn * sn), ph = atan2(m.y, m.x),
+                   th = atan2(hypot(m.x, m.y), m.z);
             double inv = sqrt(x1 / ((1 - x1) * (cos(ph) * cos(ph) / (ax * ax) + sin(ph) * sin(ph) / (ay * ay))));
             worst = fmax(worst, fmax(fabs(cos(ph) - ax * c / N), fabs(sin(ph) - ay * sn / N)));
-            worst = fmax(worst, fmax(fabs(tan(th) / (sqrt(x1 / (1 - x1)) * N) - 1), fabs(inv / (sqrt(x1 / (1 - x1)) * N) - 1)));
+            worst = fmax(
+                worst, fmax(fabs(tan(th) / (sqrt(x1 / (1 - x1)) * N) - 1), fabs(inv / (sqrt(x1 / (1 - x1)) * N) - 1)));
         }
-        au_set(r, k, worst < 1e-9 ? AUDIT_HOLDS : AUDIT_FAILS, "largest difference %.1e over 1000 points (the angles from the "
-            "ellipsoid's own normal, the gradient at the lifted point)", worst);
+        au_set(r, k, worst < 1e-9 ? AUDIT_HOLDS : AUDIT_FAILS,
+               "largest difference %.1e over 1000 points (the angles from the "
+               "ellipsoid's own normal, the gradient at the lifted point)",
+               worst);
     }
 
-    r = au_add(rows, &nr, "spherical-form", "D = 1 / (pi ax ay cos^4 theta (1 + tan^2 theta (cos^2 phi / ax^2 + sin^2 phi / ay^2))^2)",
-            SEED_BLOG1, "normal in spherical coordinates", AUDIT_SCOPE_DIAGONAL);
+    r = au_add(rows, &nr, "spherical-form",
+               "D = 1 / (pi ax ay cos^4 theta (1 + tan^2 theta (cos^2 phi / ax^2 + sin^2 phi / ay^2))^2)", SEED_BLOG1,
+               "normal in spherical coordinates", AUDIT_SCOPE_DIAGONAL);
     for (int k = 0; k < AUDIT_SHAPES; k++) {
         double ax, ay;
         if (!au_alphas_or_skip(r, k, &sh[k], &ax, &ay)) continue;
         rng g = {103};
         double worst = 0;
         for (int i = 0; i < 1000; i++) {
-            double th = acos(0.02 + 0.98 * rng_uniform(&g)), ph = 2 * GGX_PI * rng_uniform(&g), c = cos(th), t2 = tan(th) * tan(th);
+            double th = acos(0.02 + 0.98 * rng_uniform(&g)), ph = 2 * GGX_PI * rng_uniform(&g), c = cos(th),
+                   t2 = tan(th) * tan(th);
             double q = 1 + t2 * (cos(ph) * cos(ph) / (ax * ax) + sin(ph) * sin(ph) / (ay * ay));
-            worst = fmax(worst, fabs(1 / (GGX_PI * ax * ay * c * c * c * c * q * q) / ggx_ndf(&sh[k], t_dir(th, ph)) - 1));
+            worst = fmax(worst,
+                         fabs(1 / (GGX_PI * ax * ay * c * c * c * c * q * q) / ggx_ndf(&sh[k], t_dir(th, ph)) - 1));
         }
-        au_set(r, k, worst < 1e-9 ? AUDIT_HOLDS : AUDIT_FAILS, "largest relative difference from Walter eq 1 %.1e over 1000 normals",
-            worst);
+        au_set(r, k, worst < 1e-9 ? AUDIT_HOLDS : AUDIT_FAILS,
+               "largest relative difference from Walter eq 1 %.1e over 1000 normals", worst);
     }
 
-    r = au_add(rows, &nr, "det-sr", "A = S R with R a rotation: |A| = |S| = ax ay", SEED_WALTER, "eq 2 and text", AUDIT_SCOPE_ANY);
+    r = au_add(rows, &nr, "det-sr", "A = S R with R a rotation: |A| = |S| = ax ay", SEED_WALTER, "eq 2 and text",
+               AUDIT_SCOPE_ANY);
     au_kin_row(&ctx, r, 0, err_det_sr, NULL, 1, 1e-12, "|det A| against ax ay: relative difference");
 
-    r = au_add(rows, &nr, "an-is-n", "theta_x = theta_y = 0 gives A n = n, so ||An|| = 1", SEED_WALTER, "section 1, last sentence",
-            AUDIT_SCOPE_ROTATED);
+    r = au_add(rows, &nr, "an-is-n", "theta_x = theta_y = 0 gives A n = n, so ||An|| = 1", SEED_WALTER,
+               "section 1, last sentence", AUDIT_SCOPE_ROTATED);
     au_kin_row(&ctx, r, 0, err_an_is_n, NULL, 1, 1e-12, "|A n - n|:");
     au_rows_ellipsoid(&ctx);
     au_rows_sampling(&ctx);
@@ -1264,23 +1391,24 @@ void audit_write(FILE *f, audit_format fmt, const audit_row *rows, int n, const 
         fputs("]\n", f);
         return;
     }
-    fprintf(f, "# Seed audit\n\n"
-               "Written by `ggx audit` (its defaults; `ggx audit --format md > docs/audit.md`); `make test-full` "
-               "checks that this file is the command's output and `make test` asserts every verdict "
-               "(tests/unit/test_audit.c). Each claim names its seed by the short name of [references.md](references.md), "
-               "where it is in that text, and the shapes the seed states it for. Verdicts: "
-               "**holds**; **holds with a correction** (the seed's formula fails as written, the evidence states the "
-               "form that holds); **fails** (with the counterexample found); **not claimed** for this shape (the "
-               "evidence says what happens when it is applied anyway). Shapes: a claim about every point of every "
-               "shape is checked at random points of %d shapes of each column's kind, the column's own and %d random "
-               "ones (alphas 0.05 to 2, any theta_z, skews up to 0.6 rad); a failure reports the smallest "
-               "counterexample found, on the failing shape whose A^T A is nearest to diagonal. Views: claims about "
-               "every view are checked at 48 views (theta from 0.3 to 1.5 rad, 8 azimuths), or at random views; the "
-               "samplers of visible normals at theta = 1.2 rad, phi = -0.6 and at the grazing theta = 1.5, phi = 2 "
-               "(the other chi-square rows at the first; phi = 2.5 where Walter's min must be active). "
-               "Chi-square: 10^6 samples, 100 x 200 equal-area cells in sphere space, Sidak level %.2g. Areas by rays "
-               "shot at the ellipsoid itself, curvature and Jacobians by finite differences; more of them in "
-               "tests/unit/test_ndf.c and tests/test_sample_map.c.\n\n",
+    fprintf(f,
+            "# Seed audit\n\n"
+            "Written by `ggx audit` (its defaults; `ggx audit --format md > docs/audit.md`); `make test-full` "
+            "checks that this file is the command's output and `make test` asserts every verdict "
+            "(tests/unit/test_audit.c). Each claim names its seed by the short name of [references.md](references.md), "
+            "where it is in that text, and the shapes the seed states it for. Verdicts: "
+            "**holds**; **holds with a correction** (the seed's formula fails as written, the evidence states the "
+            "form that holds); **fails** (with the counterexample found); **not claimed** for this shape (the "
+            "evidence says what happens when it is applied anyway). Shapes: a claim about every point of every "
+            "shape is checked at random points of %d shapes of each column's kind, the column's own and %d random "
+            "ones (alphas 0.05 to 2, any theta_z, skews up to 0.6 rad); a failure reports the smallest "
+            "counterexample found, on the failing shape whose A^T A is nearest to diagonal. Views: claims about "
+            "every view are checked at 48 views (theta from 0.3 to 1.5 rad, 8 azimuths), or at random views; the "
+            "samplers of visible normals at theta = 1.2 rad, phi = -0.6 and at the grazing theta = 1.5, phi = 2 "
+            "(the other chi-square rows at the first; phi = 2.5 where Walter's min must be active). "
+            "Chi-square: 10^6 samples, 100 x 200 equal-area cells in sphere space, Sidak level %.2g. Areas by rays "
+            "shot at the ellipsoid itself, curvature and Jacobians by finite differences; more of them in "
+            "tests/unit/test_ndf.c and tests/test_sample_map.c.\n\n",
             AU_KIN, AU_KIN - 1, au_alpha_level());
     fprintf(f, "| # | id | claim | seed, where | scope | %s | %s | %s |\n|---|---|---|---|---|---|---|---|\n",
             labels[0], labels[1], labels[2]);

@@ -39,11 +39,11 @@ static double err_normal_point(const au_kin *K, rng *g, void *ctx, char *at, siz
     double gl = sqrt(t_dot(grad, grad));
     ggx_vec3 m = t_scale(grad, 1 / gl), q = t_matvec((const double(*)[3])Ait, m);
     double q2 = t_dot(q, q), pl = sqrt(t_dot(p, p));
-    ggx_vec3 p_blog = t_scale(t_mattvec((const double(*)[3])Ait, q), 0.5 * gl);          /* (1/2)||grad f|| A^-1 A^-T m */
-    ggx_vec3 p_walter = au_point_of_normal((const double(*)[3])Ait, m);                  /* A^-1 A^-T m / ||A^-T m|| */
-    ggx_vec3 m_back = t_normalize(t_matvec((const double(*)[3])M, p_walter));              /* the normal there */
-    ggx_vec3 m_minus = t_normalize(t_matvec((const double(*)[3])M, au_point_of_normal((const double(*)[3])Ait,
-                                                                                      t_scale(m, -1))));
+    ggx_vec3 p_blog = t_scale(t_mattvec((const double(*)[3])Ait, q), 0.5 * gl); /* (1/2)||grad f|| A^-1 A^-T m */
+    ggx_vec3 p_walter = au_point_of_normal((const double(*)[3])Ait, m);         /* A^-1 A^-T m / ||A^-T m|| */
+    ggx_vec3 m_back = t_normalize(t_matvec((const double(*)[3])M, p_walter));   /* the normal there */
+    ggx_vec3 m_minus = t_normalize(
+        t_matvec((const double(*)[3])M, au_point_of_normal((const double(*)[3])Ait, t_scale(m, -1))));
     double e = fmax(vdist(p_blog, p) / pl, fabs(gl * gl * q2 / 4 - 1));
     e = fmax(e, fmax(vdist(p_walter, p) / pl, fmax(vdist(m_back, m), vdist(m_minus, t_scale(m, -1)))));
     snprintf(at, nat, "p = (%.3g, %.3g, %.3g)", p.x, p.y, p.z);
@@ -59,7 +59,8 @@ static double det4(double a[4][4])
         for (int i = 1; i < 4; i++)
             for (int j = 0, jj = 0; j < 4; j++)
                 if (j != c) m[i - 1][jj++] = a[i][j];
-        double minor = m[0][0] * (m[1][1] * m[2][2] - m[1][2] * m[2][1]) - m[0][1] * (m[1][0] * m[2][2] - m[1][2] * m[2][0]) +
+        double minor = m[0][0] * (m[1][1] * m[2][2] - m[1][2] * m[2][1]) -
+                       m[0][1] * (m[1][0] * m[2][2] - m[1][2] * m[2][0]) +
                        m[0][2] * (m[1][0] * m[2][1] - m[1][1] * m[2][0]);
         d += (c % 2 ? -1 : 1) * a[0][c] * minor;
     }
@@ -67,7 +68,7 @@ static double det4(double a[4][4])
 }
 typedef struct patch {
     double A[3][3], Ait[3][3], ce; /* the ellipsoid x^T A^T A x = ce^2 */
-    ggx_vec3 s, t1, t2;           /* the sphere point of the patch's centre and its tangents */
+    ggx_vec3 s, t1, t2;            /* the sphere point of the patch's centre and its tangents */
 } patch;
 static ggx_vec3 patch_point(const patch *c, double a, double b)
 {
@@ -146,9 +147,10 @@ static double err_silhouette(const au_kin *K, rng *g, void *ctx, char *at, size_
     /* the section of the ellipsoid by the plane: an ellipse of area pi / sqrt(det B), B = [e_i^T M e_j] */
     ggx_vec3 m1 = t_matvec((const double(*)[3])M, e1), m2 = t_matvec((const double(*)[3])M, e2);
     double b11 = t_dot(e1, m1), b12 = t_dot(e1, m2), b22 = t_dot(e2, m2), area = GGX_PI / sqrt(b11 * b22 - b12 * b12);
-    double proj = area * fabs(t_dot(wn, v)), eq26 = GGX_PI * au_norm_of((const double(*)[3])K->A, v) / fabs(det_of((const double(*)[3])K->A));
-    snprintf(at, nat, "v = (%.3g, %.3g, %.3g): A^T A v %.3g deg from v, section x cosine %.6g, eq 26 %.6g", v.x, v.y, v.z,
-             acos(fmin(1.0, t_dot(wn, v))) * 180 / GGX_PI, proj, eq26);
+    double proj = area * fabs(t_dot(wn, v)),
+           eq26 = GGX_PI * au_norm_of((const double(*)[3])K->A, v) / fabs(det_of((const double(*)[3])K->A));
+    snprintf(at, nat, "v = (%.3g, %.3g, %.3g): A^T A v %.3g deg from v, section x cosine %.6g, eq 26 %.6g", v.x, v.y,
+             v.z, acos(fmin(1.0, t_dot(wn, v))) * 180 / GGX_PI, proj, eq26);
     return fmax(worst, fabs(proj / eq26 - 1));
 }
 
@@ -187,13 +189,14 @@ static void surface_row(audit_row *r, int k, const double A[3][3], const ggx_sha
         double integral = surface_lune(&sphere, A, u, v), own = surface_lune(&sphere, A, u, u);
         ok &= fabs(integral - rays) <= 5 * sig;
         if (fabs(integral / rays - 1) > worst_rays) worst_rays = fabs(integral / rays - 1), worst_rays_sig = sig / rays;
-        worst_form = fmax(worst_form, fmax(fabs(integral / ggx_lune_area(s, u, v) - 1),
-                                           fabs(own / ggx_projected_area(s, u) - 1)));
+        worst_form = fmax(worst_form,
+                          fmax(fabs(integral / ggx_lune_area(s, u, v) - 1), fabs(own / ggx_projected_area(s, u) - 1)));
     }
     ok &= worst_form < 1e-8;
-    au_set(r, k, ok ? AUDIT_HOLDS : AUDIT_FAILS, "the surface integrals against 10^6 rays at the ellipsoid from each of 4 "
-           "directions: worst |integral / rays - 1| = %.1e (5 sigma = %.1e); against eq 26 and 28: %.1e", worst_rays,
-           5 * worst_rays_sig, worst_form);
+    au_set(r, k, ok ? AUDIT_HOLDS : AUDIT_FAILS,
+           "the surface integrals against 10^6 rays at the ellipsoid from each of 4 "
+           "directions: worst |integral / rays - 1| = %.1e (5 sigma = %.1e); against eq 26 and 28: %.1e",
+           worst_rays, 5 * worst_rays_sig, worst_form);
 }
 
 /* ---- a spherical lune's projected area (Walter section 2.3), by rays at the unit sphere ---- */
@@ -206,12 +209,15 @@ static void lune_sphere_row(audit_row *r, int k, const double A[3][3])
     for (int i = 0; i < 4; i++) {
         ggx_vec3 u = au_random_upper(&g), v = au_random_upper(&g);
         ggx_vec3 a = t_normalize(t_matvec(A, u)), b = t_normalize(t_matvec(A, v)); /* the lune's plane normals */
-        double sig, rays = au_ray_area(I, b, a, 1, 1000000, 411 + (uint64_t)i, &sig), want = GGX_PI / 2 * (1 + t_dot(a, b));
+        double sig, rays = au_ray_area(I, b, a, 1, 1000000, 411 + (uint64_t)i, &sig),
+                    want = GGX_PI / 2 * (1 + t_dot(a, b));
         ok &= fabs(rays - want) <= 5 * sig;
         if (fabs(rays / want - 1) > worst) worst = fabs(rays / want - 1), worst_sig = sig / want;
     }
-    au_set(r, k, ok ? AUDIT_HOLDS : AUDIT_FAILS, "10^6 rays at the unit sphere for each of 4 lunes with plane normals A u, "
-           "A v: worst |rays / formula - 1| = %.1e (%s 5 sigma = %.1e)", worst, ok ? "within" : "beyond", 5 * worst_sig);
+    au_set(r, k, ok ? AUDIT_HOLDS : AUDIT_FAILS,
+           "10^6 rays at the unit sphere for each of 4 lunes with plane normals A u, "
+           "A v: worst |rays / formula - 1| = %.1e (%s 5 sigma = %.1e)",
+           worst, ok ? "within" : "beyond", 5 * worst_sig);
 }
 
 /* ---- Ce cancels (Walter eq 9, 20, 26, 29): D = 1 / (A_e(n) K_g) on the ellipsoid of any radius Ce, with A_e(n)
@@ -243,9 +249,10 @@ static void ce_row(audit_row *r, int k, const double A[3][3], const ggx_shape *s
             ok &= fabs(d / want - 1) <= 5 * sig / ae + 1e-6;
         }
     }
-    au_set(r, k, ok ? AUDIT_HOLDS : AUDIT_FAILS, "for Ce = 0.3 and 2.5, 1 / (A_e(n) K_g) (rays, finite differences) "
-           "against D at 20 normals: worst %.1e (5 sigma = %.1e); eq 29's Ce gives A_e(n) = %.5f +- %.5f", worst,
-           5 * worst_sig, ae29, ae29_sig);
+    au_set(r, k, ok ? AUDIT_HOLDS : AUDIT_FAILS,
+           "for Ce = 0.3 and 2.5, 1 / (A_e(n) K_g) (rays, finite differences) "
+           "against D at 20 normals: worst %.1e (5 sigma = %.1e); eq 29's Ce gives A_e(n) = %.5f +- %.5f",
+           worst, 5 * worst_sig, ae29, ae29_sig);
 }
 
 /* ---- semi-axes: 1 / alpha along the rotated axes (blog Part 1, after the anisotropic D) ---- */
@@ -309,8 +316,10 @@ static void skew_max_row(audit_row *r, int k, const ggx_shape *s0, const double 
         worst = fmax(worst, acos(fmin(1.0, t_dot(got, want)))), shift = fmax(shift, acos(fmin(1.0, want.z)));
         shapes++;
     }
-    au_set(r, k, worst < 1e-5 ? AUDIT_HOLDS : AUDIT_FAILS, "the maximum of D found by search is R^T z within %.1e rad on "
-           "%d shapes of this kind with alphas < 0.9; it lies up to %.3g degrees from n", worst, shapes, shift * 180 / GGX_PI);
+    au_set(r, k, worst < 1e-5 ? AUDIT_HOLDS : AUDIT_FAILS,
+           "the maximum of D found by search is R^T z within %.1e rad on "
+           "%d shapes of this kind with alphas < 0.9; it lies up to %.3g degrees from n",
+           worst, shapes, shift * 180 / GGX_PI);
 }
 
 /* ---- D along any direction u (blog Part 1 eq:NDF_norm and the eq after eq:A_perp_expression; Part 2 D(m, v)):
@@ -349,7 +358,8 @@ static double err_d_u(const au_kin *K, rng *g, void *ctx, char *at, size_t nat)
     }
     /* Part 2: D(m, v) = (||A n|| / ||A v||) D(m) at a random m */
     ggx_vec3 m = au_random_upper(g);
-    double dmv = d_u(&c, m), want = au_norm_of((const double(*)[3])c.A, N_UP) / au_norm_of((const double(*)[3])c.A, c.u) * ggx_ndf(&K->s, m);
+    double dmv = d_u(&c, m), want = au_norm_of((const double(*)[3])c.A, N_UP) /
+                                    au_norm_of((const double(*)[3])c.A, c.u) * ggx_ndf(&K->s, m);
     snprintf(at, nat, "u = (%.3g, %.3g, %.3g): integral %.9f", c.u.x, c.u.y, c.u.z, I);
     return fmax(fabs(I - 1), fabs(dmv / want - 1));
 }
@@ -384,8 +394,10 @@ static void sin_row(audit_row *r, int k, const ggx_shape *s)
         double th = 0.01 + 1.55 * rng_uniform(&g), ph = 2 * GGX_PI * rng_uniform(&g);
         worst = fmax(worst, fabs(au_fd_jacobian(map_angles, NULL, th, ph, 1e-6) / sin(th) - 1));
     }
-    au_set(r, k, fabs(I - 1) < 1e-8 && worst < 1e-8 ? AUDIT_HOLDS : AUDIT_FAILS, "|dm / d(theta, phi)| = sin theta within "
-           "%.1e (finite differences, 200 points); the double integral in (theta, phi) is 1 %+.1e", worst, I - 1);
+    au_set(r, k, fabs(I - 1) < 1e-8 && worst < 1e-8 ? AUDIT_HOLDS : AUDIT_FAILS,
+           "|dm / d(theta, phi)| = sin theta within "
+           "%.1e (finite differences, 200 points); the double integral in (theta, phi) is 1 %+.1e",
+           worst, I - 1);
 }
 
 /* ---- Engstad's ellipsoid map (engstad-vndf-proof): normalize(A s) is the normal at A^-1 s, normalize(A^T s) ---- */
@@ -405,61 +417,91 @@ static double err_ellipsoid_map(const au_kin *K, rng *g, void *ctx, char *at, si
 void au_rows_ellipsoid(const au_ctx *c)
 {
     audit_row *r;
-    r = au_add(c->rows, c->nr, "normal-point", "the normal at p is m = grad f / ||grad f||, grad f = 2 A^T A p, with "
+    r = au_add(c->rows, c->nr, "normal-point",
+               "the normal at p is m = grad f / ||grad f||, grad f = 2 A^T A p, with "
                "||grad f||^2 = 4 / (m^T A^-1 A^-T m); each m occurs at the one point p = A^-1 A^-T m / ||A^-T m|| = "
-               "(1/2) ||grad f|| A^-1 A^-T m", SEED_BLOG1 ", " SEED_WALTER, "blog Part 1 eq:mag-gradient and after "
-               "eq:ellipsoid-k; Walter section 2", AUDIT_SCOPE_ANY);
-    au_kin_row(c, r, 0, err_normal_point, NULL, 200, 1e-12, "at random surface points: the largest relative "
+               "(1/2) ||grad f|| A^-1 A^-T m",
+               SEED_BLOG1 ", " SEED_WALTER,
+               "blog Part 1 eq:mag-gradient and after "
+               "eq:ellipsoid-k; Walter section 2",
+               AUDIT_SCOPE_ANY);
+    au_kin_row(c, r, 0, err_normal_point, NULL, 200, 1e-12,
+               "at random surface points: the largest relative "
                "difference");
 
-    r = au_add(c->rows, c->nr, "gauss-map", "Gaussian curvature K = grad f^T adj(H) grad f / ||grad f||^4 = -det [[H, grad "
+    r = au_add(c->rows, c->nr, "gauss-map",
+               "Gaussian curvature K = grad f^T adj(H) grad f / ||grad f||^4 = -det [[H, grad "
                "f], [grad f^T, 0]] / ||grad f||^4 = 16 / (a^2 b^2 c^2 ||grad f||^4) on the surface; the Gauss map's "
-               "Jacobian d omega / dA is K", SEED_BLOG1 ", " SEED_WALTER, "blog Part 1 eq:d-generic, eq:ellipsoid-k; "
-               "Walter eq 10", AUDIT_SCOPE_ANY);
-    au_kin_row(c, r, 0, err_gauss_map, NULL, 20, 1e-6, "against the finite-difference Gauss map (solid angle of the normals over the area of a patch), " "with "
+               "Jacobian d omega / dA is K",
+               SEED_BLOG1 ", " SEED_WALTER,
+               "blog Part 1 eq:d-generic, eq:ellipsoid-k; "
+               "Walter eq 10",
+               AUDIT_SCOPE_ANY);
+    au_kin_row(c, r, 0, err_gauss_map, NULL, 20, 1e-6,
+               "against the finite-difference Gauss map (solid angle of the normals over the area of a patch), "
+               "with "
                "a^2 b^2 c^2 = 1 / |A|^2:");
 
-    r = au_add(c->rows, c->nr, "silhouette", "the points with m.v = 0 are the plane (A^T A v).p = 0 (A^T A v not along v); "
-               "that ellipse's area times its cosine to v is the projected area A_e(v)", SEED_BLOG2 ", " SEED_WALTER,
-               "blog Part 2 Figure 1; Walter eq 23", AUDIT_SCOPE_ANY);
-    au_kin_row(c, r, 0, err_silhouette, NULL, 50, 1e-12, "m.v at 16 points of the section and the section's "
+    r = au_add(c->rows, c->nr, "silhouette",
+               "the points with m.v = 0 are the plane (A^T A v).p = 0 (A^T A v not along v); "
+               "that ellipse's area times its cosine to v is the projected area A_e(v)",
+               SEED_BLOG2 ", " SEED_WALTER, "blog Part 2 Figure 1; Walter eq 23", AUDIT_SCOPE_ANY);
+    au_kin_row(c, r, 0, err_silhouette, NULL, 50, 1e-12,
+               "m.v at 16 points of the section and the section's "
                "projected area against eq 26:");
 
-    r = au_add(c->rows, c->nr, "surface-integrals", "A_e(u) = int X+(u.m) (u.m) dp and A_l(u, v) = int X+(u.m) X+(v.m) (u.m) "
-               "dp over the surface, A_e(u) = A_l(u, u)", SEED_WALTER ", " SEED_BLOG1, "Walter eq 21-22, 27; blog Part 1 "
-               "eq:A_perp", AUDIT_SCOPE_ANY);
+    r = au_add(c->rows, c->nr, "surface-integrals",
+               "A_e(u) = int X+(u.m) (u.m) dp and A_l(u, v) = int X+(u.m) X+(v.m) (u.m) "
+               "dp over the surface, A_e(u) = A_l(u, u)",
+               SEED_WALTER ", " SEED_BLOG1,
+               "Walter eq 21-22, 27; blog Part 1 "
+               "eq:A_perp",
+               AUDIT_SCOPE_ANY);
     for (int k = 0; k < AUDIT_SHAPES; k++) surface_row(r, k, c->A[k], &c->sh[k]);
 
-    r = au_add(c->rows, c->nr, "lune-sphere", "a unit-sphere lune projects along one of its plane normals to (pi/2)(1 + cos "
-               "theta_l), cos theta_l = (Au).(Av) / (||Au|| ||Av||)", SEED_WALTER, "section 2.3", AUDIT_SCOPE_ANY);
+    r = au_add(c->rows, c->nr, "lune-sphere",
+               "a unit-sphere lune projects along one of its plane normals to (pi/2)(1 + cos "
+               "theta_l), cos theta_l = (Au).(Av) / (||Au|| ||Av||)",
+               SEED_WALTER, "section 2.3", AUDIT_SCOPE_ANY);
     for (int k = 0; k < AUDIT_SHAPES; k++) lune_sphere_row(r, k, c->A[k]);
 
-    r = au_add(c->rows, c->nr, "ce-cancels", "D = 1 / (A_e(n) K_g) for the ellipsoid of any radius Ce (the Ce factors "
-               "cancel); Ce = sqrt(|A| / (pi ||An||)) gives A_e(n) = 1", SEED_WALTER, "eq 9, 20, 26, 29", AUDIT_SCOPE_ANY);
+    r = au_add(c->rows, c->nr, "ce-cancels",
+               "D = 1 / (A_e(n) K_g) for the ellipsoid of any radius Ce (the Ce factors "
+               "cancel); Ce = sqrt(|A| / (pi ||An||)) gives A_e(n) = 1",
+               SEED_WALTER, "eq 9, 20, 26, 29", AUDIT_SCOPE_ANY);
     for (int k = 0; k < AUDIT_SHAPES; k++) ce_row(r, k, c->A[k], &c->sh[k]);
 
-    r = au_add(c->rows, c->nr, "semi-axes", "the equivalent ellipsoid has semi-axis 1 / alpha along each rough direction "
-               "(smoother is longer), 1 along the third", SEED_BLOG1, "text after the anisotropic D",
-               AUDIT_SCOPE_DIAGONAL);
-    au_kin_row(c, r, 0, err_semi_axes, NULL, 1, 1e-12, "semi-axes along the rows of R and the eigenvalues of A^T A "
+    r = au_add(c->rows, c->nr, "semi-axes",
+               "the equivalent ellipsoid has semi-axis 1 / alpha along each rough direction "
+               "(smoother is longer), 1 along the third",
+               SEED_BLOG1, "text after the anisotropic D", AUDIT_SCOPE_DIAGONAL);
+    au_kin_row(c, r, 0, err_semi_axes, NULL, 1, 1e-12,
+               "semi-axes along the rows of R and the eigenvalues of A^T A "
                "(A = S R: algebra): relative difference");
 
     r = au_add(c->rows, c->nr, "skew-max", "theta_x, theta_y move the maximum of D from n to R^T z (for ax, ay < 1)",
                SEED_WALTER, "section 1 after eq 3", AUDIT_SCOPE_ANY);
     for (int k = 0; k < AUDIT_SHAPES; k++) skew_max_row(r, k, &c->sh[k], c->A[k]);
 
-    r = au_add(c->rows, c->nr, "ndf-along-u", "D(m, u) = abc / (pi ||A u|| (m^T A^-1 A^-T m)^2) integrates to 1 against "
-               "(m.u) over m.u > 0 for any u; D(m, v) = (||An|| / ||Av||) D(m)", SEED_BLOG1 ", " SEED_BLOG2,
+    r = au_add(c->rows, c->nr, "ndf-along-u",
+               "D(m, u) = abc / (pi ||A u|| (m^T A^-1 A^-T m)^2) integrates to 1 against "
+               "(m.u) over m.u > 0 for any u; D(m, v) = (||An|| / ||Av||) D(m)",
+               SEED_BLOG1 ", " SEED_BLOG2,
                "blog Part 1 eq:NDF_norm and after eq:A_perp_expression; Part 2 'According to part 1'",
                AUDIT_SCOPE_DIAGONAL);
-    au_kin_row(c, r, 0, err_d_u, NULL, 2, 1e-8, "with abc = 1 / |A|: the quadrature's |integral - 1| and the Part 2 "
+    au_kin_row(c, r, 0, err_d_u, NULL, 2, 1e-8,
+               "with abc = 1 / |A|: the quadrature's |integral - 1| and the Part 2 "
                "ratio,");
 
-    r = au_add(c->rows, c->nr, "sin-jacobian", "D(theta, phi) = D(m) |dm / d(theta, phi)| = D(m) sin theta, so the integral "
-               "of D(m) cos theta sin theta d theta d phi is 1", SEED_BLOG1, "last equation", AUDIT_SCOPE_ANY);
+    r = au_add(c->rows, c->nr, "sin-jacobian",
+               "D(theta, phi) = D(m) |dm / d(theta, phi)| = D(m) sin theta, so the integral "
+               "of D(m) cos theta sin theta d theta d phi is 1",
+               SEED_BLOG1, "last equation", AUDIT_SCOPE_ANY);
     for (int k = 0; k < AUDIT_SHAPES; k++) sin_row(r, k, &c->sh[k]);
 
-    r = au_add(c->rows, c->nr, "ellipsoid-map", "m = A s / ||A s|| is the normal of the ellipsoid p^T A^T A p = 1 at p = "
-               "A^-1 s", SEED_VNDF, "Use of the diagonal A matrix", AUDIT_SCOPE_DIAGONAL);
+    r = au_add(c->rows, c->nr, "ellipsoid-map",
+               "m = A s / ||A s|| is the normal of the ellipsoid p^T A^T A p = 1 at p = "
+               "A^-1 s",
+               SEED_VNDF, "Use of the diagonal A matrix", AUDIT_SCOPE_DIAGONAL);
     au_kin_row(c, r, 0, err_ellipsoid_map, NULL, 200, 1e-12, "against normalize(A^T A p): distance");
 }

@@ -9,25 +9,26 @@
 #include "chi2.h"
 
 /* The seeds, by their short names in docs/references.md. */
-#define SEED_BLOG2 "ellipsoidal-ggx-2"     /* "The Ellipsoidal Nature of GGX distribution", Part 2 */
-#define SEED_STRETCH "engstad-stretch"     /* Engstad, "Elliptic Stretch" */
-#define SEED_BLOG1 "ellipsoidal-ggx-1"     /* "The Ellipsoidal Nature of GGX distribution", Part 1 */
-#define SEED_WALTER "walter-ellipsoid"     /* Walter, Dong, Marschner, Greenberg, "The Ellipsoid Normal Distribution Function" */
-#define SEED_VNDF "engstad-vndf-proof"     /* Engstad, "Proof of the Sampling Method for Visible GGX" */
+#define SEED_BLOG2 "ellipsoidal-ggx-2" /* "The Ellipsoidal Nature of GGX distribution", Part 2 */
+#define SEED_STRETCH "engstad-stretch" /* Engstad, "Elliptic Stretch" */
+#define SEED_BLOG1 "ellipsoidal-ggx-1" /* "The Ellipsoidal Nature of GGX distribution", Part 1 */
+#define SEED_WALTER                                                                                                    \
+    "walter-ellipsoid" /* Walter, Dong, Marschner, Greenberg, "The Ellipsoid Normal Distribution Function" */
+#define SEED_VNDF "engstad-vndf-proof" /* Engstad, "Proof of the Sampling Method for Visible GGX" */
 
 /* What every claim file's rows see: the table, the three shapes (as given and as the library's shapes). */
 typedef struct au_ctx {
     audit_row *rows;
     int *nr;
-    const ggx_shape *sh;        /* [AUDIT_SHAPES] */
-    const double (*A)[3][3];    /* [AUDIT_SHAPES], Walter's A as given */
+    const ggx_shape *sh;     /* [AUDIT_SHAPES] */
+    const double (*A)[3][3]; /* [AUDIT_SHAPES], Walter's A as given */
     int progress;
 } au_ctx;
 
 /* ---- rows ---- */
 /* A new row, every verdict "not claimed: not checked" until set; aborts beyond AUDIT_MAX_ROWS. */
-audit_row *au_add(audit_row *rows, int *n, const char *id, const char *claim, const char *seed,
-                  const char *where, audit_scope scope);
+audit_row *au_add(audit_row *rows, int *n, const char *id, const char *claim, const char *seed, const char *where,
+                  audit_scope scope);
 /* Sets a row's verdict for shape k and its evidence (printf-style); au_append adds to the evidence. */
 void au_set(audit_row *r, int k, audit_verdict v, const char *fmt, ...) __attribute__((format(printf, 4, 5)));
 void au_append(audit_row *r, int k, const char *fmt, ...) __attribute__((format(printf, 3, 4)));

@@ -35,12 +35,12 @@ static double err_lift(const au_kin *K, rng *g, void *ctx, char *at, size_t nat)
     ell_ctx c = {1 / ax, 1 / ay};
     double x1 = 0.02 + 0.96 * rng_uniform(g), x2 = rng_uniform(g), r = sqrt(x1), t = 2 * GGX_PI * x2;
     ggx_vec3 p = t_vec(c.a * r * cos(t), c.b * r * sin(t), sqrt(1 - x1)); /* c = 1 */
-    ggx_vec3 ap = t_matvec(A, p), normal = t_normalize(t_mattvec(A, ap));    /* the shape's normal at p */
+    ggx_vec3 ap = t_matvec(A, p), normal = t_normalize(t_mattvec(A, ap)); /* the shape's normal at p */
     ggx_vec3 m = t_normalize(t_vec(r * cos(t) / c.a, r * sin(t) / c.b, sqrt(1 - x1)));
     double on = fabs(t_dot(ap, ap) - 1); /* p on the shape's ellipsoid */
     double jac = au_fd_jacobian(map_ellipse, &c, x1, x2, 1e-6), want = GGX_PI * c.a * c.b;
-    double area = GGX_PI * au_norm_of(A, N_UP) / fabs(au_det3(t_matvec(A, t_vec(1, 0, 0)), t_matvec(A, t_vec(0, 1, 0)),
-                                                            t_matvec(A, N_UP)));
+    double area = GGX_PI * au_norm_of(A, N_UP) /
+                  fabs(au_det3(t_matvec(A, t_vec(1, 0, 0)), t_matvec(A, t_vec(0, 1, 0)), t_matvec(A, N_UP)));
     snprintf(at, nat, "xi = (%.3g, %.3g): p on the ellipsoid to %.1e, m off the normal by %.3g", x1, x2, on,
              vdist(m, normal));
     return fmax(fmax(on, vdist(m, normal)), fmax(fabs(jac / want - 1), fabs(want / area - 1)));
@@ -78,8 +78,10 @@ static double err_concentric(const au_kin *K, rng *g, void *ctx, char *at, size_
     const double h = 1e-7;
     double x1 = rng_uniform(g), x2 = rng_uniform(g);
     if (fabs(fabs(2 * x1 - 1) - fabs(2 * x2 - 1)) < 1e-5) return 0; /* the wedges' seams: no derivative there */
-    ggx_vec3 da = t_scale(t_add(map_concentric_walter(NULL, x1 + h, x2), t_scale(map_concentric_walter(NULL, x1 - h, x2), -1)), 0.5 / h);
-    ggx_vec3 db = t_scale(t_add(map_concentric_walter(NULL, x1, x2 + h), t_scale(map_concentric_walter(NULL, x1, x2 - h), -1)), 0.5 / h);
+    ggx_vec3 da = t_scale(
+        t_add(map_concentric_walter(NULL, x1 + h, x2), t_scale(map_concentric_walter(NULL, x1 - h, x2), -1)), 0.5 / h);
+    ggx_vec3 db = t_scale(
+        t_add(map_concentric_walter(NULL, x1, x2 + h), t_scale(map_concentric_walter(NULL, x1, x2 - h), -1)), 0.5 / h);
     double jac = da.x * db.y - da.y * db.x; /* signed */
     ggx_vec3 d = map_concentric_walter(NULL, x1, x2);
     snprintf(at, nat, "xi = (%.4g, %.4g): signed Jacobian %.6g", x1, x2, jac);
@@ -276,15 +278,19 @@ void au_rows_sampling(const au_ctx *c)
     ggx_shape sphere;
     ggx_shape_iso(&sphere, 1);
 
-    r = au_add(c->rows, c->nr, "lift", "x = a sqrt(xi1) cos 2 pi xi2, y = b sqrt(xi1) sin 2 pi xi2 is uniform on the ellipse "
+    r = au_add(c->rows, c->nr, "lift",
+               "x = a sqrt(xi1) cos 2 pi xi2, y = b sqrt(xi1) sin 2 pi xi2 is uniform on the ellipse "
                "of area pi a b = A_perp(n); z = c sqrt(1 - xi1) lifts it to the ellipsoid, whose normal there is "
-               "normalize(sqrt(xi1) cos 2 pi xi2 / a, sqrt(xi1) sin 2 pi xi2 / b, sqrt(1 - xi1) / c)", SEED_BLOG2,
-               "Sampling Normals (first eqnarrays)", AUDIT_SCOPE_DIAGONAL);
-    au_kin_row(c, r, 1, err_lift, NULL, 100, 1e-6, "with a = 1/ax, b = 1/ay, c = 1 on the shape's ellipsoid (point, "
+               "normalize(sqrt(xi1) cos 2 pi xi2 / a, sqrt(xi1) sin 2 pi xi2 / b, sqrt(1 - xi1) / c)",
+               SEED_BLOG2, "Sampling Normals (first eqnarrays)", AUDIT_SCOPE_DIAGONAL);
+    au_kin_row(c, r, 1, err_lift, NULL, 100, 1e-6,
+               "with a = 1/ax, b = 1/ay, c = 1 on the shape's ellipsoid (point, "
                "normal, Jacobian pi a b, area):");
 
-    r = au_add(c->rows, c->nr, "sphere-disk", "a uniform unit disk _|_ v' projected onto the unit sphere along v' has "
-               "density p_s(m') = (m'.v') / pi on m'.v' > 0", SEED_BLOG2, "eq p_s(m')", AUDIT_SCOPE_ANY);
+    r = au_add(c->rows, c->nr, "sphere-disk",
+               "a uniform unit disk _|_ v' projected onto the unit sphere along v' has "
+               "density p_s(m') = (m'.v') / pi on m'.v' > 0",
+               SEED_BLOG2, "eq p_s(m')", AUDIT_SCOPE_ANY);
     {
         double p = au_chi2_sampler(&sphere, N_UP, disk_projected, verify_pdf_ndf, 501, c->progress);
         for (int k = 0; k < AUDIT_SHAPES; k++) {
@@ -293,16 +299,18 @@ void au_rows_sampling(const au_ctx *c)
         }
     }
 
-    r = au_add(c->rows, c->nr, "crescent-sphere", "the crescent map t1' = t1, t2' = (1 - s) sqrt(1 - t1^2) + s t2 of the "
-               "disk, lifted, lies in the lune and has density p_c(m') = p_s(m') / s = (m'.v') / (pi s)", SEED_BLOG2,
-               "after 'Eq.(11) of the VNDF sampling article'; eq:m-prime-pdf", AUDIT_SCOPE_ANY);
+    r = au_add(c->rows, c->nr, "crescent-sphere",
+               "the crescent map t1' = t1, t2' = (1 - s) sqrt(1 - t1^2) + s t2 of the "
+               "disk, lifted, lies in the lune and has density p_c(m') = p_s(m') / s = (m'.v') / (pi s)",
+               SEED_BLOG2, "after 'Eq.(11) of the VNDF sampling article'; eq:m-prime-pdf", AUDIT_SCOPE_ANY);
     for (int k = 0; k < AUDIT_SHAPES; k++) { /* v' = A v in the canonical sphere space of shape k (A n along z) */
         ggx_vec3 vs = t_normalize(t_matvec((const double(*)[3])c->sh[k].a, v));
         au_verdict_p(r, k, au_chi2_sampler(&sphere, vs, crescent_sphere, ggx_pdf_vndf, 503 + (uint64_t)k, c->progress));
         au_append(r, k, " (at v' = normalize(A v) = (%.3f, %.3f, %.3f))", vs.x, vs.y, vs.z);
     }
 
-    r = au_add(c->rows, c->nr, "concentric-walter", "a = 2 xi1 - 1, b = 2 xi2 - 1; (a cos(pi b / 4a), a sin(pi b / 4a)) if "
+    r = au_add(c->rows, c->nr, "concentric-walter",
+               "a = 2 xi1 - 1, b = 2 xi2 - 1; (a cos(pi b / 4a), a sin(pi b / 4a)) if "
                "|a| > |b|, else (b sin(pi a / 4b), b cos(pi a / 4b)); (0, 0) at the centre: uniform on the unit disk",
                SEED_WALTER, "eq 34-37", AUDIT_SCOPE_ANY);
     {
@@ -322,18 +330,21 @@ void au_rows_sampling(const au_ctx *c)
                            "the signed finite-difference Jacobian against +pi (one orientation: no fold) and |d| <= 1 "
                            "(no A involved):");
             au_append(r, k, "; 16 equal-area cells (8 wedges, 2 rings) get 1/16 of 1.6e5 points each within %.1f sigma",
-                       worst);
+                      worst);
             if (worst > 5) r->verdict[k] = AUDIT_FAILS;
         }
     }
 
-    r = au_add(c->rows, c->nr, "squeeze-walter", "s = (1 + A psi.A n / (||A psi|| ||An||)) / 2; xb = s xa + (1 - s) sqrt(1 - "
-               "ya^2), yb = ya has |d(xb, yb) / d(xa, ya)| = s and, lifted, lands in the lune", SEED_WALTER, "eq 38-41",
-               AUDIT_SCOPE_ANY);
+    r = au_add(c->rows, c->nr, "squeeze-walter",
+               "s = (1 + A psi.A n / (||A psi|| ||An||)) / 2; xb = s xa + (1 - s) sqrt(1 - "
+               "ya^2), yb = ya has |d(xb, yb) / d(xa, ya)| = s and, lifted, lands in the lune",
+               SEED_WALTER, "eq 38-41", AUDIT_SCOPE_ANY);
     au_kin_row(c, r, 0, err_squeeze, NULL, 100, 1e-7, "the finite-difference Jacobian against s and pc.An >= 0:");
 
-    r = au_add(c->rows, c->nr, "frame-eq42", "e3 = A psi / ||A psi||, e2 = A psi x A n / ||.|| = A^-T (psi x n) / ||.|| (det A "
-               "> 0), e1 = e2 x e3 is the unit vector _|_ e3 nearest A n", SEED_WALTER, "eq 42-44", AUDIT_SCOPE_ANY);
+    r = au_add(c->rows, c->nr, "frame-eq42",
+               "e3 = A psi / ||A psi||, e2 = A psi x A n / ||.|| = A^-T (psi x n) / ||.|| (det A "
+               "> 0), e1 = e2 x e3 is the unit vector _|_ e3 nearest A n",
+               SEED_WALTER, "eq 42-44", AUDIT_SCOPE_ANY);
     for (int k = 0; k < AUDIT_SHAPES; k++) {
         au_verdict_kin(r, k, &c->sh[k], c->A[k], err_frame, NULL, 200, 1e-12, "both forms of e2, and e1:");
         /* the condition det A > 0: with a reflection (det < 0) the two forms of e2 are opposite */
@@ -347,9 +358,10 @@ void au_rows_sampling(const au_ctx *c)
         au_append(r, k, "; with det A < 0 (first row negated) e2 . e2' = %.3f (opposite: the condition is needed)", d);
     }
 
-    r = au_add(c->rows, c->nr, "lune-point", "pc = xb e1 + yb e2 + zb e3 is a unit vector of the lune (pc.An >= 0, pc.A psi "
-               ">= 0); m = A^T pc / ||A^T pc|| is the normal at A^-1 pc (the text says A pc)", SEED_WALTER, "eq 45-46",
-               AUDIT_SCOPE_ANY);
+    r = au_add(c->rows, c->nr, "lune-point",
+               "pc = xb e1 + yb e2 + zb e3 is a unit vector of the lune (pc.An >= 0, pc.A psi "
+               ">= 0); m = A^T pc / ||A^T pc|| is the normal at A^-1 pc (the text says A pc)",
+               SEED_WALTER, "eq 45-46", AUDIT_SCOPE_ANY);
     for (int k = 0; k < AUDIT_SHAPES; k++) {
         lp_ctx lc = {0};
         au_verdict_kin(r, k, &c->sh[k], c->A[k], err_lune_point, &lc, 100, 1e-12,
@@ -357,36 +369,43 @@ void au_rows_sampling(const au_ctx *c)
         au_append(r, k, "; read as the point A pc (the text), the normal there is off m by up to %.3g", lc.typo);
     }
 
-    r = au_add(c->rows, c->nr, "walter-v1", "rays along -psi through uniform points of a bounding sphere's disk, kept where "
-               "they hit with m.n >= 0 and m.psi >= 0, give m with the pdf of eq 33", SEED_WALTER, "section 4, version 1",
-               AUDIT_SCOPE_ANY);
+    r = au_add(c->rows, c->nr, "walter-v1",
+               "rays along -psi through uniform points of a bounding sphere's disk, kept where "
+               "they hit with m.n >= 0 and m.psi >= 0, give m with the pdf of eq 33",
+               SEED_WALTER, "section 4, version 1", AUDIT_SCOPE_ANY);
     for (int k = 0; k < AUDIT_SHAPES; k++) {
         normal_keys nk = {&c->sh[k], v, ggx_pdf_vndf};
         au_verdict_p(r, k, au_chi2_draw(&c->sh[k], v, draw_v1, &nk, ggx_pdf_vndf, 511 + (uint64_t)k, c->progress));
     }
 
-    r = au_add(c->rows, c->nr, "pm-blog", "the crescent sampler's pdf p(m) = (1/s)(||An|| / ||Av||) D(m)(m.v), with the "
-               "blog's s = (1 + Av.A^-T n / (||Av|| ||A^-T n||)) / 2, integrates to 1 over its support", SEED_BLOG2, "eq:pm",
-               AUDIT_SCOPE_ANY);
+    r = au_add(c->rows, c->nr, "pm-blog",
+               "the crescent sampler's pdf p(m) = (1/s)(||An|| / ||Av||) D(m)(m.v), with the "
+               "blog's s = (1 + Av.A^-T n / (||Av|| ||A^-T n||)) / 2, integrates to 1 over its support",
+               SEED_BLOG2, "eq:pm", AUDIT_SCOPE_ANY);
     for (int k = 0; k < AUDIT_SHAPES; k++) {
-        au_verdict_views(r, k, pm_integral, &c->sh[k], 1e-6, "on the blog's support (the ellipsoid cut by z = 0), p(m)");
+        au_verdict_views(r, k, pm_integral, &c->sh[k], 1e-6,
+                         "on the blog's support (the ellipsoid cut by z = 0), p(m)");
         if (c->sh[k].kind != GGX_SHAPE_SKEWED) continue; /* the supports differ for skewed shapes only */
         double lo = INFINITY, hi = 0;
         for (int i = 0; i < 6; i++) {
             double x = pm_integral_side(&c->sh[k], t_dir(0.3 + 0.24 * i, 2.75 - 1.1 * i), 1);
             lo = fmin(lo, x), hi = fmax(hi, x);
         }
-        au_append(r, k, "; on Walter's half m.n >= 0 (a different truncation) it integrates to %.3f to %.3f at 6 views", lo,
-                  hi);
+        au_append(r, k, "; on Walter's half m.n >= 0 (a different truncation) it integrates to %.3f to %.3f at 6 views",
+                  lo, hi);
     }
 
-    r = au_add(c->rows, c->nr, "vndf-total-jacobian", "the five steps' |dm / du| = ax ay ||A^-1 m||^3 (1/z)((1 + z_z)/2) pi "
+    r = au_add(c->rows, c->nr, "vndf-total-jacobian",
+               "the five steps' |dm / du| = ax ay ||A^-1 m||^3 (1/z)((1 + z_z)/2) pi "
                "with z = (m.v) / (||A^-1 m|| ||Av||) = s.z_hat, = pi ax ay ||A^-1 m||^4 (v.n) / ((m.v) G1(v))",
                SEED_VNDF, "Proof of the PDF; Solving for z; Total Jacobian Determinant", AUDIT_SCOPE_DIAGONAL);
-    au_kin_row(c, r, 1, err_total_vndf, NULL, 50, 1e-6, "against the finite-difference Jacobian of the steps as "
+    au_kin_row(c, r, 1, err_total_vndf, NULL, 50, 1e-6,
+               "against the finite-difference Jacobian of the steps as "
                "written (and z two ways):");
 
-    r = au_add(c->rows, c->nr, "project-jacobian", "(x, y) -> (x, y, sqrt(1 - x^2 - y^2)) has area Jacobian 1 / z (the frame "
-               "rotation keeps areas)", SEED_VNDF, "Project the point", AUDIT_SCOPE_ANY);
+    r = au_add(c->rows, c->nr, "project-jacobian",
+               "(x, y) -> (x, y, sqrt(1 - x^2 - y^2)) has area Jacobian 1 / z (the frame "
+               "rotation keeps areas)",
+               SEED_VNDF, "Project the point", AUDIT_SCOPE_ANY);
     au_kin_row(c, r, 0, err_project, NULL, 50, 1e-7, "against finite differences (no A involved):");
 }

@@ -38,7 +38,8 @@ static void smith_row(audit_row *r, int k, const ggx_shape *s)
         for (int j = 0; j < 4; j++) {
             ggx_vec3 v = t_dir(thetas[i], phis[j]);
             double g = 1 / (1 + ggx_lambda(s, v)); /* the ellipsoid's G1 without the min (eq 32) */
-            double gl = 1 / (1 + smith_lambda(s, thetas[i], 0.5 * GGX_PI)), gc = 1 / (1 + smith_lambda(s, thetas[i], phis[j]));
+            double gl = 1 / (1 + smith_lambda(s, thetas[i], 0.5 * GGX_PI)),
+                   gc = 1 / (1 + smith_lambda(s, thetas[i], phis[j]));
             if (fabs(gl - g) > lit) lit = fabs(gl - g), lit_phi = phis[j];
             if (fabs(gc - g) > cor) cor = fabs(gc - g), cor_th = thetas[i], cor_phi = phis[j];
             /* blog Part 2's G1 as a ratio of projected areas, against Smith's */
@@ -46,15 +47,21 @@ static void smith_row(audit_row *r, int k, const ggx_shape *s)
             blog = fmax(blog, fabs(2 * s->an_len * v.z / (av + s->an_len * v.z) - gc));
         }
     if (lit < 1e-7)
-        au_set(r, k, AUDIT_HOLDS, "G1 = 1 / (1 + Lambda) by the quadrature equals eq 32's within %.1e at 12 views", lit);
+        au_set(r, k, AUDIT_HOLDS, "G1 = 1 / (1 + Lambda) by the quadrature equals eq 32's within %.1e at 12 views",
+               lit);
     else if (cor < 1e-7)
-        au_set(r, k, AUDIT_CORRECTED, "as written (the y slope's marginal) it is Lambda at phi_v = 90 degrees only: G1 off "
-               "by %.3g at phi %.2f rad; with P2 the marginal of the slope along v's azimuth it holds within %.1e at 12 "
-               "views", lit, lit_phi, cor);
+        au_set(
+            r, k, AUDIT_CORRECTED,
+            "as written (the y slope's marginal) it is Lambda at phi_v = 90 degrees only: G1 off "
+            "by %.3g at phi %.2f rad; with P2 the marginal of the slope along v's azimuth it holds within %.1e at 12 "
+            "views",
+            lit, lit_phi, cor);
     else
-        au_set(r, k, AUDIT_FAILS, "even with P2 along v's azimuth, G1 = 1 / (1 + Lambda) differs from the ellipsoid's "
+        au_set(r, k, AUDIT_FAILS,
+               "even with P2 along v's azimuth, G1 = 1 / (1 + Lambda) differs from the ellipsoid's "
                "(eq 32) by %.3g at theta %.1f, phi %.2f rad: Smith's integral counts the facets facing away from v, "
-               "which the skewed ellipsoid's mean normal (not n) shifts", cor, cor_th, cor_phi);
+               "which the skewed ellipsoid's mean normal (not n) shifts",
+               cor, cor_th, cor_phi);
     au_append(r, k, "; blog Part 2's ratio of projected areas against Smith's G1: %.1e", blog);
 }
 
@@ -89,10 +96,11 @@ static void eq7_row(audit_row *r, int k, const ggx_shape *s)
         lib_sum += lib, noflip_sum += btdf_eq21(s, eta, wi, wo, 0);
     }
     /* tolerance 1e-6: near total internal reflection 1 - F is small and carries the rounding of F relatively */
-    au_set(r, k, worst < 1e-6 ? AUDIT_HOLDS : AUDIT_FAILS, "Walter 2007 eq 21 with eq 7's G against ggx_bsdf_eval at %d "
+    au_set(r, k, worst < 1e-6 ? AUDIT_HOLDS : AUDIT_FAILS,
+           "Walter 2007 eq 21 with eq 7's G against ggx_bsdf_eval at %d "
            "transmitted pairs from both sides (eta 1.5 and 1/1.5): largest relative difference %.1e; without the sign "
-           "flip the transmission sums to %.3g of its value (G1 of a direction below the horizon is 0)", pairs, worst,
-           lib_sum > 0 ? noflip_sum / lib_sum : 0.0);
+           "flip the transmission sums to %.3g of its value (G1 of a direction below the horizon is 0)",
+           pairs, worst, lib_sum > 0 ? noflip_sum / lib_sum : 0.0);
 }
 
 /* ---- Walter eq 49-50: the weight of a reflection sample, f_r |omega.n| / p_o, in closed form ---- */
@@ -156,32 +164,43 @@ void au_rows_scattering(const au_ctx *c)
     ggx_fresnel glass;
     ggx_fresnel_dielectric(&glass, 1.5);
 
-    r = au_add(c->rows, c->nr, "smith-integral", "G1 = 1 / (1 + Lambda), Lambda(v) = (1/mu) int_mu^inf (q - mu) P2(q) dq, "
-               "P2(q) = int P22(p, q) dp, mu = cot theta_v", SEED_BLOG1, "eqnarray after 'Smith model'",
-               AUDIT_SCOPE_ANY);
+    r = au_add(c->rows, c->nr, "smith-integral",
+               "G1 = 1 / (1 + Lambda), Lambda(v) = (1/mu) int_mu^inf (q - mu) P2(q) dq, "
+               "P2(q) = int P22(p, q) dp, mu = cot theta_v",
+               SEED_BLOG1, "eqnarray after 'Smith model'", AUDIT_SCOPE_ANY);
     for (int k = 0; k < AUDIT_SHAPES; k++) smith_row(r, k, &c->sh[k]);
 
-    r = au_add(c->rows, c->nr, "eq7-transmission", "for transmission G = G1(sgn(psi.n) psi, m) G1(sgn(omega.n) omega, m) "
-               "(eq 5 with the directions flipped to the upper side)", SEED_WALTER, "eq 7", AUDIT_SCOPE_ANY);
+    r = au_add(c->rows, c->nr, "eq7-transmission",
+               "for transmission G = G1(sgn(psi.n) psi, m) G1(sgn(omega.n) omega, m) "
+               "(eq 5 with the directions flipped to the upper side)",
+               SEED_WALTER, "eq 7", AUDIT_SCOPE_ANY);
     for (int k = 0; k < AUDIT_SHAPES; k++) eq7_row(r, k, &c->sh[k]);
 
-    r = au_add(c->rows, c->nr, "weight-formula", "the reflection sample's weight f_r |omega.n| / p_o = G1(psi, m) G1(omega, m) "
-               "F(psi.m) A_l(psi, n) / (|psi.n| A_e(n))", SEED_WALTER, "eq 49-50", AUDIT_SCOPE_ANY);
-    au_kin_row(c, r, 0, err_weight, &glass, 200, 1e-12, "ggx_sample_brdf's weight and f_r |omega.n| / pdf against eq "
+    r = au_add(c->rows, c->nr, "weight-formula",
+               "the reflection sample's weight f_r |omega.n| / p_o = G1(psi, m) G1(omega, m) "
+               "F(psi.m) A_l(psi, n) / (|psi.n| A_e(n))",
+               SEED_WALTER, "eq 49-50", AUDIT_SCOPE_ANY);
+    au_kin_row(c, r, 0, err_weight, &glass, 200, 1e-12,
+               "ggx_sample_brdf's weight and f_r |omega.n| / pdf against eq "
                "50 (Fresnel 1.5):");
 
-    r = au_add(c->rows, c->nr, "g-approx", "G(v, omega) = 1 / (1 + Lambda(v) + Lambda(omega)) is approximated by G1(v) "
-               "G1(omega), never above it (Lambda >= 0)", SEED_VNDF, "vGGX Sampling", AUDIT_SCOPE_DIAGONAL);
+    r = au_add(c->rows, c->nr, "g-approx",
+               "G(v, omega) = 1 / (1 + Lambda(v) + Lambda(omega)) is approximated by G1(v) "
+               "G1(omega), never above it (Lambda >= 0)",
+               SEED_VNDF, "vGGX Sampling", AUDIT_SCOPE_DIAGONAL);
     for (int k = 0; k < AUDIT_SHAPES; k++) {
         au_verdict_kin(r, k, &c->sh[k], c->A[k], err_g_approx, NULL, 200, 1e-12,
                        "G1 G1 / G - 1 where the product exceeds G (Lambda >= 0 makes it an identity):");
         if (c->sh[k].kind == GGX_SHAPE_SKEWED)
-            au_append(r, k, "; Lambda here is eq 32 without Walter's min, negative at some views of a skewed shape: with "
+            au_append(r, k,
+                      "; Lambda here is eq 32 without Walter's min, negative at some views of a skewed shape: with "
                       "Lambda clipped at 0 (the min) it holds");
     }
 
-    r = au_add(c->rows, c->nr, "brdf-form", "f_r = F G D(h) / (4 (v.n)(omega.n)), h = normalize(v + omega), zero unless v.n "
-               "> 0 and omega.n > 0 (Walter eq 4)", SEED_VNDF, "vGGX Sampling", AUDIT_SCOPE_DIAGONAL);
+    r = au_add(c->rows, c->nr, "brdf-form",
+               "f_r = F G D(h) / (4 (v.n)(omega.n)), h = normalize(v + omega), zero unless v.n "
+               "> 0 and omega.n > 0 (Walter eq 4)",
+               SEED_VNDF, "vGGX Sampling", AUDIT_SCOPE_DIAGONAL);
     for (int k = 0; k < AUDIT_SHAPES; k++) {
         au_verdict_kin(r, k, &c->sh[k], c->A[k], err_brdf_form, &glass, 200, 1e-13,
                        "with G of eq 5 against ggx_brdf_eval (a fifth of the pairs below the horizon; a consistency "
@@ -194,15 +213,20 @@ void au_rows_scattering(const au_ctx *c)
             double sep = ggx_g2(&c->sh[k], v, w, h);
             if (sep > 0) most = fmax(most, 1 / (1 + ggx_lambda(&c->sh[k], v) + ggx_lambda(&c->sh[k], w)) / sep - 1);
         }
-        au_append(r, k, "; with the seed's G = 1 / (1 + Lambda(v) + Lambda(omega)) f_r is up to %.0f %% above eq 5's "
-                  "(row g-approx)", 100 * most);
+        au_append(r, k,
+                  "; with the seed's G = 1 / (1 + Lambda(v) + Lambda(omega)) f_r is up to %.0f %% above eq 5's "
+                  "(row g-approx)",
+                  100 * most);
     }
 
-    r = au_add(c->rows, c->nr, "reflect-below", "omega = 2 (v.m) m - v; an NDF sample m with v.m < 0 (m.n > 0, v.n > 0) "
-               "reflects v below the horizon", SEED_VNDF, "vGGX Sampling", AUDIT_SCOPE_DIAGONAL);
+    r = au_add(c->rows, c->nr, "reflect-below",
+               "omega = 2 (v.m) m - v; an NDF sample m with v.m < 0 (m.n > 0, v.n > 0) "
+               "reflects v below the horizon",
+               SEED_VNDF, "vGGX Sampling", AUDIT_SCOPE_DIAGONAL);
     for (int k = 0; k < AUDIT_SHAPES; k++) {
         long away = 0;
-        au_verdict_kin(r, k, &c->sh[k], c->A[k], err_reflect, &away, 500, 0, "omega.z of the back-facing samples (a sign argument: 2 (v.m) m.z - v.z < 0):");
+        au_verdict_kin(r, k, &c->sh[k], c->A[k], err_reflect, &away, 500, 0,
+                       "omega.z of the back-facing samples (a sign argument: 2 (v.m) m.z - v.z < 0):");
         au_append(r, k, " (%ld of the %d NDF samples face away from v)", away, 500 * AU_KIN);
     }
 }

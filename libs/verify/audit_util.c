@@ -74,8 +74,8 @@ void au_verdict_p(audit_row *r, int k, double p)
     au_set(r, k, p >= au_alpha_level() ? AUDIT_HOLDS : AUDIT_FAILS, "chi-square p = %.2g", p);
 }
 
-audit_row *au_add(audit_row *rows, int *n, const char *id, const char *claim, const char *seed,
-                  const char *where, audit_scope scope)
+audit_row *au_add(audit_row *rows, int *n, const char *id, const char *claim, const char *seed, const char *where,
+                  audit_scope scope)
 {
     if (*n >= AUDIT_MAX_ROWS) abort(); /* a claim added beyond the table's size: raise AUDIT_MAX_ROWS */
     audit_row *r = &rows[(*n)++];
@@ -223,7 +223,8 @@ static void kin_offdiag(au_kin *out)
 {
     double M[3][3];
     for (int a = 0; a < 3; a++)
-        for (int b = 0; b < 3; b++) M[a][b] = out->A[0][a] * out->A[0][b] + out->A[1][a] * out->A[1][b] + out->A[2][a] * out->A[2][b];
+        for (int b = 0; b < 3; b++)
+            M[a][b] = out->A[0][a] * out->A[0][b] + out->A[1][a] * out->A[1][b] + out->A[2][a] * out->A[2][b];
     out->offdiag = sqrt(M[0][1] * M[0][1] + M[0][2] * M[0][2] + M[1][2] * M[1][2]) / (M[0][0] + M[1][1] + M[2][2]);
 }
 
@@ -332,7 +333,8 @@ static kin_result kin_run(const ggx_shape *s0, const double A0[3][3], au_err_fn 
         double tz = reduce_tz(q[4]), f = 1, last_err = 0;
         char at[160] = "", last_at[160] = "";
         au_kin K;
-        if (skew && kin_make(q[0], q[1], 0, 0, tz, &K) && kin_points(&K, res.ex_index, err, ctx, points, tol, at, sizeof at) > tol)
+        if (skew && kin_make(q[0], q[1], 0, 0, tz, &K) &&
+            kin_points(&K, res.ex_index, err, ctx, points, tol, at, sizeof at) > tol)
             from_rotation = 1, skew = 0;
         for (int h = 1; h <= 30; h++) {
             double g2 = (double)1 / (double)(1u << h);
@@ -344,13 +346,18 @@ static kin_result kin_run(const ggx_shape *s0, const double A0[3][3], au_err_fn 
         if (from_rotation)
             l = (size_t)snprintf(res.shrunk, sizeof res.shrunk, "; it fails without skew, from the rotation alone");
         if (halvings > 0 && skew)
-            snprintf(res.shrunk + l, sizeof res.shrunk - l, "; with its skew scaled by 2^-%d, (theta_x, theta_y) = (%.3g, "
-                     "%.3g) rad, it still fails: %s, error %.3g", halvings, q[2] * f, q[3] * f, last_at, last_err);
+            snprintf(res.shrunk + l, sizeof res.shrunk - l,
+                     "; with its skew scaled by 2^-%d, (theta_x, theta_y) = (%.3g, "
+                     "%.3g) rad, it still fails: %s, error %.3g",
+                     halvings, q[2] * f, q[3] * f, last_at, last_err);
         else if (halvings > 0)
-            snprintf(res.shrunk + l, sizeof res.shrunk - l, "; with its rotation scaled by 2^-%d, theta_z = %.3g rad, it "
-                     "still fails: %s, error %.3g", halvings, tz * f, last_at, last_err);
+            snprintf(res.shrunk + l, sizeof res.shrunk - l,
+                     "; with its rotation scaled by 2^-%d, theta_z = %.3g rad, it "
+                     "still fails: %s, error %.3g",
+                     halvings, tz * f, last_at, last_err);
         else if (!from_rotation)
-            snprintf(res.shrunk + l, sizeof res.shrunk - l, "; halved, the failure was not found again at the points tried");
+            snprintf(res.shrunk + l, sizeof res.shrunk - l,
+                     "; halved, the failure was not found again at the points tried");
     }
     return res;
 }
@@ -360,10 +367,8 @@ double au_kin_worst(const ggx_shape *s0, const double A0[3][3], au_err_fn err, v
 {
     kin_result res = kin_run(s0, A0, err, ctx, points, tol);
     if (example) {
-        if (res.failed)
-            snprintf(example, nexample, "%s, %s, error %.3g", res.ex_shape, res.ex_at, res.ex_err);
-        else
-            example[0] = 0;
+        if (res.failed) snprintf(example, nexample, "%s, %s, error %.3g", res.ex_shape, res.ex_at, res.ex_err);
+        else example[0] = 0;
     }
     return res.worst;
 }
@@ -376,8 +381,10 @@ void au_verdict_kin(audit_row *r, int k, const ggx_shape *s0, const double A0[3]
         au_set(r, k, AUDIT_HOLDS, "%s within %.1e at %d points on %d shapes of this kind", what, res.worst,
                points * AU_KIN, AU_KIN);
     else
-        au_set(r, k, AUDIT_FAILS, "%s off by up to %.3g (%d of %d points); smallest counterexample (%s %.2g): %s, %s, "
-               "error %.3g%s", what, res.worst, res.failed, points * AU_KIN,
+        au_set(r, k, AUDIT_FAILS,
+               "%s off by up to %.3g (%d of %d points); smallest counterexample (%s %.2g): %s, %s, "
+               "error %.3g%s",
+               what, res.worst, res.failed, points * AU_KIN,
                s0->kind == GGX_SHAPE_UNSKEWED ? "|theta_z|" : "off-diagonal share of A^T A", res.ex_key, res.ex_shape,
                res.ex_at, res.ex_err, res.shrunk);
 }
@@ -413,11 +420,13 @@ void au_verdict_views(audit_row *r, int k, double (*f)(const ggx_shape *, ggx_ve
             if (!(fabs(y - 1) < tol) && thetas[i] < first_th) first_th = thetas[i], first_ph = phi, first_x = y;
         }
     if (worst < tol)
-        au_set(r, k, AUDIT_HOLDS, "%s integrates to 1 within %.0e at all %d views of the grid", what, fmax(worst, 1e-16),
-               AU_VIEWS);
+        au_set(r, k, AUDIT_HOLDS, "%s integrates to 1 within %.0e at all %d views of the grid", what,
+               fmax(worst, 1e-16), AU_VIEWS);
     else
-        au_set(r, k, AUDIT_FAILS, "%s integrates to %.4f at theta %.1f, phi %.2f rad (worst of %d views); the view nearest "
-               "n where it fails: %.4f at theta %.1f, phi %.2f", what, x, th, ph, AU_VIEWS, first_x, first_th, first_ph);
+        au_set(r, k, AUDIT_FAILS,
+               "%s integrates to %.4f at theta %.1f, phi %.2f rad (worst of %d views); the view nearest "
+               "n where it fails: %.4f at theta %.1f, phi %.2f",
+               what, x, th, ph, AU_VIEWS, first_x, first_th, first_ph);
 }
 
 void au_kin_row(const au_ctx *c, audit_row *r, int unskewed_only, au_err_fn err, void *ctx, int points, double tol,

@@ -32,8 +32,8 @@ typedef struct chi2_result {
     int dof, bins;
     long invalid;
     double expected_invalid; /* N times (1 - integral of the density) */
-    long zero_cell_hits;      /* samples at keys of zero density */
-    double mass;              /* integral of the density over all cells */
+    long zero_cell_hits;     /* samples at keys of zero density */
+    double mass;             /* integral of the density over all cells */
 } chi2_result;
 
 /* Runs the test with n samples. On failure (pvalue < alpha or any zero-cell hit) writes chi2_<name>.csv with

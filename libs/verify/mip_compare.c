@@ -9,8 +9,8 @@
 
 #include "ggx/ggx_filter.h"
 
-const char *const mc_name[MC_METHODS] = {"ours", "ours, fast mode", "no filtering", "Toksvig", "variance widening",
-                                         "ours without skew"};
+const char *const mc_name[MC_METHODS] = {"ours",    "ours, fast mode",   "no filtering",
+                                         "Toksvig", "variance widening", "ours without skew"};
 
 static ggx_vec3 polar(double theta_deg, double phi_deg)
 {

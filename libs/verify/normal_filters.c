@@ -27,7 +27,8 @@ int nf_baseline(nf_kind k, ggx_vec3 m, double alpha2, const double sigma[3], nf_
     len = fmin(len, 1.0);
     double nx = m.x / len, ny = m.y / len, nz = fmin(m.z / len, 1.0), a = 1.0 / (1.0 + nz);
     /* the least rotation taking z to n: its images of x and y */
-    const double F[3][3] = {{1.0 - a * nx * nx, -a * nx * ny, -nx}, {-a * nx * ny, 1.0 - a * ny * ny, -ny}, {nx, ny, nz}};
+    const double F[3][3] = {
+        {1.0 - a * nx * nx, -a * nx * ny, -nx}, {-a * nx * ny, 1.0 - a * ny * ny, -ny}, {nx, ny, nz}};
     for (int i = 0; i < 3; i++)
         for (int j = 0; j < 3; j++) out->frame[i][j] = F[i][j];
     ggx_status st;

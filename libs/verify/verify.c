@@ -22,10 +22,7 @@ double rng_range(rng *r, double a, double b) { return a + (b - a) * rng_uniform(
 
 /* The vector helpers are the kernel's (include/ggx/kernel/vec.inc) in double. */
 ggx_vec3 t_vec(double x, double y, double z) { return ggx_k_v3_d(x, y, z); }
-ggx_vec3 t_dir(double theta, double phi)
-{
-    return t_vec(sin(theta) * cos(phi), sin(theta) * sin(phi), cos(theta));
-}
+ggx_vec3 t_dir(double theta, double phi) { return t_vec(sin(theta) * cos(phi), sin(theta) * sin(phi), cos(theta)); }
 double t_dot(ggx_vec3 a, ggx_vec3 b) { return ggx_k_dot_d(a, b); }
 ggx_vec3 t_scale(ggx_vec3 a, double k) { return ggx_k_scale_d(a, k); }
 ggx_vec3 t_add(ggx_vec3 a, ggx_vec3 b) { return ggx_k_add_d(a, b); }
@@ -73,8 +70,8 @@ typedef struct hemi_ctx {
     const ggx_shape *s;
     t_integrand f;
     void *ctx;
-    ggx_vec3 p, e1, e2;     /* sphere-space pole normalize(A n) and frame */
-    ggx_vec3 w[8];          /* cut normals in sphere space, A u_k, in frame coordinates */
+    ggx_vec3 p, e1, e2; /* sphere-space pole normalize(A n) and frame */
+    ggx_vec3 w[8];      /* cut normals in sphere space, A u_k, in frame coordinates */
     int ncuts;
     double theta, inner_tol;
     long calls;
@@ -127,8 +124,8 @@ static double hemi_theta(double theta, void *vc)
     return sum;
 }
 
-double quad_hemisphere(const ggx_shape *s, t_integrand f, void *ctx, const ggx_vec3 *cuts, int ncuts,
-                       double rel_tol, long *calls)
+double quad_hemisphere(const ggx_shape *s, t_integrand f, void *ctx, const ggx_vec3 *cuts, int ncuts, double rel_tol,
+                       long *calls)
 {
     hemi_ctx c;
     c.s = s;

@@ -35,8 +35,8 @@ typedef double (*t_integrand)(ggx_vec3 m, void *ctx);
  * a smooth cosine lobe. The cut planes become great circles there and are passed as break points, so integrands
  * that are smooth on the domain converge fast however sharp the lobe is in m. rel_tol is relative to the
  * integral. Counts integrand calls in *calls when non-NULL. */
-double quad_hemisphere(const ggx_shape *s, t_integrand f, void *ctx, const ggx_vec3 *cuts, int ncuts,
-                       double rel_tol, long *calls);
+double quad_hemisphere(const ggx_shape *s, t_integrand f, void *ctx, const ggx_vec3 *cuts, int ncuts, double rel_tol,
+                       long *calls);
 /* Adaptive Gauss-Legendre on [a, b] for a 1D function (used by quad_hemisphere; exposed for its self-test). */
 typedef double (*t_fn1)(double x, void *ctx);
 double quad_adapt(t_fn1 f, void *ctx, double a, double b, double abs_tol);

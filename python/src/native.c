@@ -27,10 +27,7 @@ static ggx_vec3 vec(const ggxpy_in *a, size_t i)
     return (ggx_vec3){p[0], p[1], p[2]};
 }
 static double num(const ggxpy_in *a, size_t i) { return a->p[(ptrdiff_t)i * a->step]; }
-static void put(double *out, size_t i, ggx_vec3 v)
-{
-    out[3 * i] = v.x, out[3 * i + 1] = v.y, out[3 * i + 2] = v.z;
-}
+static void put(double *out, size_t i, ggx_vec3 v) { out[3 * i] = v.x, out[3 * i + 1] = v.y, out[3 * i + 2] = v.z; }
 
 /* Sizes and fields the Python side needs without restating the C structs. */
 EXPORT size_t ggxpy_sizeof_shape(void) { return sizeof(ggx_shape); }
@@ -70,8 +67,8 @@ EXPORT void ggxpy_s_vvv(double (*f)(const ggx_shape *, ggx_vec3, ggx_vec3, ggx_v
     for (size_t i = 0; i < n; i++) out[i] = f(s, vec(&in[0], i), vec(&in[1], i), vec(&in[2], i));
 }
 
-EXPORT void ggxpy_s_dd(double (*f)(const ggx_shape *, double, double), const ggx_shape *s, size_t n,
-                       const ggxpy_in *in, double *out)
+EXPORT void ggxpy_s_dd(double (*f)(const ggx_shape *, double, double), const ggx_shape *s, size_t n, const ggxpy_in *in,
+                       double *out)
 {
     for (size_t i = 0; i < n; i++) out[i] = f(s, num(&in[0], i), num(&in[1], i));
 }
@@ -165,8 +162,8 @@ static double next_uniform(void *state)
 
 EXPORT void ggxpy_sample_reject(int id, const ggx_shape *s, size_t n, const ggxpy_in *in, double *m, double *trials)
 {
-    ggx_vec3 (*f)(const ggx_shape *, ggx_vec3, ggx_uniform_fn, void *, unsigned *) =
-        ggx_sampler_get((ggx_sampler_id)id)->sample_reject;
+    ggx_vec3 (*f)(const ggx_shape *, ggx_vec3, ggx_uniform_fn, void *,
+                  unsigned *) = ggx_sampler_get((ggx_sampler_id)id)->sample_reject;
     for (size_t i = 0; i < n; i++) {
         double u1 = num(&in[1], i), u2 = num(&in[2], i);
         uint64_t b1, b2;
@@ -183,8 +180,8 @@ EXPORT void ggxpy_sample_reject(int id, const ggx_shape *s, size_t n, const ggxp
 EXPORT void ggxpy_sample_direction(int id, const ggx_shape *s, const ggx_fresnel *fr, double eta, int mode, size_t n,
                                    const ggxpy_in *in, double *w, double *pdf, double *weight, int8_t *event)
 {
-    ggx_sample (*f)(const ggx_shape *, const ggx_fresnel *, double, ggx_vec3, double, double, double, ggx_transport) =
-        ggx_sampler_get((ggx_sampler_id)id)->sample_direction;
+    ggx_sample (*f)(const ggx_shape *, const ggx_fresnel *, double, ggx_vec3, double, double, double,
+                    ggx_transport) = ggx_sampler_get((ggx_sampler_id)id)->sample_direction;
     for (size_t i = 0; i < n; i++) {
         ggx_sample r = f(s, fr, eta, vec(&in[0], i), num(&in[1], i), num(&in[2], i), num(&in[3], i),
                          (ggx_transport)mode);
@@ -233,31 +230,31 @@ EXPORT void ggxpy_energy_sample(int compensated, const ggx_energy *e, const ggx_
 #include "ggx/ggx_fit.h"
 #include "surface.h"
 
-#define FIT_FIELDS(X)                                                                                               \
-    X(iterations, 1, (double)i->iterations)                                                                         \
-    X(converged, 1, (double)i->converged)                                                                           \
-    X(stationarity, 1, i->stationarity)                                                                             \
-    X(log_likelihood, 1, i->log_likelihood)                                                                         \
-    X(t, 2, i->t[k])                                                                                                \
-    X(sigma, 3, i->sigma[k])                                                                                        \
-    X(std_error, 5, i->std_error[k])                                                                                \
-    X(covariance, 25, i->covariance[k / 5][k % 5])                                                                  \
-    X(gof_chi2, 1, i->gof_chi2)                                                                                     \
-    X(gof_pvalue, 1, i->gof_pvalue)                                                                                 \
-    X(gof_cells, 1, (double)i->gof_cells)                                                                           \
-    X(gof_dof, 1, (double)i->gof_dof)                                                                               \
-    X(used, 1, (double)i->used)                                                                                     \
-    X(ignored_horizon, 1, (double)i->ignored_horizon)                                                               \
-    X(ignored_nonfinite, 1, (double)i->ignored_nonfinite)                                                           \
-    X(ignored_weight, 1, (double)i->ignored_weight)                                                                 \
-    X(effective_n, 1, i->effective_n)                                                                               \
-    X(clamped, 1, (double)i->clamped)                                                                               \
-    X(best, 1, (double)i->best)                                                                                     \
-    X(model_log_likelihood, 4, i->models[k].log_likelihood)                                                         \
-    X(model_bic, 4, i->models[k].bic)                                                                               \
-    X(model_parameters, 4, (double)i->models[k].parameters)                                                         \
-    X(model_iterations, 4, (double)i->models[k].iterations)                                                         \
-    X(model_t, 8, i->models[k / 2].t[k % 2])                                                                        \
+#define FIT_FIELDS(X)                                                                                                  \
+    X(iterations, 1, (double)i->iterations)                                                                            \
+    X(converged, 1, (double)i->converged)                                                                              \
+    X(stationarity, 1, i->stationarity)                                                                                \
+    X(log_likelihood, 1, i->log_likelihood)                                                                            \
+    X(t, 2, i->t[k])                                                                                                   \
+    X(sigma, 3, i->sigma[k])                                                                                           \
+    X(std_error, 5, i->std_error[k])                                                                                   \
+    X(covariance, 25, i->covariance[k / 5][k % 5])                                                                     \
+    X(gof_chi2, 1, i->gof_chi2)                                                                                        \
+    X(gof_pvalue, 1, i->gof_pvalue)                                                                                    \
+    X(gof_cells, 1, (double)i->gof_cells)                                                                              \
+    X(gof_dof, 1, (double)i->gof_dof)                                                                                  \
+    X(used, 1, (double)i->used)                                                                                        \
+    X(ignored_horizon, 1, (double)i->ignored_horizon)                                                                  \
+    X(ignored_nonfinite, 1, (double)i->ignored_nonfinite)                                                              \
+    X(ignored_weight, 1, (double)i->ignored_weight)                                                                    \
+    X(effective_n, 1, i->effective_n)                                                                                  \
+    X(clamped, 1, (double)i->clamped)                                                                                  \
+    X(best, 1, (double)i->best)                                                                                        \
+    X(model_log_likelihood, 4, i->models[k].log_likelihood)                                                            \
+    X(model_bic, 4, i->models[k].bic)                                                                                  \
+    X(model_parameters, 4, (double)i->models[k].parameters)                                                            \
+    X(model_iterations, 4, (double)i->models[k].iterations)                                                            \
+    X(model_t, 8, i->models[k / 2].t[k % 2])                                                                           \
     X(model_sigma, 12, i->models[k / 3].sigma[k % 3])
 
 EXPORT const char *ggxpy_fit_fields(void)
@@ -269,7 +266,8 @@ EXPORT const char *ggxpy_fit_fields(void)
 
 static void flatten(const ggx_fit_info *i, double *out)
 {
-#define PUT(f, len, e) for (int k = 0; k < len; k++) *out++ = (e);
+#define PUT(f, len, e)                                                                                                 \
+    for (int k = 0; k < len; k++) *out++ = (e);
     FIT_FIELDS(PUT)
 #undef PUT
 }
@@ -311,8 +309,7 @@ EXPORT size_t ggxpy_sizeof_vec3(void) { return sizeof(ggx_vec3); }
 /* A surface read by the readers of the command, held for the Python side to copy: ggxpy_surface_read returns it (or
  * NULL with err), meta = nx, ny, dx, dy, z_scale, bits, channels, is_normals, has_weights; ggxpy_surface_copy fills
  * arrays of nx * ny heights, or 3 nx * ny normal components and nx * ny weights; ggxpy_surface_close frees it. */
-EXPORT void *ggxpy_surface_read(const char *path, int normals, int y_down, double meta[9], char *err,
-                                size_t errn)
+EXPORT void *ggxpy_surface_read(const char *path, int normals, int y_down, double meta[9], char *err, size_t errn)
 {
     surface *s = malloc(sizeof *s);
     if (!s) {
@@ -324,8 +321,9 @@ EXPORT void *ggxpy_surface_read(const char *path, int normals, int y_down, doubl
         free(s);
         return NULL;
     }
-    const double v[9] = {(double)s->nx, (double)s->ny, s->dx, s->dy, s->z_scale, s->bits, s->channels,
-                         s->kind == SURFACE_NORMALS, s->w != NULL};
+    const double v[9] = {(double)s->nx, (double)s->ny, s->dx,       s->dy,
+                         s->z_scale,    s->bits,       s->channels, s->kind == SURFACE_NORMALS,
+                         s->w != NULL};
     memcpy(meta, v, sizeof v);
     return s;
 }
@@ -336,7 +334,8 @@ EXPORT void ggxpy_surface_copy(const void *handle, double *values, double *weigh
     size_t n = s->nx * s->ny;
     if (s->kind == SURFACE_HEIGHTS) memcpy(values, s->h, n * sizeof *values);
     else
-        for (size_t i = 0; i < n; i++) values[3 * i] = s->m[i].x, values[3 * i + 1] = s->m[i].y, values[3 * i + 2] = s->m[i].z;
+        for (size_t i = 0; i < n; i++)
+            values[3 * i] = s->m[i].x, values[3 * i + 1] = s->m[i].y, values[3 * i + 2] = s->m[i].z;
     if (weights && s->w) memcpy(weights, s->w, n * sizeof *weights);
 }
 
@@ -363,16 +362,17 @@ EXPORT void ggxpy_surface_close(void *handle)
 #include "render.h"
 
 EXPORT int ggxpy_render(const ggx_shape *s, const ggx_fresnel *f, const char *sampler, int compensate, int scene,
-                        int light, const char *path, const double dir[3], double irradiance, int strategy, int w,
-                        int h, int spp, int depth, unsigned long long seed, int threads, int jitter, float *rgb,
-                        float *var, char *err, size_t errn)
+                        int light, const char *path, const double dir[3], double irradiance, int strategy, int w, int h,
+                        int spp, int depth, unsigned long long seed, int threads, int jitter, float *rgb, float *var,
+                        char *err, size_t errn)
 {
     render_spec r;
     render_spec_defaults(&r);
     r.shape = *s, r.fresnel = *f, r.compensate = compensate, r.scene = scene ? RENDER_PLANE : RENDER_SPHERE;
     r.strategy = (render_strategy)strategy, r.width = w, r.height = h, r.spp = spp, r.depth = depth, r.seed = seed;
     r.threads = threads, r.jitter = jitter;
-    if (sampler && !(r.sampler = ggx_sampler_find(sampler))) return surface_fail(err, errn, "unknown sampler '%s'", sampler);
+    if (sampler && !(r.sampler = ggx_sampler_find(sampler)))
+        return surface_fail(err, errn, "unknown sampler '%s'", sampler);
     render_env env;
     memset(&env, 0, sizeof env);
     int rc = 0;

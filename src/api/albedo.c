@@ -202,8 +202,8 @@ static double albedo(const ggx_shape *s, ggx_vec3 v, int hc, double tol)
     double abs_tol = tol / pre;
     c.inner_tol = 0.02 * abs_tol;
     /* psi = pi/2 (E2) is where the cone is widest and, for grazing views, sharpest in psi */
-    const double br[] = {0, 0.25 * GGX_PI, 0.5 * GGX_PI, 0.75 * GGX_PI, GGX_PI,
-                         1.25 * GGX_PI, 1.5 * GGX_PI, 1.75 * GGX_PI, 2 * GGX_PI};
+    const double br[] = {
+        0, 0.25 * GGX_PI, 0.5 * GGX_PI, 0.75 * GGX_PI, GGX_PI, 1.25 * GGX_PI, 1.5 * GGX_PI, 1.75 * GGX_PI, 2 * GGX_PI};
     return pre * adapt(outer_f, &c, br, 9, 0.5 * abs_tol);
 }
 
@@ -246,7 +246,8 @@ static void bsdf_kinks(bsdf_ctx *c, ggx_vec3 u)
     const ggx_shape *s = c->s;
     double a = s->an_len, er2 = c->eta_rel * c->eta_rel;
     horizon_cone(s, u, c->q[0]);
-    for (int i = 0; i < 3; i++) /* the refraction's horizon: u.z times the reflection's, plus (eta_rel^2 - 1) a^2 zz^T */
+    for (int i = 0; i < 3;
+         i++) /* the refraction's horizon: u.z times the reflection's, plus (eta_rel^2 - 1) a^2 zz^T */
         for (int j = 0; j < 3; j++) c->q[1][i][j] = u.z * c->q[0][i][j];
     c->q[1][2][2] += (er2 - 1) * a * a;
     c->nq = 2;
@@ -358,8 +359,8 @@ static double bsdf_part(const ggx_shape *s, ggx_vec3 v, double eta, int part, do
     bsdf_kinks(&c, u);
     double abs_tol = tol / pre;
     c.inner_tol = 0.02 * abs_tol;
-    const double br[] = {0, 0.25 * GGX_PI, 0.5 * GGX_PI, 0.75 * GGX_PI, GGX_PI,
-                         1.25 * GGX_PI, 1.5 * GGX_PI, 1.75 * GGX_PI, 2 * GGX_PI};
+    const double br[] = {
+        0, 0.25 * GGX_PI, 0.5 * GGX_PI, 0.75 * GGX_PI, GGX_PI, 1.25 * GGX_PI, 1.5 * GGX_PI, 1.75 * GGX_PI, 2 * GGX_PI};
     return pre * adapt(bsdf_outer, &c, br, 9, 0.5 * abs_tol);
 }
 
@@ -464,10 +465,8 @@ static double avg_phi(double phi, avg_ctx *c)
                 double lo = ya, hi = yb;
                 for (int it = 0; it < 60 && hi - lo > 1e-15; it++) {
                     double m = 0.5 * (lo + hi);
-                    if ((ggx_g1_smith_d(c->s, avg_view(c, m)) - 1.0 > 0) == (fa > 0))
-                        lo = m;
-                    else
-                        hi = m;
+                    if ((ggx_g1_smith_d(c->s, avg_view(c, m)) - 1.0 > 0) == (fa > 0)) lo = m;
+                    else hi = m;
                 }
                 br[nb++] = 0.5 * (lo + hi);
             }
@@ -531,7 +530,8 @@ static double albedo_avg(const ggx_shape *s, int hc)
         double pk = atan2(gy, gx) + 0.5 * GGX_PI;
         c.tol = SKEW_LINE_TOL;
         r = (gl_fixed(avg_phi_fn, &c, pk, pk + GGX_PI, SKEW_PHI_ORDER) +
-             gl_fixed(avg_phi_fn, &c, pk + GGX_PI, pk + 2 * GGX_PI, SKEW_PHI_ORDER)) / GGX_PI;
+             gl_fixed(avg_phi_fn, &c, pk + GGX_PI, pk + 2 * GGX_PI, SKEW_PHI_ORDER)) /
+            GGX_PI;
     }
     return r >= 0 ? (r <= 1 ? r : 1) : 0;
 }

@@ -51,7 +51,8 @@ static double brdf_node(void *vc, ggx_vec3 v, double y)
     if (c->shipped == 1 && ggx_internal_iso_table_i(s->alpha_x, y, &i_value)) return i_value;
     if (c->shipped == 2) {
         double x = s->tangent_cos * v.x + s->tangent_sin * v.y, yy = s->tangent_cos * v.y - s->tangent_sin * v.x;
-        if (ggx_internal_aniso_table_i(s->alpha_x, s->alpha_y, y, cols_psi_of_xy(fabs(x), fabs(yy), COLS_WARP_K), &i_value))
+        if (ggx_internal_aniso_table_i(s->alpha_x, s->alpha_y, y, cols_psi_of_xy(fabs(x), fabs(yy), COLS_WARP_K),
+                                       &i_value))
             return i_value;
     }
     return ggx_internal_albedo(s, v, 0, TABLE_TOL) / ggx_internal_albedo_scale(s, v);
@@ -65,8 +66,7 @@ static ggx_energy *build(const ggx_shape *s, int shipped, int rows, int columns)
     if (!e) return NULL;
     e->s = *s;
     brdf_nodes c = {&e->s, shipped};
-    ggx_internal_etab_build(&e->t, &e->s, rows, columns, COLS_WARP_K, shipped == 0, (double *)(e + 1), brdf_node,
-                            &c);
+    ggx_internal_etab_build(&e->t, &e->s, rows, columns, COLS_WARP_K, shipped == 0, (double *)(e + 1), brdf_node, &c);
     return e;
 }
 
@@ -77,10 +77,8 @@ GGX_API ggx_status ggx_energy_create(const ggx_shape *s, ggx_energy **out)
     if (!s) return GGX_ERR_NULL;
     double probe;
     int iso = ggx_internal_is_isotropic(s), shipped = 0;
-    if (iso && ggx_internal_iso_table_i(s->alpha_x, 1.0, &probe))
-        shipped = 1;
-    else if (s->kind != GGX_SHAPE_SKEWED && ggx_internal_aniso_table_serves(s->alpha_x, s->alpha_y))
-        shipped = 2;
+    if (iso && ggx_internal_iso_table_i(s->alpha_x, 1.0, &probe)) shipped = 1;
+    else if (s->kind != GGX_SHAPE_SKEWED && ggx_internal_aniso_table_serves(s->alpha_x, s->alpha_y)) shipped = 2;
     ggx_energy *e = build(s, shipped, shipped == 2 ? ROWS : FINE_ROWS, COLUMNS);
     if (!e) return GGX_ERR_MEMORY;
     /* a finer table where the check finds the interpolation off by at most 3e-3 (twice the columns divide the

@@ -159,7 +159,8 @@ GGX_API double ggx_bsdf_energy_albedo_avg(const ggx_bsdf_energy *e, int below)
 /* f_ms(wi -> wo) in the radiance convention, for unit directions on sides a, b (u': their upper-hemisphere forms). */
 static double ms_lobe(const ggx_bsdf_energy *e, int a, ggx_vec3 ui, int b, ggx_vec3 uo)
 {
-    return e->c[a][b] * (1.0 - ggx_internal_etab_albedo(&e->side[a], ui)) * (1.0 - ggx_internal_etab_albedo(&e->side[b], uo));
+    return e->c[a][b] * (1.0 - ggx_internal_etab_albedo(&e->side[a], ui)) *
+           (1.0 - ggx_internal_etab_albedo(&e->side[b], uo));
 }
 
 /* The lobe for a transport mode: the adjoint swaps the directions. */
@@ -234,10 +235,12 @@ GGX_API ggx_sample ggx_sample_bsdf_ms(const ggx_bsdf_energy *e, ggx_vec3 v, doub
 }
 
 /* The probability of the single-scattering lobe: its albedo E_a(v) (the lobes' albedos add up to 1). */
-static double ss_share(const ggx_bsdf_energy *e, int a, ggx_vec3 ua) { return ggx_internal_etab_albedo(&e->side[a], ua); }
+static double ss_share(const ggx_bsdf_energy *e, int a, ggx_vec3 ua)
+{
+    return ggx_internal_etab_albedo(&e->side[a], ua);
+}
 
-static double pdf_compensated(const ggx_bsdf_energy *e, ggx_vec3 v, int a, double p, ggx_vec3 w, int b,
-                              ggx_vec3 ub)
+static double pdf_compensated(const ggx_bsdf_energy *e, ggx_vec3 v, int a, double p, ggx_vec3 w, int b, ggx_vec3 ub)
 {
     return p * ggx_pdf_bsdf_d(&e->s, e->eta, v, w) + (1.0 - p) * ms_pdf(e, a, b, ub);
 }
@@ -250,8 +253,8 @@ GGX_API double ggx_pdf_bsdf_compensated(const ggx_bsdf_energy *e, ggx_vec3 v, gg
     return pdf_compensated(e, a, sa, ss_share(e, sa, ua), b, sb, ub);
 }
 
-GGX_API ggx_sample ggx_sample_bsdf_compensated(const ggx_bsdf_energy *e, ggx_vec3 v, double u1, double u2,
-                                               double u3, ggx_transport mode)
+GGX_API ggx_sample ggx_sample_bsdf_compensated(const ggx_bsdf_energy *e, ggx_vec3 v, double u1, double u2, double u3,
+                                               ggx_transport mode)
 {
     ggx_vec3 a, ua;
     int sa;

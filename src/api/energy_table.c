@@ -273,10 +273,8 @@ ggx_vec3 ggx_internal_etab_sample(const energy_table *t, double u1, double u2)
     int lo = 0, hi = ncell; /* the cell c with cdf[c] <= x < cdf[c + 1], skipping empty cells */
     while (hi - lo > 1) {
         int mid = (lo + hi) / 2;
-        if (t->cdf[mid] <= x)
-            lo = mid;
-        else
-            hi = mid;
+        if (t->cdf[mid] <= x) lo = mid;
+        else hi = mid;
     }
     double wc = t->cdf[lo + 1] - t->cdf[lo];
     double f = wc > 0 ? (x - t->cdf[lo]) / wc : 0.5;

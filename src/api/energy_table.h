@@ -22,8 +22,8 @@ typedef struct energy_table {
     double *tab;        /* nm x np values of I, row-major */
     double *pad;        /* the same with ghost nodes around it: (nm + 2) x pw, pw = np + 3 (1 if np = 1) */
     int pw;
-    double *cdf;        /* (nm - 1) np + 1 cumulative cell weights, cdf[0] = 0 */
-    double check_err;   /* the largest |E of the interpolant - E of the node function| found by the check (0 when
+    double *cdf;      /* (nm - 1) np + 1 cumulative cell weights, cdf[0] = 0 */
+    double check_err; /* the largest |E of the interpolant - E of the node function| found by the check (0 when
                          * not checked) */
 } energy_table;
 

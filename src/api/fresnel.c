@@ -1,12 +1,18 @@
 /* Fresnel terms: setup (validated) and evaluation (the kernels). SPDX-License-Identifier: MIT */
 #include "internal.h"
 
-GGX_API GGX_HOT double ggx_fresnel_dielectric_eval(double cos_i, double eta) { return ggx_fresnel_dielectric_eval_d(cos_i, eta); }
+GGX_API GGX_HOT double ggx_fresnel_dielectric_eval(double cos_i, double eta)
+{
+    return ggx_fresnel_dielectric_eval_d(cos_i, eta);
+}
 GGX_API GGX_HOT double ggx_fresnel_conductor_eval(double cos_i, double eta, double k)
 {
     return ggx_fresnel_conductor_eval_d(cos_i, eta, k);
 }
-GGX_API GGX_HOT double ggx_fresnel_schlick_eval(double cos_i, double f0) { return ggx_fresnel_schlick_eval_d(cos_i, f0); }
+GGX_API GGX_HOT double ggx_fresnel_schlick_eval(double cos_i, double f0)
+{
+    return ggx_fresnel_schlick_eval_d(cos_i, f0);
+}
 const ggx_fresnel ggx_internal_fresnel_one = {GGX_FRESNEL_ONE, 1.0, 0.0, 1.0};
 
 GGX_API GGX_HOT double ggx_fresnel_eval(const ggx_fresnel *f, double cos_i)

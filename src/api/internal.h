@@ -24,7 +24,7 @@
  * where the baseline takes two: results differ between the two builds in the last bits only (within the accuracy
  * each header states; tests/test_golden runs against both builds). -DGGX_NO_CLONES builds the baseline only, and so
  * does clang: clang 14 names the resolver of a hidden function's clones name.ifunc and leaves name itself undefined. */
-#if !defined(GGX_NO_CLONES) && defined(__GNUC__) && !defined(__clang__) && defined(__ELF__) && defined(__x86_64__) && \
+#if !defined(GGX_NO_CLONES) && defined(__GNUC__) && !defined(__clang__) && defined(__ELF__) && defined(__x86_64__) &&  \
     !defined(__CUDACC__)
 #define GGX_HOT __attribute__((target_clones("arch=x86-64-v3", "default")))
 /* GGX_HOT and an x86-64-v4 (AVX-512) clone: for the fits' passes, whose reductions hold more sums than AVX2's 16

@@ -5,27 +5,27 @@
 #include "internal.h"
 
 /* NDF samplers ignore the view. */
-#define ADAPT_NDF(ID, stem)                                                                                       \
-    static ggx_vec3 draw_##ID(const ggx_shape *s, ggx_vec3 v, double u1, double u2)                               \
-    {                                                                                                             \
-        (void)v;                                                                                                  \
-        return ggx_##stem(s, u1, u2);                                                                             \
+#define ADAPT_NDF(ID, stem)                                                                                            \
+    static ggx_vec3 draw_##ID(const ggx_shape *s, ggx_vec3 v, double u1, double u2)                                    \
+    {                                                                                                                  \
+        (void)v;                                                                                                       \
+        return ggx_##stem(s, u1, u2);                                                                                  \
     }
 #define ADAPT_VNDF(ID, stem)
 #define ADAPT_REJECTION(ID, stem)
 #define ADAPT_DIRECTION(ID, stem)
-#define ADAPT_INV_NDF_1(ID, stem)                                                                                 \
-    static ggx_vec2 inv_##ID(const ggx_shape *s, ggx_vec3 v, ggx_vec3 m)                                          \
-    {                                                                                                             \
-        (void)v;                                                                                                  \
-        return ggx_##stem##_inv(s, m);                                                                            \
+#define ADAPT_INV_NDF_1(ID, stem)                                                                                      \
+    static ggx_vec2 inv_##ID(const ggx_shape *s, ggx_vec3 v, ggx_vec3 m)                                               \
+    {                                                                                                                  \
+        (void)v;                                                                                                       \
+        return ggx_##stem##_inv(s, m);                                                                                 \
     }
 #define ADAPT_INV_NDF_0(ID, stem)
 #define ADAPT_INV_VNDF_1(ID, stem)
 #define ADAPT_INV_VNDF_0(ID, stem)
 #define ADAPT_INV_REJECTION_0(ID, stem)
 #define ADAPT_INV_DIRECTION_0(ID, stem)
-#define ADAPT(ID, name, stem, family, domain, inverse, batch, help)                                               \
+#define ADAPT(ID, name, stem, family, domain, inverse, batch, help)                                                    \
     ADAPT_##family(ID, stem) ADAPT_INV_##family##_##inverse(ID, stem)
 GGX_SAMPLER_LIST(ADAPT)
 
@@ -37,17 +37,17 @@ static double pdf_ndf(const ggx_shape *s, ggx_vec3 v, ggx_vec3 m)
 
 /* The direction samplers in the table's signature: reflection (name: ggx_sample_X with pdf ggx_pdf_X) uses f, the
  * dielectric eta, u3 and the mode. */
-#define DIR_REFLECTION(x)                                                                                         \
-    static ggx_sample dir_sample_##x(const ggx_shape *s, const ggx_fresnel *f, double eta, ggx_vec3 v, double u1, \
-                                     double u2, double u3, ggx_transport mode)                                   \
-    {                                                                                                             \
-        (void)eta, (void)u3, (void)mode;                                                                          \
-        return ggx_sample_##x(s, f, v, u1, u2);                                                                   \
-    }                                                                                                             \
-    static double pdf_sample_##x(const ggx_shape *s, double eta, ggx_vec3 v, ggx_vec3 w)                         \
-    {                                                                                                             \
-        (void)eta;                                                                                                \
-        return ggx_pdf_##x(s, v, w);                                                                              \
+#define DIR_REFLECTION(x)                                                                                              \
+    static ggx_sample dir_sample_##x(const ggx_shape *s, const ggx_fresnel *f, double eta, ggx_vec3 v, double u1,      \
+                                     double u2, double u3, ggx_transport mode)                                         \
+    {                                                                                                                  \
+        (void)eta, (void)u3, (void)mode;                                                                               \
+        return ggx_sample_##x(s, f, v, u1, u2);                                                                        \
+    }                                                                                                                  \
+    static double pdf_sample_##x(const ggx_shape *s, double eta, ggx_vec3 v, ggx_vec3 w)                               \
+    {                                                                                                                  \
+        (void)eta;                                                                                                     \
+        return ggx_pdf_##x(s, v, w);                                                                                   \
     }
 DIR_REFLECTION(brdf)
 DIR_REFLECTION(brdf_bounded)
@@ -78,9 +78,17 @@ static double pdf_sample_bsdf(const ggx_shape *s, double eta, ggx_vec3 v, ggx_ve
 #define INV_VNDF_0(ID, stem) NULL
 #define INV_REJECTION_0(ID, stem) NULL
 #define INV_DIRECTION_0(ID, stem) NULL
-#define ENTRY(ID, name, stem, family, domain, inverse, batch, help)                                               \
-    {GGX_SAMPLER_##ID, name, help, GGX_FAMILY_##family, GGX_DOMAIN_##domain, batch, SAMPLE_##family(ID, stem),     \
-     INV_##family##_##inverse(ID, stem), REST_##family(ID, stem), "ggx_" #stem},
+#define ENTRY(ID, name, stem, family, domain, inverse, batch, help)                                                    \
+    {GGX_SAMPLER_##ID,                                                                                                 \
+     name,                                                                                                             \
+     help,                                                                                                             \
+     GGX_FAMILY_##family,                                                                                              \
+     GGX_DOMAIN_##domain,                                                                                              \
+     batch,                                                                                                            \
+     SAMPLE_##family(ID, stem),                                                                                        \
+     INV_##family##_##inverse(ID, stem),                                                                               \
+     REST_##family(ID, stem),                                                                                          \
+     "ggx_" #stem},
 static const ggx_sampler_info table[GGX_SAMPLER_COUNT] = {GGX_SAMPLER_LIST(ENTRY)};
 
 GGX_API const ggx_sampler_info *ggx_sampler_get(ggx_sampler_id id)

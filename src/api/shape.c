@@ -143,8 +143,8 @@ GGX_API ggx_status ggx_shape_aniso(ggx_shape *s, double alpha_x, double alpha_y)
 
 GGX_API ggx_status ggx_shape_iso(ggx_shape *s, double alpha) { return ggx_shape_aniso(s, alpha, alpha); }
 
-GGX_API ggx_status ggx_ellipsoid_matrix(double A[3][3], double alpha_x, double alpha_y, double theta_x,
-                                        double theta_y, double theta_z)
+GGX_API ggx_status ggx_ellipsoid_matrix(double A[3][3], double alpha_x, double alpha_y, double theta_x, double theta_y,
+                                        double theta_z)
 {
     if (!A) return GGX_ERR_NULL;
     if (!isfinite(theta_x) || !isfinite(theta_y) || !isfinite(theta_z)) return GGX_ERR_NONFINITE;
@@ -173,7 +173,7 @@ GGX_API ggx_status ggx_ellipsoid_matrix(double A[3][3], double alpha_x, double a
 }
 
 GGX_API ggx_status ggx_shape_ellipsoid(ggx_shape *s, double alpha_x, double alpha_y, double theta_x, double theta_y,
-                               double theta_z)
+                                       double theta_z)
 {
     if (!s) return GGX_ERR_NULL;
     double A[3][3];

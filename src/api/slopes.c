@@ -20,8 +20,7 @@ GGX_API ggx_status ggx_shape_slopes(const ggx_shape *s, double t[2], double sigm
 GGX_API ggx_status ggx_shape_from_slopes(ggx_shape *s, double tx, double ty, double sxx, double sxy, double syy)
 {
     if (!s) return GGX_ERR_NULL;
-    if (!isfinite(tx) || !isfinite(ty) || !isfinite(sxx) || !isfinite(sxy) || !isfinite(syy))
-        return GGX_ERR_NONFINITE;
+    if (!isfinite(tx) || !isfinite(ty) || !isfinite(sxx) || !isfinite(sxy) || !isfinite(syy)) return GGX_ERR_NONFINITE;
     /* Eigen-decomposition of Sigma: the major axis at phi with tan(2 phi) = 2 sxy / (sxx - syy). */
     double half = 0.5 * (sxx - syy), rad = hypot(half, sxy), mean = 0.5 * (sxx + syy);
     double l1 = mean + rad, l2 = mean - rad;

@@ -103,10 +103,12 @@ static double bsdf_node(int h, int k, int j, int i)
 {
     if (k < 0) return 3.0 * bsdf_node(h, 0, j, i) - 3.0 * bsdf_node(h, 1, j, i) + bsdf_node(h, 2, j, i);
     if (k > BSDF_NE - 1)
-        return 3.0 * bsdf_node(h, BSDF_NE - 1, j, i) - 3.0 * bsdf_node(h, BSDF_NE - 2, j, i) + bsdf_node(h, BSDF_NE - 3, j, i);
+        return 3.0 * bsdf_node(h, BSDF_NE - 1, j, i) - 3.0 * bsdf_node(h, BSDF_NE - 2, j, i) +
+               bsdf_node(h, BSDF_NE - 3, j, i);
     if (j < 0) return 3.0 * bsdf_node(h, k, 0, i) - 3.0 * bsdf_node(h, k, 1, i) + bsdf_node(h, k, 2, i);
     if (j > BSDF_NA - 1)
-        return 3.0 * bsdf_node(h, k, BSDF_NA - 1, i) - 3.0 * bsdf_node(h, k, BSDF_NA - 2, i) + bsdf_node(h, k, BSDF_NA - 3, i);
+        return 3.0 * bsdf_node(h, k, BSDF_NA - 1, i) - 3.0 * bsdf_node(h, k, BSDF_NA - 2, i) +
+               bsdf_node(h, k, BSDF_NA - 3, i);
     if (i > BSDF_NY - 1) i = 2 * (BSDF_NY - 1) - i;
     const float *r = bsdf_iso_tab[h][k][j];
     return i < 0 ? 2.0 * r[0] - r[1] : (double)r[i];
@@ -225,7 +227,8 @@ GGX_API double ggx_albedo_aniso_table(double alpha_x, double alpha_y, ggx_vec3 v
     if (ggx_shape_aniso(&s, alpha_x, alpha_y) != GGX_OK || !ggx_internal_unit_up(v, &u)) return 0.0;
     double st = sqrt(u.x * u.x + u.y * u.y), i_value;
     double y = rows_y_of_theta(atan2(st, u.z)), psi = cols_psi_of_xy(fabs(u.x), fabs(u.y), COLS_WARP_K);
-    if (!ggx_internal_aniso_table_serves(alpha_x, alpha_y) || !ggx_internal_aniso_table_i(alpha_x, alpha_y, y, psi, &i_value))
+    if (!ggx_internal_aniso_table_serves(alpha_x, alpha_y) ||
+        !ggx_internal_aniso_table_i(alpha_x, alpha_y, y, psi, &i_value))
         return ggx_albedo(&s, u);
     double e = ggx_internal_albedo_scale(&s, u) * i_value;
     return e > 0 ? (e < 1 ? e : 1) : 0;

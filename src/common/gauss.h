@@ -63,8 +63,8 @@ static inline gq_panel gq_make_panel(const gq_rule *r, gq_fn f, void *ctx, doubl
  * error estimate until the estimates sum to abs_tol or max_panels (the size of ps) are in use. Unlike a recursion
  * with a per-panel tolerance, this converges at jumps and kinks (each bisection halves the error of the panel that
  * holds one). Reentrant: ps is the caller's (nested integrals keep theirs on the stack). */
-static inline double gq_adapt(const gq_rule *r, gq_fn f, void *ctx, const double *br, int nb, double abs_tol, gq_panel *ps,
-                       int max_panels)
+static inline double gq_adapt(const gq_rule *r, gq_fn f, void *ctx, const double *br, int nb, double abs_tol,
+                              gq_panel *ps, int max_panels)
 {
     int n = 0;
     for (int i = 0; i + 1 < nb && n < max_panels; i++)

@@ -7,7 +7,9 @@
  * quadratics, C1 across cells. */
 static inline double catmull_rom(const double p[4], double f)
 {
-    return p[1] + 0.5 * f * (p[2] - p[0] + f * (2 * p[0] - 5 * p[1] + 4 * p[2] - p[3] + f * (3 * (p[1] - p[2]) + p[3] - p[0])));
+    return p[1] +
+           0.5 * f *
+               (p[2] - p[0] + f * (2 * p[0] - 5 * p[1] + 4 * p[2] - p[3] + f * (3 * (p[1] - p[2]) + p[3] - p[0])));
 }
 
 #endif

@@ -35,16 +35,16 @@ typedef struct ggx_cuda_args {
 
 /* What a kernel reads, in input columns. */
 typedef enum ggx_cuda_in {
-    GGX_CUDA_IN_DIR,      /* a direction (3) */
-    GGX_CUDA_IN_DIR2,     /* two directions (6): (u, m), (v, m), (wi, wo), (w, m) */
-    GGX_CUDA_IN_DIR3,     /* three directions (9): (wi, wo, m), (wi, wo, h) */
-    GGX_CUDA_IN_SCALAR,   /* one number (1): a cosine */
-    GGX_CUDA_IN_PAIR,     /* two numbers (2): (u1, u2), (theta, phi), slopes */
-    GGX_CUDA_IN_POINT,    /* a point of the unit disk (2) from the forward map */
-    GGX_CUDA_IN_VIEW_U2,  /* a view and (u1, u2) (5) */
-    GGX_CUDA_IN_VIEW_U3,  /* a view and (u1, u2, u3) (6) */
-    GGX_CUDA_IN_VIEW,     /* a view (3), the random numbers from the per-element generator */
-    GGX_CUDA_IN_NORMAL,   /* a normal from the forward sampler (3) */
+    GGX_CUDA_IN_DIR,        /* a direction (3) */
+    GGX_CUDA_IN_DIR2,       /* two directions (6): (u, m), (v, m), (wi, wo), (w, m) */
+    GGX_CUDA_IN_DIR3,       /* three directions (9): (wi, wo, m), (wi, wo, h) */
+    GGX_CUDA_IN_SCALAR,     /* one number (1): a cosine */
+    GGX_CUDA_IN_PAIR,       /* two numbers (2): (u1, u2), (theta, phi), slopes */
+    GGX_CUDA_IN_POINT,      /* a point of the unit disk (2) from the forward map */
+    GGX_CUDA_IN_VIEW_U2,    /* a view and (u1, u2) (5) */
+    GGX_CUDA_IN_VIEW_U3,    /* a view and (u1, u2, u3) (6) */
+    GGX_CUDA_IN_VIEW,       /* a view (3), the random numbers from the per-element generator */
+    GGX_CUDA_IN_NORMAL,     /* a normal from the forward sampler (3) */
     GGX_CUDA_IN_VIEW_NORMAL /* a view and a normal from the forward sampler for that view (6) */
 } ggx_cuda_in;
 
@@ -66,7 +66,7 @@ typedef enum ggx_cuda_out {
 enum { GGX_CUDA_USES_FRESNEL = 1, GGX_CUDA_USES_ETA = 2, GGX_CUDA_USES_MODE = 4, GGX_CUDA_SIGNED = 8 };
 
 typedef struct ggx_cuda_kernel {
-    const char *name;    /* the stem: ggx_<name>_f */
+    const char *name; /* the stem: ggx_<name>_f */
     ggx_cuda_in in;
     ggx_cuda_out out;
     int uses;            /* GGX_CUDA_USES_*, GGX_CUDA_SIGNED */

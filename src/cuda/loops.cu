@@ -77,49 +77,49 @@ static __host__ __device__ double counter_uniform(void *state)
 
 /* Evaluations: name, input layout, what they use beyond the shape, the expression for element i (FN(x) names the
  * kernel ggx_x_f or ggx_x_d). */
-#define GGX_CUDA_EVALS(X)                                                                                         \
-    X(ndf, DIR, 0, FN(ndf)(&a.s, DIR(0)))                                                                         \
-    X(ndf_spherical, PAIR, 0, FN(ndf_spherical)(&a.s, IN(0), IN(1)))                                              \
-    X(p22, PAIR, 0, FN(p22)(&a.s, IN(0), IN(1)))                                                                  \
-    X(gaussian_curvature, DIR, 0, FN(gaussian_curvature)(&a.s, DIR(0)))                                           \
-    X(projected_area, DIR, 0, FN(projected_area)(&a.s, DIR(0)))                                                   \
-    X(lune_area, DIR2, 0, FN(lune_area)(&a.s, DIR(0), DIR(3)))                                                    \
-    X(lambda, DIR, GGX_CUDA_SIGNED, FN(lambda)(&a.s, DIR(0)))                                                     \
-    X(g1_smith, DIR, 0, FN(g1_smith)(&a.s, DIR(0)))                                                               \
-    X(g1, DIR2, 0, FN(g1)(&a.s, DIR(0), DIR(3)))                                                                  \
-    X(g2, DIR3, 0, FN(g2)(&a.s, DIR(0), DIR(3), DIR(6)))                                                          \
-    X(g2_height_correlated, DIR3, 0, FN(g2_height_correlated)(&a.s, DIR(0), DIR(3), DIR(6)))                      \
-    X(pdf_vndf, DIR2, 0, FN(pdf_vndf)(&a.s, DIR(0), DIR(3)))                                                      \
-    X(pdf_ndf, DIR, 0, FN(pdf_ndf)(&a.s, DIR(0)))                                                                 \
-    X(fresnel_eval, SCALAR, GGX_CUDA_USES_FRESNEL, FN(fresnel_eval)(&a.f, IN(0)))                                 \
-    X(fresnel_dielectric_eval, SCALAR, GGX_CUDA_USES_ETA, FN(fresnel_dielectric_eval)(IN(0), a.eta))              \
-    X(fresnel_conductor_eval, SCALAR, GGX_CUDA_USES_FRESNEL, FN(fresnel_conductor_eval)(IN(0), a.f.eta, a.f.k))   \
-    X(fresnel_schlick_eval, SCALAR, GGX_CUDA_USES_FRESNEL, FN(fresnel_schlick_eval)(IN(0), a.f.f0))               \
-    X(jacobian_reflect, DIR2, 0, FN(jacobian_reflect)(DIR(0), DIR(3)))                                            \
-    X(jacobian_refract, DIR3, GGX_CUDA_USES_ETA, FN(jacobian_refract)(DIR(0), DIR(3), DIR(6), 1, a.eta))          \
-    X(brdf_eval, DIR2, GGX_CUDA_USES_FRESNEL, FN(brdf_eval)(&a.s, &a.f, DIR(0), DIR(3)))                          \
-    X(bsdf_eval, DIR2, GGX_CUDA_USES_ETA | GGX_CUDA_USES_MODE,                                                    \
-      FN(bsdf_eval)(&a.s, a.eta, DIR(0), DIR(3), (ggx_transport)a.mode))                                          \
-    X(pdf_brdf, DIR2, 0, FN(pdf_brdf)(&a.s, DIR(0), DIR(3)))                                                      \
+#define GGX_CUDA_EVALS(X)                                                                                              \
+    X(ndf, DIR, 0, FN(ndf)(&a.s, DIR(0)))                                                                              \
+    X(ndf_spherical, PAIR, 0, FN(ndf_spherical)(&a.s, IN(0), IN(1)))                                                   \
+    X(p22, PAIR, 0, FN(p22)(&a.s, IN(0), IN(1)))                                                                       \
+    X(gaussian_curvature, DIR, 0, FN(gaussian_curvature)(&a.s, DIR(0)))                                                \
+    X(projected_area, DIR, 0, FN(projected_area)(&a.s, DIR(0)))                                                        \
+    X(lune_area, DIR2, 0, FN(lune_area)(&a.s, DIR(0), DIR(3)))                                                         \
+    X(lambda, DIR, GGX_CUDA_SIGNED, FN(lambda)(&a.s, DIR(0)))                                                          \
+    X(g1_smith, DIR, 0, FN(g1_smith)(&a.s, DIR(0)))                                                                    \
+    X(g1, DIR2, 0, FN(g1)(&a.s, DIR(0), DIR(3)))                                                                       \
+    X(g2, DIR3, 0, FN(g2)(&a.s, DIR(0), DIR(3), DIR(6)))                                                               \
+    X(g2_height_correlated, DIR3, 0, FN(g2_height_correlated)(&a.s, DIR(0), DIR(3), DIR(6)))                           \
+    X(pdf_vndf, DIR2, 0, FN(pdf_vndf)(&a.s, DIR(0), DIR(3)))                                                           \
+    X(pdf_ndf, DIR, 0, FN(pdf_ndf)(&a.s, DIR(0)))                                                                      \
+    X(fresnel_eval, SCALAR, GGX_CUDA_USES_FRESNEL, FN(fresnel_eval)(&a.f, IN(0)))                                      \
+    X(fresnel_dielectric_eval, SCALAR, GGX_CUDA_USES_ETA, FN(fresnel_dielectric_eval)(IN(0), a.eta))                   \
+    X(fresnel_conductor_eval, SCALAR, GGX_CUDA_USES_FRESNEL, FN(fresnel_conductor_eval)(IN(0), a.f.eta, a.f.k))        \
+    X(fresnel_schlick_eval, SCALAR, GGX_CUDA_USES_FRESNEL, FN(fresnel_schlick_eval)(IN(0), a.f.f0))                    \
+    X(jacobian_reflect, DIR2, 0, FN(jacobian_reflect)(DIR(0), DIR(3)))                                                 \
+    X(jacobian_refract, DIR3, GGX_CUDA_USES_ETA, FN(jacobian_refract)(DIR(0), DIR(3), DIR(6), 1, a.eta))               \
+    X(brdf_eval, DIR2, GGX_CUDA_USES_FRESNEL, FN(brdf_eval)(&a.s, &a.f, DIR(0), DIR(3)))                               \
+    X(bsdf_eval, DIR2, GGX_CUDA_USES_ETA | GGX_CUDA_USES_MODE,                                                         \
+      FN(bsdf_eval)(&a.s, a.eta, DIR(0), DIR(3), (ggx_transport)a.mode))                                               \
+    X(pdf_brdf, DIR2, 0, FN(pdf_brdf)(&a.s, DIR(0), DIR(3)))                                                           \
     X(pdf_bsdf, DIR2, GGX_CUDA_USES_ETA, FN(pdf_bsdf)(&a.s, a.eta, DIR(0), DIR(3)))
 
 /* Kernels with other outputs: name, input layout, output layout, uses, forward map, the statement for element i. */
-#define GGX_CUDA_VECTORS(X)                                                                                       \
-    X(half_reflect, DIR2, VEC, 0, NULL, put3(a, i, FN(half_reflect)(DIR(0), DIR(3))))                             \
-    X(half_refract, DIR2, VEC, GGX_CUDA_USES_ETA, NULL, put3(a, i, FN(half_refract)(DIR(0), DIR(3), 1, a.eta)))   \
-    X(reflect, DIR2, VEC, 0, NULL, put3(a, i, FN(reflect)(DIR(0), DIR(3))))                                       \
-    X(refract, DIR2, REFRACT, GGX_CUDA_USES_ETA, NULL, refract_at(a, i, FN(refract)))                             \
-    X(disk_polar, PAIR, POINT, 0, NULL, put2(a, i, FN(disk_polar)(IN(0), IN(1))))                                 \
-    X(disk_concentric, PAIR, POINT, 0, NULL, put2(a, i, FN(disk_concentric)(IN(0), IN(1))))                       \
-    X(disk_polar_inv, POINT, UV, 0, "disk_polar", put2(a, i, FN(disk_polar_inv)(FN(k_v2)(IN(0), IN(1)))))         \
-    X(disk_concentric_inv, POINT, UV, 0, "disk_concentric",                                                       \
-      put2(a, i, FN(disk_concentric_inv)(FN(k_v2)(IN(0), IN(1)))))                                                \
-    X(sample_ndf, PAIR, NORMAL, 0, NULL, put3(a, i, FN(sample_ndf)(&a.s, IN(0), IN(1))))                          \
+#define GGX_CUDA_VECTORS(X)                                                                                            \
+    X(half_reflect, DIR2, VEC, 0, NULL, put3(a, i, FN(half_reflect)(DIR(0), DIR(3))))                                  \
+    X(half_refract, DIR2, VEC, GGX_CUDA_USES_ETA, NULL, put3(a, i, FN(half_refract)(DIR(0), DIR(3), 1, a.eta)))        \
+    X(reflect, DIR2, VEC, 0, NULL, put3(a, i, FN(reflect)(DIR(0), DIR(3))))                                            \
+    X(refract, DIR2, REFRACT, GGX_CUDA_USES_ETA, NULL, refract_at(a, i, FN(refract)))                                  \
+    X(disk_polar, PAIR, POINT, 0, NULL, put2(a, i, FN(disk_polar)(IN(0), IN(1))))                                      \
+    X(disk_concentric, PAIR, POINT, 0, NULL, put2(a, i, FN(disk_concentric)(IN(0), IN(1))))                            \
+    X(disk_polar_inv, POINT, UV, 0, "disk_polar", put2(a, i, FN(disk_polar_inv)(FN(k_v2)(IN(0), IN(1)))))              \
+    X(disk_concentric_inv, POINT, UV, 0, "disk_concentric",                                                            \
+      put2(a, i, FN(disk_concentric_inv)(FN(k_v2)(IN(0), IN(1)))))                                                     \
+    X(sample_ndf, PAIR, NORMAL, 0, NULL, put3(a, i, FN(sample_ndf)(&a.s, IN(0), IN(1))))                               \
     X(sample_vndf, VIEW_U2, VNORMAL, 0, NULL, put3(a, i, FN(sample_vndf)(&a.s, DIR(0), IN(3), IN(4))))
 
 /* ggx_refract_*: the direction and the success flag. */
-template <class A, class V, class R> static __host__ __device__ inline void refract_at(const A &a, size_t i,
-                                                                                        int (*fn)(V, V, R, V *))
+template <class A, class V, class R>
+static __host__ __device__ inline void refract_at(const A &a, size_t i, int (*fn)(V, V, R, V *))
 {
     V t;
     int ok = fn(dir_at<V>(a, i, 0), dir_at<V>(a, i, 3), a.eta, &t);
@@ -161,12 +161,12 @@ static constexpr int draw_uses(Smp (*)(const S *, R, V, R, R, R, ggx_transport))
 }
 
 /* The samplers of the registry: one op per sampler, and one per inverse map where the registry lists one. */
-#define GGX_CUDA_SAMPLER_OPS(ID, name, stem, family, domain, inverse, batch, help)                                \
+#define GGX_CUDA_SAMPLER_OPS(ID, name, stem, family, domain, inverse, batch, help)                                     \
     GGX_CUDA_SAMPLE_OP_##family(stem) GGX_CUDA_INVERSE_OP_##family##_##inverse(stem)
 #define GGX_CUDA_SAMPLE_OP_NDF(stem) GGX_CUDA_OP(stem, put3(a, i, FN(stem)(&a.s, IN(0), IN(1))))
 #define GGX_CUDA_SAMPLE_OP_VNDF(stem) GGX_CUDA_OP(stem, put3(a, i, FN(stem)(&a.s, DIR(0), IN(3), IN(4))))
-#define GGX_CUDA_SAMPLE_OP_REJECTION(stem)                                                                        \
-    GGX_CUDA_OP(stem, counter_rng r = {((unsigned long long)a.seed << 32) ^ i, 0}; unsigned trials = 0;           \
+#define GGX_CUDA_SAMPLE_OP_REJECTION(stem)                                                                             \
+    GGX_CUDA_OP(stem, counter_rng r = {((unsigned long long)a.seed << 32) ^ i, 0}; unsigned trials = 0;                \
                 put3(a, i, FN(stem)(&a.s, DIR(0), counter_uniform, &r, &trials)); a.out[3][i] = (float)trials)
 #define GGX_CUDA_SAMPLE_OP_DIRECTION(stem) GGX_CUDA_OP(stem, put_sample(a, i, draw(FN(stem), a, i)))
 #define GGX_CUDA_INVERSE_OP_NDF_1(stem) GGX_CUDA_OP(stem##_inv, put2(a, i, FN(stem##_inv)(&a.s, DIR(0))))
@@ -177,9 +177,9 @@ static constexpr int draw_uses(Smp (*)(const S *, R, V, R, R, R, ggx_transport))
 #define GGX_CUDA_INVERSE_OP_DIRECTION_0(stem)
 
 /* Each op is a class template over the precision, declared once and defined for 32 and 64 below. */
-#define GGX_CUDA_OP(name, ...)                                                                                    \
-    template <> struct op_##name<PREC> {                                                                          \
-        static __host__ __device__ void run(const ARGS &a, size_t i) { __VA_ARGS__; }                            \
+#define GGX_CUDA_OP(name, ...)                                                                                         \
+    template <> struct op_##name<PREC> {                                                                               \
+        static __host__ __device__ void run(const ARGS &a, size_t i) { __VA_ARGS__; }                                  \
     };
 #define GGX_CUDA_EVAL_OP(name, in, uses, expr) GGX_CUDA_OP(name, a.out[0][i] = (expr))
 #define GGX_CUDA_VECTOR_OP(name, in, out, uses, forward, stmt) GGX_CUDA_OP(name, stmt)
@@ -187,7 +187,7 @@ static constexpr int draw_uses(Smp (*)(const S *, R, V, R, R, R, ggx_transport))
 #define GGX_CUDA_DECL(name) template <int P> struct op_##name;
 #define GGX_CUDA_EVAL_DECL(name, in, uses, expr) GGX_CUDA_DECL(name)
 #define GGX_CUDA_VECTOR_DECL(name, in, out, uses, forward, stmt) GGX_CUDA_DECL(name)
-#define GGX_CUDA_SAMPLER_DECL(ID, name, stem, family, domain, inverse, batch, help)                               \
+#define GGX_CUDA_SAMPLER_DECL(ID, name, stem, family, domain, inverse, batch, help)                                    \
     GGX_CUDA_DECL(stem) GGX_CUDA_INVERSE_DECL_##inverse(stem)
 #define GGX_CUDA_INVERSE_DECL_1(stem) GGX_CUDA_DECL(stem##_inv)
 #define GGX_CUDA_INVERSE_DECL_0(stem)
@@ -259,18 +259,23 @@ template <class Op> static void reference_loop(const ggx_cuda_args *a, double *c
 
 /* ---- the table ---- */
 
-#define GGX_CUDA_ROW(name, in, out, uses, forward)                                                                \
-    {#name, in, GGX_CUDA_OUT_##out, uses, forward, host_loop<op_##name<32> >, launch<op_##name<32> >,              \
-     reference_loop<op_##name<64> >},
+#define GGX_CUDA_ROW(name, in, out, uses, forward)                                                                     \
+    {#name,                                                                                                            \
+     in,                                                                                                               \
+     GGX_CUDA_OUT_##out,                                                                                               \
+     uses,                                                                                                             \
+     forward,                                                                                                          \
+     host_loop<op_##name<32>>,                                                                                         \
+     launch<op_##name<32>>,                                                                                            \
+     reference_loop<op_##name<64>>},
 #define GGX_CUDA_EVAL_ROW(name, in, uses, expr) GGX_CUDA_ROW(name, GGX_CUDA_IN_##in, EVAL, uses, NULL)
-#define GGX_CUDA_VECTOR_ROW(name, in, out, uses, forward, stmt)                                                  \
-    GGX_CUDA_ROW(name, GGX_CUDA_IN_##in, out, uses, forward)
-#define GGX_CUDA_SAMPLER_ROWS(ID, name, stem, family, domain, inverse, batch, help)                               \
+#define GGX_CUDA_VECTOR_ROW(name, in, out, uses, forward, stmt) GGX_CUDA_ROW(name, GGX_CUDA_IN_##in, out, uses, forward)
+#define GGX_CUDA_SAMPLER_ROWS(ID, name, stem, family, domain, inverse, batch, help)                                    \
     GGX_CUDA_SAMPLE_ROW_##family(stem) GGX_CUDA_INVERSE_ROW_##family##_##inverse(stem)
 #define GGX_CUDA_SAMPLE_ROW_NDF(stem) GGX_CUDA_ROW(stem, GGX_CUDA_IN_PAIR, NORMAL, 0, NULL)
 #define GGX_CUDA_SAMPLE_ROW_VNDF(stem) GGX_CUDA_ROW(stem, GGX_CUDA_IN_VIEW_U2, VNORMAL, 0, NULL)
 #define GGX_CUDA_SAMPLE_ROW_REJECTION(stem) GGX_CUDA_ROW(stem, GGX_CUDA_IN_VIEW, REJECT, 0, NULL)
-#define GGX_CUDA_SAMPLE_ROW_DIRECTION(stem)                                                                       \
+#define GGX_CUDA_SAMPLE_ROW_DIRECTION(stem)                                                                            \
     GGX_CUDA_ROW(stem, draw_in(ggx_##stem##_f), SAMPLE, draw_uses(ggx_##stem##_f), NULL)
 #define GGX_CUDA_INVERSE_ROW_NDF_1(stem) GGX_CUDA_ROW(stem##_inv, GGX_CUDA_IN_NORMAL, UV, 0, #stem)
 #define GGX_CUDA_INVERSE_ROW_VNDF_1(stem) GGX_CUDA_ROW(stem##_inv, GGX_CUDA_IN_VIEW_NORMAL, UV, 0, #stem)
@@ -345,7 +350,7 @@ extern "C" int ggx_cuda_device_check(char *why, size_t why_len)
     }
     /* The build's code (CMAKE_CUDA_ARCHITECTURES) must run on this device: ask the runtime for one loop's image. */
     cudaFuncAttributes fa;
-    e = cudaFuncGetAttributes(&fa, ggx_cuda_loop<op_ndf<32> >);
+    e = cudaFuncGetAttributes(&fa, ggx_cuda_loop<op_ndf<32>>);
     if (e != cudaSuccess) {
         char what[400];
         snprintf(what, sizeof what, "device 0 (%s, sm_%d%d) has no code of this build (CMAKE_CUDA_ARCHITECTURES)",
@@ -353,8 +358,8 @@ extern "C" int ggx_cuda_device_check(char *why, size_t why_len)
         say(why, why_len, what, e);
         return -1;
     }
-    if (why && why_len) snprintf(why, why_len, "device 0: %s, sm_%d%d, code sm_%d", p.name, p.major, p.minor,
-                                 fa.binaryVersion);
+    if (why && why_len)
+        snprintf(why, why_len, "device 0: %s, sm_%d%d, code sm_%d", p.name, p.major, p.minor, fa.binaryVersion);
     return 1;
 }
 

@@ -42,7 +42,7 @@ void filter_lobe_set(filter_lobe *b, const double t[2], const double sigma[3], d
 
 /* EM over the n lobes (ggx_filter_lobes' start and stopping rule) into (t, s); returns the iterations, sets
  * *converged, and the log-likelihood into *ll when ll is not NULL. */
-int filter_em(const filter_lobe *L, size_t n, const filter_rule *r, const filter_settings *f, double t[2],
-              double s[3], int *converged, double *ll);
+int filter_em(const filter_lobe *L, size_t n, const filter_rule *r, const filter_settings *f, double t[2], double s[3],
+              int *converged, double *ll);
 
 #endif

@@ -14,9 +14,8 @@ ggx_status filter_settings_of(const ggx_filter_options *opt, filter_settings *f)
     if (opt) o = *opt;
     else memset(&o, 0, sizeof o);
     if (o.max_iterations < 0 || o.radial_nodes < 0 || o.angular_nodes < 0 || !(o.tolerance >= 0.0) || o.threads < 0 ||
-        o.threads > FILTER_MAX_THREADS ||
-        o.radial_nodes > FILTER_MAX_RADIAL || o.angular_nodes > FILTER_MAX_ANGULAR || o.angular_nodes % 2 != 0 ||
-        o.radial_nodes == 1 || o.angular_nodes == 2)
+        o.threads > FILTER_MAX_THREADS || o.radial_nodes > FILTER_MAX_RADIAL || o.angular_nodes > FILTER_MAX_ANGULAR ||
+        o.angular_nodes % 2 != 0 || o.radial_nodes == 1 || o.angular_nodes == 2)
         return GGX_ERR_RANGE;
     f->max_iterations = o.max_iterations ? o.max_iterations : 500;
     f->tolerance = o.tolerance > 0.0 ? o.tolerance : 1e-10;
@@ -155,8 +154,8 @@ static double log_likelihood(const double sigma[3], const double a[FIT_ESTEP_SUM
     return -log(GGX_PI) - 0.5 * fit_log_det(sigma) - 2.0 * a[7] / a[0];
 }
 
-int filter_em(const filter_lobe *L, size_t n, const filter_rule *r, const filter_settings *f, double t[2],
-              double s[3], int *converged, double *ll)
+int filter_em(const filter_lobe *L, size_t n, const filter_rule *r, const filter_settings *f, double t[2], double s[3],
+              int *converged, double *ll)
 {
     /* the start: the lobes' mean location and their mean scale plus the locations' spread */
     t[0] = t[1] = 0.0, s[0] = s[1] = s[2] = 0.0;
@@ -197,7 +196,7 @@ int filter_em(const filter_lobe *L, size_t n, const filter_rule *r, const filter
 }
 
 GGX_API ggx_status ggx_filter_lobes(ggx_shape *out, const ggx_shape *lobes, const double *weight, size_t n,
-                            const ggx_filter_options *opt, ggx_filter_info *info)
+                                    const ggx_filter_options *opt, ggx_filter_info *info)
 {
     if (!out || !lobes) return GGX_ERR_NULL;
     filter_settings f;
@@ -218,7 +217,7 @@ GGX_API ggx_status ggx_filter_lobes(ggx_shape *out, const ggx_shape *lobes, cons
 }
 
 GGX_API ggx_status ggx_filter_kl(const ggx_shape *sh, const ggx_shape *lobes, const double *weight, size_t n,
-                         const ggx_filter_options *opt, double *kl)
+                                 const ggx_filter_options *opt, double *kl)
 {
     if (!sh || !lobes || !kl) return GGX_ERR_NULL;
     filter_settings f;

@@ -46,7 +46,7 @@ typedef enum fit_pass_kind {
     FIT_PASS_ESTEP,   /* at (t, P = Sigma^-1), with c_i = 1 / (1 + delta_i): W, sum w c, sum w c r (2), sum w c r r^T
                        * (3), sum w log(1 + delta) */
     FIT_PASS_HESSIAN, /* at (t, P): the sums of fit_information.c (FIT_HESSIAN_SUMS) */
-    FIT_PASS_CELLS    /* at (t, L^-1): the weighted counts of the cells x cells grid of ggx_fit_info's goodness of fit */
+    FIT_PASS_CELLS /* at (t, L^-1): the weighted counts of the cells x cells grid of ggx_fit_info's goodness of fit */
 } fit_pass_kind;
 
 enum { FIT_MOMENT_SUMS = 8, FIT_ESTEP_SUMS = 8, FIT_HESSIAN_SUMS = 23 };
@@ -56,7 +56,7 @@ struct fit_point {
     double p[3];    /* Sigma^-1 (xx, xy, yy) for ESTEP and HESSIAN */
     double linv[3]; /* L^-1 (lower triangular: 00, 10, 11) with Sigma = L L^T, for CELLS */
     int cells;
-    int gaussian;   /* censored sources: the density of the cells' shares is the Gaussian of mean t and inverse
+    int gaussian; /* censored sources: the density of the cells' shares is the Gaussian of mean t and inverse
                      * covariance p (MOMENTS); else the Student t */
 };
 
@@ -67,15 +67,15 @@ ggx_status fit_pass(const fit_source *src, int threads, fit_pass_kind kind, cons
 typedef struct fit_data {
     const fit_source *src;
     int threads;
-    double w_sum;   /* W */
-    double n_eff;   /* W^2 / sum w^2 */
-    double mean_lc; /* sum w log cos theta / W */
+    double w_sum;    /* W */
+    double n_eff;    /* W^2 / sum w^2 */
+    double mean_lc;  /* sum w log cos theta / W */
     double mean0[2]; /* the mean slope, from the same pass (about 0) */
     int max_iterations;
     double tolerance;
     ggx_fit_progress_fn progress;
     void *progress_ctx;
-    int full_em; /* ggx_fit_options.full_em */
+    int full_em;  /* ggx_fit_options.full_em */
     double floor; /* the least eigenvalue of Sigma: the source's floor, at least GGX_ALPHA_MIN^2 */
 } fit_data;
 

@@ -9,7 +9,7 @@
 #include "fit.h"
 
 enum { CELL_Q = 8 }; /* CELL_Q x CELL_Q Gauss-Legendre points per cell */
-_Static_assert(CELL_Q * CELL_Q == FIT_CELL_POINTS && FIT_PIECE % FIT_CELL_POINTS == 0 &&
+_Static_assert(CELL_Q *CELL_Q == FIT_CELL_POINTS && FIT_PIECE % FIT_CELL_POINTS == 0 &&
                    FIT_CHUNK % FIT_CELL_POINTS == 0,
                "a cell's points fill whole pieces and chunks");
 
@@ -97,7 +97,7 @@ static ggx_status cells_build(cell_set *cs, const double *uv, const double *weig
     }
     double wscale = wmax > 0.0 ? 1.0 / wmax : 1.0;
     if (!(wscale < HUGE_VAL)) wscale = 0x1p1000; /* a subnormal largest weight */
-    size_t cap = 1024, *slot = NULL; /* slot: cell index + 1, 0 empty */
+    size_t cap = 1024, *slot = NULL;             /* slot: cell index + 1, 0 empty */
     size_t have = 0;
     *w2_sum = 0.0;
     ggx_status st = GGX_OK;

@@ -101,8 +101,7 @@ typedef struct subsample {
     size_t pieces; /* the parent's whole pieces */
 } subsample;
 
-static double fill_subsample(const void *ctx, const fit_point *at, size_t i0, size_t k, double *x, double *y,
-                             double *w)
+static double fill_subsample(const void *ctx, const fit_point *at, size_t i0, size_t k, double *x, double *y, double *w)
 {
     const subsample *c = ctx;
     const size_t np = FIT_SUBSAMPLE_N / FIT_PIECE;
@@ -143,8 +142,9 @@ ggx_status fit_run(const fit_source *src, const ggx_fit_options *opt, ggx_shape 
     /* Large inputs: EM on a subsample, Newton on all samples (ggx_fit_options.full_em). The subsample's moments come
      * first: its mean is the centre of the full moments pass, which then gives the Gaussian fit too. */
     subsample sc = {src, src->n / FIT_PIECE};
-    fit_source sub_src = {fill_subsample, &sc, FIT_SUBSAMPLE_N, 0, src->censored,
-                          src->n_eff * (double)FIT_SUBSAMPLE_N / (double)src->n, src->floor};
+    fit_source sub_src = {
+        fill_subsample, &sc, FIT_SUBSAMPLE_N, 0, src->censored, src->n_eff * (double)FIT_SUBSAMPLE_N / (double)src->n,
+        src->floor};
     fit_data ds = d;
     ds.src = &sub_src;
     ds.tolerance = fmax(d.tolerance, 1e-2); /* the steps on all samples finish the fit */
@@ -205,7 +205,8 @@ ggx_status fit_run(const fit_source *src, const ggx_fit_options *opt, ggx_shape 
                 return st;
             memset(fr[k].cov, 0, sizeof fr[k].cov);
         }
-        mr[k] = (ggx_fit_model_result){fr[k].log_likelihood, 0.0, fit_model_parameters(mk), fr[k].iterations,
+        mr[k] = (ggx_fit_model_result){fr[k].log_likelihood,     0.0,
+                                       fit_model_parameters(mk), fr[k].iterations,
                                        {fr[k].t[0], fr[k].t[1]}, {fr[k].sigma[0], fr[k].sigma[1], fr[k].sigma[2]}};
     }
     info->best = GGX_FIT_ELLIPSOID;

@@ -69,7 +69,7 @@ static double weighted_log_sum(const double *q, const double *d, const double *w
  * w = 0 and finite slopes, so it adds zeros) and vectorises; the x86-64-v3 and x86-64-v4 clones run them 4 and 8
  * wide. */
 GGX_HOT_WIDE static void unit_sums(const fit_source *src, fit_pass_kind kind, const fit_point *at, size_t i0, size_t i1,
-                              double *s)
+                                   double *s)
 {
     double x[FIT_CHUNK], y[FIT_CHUNK], w[FIT_CHUNK], q[FIT_CHUNK], dl[FIT_CHUNK], cb[FIT_CHUNK];
     const double t0 = at->t[0], t1 = at->t[1], p0 = at->p[0], p1 = at->p[1], p2 = at->p[2];
@@ -100,7 +100,7 @@ GGX_HOT_WIDE static void unit_sums(const fit_source *src, fit_pass_kind kind, co
                 a0 += wi, a1 += wc, a2 += wc * rx, a3 += wc * ry;
                 a4 += wc * rx * rx, a5 += wc * rx * ry, a6 += wc * ry * ry;
                 dl[i] = delta;
-                q[i] = 1.0 + wi * delta; /* (1 + delta)^w for w in {0, 1} */
+                q[i] = 1.0 + wi * delta;        /* (1 + delta)^w for w in {0, 1} */
                 unit += wi != 0.0 && wi != 1.0; /* a weight other than 0 and 1 */
             }
             double lsum = src->censored ? -0.5 * own : weighted_log_sum(q, dl, w, k, unit != 0.0);

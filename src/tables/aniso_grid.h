@@ -36,7 +36,8 @@ static inline double ani_index_of_alpha(double alpha)
  * ANI_C alpha = u from below, to rounding (the generator's nodes; the lookup needs only ani_index_of_alpha). */
 static inline double ani_alpha_of(double a)
 {
-    double u = ani_u(ANI_AMIN) + (ani_u(ANI_AMAX) - ani_u(ANI_AMIN)) * a / (ANI_NA - 1), x = exp(u) / (1.0 + ANI_C * exp(u));
+    double u = ani_u(ANI_AMIN) + (ani_u(ANI_AMAX) - ani_u(ANI_AMIN)) * a / (ANI_NA - 1),
+           x = exp(u) / (1.0 + ANI_C * exp(u));
     for (int k = 0; k < 60; k++) x -= (log(x) + ANI_C * x - u) / (1.0 / x + ANI_C);
     return x;
 }

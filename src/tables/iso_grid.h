@@ -28,9 +28,6 @@ static inline ggx_vec3 iso_view_of_y(double y)
     return v;
 }
 /* The row coordinate of cos theta = mu in [0, 1]. */
-static inline double iso_y_of_mu(double mu)
-{
-    return rows_y_of_theta(acos(mu < 1 ? (mu > 0 ? mu : 0) : 1));
-}
+static inline double iso_y_of_mu(double mu) { return rows_y_of_theta(acos(mu < 1 ? (mu > 0 ? mu : 0) : 1)); }
 
 #endif

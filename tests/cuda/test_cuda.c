@@ -208,8 +208,8 @@ static void make_inputs(const ggx_cuda_kernel *k, const ggx_cuda_args *base, col
             }
         break;
     case GGX_CUDA_IN_SCALAR: { /* cosines: both signs, grazing, the dielectric's critical cosine for 1.5, NaN */
-        static const float cs[] = {-1, -0.7f, -0.2f, 0, 1e-4f, 0.01f, 0.1f, 0.3f, 0.5f, 0.7453560f, 0.9f, 0.999f,
-                                   1, 1.25f, NAN};
+        static const float cs[] = {-1,   -0.7f,      -0.2f, 0,      1e-4f, 0.01f, 0.1f, 0.3f,
+                                   0.5f, 0.7453560f, 0.9f,  0.999f, 1,     1.25f, NAN};
         for (size_t i = 0; i < sizeof cs / sizeof cs[0]; i++) row[0] = cs[i], push(t, row);
         for (int i = 0; i < 64; i++) row[0] = (float)rng_range(&r, -1, 1), push(t, row);
         break;
@@ -355,7 +355,7 @@ static const char *contract(const ggx_cuda_kernel *k, const double *in, const do
 
 typedef struct stats {
     size_t n, bad, ill;
-    diff worst;     /* device against host, over the well-conditioned elements */
+    diff worst;      /* device against host, over the well-conditioned elements */
     double ill_over; /* the largest device-against-host difference of the ill-conditioned ones, in tolerances */
     int reports, notes;
 } stats;
@@ -433,8 +433,8 @@ static double distance(const ggx_cuda_kernel *k, const ggx_cuda_kernel *fwd, con
 }
 
 /* The host's result for one row of inputs, as compared (through the forward map for an inverse map). */
-static void host_row(const ggx_cuda_kernel *k, const ggx_cuda_kernel *fwd, const ggx_cuda_args *base,
-                     const float *row, double *out)
+static void host_row(const ggx_cuda_kernel *k, const ggx_cuda_kernel *fwd, const ggx_cuda_args *base, const float *row,
+                     double *out)
 {
     float o[GGX_CUDA_MAX_OUT];
     double u[GGX_CUDA_MAX_OUT], in[GGX_CUDA_MAX_IN];
@@ -471,8 +471,8 @@ static int u_at_one(const ggx_cuda_kernel *k, const double *iv)
  * trial moves every input by -4 .. 4 units at random, so that the roundings inside the kernel change too (moving
  * u = 0 by one ulp would change nothing). A u is moved from the value the kernel uses (clamped into [0, 1]). */
 #define SPREAD_TRIALS 24
-static double spread(const ggx_cuda_kernel *k, const ggx_cuda_kernel *fwd, const ggx_cuda_args *base,
-                     const double *iv, const double *hc)
+static double spread(const ggx_cuda_kernel *k, const ggx_cuda_kernel *fwd, const ggx_cuda_args *base, const double *iv,
+                     const double *hc)
 {
     float row[GGX_CUDA_MAX_IN];
     double out[GGX_CUDA_MAX_OUT], worst = 0;
@@ -561,9 +561,10 @@ static int check_kernel(const ggx_cuda_kernel *k, const ggx_shape *ds, const uns
                     st.ill++;
                     st.ill_over = fmax(st.ill_over, dev_host);
                     if (!what && st.notes++ < MAX_NOTES)
-                        report(k->name, u_at_one(k, iv) ? "ill-conditioned: u = 1, the rim"
-                                                         : "ill-conditioned: a few ulps of the inputs move the host's "
-                                                           "result by more than 1/8 of the tolerance",
+                        report(k->name,
+                               u_at_one(k, iv) ? "ill-conditioned: u = 1, the rim"
+                                               : "ill-conditioned: a few ulps of the inputs move the host's "
+                                                 "result by more than 1/8 of the tolerance",
                                shapes[si].what, cf, k->uses, i, iv, nin, fwd ? hc : hv, fwd ? dc : dv, fwd ? rc : rv,
                                fwd ? ncmp : nout);
                 } else {
@@ -637,10 +638,10 @@ int main(void)
 
     /* Every sampler of the registry, and its inverse where it has one, has a kernel in the table. */
     int failed = 0;
-#define STEM_CHECK(ID, name, stem, family, domain, inverse, batch, help)                                          \
-    if (!find_kernel(#stem) || (inverse && !find_kernel(#stem "_inv"))) {                                           \
-        fprintf(stderr, "FAIL: sampler %s (ggx_%s_f) has no CUDA kernel\n", name, #stem);                          \
-        failed++;                                                                                                 \
+#define STEM_CHECK(ID, name, stem, family, domain, inverse, batch, help)                                               \
+    if (!find_kernel(#stem) || (inverse && !find_kernel(#stem "_inv"))) {                                              \
+        fprintf(stderr, "FAIL: sampler %s (ggx_%s_f) has no CUDA kernel\n", name, #stem);                              \
+        failed++;                                                                                                      \
     }
     GGX_SAMPLER_LIST(STEM_CHECK)
 #undef STEM_CHECK

@@ -37,14 +37,14 @@ static uint8_t next_byte(bytes *b)
     return *b->p++;
 }
 
-#define REQUIRE(cond, ...)                                                                                          \
-    do {                                                                                                            \
-        if (!(cond)) {                                                                                              \
-            fprintf(stderr, "contract violated: %s: ", #cond);                                                      \
-            fprintf(stderr, __VA_ARGS__);                                                                           \
-            fputc('\n', stderr);                                                                                    \
-            abort();                                                                                                \
-        }                                                                                                           \
+#define REQUIRE(cond, ...)                                                                                             \
+    do {                                                                                                               \
+        if (!(cond)) {                                                                                                 \
+            fprintf(stderr, "contract violated: %s: ", #cond);                                                         \
+            fprintf(stderr, __VA_ARGS__);                                                                              \
+            fputc('\n', stderr);                                                                                       \
+            abort();                                                                                                   \
+        }                                                                                                              \
     } while (0)
 
 static ggx_vec3 vec(bytes *b)
@@ -113,7 +113,8 @@ static void check_energy(bytes *b)
         ggx_shape a, c;
         REQUIRE(ggx_shape_iso(&a, 0.05) == GGX_OK && ggx_shape_ellipsoid(&c, 0.1, 0.6, 0, 0, 0.4) == GGX_OK, "shapes");
         REQUIRE(ggx_energy_create(&a, &energy_tables[0]) == GGX_OK &&
-                    ggx_energy_create(&c, &energy_tables[1]) == GGX_OK, "energy tables");
+                    ggx_energy_create(&c, &energy_tables[1]) == GGX_OK,
+                "energy tables");
     }
     const ggx_energy *e = energy_tables[next_byte(b) & 1];
     ggx_fresnel f;
@@ -136,7 +137,8 @@ static void check_energy(bytes *b)
     ggx_sample xs[2] = {ggx_sample_brdf_ms(e, fp, wi, u1, u2), ggx_sample_brdf_compensated(e, fp, wi, u1, u2, u3)};
     for (int k = 0; k < 2; k++) {
         if (xs[k].event == GGX_EVENT_INVALID) {
-            REQUIRE(xs[k].pdf == 0 && xs[k].weight == 0 && is_zero(xs[k].w), "energy sampler %d: invalid not zeroed", k);
+            REQUIRE(xs[k].pdf == 0 && xs[k].weight == 0 && is_zero(xs[k].w), "energy sampler %d: invalid not zeroed",
+                    k);
             continue;
         }
         REQUIRE(is_unit(xs[k].w) && xs[k].w.z > 0 && isfinite(xs[k].pdf) && xs[k].pdf > 0 && isfinite(xs[k].weight) &&
@@ -165,10 +167,12 @@ static void check_bsdf_energy(bytes *b)
     for (unsigned i = 0; i < sizeof r / sizeof r[0]; i++)
         REQUIRE(isfinite(r[i]) && r[i] >= 0, "dielectric energy function %u = %g", i, r[i]);
     REQUIRE(r[0] <= 1, "E %g", r[0]);
-    ggx_sample xs[2] = {ggx_sample_bsdf_ms(e, wi, u1, u2, u3, mode), ggx_sample_bsdf_compensated(e, wi, u1, u2, u3, mode)};
+    ggx_sample xs[2] = {ggx_sample_bsdf_ms(e, wi, u1, u2, u3, mode),
+                        ggx_sample_bsdf_compensated(e, wi, u1, u2, u3, mode)};
     for (int k = 0; k < 2; k++) {
         if (xs[k].event == GGX_EVENT_INVALID) {
-            REQUIRE(xs[k].pdf == 0 && xs[k].weight == 0 && is_zero(xs[k].w), "dielectric sampler %d: invalid not zeroed", k);
+            REQUIRE(xs[k].pdf == 0 && xs[k].weight == 0 && is_zero(xs[k].w),
+                    "dielectric sampler %d: invalid not zeroed", k);
             continue;
         }
         REQUIRE(is_unit(xs[k].w) && xs[k].w.z != 0 && isfinite(xs[k].pdf) && xs[k].pdf > 0 && isfinite(xs[k].weight) &&
@@ -212,18 +216,32 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
     ggx_fresnel f;
     ggx_fresnel_conductor(&f, 0.2, 3.9);
     double eta = next_double(&b);
-    double r[] = {ggx_ndf(&s, m),          ggx_gaussian_curvature(&s, m), ggx_projected_area(&s, v),
-                  ggx_lune_area(&s, v, m), ggx_g1(&s, v, m),              ggx_g1_smith(&s, v),
-                  ggx_g1_tilted(&s, v, m), ggx_g1_risers(&s, v, m),
-                  ggx_g2(&s, v, m, m),     ggx_g2_height_correlated(&s, v, m, m),
-                  ggx_pdf_vndf(&s, v, m),  ggx_pdf_ndf(&s, m),            ggx_brdf_eval(&s, &f, v, m),
-                  ggx_pdf_brdf(&s, v, m),  ggx_bsdf_eval(&s, eta, v, m, GGX_RADIANCE),
-                  ggx_bsdf_eval(&s, eta, m, v, GGX_IMPORTANCE), ggx_pdf_bsdf(&s, eta, v, m),
-                  ggx_p22(&s, m.x, m.y),   ggx_ndf_spherical(&s, v.x, v.y),
-                  ggx_fresnel_dielectric_eval(v.x, eta), ggx_fresnel_conductor_eval(v.x, eta, m.x),
-                  ggx_fresnel_schlick_eval(v.x, m.x),   ggx_jacobian_reflect(v, m),
+    double r[] = {ggx_ndf(&s, m),
+                  ggx_gaussian_curvature(&s, m),
+                  ggx_projected_area(&s, v),
+                  ggx_lune_area(&s, v, m),
+                  ggx_g1(&s, v, m),
+                  ggx_g1_smith(&s, v),
+                  ggx_g1_tilted(&s, v, m),
+                  ggx_g1_risers(&s, v, m),
+                  ggx_g2(&s, v, m, m),
+                  ggx_g2_height_correlated(&s, v, m, m),
+                  ggx_pdf_vndf(&s, v, m),
+                  ggx_pdf_ndf(&s, m),
+                  ggx_brdf_eval(&s, &f, v, m),
+                  ggx_pdf_brdf(&s, v, m),
+                  ggx_bsdf_eval(&s, eta, v, m, GGX_RADIANCE),
+                  ggx_bsdf_eval(&s, eta, m, v, GGX_IMPORTANCE),
+                  ggx_pdf_bsdf(&s, eta, v, m),
+                  ggx_p22(&s, m.x, m.y),
+                  ggx_ndf_spherical(&s, v.x, v.y),
+                  ggx_fresnel_dielectric_eval(v.x, eta),
+                  ggx_fresnel_conductor_eval(v.x, eta, m.x),
+                  ggx_fresnel_schlick_eval(v.x, m.x),
+                  ggx_jacobian_reflect(v, m),
                   ggx_jacobian_refract(v, m, v, eta, m.x)};
-    for (unsigned i = 0; i < sizeof r / sizeof r[0]; i++) REQUIRE(isfinite(r[i]) && r[i] >= 0, "function %u = %g", i, r[i]);
+    for (unsigned i = 0; i < sizeof r / sizeof r[0]; i++)
+        REQUIRE(isfinite(r[i]) && r[i] >= 0, "function %u = %g", i, r[i]);
     REQUIRE(isfinite(ggx_lambda(&s, v)), "lambda");
 
     /* samplers: the view as a direction (normalised when finite and non-zero) */

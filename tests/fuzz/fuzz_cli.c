@@ -8,7 +8,9 @@
 
 #include "cli.h"
 
-#define ALL_OPTS "alpha,skew,rotate,matrix,wi,wo,view,n,seed,out,format,sampler,figure,fresnel,eta,size,log,claim,progress,no-progress"
+#define ALL_OPTS                                                                                                       \
+    "alpha,skew,rotate,matrix,wi,wo,view,n,seed,out,format,sampler,figure,fresnel,eta,size,log,claim,progress,no-"     \
+    "progress"
 
 int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
 {
@@ -39,7 +41,8 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
             require_domain(smp, &s);
             if (o.have_view) require_view(smp, o.view);
         }
-        if (o.have_view && !(fabs(o.view.x * o.view.x + o.view.y * o.view.y + o.view.z * o.view.z - 1) < 1e-12)) abort();
+        if (o.have_view && !(fabs(o.view.x * o.view.x + o.view.y * o.view.y + o.view.z * o.view.z - 1) < 1e-12))
+            abort();
     }
     /* every argument on its own as a direction */
     for (int i = 2; i < argc; i++) {

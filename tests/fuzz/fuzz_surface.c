@@ -10,12 +10,12 @@
 
 #include "surface.h"
 
-#define REQUIRE(cond)                                                                                               \
-    do {                                                                                                            \
-        if (!(cond)) {                                                                                              \
-            fprintf(stderr, "contract violated: %s\n", #cond);                                                      \
-            abort();                                                                                                \
-        }                                                                                                           \
+#define REQUIRE(cond)                                                                                                  \
+    do {                                                                                                               \
+        if (!(cond)) {                                                                                                 \
+            fprintf(stderr, "contract violated: %s\n", #cond);                                                         \
+            abort();                                                                                                   \
+        }                                                                                                              \
     } while (0)
 
 int LLVMFuzzerTestOneInput(const uint8_t *data, size_t n);

@@ -48,15 +48,15 @@ int chi2_budget_end(const char *program, int argc, char **argv)
         if (strcmp(SHARES[i].entry, entry) == 0 ||
             (argc <= 1 && strncmp(SHARES[i].entry, program, lp) == 0 && SHARES[i].entry[lp] == ' '))
             share += SHARES[i].share, found = 1;
-    printf("chi-square checks in '%s': %ld of its share %d (suite budget %d runs, per-run level %.3g)\n", entry,
-           checks, share, budget_total(), test_chi2_level());
+    printf("chi-square checks in '%s': %ld of its share %d (suite budget %d runs, per-run level %.3g)\n", entry, checks,
+           share, budget_total(), test_chi2_level());
     if (!found && checks > 0) {
         printf("FAIL: '%s' made chi-square checks but has no share in tests/support/chi2_budget.c\n", entry);
         return 1;
     }
     if (checks > share) {
-        printf("FAIL: '%s' made %ld chi-square checks, more than its share %d (tests/support/chi2_budget.c)\n", entry, checks,
-               share);
+        printf("FAIL: '%s' made %ld chi-square checks, more than its share %d (tests/support/chi2_budget.c)\n", entry,
+               checks, share);
         return 1;
     }
     return 0;

@@ -6,10 +6,14 @@
 #include <string.h>
 
 const sweep_shape SWEEP_SHAPES[] = {
-    {"iso 0.05", {0.05, 0.05, 0, 0, 0}},          {"iso 0.3", {0.3, 0.3, 0, 0, 0}},
-    {"iso 1", {1.0, 1.0, 0, 0, 0}},               {"iso 2", {2.0, 2.0, 0, 0, 0}},
-    {"aniso 0.05:0.5", {0.05, 0.5, 0, 0, 0}},     {"aniso 1:0.1 rot", {1.0, 0.1, 0, 0, 0.7}},
-    {"skew 0.3:1", {0.3, 1.0, 0.5, -0.3, 0.4}},   {"skew 0.05:0.3", {0.05, 0.3, -0.5, 0.5, 1.2}},
+    {"iso 0.05", {0.05, 0.05, 0, 0, 0}},
+    {"iso 0.3", {0.3, 0.3, 0, 0, 0}},
+    {"iso 1", {1.0, 1.0, 0, 0, 0}},
+    {"iso 2", {2.0, 2.0, 0, 0, 0}},
+    {"aniso 0.05:0.5", {0.05, 0.5, 0, 0, 0}},
+    {"aniso 1:0.1 rot", {1.0, 0.1, 0, 0, 0.7}},
+    {"skew 0.3:1", {0.3, 1.0, 0.5, -0.3, 0.4}},
+    {"skew 0.05:0.3", {0.05, 0.3, -0.5, 0.5, 1.2}},
     {"skew 2:0.2", {2.0, 0.2, 0.3, 0.5, -0.8}},
 };
 const int SWEEP_NSHAPES = sizeof SWEEP_SHAPES / sizeof SWEEP_SHAPES[0];
@@ -109,15 +113,14 @@ chi2_result run_normal_chi2(normal_ctx *c, const char *name, uint64_t seed, doub
     double alpha = test_chi2_level();
     chi2_result r = run_normal(c, name, seed, alpha, 0);
     CHECK(r.zero_cell_hits == 0, "%s: %ld samples where the pdf is zero", name, r.zero_cell_hits);
-    CHECK(chi2_accepts(r.pvalue), "%s: chi2 %.1f, dof %d, p = %.3g < %.3g (histogram in chi2_*.csv)", name, r.stat, r.dof,
-          r.pvalue, alpha);
+    CHECK(chi2_accepts(r.pvalue), "%s: chi2 %.1f, dof %d, p = %.3g < %.3g (histogram in chi2_*.csv)", name, r.stat,
+          r.dof, r.pvalue, alpha);
     if (min_p && r.pvalue < *min_p) *min_p = r.pvalue;
     return r;
 }
 
 /* One sample of sampler id of var at (u1, u2) (a rejection sampler: from a fixed stream). */
-static ggx_vec3 sample_once(const variant *var, ggx_sampler_id id, const ggx_shape *s, ggx_vec3 v, double u1,
-                            double u2)
+static ggx_vec3 sample_once(const variant *var, ggx_sampler_id id, const ggx_shape *s, ggx_vec3 v, double u1, double u2)
 {
     ggx_vec3 m;
     if (var->has(var, id) == 2) {
@@ -158,8 +161,8 @@ int chi2_sweep(const variant *var, unsigned families, const int *shapes, int nsh
                 char name[160];
                 if (ndf) snprintf(name, sizeof name, "%s ndf %s, %s", var->name, info->name, SWEEP_SHAPES[i].name);
                 else
-                    snprintf(name, sizeof name, "%s vndf %s, %s, view %g", var->name, info->name,
-                             SWEEP_SHAPES[i].name, SWEEP_VIEWS_DEG[j]);
+                    snprintf(name, sizeof name, "%s vndf %s, %s, view %g", var->name, info->name, SWEEP_SHAPES[i].name,
+                             SWEEP_VIEWS_DEG[j]);
                 uint64_t seed = seed_base + 100 * (uint64_t)k + (uint64_t)(ndf ? i : 10 * i + j);
                 run_normal_chi2(&c, name, seed, min_p);
                 runs++;

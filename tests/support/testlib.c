@@ -71,8 +71,8 @@ void check_close_impl(double got, double want, double rel_tol, double abs_tol, c
     double err = fabs(got - want);
     if (err <= abs_tol + rel_tol * fabs(want)) return; /* NaN fails here */
     char what[256];
-    snprintf(what, sizeof what, "got %.17g, want %.17g (abs err %.3g, rel err %.3g; tol rel %.3g abs %.3g)", got,
-             want, err, want != 0.0 ? err / fabs(want) : err, rel_tol, abs_tol);
+    snprintf(what, sizeof what, "got %.17g, want %.17g (abs err %.3g, rel err %.3g; tol rel %.3g abs %.3g)", got, want,
+             err, want != 0.0 ? err / fabs(want) : err, rel_tol, abs_tol);
     va_list ap;
     va_start(ap, fmt);
     vfail(file, line, what, fmt, ap);

@@ -46,15 +46,15 @@ void chi2_grid(long n, int *ntheta, int *nphi);
  * level for a family-wise 0.01 over the sum of the shares tests/support/chi2_budget.c lists for each ctest entry. A negative
  * control, which must be rejected, compares with the same level and is not counted. */
 double test_chi2_level(void);
-int chi2_accepts(double p);          /* p >= test_chi2_level(); counts one check */
-void chi2_budget_spend(long runs);   /* counts runs judged elsewhere at test_chi2_level() (the seed audit's) */
+int chi2_accepts(double p);        /* p >= test_chi2_level(); counts one check */
+void chi2_budget_spend(long runs); /* counts runs judged elsewhere at test_chi2_level() (the seed audit's) */
 /* At a program's end: prints the count and returns 1 (the program fails) when it exceeds the share of the entry
  * "program argv[1]" (of every entry of the program when argc <= 1). */
 int chi2_budget_end(const char *program, int argc, char **argv);
 
 /* ---- checks ---- */
 /* |got - want| <= abs_tol + rel_tol |want|; on failure prints what and fails the test. */
-#define CHECK_CLOSE(got, want, rel_tol, abs_tol, ...)                                                       \
+#define CHECK_CLOSE(got, want, rel_tol, abs_tol, ...)                                                                  \
     check_close_impl((got), (want), (rel_tol), (abs_tol), __FILE__, __LINE__, __VA_ARGS__)
 void check_close_impl(double got, double want, double rel_tol, double abs_tol, const char *file, int line,
                       const char *fmt, ...);

@@ -36,8 +36,8 @@ static ggx_vec3 exported_reject(const variant *vr, ggx_sampler_id id, const ggx_
     (void)vr;
     return info_of(id)->sample_reject(s, v, next, state, trials);
 }
-static void exported_sampler_pdf(const variant *vr, ggx_sampler_id id, const ggx_shape *s, size_t n,
-                                 const ggx_vec3 *v, const ggx_vec3 *m, double *pdf)
+static void exported_sampler_pdf(const variant *vr, ggx_sampler_id id, const ggx_shape *s, size_t n, const ggx_vec3 *v,
+                                 const ggx_vec3 *m, double *pdf)
 {
     (void)vr;
     const ggx_sampler_info *info = info_of(id);
@@ -66,8 +66,8 @@ static void exported_brdf(const variant *vr, const ggx_shape *s, const ggx_fresn
     (void)vr;
     for (size_t i = 0; i < n; i++) fr[i] = ggx_brdf_eval(s, f, wi[i], wo[i]);
 }
-static void exported_sample_vndf(const variant *vr, const ggx_shape *s, size_t n, const ggx_vec3 *v,
-                                 const double *u1, const double *u2, ggx_vec3 *m)
+static void exported_sample_vndf(const variant *vr, const ggx_shape *s, size_t n, const ggx_vec3 *v, const double *u1,
+                                 const double *u2, ggx_vec3 *m)
 {
     (void)vr;
     for (size_t i = 0; i < n; i++) m[i] = ggx_sample_vndf(s, v[i], u1[i], u2[i]);
@@ -83,7 +83,8 @@ static void exported_sample_brdf(const variant *vr, int bounded, const ggx_shape
 {
     (void)vr;
     for (size_t i = 0; i < n; i++)
-        out[i] = bounded ? ggx_sample_brdf_bounded(s, f, wi[i], u1[i], u2[i]) : ggx_sample_brdf(s, f, wi[i], u1[i], u2[i]);
+        out[i] = bounded ? ggx_sample_brdf_bounded(s, f, wi[i], u1[i], u2[i])
+                         : ggx_sample_brdf(s, f, wi[i], u1[i], u2[i]);
 }
 
 /* ---- inline: the kernels of ggx_inline.h, double (_d) and float (_f) ---- */
@@ -100,37 +101,36 @@ static ggx_vec3 up3(ggx_vec3f a) { return t_vec(a.x, a.y, a.z); }
 typedef ggx_vec3 (*normal_d_fn)(const ggx_shape *s, ggx_vec3 v, double u1, double u2);
 typedef ggx_vec3 (*normal_f_fn)(const ggx_shapef *s, ggx_vec3 v, double u1, double u2);
 typedef ggx_vec3 (*reject_d_fn)(const ggx_shape *s, ggx_vec3 v, ggx_uniform_fn next, void *state, unsigned *trials);
-typedef ggx_vec3 (*reject_f_fn)(const ggx_shapef *s, ggx_vec3 v, ggx_uniform_fn next, void *state,
-                                unsigned *trials);
+typedef ggx_vec3 (*reject_f_fn)(const ggx_shapef *s, ggx_vec3 v, ggx_uniform_fn next, void *state, unsigned *trials);
 
-#define KERNELS_NDF(ID, stem)                                                                                     \
-    static ggx_vec3 d_##ID(const ggx_shape *s, ggx_vec3 v, double u1, double u2)                                  \
-    {                                                                                                             \
-        (void)v;                                                                                                  \
-        return ggx_##stem##_d(s, u1, u2);                                                                         \
-    }                                                                                                             \
-    static ggx_vec3 f_##ID(const ggx_shapef *s, ggx_vec3 v, double u1, double u2)                                 \
-    {                                                                                                             \
-        (void)v;                                                                                                  \
-        return up3(ggx_##stem##_f(s, (float)u1, (float)u2));                                                     \
+#define KERNELS_NDF(ID, stem)                                                                                          \
+    static ggx_vec3 d_##ID(const ggx_shape *s, ggx_vec3 v, double u1, double u2)                                       \
+    {                                                                                                                  \
+        (void)v;                                                                                                       \
+        return ggx_##stem##_d(s, u1, u2);                                                                              \
+    }                                                                                                                  \
+    static ggx_vec3 f_##ID(const ggx_shapef *s, ggx_vec3 v, double u1, double u2)                                      \
+    {                                                                                                                  \
+        (void)v;                                                                                                       \
+        return up3(ggx_##stem##_f(s, (float)u1, (float)u2));                                                           \
     }
-#define KERNELS_VNDF(ID, stem)                                                                                    \
-    static ggx_vec3 d_##ID(const ggx_shape *s, ggx_vec3 v, double u1, double u2)                                  \
-    {                                                                                                             \
-        return ggx_##stem##_d(s, v, u1, u2);                                                                      \
-    }                                                                                                             \
-    static ggx_vec3 f_##ID(const ggx_shapef *s, ggx_vec3 v, double u1, double u2)                                 \
-    {                                                                                                             \
-        return up3(ggx_##stem##_f(s, down3(v), (float)u1, (float)u2));                                           \
+#define KERNELS_VNDF(ID, stem)                                                                                         \
+    static ggx_vec3 d_##ID(const ggx_shape *s, ggx_vec3 v, double u1, double u2)                                       \
+    {                                                                                                                  \
+        return ggx_##stem##_d(s, v, u1, u2);                                                                           \
+    }                                                                                                                  \
+    static ggx_vec3 f_##ID(const ggx_shapef *s, ggx_vec3 v, double u1, double u2)                                      \
+    {                                                                                                                  \
+        return up3(ggx_##stem##_f(s, down3(v), (float)u1, (float)u2));                                                 \
     }
-#define KERNELS_REJECTION(ID, stem)                                                                               \
-    static ggx_vec3 rd_##ID(const ggx_shape *s, ggx_vec3 v, ggx_uniform_fn next, void *state, unsigned *trials)   \
-    {                                                                                                             \
-        return ggx_##stem##_d(s, v, next, state, trials);                                                         \
-    }                                                                                                             \
-    static ggx_vec3 rf_##ID(const ggx_shapef *s, ggx_vec3 v, ggx_uniform_fn next, void *state, unsigned *trials)  \
-    {                                                                                                             \
-        return up3(ggx_##stem##_f(s, down3(v), next, state, trials));                                            \
+#define KERNELS_REJECTION(ID, stem)                                                                                    \
+    static ggx_vec3 rd_##ID(const ggx_shape *s, ggx_vec3 v, ggx_uniform_fn next, void *state, unsigned *trials)        \
+    {                                                                                                                  \
+        return ggx_##stem##_d(s, v, next, state, trials);                                                              \
+    }                                                                                                                  \
+    static ggx_vec3 rf_##ID(const ggx_shapef *s, ggx_vec3 v, ggx_uniform_fn next, void *state, unsigned *trials)       \
+    {                                                                                                                  \
+        return up3(ggx_##stem##_f(s, down3(v), next, state, trials));                                                  \
     }
 #define KERNELS_DIRECTION(ID, stem) /* directions are not samplers of normals (sample_brdf below) */
 #define KERNELS(ID, name, stem, family, domain, inverse, batch, help) KERNELS_##family(ID, stem)
@@ -170,8 +170,8 @@ static void inline_sample(const variant *vr, ggx_sampler_id id, const ggx_shape 
     for (size_t i = 0; i < n; i++)
         m[i] = is_f(vr) ? NORMAL_F[id](&sf, v[i], u1[i], u2[i]) : NORMAL_D[id](s, v[i], u1[i], u2[i]);
 }
-static ggx_vec3 inline_reject(const variant *vr, ggx_sampler_id id, const ggx_shape *s, ggx_vec3 v,
-                              ggx_uniform_fn next, void *state, unsigned *trials)
+static ggx_vec3 inline_reject(const variant *vr, ggx_sampler_id id, const ggx_shape *s, ggx_vec3 v, ggx_uniform_fn next,
+                              void *state, unsigned *trials)
 {
     CHECK(inline_has(vr, id) == 2, "%s has no rejection sampler %d", vr->name, (int)id);
     if (!is_f(vr)) return REJECT_D[id](s, v, next, state, trials);
@@ -181,27 +181,24 @@ static ggx_vec3 inline_reject(const variant *vr, ggx_sampler_id id, const ggx_sh
 }
 
 /* One loop per evaluation: EVAL_LOOP(expr_d, expr_f) with the element's inputs named by the caller. */
-#define EVAL_LOOP(out, expr_d, expr_f)                                                                            \
-    do {                                                                                                          \
-        ggx_shapef sf;                                                                                            \
-        ggx_shapef_from(&sf, s);                                                                                  \
-        for (size_t i = 0; i < n; i++) out[i] = is_f(vr) ? (double)(expr_f) : (expr_d);                          \
+#define EVAL_LOOP(out, expr_d, expr_f)                                                                                 \
+    do {                                                                                                               \
+        ggx_shapef sf;                                                                                                 \
+        ggx_shapef_from(&sf, s);                                                                                       \
+        for (size_t i = 0; i < n; i++) out[i] = is_f(vr) ? (double)(expr_f) : (expr_d);                                \
     } while (0)
 
-static void inline_sampler_pdf(const variant *vr, ggx_sampler_id id, const ggx_shape *s, size_t n,
-                               const ggx_vec3 *v, const ggx_vec3 *m, double *pdf)
+static void inline_sampler_pdf(const variant *vr, ggx_sampler_id id, const ggx_shape *s, size_t n, const ggx_vec3 *v,
+                               const ggx_vec3 *m, double *pdf)
 {
-    if (info_of(id)->family == GGX_FAMILY_NDF)
-        EVAL_LOOP(pdf, ggx_pdf_ndf_d(s, m[i]), ggx_pdf_ndf_f(&sf, down3(m[i])));
-    else
-        EVAL_LOOP(pdf, ggx_pdf_vndf_d(s, v[i], m[i]), ggx_pdf_vndf_f(&sf, down3(v[i]), down3(m[i])));
+    if (info_of(id)->family == GGX_FAMILY_NDF) EVAL_LOOP(pdf, ggx_pdf_ndf_d(s, m[i]), ggx_pdf_ndf_f(&sf, down3(m[i])));
+    else EVAL_LOOP(pdf, ggx_pdf_vndf_d(s, v[i], m[i]), ggx_pdf_vndf_f(&sf, down3(v[i]), down3(m[i])));
 }
 static void inline_ndf(const variant *vr, const ggx_shape *s, size_t n, const ggx_vec3 *m, double *d)
 {
     EVAL_LOOP(d, ggx_ndf_d(s, m[i]), ggx_ndf_f(&sf, down3(m[i])));
 }
-static void inline_g1(const variant *vr, const ggx_shape *s, size_t n, const ggx_vec3 *u, const ggx_vec3 *m,
-                      double *g)
+static void inline_g1(const variant *vr, const ggx_shape *s, size_t n, const ggx_vec3 *u, const ggx_vec3 *m, double *g)
 {
     EVAL_LOOP(g, ggx_g1_d(s, u[i], m[i]), ggx_g1_f(&sf, down3(u[i]), down3(m[i])));
 }
@@ -392,8 +389,19 @@ static void batch_sample_ndf(const variant *vr, const ggx_shape *s, size_t n, co
 static void batch_sample_brdf(const variant *vr, int bounded, const ggx_shape *s, const ggx_fresnel *f, size_t n,
                               const ggx_vec3 *wi, const double *u1, const double *u2, ggx_sample *out)
 {
-    batch_call c = {B_SAMPLE_BRDF, bounded ? GGX_SAMPLER_BRDF_BOUNDED : GGX_SAMPLER_BRDF, s, f, wi, NULL, u1, u2, NULL,
-                    NULL, NULL, NULL, out};
+    batch_call c = {B_SAMPLE_BRDF,
+                    bounded ? GGX_SAMPLER_BRDF_BOUNDED : GGX_SAMPLER_BRDF,
+                    s,
+                    f,
+                    wi,
+                    NULL,
+                    u1,
+                    u2,
+                    NULL,
+                    NULL,
+                    NULL,
+                    NULL,
+                    out};
     batch_run(vr, &c, n);
 }
 static void batch_sample_vndf_aniso(const variant *vr, size_t n, const double *alpha_x, const double *alpha_y,
@@ -403,23 +411,20 @@ static void batch_sample_vndf_aniso(const variant *vr, size_t n, const double *a
     batch_run(vr, &c, n);
 }
 
-#define EXPORTED_FNS                                                                                              \
-    exported_has, exported_sample, exported_reject, exported_sampler_pdf, exported_ndf, exported_g1,               \
+#define EXPORTED_FNS                                                                                                   \
+    exported_has, exported_sample, exported_reject, exported_sampler_pdf, exported_ndf, exported_g1,                   \
         exported_pdf_vndf, exported_brdf, exported_sample_vndf, exported_sample_ndf, exported_sample_brdf, NULL
-#define INLINE_FNS                                                                                                \
-    inline_has, inline_sample, inline_reject, inline_sampler_pdf, inline_ndf, inline_g1, inline_pdf_vndf,          \
-        inline_brdf, inline_sample_vndf, inline_sample_ndf, inline_sample_brdf, NULL
-#define BATCH_FNS                                                                                                 \
-    batch_has, batch_sample, NULL, batch_sampler_pdf, batch_ndf, batch_g1, batch_pdf_vndf, batch_brdf,             \
+#define INLINE_FNS                                                                                                     \
+    inline_has, inline_sample, inline_reject, inline_sampler_pdf, inline_ndf, inline_g1, inline_pdf_vndf, inline_brdf, \
+        inline_sample_vndf, inline_sample_ndf, inline_sample_brdf, NULL
+#define BATCH_FNS                                                                                                      \
+    batch_has, batch_sample, NULL, batch_sampler_pdf, batch_ndf, batch_g1, batch_pdf_vndf, batch_brdf,                 \
         batch_sample_vndf, batch_sample_ndf, batch_sample_brdf, batch_sample_vndf_aniso
 
 const variant VARIANTS[VARIANT_COUNT] = {
-    {"exported", 64, GGX_ISA_AUTO, 0, EXPORTED_FNS},
-    {"inline-d", 64, GGX_ISA_AUTO, 0, INLINE_FNS},
-    {"inline-f", 32, GGX_ISA_AUTO, 0, INLINE_FNS},
-    {"batch-scalar", 32, GGX_ISA_SCALAR, 1, BATCH_FNS},
-    {"batch-avx2", 32, GGX_ISA_AVX2, 1, BATCH_FNS},
-    {"batch-avx512", 32, GGX_ISA_AVX512, 1, BATCH_FNS},
+    {"exported", 64, GGX_ISA_AUTO, 0, EXPORTED_FNS}, {"inline-d", 64, GGX_ISA_AUTO, 0, INLINE_FNS},
+    {"inline-f", 32, GGX_ISA_AUTO, 0, INLINE_FNS},   {"batch-scalar", 32, GGX_ISA_SCALAR, 1, BATCH_FNS},
+    {"batch-avx2", 32, GGX_ISA_AVX2, 1, BATCH_FNS},  {"batch-avx512", 32, GGX_ISA_AVX512, 1, BATCH_FNS},
 };
 
 int variant_available(const variant *vr) { return vr->isa == GGX_ISA_AUTO || ggx_batch_isa_available(vr->isa); }

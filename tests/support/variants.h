@@ -32,8 +32,8 @@ struct variant {
     void (*sample)(const variant *vr, ggx_sampler_id id, const ggx_shape *s, size_t n, const ggx_vec3 *v,
                    const double *u1, const double *u2, ggx_vec3 *m);
     /* One normal of rejection sampler id (as ggx_sample_vndf_walter_v1). */
-    ggx_vec3 (*sample_reject)(const variant *vr, ggx_sampler_id id, const ggx_shape *s, ggx_vec3 v,
-                              ggx_uniform_fn next, void *state, unsigned *trials);
+    ggx_vec3 (*sample_reject)(const variant *vr, ggx_sampler_id id, const ggx_shape *s, ggx_vec3 v, ggx_uniform_fn next,
+                              void *state, unsigned *trials);
     /* The pdf that sampler id claims (its family's: D(m) m.n for NDF, Walter eq 33 for VNDF and REJECTION). */
     void (*sampler_pdf)(const variant *vr, ggx_sampler_id id, const ggx_shape *s, size_t n, const ggx_vec3 *v,
                         const ggx_vec3 *m, double *pdf);

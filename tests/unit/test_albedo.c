@@ -93,9 +93,9 @@ static void closed_forms_alpha_one(void **state)
 /* Shapes of the sweep: the seeds' anisotropic one, small and large alpha, anisotropy 1:10 rotated, skews to 0.5 rad
  * with small alpha (where G1 reaches 1 and E falls to 1e-4). */
 static const shape_params sweep[] = {
-    {0.15, 0.5, 0, 0, 0},   {0.01, 0.01, 0, 0, 0},      {0.05, 0.05, 0, 0, 0},     {2.0, 2.0, 0, 0, 0},
-    {1.0, 0.1, 0, 0, 0.7},  {0.3, 0.1, 0.4, -0.3, 1.0}, {0.6, 0.6, 0.5, 0.5, 0},   {0.05, 0.5, 0.5, -0.5, 2.0},
-    {0.001, 0.003, 0.1, 0.2, 0},
+    {0.15, 0.5, 0, 0, 0},    {0.01, 0.01, 0, 0, 0},       {0.05, 0.05, 0, 0, 0},
+    {2.0, 2.0, 0, 0, 0},     {1.0, 0.1, 0, 0, 0.7},       {0.3, 0.1, 0.4, -0.3, 1.0},
+    {0.6, 0.6, 0.5, 0.5, 0}, {0.05, 0.5, 0.5, -0.5, 2.0}, {0.001, 0.003, 0.1, 0.2, 0},
 };
 
 static void against_quadrature_over_w(void **state)
@@ -124,8 +124,8 @@ static void against_quadrature_over_w(void **state)
     ggx_vec3 v = t_dir(1.0, 0.3);
     double d = fabs(albedo_over_w(&s, v, 0) - ggx_albedo_height_correlated(&s, v));
     CHECK(d > 100 * PROMISE, "the check cannot tell separable from height-correlated G (%.3g)", d);
-    printf("%d albedos against quadrature over w: largest difference %.2e (separable vs correlated: %.2e)\n", n,
-           worst, d);
+    printf("%d albedos against quadrature over w: largest difference %.2e (separable vs correlated: %.2e)\n", n, worst,
+           d);
 }
 
 /* ---- the rough dielectric: ggx_bsdf_albedo ---- */
@@ -235,8 +235,8 @@ static void bsdf_albedo_deterministic(void **state)
             CHECK_CLOSE(r, rq, 0, ref_tol, "R, A'u below the horizon, eta %g", eta);
             CHECK_CLOSE(t, tq, 0, ref_tol, "T, A'u below the horizon, eta %g", eta);
             worst_q = fmax(worst_q, fmax(fabs(r - rq), fabs(t - tq)));
-            printf("  A'u below the horizon, eta %.3f: R %.9f (over w %+.1e), T %.9f (over w %+.1e)\n", eta, r,
-                   r - rq, t, t - tq);
+            printf("  A'u below the horizon, eta %.3f: R %.9f (over w %+.1e), T %.9f (over w %+.1e)\n", eta, r, r - rq,
+                   t, t - tq);
         }
     }
     /* edges */
@@ -279,7 +279,8 @@ static void bsdf_albedo_monte_carlo(void **state)
                 if (x.event == GGX_EVENT_TRANSMIT) st += x.weight, st2 += x.weight * x.weight;
             }
             double mr = sr / (double)n, mt = st / (double)n;
-            double er = sqrt(fmax(0, sr2 / (double)n - mr * mr) / (double)n), et = sqrt(fmax(0, st2 / (double)n - mt * mt) / (double)n);
+            double er = sqrt(fmax(0, sr2 / (double)n - mr * mr) / (double)n),
+                   et = sqrt(fmax(0, st2 / (double)n - mt * mt) / (double)n);
             CHECK_CLOSE(r, mr, 0, 5 * er + 1e-5, "R, shape %d, eta %g, view %d", i, eta, j);
             CHECK_CLOSE(t, mt, 0, 5 * et + 1e-5, "T, shape %d, eta %g, view %d", i, eta, j);
         }
@@ -327,8 +328,8 @@ static void average_against_monte_carlo(void **state)
     rng r = {2025};
     long N = (long)(1000000 * test_scale());
     double dn = (double)N, worst = 0.0;
-    const shape_params avg_shapes[] = {{0.15, 0.5, 0, 0, 0}, {0.3, 0.3, 0, 0, 0}, {1.0, 0.1, 0, 0, 0.7},
-                                       {0.3, 0.1, 0.4, -0.3, 1.0}};
+    const shape_params avg_shapes[] = {
+        {0.15, 0.5, 0, 0, 0}, {0.3, 0.3, 0, 0, 0}, {1.0, 0.1, 0, 0, 0.7}, {0.3, 0.1, 0.4, -0.3, 1.0}};
     for (int i = avg_first; i <= avg_last; i++) {
         ggx_shape s;
         make_shape(&s, avg_shapes[i]);
@@ -447,9 +448,12 @@ int main(int argc, char **argv)
 {
     int part = argc > 1 ? atoi(argv[1]) : 0;
     const struct CMUnitTest first[] = {
-        cmocka_unit_test(threads),          cmocka_unit_test(closed_forms_alpha_one),
-        cmocka_unit_test(domain_edges),     cmocka_unit_test(average_symmetries),
-        cmocka_unit_test(against_quadrature_over_w), cmocka_unit_test(bsdf_albedo_deterministic),
+        cmocka_unit_test(threads),
+        cmocka_unit_test(closed_forms_alpha_one),
+        cmocka_unit_test(domain_edges),
+        cmocka_unit_test(average_symmetries),
+        cmocka_unit_test(against_quadrature_over_w),
+        cmocka_unit_test(bsdf_albedo_deterministic),
     };
     const struct CMUnitTest second[] = {cmocka_unit_test(against_monte_carlo),
                                         cmocka_unit_test(average_against_monte_carlo),

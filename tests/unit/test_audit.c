@@ -19,35 +19,98 @@ static const struct {
     const char *id;
     audit_verdict v[AUDIT_SHAPES];
 } EXPECT[] = {
-    {"norm", {H, H, H}},          {"ggx", {H, N, N}},       {"area", {H, H, H}},        {"lune", {H, H, H}},
-    {"g1-blog", {H, H, F}},       {"g1-walter", {H, H, H}},
-    {"stretch", {H, N, N}},       {"ellipse", {H, H, H}},   {"inversion", {C, N, N}},   {"vndf-g1", {H, H, F}},
-    {"crescent", {H, H, H}},      {"heitz", {H, N, N}},     {"crescent-blog", {H, H, F}}, {"jacobian-blog", {F, F, F}},
-    {"weight", {H, H, H}},        {"below", {H, N, N}},     {"rejection", {H, H, H}},   {"p22", {H, N, N}},
-    {"unit-norms", {H, H, F}},    {"sm-lt-su", {H, H, F}},  {"su", {H, H, F}},          {"invariance", {H, H, H}},
-    {"rotate-z", {H, H, N}},      {"min-inactive", {H, H, N}}, {"mean-normal", {H, H, H}}, {"reciprocity", {H, H, H}},
-    {"energy", {H, H, H}},        {"stretch-omega", {C, N, N}}, {"disk-concentric", {C, C, C}}, {"vndf-support", {C, N, N}},
-    {"lambda-zz", {H, N, N}},     {"curvature", {H, H, H}}, {"dof", {H, H, H}},         {"vndf-phi90", {H, N, N}},
-    {"cosine-jacobian", {H, H, H}}, {"slope-jacobian", {H, H, H}}, {"squish-jacobian", {H, H, H}},
-    {"stretch-jacobian", {H, N, N}}, {"reflect-jacobian", {H, H, H}}, {"cross-product", {H, H, H}},
-    {"sphere-normal", {H, H, H}}, {"half-cut", {H, H, H}},  {"g1-pdf-identity", {H, H, H}}, {"vndf-frame", {H, N, N}},
-    {"vndf-eq33", {H, H, H}},     {"sggx", {H, H, H}},      {"hessian", {H, H, H}},     {"normalize-derivative", {H, H, H}},
-    {"stretch-inverse", {H, N, N}}, {"equal-area-grid", {H, N, N}}, {"inversion-forms", {H, N, N}},
-    {"spherical-form", {H, N, N}}, {"det-sr", {H, H, H}},    {"an-is-n", {H, H, N}},
+    {"norm", {H, H, H}},
+    {"ggx", {H, N, N}},
+    {"area", {H, H, H}},
+    {"lune", {H, H, H}},
+    {"g1-blog", {H, H, F}},
+    {"g1-walter", {H, H, H}},
+    {"stretch", {H, N, N}},
+    {"ellipse", {H, H, H}},
+    {"inversion", {C, N, N}},
+    {"vndf-g1", {H, H, F}},
+    {"crescent", {H, H, H}},
+    {"heitz", {H, N, N}},
+    {"crescent-blog", {H, H, F}},
+    {"jacobian-blog", {F, F, F}},
+    {"weight", {H, H, H}},
+    {"below", {H, N, N}},
+    {"rejection", {H, H, H}},
+    {"p22", {H, N, N}},
+    {"unit-norms", {H, H, F}},
+    {"sm-lt-su", {H, H, F}},
+    {"su", {H, H, F}},
+    {"invariance", {H, H, H}},
+    {"rotate-z", {H, H, N}},
+    {"min-inactive", {H, H, N}},
+    {"mean-normal", {H, H, H}},
+    {"reciprocity", {H, H, H}},
+    {"energy", {H, H, H}},
+    {"stretch-omega", {C, N, N}},
+    {"disk-concentric", {C, C, C}},
+    {"vndf-support", {C, N, N}},
+    {"lambda-zz", {H, N, N}},
+    {"curvature", {H, H, H}},
+    {"dof", {H, H, H}},
+    {"vndf-phi90", {H, N, N}},
+    {"cosine-jacobian", {H, H, H}},
+    {"slope-jacobian", {H, H, H}},
+    {"squish-jacobian", {H, H, H}},
+    {"stretch-jacobian", {H, N, N}},
+    {"reflect-jacobian", {H, H, H}},
+    {"cross-product", {H, H, H}},
+    {"sphere-normal", {H, H, H}},
+    {"half-cut", {H, H, H}},
+    {"g1-pdf-identity", {H, H, H}},
+    {"vndf-frame", {H, N, N}},
+    {"vndf-eq33", {H, H, H}},
+    {"sggx", {H, H, H}},
+    {"hessian", {H, H, H}},
+    {"normalize-derivative", {H, H, H}},
+    {"stretch-inverse", {H, N, N}},
+    {"equal-area-grid", {H, N, N}},
+    {"inversion-forms", {H, N, N}},
+    {"spherical-form", {H, N, N}},
+    {"det-sr", {H, H, H}},
+    {"an-is-n", {H, H, N}},
     /* libs/verify/audit_ellipsoid.c */
-    {"normal-point", {H, H, H}},  {"gauss-map", {H, H, H}}, {"silhouette", {H, H, H}},  {"surface-integrals", {H, H, H}},
-    {"lune-sphere", {H, H, H}},   {"ce-cancels", {H, H, H}}, {"semi-axes", {H, N, N}},  {"skew-max", {H, H, H}},
-    {"ndf-along-u", {H, N, N}},   {"sin-jacobian", {H, H, H}}, {"ellipsoid-map", {H, N, N}},
+    {"normal-point", {H, H, H}},
+    {"gauss-map", {H, H, H}},
+    {"silhouette", {H, H, H}},
+    {"surface-integrals", {H, H, H}},
+    {"lune-sphere", {H, H, H}},
+    {"ce-cancels", {H, H, H}},
+    {"semi-axes", {H, N, N}},
+    {"skew-max", {H, H, H}},
+    {"ndf-along-u", {H, N, N}},
+    {"sin-jacobian", {H, H, H}},
+    {"ellipsoid-map", {H, N, N}},
     /* libs/verify/audit_sampling.c */
-    {"lift", {H, N, N}},          {"sphere-disk", {H, H, H}}, {"crescent-sphere", {H, H, H}},
-    {"concentric-walter", {H, H, H}}, {"squeeze-walter", {H, H, H}}, {"frame-eq42", {H, H, H}}, {"lune-point", {H, H, H}}, {"walter-v1", {H, H, H}},
-    {"pm-blog", {H, H, H}},       {"vndf-total-jacobian", {H, N, N}}, {"project-jacobian", {H, H, H}},
+    {"lift", {H, N, N}},
+    {"sphere-disk", {H, H, H}},
+    {"crescent-sphere", {H, H, H}},
+    {"concentric-walter", {H, H, H}},
+    {"squeeze-walter", {H, H, H}},
+    {"frame-eq42", {H, H, H}},
+    {"lune-point", {H, H, H}},
+    {"walter-v1", {H, H, H}},
+    {"pm-blog", {H, H, H}},
+    {"vndf-total-jacobian", {H, N, N}},
+    {"project-jacobian", {H, H, H}},
     /* libs/verify/audit_scattering.c */
-    {"smith-integral", {C, C, F}}, {"eq7-transmission", {H, H, H}}, {"weight-formula", {H, H, H}},
-    {"g-approx", {H, N, N}},      {"brdf-form", {H, N, N}}, {"reflect-below", {H, N, N}},
+    {"smith-integral", {C, C, F}},
+    {"eq7-transmission", {H, H, H}},
+    {"weight-formula", {H, H, H}},
+    {"g-approx", {H, N, N}},
+    {"brdf-form", {H, N, N}},
+    {"reflect-below", {H, N, N}},
     /* libs/verify/audit_stretch.c */
-    {"vector-identities", {H, H, H}}, {"det-scale", {H, N, N}}, {"stretch-total-jacobian", {H, N, N}},
-    {"slope-stretch", {H, N, N}}, {"d-slope", {H, N, N}},   {"iso", {H, N, N}},
+    {"vector-identities", {H, H, H}},
+    {"det-scale", {H, N, N}},
+    {"stretch-total-jacobian", {H, N, N}},
+    {"slope-stretch", {H, N, N}},
+    {"d-slope", {H, N, N}},
+    {"iso", {H, N, N}},
 };
 
 static void default_shapes(double A[AUDIT_SHAPES][3][3])
@@ -96,8 +159,8 @@ static void audit(void **state)
         /* every row names its seed(s), by the short names of docs/references.md */
         CHECK(names_seeds(rows[i].seed), "%s names no seed or an unknown one: %s", rows[i].id, rows[i].seed);
         for (int k = 0; k < AUDIT_SHAPES; k++)
-            CHECK(rows[i].verdict[k] == EXPECT[i].v[k], "claim '%s' (%s), %s A: verdict %s, expected %s: %s", rows[i].id,
-                  rows[i].seed, labels[k], audit_verdict_name(rows[i].verdict[k]),
+            CHECK(rows[i].verdict[k] == EXPECT[i].v[k], "claim '%s' (%s), %s A: verdict %s, expected %s: %s",
+                  rows[i].id, rows[i].seed, labels[k], audit_verdict_name(rows[i].verdict[k]),
                   audit_verdict_name(EXPECT[i].v[k]), rows[i].text[k]);
     }
     /* a seed's formula that fails as written says which form holds, with that form's own passing chi-square; a claim
@@ -110,7 +173,8 @@ static void audit(void **state)
             if (rows[i].verdict[k] == AUDIT_CORRECTED) /* a correction is stated */
                 CHECK(h || strstr(rows[i].text[k], " with "), "%s: %s", rows[i].id, rows[i].text[k]);
             if (rows[i].verdict[k] == AUDIT_NOT_CLAIMED)
-                CHECK(strncmp(rows[i].text[k], "applied anyway", 14) == 0 || strncmp(rows[i].text[k], "cannot be applied", 17) == 0,
+                CHECK(strncmp(rows[i].text[k], "applied anyway", 14) == 0 ||
+                          strncmp(rows[i].text[k], "cannot be applied", 17) == 0,
                       "%s, %s: %s", rows[i].id, labels[k], rows[i].text[k]);
         }
     /* the blog's Jacobian is wrong, yet its final pdf is the VNDF's up to the constant |A|^2: the D(m, v) step of the
@@ -144,7 +208,8 @@ static void view_grid(void **state)
     for (int i = 0; i < n; i++) {
         if (strcmp(rows[i].id, "g1-blog") != 0 && strcmp(rows[i].id, "vndf-g1") != 0) continue;
         found++;
-        CHECK(rows[i].verdict[0] == AUDIT_HOLDS && rows[i].verdict[1] == AUDIT_HOLDS && rows[i].verdict[2] == AUDIT_FAILS,
+        CHECK(rows[i].verdict[0] == AUDIT_HOLDS && rows[i].verdict[1] == AUDIT_HOLDS &&
+                  rows[i].verdict[2] == AUDIT_FAILS,
               "%s: %s | %s | %s", rows[i].id, rows[i].text[0], rows[i].text[1], rows[i].text[2]);
         CHECK(strstr(rows[i].text[2], "worst of 48 views") != NULL, "%s: %s", rows[i].id, rows[i].text[2]);
     }
@@ -171,12 +236,14 @@ static void kin_counterexample(void **state)
     (void)state;
     double A[3][3], shares[AU_KIN];
     ggx_shape s;
-    CHECK(ggx_ellipsoid_matrix(A, 0.3, 0.6, 0.4, -0.3, 0.5) == GGX_OK && ggx_shape_matrix(&s, (const double(*)[3])A) == GGX_OK,
+    CHECK(ggx_ellipsoid_matrix(A, 0.3, 0.6, 0.4, -0.3, 0.5) == GGX_OK &&
+              ggx_shape_matrix(&s, (const double(*)[3])A) == GGX_OK,
           "skewed shape");
     for (int i = 0; i < AU_KIN; i++) {
         au_kin K;
         au_kin_shape(&s, (const double(*)[3])A, i, 0x5eed, &K);
-        CHECK(K.s.kind == GGX_SHAPE_SKEWED && K.offdiag > 0, "shape %d of the skewed family: kind %d", i, (int)K.s.kind);
+        CHECK(K.s.kind == GGX_SHAPE_SKEWED && K.offdiag > 0, "shape %d of the skewed family: kind %d", i,
+              (int)K.s.kind);
         shares[i] = K.offdiag;
     }
     qsort(shares, AU_KIN, sizeof shares[0], cmp_d);
@@ -187,7 +254,8 @@ static void kin_counterexample(void **state)
     au_verdict_kin(&row, 0, &s, (const double(*)[3])A, offdiag_err, NULL, 3, 0, "synthetic:");
     char want[64];
     snprintf(want, sizeof want, "share %.6f", least);
-    CHECK(row.verdict[0] == AUDIT_FAILS && strstr(row.text[0], want), "expected the counterexample %s: %s", want, row.text[0]);
+    CHECK(row.verdict[0] == AUDIT_FAILS && strstr(row.text[0], want), "expected the counterexample %s: %s", want,
+          row.text[0]);
     /* the diagonal family: every share 0, so the same claim holds */
     ggx_shape d;
     double D[3][3] = {{0.2, 0, 0}, {0, 0.7, 0}, {0, 0, 1}};

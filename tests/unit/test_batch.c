@@ -59,7 +59,8 @@ static void compare(ggx_batch_isa isa, worst *w)
         for (int i = 0; i < n; i++) {
             ggx_vec3 v = t_dir(acos(rng_range(&r, 0.02, 1)), rng_range(&r, -GGX_PI, GGX_PI));
             ggx_vec3 m = t_dir(acos(rng_range(&r, 0.02, 1)), rng_range(&r, -GGX_PI, GGX_PI));
-            vx[i] = (float)v.x, vy[i] = (float)v.y, vz[i] = (float)v.z, mx[i] = (float)m.x, my[i] = (float)m.y, mz[i] = (float)m.z;
+            vx[i] = (float)v.x, vy[i] = (float)v.y, vz[i] = (float)v.z, mx[i] = (float)m.x, my[i] = (float)m.y,
+            mz[i] = (float)m.z;
             /* the double reference sees exactly the float inputs */
             V[i][0] = vx[i], V[i][1] = vy[i], V[i][2] = vz[i], M[i][0] = mx[i], M[i][1] = my[i], M[i][2] = mz[i];
             u1[i] = (float)rng_uniform(&r), u2[i] = (float)rng_uniform(&r);
@@ -73,7 +74,8 @@ static void compare(ggx_batch_isa isa, worst *w)
         ggx_batch_brdf(o4, (size_t)n, &s, &f, vx, vy, vz, mx, my, mz);
         for (int i = 0; i < n; i++) {
             ggx_vec3 v = t_vec(V[i][0], V[i][1], V[i][2]), m = t_vec(M[i][0], M[i][1], M[i][2]);
-            double d = ggx_ndf(&s, m), g = ggx_g1(&s, v, m), pv = ggx_pdf_vndf(&s, v, m), fr = ggx_brdf_eval(&s, &f, v, m);
+            double d = ggx_ndf(&s, m), g = ggx_g1(&s, v, m), pv = ggx_pdf_vndf(&s, v, m),
+                   fr = ggx_brdf_eval(&s, &f, v, m);
             w->ndf = fmax(w->ndf, rel(o1[i], d));
             w->g1 = fmax(w->g1, rel(o2[i], g));
             /* the pdf is proportional to m.v, which a float dot product resolves to ~1e-7 absolute */
@@ -82,8 +84,8 @@ static void compare(ggx_batch_isa isa, worst *w)
             w->pdf = fmax(w->pdf, ep);
             w->brdf = fmax(w->brdf, rel(o4[i], fr));
             CHECK(rel(o1[i], d) <= 2e-5 && rel(o2[i], g) <= 2e-5 && ep <= 2e-5 && rel(o4[i], fr) <= 2e-5,
-                  "%s n %d i %d: D %g/%g G1 %g/%g pdf %g/%g brdf %g/%g", ggx_batch_isa_name(isa), n, i, o1[i], d, o2[i], g,
-                  o3[i], pv, o4[i], fr);
+                  "%s n %d i %d: D %g/%g G1 %g/%g pdf %g/%g brdf %g/%g", ggx_batch_isa_name(isa), n, i, o1[i], d, o2[i],
+                  g, o3[i], pv, o4[i], fr);
         }
         CHECK(o1[n] == -7.0f && o2[n] == -7.0f && o3[n] == -7.0f && o4[n] == -7.0f, "wrote past n = %d", n);
         /* samplers: same u as the double samplers */
@@ -149,7 +151,8 @@ static void compare(ggx_batch_isa isa, worst *w)
             for (int i = 0; i < n; i++) {
                 ggx_sample x = info->sample_direction(&s, &f, 1.5, t_vec(V[i][0], V[i][1], V[i][2]), u1[i], u2[i], 0.5,
                                                       GGX_RADIANCE);
-                if (fabs(x.w.z) < 1e-4 || (x.event == GGX_EVENT_INVALID && fabs(o3[i]) < 1e-4)) continue; /* the horizon */
+                if (fabs(x.w.z) < 1e-4 || (x.event == GGX_EVENT_INVALID && fabs(o3[i]) < 1e-4))
+                    continue; /* the horizon */
                 CHECK((x.event != GGX_EVENT_INVALID) == (o4[i] > 0), "%s %s validity n %d i %d",
                       ggx_batch_isa_name(isa), info->name, n, i);
                 if (x.event == GGX_EVENT_INVALID) continue;
@@ -158,8 +161,8 @@ static void compare(ggx_batch_isa isa, worst *w)
                 w->spdf = fmax(w->spdf, rel(o4[i], x.pdf));
                 w->weight = fmax(w->weight, fabs(o5[i] - x.weight));
                 CHECK(e <= 1e-4 && rel(o4[i], x.pdf) <= 1e-4 && fabs(o5[i] - x.weight) <= 2e-4 && o5[i] <= 1.0f,
-                      "%s %s sample n %d i %d: w err %g pdf %g/%g weight %g/%g", ggx_batch_isa_name(isa), info->name,
-                      n, i, e, o4[i], x.pdf, o5[i], x.weight);
+                      "%s %s sample n %d i %d: w err %g pdf %g/%g weight %g/%g", ggx_batch_isa_name(isa), info->name, n,
+                      i, e, o4[i], x.pdf, o5[i], x.weight);
             }
         }
     }
@@ -180,9 +183,10 @@ static void every_isa(void **state)
         worst w = {0};
         compare(isas[k], &w);
         tested++;
-        printf("batch %-6s: rel err D %.1e G1 %.1e pdf %.1e brdf %.1e; abs err vndf %.1e aniso %.1e ndf %.1e brdf-w %.1e; "
-               "sample pdf rel %.1e weight abs %.1e\n",
-               ggx_batch_isa_name(isas[k]), w.ndf, w.g1, w.pdf, w.brdf, w.m, w.aniso, w.mndf, w.w, w.spdf, w.weight);
+        printf(
+            "batch %-6s: rel err D %.1e G1 %.1e pdf %.1e brdf %.1e; abs err vndf %.1e aniso %.1e ndf %.1e brdf-w %.1e; "
+            "sample pdf rel %.1e weight abs %.1e\n",
+            ggx_batch_isa_name(isas[k]), w.ndf, w.g1, w.pdf, w.brdf, w.m, w.aniso, w.mndf, w.w, w.spdf, w.weight);
         for (int id = 0; id < GGX_SAMPLER_COUNT; id++)
             if (batch_normals(ggx_sampler_get((ggx_sampler_id)id)))
                 printf("batch %-6s: ggx_batch_sample_normals %-15s abs err %.1e\n", ggx_batch_isa_name(isas[k]),
@@ -211,7 +215,8 @@ static void registry_entry_points(void **state)
             CHECK(st == GGX_OK && fabsf(m[0] * m[0] + m[1] * m[1] + m[2] * m[2] - 1) < 1e-5f, "%s: %s", info->name,
                   ggx_status_str(st));
             CHECK(ggx_batch_sample_normals((ggx_sampler_id)id, NULL, &m[1], &m[2], 1, &s, &v[0], &v[1], &v[2], &u[0],
-                                           &u[1]) == GGX_ERR_NULL, "%s: NULL output accepted", info->name);
+                                           &u[1]) == GGX_ERR_NULL,
+                  "%s: NULL output accepted", info->name);
             m[0] = m[1] = m[2] = -7.0f;
             continue;
         }
@@ -230,7 +235,8 @@ static void registry_entry_points(void **state)
             directions++;
             ggx_fresnel one;
             ggx_fresnel_one(&one); /* the batch's NULL: F = 1 */
-            ggx_sample x = info->sample_direction(&s, &one, 1.5, t_vec(v[0], v[1], v[2]), u[0], u[1], 0.5, GGX_RADIANCE);
+            ggx_sample x = info->sample_direction(&s, &one, 1.5, t_vec(v[0], v[1], v[2]), u[0], u[1], 0.5,
+                                                  GGX_RADIANCE);
             CHECK(st == GGX_OK && (w[3] > 0) == (x.event != GGX_EVENT_INVALID) && fabs(w[3] - x.pdf) <= 1e-4 * x.pdf,
                   "%s: %s, pdf %g against %g", info->name, ggx_status_str(st), w[3], x.pdf);
             CHECK(ggx_batch_sample_directions((ggx_sampler_id)id, &w[0], &w[1], &w[2], &w[3], NULL, 1, &s, NULL, &v[0],
@@ -262,8 +268,7 @@ static void short_views(void **state)
     for (unsigned k = 0; k < sizeof shapes / sizeof shapes[0] + 1; k++) {
         ggx_shape s;
         if (k < sizeof shapes / sizeof shapes[0]) make_shape(&s, shapes[k]);
-        else { /* the skewed shape's canonical matrix scaled to 1e-49 */
-            ggx_shape b;
+        else { /* the skewed shape's canonical matrix scaled to 1e-49 */ ggx_shape b;
             make_shape(&b, shapes[2]);
             double A[3][3];
             for (int i = 0; i < 9; i++) A[i / 3][i % 3] = 1e-49 * b.a[i / 3][i % 3];
@@ -285,7 +290,8 @@ static void short_views(void **state)
                 for (int id = 0; id < GGX_SAMPLER_COUNT; id++) {
                     const ggx_sampler_info *info = ggx_sampler_get((ggx_sampler_id)id);
                     if (!info->batch || info->family != GGX_FAMILY_VNDF) continue;
-                    CHECK(ggx_batch_sample_normals((ggx_sampler_id)id, mx, my, mz, NV, &s, vx, vy, vz, u1, u2) == GGX_OK,
+                    CHECK(ggx_batch_sample_normals((ggx_sampler_id)id, mx, my, mz, NV, &s, vx, vy, vz, u1, u2) ==
+                              GGX_OK,
                           "%s", info->name);
                     for (int i = 0; i < NV; i++) {
                         ggx_vec3 w = t_vec(vx[i], vy[i], vz[i]), m = info->sample(&s, t_normalize(w), u1[i], u2[i]);

@@ -27,8 +27,8 @@ static void brdf_reciprocity(void **state)
         make_shape(&s, p);
         ggx_vec3 a = random_view(&r), b = random_view(&r);
         double fab = ggx_brdf_eval(&s, &f, a, b), fba = ggx_brdf_eval(&s, &f, b, a);
-        CHECK_CLOSE(fab, fba, 1e-12, 0, "(%g,%g,%g,%g,%g) a (%.17g,%.17g,%.17g) b (%.17g,%.17g,%.17g)", p.ax, p.ay, p.tx,
-                    p.ty, p.tz, a.x, a.y, a.z, b.x, b.y, b.z);
+        CHECK_CLOSE(fab, fba, 1e-12, 0, "(%g,%g,%g,%g,%g) a (%.17g,%.17g,%.17g) b (%.17g,%.17g,%.17g)", p.ax, p.ay,
+                    p.tx, p.ty, p.tz, a.x, a.y, a.z, b.x, b.y, b.z);
         nonzero += fab > 0;
         ggx_vec3 below = t_vec(b.x, b.y, -b.z);
         CHECK(ggx_brdf_eval(&s, &f, a, below) == 0.0 && ggx_brdf_eval(&s, &f, below, a) == 0.0, "below horizon");
@@ -93,8 +93,8 @@ static void bsdf_reciprocity(void **state)
         ggx_vec3 a = random_dir_sphere(&r), b = random_dir_sphere(&r);
         double ea = a.z > 0 ? 1.0 : eta, eb = b.z > 0 ? 1.0 : eta;
         double fab = ggx_bsdf_eval(&s, eta, a, b, GGX_RADIANCE), fba = ggx_bsdf_eval(&s, eta, b, a, GGX_RADIANCE);
-        CHECK_CLOSE(fab / (eb * eb), fba / (ea * ea), 1e-10, 0, "eta %g a (%.17g,%.17g,%.17g) b (%.17g,%.17g,%.17g)", eta,
-                    a.x, a.y, a.z, b.x, b.y, b.z);
+        CHECK_CLOSE(fab / (eb * eb), fba / (ea * ea), 1e-10, 0, "eta %g a (%.17g,%.17g,%.17g) b (%.17g,%.17g,%.17g)",
+                    eta, a.x, a.y, a.z, b.x, b.y, b.z);
         CHECK(ggx_bsdf_eval(&s, eta, a, b, GGX_IMPORTANCE) == fba, "adjoint");
         if (fab > 0) counts[(a.z > 0) != (b.z > 0)]++;
     }
@@ -138,10 +138,12 @@ static void bsdf_energy(void **state)
         double refl = quad_hemisphere(&s, bsdf_albedo_f, &c, &flip, 1, 1e-6, NULL);
         c.transmit = 1;
         double tran = quad_hemisphere(&s, bsdf_albedo_f, &c, &flip, 1, 1e-6, NULL);
-        CHECK(refl + tran <= 1.0 + 1e-5, "albedo %.9f + %.9f > 1 (%g,%g,%g,%g,%g) wi (%g,%g,%g)", refl, tran, p.ax, p.ay,
-              p.tx, p.ty, p.tz, wi.x, wi.y, wi.z);
+        CHECK(refl + tran <= 1.0 + 1e-5, "albedo %.9f + %.9f > 1 (%g,%g,%g,%g,%g) wi (%g,%g,%g)", refl, tran, p.ax,
+              p.ay, p.tx, p.ty, p.tz, wi.x, wi.y, wi.z);
         if (near_normal && i < 8) CHECK(refl + tran > 0.9, "albedo %.6f + %.6f too low, wi.z %g", refl, tran, wi.z);
-        if (near_normal) printf("BSDF energy, alpha 0.2, skew %s, wi.z %+.3f: R %.6f + T %.6f = %.6f\n", i >= 8 ? "0.5" : "0", wi.z, refl, tran, refl + tran);
+        if (near_normal)
+            printf("BSDF energy, alpha 0.2, skew %s, wi.z %+.3f: R %.6f + T %.6f = %.6f\n", i >= 8 ? "0.5" : "0", wi.z,
+                   refl, tran, refl + tran);
     }
 }
 
@@ -218,7 +220,7 @@ static void jacobians_and_snell(void **state)
 int main(void)
 {
     const struct CMUnitTest tests[] = {
-        cmocka_unit_test(brdf_reciprocity), cmocka_unit_test(brdf_albedo),       cmocka_unit_test(bsdf_reciprocity),
+        cmocka_unit_test(brdf_reciprocity), cmocka_unit_test(brdf_albedo),         cmocka_unit_test(bsdf_reciprocity),
         cmocka_unit_test(bsdf_energy),      cmocka_unit_test(jacobians_and_snell),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);

@@ -14,7 +14,7 @@
 /* The promise of ggx.h for the table and the furnace (views up to 89 degrees). */
 #define TABLE_PROMISE 1e-3
 #define ANISO_PROMISE 1.1e-3 /* ggx_albedo_aniso_table, and the per-shape tables of unskewed anisotropic shapes */
-#define MU_MIN 0.0175 /* cos 89 degrees */
+#define MU_MIN 0.0175        /* cos 89 degrees */
 
 typedef struct test_shape {
     const char *name;
@@ -159,13 +159,12 @@ static void white_furnace(void **state)
             for (int b = 0; b < 2; b++) {
                 ggx_vec3 wi = t_dir(thetas[a] * GGX_PI / 180, 0.7 + 2.1 * b);
                 double ms = ms_albedo(e, &one, wi), total = ggx_albedo(&shapes[i], wi) + ms;
-                CHECK_CLOSE(total, 1.0, 0, TABLE_PROMISE, "%s: furnace at theta %g, phi %g", SHAPES[i].name,
-                            thetas[a], 0.7 + 2.1 * b);
+                CHECK_CLOSE(total, 1.0, 0, TABLE_PROMISE, "%s: furnace at theta %g, phi %g", SHAPES[i].name, thetas[a],
+                            0.7 + 2.1 * b);
                 if (fabs(total - 1) > worst) worst = fabs(total - 1);
                 double id = fabs(ms - (1 - ggx_energy_albedo(e, wi)));
                 if (id > worst_identity) worst_identity = id;
-                CHECK_CLOSE(ms, 1 - ggx_energy_albedo(e, wi), 0, 1e-6, "%s: int f_ms = 1 - E_table",
-                            SHAPES[i].name);
+                CHECK_CLOSE(ms, 1 - ggx_energy_albedo(e, wi), 0, 1e-6, "%s: int f_ms = 1 - E_table", SHAPES[i].name);
                 if (a == 2) {
                     double msc = ms_albedo(e, &cond, wi);
                     CHECK_CLOSE(msc, fms * (1 - ggx_energy_albedo(e, wi)), 1e-6, 1e-9, "%s: conductor F_ms",
@@ -173,8 +172,8 @@ static void white_furnace(void **state)
                     /* the compensated entry point is the sum of the two lobes */
                     ggx_vec3 wo = t_dir(0.4, 2.0);
                     CHECK_CLOSE(ggx_brdf_compensated_eval(e, &cond, wi, wo),
-                                ggx_brdf_eval(&shapes[i], &cond, wi, wo) + ggx_brdf_ms_eval(e, &cond, wi, wo), 1e-14,
-                                0, "%s: compensated = single + multiple", SHAPES[i].name);
+                                ggx_brdf_eval(&shapes[i], &cond, wi, wo) + ggx_brdf_ms_eval(e, &cond, wi, wo), 1e-14, 0,
+                                "%s: compensated = single + multiple", SHAPES[i].name);
                 }
             }
     }
@@ -191,7 +190,8 @@ static void reciprocity(void **state)
     for (int i = 0; i < nshapes; i++)
         for (int k = 0; k < 200; k++) {
             ggx_vec3 a = random_view(&r), b = random_view(&r);
-            double ab = ggx_brdf_compensated_eval(tables[i], &f, a, b), ba = ggx_brdf_compensated_eval(tables[i], &f, b, a);
+            double ab = ggx_brdf_compensated_eval(tables[i], &f, a, b),
+                   ba = ggx_brdf_compensated_eval(tables[i], &f, b, a);
             CHECK_CLOSE(ab, ba, 1e-12, 1e-300, "%s: reciprocity", SHAPES[i].name);
             double mab = ggx_brdf_ms_eval(tables[i], &f, a, b), mba = ggx_brdf_ms_eval(tables[i], &f, b, a);
             CHECK_CLOSE(mab, mba, 1e-12, 1e-300, "%s: reciprocity of f_ms", SHAPES[i].name);
@@ -210,10 +210,8 @@ static void *cycle_fresnels(void *arg)
     for (int round = 0; round < 200; round++)
         for (int k = 0; k < 7; k++) {
             ggx_fresnel f;
-            if (k == 6)
-                ggx_fresnel_dielectric(&f, 1.0 / (1.2 + 0.1 * (double)(size_t)arg));
-            else
-                ggx_fresnel_conductor(&f, 0.2 + 0.3 * k + 0.01 * (double)(size_t)arg, 3.0 - 0.4 * k);
+            if (k == 6) ggx_fresnel_dielectric(&f, 1.0 / (1.2 + 0.1 * (double)(size_t)arg));
+            else ggx_fresnel_conductor(&f, 0.2 + 0.3 * k + 0.01 * (double)(size_t)arg, 3.0 - 0.4 * k);
             double fa = ggx_fresnel_avg(&f), fms = fa * fa * ea / (1 - fa * (1 - ea));
             double want = fms * (1 - ei) * (1 - eo) / (GGX_PI * (1 - ea));
             if (fabs(ggx_brdf_ms_eval(e, &f, wi, wo) - want) > 1e-14 * want) bad++;
@@ -244,10 +242,10 @@ static void fresnel_average(void **state)
     ggx_fresnel fs[7];
     ggx_fresnel_one(&fs[0]);
     ggx_fresnel_schlick(&fs[1], 0.04);
-    ggx_fresnel_conductor(&fs[2], 0.2, 3.0);   /* gold-like */
-    ggx_fresnel_conductor(&fs[3], 1.5, 0.0);   /* k = 0 */
+    ggx_fresnel_conductor(&fs[2], 0.2, 3.0); /* gold-like */
+    ggx_fresnel_conductor(&fs[3], 1.5, 0.0); /* k = 0 */
     ggx_fresnel_dielectric(&fs[4], 1.5);
-    ggx_fresnel_dielectric(&fs[5], 1 / 1.5);   /* total internal reflection below mu = 0.745 */
+    ggx_fresnel_dielectric(&fs[5], 1 / 1.5); /* total internal reflection below mu = 0.745 */
     ggx_fresnel_dielectric(&fs[6], 1 / 1.05);
     for (int i = 0; i < 7; i++) {
         fa_ctx c = {&fs[i]};
@@ -275,11 +273,13 @@ static void edges(void **state)
         CHECK(ggx_brdf_ms_eval(e, NULL, up, bad[k]) == 0 && ggx_brdf_ms_eval(e, NULL, bad[k], up) == 0, "f_ms %d", k);
         CHECK(ggx_brdf_compensated_eval(e, NULL, bad[k], up) == 0, "compensated %d", k);
         CHECK(ggx_pdf_brdf_compensated(e, NULL, up, bad[k]) == 0 && ggx_pdf_brdf_ms(e, up, bad[k]) == 0, "pdf %d", k);
-        ggx_sample a = ggx_sample_brdf_compensated(e, NULL, bad[k], 0.3, 0.3, 0.3), b = ggx_sample_brdf_ms(e, NULL, bad[k], 0.3, 0.3);
+        ggx_sample a = ggx_sample_brdf_compensated(e, NULL, bad[k], 0.3, 0.3, 0.3),
+                   b = ggx_sample_brdf_ms(e, NULL, bad[k], 0.3, 0.3);
         CHECK(a.event == GGX_EVENT_INVALID && a.pdf == 0 && a.weight == 0, "invalid sample %d", k);
         CHECK(b.event == GGX_EVENT_INVALID && b.pdf == 0 && b.weight == 0, "invalid ms sample %d", k);
     }
-    CHECK(ggx_energy_albedo(NULL, up) == 0 && ggx_energy_albedo_avg(NULL) == 0 && ggx_energy_shape(NULL) == NULL, "NULL");
+    CHECK(ggx_energy_albedo(NULL, up) == 0 && ggx_energy_albedo_avg(NULL) == 0 && ggx_energy_shape(NULL) == NULL,
+          "NULL");
     CHECK(ggx_brdf_compensated_eval(NULL, NULL, up, up) == 0, "NULL energy");
     ggx_energy *out = (ggx_energy *)&out;
     CHECK(ggx_energy_create(NULL, &out) == GGX_ERR_NULL && out == NULL, "NULL shape");
@@ -296,7 +296,8 @@ static void edges(void **state)
                     ggx_sample m = ggx_sample_brdf_ms(tables[i], NULL, views[a], us[k], us[l]);
                     CHECK(m.event == GGX_EVENT_INVALID || (m.w.z > 0 && isfinite(m.weight) && m.pdf > 0),
                           "%s: ms sample at u (%g, %g)", SHAPES[i].name, us[k], us[l]);
-                    ggx_sample c = ggx_sample_brdf_compensated(tables[i], NULL, views[a], us[k], us[l], us[(k + l) % 5]);
+                    ggx_sample c = ggx_sample_brdf_compensated(tables[i], NULL, views[a], us[k], us[l],
+                                                               us[(k + l) % 5]);
                     CHECK(c.event == GGX_EVENT_INVALID || (c.w.z > 0 && isfinite(c.weight) && c.pdf > 0),
                           "%s: compensated sample", SHAPES[i].name);
                 }
@@ -348,8 +349,8 @@ static void iso_tables(void **state)
         iso_avg_point(a, worst_avg, " in an end cell");
         for (int i = 0; i < 4; i++) iso_e_point(a, MU_MIN + (1 - MU_MIN) * i / 3.0, worst, " in an end cell");
     }
-    printf("iso tables: largest |E_table - E| %.2e (separable), %.2e (height-correlated); E_avg %.2e, %.2e\n",
-           worst[0], worst[1], worst_avg[0], worst_avg[1]);
+    printf("iso tables: largest |E_table - E| %.2e (separable), %.2e (height-correlated); E_avg %.2e, %.2e\n", worst[0],
+           worst[1], worst_avg[0], worst_avg[1]);
     /* outside [1e-3, 2]: the quadrature, exactly */
     const double outside[] = {1e-4, 5e-4, 2.5, 40};
     for (int k = 0; k < 4; k++) {
@@ -365,11 +366,16 @@ static void iso_tables(void **state)
     ggx_shape s1, s2;
     make_shape(&s1, (shape_params){1e-3, 1e-3, 0, 0, 0});
     make_shape(&s2, (shape_params){2, 2, 0, 0, 0});
-    CHECK_CLOSE(ggx_albedo_iso_table(1e-3, 1.0, GGX_MASKING_SEPARABLE), ggx_albedo(&s1, t_vec(0, 0, 1)), 0, 1e-6, "alpha 1e-3 at n");
-    CHECK_CLOSE(ggx_albedo_iso_table(2.0, 1.0, GGX_MASKING_SEPARABLE), ggx_albedo(&s2, t_vec(0, 0, 1)), 0, 1e-6, "alpha 2 at n");
-    CHECK(ggx_albedo_iso_table(0.3, 1.5, GGX_MASKING_SEPARABLE) == ggx_albedo_iso_table(0.3, 1.0, GGX_MASKING_SEPARABLE), "mu > 1");
+    CHECK_CLOSE(ggx_albedo_iso_table(1e-3, 1.0, GGX_MASKING_SEPARABLE), ggx_albedo(&s1, t_vec(0, 0, 1)), 0, 1e-6,
+                "alpha 1e-3 at n");
+    CHECK_CLOSE(ggx_albedo_iso_table(2.0, 1.0, GGX_MASKING_SEPARABLE), ggx_albedo(&s2, t_vec(0, 0, 1)), 0, 1e-6,
+                "alpha 2 at n");
+    CHECK(ggx_albedo_iso_table(0.3, 1.5, GGX_MASKING_SEPARABLE) ==
+              ggx_albedo_iso_table(0.3, 1.0, GGX_MASKING_SEPARABLE),
+          "mu > 1");
     const double bad_mu[] = {0.0, -0.5, NAN};
-    for (int k = 0; k < 3; k++) CHECK(ggx_albedo_iso_table(0.3, bad_mu[k], GGX_MASKING_SEPARABLE) == 0, "mu %g", bad_mu[k]);
+    for (int k = 0; k < 3; k++)
+        CHECK(ggx_albedo_iso_table(0.3, bad_mu[k], GGX_MASKING_SEPARABLE) == 0, "mu %g", bad_mu[k]);
     const double bad_a[] = {0.0, -1, NAN, INFINITY, 2e4};
     for (int k = 0; k < 5; k++) {
         CHECK(ggx_albedo_iso_table(bad_a[k], 0.5, GGX_MASKING_SEPARABLE) == 0, "alpha %g", bad_a[k]);
@@ -397,7 +403,8 @@ static void aniso_table(void **state)
         double want = ggx_albedo(&s, v), got = ggx_albedo_aniso_table(ax, ay, v), err = fabs(got - want);
         int band = ratio <= 4 ? 0 : ratio <= 20 ? 1 : 2;
         if (band < 2)
-            CHECK_CLOSE(got, want, 0, TABLE_PROMISE, "aniso table, alpha (%.6g, %.6g) mu %.6g phi %.6g", ax, ay, mu, phi);
+            CHECK_CLOSE(got, want, 0, TABLE_PROMISE, "aniso table, alpha (%.6g, %.6g) mu %.6g phi %.6g", ax, ay, mu,
+                        phi);
         if (err > worst[band]) worst[band] = err;
     }
     printf("aniso table: largest |E_table - E| %.2e (ratios to 4), %.2e (4 to 20), %.2e (20 to 40)\n", worst[0],
@@ -413,7 +420,8 @@ static void aniso_table(void **state)
                 make_shape(&s, (shape_params){ax, ay, 0, 0, 0});
                 ggx_vec3 w = view_mu(MU_MIN, p * GGX_PI / 4);
                 double err = fabs(ggx_albedo_aniso_table(ax, ay, w) - ggx_albedo(&s, w));
-                CHECK(err <= TABLE_PROMISE, "aniso table at 89 degrees, alpha (%.6g, %.6g), phi %d pi/4: error %.3g", ax, ay, p, err);
+                CHECK(err <= TABLE_PROMISE, "aniso table at 89 degrees, alpha (%.6g, %.6g), phi %d pi/4: error %.3g",
+                      ax, ay, p, err);
                 if (err > slice[0]) slice[0] = err;
             }
     for (int q = 1; q < 3; q++)
@@ -442,27 +450,32 @@ static void aniso_table(void **state)
         make_shape(&s, (shape_params){0.017130450975760426, 0.34260362230443087, 0, 0, 0});
         ggx_vec3 w = t_vec(0.9992890118774862, 0.033394920885030474, 0.017500000000000002);
         double err = fabs(ggx_albedo_aniso_table(0.017130450975760426, 0.34260362230443087, w) - ggx_albedo(&s, w));
-        CHECK(err <= TABLE_PROMISE, "the hostile case at ratio 20 (2.8e-3 before the warped azimuths): error %.3g", err);
+        CHECK(err <= TABLE_PROMISE, "the hostile case at ratio 20 (2.8e-3 before the warped azimuths): error %.3g",
+              err);
         if (err > slice[2]) slice[2] = err;
     }
     printf("aniso table at 89 degrees: largest error %.2e (alphas 0.01 to 0.06), %.2e (ratio 4), %.2e (ratio 20)\n",
            slice[0], slice[1], slice[2]);
     /* the symmetries: swapping the alphas with the axes, mirroring the view, a non-unit view */
-    ggx_vec3 v = view_mu(0.3, 0.7), sw = t_vec(v.y, v.x, v.z), mi = t_vec(-v.x, v.y, v.z), big = t_vec(3 * v.x, 3 * v.y, 3 * v.z);
+    ggx_vec3 v = view_mu(0.3, 0.7), sw = t_vec(v.y, v.x, v.z), mi = t_vec(-v.x, v.y, v.z),
+             big = t_vec(3 * v.x, 3 * v.y, 3 * v.z);
     double e = ggx_albedo_aniso_table(0.05, 0.7, v);
     CHECK_CLOSE(ggx_albedo_aniso_table(0.7, 0.05, sw), e, 1e-12, 0, "swapped alphas and axes");
     CHECK(ggx_albedo_aniso_table(0.05, 0.7, mi) == e, "mirrored view");
     CHECK_CLOSE(ggx_albedo_aniso_table(0.05, 0.7, big), e, 1e-12, 0, "a view of length 3");
     /* isotropic alphas: the isotropic table's quantity, any azimuth */
     for (int k = 0; k < 4; k++)
-        CHECK_CLOSE(ggx_albedo_aniso_table(0.3, 0.3, view_mu(0.5, k)), ggx_albedo_iso_table(0.3, 0.5, GGX_MASKING_SEPARABLE),
-                    0, TABLE_PROMISE, "isotropic, azimuth %d", k);
+        CHECK_CLOSE(ggx_albedo_aniso_table(0.3, 0.3, view_mu(0.5, k)),
+                    ggx_albedo_iso_table(0.3, 0.5, GGX_MASKING_SEPARABLE), 0, TABLE_PROMISE, "isotropic, azimuth %d",
+                    k);
     /* the grid's ends: alpha exactly 1e-2 and 2, at n */
     ggx_shape s;
     make_shape(&s, (shape_params){1e-2, 2, 0, 0, 0});
-    CHECK_CLOSE(ggx_albedo_aniso_table(1e-2, 2, t_vec(0, 0, 1)), ggx_albedo(&s, t_vec(0, 0, 1)), 0, 1e-5, "alphas 1e-2, 2 at n");
+    CHECK_CLOSE(ggx_albedo_aniso_table(1e-2, 2, t_vec(0, 0, 1)), ggx_albedo(&s, t_vec(0, 0, 1)), 0, 1e-5,
+                "alphas 1e-2, 2 at n");
     /* outside [1e-2, 2], by an ulp too: the quadrature, exactly */
-    const double outside[][2] = {{5e-3, 0.3}, {0.3, 2.5}, {1e-3, 1e-3}, {3, 40}, {2.0000000000000004, 1}, {0.3, 0x1.47ae147ae147ap-7}};
+    const double outside[][2] = {
+        {5e-3, 0.3}, {0.3, 2.5}, {1e-3, 1e-3}, {3, 40}, {2.0000000000000004, 1}, {0.3, 0x1.47ae147ae147ap-7}};
     for (int k = 0; k < 6; k++) {
         make_shape(&s, (shape_params){outside[k][0], outside[k][1], 0, 0, 0});
         CHECK(ggx_albedo_aniso_table(outside[k][0], outside[k][1], v) == ggx_albedo(&s, v), "alphas (%g, %g) outside",
@@ -506,7 +519,8 @@ static int smp_draw(void *vc, rng *r, ggx_vec3 *w)
                                   : ggx_sample_brdf_ms(c->e, &c->f, c->v, u1, u2);
     if (s.event == GGX_EVENT_INVALID) return 0;
     if ((c->checked++ & 15) == 0 && !c->control) {
-        double f = c->compensated ? ggx_brdf_compensated_eval(c->e, &c->f, c->v, s.w) : ggx_brdf_ms_eval(c->e, &c->f, c->v, s.w);
+        double f = c->compensated ? ggx_brdf_compensated_eval(c->e, &c->f, c->v, s.w)
+                                  : ggx_brdf_ms_eval(c->e, &c->f, c->v, s.w);
         CHECK_CLOSE(s.pdf, smp_pdf(c, s.w), 1e-9, 0, "pdf of the sample");
         CHECK_CLOSE(s.weight, f * s.w.z / s.pdf, 1e-9, 1e-300, "weight of the sample");
         CHECK_CLOSE(t_dot(s.w, s.w), 1.0, 1e-12, 0, "unit w");
@@ -567,7 +581,8 @@ static void sampling_chi2(void **state)
     int runs = 0;
     for (int i = 0; i < nshapes; i++)
         for (int a = 0; a < 4; a++) {
-            smp_ctx c = {tables[i], &shapes[i], {GGX_FRESNEL_ONE, 0, 0, 0}, t_dir(thetas[a] * GGX_PI / 180, 0.9), 0, 0, 0};
+            smp_ctx c = {tables[i], &shapes[i], {GGX_FRESNEL_ONE, 0, 0, 0}, t_dir(thetas[a] * GGX_PI / 180, 0.9), 0,
+                         0,         0};
             ggx_fresnel_conductor(&c.f, 0.2, 3.0);
             char name[96];
             int dof;
@@ -621,9 +636,11 @@ int main(int argc, char **argv)
     int rc = 0;
     if (part == 0 || part == 1) rc |= cmocka_run_group_tests_name("energy", first, build_tables, free_tables);
     part_comp = 0;
-    if (part == 0 || part == 2) rc |= cmocka_run_group_tests_name("energy: lobe sampling", second, build_tables, free_tables);
+    if (part == 0 || part == 2)
+        rc |= cmocka_run_group_tests_name("energy: lobe sampling", second, build_tables, free_tables);
     part_ms = 0;
     part_comp = 1;
-    if (part == 0 || part == 3) rc |= cmocka_run_group_tests_name("energy: compensated sampling", third, build_tables, free_tables);
+    if (part == 0 || part == 3)
+        rc |= cmocka_run_group_tests_name("energy: compensated sampling", third, build_tables, free_tables);
     return rc | chi2_budget_end("energy", argc, argv);
 }

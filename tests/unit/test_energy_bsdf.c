@@ -88,10 +88,7 @@ static ggx_vec3 view_mu(double mu, double phi, int side)
     return t_vec(st * cos(phi), st * sin(phi), side ? -mu : mu);
 }
 
-static double exact_albedo(int i, ggx_vec3 v)
-{
-    return ggx_bsdf_albedo(&shapes[i], CONFIGS[i].eta, v, NULL, NULL);
-}
+static double exact_albedo(int i, ggx_vec3 v) { return ggx_bsdf_albedo(&shapes[i], CONFIGS[i].eta, v, NULL, NULL); }
 
 /* The lookup against ggx_bsdf_albedo at random views (weighted towards grazing), at n, at 89 degrees and around the
  * critical angle from the denser side. */
@@ -108,12 +105,14 @@ static void table_against_albedo(void **state)
             double mc = er < 1 ? sqrt(1 - er * er) : 0.5;
             for (int k = 0; k < 20; k++) {
                 double u = rng_uniform(&r), phi = rng_range(&r, 0, 2 * GGX_PI);
-                double mu = k == 0 ? 1 : k == 1 ? MU_MIN : k < 8 ? mc * (0.9 + 0.2 * (k - 2) / 5.0)
-                                                                 : MU_MIN + (1 - MU_MIN) * u * u;
+                double mu = k == 0   ? 1
+                            : k == 1 ? MU_MIN
+                            : k < 8  ? mc * (0.9 + 0.2 * (k - 2) / 5.0)
+                                     : MU_MIN + (1 - MU_MIN) * u * u;
                 ggx_vec3 v = view_mu(fmin(mu, 1.0), phi, side);
                 double want = exact_albedo(i, v), got = ggx_bsdf_energy_albedo(tables[i], v);
-                CHECK_CLOSE(got, want, 0, PROMISE, "%s: E of side %d at (%.4f, %.4f, %.4f)", CONFIGS[i].name, side,
-                            v.x, v.y, v.z);
+                CHECK_CLOSE(got, want, 0, PROMISE, "%s: E of side %d at (%.4f, %.4f, %.4f)", CONFIGS[i].name, side, v.x,
+                            v.y, v.z);
                 if (fabs(got - want) > shape_worst[side]) shape_worst[side] = fabs(got - want);
             }
             if (shape_worst[side] > worst[side]) worst[side] = shape_worst[side];
@@ -171,7 +170,8 @@ static void white_furnace(void **state)
             }
     }
     printf("white furnace: largest |R + T - 1| above %.2e, below %.2e (promise %.0e); int f_ms vs 1 - E_table: "
-           "%.2e\n", worst[0], worst[1], PROMISE, worst_identity);
+           "%.2e\n",
+           worst[0], worst[1], PROMISE, worst_identity);
     printf("negative control, without the lobes: %d of %d cases fail, largest loss %.3f\n", uncompensated_fail, cases,
            worst_loss);
     CHECK(uncompensated_fail > cases / 2 && worst_loss > 0.1, "the uncompensated BSDF passed the furnace");
@@ -195,7 +195,8 @@ static void reciprocity(void **state)
             double ba = ggx_bsdf_compensated_eval(tables[i], b, a, GGX_RADIANCE);
             CHECK_CLOSE(ab / (eb * eb), ba / (ea * ea), 1e-12, 1e-300, "%s: reciprocity, sides %d %d", CONFIGS[i].name,
                         a.z < 0, b.z < 0);
-            double mab = ggx_bsdf_ms_eval(tables[i], a, b, GGX_RADIANCE), mba = ggx_bsdf_ms_eval(tables[i], b, a, GGX_RADIANCE);
+            double mab = ggx_bsdf_ms_eval(tables[i], a, b, GGX_RADIANCE),
+                   mba = ggx_bsdf_ms_eval(tables[i], b, a, GGX_RADIANCE);
             CHECK_CLOSE(mab / (eb * eb), mba / (ea * ea), 1e-12, 1e-300, "%s: reciprocity of f_ms", CONFIGS[i].name);
             CHECK(mab > 0 && isfinite(ab), "%s: f_ms > 0", CONFIGS[i].name);
             CHECK(ggx_bsdf_compensated_eval(tables[i], a, b, GGX_IMPORTANCE) == ba, "%s: adjoint", CONFIGS[i].name);
@@ -214,14 +215,15 @@ static void edges(void **state)
     for (int i = 0; i < NCONFIGS && i0 < 0; i++)
         if (used(i)) i0 = i;
     const ggx_bsdf_energy *e = tables[i0];
-    ggx_vec3 up = t_vec(0.1, 0.2, 0.9), bad[] = {t_vec(0, 0, 0), t_vec(NAN, 0, 1), t_vec(1, 0, 0), t_vec(INFINITY, 0, 1),
-                                                  t_vec(0, NAN, -1)};
+    ggx_vec3 up = t_vec(0.1, 0.2, 0.9),
+             bad[] = {t_vec(0, 0, 0), t_vec(NAN, 0, 1), t_vec(1, 0, 0), t_vec(INFINITY, 0, 1), t_vec(0, NAN, -1)};
     for (int k = 0; k < 5; k++) {
         CHECK(ggx_bsdf_energy_albedo(e, bad[k]) == 0, "E of bad view %d", k);
         for (int m = 0; m < 2; m++) {
             ggx_transport mode = m ? GGX_IMPORTANCE : GGX_RADIANCE;
             CHECK(ggx_bsdf_ms_eval(e, up, bad[k], mode) == 0 && ggx_bsdf_ms_eval(e, bad[k], up, mode) == 0, "ms %d", k);
-            CHECK(ggx_bsdf_compensated_eval(e, bad[k], up, mode) == 0 && ggx_bsdf_compensated_eval(e, up, bad[k], mode) == 0,
+            CHECK(ggx_bsdf_compensated_eval(e, bad[k], up, mode) == 0 &&
+                      ggx_bsdf_compensated_eval(e, up, bad[k], mode) == 0,
                   "compensated %d", k);
             ggx_sample a = ggx_sample_bsdf_compensated(e, bad[k], 0.3, 0.3, 0.3, mode);
             ggx_sample b = ggx_sample_bsdf_ms(e, bad[k], 0.3, 0.3, 0.3, mode);
@@ -242,7 +244,8 @@ static void edges(void **state)
     const double bad_eta[] = {1.0, 0.0, -1.5, 2e300};
     for (int k = 0; k < 4; k++) {
         out = (ggx_bsdf_energy *)&out;
-        CHECK(ggx_bsdf_energy_create(&shapes[i0], bad_eta[k], &out) == GGX_ERR_ETA && out == NULL, "eta %g", bad_eta[k]);
+        CHECK(ggx_bsdf_energy_create(&shapes[i0], bad_eta[k], &out) == GGX_ERR_ETA && out == NULL, "eta %g",
+              bad_eta[k]);
     }
     CHECK(ggx_bsdf_energy_create(&shapes[i0], NAN, &out) == GGX_ERR_NONFINITE && out == NULL, "eta NaN");
     ggx_bsdf_energy_free(NULL);
@@ -336,16 +339,16 @@ static void sampling_chi2(void **state)
                 int dof;
                 if (a == 2 * side) { /* n from above, 89 degrees from below */
                     double p = run_binned(&c, 1800 + 100 * (uint64_t)i + 10 * (uint64_t)side + (uint64_t)a, &dof);
-                    CHECK(chi2_accepts(p), "ms lobes %s side %d theta %g: dof %d, p = %.3g", CONFIGS[i].name,
-                          side, thetas[a], dof, p);
+                    CHECK(chi2_accepts(p), "ms lobes %s side %d theta %g: dof %d, p = %.3g", CONFIGS[i].name, side,
+                          thetas[a], dof, p);
                     min_p = fmin(min_p, p);
                     runs++;
                 }
                 if (CONFIGS[i].p.ax < 0.1 || a == 2) continue;
                 c.compensated = 1;
                 double p = run_binned(&c, 1900 + 100 * (uint64_t)i + 10 * (uint64_t)side + (uint64_t)a, &dof);
-                CHECK(chi2_accepts(p), "compensated %s side %d theta %g: dof %d, p = %.3g", CONFIGS[i].name,
-                      side, thetas[a], dof, p);
+                CHECK(chi2_accepts(p), "compensated %s side %d theta %g: dof %d, p = %.3g", CONFIGS[i].name, side,
+                      thetas[a], dof, p);
                 min_p = fmin(min_p, p);
                 runs++;
             }
@@ -452,12 +455,14 @@ static void iso_table(void **state)
     for (int i = 0; i < 8; i++)
         for (int j = 0; j < 4; j++)
             for (int k = 0; k < 6; k++) {
-                double a = 0.01 * pow(6.0, i / 7.0), er = 0.935 + 0.006 * j, mc = sqrt(1 - er * er), mu = mc - 0.01 + 0.004 * k;
+                double a = 0.01 * pow(6.0, i / 7.0), er = 0.935 + 0.006 * j, mc = sqrt(1 - er * er),
+                       mu = mc - 0.01 + 0.004 * k;
                 ggx_shape sh;
                 make_shape(&sh, (shape_params){a, a, 0, 0, 0});
-                double err = fabs(ggx_bsdf_albedo_iso_table(a, er, mu) - ggx_bsdf_albedo(&sh, er, view_mu(mu, 0.0, 0), NULL, NULL));
-                CHECK(err <= (a >= 0.025 ? PROMISE : SMALL_ALPHA_MEASURED), "critical angle: alpha %.6g eta %.6g mu %.6g: %.3g",
-                      a, er, mu, err);
+                double err = fabs(ggx_bsdf_albedo_iso_table(a, er, mu) -
+                                  ggx_bsdf_albedo(&sh, er, view_mu(mu, 0.0, 0), NULL, NULL));
+                CHECK(err <= (a >= 0.025 ? PROMISE : SMALL_ALPHA_MEASURED),
+                      "critical angle: alpha %.6g eta %.6g mu %.6g: %.3g", a, er, mu, err);
                 if (err > slice[a >= 0.025]) slice[a >= 0.025] = err;
             }
     {
@@ -489,14 +494,15 @@ static void iso_table(void **state)
         printf("per-shape table at alpha 0.0133 near the critical angle: largest error %.2e\n", w);
     }
     /* from below through eta is from above through 1 / eta (an isotropic ellipsoid is symmetric about the plane) */
-    CHECK(ggx_bsdf_albedo_iso_table(0.3, 1.5, -0.4) == ggx_bsdf_albedo_iso_table(0.3, 1 / 1.5, 0.4), "the sides' symmetry");
+    CHECK(ggx_bsdf_albedo_iso_table(0.3, 1.5, -0.4) == ggx_bsdf_albedo_iso_table(0.3, 1 / 1.5, 0.4),
+          "the sides' symmetry");
     /* at a node (alpha 2 = the last column, eta_r 3 = the last node, mu = 1): the node's 1e-6 and float's rounding */
     ggx_shape s2;
     make_shape(&s2, (shape_params){2, 2, 0, 0, 0});
-    CHECK_CLOSE(ggx_bsdf_albedo_iso_table(2.0, 3.0, 1.0), ggx_bsdf_albedo(&s2, 3.0, t_vec(0, 0, 1), NULL, NULL), 0, 2e-6,
-                "the node alpha 2, eta 3 at n");
-    CHECK_CLOSE(ggx_bsdf_albedo_iso_table(2.0, 3.0, -1.0), ggx_bsdf_albedo(&s2, 3.0, t_vec(0, 0, -1), NULL, NULL), 0, 2e-6,
-                "the node alpha 2, eta 1/3 at -n");
+    CHECK_CLOSE(ggx_bsdf_albedo_iso_table(2.0, 3.0, 1.0), ggx_bsdf_albedo(&s2, 3.0, t_vec(0, 0, 1), NULL, NULL), 0,
+                2e-6, "the node alpha 2, eta 3 at n");
+    CHECK_CLOSE(ggx_bsdf_albedo_iso_table(2.0, 3.0, -1.0), ggx_bsdf_albedo(&s2, 3.0, t_vec(0, 0, -1), NULL, NULL), 0,
+                2e-6, "the node alpha 2, eta 1/3 at -n");
     /* outside the table, by an ulp too: the quadrature, exactly */
     const double out_a[] = {5e-3, 2.5, 0.3, 0.3, 0.3, 0.3, 0.5, 0.5, 2.0000000000000004},
                  out_e[] = {1.5, 1.5, 1.01, 1 / 1.01, 3.5, 1.0, 3.0000000000000004, 0.33333333333333326, 1.5};
@@ -526,10 +532,12 @@ static void iso_table(void **state)
 int main(int argc, char **argv)
 {
     part = argc > 1 ? atoi(argv[1]) : 1;
-    const struct CMUnitTest deterministic[] = {
-        TIMED(table_against_albedo), TIMED(white_furnace), TIMED(reciprocity), TIMED(edges), TIMED(iso_table)};
+    const struct CMUnitTest deterministic[] = {TIMED(table_against_albedo), TIMED(white_furnace), TIMED(reciprocity),
+                                               TIMED(edges), TIMED(iso_table)};
     const struct CMUnitTest sampling[] = {TIMED(sampling_chi2), TIMED(negative_controls), TIMED(monte_carlo_furnace)};
-    int rc = part == 2 ? cmocka_run_group_tests_name("energy of the dielectric: sampling", sampling, build_tables, free_tables)
-                       : cmocka_run_group_tests_name("energy of the dielectric", deterministic, build_tables, free_tables);
+    int rc = part == 2
+                 ? cmocka_run_group_tests_name("energy of the dielectric: sampling", sampling, build_tables,
+                                               free_tables)
+                 : cmocka_run_group_tests_name("energy of the dielectric", deterministic, build_tables, free_tables);
     return rc | chi2_budget_end("energy_bsdf", argc, argv);
 }

@@ -68,8 +68,8 @@ static int accepted, refused;
 static void check_furnace(const char *what, double f, double sigma, double e_true, double e_tab)
 {
     double tol = 4 * sigma + 2e-4;
-    CHECK(fabs(f - (1 + (e_true - e_tab))) <= tol, "%s: furnace %.6f, 1 + (E - E_table) = %.6f (sigma %.1e)", what,
-          f, 1 + (e_true - e_tab), sigma);
+    CHECK(fabs(f - (1 + (e_true - e_tab))) <= tol, "%s: furnace %.6f, 1 + (E - E_table) = %.6f (sigma %.1e)", what, f,
+          1 + (e_true - e_tab), sigma);
     CHECK(f <= 1 + TABLE_PROMISE + 4 * sigma, "%s: the compensation adds energy: furnace %.6f (sigma %.1e)", what, f,
           sigma);
     CHECK(fabs(f - 1) <= TABLE_PROMISE + 4 * sigma, "%s: furnace %.6f (sigma %.1e)", what, f, sigma);
@@ -207,8 +207,8 @@ static void bsdf_shape(const char *name, shape_params p, double eta, double thet
         for (int k = 0; k < nphi_; k++) {
             ggx_vec3 v = view_deg(side ? 180 - theta_deg : theta_deg, 2 * GGX_PI * (k + 0.37) / nphi_);
             double want = ggx_bsdf_albedo(&s, eta, v, NULL, NULL), got = ggx_bsdf_energy_albedo(e, v);
-            CHECK(fabs(got - want) <= TABLE_PROMISE, "%s: table %.6f, ggx_bsdf_albedo %.6f at (%.4f, %.4f, %.4f)",
-                  name, got, want, v.x, v.y, v.z);
+            CHECK(fabs(got - want) <= TABLE_PROMISE, "%s: table %.6f, ggx_bsdf_albedo %.6f at (%.4f, %.4f, %.4f)", name,
+                  got, want, v.x, v.y, v.z);
             if (fabs(got - want) > worst) worst = fabs(got - want);
             if (k % (nphi_ / 4) == 0) {
                 double sigma, f = furnace(draw_bsdf, e, v, 600, 104729u, &sigma);
@@ -227,8 +227,8 @@ static void bsdf_cases(void **state)
     (void)state;
     bsdf_shape("BSDF (0.02, 0.04, 0.3, 0.2), eta 1.5, 88.5", (shape_params){0.02, 0.04, 0.3, 0.2, 0}, 1.5, 88.5, 8);
     if (!test_quick()) /* the quick tier: the reported shape */
-        bsdf_shape("BSDF (0.1, 0.8, 0.5, 0.3, 1), eta 1.33, 88.5", (shape_params){0.1, 0.8, 0.5, 0.3, 1}, 1.33,
-                   88.5, 8);
+        bsdf_shape("BSDF (0.1, 0.8, 0.5, 0.3, 1), eta 1.33, 88.5", (shape_params){0.1, 0.8, 0.5, 0.3, 1}, 1.33, 88.5,
+                   8);
 }
 
 int main(int argc, char **argv)

@@ -35,14 +35,16 @@ static void shape_statuses(void **state)
         {ggx_shape_ellipsoid(&s, 0.3, 0.3, 0, -1.6, 0), GGX_ERR_ANGLE, "theta_y < -pi/2"},
     };
     for (unsigned i = 0; i < sizeof cases / sizeof cases[0]; i++) {
-        CHECK(cases[i].got == cases[i].want, "%s: got %d (%s)", cases[i].what, cases[i].got, ggx_status_str(cases[i].got));
+        CHECK(cases[i].got == cases[i].want, "%s: got %d (%s)", cases[i].what, cases[i].got,
+              ggx_status_str(cases[i].got));
         CHECK(memcmp(&s, &before, sizeof s) == 0, "%s modified the shape", cases[i].what);
     }
     const double sing[3][3] = {{1, 2, 3}, {2, 4, 6}, {0, 0, 1}};
     const double near[3][3] = {{1e-7, 0, 0}, {0, 1e-7, 0}, {0, 0, 1}};
     const double nanm[3][3] = {{1, 0, 0}, {0, NAN, 0}, {0, 0, 1}};
     const double zero[3][3] = {{0}};
-    const double huge[3][3] = {{1e60, 0, 0}, {0, 1e60, 0}, {0, 0, 1e60}}, tiny[3][3] = {{1e-60, 0, 0}, {0, 1e-60, 0}, {0, 0, 1e-60}};
+    const double huge[3][3] = {{1e60, 0, 0}, {0, 1e60, 0}, {0, 0, 1e60}},
+                 tiny[3][3] = {{1e-60, 0, 0}, {0, 1e-60, 0}, {0, 0, 1e-60}};
     CHECK(ggx_shape_matrix(&s, huge) == GGX_ERR_RANGE && ggx_shape_matrix(&s, tiny) == GGX_ERR_RANGE, "matrix scale");
     CHECK(ggx_shape_matrix(&s, sing) == GGX_ERR_SINGULAR, "rank 2");
     CHECK(ggx_shape_matrix(&s, near) == GGX_ERR_SINGULAR, "near singular");
@@ -159,22 +161,37 @@ static void hot_functions_outside_domain(void **state)
         CHECK(ggx_pdf_vndf(s, up, below) == 0.0, "vndf m below");
         CHECK(ggx_brdf_eval(s, &f, up, below) == 0.0 && ggx_brdf_eval(s, &f, horizon, up) == 0.0, "brdf below");
         CHECK(ggx_bsdf_eval(s, 1.5, horizon, up, GGX_RADIANCE) == 0.0, "bsdf horizon");
-        CHECK(ggx_bsdf_eval(s, 0.0, up, up, GGX_RADIANCE) == 0.0 && ggx_bsdf_eval(s, NAN, up, below, GGX_RADIANCE) == 0.0,
+        CHECK(ggx_bsdf_eval(s, 0.0, up, up, GGX_RADIANCE) == 0.0 &&
+                  ggx_bsdf_eval(s, NAN, up, below, GGX_RADIANCE) == 0.0,
               "bsdf bad eta");
         CHECK(ggx_ndf_spherical(s, -0.1, 0) == 0.0 && ggx_ndf_spherical(s, 2.0, 0) == 0.0, "spherical range");
         CHECK(ggx_lune_area(s, up, zero) == 0.0, "lune zero v");
         for (unsigned i = 0; i < sizeof bad / sizeof bad[0]; i++) {
             ggx_vec3 b = bad[i];
-            double vals[] = {ggx_ndf(s, b),           ggx_gaussian_curvature(s, b), ggx_projected_area(s, b),
-                             ggx_lune_area(s, b, up), ggx_lune_area(s, up, b),      ggx_g1(s, b, up),
-                             ggx_g1(s, up, b),        ggx_lambda(s, b),             ggx_g1_smith(s, b),
-                             ggx_g1_tilted(s, b, up), ggx_g1_tilted(s, up, b),      ggx_g1_risers(s, b, up),
+            double vals[] = {ggx_ndf(s, b),
+                             ggx_gaussian_curvature(s, b),
+                             ggx_projected_area(s, b),
+                             ggx_lune_area(s, b, up),
+                             ggx_lune_area(s, up, b),
+                             ggx_g1(s, b, up),
+                             ggx_g1(s, up, b),
+                             ggx_lambda(s, b),
+                             ggx_g1_smith(s, b),
+                             ggx_g1_tilted(s, b, up),
+                             ggx_g1_tilted(s, up, b),
+                             ggx_g1_risers(s, b, up),
                              ggx_g1_risers(s, up, b),
-                             ggx_g2(s, b, up, up),    ggx_g2_height_correlated(s, up, b, up),
-                             ggx_pdf_vndf(s, b, up),  ggx_pdf_vndf(s, up, b),       ggx_brdf_eval(s, &f, b, up),
-                             ggx_brdf_eval(s, &f, up, b),                          ggx_bsdf_eval(s, 1.5, b, up, GGX_RADIANCE),
-                             ggx_bsdf_eval(s, 1.5, up, b, GGX_IMPORTANCE),         ggx_jacobian_reflect(b, up),
-                             ggx_jacobian_refract(b, up, up, 1, 1.5),              ggx_p22(s, NAN, 0)};
+                             ggx_g2(s, b, up, up),
+                             ggx_g2_height_correlated(s, up, b, up),
+                             ggx_pdf_vndf(s, b, up),
+                             ggx_pdf_vndf(s, up, b),
+                             ggx_brdf_eval(s, &f, b, up),
+                             ggx_brdf_eval(s, &f, up, b),
+                             ggx_bsdf_eval(s, 1.5, b, up, GGX_RADIANCE),
+                             ggx_bsdf_eval(s, 1.5, up, b, GGX_IMPORTANCE),
+                             ggx_jacobian_reflect(b, up),
+                             ggx_jacobian_refract(b, up, up, 1, 1.5),
+                             ggx_p22(s, NAN, 0)};
             for (unsigned j = 0; j < sizeof vals / sizeof vals[0]; j++)
                 CHECK(vals[j] == 0.0, "shape %d bad input %u: function %u gave %g", k, i, j, vals[j]);
         }
@@ -185,7 +202,9 @@ static void hot_functions_outside_domain(void **state)
     ggx_vec3 h = ggx_half_reflect(up, t_scale(up, -1));
     CHECK(h.x == 0 && h.y == 0 && h.z == 0, "half vector of opposite directions");
     ggx_vec3 o;
-    CHECK(!ggx_refract(t_vec(0, 0, 1), t_vec(1, 0, 0), 1.5, &o) && !ggx_refract(nanv, up, 1.5, &o) && !ggx_refract(up, up, -1, &o), "refract");
+    CHECK(!ggx_refract(t_vec(0, 0, 1), t_vec(1, 0, 0), 1.5, &o) && !ggx_refract(nanv, up, 1.5, &o) &&
+              !ggx_refract(up, up, -1, &o),
+          "refract");
 }
 
 static void fresnel_statuses(void **state)
@@ -203,8 +222,9 @@ static void fresnel_statuses(void **state)
 /* One rule for the whole API: a NULL Fresnel term is F = 1, bit for bit the result with ggx_fresnel_one, in every
  * exported and batch function that takes one (on 660888d ggx_fresnel_eval, ggx_brdf_eval and the reflection
  * samplers crashed). */
-#define SAME_SAMPLE(a, b) ((a).w.x == (b).w.x && (a).w.y == (b).w.y && (a).w.z == (b).w.z && (a).pdf == (b).pdf && \
-                           (a).weight == (b).weight && (a).event == (b).event)
+#define SAME_SAMPLE(a, b)                                                                                              \
+    ((a).w.x == (b).w.x && (a).w.y == (b).w.y && (a).w.z == (b).w.z && (a).pdf == (b).pdf &&                           \
+     (a).weight == (b).weight && (a).event == (b).event)
 static void null_fresnel_is_one(void **state)
 {
     (void)state;
@@ -245,11 +265,12 @@ static void null_fresnel_is_one(void **state)
         ggx_batch_brdf(fb, 1, s, &one, x, y, z, ox, oy, oz);
         CHECK(fa[0] == fb[0] && fa[0] > 0, "batch_brdf, shape %d", k);
         for (int j = 0; j < 2; j++)
-            ggx_batch_sample_brdf(&r[j][0], &r[j][1], &r[j][2], &r[j][3], &r[j][4], 1, s, j ? &one : NULL, x, y, z, u1, u2);
+            ggx_batch_sample_brdf(&r[j][0], &r[j][1], &r[j][2], &r[j][3], &r[j][4], 1, s, j ? &one : NULL, x, y, z, u1,
+                                  u2);
         CHECK(memcmp(r[0], r[1], sizeof r[0]) == 0, "batch_sample_brdf, shape %d", k);
         for (int j = 0; j < 2; j++)
-            ggx_batch_sample_directions(GGX_SAMPLER_BRDF_BOUNDED, &r[j][0], &r[j][1], &r[j][2], &r[j][3], &r[j][4], 1, s,
-                                        j ? &one : NULL, x, y, z, u1, u2);
+            ggx_batch_sample_directions(GGX_SAMPLER_BRDF_BOUNDED, &r[j][0], &r[j][1], &r[j][2], &r[j][3], &r[j][4], 1,
+                                        s, j ? &one : NULL, x, y, z, u1, u2);
         CHECK(memcmp(r[0], r[1], sizeof r[0]) == 0, "batch_sample_directions, shape %d", k);
     }
     ggx_energy *e;
@@ -259,7 +280,8 @@ static void null_fresnel_is_one(void **state)
     CHECK(ggx_pdf_brdf_compensated(e, NULL, wi, wo) == ggx_pdf_brdf_compensated(e, &one, wi, wo), "comp pdf");
     ggx_sample a = ggx_sample_brdf_ms(e, NULL, wi, 0.3, 0.6), b = ggx_sample_brdf_ms(e, &one, wi, 0.3, 0.6);
     CHECK(SAME_SAMPLE(a, b), "sample_brdf_ms");
-    a = ggx_sample_brdf_compensated(e, NULL, wi, 0.3, 0.6, 0.9), b = ggx_sample_brdf_compensated(e, &one, wi, 0.3, 0.6, 0.9);
+    a = ggx_sample_brdf_compensated(e, NULL, wi, 0.3, 0.6, 0.9),
+    b = ggx_sample_brdf_compensated(e, &one, wi, 0.3, 0.6, 0.9);
     CHECK(SAME_SAMPLE(a, b), "sample_brdf_compensated");
     ggx_energy_free(e);
 }
@@ -283,12 +305,9 @@ static void energy_create_null(void **state)
 int main(void)
 {
     const struct CMUnitTest tests[] = {
-        cmocka_unit_test(shape_statuses),
-        cmocka_unit_test(ellipsoid_matrix),
-        cmocka_unit_test(clamps_and_signs),
-        cmocka_unit_test(hot_functions_outside_domain),
-        cmocka_unit_test(fresnel_statuses),
-        cmocka_unit_test(null_fresnel_is_one),
+        cmocka_unit_test(shape_statuses),     cmocka_unit_test(ellipsoid_matrix),
+        cmocka_unit_test(clamps_and_signs),   cmocka_unit_test(hot_functions_outside_domain),
+        cmocka_unit_test(fresnel_statuses),   cmocka_unit_test(null_fresnel_is_one),
         cmocka_unit_test(energy_create_null),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);

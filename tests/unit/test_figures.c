@@ -14,17 +14,18 @@
 #endif
 
 static const shape_params SHAPES[] = {
-    {0.15, 0.5, 0, 0, 0},                  /* the seeds' */
-    {0.15, 0.5, 15 * DEG, -10 * DEG, 0},   /* the demo's skewed one */
-    {0.2, 0.6, 0, 0, 30 * DEG},            /* rotated by theta_z only */
-    {0.3, 0.3, 0, 0, 0},                   /* isotropic */
+    {0.15, 0.5, 0, 0, 0},                       /* the seeds' */
+    {0.15, 0.5, 15 * DEG, -10 * DEG, 0},        /* the demo's skewed one */
+    {0.2, 0.6, 0, 0, 30 * DEG},                 /* rotated by theta_z only */
+    {0.3, 0.3, 0, 0, 0},                        /* isotropic */
     {0.25, 0.5, -20 * DEG, 25 * DEG, 70 * DEG}, /* skewed and rotated */
 };
 enum { NSHAPES = sizeof SHAPES / sizeof SHAPES[0] };
 
 static ggx_vec3 dir(double theta_deg, double phi_deg)
 {
-    ggx_vec3 v = {sin(theta_deg * DEG) * cos(phi_deg * DEG), sin(theta_deg * DEG) * sin(phi_deg * DEG), cos(theta_deg * DEG)};
+    ggx_vec3 v = {sin(theta_deg * DEG) * cos(phi_deg * DEG), sin(theta_deg * DEG) * sin(phi_deg * DEG),
+                  cos(theta_deg * DEG)};
     return v;
 }
 
@@ -95,16 +96,19 @@ static void peak_pixel(void **state)
                     continue;
                 }
                 CHECK(hypot(bx - px, by - py) <= 2.0,
-                      "figure %s, shape %d, view (%g, %g): brightest pixels at (%.1f, %.1f), peak %.4g at m = (%.4f, %.4f, "
-                      "%.4f) projects to (%.1f, %.1f)", figure_name(f.kind), i, VIEWS[j][0], VIEWS[j][1], bx, by, top,
-                      m.x, m.y, m.z, px, py);
+                      "figure %s, shape %d, view (%g, %g): brightest pixels at (%.1f, %.1f), peak %.4g at m = (%.4f, "
+                      "%.4f, "
+                      "%.4f) projects to (%.1f, %.1f)",
+                      figure_name(f.kind), i, VIEWS[j][0], VIEWS[j][1], bx, by, top, m.x, m.y, m.z, px, py);
                 runs++;
             }
         }
     }
     /* every top view, and at least five side views whose peak faces the viewer */
-    CHECK(runs + skipped == NSHAPES * 8 && runs - NSHAPES * 4 >= 5, "%d figures tested, %d side views skipped", runs, skipped);
-    print_message("peak_pixel: %d figures tested (%d side views of peaks near n left to the top views)\n", runs, skipped);
+    CHECK(runs + skipped == NSHAPES * 8 && runs - NSHAPES * 4 >= 5, "%d figures tested, %d side views skipped", runs,
+          skipped);
+    print_message("peak_pixel: %d figures tested (%d side views of peaks near n left to the top views)\n", runs,
+                  skipped);
 }
 
 /* The peak finder itself: at the seeds' shape the NDF peak is 1 / (pi ax ay) at n and the VNDF peaks are the
@@ -140,7 +144,8 @@ static void side_views(void **state)
         CHECK(vis == (m.x * hp.toward.x + m.y * hp.toward.y >= 0), "visibility of (%g, %g, %g)", m.x, m.y, m.z);
         if (!vis) continue;
         CHECK(hemi_unproject(&hp, X, Y, &back), "unproject");
-        CHECK(fabs(back.x - m.x) + fabs(back.y - m.y) + fabs(back.z - m.z) < 1e-9, "round trip of (%g, %g, %g)", m.x, m.y, m.z);
+        CHECK(fabs(back.x - m.x) + fabs(back.y - m.y) + fabs(back.z - m.z) < 1e-9, "round trip of (%g, %g, %g)", m.x,
+              m.y, m.z);
     }
     for (int i = 0; i < NSHAPES; i++) {
         ggx_shape s;
@@ -149,8 +154,10 @@ static void side_views(void **state)
         double from = figure_default_from(&f), across = cos(from) * f.view.x + sin(from) * f.view.y,
                right = -sin(from) * f.view.x + cos(from) * f.view.y;
         /* in profile, the view pointing right; or facing the view */
-        CHECK((fabs(across) < 1e-12 && right > 0) || (fabs(right) < 1e-12 && across > 0), "shape %d: view across %g, "
-              "right %g", i, across, right);
+        CHECK((fabs(across) < 1e-12 && right > 0) || (fabs(right) < 1e-12 && across > 0),
+              "shape %d: view across %g, "
+              "right %g",
+              i, across, right);
         f.kind = FIG_NDF_SIDE;
         from = figure_default_from(&f);
         ggx_vec3 m;
@@ -204,7 +211,8 @@ static void grey_region(void **state)
             ggx_vec3 in = {sin(th - 1e-7) * cos(phi), sin(th - 1e-7) * sin(phi), cos(th - 1e-7)};
             ggx_vec3 out = {sin(th + 1e-7) * cos(phi), sin(th + 1e-7) * sin(phi), cos(th + 1e-7)};
             if (th + 1e-7 < GGX_PI / 2) CHECK(!figure_grey(v, out), "just outside the boundary is not grey");
-            CHECK(figure_grey(v, in), "just inside the boundary is grey (v = (%g, %g, %g), phi %g)", v.x, v.y, v.z, phi);
+            CHECK(figure_grey(v, in), "just inside the boundary is grey (v = (%g, %g, %g), phi %g)", v.x, v.y, v.z,
+                  phi);
             area += 0.5 * st * st * (2 * GGX_PI / NPHI);
         }
         CHECK_CLOSE(area, GGX_PI / 2, 1e-9, 0, "projected area of the grey region, v = (%g, %g, %g)", v.x, v.y, v.z);
@@ -217,10 +225,11 @@ static void grey_region(void **state)
     for (unsigned j = 0; j < sizeof VIEWS / sizeof VIEWS[0]; j++) {
         ggx_vec3 v = dir(VIEWS[j][0], VIEWS[j][1]);
         long inside = 0;
-        for (long n = 0; n < N; n++) inside += figure_grey(v, ggx_sample_ndf(&one_iso, rng_uniform(&r), rng_uniform(&r)));
+        for (long n = 0; n < N; n++)
+            inside += figure_grey(v, ggx_sample_ndf(&one_iso, rng_uniform(&r), rng_uniform(&r)));
         double a = (double)inside / (double)N;
-        CHECK(fabs(a - 0.5) < 5 * sqrt(0.25 / (double)N), "alpha 1, view (%g, %g): %.5f of the normals grey", VIEWS[j][0],
-              VIEWS[j][1], a);
+        CHECK(fabs(a - 0.5) < 5 * sqrt(0.25 / (double)N), "alpha 1, view (%g, %g): %.5f of the normals grey",
+              VIEWS[j][0], VIEWS[j][1], a);
     }
     for (int i = 0; i < NSHAPES; i++) {
         ggx_shape s;
@@ -235,9 +244,12 @@ static void grey_region(void **state)
                 ggx_sample w = ggx_sample_brdf(&s, &one, v, rng_uniform(&r), rng_uniform(&r));
                 above += w.pdf > 0 && w.w.z > 0;
             }
-            double a = (double)inside / (double)N, b = (double)above / (double)N, sigma = sqrt(2 * b * (1 - b) / (double)N) + 1e-12;
-            CHECK(fabs(a - b) < 5 * sigma, "shape %d, view (%g, %g): VNDF samples in the region %.5f, reflections above "
-                  "the horizon %.5f (5 sigma = %.2g)", i, VIEWS[j][0], VIEWS[j][1], a, b, 5 * sigma);
+            double a = (double)inside / (double)N, b = (double)above / (double)N,
+                   sigma = sqrt(2 * b * (1 - b) / (double)N) + 1e-12;
+            CHECK(fabs(a - b) < 5 * sigma,
+                  "shape %d, view (%g, %g): VNDF samples in the region %.5f, reflections above "
+                  "the horizon %.5f (5 sigma = %.2g)",
+                  i, VIEWS[j][0], VIEWS[j][1], a, b, 5 * sigma);
             grey_ctx g = {&s, v, 0};
             double I = 0;
             const int NPHI = 720;
@@ -246,8 +258,10 @@ static void grey_region(void **state)
                 ggx_vec3 bd = figure_grey_boundary(v, g.phi);
                 I += quad_adapt(grey_inner, &g, 0, acos(bd.z), 1e-9) * (2 * GGX_PI / NPHI);
             }
-            CHECK(fabs(I - b) <= 0.01 * b, "shape %d, view (%g, %g): integral of the VNDF pdf over the region %.5f, "
-                  "sampled fraction %.5f", i, VIEWS[j][0], VIEWS[j][1], I, b);
+            CHECK(fabs(I - b) <= 0.01 * b,
+                  "shape %d, view (%g, %g): integral of the VNDF pdf over the region %.5f, "
+                  "sampled fraction %.5f",
+                  i, VIEWS[j][0], VIEWS[j][1], I, b);
         }
     }
 }
@@ -271,8 +285,8 @@ static void furnace_curves(void **state)
         int n = figure_curve(&f, 4, x, y, 400, label, sizeof label);
         CHECK(strstr(label, "0.274") != NULL, "label '%s'", label);
         for (int i = 0; i < n; i += 30)
-            CHECK_CLOSE(y[i], ggx_albedo_iso_table(sqrt(0.15 * 0.5), cos(x[i] * GGX_PI / 180), GGX_MASKING_SEPARABLE), 0,
-                        1e-12, "the isotropic curve at theta %g", x[i]);
+            CHECK_CLOSE(y[i], ggx_albedo_iso_table(sqrt(0.15 * 0.5), cos(x[i] * GGX_PI / 180), GGX_MASKING_SEPARABLE),
+                        0, 1e-12, "the isotropic curve at theta %g", x[i]);
     }
 }
 
@@ -349,12 +363,8 @@ static void slice_values(void **state)
 int main(void)
 {
     const struct CMUnitTest tests[] = {
-        cmocka_unit_test(peak_values),
-        cmocka_unit_test(peak_pixel),
-        cmocka_unit_test(side_views),
-        cmocka_unit_test(grey_region),
-        cmocka_unit_test(furnace_curves),
-        cmocka_unit_test(polar_curves),
+        cmocka_unit_test(peak_values),  cmocka_unit_test(peak_pixel),     cmocka_unit_test(side_views),
+        cmocka_unit_test(grey_region),  cmocka_unit_test(furnace_curves), cmocka_unit_test(polar_curves),
         cmocka_unit_test(slice_values),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);

@@ -114,8 +114,7 @@ static void texel_lobes(void **state)
             CHECK_CLOSE(c[0], t[0], 1e-14, 1e-15, "t_x");
             CHECK_CLOSE(c[2], sg[0], 1e-13, 0, "sigma_xx");
             CHECK_CLOSE(c[3], sg[1], 1e-12, 1e-15, "sigma_xy");
-        } else
-            CHECK(c[0] == 0 && c[1] == 0 && c[2] == 1 && c[3] == 0 && c[4] == 1, "placeholder of texel %d", i);
+        } else CHECK(c[0] == 0 && c[1] == 0 && c[2] == 1 && c[3] == 0 && c[4] == 1, "placeholder of texel %d", i);
     }
     memcpy(keep, lobes, sizeof keep);
     CHECK(ggx_texel_lobes(lobes, w, n, 6, 0.0, 0.4, 0.3, NULL) == GGX_ERR_ALPHA, "alpha 0");
@@ -128,7 +127,8 @@ static void texel_lobes(void **state)
     ggx_shape tmp;
     CHECK(ggx_texel_lobe(&tmp, steep[0], 1e-4, 1e-4, 0) != GGX_OK, "the steep lobe is a shape");
     CHECK(ggx_texel_lobes(lobes, w, steep, 2, 1e-4, 1e-4, 0, &rejected) == GGX_OK && rejected == 1 && w[0] == 0 &&
-              w[1] == 1, "steep normal: %zu rejected", rejected);
+              w[1] == 1,
+          "steep normal: %zu rejected", rejected);
     CHECK(ggx_texel_lobe(&tmp, steep[1], 1e-4, 1e4, 0) != GGX_OK, "alphas 1e-4 and 1e4 make a shape");
     CHECK(ggx_texel_lobes(lobes, w, steep, 2, 1e-4, 1e4, 0, NULL) != GGX_OK, "alphas 1e-4 and 1e4 accepted");
 }
@@ -154,14 +154,15 @@ static void roughness_map(void **state)
             double x = fmax(ax[i], 1e-4), y = aniso ? fmax(ay[i], 1e-4) : x; /* fmax: NaN gives 1e-4, refused below */
             ggx_shape s;
             ggx_status st = isnan(ax[i]) || ax[i] < 0 || (aniso && ay[i] < 0) ? GGX_ERR_ALPHA
-                                                                                : ggx_texel_lobe(&s, n[i], x, y, 0.3);
+                                                                              : ggx_texel_lobe(&s, n[i], x, y, 0.3);
             CHECK(w[i] == (st == GGX_OK), "texel %d (aniso %d): weight %g, ggx_texel_lobe %s", i, aniso, w[i],
                   ggx_status_str(st));
             if (st != GGX_OK) continue;
             double c[GGX_LOBE_PARAMS], one[GGX_LOBE_PARAMS], w1;
             ggx_shape_slopes(&s, c, c + 2);
             CHECK(ggx_texel_lobes(one, &w1, &n[i], 1, x, y, 0.3, NULL) == GGX_OK && w1 == 1, "one texel");
-            CHECK(memcmp(one, lobes + GGX_LOBE_PARAMS * i, sizeof one) == 0, "texel %d differs from ggx_texel_lobes", i);
+            CHECK(memcmp(one, lobes + GGX_LOBE_PARAMS * i, sizeof one) == 0, "texel %d differs from ggx_texel_lobes",
+                  i);
             for (int k = 0; k < GGX_LOBE_PARAMS; k++)
                 CHECK_CLOSE(lobes[GGX_LOBE_PARAMS * i + k], c[k], 1e-12, 1e-15 * sqrt(c[2] * c[4]), "entry %d", k);
         }
@@ -228,8 +229,8 @@ static void constant_map(void **state)
             CHECK(ggx_filter_lobes(&f, lobe, w, (size_t)nl, &o, &info) == GGX_OK, "filter");
             double bound = slopes_bound(ax, ay), d = ndf_rel_diff(&f, &lobe[0], &r) / bound;
             worst = fmax(worst, d);
-            CHECK(d <= 1.0, "constant map (%g %g %g), alphas %g %g, %d lobes, rule %dx%d: D off by %.3g of the bound", n.x, n.y,
-                  n.z, ax, ay, nl, rules[k][0], rules[k][1], d);
+            CHECK(d <= 1.0, "constant map (%g %g %g), alphas %g %g, %d lobes, rule %dx%d: D off by %.3g of the bound",
+                  n.x, n.y, n.z, ax, ay, nl, rules[k][0], rules[k][1], d);
             CHECK(info.converged && info.iterations <= 3, "%d iterations", info.iterations);
             double kl;
             CHECK(ggx_filter_kl(&f, lobe, w, (size_t)nl, &o, &kl) == GGX_OK, "kl");
@@ -325,8 +326,10 @@ static void em_monotone(void **state)
             ggx_shape s;
             ggx_filter_info info;
             CHECK(ggx_filter_lobes(&s, fs[i].lobe, fs[i].w, (size_t)fs[i].n, &o, &info) == GGX_OK, "filter");
-            CHECK(info.log_likelihood >= last - 1e-13 * fabs(last), "%s %d, alpha %g: iteration %d lowered log L from "
-                  "%.17g to %.17g", fs[i].name, fs[i].n, fs[i].alpha, k, last, info.log_likelihood);
+            CHECK(info.log_likelihood >= last - 1e-13 * fabs(last),
+                  "%s %d, alpha %g: iteration %d lowered log L from "
+                  "%.17g to %.17g",
+                  fs[i].name, fs[i].n, fs[i].alpha, k, last, info.log_likelihood);
             last = info.log_likelihood;
             if (info.iterations < k) break; /* converged before k */
         }
@@ -376,16 +379,20 @@ static void optimum_and_baselines(void **state)
         ggx_shape sf;
         CHECK(ggx_filter_lobes(&sf, f->lobe, f->w, (size_t)f->n, &fast, NULL) == GGX_OK, "fast");
         double kf = kl_of(&sf, f);
-        CHECK(kf >= ours - 1e-12 && kf <= ours + FAST_KL_EXCESS, "%s %d alpha %g: the fast mode's KL %.6g is not "
-              "within %g above ours %.6g", f->name, f->n, f->alpha, kf, FAST_KL_EXCESS, ours);
+        CHECK(kf >= ours - 1e-12 && kf <= ours + FAST_KL_EXCESS,
+              "%s %d alpha %g: the fast mode's KL %.6g is not "
+              "within %g above ours %.6g",
+              f->name, f->n, f->alpha, kf, FAST_KL_EXCESS, ours);
         printf("%-12s %2d texels, alpha %.2f: KL ours %.5f, fast mode %.5f", f->name, f->n, f->alpha, ours, kf);
         for (int b = 0; b < NF_BASELINES; b++) {
             ggx_shape q;
             baseline(f, b, sg, &q);
             double kb = kl_of(&q, f);
             /* ours without skew is ours where the mean normal is n (symmetric footprints): equal there */
-            CHECK(kb >= ours - 1e-12 * ours && (b == NF_UNSKEWED || kb > kf), "%s %d alpha %g: %s has KL %.6g below "
-                  "ours %.6g or the fast mode's %.6g", f->name, f->n, f->alpha, nf_name[b], kb, ours, kf);
+            CHECK(kb >= ours - 1e-12 * ours && (b == NF_UNSKEWED || kb > kf),
+                  "%s %d alpha %g: %s has KL %.6g below "
+                  "ours %.6g or the fast mode's %.6g",
+                  f->name, f->n, f->alpha, nf_name[b], kb, ours, kf);
             printf(", %s %.5f", nf_name[b], kb);
         }
         printf("\n");
@@ -482,7 +489,8 @@ static void bad_input(void **state)
     opts[0].max_iterations = -1, opts[1].radial_nodes = -1, opts[2].angular_nodes = 15;
     opts[3].radial_nodes = 1025, opts[4].angular_nodes = 4098, opts[5].tolerance = NAN;
     opts[6].radial_nodes = 1, opts[7].angular_nodes = 2, opts[8].threads = -1, opts[9].threads = 1025;
-    for (int i = 0; i < 10; i++) CHECK(ggx_filter_lobes(&s, f.lobe, w, 2, &opts[i], NULL) == GGX_ERR_RANGE, "option %d", i);
+    for (int i = 0; i < 10; i++)
+        CHECK(ggx_filter_lobes(&s, f.lobe, w, 2, &opts[i], NULL) == GGX_ERR_RANGE, "option %d", i);
     CHECK(memcmp(&s, &keep, sizeof s) == 0, "out changed on error");
     /* the largest alpha: Sigma's eigenvalues stay within GGX_ALPHA_MAX^2, so the fit is a shape and so is the next
      * level's input (four tilts of alpha 1e4 once gave Sigma one ulp above it) */
@@ -498,8 +506,10 @@ static void bad_input(void **state)
         CHECK(ggx_texel_lobes(lv, wv, nm, 4, 1e4, 1e4, 0, NULL) == GGX_OK, "alpha 1e4 lobes");
         CHECK(ggx_filter_downsample(o1, &w1, lv, wv, 2, 2, NULL) == GGX_OK, "alpha 1e4 level");
         ggx_shape q;
-        CHECK(ggx_shape_from_slopes(&q, o1[0], o1[1], o1[2], o1[3], o1[4]) == GGX_OK, "alpha 1e4: Sigma %.17g, %.17g "
-              "is not a shape", o1[2], o1[4]);
+        CHECK(ggx_shape_from_slopes(&q, o1[0], o1[1], o1[2], o1[3], o1[4]) == GGX_OK,
+              "alpha 1e4: Sigma %.17g, %.17g "
+              "is not a shape",
+              o1[2], o1[4]);
     }
     /* the extremes that are allowed: two radial nodes and four angles, one iteration */
     ggx_filter_options tiny = {0};
@@ -589,12 +599,13 @@ static void chain_boxes(void **state)
     memcpy(bad, in, sizeof bad);
     bad[GGX_LOBE_PARAMS * 1] = NAN;
     CHECK(ggx_filter_downsample(out3, wo, bad, wts, 2, 2, NULL) == GGX_OK && wo[0] == 3.0, "weighted box");
-    memcpy(two, in, GGX_LOBE_PARAMS * sizeof *in), memcpy(two + GGX_LOBE_PARAMS, in + 2 * GGX_LOBE_PARAMS,
-                                                          GGX_LOBE_PARAMS * sizeof *in);
+    memcpy(two, in, GGX_LOBE_PARAMS * sizeof *in),
+        memcpy(two + GGX_LOBE_PARAMS, in + 2 * GGX_LOBE_PARAMS, GGX_LOBE_PARAMS * sizeof *in);
     ggx_shape pair[2], ref;
     for (int i = 0; i < 2; i++)
         CHECK(ggx_shape_from_slopes(&pair[i], two[5 * i], two[5 * i + 1], two[5 * i + 2], two[5 * i + 3],
-                                    two[5 * i + 4]) == GGX_OK, "pair");
+                                    two[5 * i + 4]) == GGX_OK,
+              "pair");
     CHECK(ggx_filter_lobes(&ref, pair, w2, 2, NULL, NULL) == GGX_OK, "reference");
     double c[GGX_LOBE_PARAMS];
     params_of(&ref, c);
@@ -602,7 +613,8 @@ static void chain_boxes(void **state)
         CHECK_CLOSE(out3[k], c[k], 1e-9, 1e-9 * sqrt(c[2] * c[4]), "weighted box entry %d", k);
     double zeros[4] = {0, 0, 0, 0};
     CHECK(ggx_filter_downsample(out3, wo, bad, zeros, 2, 2, NULL) == GGX_OK && wo[0] == 0.0 && out3[0] == 0.0 &&
-              out3[1] == 0.0 && out3[2] == 1.0 && out3[3] == 0.0 && out3[4] == 1.0, "empty box");
+              out3[1] == 0.0 && out3[2] == 1.0 && out3[3] == 0.0 && out3[4] == 1.0,
+          "empty box");
     wts[1] = -1;
     CHECK(ggx_filter_downsample(out3, wo, in, wts, 2, 2, NULL) == GGX_ERR_RANGE, "negative weight");
     double big[4] = {1e308, 1e308, 1e308, 1e308};
@@ -627,7 +639,8 @@ static void chain_boxes(void **state)
     CHECK(ggx_filter_downsample(out3, wo, in, wts, 2, 2, NULL) == GGX_ERR_RANGE, "infinite weight");
     /* two steps of the chain against the exact filter of the 16 base texels of a 4 x 4 map */
     for (int i = 0; i < 16; i++) params_of(&f.lobe[i], in + GGX_LOBE_PARAMS * i);
-    CHECK(ggx_filter_downsample(out, NULL, in, NULL, 4, 4, NULL) == GGX_OK && ggx_filter_downsample(out3, NULL, out, NULL, 2, 2, NULL) == GGX_OK,
+    CHECK(ggx_filter_downsample(out, NULL, in, NULL, 4, 4, NULL) == GGX_OK &&
+              ggx_filter_downsample(out3, NULL, out, NULL, 2, 2, NULL) == GGX_OK,
           "two levels");
     ggx_shape chain, exact;
     CHECK(ggx_shape_from_slopes(&chain, out3[0], out3[1], out3[2], out3[3], out3[4]) == GGX_OK, "chain's lobe");
@@ -666,18 +679,26 @@ static void threads(void **state)
     pthread_t th[8];
     for (int k = 0; k < 8; k++) jobs[k].fs = fs, jobs[k].n = nf, pthread_create(&th[k], NULL, run_job, &jobs[k]);
     for (int k = 0; k < 8; k++) pthread_join(th[k], NULL);
-    for (int k = 0; k < 8; k++) CHECK(memcmp(jobs[k].out, ref.out, (size_t)nf * sizeof ref.out[0]) == 0, "thread %d", k);
+    for (int k = 0; k < 8; k++)
+        CHECK(memcmp(jobs[k].out, ref.out, (size_t)nf * sizeof ref.out[0]) == 0, "thread %d", k);
 }
 
 int main(int argc, char **argv)
 {
     const struct CMUnitTest tests[] = {
-        cmocka_unit_test(texel_lobe_form), cmocka_unit_test(texel_lobe_errors),     cmocka_unit_test(texel_lobes),
+        cmocka_unit_test(texel_lobe_form),
+        cmocka_unit_test(texel_lobe_errors),
+        cmocka_unit_test(texel_lobes),
         cmocka_unit_test(roughness_map),
         cmocka_unit_test(constant_map),
-        cmocka_unit_test(em_monotone),     cmocka_unit_test(optimum_and_baselines), cmocka_unit_test(rule_accuracy),
-        cmocka_unit_test(weights),         cmocka_unit_test(bad_input),             cmocka_unit_test(chain_constant),
-        cmocka_unit_test(chain_boxes),     cmocka_unit_test(threads),
+        cmocka_unit_test(em_monotone),
+        cmocka_unit_test(optimum_and_baselines),
+        cmocka_unit_test(rule_accuracy),
+        cmocka_unit_test(weights),
+        cmocka_unit_test(bad_input),
+        cmocka_unit_test(chain_constant),
+        cmocka_unit_test(chain_boxes),
+        cmocka_unit_test(threads),
     };
     int rc = cmocka_run_group_tests(tests, NULL, NULL);
     return rc | chi2_budget_end("filter", argc, argv);

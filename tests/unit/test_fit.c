@@ -52,8 +52,7 @@ static void test_shape(int k, rng *r, shape_params *p)
     case 0: *p = (shape_params){a, a, 0, 0, 0}; break;
     case 1: *p = (shape_params){a, b, 0, 0, 0}; break;
     case 2: *p = (shape_params){a, b, 0, 0, rng_range(r, -3.0, 3.0)}; break;
-    default:
-        *p = (shape_params){a, b, rng_range(r, -0.8, 0.8), rng_range(r, -0.8, 0.8), rng_range(r, -3.0, 3.0)};
+    default: *p = (shape_params){a, b, rng_range(r, -0.8, 0.8), rng_range(r, -0.8, 0.8), rng_range(r, -3.0, 3.0)};
     }
 }
 
@@ -97,7 +96,8 @@ static void recovery(void **state)
             for (int gen = 0; gen < 2; gen++) {
                 ggx_vec3 *m = draw(&s, n, gen, &r);
                 ggx_fit_options o = {0};
-                o.model = p.tx == 0 && p.ty == 0 ? (p.ax == p.ay ? GGX_FIT_ISOTROPIC : GGX_FIT_ANISOTROPIC) : GGX_FIT_ELLIPSOID;
+                o.model = p.tx == 0 && p.ty == 0 ? (p.ax == p.ay ? GGX_FIT_ISOTROPIC : GGX_FIT_ANISOTROPIC)
+                                                 : GGX_FIT_ELLIPSOID;
                 ggx_shape f;
                 ggx_fit_info info;
                 fit_ok(&f, m, NULL, n, &o, &info);
@@ -575,7 +575,8 @@ static void review_cases(void **state)
     ggx_vec3 keep = m[0];
     m[0] = (ggx_vec3){1.0, 0.0, 1e-156}; /* slope 1e156: its square overflows */
     fit_ok(&f, m, NULL, n, NULL, &info);
-    CHECK(info.ignored_horizon == 1 && info.used == n - 1, "overflowing slope: %zu at the horizon", info.ignored_horizon);
+    CHECK(info.ignored_horizon == 1 && info.used == n - 1, "overflowing slope: %zu at the horizon",
+          info.ignored_horizon);
     m[0] = (ggx_vec3){1.0, 0.0, 1e-100}; /* slope 1e100: finite, an outlier */
     ggx_fit_options o = {0};
     o.model = GGX_FIT_ISOTROPIC;
@@ -654,7 +655,7 @@ static void heightfield(void **state)
     CHECK(total == 4 * 300 * 200, "facets %zu", total);
     double *sl = malloc(2 * total * sizeof *sl);
     assert_int_equal(ggx_heightfield_facets(sl, 0, total, h, nx, ny, dx, dy, &ho, NULL), GGX_OK);
-    {   /* a cell of four unrelated heights (this walk surface is separable: its cells have equal opposite sides) */
+    { /* a cell of four unrelated heights (this walk surface is separable: its cells have equal opposite sides) */
         const double q[4] = {0.3, 1.1, -0.4, 0.9}; /* h00, h10, h01, h11 on a 2 x 2 grid */
         double fs[8];
         assert_int_equal(ggx_heightfield_facets(fs, 0, 4, q, 2, 2, 0.5, 0.25, &ho, NULL), GGX_OK);
@@ -908,15 +909,16 @@ static void quantised_cells(void **state)
             zs += z, zz += z * z, nz++;
         }
         for (size_t i = 0; i < n; i++)
-            c[i] = (ggx_vec3){uv[2 * i], uv[2 * i + 1], sqrt(fmax(0.0, 1.0 - uv[2 * i] * uv[2 * i] -
-                                                               uv[2 * i + 1] * uv[2 * i + 1]))};
+            c[i] = (ggx_vec3){uv[2 * i], uv[2 * i + 1],
+                              sqrt(fmax(0.0, 1.0 - uv[2 * i] * uv[2 * i] - uv[2 * i + 1] * uv[2 * i + 1]))};
         fit_ok(&f, c, NULL, n, NULL, &pinfo);
         point_z += (pinfo.sigma[2] - sg[2]) / pinfo.std_error[4] / maps;
         free(m);
     }
     double mean = zs / nz, var = zz / nz - mean * mean;
     printf("quantised_cells: %d z-scores of the cells' fit: mean %.3f, variance %.3f; the centres' fit: Sigma_yy "
-           "%.1f standard errors off on average\n", nz, mean, var, point_z);
+           "%.1f standard errors off on average\n",
+           nz, mean, var, point_z);
     CHECK(fabs(mean) <= 4.0 / sqrt((double)nz), "z mean %g", mean);
     CHECK(var >= 0.6 && var <= 1.5, "z variance %g over %d", var, nz); /* chi-square 99.9 % range for 119 dof */
     CHECK(point_z >= 20.0, "the centres' fit is only %g standard errors off", point_z);

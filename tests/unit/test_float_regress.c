@@ -30,7 +30,7 @@
 #endif
 
 /* The bounds of ggx_batch.h, for the float variants. */
-#define TOL_VALUE 2e-5  /* ndf, pdf_vndf (where m.v >= MV_MIN), brdf: relative */
+#define TOL_VALUE 2e-5 /* ndf, pdf_vndf (where m.v >= MV_MIN), brdf: relative */
 #define MV_MIN 0.01
 #define TOL_DIR 1e-4    /* sampled directions: per component, absolute */
 #define TOL_SPDF 1e-4   /* sample pdf: relative */
@@ -48,7 +48,7 @@
 static double tol_double = TOL_DOUBLE; /* set by body_critical for its batches */
 static double tol_of(const variant *vr, double float_tol) { return vr->precision == 64 ? tol_double : float_tol; }
 
-#define U_LO 0x1p-24f         /* the smallest u > 0 of a float generator with 24-bit resolution */
+#define U_LO 0x1p-24f          /* the smallest u > 0 of a float generator with 24-bit resolution */
 #define U_HI (1.0f - 0x1p-24f) /* the largest float below 1 */
 
 typedef enum op {
@@ -63,8 +63,8 @@ typedef enum op {
     OP_SAMPLER, /* OP_SAMPLER + id: sampler id of the registry (NDF and VNDF families) */
     NOPS = OP_SAMPLER + GGX_SAMPLER_COUNT
 } op;
-static const char *const op_names[OP_SAMPLER] = {"ndf", "pdf_vndf", "brdf", "sample_vndf", "sample_vndf_aniso",
-                                                 "sample_ndf", "sample_brdf", "sample_brdf_bounded"};
+static const char *const op_names[OP_SAMPLER] = {
+    "ndf", "pdf_vndf", "brdf", "sample_vndf", "sample_vndf_aniso", "sample_ndf", "sample_brdf", "sample_brdf_bounded"};
 /* The registry's entry of a sampler op (NULL for the other ops). */
 static const ggx_sampler_info *sampler_of(op o)
 {
@@ -73,14 +73,15 @@ static const ggx_sampler_info *sampler_of(op o)
 static const char *op_name(op o) { return o < OP_SAMPLER ? op_names[o] : sampler_of(o)->name; }
 
 enum { Q_VALUE, Q_DIR, Q_PDF, Q_WEIGHT, Q_VALID, Q_NONFINITE, Q_CONTRACT, NQ };
-static const char *const q_names[NQ] = {"value, rel err", "direction, abs err", "sample pdf, rel err",
-                                        "weight, abs err", "validity vs double", "non-finite u -> 0", "contract"};
+static const char *const q_names[NQ] = {"value, rel err",  "direction, abs err", "sample pdf, rel err",
+                                        "weight, abs err", "validity vs double", "non-finite u -> 0",
+                                        "contract"};
 
 /* ---- a batch: float inputs (the double API sees exactly these), outputs, and how the shape was made ---- */
 typedef struct batch {
     size_t n, cap;
-    float *in[10];  /* vx vy vz (view or wi), mx my mz (normal or wo), u1 u2, alpha_x alpha_y (sample_vndf_aniso) */
-    double *out[5]; /* x y z pdf weight, or the value in out[0] */
+    float *in[10];     /* vx vy vz (view or wi), mx my mz (normal or wo), u1 u2, alpha_x alpha_y (sample_vndf_aniso) */
+    double *out[5];    /* x y z pdf weight, or the value in out[0] */
     const variant *vr; /* the variant under test */
     const ggx_shape *s;
     const ggx_fresnel *f;
@@ -174,13 +175,13 @@ static void note(report *r, op o, int q, double err, double tol, const batch *b,
     const ggx_sampler_info *info = sampler_of(o);
     append(&p, &left, "variant %s, %s element %zu of %zu: shape %s", b->vr->name, op_name(o), i, b->n, b->shape);
     if (o != OP_NDF && o != OP_SAMPLE_NDF && !(info && info->family == GGX_FAMILY_NDF))
-        append(&p, &left, "; %s (%.9g, %.9g, %.9g)", o == OP_BRDF || o == OP_SAMPLE_BRDF || o == OP_SAMPLE_BRDF_BOUNDED ? "wi" : "v", b->in[VX][i],
+        append(&p, &left, "; %s (%.9g, %.9g, %.9g)",
+               o == OP_BRDF || o == OP_SAMPLE_BRDF || o == OP_SAMPLE_BRDF_BOUNDED ? "wi" : "v", b->in[VX][i],
                b->in[VY][i], b->in[VZ][i]);
     if (o <= OP_BRDF)
         append(&p, &left, "; %s (%.9g, %.9g, %.9g)", o == OP_BRDF ? "wo" : "m", b->in[MX][i], b->in[MY][i],
                b->in[MZ][i]);
-    else
-        append(&p, &left, "; u (%.9g, %.9g)", b->in[U1][i], b->in[U2][i]);
+    else append(&p, &left, "; u (%.9g, %.9g)", b->in[U1][i], b->in[U2][i]);
     if (o == OP_SAMPLE_VNDF_ANISO) append(&p, &left, "; alphas (%.9g, %.9g)", b->in[AX][i], b->in[AY][i]);
     if (b->f && (o == OP_BRDF || o == OP_SAMPLE_BRDF || o == OP_SAMPLE_BRDF_BOUNDED))
         append(&p, &left, "; fresnel kind %d eta %.9g k %.9g f0 %.9g", (int)b->f->kind, b->f->eta, b->f->k, b->f->f0);
@@ -322,8 +323,8 @@ static void check_brdf_sample(op o, const batch *b, size_t i, report *r)
          why ? why : "", w.x, w.y, w.z, pdf, weight);
     if (!uok && vr->nonfinite_u_invalid) {
         note(r, o, Q_NONFINITE, !(zero_vec(w) && pdf == 0 && weight == 0), 0.5, b, i,
-             "want an invalid sample (w = 0, pdf 0, weight 0), got w (%.17g, %.17g, %.17g) pdf %.17g weight %.17g",
-             w.x, w.y, w.z, pdf, weight);
+             "want an invalid sample (w = 0, pdf 0, weight 0), got w (%.17g, %.17g, %.17g) pdf %.17g weight %.17g", w.x,
+             w.y, w.z, pdf, weight);
         return;
     }
     if (!b->accuracy) return;
@@ -342,8 +343,10 @@ static void check_brdf_sample(op o, const batch *b, size_t i, report *r)
          dvalid ? "valid" : "invalid", wd.x, wd.y, wd.z, x.pdf, x.weight, fvalid ? "valid" : "invalid", w.x, w.y, w.z,
          pdf, weight);
     if (!dvalid || !fvalid) return;
-#define DETAILS "got wo (%.17g, %.17g, %.17g) pdf %.17g weight %.17g, double wo (%.17g, %.17g, %.17g) pdf %.17g " \
-                "weight %.17g", w.x, w.y, w.z, pdf, weight, x.w.x, x.w.y, x.w.z, x.pdf, x.weight
+#define DETAILS                                                                                                        \
+    "got wo (%.17g, %.17g, %.17g) pdf %.17g weight %.17g, double wo (%.17g, %.17g, %.17g) pdf %.17g "                  \
+    "weight %.17g",                                                                                                    \
+        w.x, w.y, w.z, pdf, weight, x.w.x, x.w.y, x.w.z, x.pdf, x.weight
     if (!uok) {
         int same = dir_err(w, x.w) <= tol_of(vr, TOL_DIR) && rel(pdf, x.pdf) <= tol_of(vr, TOL_SPDF) &&
                    fabs(weight - x.weight) <= tol_of(vr, TOL_WEIGHT);
@@ -387,8 +390,8 @@ static long print_report(const char *test, const variant *vr, const report *r, c
             const stat *st = &r->q[o][q];
             if (!st->n) continue;
             if (is_bool_check(q))
-                printf("%s %-12s %-17s %-19s %8ld checked, %ld violated\n", test, vr->name, op_name((op)o),
-                       q_names[q], st->n, st->bad);
+                printf("%s %-12s %-17s %-19s %8ld checked, %ld violated\n", test, vr->name, op_name((op)o), q_names[q],
+                       st->n, st->bad);
             else
                 printf("%s %-12s %-17s %-19s %8ld checked, worst %.2e (tol %.0e), %ld over\n", test, vr->name,
                        op_name((op)o), q_names[q], st->n, st->worst, st->tol, st->bad);
@@ -707,8 +710,9 @@ static void float_sincos(void **state)
 
 int main(void)
 {
-    const struct CMUnitTest tests[] = {cmocka_unit_test(scale_invariance), cmocka_unit_test(nonfinite_u),
-                                       cmocka_unit_test(sampler_accuracy), cmocka_unit_test(dielectric_critical_angle),
-                                       cmocka_unit_test(no_backfacing_normals), cmocka_unit_test(float_sincos)};
+    const struct CMUnitTest tests[] = {
+        cmocka_unit_test(scale_invariance),      cmocka_unit_test(nonfinite_u),
+        cmocka_unit_test(sampler_accuracy),      cmocka_unit_test(dielectric_critical_angle),
+        cmocka_unit_test(no_backfacing_normals), cmocka_unit_test(float_sincos)};
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

@@ -87,8 +87,12 @@ static void schlick_and_setup(void **state)
     }
     ggx_fresnel f = {GGX_FRESNEL_CONDUCTOR, 0, 0, 0};
     CHECK(ggx_fresnel_one(&f) == GGX_OK && ggx_fresnel_eval(&f, 0.3) == 1.0, "one");
-    CHECK(ggx_fresnel_dielectric(&f, 1.5) == GGX_OK && ggx_fresnel_eval(&f, 1.0) == ggx_fresnel_dielectric_eval(1.0, 1.5), "d");
-    CHECK(ggx_fresnel_conductor(&f, 0.2, 3.9) == GGX_OK && ggx_fresnel_eval(&f, 0.7) == ggx_fresnel_conductor_eval(0.7, 0.2, 3.9), "c");
+    CHECK(ggx_fresnel_dielectric(&f, 1.5) == GGX_OK &&
+              ggx_fresnel_eval(&f, 1.0) == ggx_fresnel_dielectric_eval(1.0, 1.5),
+          "d");
+    CHECK(ggx_fresnel_conductor(&f, 0.2, 3.9) == GGX_OK &&
+              ggx_fresnel_eval(&f, 0.7) == ggx_fresnel_conductor_eval(0.7, 0.2, 3.9),
+          "c");
     CHECK(ggx_fresnel_schlick(&f, 0.5) == GGX_OK && ggx_fresnel_eval(&f, 1.0) == 0.5, "s");
     ggx_fresnel zero = {0};
     CHECK(ggx_fresnel_eval(&zero, 0.1) == 1.0, "zero-initialised is F = 1");

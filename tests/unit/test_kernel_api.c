@@ -18,11 +18,8 @@
 #define CALL_VNDF(stem) ggx_##stem##_d(s, v, a, b)
 #define CALL_REJECTION(stem) ((void)s, (void)v, (void)a, (void)b, t_vec(0, 0, 0))
 #define CALL_DIRECTION(stem) ((void)s, (void)v, (void)a, (void)b, t_vec(0, 0, 0))
-#define X(ID, name, stem, fam, dom, batch, inv, help)                                    \
-    static ggx_vec3 inline_##stem(const ggx_shape *s, ggx_vec3 v, double a, double b) \
-    {                                                                                  \
-        return CALL_##fam(stem);                                                       \
-    }
+#define X(ID, name, stem, fam, dom, batch, inv, help)                                                                  \
+    static ggx_vec3 inline_##stem(const ggx_shape *s, ggx_vec3 v, double a, double b) { return CALL_##fam(stem); }
 GGX_SAMPLER_LIST(X)
 #undef X
 typedef ggx_vec3 (*inline_fn)(const ggx_shape *, ggx_vec3, double, double);
@@ -55,9 +52,10 @@ static void check_shape(const ggx_shape *s, double kappa, ggx_vec3 v, const char
                 /* values: where m is at least 0.01 from the horizon and from edge-on to v (a dot product near 0
                  * has an absolute rounding error, so its relative one grows as 1 / (m.v)) */
                 if (!(m1.z >= 0.01 && t_dot(m1, v) >= 0.01 && v.z >= 0.01)) continue;
-                double vals[3][2] = {{ggx_ndf(s, m1), ggx_ndf_d(s, m1)},
-                                     {ggx_pdf_vndf(s, v, m1), ggx_pdf_vndf_d(s, v, m1)},
-                                     {ggx_brdf_eval(s, &f, v, ggx_reflect(v, m1)), ggx_brdf_eval_d(s, &f, v, ggx_reflect(v, m1))}};
+                double vals[3][2] = {
+                    {ggx_ndf(s, m1), ggx_ndf_d(s, m1)},
+                    {ggx_pdf_vndf(s, v, m1), ggx_pdf_vndf_d(s, v, m1)},
+                    {ggx_brdf_eval(s, &f, v, ggx_reflect(v, m1)), ggx_brdf_eval_d(s, &f, v, ggx_reflect(v, m1))}};
                 for (int k = 0; k < 3; k++) {
                     double r = fabs(vals[k][0] - vals[k][1]) / fmax(fabs(vals[k][0]), 1e-300);
                     if (r / (kappa * kappa) > worst_ratio) worst_ratio = r / (kappa * kappa);

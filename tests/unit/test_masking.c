@@ -69,15 +69,15 @@ static void weak_white_furnace(void **state)
             CHECK_CLOSE(w, 1.0, 1e-7, 0, "unskewed (%g,%g,tz %g) v.z %g", p.ax, p.ay, p.tz, v.z);
             if (fabs(w - 1) > worst_unskewed) worst_unskewed = fabs(w - 1);
         } else {
-            CHECK(w <= 1.0 + 1e-7, "skewed furnace %.12g > 1: (%g,%g,%g,%g,%g) v (%g,%g,%g)", w, p.ax, p.ay, p.tx,
-                  p.ty, p.tz, v.x, v.y, v.z);
+            CHECK(w <= 1.0 + 1e-7, "skewed furnace %.12g > 1: (%g,%g,%g,%g,%g) v (%g,%g,%g)", w, p.ax, p.ay, p.tx, p.ty,
+                  p.tz, v.x, v.y, v.z);
             if (w < 1.0 - 1e-3) below++;
             if (w < lowest_skewed) lowest_skewed = w;
         }
     }
     CHECK(below >= 3, "only %d skewed cases had the min of eq 32 active", below);
-    printf("weak furnace: unskewed max |W - 1| = %.3g; skewed min W = %.6f (%d of 30 below 1 - 1e-3)\n",
-           worst_unskewed, lowest_skewed, below);
+    printf("weak furnace: unskewed max |W - 1| = %.3g; skewed min W = %.6f (%d of 30 below 1 - 1e-3)\n", worst_unskewed,
+           lowest_skewed, below);
 }
 
 /* G1 in [0, 1] and equal to min(1, G1_smith) on random skewed inputs; G2 is the product; the height-correlated
@@ -108,8 +108,10 @@ static void masking_ranges(void **state)
         ggx_vec3 m = t_normalize(t_add(t_add(u, w), n));
         double sep = ggx_g2(&s, u, w, m), hc = ggx_g2_height_correlated(&s, u, w, m);
         CHECK(hc >= sep * (1 - 1e-15), "HC %.17g < separable %.17g", hc, sep);
-        double lu = lambda_closed(p.ax, p.ay, t_vec(cos(p.tz) * u.x - sin(p.tz) * u.y, sin(p.tz) * u.x + cos(p.tz) * u.y, u.z));
-        double lw = lambda_closed(p.ax, p.ay, t_vec(cos(p.tz) * w.x - sin(p.tz) * w.y, sin(p.tz) * w.x + cos(p.tz) * w.y, w.z));
+        double lu = lambda_closed(p.ax, p.ay,
+                                  t_vec(cos(p.tz) * u.x - sin(p.tz) * u.y, sin(p.tz) * u.x + cos(p.tz) * u.y, u.z));
+        double lw = lambda_closed(p.ax, p.ay,
+                                  t_vec(cos(p.tz) * w.x - sin(p.tz) * w.y, sin(p.tz) * w.x + cos(p.tz) * w.y, w.z));
         CHECK_CLOSE(hc, 1.0 / (1.0 + lu + lw), 1e-11, 0, "HC closed form");
         CHECK_CLOSE(ggx_g2_height_correlated(&s, u, n, n), ggx_g2(&s, u, n, n), 1e-14, 0, "one direction is n");
     }
@@ -211,7 +213,8 @@ static void seed_g1_forms(void **state)
     CHECK_CLOSE(walter * vis, 1.0, 1e-9, 0, "Walter eq 6 normalises the VNDF");
     CHECK(fabs(blog * vis - 1.0) > 0.01, "blog form unexpectedly normalises: %.9f", blog * vis);
     printf("skewed (0.3, 0.5, 0.4, -0.3, 0.5), v = (theta 1.2, phi -0.6): G1 Walter %.9f, blog %.9f; "
-           "VNDF integral with Walter %.12f, with blog %.9f\n", walter, blog, walter * vis, blog * vis);
+           "VNDF integral with Walter %.12f, with blog %.9f\n",
+           walter, blog, walter * vis, blog * vis);
     ggx_shape u;
     CHECK(ggx_shape_ellipsoid(&u, 0.3, 0.5, 0, 0, 0.5) == GGX_OK, "setup");
     CHECK_CLOSE(g1_blog(&u, v), ggx_g1_smith(&u, v), 1e-13, 0, "the two forms agree when unskewed");
@@ -259,10 +262,13 @@ static void skewed_surface_masking(void **state)
         double cond = fmax(1.0, (u.z + fabs(tu)) / fz);
         CHECK_CLOSE(gt, want, 1e-12 * cond, 1e-300, "the sheared view: %.17g, want %.17g (t %g %g)", gt, want, t[0],
                     t[1]);
-        CHECK_CLOSE(gt * (1.0 + ggx_lambda(&s, u)) * u.z, fz, 1e-11 * cond, 1e-14 * u.z, "the tilted plane's footprint");
-        CHECK_CLOSE(gr, tu > 0 ? gt : gs, 1e-12, 1e-300, "risers: %.17g (t . u %g, tilted %g, Smith %g)", gr, tu, gt, gs);
+        CHECK_CLOSE(gt * (1.0 + ggx_lambda(&s, u)) * u.z, fz, 1e-11 * cond, 1e-14 * u.z,
+                    "the tilted plane's footprint");
+        CHECK_CLOSE(gr, tu > 0 ? gt : gs, 1e-12, 1e-300, "risers: %.17g (t . u %g, tilted %g, Smith %g)", gr, tu, gt,
+                    gs);
         if (i < 2000) {
-            CHECK_CLOSE(gt, ggx_g1(&s, u, m), 1e-12, 1e-300, "unskewed: tilted %.17g, eq 6 %.17g", gt, ggx_g1(&s, u, m));
+            CHECK_CLOSE(gt, ggx_g1(&s, u, m), 1e-12, 1e-300, "unskewed: tilted %.17g, eq 6 %.17g", gt,
+                        ggx_g1(&s, u, m));
             double A[3][3];
             ggx_ellipsoid_matrix(A, p.ax, p.ay, 0, 0, p.tz);
             for (int a = 0; a < 3; a++)
@@ -302,7 +308,8 @@ static void skewed_surface_masking(void **state)
         shape_params p = random_shape(&r2, 0.0);
         ggx_shape e, q, w;
         CHECK(ggx_shape_ellipsoid(&e, p.ax, p.ay, 0, 0, p.tz) == GGX_OK, "shape");
-        double c = cos(p.tz), sn = sin(p.tz), A[3][3] = {{p.ax * c, -p.ax * sn, 0}, {p.ay * sn, p.ay * c, 0}, {0, 0, 1}};
+        double c = cos(p.tz), sn = sin(p.tz),
+               A[3][3] = {{p.ax * c, -p.ax * sn, 0}, {p.ay * sn, p.ay * c, 0}, {0, 0, 1}};
         /* A = diag(ax, ay, 1) R: R a rotation about n, rounded */
         CHECK(ggx_shape_matrix(&q, (const double(*)[3])A) == GGX_OK, "matrix");
         /* A = Q diag(ax, ay, 1), Q any rotation (Rz Rx of random angles): the same distribution as diag's */
@@ -317,9 +324,8 @@ static void skewed_surface_masking(void **state)
             ggx_vec3 u = t_vec(st * cos(ph), st * sin(ph), z);
             const ggx_shape *sh[3] = {&e, &q, &w};
             for (int j = 0; j < 3; j++)
-                CHECK(sh[j]->kind == GGX_SHAPE_SKEWED ||
-                          (ggx_g1_tilted(sh[j], u, n) == ggx_g1(sh[j], u, n) &&
-                           ggx_g1_risers(sh[j], u, n) == ggx_g1(sh[j], u, n)),
+                CHECK(sh[j]->kind == GGX_SHAPE_SKEWED || (ggx_g1_tilted(sh[j], u, n) == ggx_g1(sh[j], u, n) &&
+                                                          ggx_g1_risers(sh[j], u, n) == ggx_g1(sh[j], u, n)),
                       "unskewed (%g, %g, %g), u.z %g: tilted %.17g, risers %.17g, eq 6 %.17g", p.ax, p.ay, p.tz, z,
                       ggx_g1_tilted(sh[j], u, n), ggx_g1_risers(sh[j], u, n), ggx_g1(sh[j], u, n));
         }

@@ -55,7 +55,7 @@ static void spectrum_moments(void **state)
 {
     (void)state;
     if (!gauss_built()) return;
-    const double cases[][5] = {{0.3, 0.3, 0.0, 16, 256}, {0.2, 0.5, 0.6, 4, 64},  {0.1, 0.4, -1.2, 8, 128},
+    const double cases[][5] = {{0.3, 0.3, 0.0, 16, 256}, {0.2, 0.5, 0.6, 4, 64},   {0.1, 0.4, -1.2, 8, 128},
                                {1e-3, 1e-3, 0, 4, 64},   {5.0, 5.0, 0.0, 64, 256}, {0.25, 1.0, 2.0, 32, 128}};
     double *h = malloc(256 * 256 * sizeof *h);
     for (size_t c = 0; c < sizeof cases / sizeof cases[0]; c++) {
@@ -141,7 +141,8 @@ static void one_field(void **state)
     size_t lag = (size_t)lround(r);
     double want = info.sigma * info.sigma * exp(-info.metric[0] * (double)(lag * lag));
     for (size_t y = 0; y < N; y++)
-        for (size_t x = 0; x < N; x++) acc += h[y * N + x] * h[y * N + (x + lag) % N], var += h[y * N + x] * h[y * N + x];
+        for (size_t x = 0; x < N; x++)
+            acc += h[y * N + x] * h[y * N + (x + lag) % N], var += h[y * N + x] * h[y * N + x];
     acc /= N * N, var /= N * N;
     CHECK_CLOSE(var, info.sigma * info.sigma, 0.15, 0, "heights' variance %g", var);
     CHECK_CLOSE(acc, want, 0.15, 0.02 * var, "autocorrelation at lag %zu: %g against %g", lag, acc, want);
@@ -226,8 +227,10 @@ static void vgroove_trace(void **state)
                       hit.m[0], hit.m[1], hit.m[2]);
             }
             double tp = tan(th) * fabs(cos(ph)), want = fmax(0.0, (1.0 - 0.5 * tp) / 2.0), got = (double)away / RAYS;
-            CHECK(fabs(got - want) <= 4.0 * sqrt(fmax(want * (1.0 - want), 1e-6) / RAYS) + 1e-9, "theta %g, phi %g: "
-                  "%g of the hits on the facets facing away, want %g", thetas[a], ph, got, want);
+            CHECK(fabs(got - want) <= 4.0 * sqrt(fmax(want * (1.0 - want), 1e-6) / RAYS) + 1e-9,
+                  "theta %g, phi %g: "
+                  "%g of the hits on the facets facing away, want %g",
+                  thetas[a], ph, got, want);
         }
     ms_tracer_free(t);
 }
@@ -281,13 +284,15 @@ static void mirror_and_furnace(void **state)
     long multi = 0, rays = 20000;
     for (long i = 0; i < rays; i++) {
         double th = 1.4 * uniform(&s), ph = 6.283 * uniform(&s);
-        double o[3] = {uniform(&s) * G, uniform(&s) * G, zmax + 1.0}, d[3] = {sin(th) * cos(ph), sin(th) * sin(ph), -cos(th)};
+        double o[3] = {uniform(&s) * G, uniform(&s) * G, zmax + 1.0},
+               d[3] = {sin(th) * cos(ph), sin(th) * sin(ph), -cos(th)};
         int bounces, r = bounce_out(t, o, d, 100, &bounces);
         CHECK(r == 0 && d[2] > 0.0, "ray %ld: %s after %d bounces", i, r < 0 ? "left below the surface" : "not out",
               bounces);
         multi += bounces > 1;
     }
-    printf("furnace, alpha 1: %ld rays, all out; %.1f %% bounced more than once\n", rays, 100.0 * (double)multi / (double)rays);
+    printf("furnace, alpha 1: %ld rays, all out; %.1f %% bounced more than once\n", rays,
+           100.0 * (double)multi / (double)rays);
     ms_tracer_free(t);
 }
 
@@ -309,7 +314,8 @@ static void ggx_field(void **state)
         CHECK(ggx_shape_ellipsoid(&want, sp.alpha_x, sp.alpha_y, 0, 0, sp.phi) == GGX_OK, "shape");
         const double el[3] = {45, 70, 85};
         for (int a = 0; a < 3; a++) {
-            double th = el[a] * 3.14159265358979323846 / 180.0, v[3] = {sin(th) * cos(0.3), sin(th) * sin(0.3), cos(th)};
+            double th = el[a] * 3.14159265358979323846 / 180.0,
+                   v[3] = {sin(th) * cos(0.3), sin(th) * sin(0.3), cos(th)};
             ggx_vec3 vv = {v[0], v[1], v[2]};
             double g = ms_facets_g1(h, N, NULL, v), s = ggx_g1_smith(&want, vv);
             CHECK_CLOSE(g, s, 0.03, 0, "case %d, %g degrees: the facets' G1 %g, GGX's %g", c, el[a], g, s);
@@ -391,8 +397,10 @@ static void reciprocity(void **state)
             double sd = sqrt(ab / (double)r[0].rays + ba / (double)r[1].rays);
             printf("reciprocity, pair %d, %s: %.6g from A into B, %.6g from B into A, sd %.2g\n", p,
                    all ? "all bounces" : "single scattering", ab, ba, sd);
-            CHECK(fabs(ab - ba) <= 4.0 * sd, "pair %d, %s: %g from A into B, %g from B into A (shares of the rays), "
-                  "sd %g", p, all ? "all bounces" : "single scattering", ab, ba, sd);
+            CHECK(fabs(ab - ba) <= 4.0 * sd,
+                  "pair %d, %s: %g from A into B, %g from B into A (shares of the rays), "
+                  "sd %g",
+                  p, all ? "all bounces" : "single scattering", ab, ba, sd);
         }
         for (int k = 0; k < 2; k++) CHECK(r[k].lost == 0, "lost rays"), ms_brdf_free(&r[k]);
     }
@@ -420,7 +428,8 @@ static void watertight(void **state)
     double zmin, zmax;
     ms_tracer_bounds(t, &zmin, &zmax);
     const double th = 75.0 * 3.14159265358979323846 / 180.0;
-    const double kept[2][3] = {{50.267035304383, 272.06969358390143, 0.0}, {10.99970490710092, 460.60041212330412, 0.74}};
+    const double kept[2][3] = {{50.267035304383, 272.06969358390143, 0.0},
+                               {10.99970490710092, 460.60041212330412, 0.74}};
     for (int k = 0; k < 2; k++) {
         double o[3] = {kept[k][0], kept[k][1], zmax + 1.0};
         double d[3] = {-sin(th) * cos(kept[k][2]), -sin(th) * sin(kept[k][2]), -cos(th)};
@@ -436,8 +445,10 @@ static void watertight(void **state)
             double o[3] = {uniform(&s) * N, uniform(&s) * N, zmax + 1.0};
             ms_hit hit;
             int r = ms_trace(t, o, d, &hit);
-            CHECK(r == 1 && hit.p[0] >= 0.0 && hit.p[0] < N && hit.p[1] >= 0.0 && hit.p[1] < N, "elevation %g: ray "
-                  "from %.17g, %.17g: %d", elev[a], o[0], o[1], r);
+            CHECK(r == 1 && hit.p[0] >= 0.0 && hit.p[0] < N && hit.p[1] >= 0.0 && hit.p[1] < N,
+                  "elevation %g: ray "
+                  "from %.17g, %.17g: %d",
+                  elev[a], o[0], o[1], r);
         }
     }
     ms_tracer_free(t);
@@ -487,8 +498,10 @@ static void skewed_masking(void **state)
         double along = (o[2] - tilt[1] * o[1] - 0.0) / (tilt[1] * d[1] - d[2]);
         double py = o[1] + along * d[1], wy = py - N * floor(py / N);
         CHECK(fabs(hit.p[1] - wy) < 2e-3 * fmax(1.0, along / 100.0) && fabs(hit.p[2] - tilt[1] * hit.p[1]) < 1e-3 &&
-              fabs(hit.m[1] - pn[1]) < 1e-4 && fabs(hit.m[2] - pn[2]) < 1e-4, "the tilted mirror: ray %d hit y %.9g "
-              "(want %.9g), z %.9g, normal %.9g %.9g %.9g", i, hit.p[1], wy, hit.p[2], hit.m[0], hit.m[1], hit.m[2]);
+                  fabs(hit.m[1] - pn[1]) < 1e-4 && fabs(hit.m[2] - pn[2]) < 1e-4,
+              "the tilted mirror: ray %d hit y %.9g "
+              "(want %.9g), z %.9g, normal %.9g %.9g %.9g",
+              i, hit.p[1], wy, hit.p[2], hit.m[0], hit.m[1], hit.m[2]);
     }
     ms_tracer_free(t);
     ms_ggx_spec sp = {N, 0.3, 0.3, 0.0, 8, 0, 5};
@@ -536,8 +549,8 @@ static void skewed_masking(void **state)
                     r.g1_off_risers, tb);
         CHECK(fabs(e6 / r.g1_off_risers - 1.0) > 0.2, "negative control, phi %g: eq 6's %g passes for %g", phis[a], e6,
               r.g1_off_risers);
-        printf("tilted patch, 60 degrees, phi %g: traced %.4f, tilted base %.4f, eq 6 %.4f\n", phis[a],
-               r.g1_off_risers, tb, e6);
+        printf("tilted patch, 60 degrees, phi %g: traced %.4f, tilted base %.4f, eq 6 %.4f\n", phis[a], r.g1_off_risers,
+               tb, e6);
         ms_g1_free(&r);
     }
     ms_tracer_free(t);
@@ -576,11 +589,14 @@ static void skewed_masking(void **state)
                   r.g1_off_risers);
             CHECK(seen > 0.95, "the risers facing v: %g of their area seen", seen);
         } else {
-            CHECK(r.riser_area == 0.0 && fabs(tb / r.g1_off_risers - 1.0) > 0.2, "negative control: the tilted base's "
-                  "%g passes for %g (risers' area towards v %g)", tb, r.g1_off_risers, r.riser_area);
+            CHECK(r.riser_area == 0.0 && fabs(tb / r.g1_off_risers - 1.0) > 0.2,
+                  "negative control: the tilted base's "
+                  "%g passes for %g (risers' area towards v %g)",
+                  tb, r.g1_off_risers, r.riser_area);
         }
         printf("sawtooth 256, 60 degrees, phi %g: traced %.4f, sawtooth form %.4f, vertical facets %.4f, tilted base "
-               "%.4f; risers seen %.3f\n", phis[a], r.g1_off_risers, saw, vf, tb, a == 1 ? seen : NAN);
+               "%.4f; risers seen %.3f\n",
+               phis[a], r.g1_off_risers, saw, vf, tb, a == 1 ? seen : NAN);
         ms_g1_free(&r);
     }
     ms_tracer_free(t);
@@ -635,16 +651,20 @@ static void skewed_claims(void **state)
                     double z = v[2] - ft[0] * v[0] - ft[1] * v[1];
                     double sheared = acos(z / sqrt(v[0] * v[0] + v[1] * v[1] + z * z)) * 180.0 / PI_;
                     if (!(z > 0.0)) continue; /* below the tilted plane */
-                    int front = side == 1; /* t points to -y: from 270 degrees the risers face the view */
+                    int front = side == 1;    /* t points to -y: from 270 degrees the risers face the view */
                     double tol = saw ? (front ? (sheared <= 76.0 ? 0.04 : -1.0) : 0.02)
-                                     : (sheared <= 80.0 ? 0.02 : sheared <= 88.0 ? 0.045 : -1.0);
+                                     : (sheared <= 80.0   ? 0.02
+                                        : sheared <= 88.0 ? 0.045
+                                                          : -1.0);
                     if (tol < 0) continue;
                     CHECK(ms_measure_g1(tr, h, N, v, RAYS, 1, 1, risers, 2, &r, err, sizeof err) == 0, "%s", err);
                     ggx_vec3 vv = {v[0], v[1], v[2]};
                     double want = saw ? ggx_g1_risers(&fit, vv, vv) : ggx_g1_tilted(&fit, vv, vv);
-                    CHECK_CLOSE(r.g1_off_risers, want, tol, 0, "alpha %g, %s, %d degrees from %s (sheared %.1f): "
-                                "traced %.4f, the form %.4f", alphas[a], saw ? "sawtooth" : "tilted patch", th,
-                                side ? "270" : "90", sheared, r.g1_off_risers, want);
+                    CHECK_CLOSE(r.g1_off_risers, want, tol, 0,
+                                "alpha %g, %s, %d degrees from %s (sheared %.1f): "
+                                "traced %.4f, the form %.4f",
+                                alphas[a], saw ? "sawtooth" : "tilted patch", th, side ? "270" : "90", sheared,
+                                r.g1_off_risers, want);
                     worst = fmax(worst, fabs(r.g1_off_risers / want - 1.0));
                     ms_g1_free(&r);
                 }
@@ -688,14 +708,14 @@ static void coherent_streams(void **state)
             ms_trace_coherent(t, ROW, o, d, b, rb);
             for (int i = 0; i < ROW; i++) {
                 ra[i] = ms_trace(t, o + 3 * i, d, &a[i]);
-                int same = ra[i] == rb[i] && (ra[i] != 1 || (a[i].cell == b[i].cell && fabs(a[i].p[0] - b[i].p[0]) < 1e-4 &&
-                                                           fabs(a[i].p[1] - b[i].p[1]) < 1e-4 &&
-                                                           fabs(a[i].p[2] - b[i].p[2]) < 1e-4));
+                int same = ra[i] == rb[i] &&
+                           (ra[i] != 1 || (a[i].cell == b[i].cell && fabs(a[i].p[0] - b[i].p[0]) < 1e-4 &&
+                                           fabs(a[i].p[1] - b[i].p[1]) < 1e-4 && fabs(a[i].p[2] - b[i].p[2]) < 1e-4));
                 differ += !same;
             }
         }
-        CHECK(differ == 0, "%s: %ld of %d rays differ between ms_trace and ms_trace_coherent", tilted ? "tilted" : "plain",
-              differ, 30 * ROW);
+        CHECK(differ == 0, "%s: %ld of %d rays differ between ms_trace and ms_trace_coherent",
+              tilted ? "tilted" : "plain", differ, 30 * ROW);
         printf("coherent streams, %s: %d rays alike\n", tilted ? "tilted" : "plain", 30 * ROW);
         ms_tracer_free(t);
     }
@@ -705,24 +725,26 @@ static void bad_specs(void **state)
 {
     (void)state;
     double h[64 * 64];
-    const ms_gauss_spec bad[] = {{63, 0.3, 0.3, 0, 8, 1},  {4, 0.3, 0.3, 0, 8, 1},   {64, 0, 0.3, 0, 8, 1},
-                                 {64, 0.3, 11, 0, 8, 1},   {64, 0.3, NAN, 0, 8, 1},  {64, 0.3, 0.3, NAN, 8, 1},
-                                 {64, 0.3, 0.3, 0, 3, 1},  {64, 0.3, 0.3, 0, 17, 1}, {64, 0.01, 1, 0.3, 16, 1}};
+    const ms_gauss_spec bad[] = {{63, 0.3, 0.3, 0, 8, 1}, {4, 0.3, 0.3, 0, 8, 1},   {64, 0, 0.3, 0, 8, 1},
+                                 {64, 0.3, 11, 0, 8, 1},  {64, 0.3, NAN, 0, 8, 1},  {64, 0.3, 0.3, NAN, 8, 1},
+                                 {64, 0.3, 0.3, 0, 3, 1}, {64, 0.3, 0.3, 0, 17, 1}, {64, 0.01, 1, 0.3, 16, 1}};
     for (size_t i = 0; i < sizeof bad / sizeof bad[0]; i++) {
         char err[256] = "";
         if (!gauss_built() && i == sizeof bad / sizeof bad[0] - 1) break; /* refused as not built, not as a shape */
-        CHECK(ms_gauss(&bad[i], h, NULL, err, sizeof err) != 0 && strstr(err, "Gaussian surface"), "spec %zu "
-              "accepted (%s)", i, err);
+        CHECK(ms_gauss(&bad[i], h, NULL, err, sizeof err) != 0 && strstr(err, "Gaussian surface"),
+              "spec %zu "
+              "accepted (%s)",
+              i, err);
     }
 }
 
 int main(int argc, char **argv)
 {
     const struct CMUnitTest tests[] = {
-        cmocka_unit_test(spectrum_moments), cmocka_unit_test(realisations),     cmocka_unit_test(one_field),
-        cmocka_unit_test(vgrooves),         cmocka_unit_test(vgroove_trace),    cmocka_unit_test(mirror_and_furnace),
-        cmocka_unit_test(ggx_field),        cmocka_unit_test(diagonal),         cmocka_unit_test(watertight),
-        cmocka_unit_test(reciprocity),      cmocka_unit_test(skewed_masking),   cmocka_unit_test(skewed_claims),
+        cmocka_unit_test(spectrum_moments), cmocka_unit_test(realisations),   cmocka_unit_test(one_field),
+        cmocka_unit_test(vgrooves),         cmocka_unit_test(vgroove_trace),  cmocka_unit_test(mirror_and_furnace),
+        cmocka_unit_test(ggx_field),        cmocka_unit_test(diagonal),       cmocka_unit_test(watertight),
+        cmocka_unit_test(reciprocity),      cmocka_unit_test(skewed_masking), cmocka_unit_test(skewed_claims),
         cmocka_unit_test(coherent_streams), cmocka_unit_test(bad_specs),
     };
     int rc = cmocka_run_group_tests(tests, NULL, NULL);

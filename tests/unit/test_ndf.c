@@ -5,10 +5,7 @@
 
 #include "testlib.h"
 
-static double ndf_cos(ggx_vec3 m, void *ctx)
-{
-    return ggx_ndf((const ggx_shape *)ctx, m) * m.z;
-}
+static double ndf_cos(ggx_vec3 m, void *ctx) { return ggx_ndf((const ggx_shape *)ctx, m) * m.z; }
 
 /* Walter eq 1 is normalised for any A: the integral of D(m) (m.n) over the hemisphere is 1. 60 random shapes with
  * alpha in [0.02, 2], ratios up to 1:10, theta_z any and |theta_x|, |theta_y| <= 0.6. The quadrature is asked for
@@ -90,14 +87,15 @@ static void closed_forms(void **state)
         CHECK(s.kind == GGX_SHAPE_DIAGONAL && rot.kind == GGX_SHAPE_UNSKEWED, "kinds %d %d", s.kind, rot.kind);
         double th = acos(rng_range(&r, 1e-3, 1.0)), ph = rng_range(&r, -GGX_PI, GGX_PI);
         ggx_vec3 m = t_dir(th, ph);
-        CHECK_CLOSE(ggx_ndf(&s, m), ggx_aniso_closed(p.ax, p.ay, m), 1e-13, 0.0, "a=(%g,%g) m=(%g,%g,%g)", p.ax,
-                    p.ay, m.x, m.y, m.z);
+        CHECK_CLOSE(ggx_ndf(&s, m), ggx_aniso_closed(p.ax, p.ay, m), 1e-13, 0.0, "a=(%g,%g) m=(%g,%g,%g)", p.ax, p.ay,
+                    m.x, m.y, m.z);
         /* Rz rotates the tangent plane by theta_z: A^{-T} m = S^{-1} Rz m, so D(m) = D_aniso(Rz m). */
         double c = cos(p.tz), sn = sin(p.tz);
         ggx_vec3 mr = t_vec(c * m.x - sn * m.y, sn * m.x + c * m.y, m.z);
         CHECK_CLOSE(ggx_ndf(&rot, m), ggx_aniso_closed(p.ax, p.ay, mr), 1e-12, 0.0, "tz=%g", p.tz);
         /* The stored tangent frame and alphas (from the eigen-decomposition at setup) reproduce D. */
-        ggx_vec3 mt = t_vec(rot.tangent_cos * m.x + rot.tangent_sin * m.y, -rot.tangent_sin * m.x + rot.tangent_cos * m.y, m.z);
+        ggx_vec3 mt = t_vec(rot.tangent_cos * m.x + rot.tangent_sin * m.y,
+                            -rot.tangent_sin * m.x + rot.tangent_cos * m.y, m.z);
         CHECK_CLOSE(ggx_ndf(&rot, m), ggx_aniso_closed(rot.alpha_x, rot.alpha_y, mt), 1e-11, 0, "tangent frame");
         double a2 = p.ax * p.ax, t2 = tan(th) * tan(th), c4 = pow(cos(th), 4);
         CHECK_CLOSE(ggx_ndf(&iso, m), a2 / (GGX_PI * c4 * (a2 + t2) * (a2 + t2)), 1e-12, 0.0, "iso alpha %g", p.ax);
@@ -175,8 +173,10 @@ static void gaussian_curvature(void **state)
         double th = acos(rng_range(&r, -0.95, 0.95)), ph = rng_range(&r, -GGX_PI, GGX_PI);
         ell_pt t0 = ellipsoid_point(&s, th + h, ph), t1 = ellipsoid_point(&s, th - h, ph);
         ell_pt p0 = ellipsoid_point(&s, th, ph + h), p1 = ellipsoid_point(&s, th, ph - h);
-        ggx_vec3 xt = t_scale(t_add(t0.x, t_scale(t1.x, -1)), 0.5 / h), xp = t_scale(t_add(p0.x, t_scale(p1.x, -1)), 0.5 / h);
-        ggx_vec3 mt = t_scale(t_add(t0.m, t_scale(t1.m, -1)), 0.5 / h), mp = t_scale(t_add(p0.m, t_scale(p1.m, -1)), 0.5 / h);
+        ggx_vec3 xt = t_scale(t_add(t0.x, t_scale(t1.x, -1)), 0.5 / h),
+                 xp = t_scale(t_add(p0.x, t_scale(p1.x, -1)), 0.5 / h);
+        ggx_vec3 mt = t_scale(t_add(t0.m, t_scale(t1.m, -1)), 0.5 / h),
+                 mp = t_scale(t_add(p0.m, t_scale(p1.m, -1)), 0.5 / h);
         ggx_vec3 cx = t_cross(xt, xp), cm = t_cross(mt, mp);
         double fd = sqrt(t_dot(cm, cm) / t_dot(cx, cx));
         ell_pt c = ellipsoid_point(&s, th, ph);
@@ -184,8 +184,9 @@ static void gaussian_curvature(void **state)
                     p.tx, p.ty, p.tz, th, ph);
         /* eq 9: D = 1 / (A_e(n) Kg) on the upper hemisphere. */
         if (c.m.z > 0.0)
-            CHECK_CLOSE(ggx_ndf(&s, c.m), 1.0 / (ggx_projected_area(&s, t_vec(0, 0, 1)) * ggx_gaussian_curvature(&s, c.m)),
-                        1e-13, 0.0, "eq 9");
+            CHECK_CLOSE(ggx_ndf(&s, c.m),
+                        1.0 / (ggx_projected_area(&s, t_vec(0, 0, 1)) * ggx_gaussian_curvature(&s, c.m)), 1e-13, 0.0,
+                        "eq 9");
     }
 }
 
@@ -255,7 +256,8 @@ static void lune_by_quadrature(void **state)
         shape_params p = random_shape(&r, 0.6);
         ggx_shape s;
         make_shape(&s, p);
-        ggx_vec3 u = i % 8 == 7 ? t_dir(rng_range(&r, 0.5 * GGX_PI, 0.9 * GGX_PI), rng_range(&r, -GGX_PI, GGX_PI)) : random_view(&r);
+        ggx_vec3 u = i % 8 == 7 ? t_dir(rng_range(&r, 0.5 * GGX_PI, 0.9 * GGX_PI), rng_range(&r, -GGX_PI, GGX_PI))
+                                : random_view(&r);
         const void *ctx[2] = {&s, &u};
         double got = quad_hemisphere(&s, ndf_cos_u, ctx, &u, 1, 1e-10, NULL);
         ggx_vec3 n = t_vec(0, 0, 1);
@@ -270,7 +272,7 @@ static void lune_by_quadrature(void **state)
 int main(void)
 {
     const struct CMUnitTest tests[] = {
-        cmocka_unit_test(normalisation),      cmocka_unit_test(spherical_density), cmocka_unit_test(closed_forms),
+        cmocka_unit_test(normalisation),      cmocka_unit_test(spherical_density),  cmocka_unit_test(closed_forms),
         cmocka_unit_test(slope_space),        cmocka_unit_test(gaussian_curvature), cmocka_unit_test(projected_areas),
         cmocka_unit_test(lune_by_quadrature),
     };

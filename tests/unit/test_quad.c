@@ -47,10 +47,7 @@ static double cos_n(ggx_vec3 m, void *ctx)
     (void)ctx;
     return m.z;
 }
-static double cos_u(ggx_vec3 m, void *ctx)
-{
-    return t_dot(m, *(ggx_vec3 *)ctx);
-}
+static double cos_u(ggx_vec3 m, void *ctx) { return t_dot(m, *(ggx_vec3 *)ctx); }
 
 /* Known integrals over the hemisphere of m and over lunes, computed through the sphere space of skewed, sharp
  * shapes: checks the change of variables (Jacobian |A| / ||A^T m'||^3) and the cut break points. */

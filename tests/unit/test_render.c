@@ -81,7 +81,8 @@ static void furnace_compensated(void **state)
         }
     double mean = sum / hits;
     printf("furnace, compensated: %.0f pixels on the sphere, mean %.6f (standard error %.1e), worst |pixel - 1| - 5 sd "
-           "%.2g\n", hits, mean, sqrt(var) / hits, worst);
+           "%.2g\n",
+           hits, mean, sqrt(var) / hits, worst);
     CHECK(fabs(mean - 1) <= 1e-3, "image mean %.6f", mean);
     image_free(&im);
     render_release(&r);
@@ -125,9 +126,12 @@ static void furnace_albedo_every_sampler(void **state)
             double sd = sqrt(im.var[3 * i + 1]), z = fabs(im.rgb[3 * i + 1] - want[i]) / (sd + 1e-7);
             if (z > zmax) zmax = z;
         }
-        printf("furnace, %-22s largest |pixel - albedo| / sd %.2f\n", control ? "control (rougher shape)" : q.sampler->name, zmax);
+        printf("furnace, %-22s largest |pixel - albedo| / sd %.2f\n",
+               control ? "control (rougher shape)" : q.sampler->name, zmax);
         if (control) CHECK(zmax > 5, "the negative control passed: z %.2f", zmax);
-        else CHECK(zmax <= 5, "sampler %s: a pixel %.2f standard errors from ggx_albedo", q.sampler->name, zmax), tested++;
+        else
+            CHECK(zmax <= 5, "sampler %s: a pixel %.2f standard errors from ggx_albedo", q.sampler->name, zmax),
+                tested++;
         image_free(&im);
     }
     CHECK(tested >= 8, "only %d samplers tested", tested);
@@ -278,8 +282,8 @@ static void distant_light(void **state)
             double got = im.rgb[3 * i], e = fabs(got - want) / fmax(want, 1e-30);
             lit += want > 0;
             if (want > 0 && e > worst) worst = e;
-            CHECK(fabs(got - want) <= 1e-6 * want + 1e-30, "%s pixel %d: %.9g, want %.9g", scene ? "sphere" : "plane", i,
-                  got, want);
+            CHECK(fabs(got - want) <= 1e-6 * want + 1e-30, "%s pixel %d: %.9g, want %.9g", scene ? "sphere" : "plane",
+                  i, got, want);
         }
         printf("distant light on the %s: %d lit pixels, largest relative error %.2g\n", scene ? "sphere" : "plane", lit,
                worst);
@@ -343,7 +347,8 @@ static void environment(void **state)
         if (pdf > 0) CHECK(c[0] == c2[0] && c[1] == c2[1] && c[2] == c2[2], "the sample's radiance is its pixel's");
         double p2 = render_env_pdf(&e, d);
         if (pdf > 0 && fabs(pdf - p2) / pdf > worst) worst = fabs(pdf - p2) / pdf;
-        int i = (int)(acos(d.z) / GGX_PI * h), j = (int)(fmod(atan2(d.y, d.x) + 2 * GGX_PI, 2 * GGX_PI) / (2 * GGX_PI) * w);
+        int i = (int)(acos(d.z) / GGX_PI * h),
+            j = (int)(fmod(atan2(d.y, d.x) + 2 * GGX_PI, 2 * GGX_PI) / (2 * GGX_PI) * w);
         count[(i < h ? i : h - 1) * w + (j < w ? j : w - 1)]++;
     }
     CHECK(worst < 1e-5, "sample pdf and render_env_pdf differ by %.2g", worst);
@@ -432,10 +437,10 @@ static void radiance_files(void **state)
 int main(int argc, char **argv)
 {
     const struct CMUnitTest tests[] = {
-        cmocka_unit_test(environment),        cmocka_unit_test(radiance_files),
-        cmocka_unit_test(distant_light),      cmocka_unit_test(thread_invariance),
+        cmocka_unit_test(environment),         cmocka_unit_test(radiance_files),
+        cmocka_unit_test(distant_light),       cmocka_unit_test(thread_invariance),
         cmocka_unit_test(furnace_compensated), cmocka_unit_test(furnace_albedo_every_sampler),
-        cmocka_unit_test(furnace_glass),      cmocka_unit_test(strategies_agree),
+        cmocka_unit_test(furnace_glass),       cmocka_unit_test(strategies_agree),
     };
     int rc = cmocka_run_group_tests(tests, NULL, NULL);
     return rc | chi2_budget_end("render", argc, argv);

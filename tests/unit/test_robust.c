@@ -19,27 +19,37 @@ static void check_evals(const ggx_shape *s, ggx_vec3 v, ggx_vec3 m, const char *
 {
     ggx_fresnel f;
     ggx_fresnel_conductor(&f, 0.2, 3.9);
-    double r[] = {ggx_ndf(s, m),           ggx_gaussian_curvature(s, m), ggx_projected_area(s, v),
-                  ggx_lune_area(s, v, m),  ggx_g1(s, v, m),              ggx_g1_smith(s, v),
-                  ggx_g1_tilted(s, v, m),  ggx_g1_risers(s, v, m),
-                  ggx_g2(s, v, m, m),      ggx_g2_height_correlated(s, v, m, m),
-                  ggx_pdf_vndf(s, v, m),   ggx_pdf_ndf(s, m),           ggx_brdf_eval(s, &f, v, m),
-                  ggx_pdf_brdf(s, v, m),   ggx_bsdf_eval(s, 1.5, v, m, GGX_RADIANCE),
-                  ggx_bsdf_eval(s, 1 / 1.5, m, v, GGX_IMPORTANCE), ggx_pdf_bsdf(s, 1.5, v, m),
-                  ggx_p22(s, m.x, m.y),    ggx_ndf_spherical(s, acos(fmin(1, fabs(m.z))), atan2(m.y, m.x))};
+    double r[] = {ggx_ndf(s, m),
+                  ggx_gaussian_curvature(s, m),
+                  ggx_projected_area(s, v),
+                  ggx_lune_area(s, v, m),
+                  ggx_g1(s, v, m),
+                  ggx_g1_smith(s, v),
+                  ggx_g1_tilted(s, v, m),
+                  ggx_g1_risers(s, v, m),
+                  ggx_g2(s, v, m, m),
+                  ggx_g2_height_correlated(s, v, m, m),
+                  ggx_pdf_vndf(s, v, m),
+                  ggx_pdf_ndf(s, m),
+                  ggx_brdf_eval(s, &f, v, m),
+                  ggx_pdf_brdf(s, v, m),
+                  ggx_bsdf_eval(s, 1.5, v, m, GGX_RADIANCE),
+                  ggx_bsdf_eval(s, 1 / 1.5, m, v, GGX_IMPORTANCE),
+                  ggx_pdf_bsdf(s, 1.5, v, m),
+                  ggx_p22(s, m.x, m.y),
+                  ggx_ndf_spherical(s, acos(fmin(1, fabs(m.z))), atan2(m.y, m.x))};
     for (unsigned i = 0; i < sizeof r / sizeof r[0]; i++)
-        CHECK(isfinite(r[i]) && r[i] >= 0, "%s: function %u = %g for v (%.17g,%.17g,%.17g) m (%.17g,%.17g,%.17g)", what, i,
-              r[i], v.x, v.y, v.z, m.x, m.y, m.z);
+        CHECK(isfinite(r[i]) && r[i] >= 0, "%s: function %u = %g for v (%.17g,%.17g,%.17g) m (%.17g,%.17g,%.17g)", what,
+              i, r[i], v.x, v.y, v.z, m.x, m.y, m.z);
     CHECK(isfinite(ggx_lambda(s, v)), "%s: Lambda", what);
-    CHECK(ggx_g1(s, v, m) <= 1.0 && ggx_g1_tilted(s, v, m) <= 1.0 && ggx_g1_risers(s, v, m) <= 1.0, "%s: G1 > 1",
-          what);
+    CHECK(ggx_g1(s, v, m) <= 1.0 && ggx_g1_tilted(s, v, m) <= 1.0 && ggx_g1_risers(s, v, m) <= 1.0, "%s: G1 > 1", what);
     n_checked += 20;
 }
 
 /* A sampler's output: the zero vector (invalid), or a unit vector with a finite pdf > 0. may_be_invalid: the zero
  * vector is allowed too (a rejection sampler's exhausted budget). */
-static void check_normal(ggx_vec3 m, double pdf, int must_be_invalid, int may_be_invalid, const char *what,
-                         ggx_vec3 v, double u1, double u2)
+static void check_normal(ggx_vec3 m, double pdf, int must_be_invalid, int may_be_invalid, const char *what, ggx_vec3 v,
+                         double u1, double u2)
 {
     n_checked++;
     int zero = m.x == 0 && m.y == 0 && m.z == 0;
@@ -49,22 +59,23 @@ static void check_normal(ggx_vec3 m, double pdf, int must_be_invalid, int may_be
     }
     if (zero && may_be_invalid) return;
     CHECK(!zero, "%s: no sample for v (%.17g,%.17g,%.17g) u (%.17g, %.17g)", what, v.x, v.y, v.z, u1, u2);
-    CHECK(fabs(sqrt(t_dot(m, m)) - 1) <= 1e-12 && m.z >= 0, "%s: m (%.17g,%.17g,%.17g) not a unit upper normal, u (%.17g, %.17g)",
-          what, m.x, m.y, m.z, u1, u2);
-    CHECK(isfinite(pdf) && pdf > 0, "%s: pdf %g at m (%.17g,%.17g,%.17g), v (%.17g,%.17g,%.17g), u (%.17g, %.17g)", what, pdf, m.x,
-          m.y, m.z, v.x, v.y, v.z, u1, u2);
+    CHECK(fabs(sqrt(t_dot(m, m)) - 1) <= 1e-12 && m.z >= 0,
+          "%s: m (%.17g,%.17g,%.17g) not a unit upper normal, u (%.17g, %.17g)", what, m.x, m.y, m.z, u1, u2);
+    CHECK(isfinite(pdf) && pdf > 0, "%s: pdf %g at m (%.17g,%.17g,%.17g), v (%.17g,%.17g,%.17g), u (%.17g, %.17g)",
+          what, pdf, m.x, m.y, m.z, v.x, v.y, v.z, u1, u2);
 }
 
 static void check_dir_sample(ggx_sample x, const char *what, ggx_vec3 v)
 {
     n_checked++;
     if (x.event == GGX_EVENT_INVALID) {
-        CHECK(x.pdf == 0 && x.weight == 0 && x.w.x == 0 && x.w.y == 0 && x.w.z == 0, "%s: invalid sample not zeroed", what);
+        CHECK(x.pdf == 0 && x.weight == 0 && x.w.x == 0 && x.w.y == 0 && x.w.z == 0, "%s: invalid sample not zeroed",
+              what);
         return;
     }
     CHECK(fabs(sqrt(t_dot(x.w, x.w)) - 1) <= 1e-12, "%s: |w| - 1 = %g", what, sqrt(t_dot(x.w, x.w)) - 1);
-    CHECK(isfinite(x.pdf) && x.pdf > 0 && isfinite(x.weight) && x.weight >= 0, "%s: pdf %g weight %g for v (%.17g,%.17g,%.17g)",
-          what, x.pdf, x.weight, v.x, v.y, v.z);
+    CHECK(isfinite(x.pdf) && x.pdf > 0 && isfinite(x.weight) && x.weight >= 0,
+          "%s: pdf %g weight %g for v (%.17g,%.17g,%.17g)", what, x.pdf, x.weight, v.x, v.y, v.z);
 }
 
 /* The random numbers of a rejection sampler: u1, u2, u3 of the case in turn, then a stream from them, so that the
@@ -145,10 +156,16 @@ static void check_samplers(const ggx_shape *s, ggx_vec3 v, double u1, double u2,
  * the largest ratio that GGX_SINGULAR_TOL lets through, within a factor 10), skews to pi/2,
  * and (below, in adversarial) matrices c A' scaled towards both ends of GGX_MATRIX_SCALE_MAX. */
 static const shape_params EXTREMES[] = {
-    {GGX_ALPHA_MIN, GGX_ALPHA_MIN, 0, 0, 0}, {10, 10, 0, 0, 0},          {1e-4, 0.1, 0, 0, 0.3},
-    {10, 0.01, 0, 0, 1.0},                   {0.3, 0.6, 1.5707963267948966, -1.5707963267948966, 0.2},
-    {1e-4, 1e-4, 1.2, -0.7, 0.0},            {10, 10, 0.6, 0.6, 2.0},    {0.5, 0.5, 0, 0, 0},
-    {GGX_ALPHA_MAX, GGX_ALPHA_MAX, 0, 0, 0}, {GGX_ALPHA_MIN, 1e3, 0, 0, 0.3},
+    {GGX_ALPHA_MIN, GGX_ALPHA_MIN, 0, 0, 0},
+    {10, 10, 0, 0, 0},
+    {1e-4, 0.1, 0, 0, 0.3},
+    {10, 0.01, 0, 0, 1.0},
+    {0.3, 0.6, 1.5707963267948966, -1.5707963267948966, 0.2},
+    {1e-4, 1e-4, 1.2, -0.7, 0.0},
+    {10, 10, 0.6, 0.6, 2.0},
+    {0.5, 0.5, 0, 0, 0},
+    {GGX_ALPHA_MAX, GGX_ALPHA_MAX, 0, 0, 0},
+    {GGX_ALPHA_MIN, 1e3, 0, 0, 0.3},
     {GGX_ALPHA_MAX, 1.0, 1.2, -0.7, 0.4},
 };
 static const double SCALES[] = {1e-49, 1e-30, 1e30, 4e49}; /* ||c A'||_F stays inside [1e-50, 1e50] */
@@ -187,7 +204,8 @@ static void adversarial(void **state)
     views[nv++] = t_vec(0, 0, 1);
     views[nv++] = t_vec(0, 0, -1);
     views[nv++] = t_vec(1, 0, 0);
-    const ggx_vec3 ms[] = {t_vec(0, 0, 1), t_vec(1, 0, 0), t_vec(0, -1, 0), t_normalize(t_vec(0.3, 0.2, 0.9)),
+    const ggx_vec3 ms[] = {t_vec(0, 0, 1),  t_vec(1, 0, 0),
+                           t_vec(0, -1, 0), t_normalize(t_vec(0.3, 0.2, 0.9)),
                            t_vec(0, 0, -1), t_normalize(t_vec(1, 1, 1e-9))};
     long cases = 0;
     for (unsigned k = 0; k < NEXTREMES + NSCALES; k++) {
@@ -297,8 +315,10 @@ static void proof_premise_f(const ggx_shapef *sf, ggx_vec3f v, float u1, float u
     frob_len_f(sf, v, &f2, &l2);
     double u = ldexp(1.0, -24), margin = ldexp(1.0, -20), K = 2.02 * (66 * u + 4.08 * (margin + u));
     double lhs = (double)p.z * p.z, rhs = K * sqrt(f2) * sqrt(l2);
-    CHECK(lhs >= rhs, "float proof claimed without its premise: %s, v (%.9g, %.9g, %.9g), u (%.9g, %.9g): p.z^2 %.4g < "
-          "K ||A||_F L %.4g", what, v.x, v.y, v.z, u1, u2, lhs, rhs);
+    CHECK(lhs >= rhs,
+          "float proof claimed without its premise: %s, v (%.9g, %.9g, %.9g), u (%.9g, %.9g): p.z^2 %.4g < "
+          "K ||A||_F L %.4g",
+          what, v.x, v.y, v.z, u1, u2, lhs, rhs);
     near += p.z < 1.5 * ldexp(1.0, -6) * sqrt(l2);
     premise_checked++;
 }
@@ -375,8 +395,8 @@ static void caps_proof(void **state)
         total++;
     }
     printf("caps proof: %ld inputs; float proved %ld of %ld checked good; premise checked %ld times, %ld within 1.5 "
-           "T ||A v||; %ld placed with ||A||_F / ||A v|| in [23, 32]\n", total, proved_f, ok_f, premise_checked, near,
-           band);
+           "T ||A v||; %ld placed with ||A||_F / ||A v|| in [23, 32]\n",
+           total, proved_f, ok_f, premise_checked, near, band);
     CHECK(100 * near > total && 1000 * band > total, "too few proved inputs near the proof's bound");
     CHECK(10 * proved_f > 5 * ok_f, "the proof covers too few inputs");
 }
@@ -396,7 +416,8 @@ static void fuzz_regressions(void **state)
     CHECK(isfinite(F) && F >= 0 && F <= 1, "Fresnel with a denormal eta: %g", F);
     /* 3. A huge, non-unit view: the direction samplers reflected the raw vector. */
     make_shape(&s, (shape_params){0.3, 0.6, 0.4, 0.0, 0.0});
-    check_dir_sample(ggx_sample_bsdf(&s, 0.5, t_vec(-2.68e154, 3.06e-57, -2.35e-185), 0.3, 0.4, 0.5, GGX_RADIANCE), "huge view", v);
+    check_dir_sample(ggx_sample_bsdf(&s, 0.5, t_vec(-2.68e154, 3.06e-57, -2.35e-185), 0.3, 0.4, 0.5, GGX_RADIANCE),
+                     "huge view", v);
     /* 4. A grazing view whose sphere-space z rounds to 0 was taken for "no view". */
     make_shape(&s, (shape_params){GGX_ALPHA_MIN, 10, 0, 0, 0});
     v = t_normalize(t_vec(-0.30018382352934053, 0.5, 5e-324));
@@ -449,9 +470,11 @@ static void fuzz_regressions(void **state)
                     for (unsigned i = 0; i < sizeof u2s / sizeof u2s[0]; i++) {
                         ggx_vec3 a = e->sample(&s, w, 0.3, u2s[i]), b = e->sample(&s, unit, 0.3, u2s[i]);
                         double d = fmax(fabs(a.x - b.x), fmax(fabs(a.y - b.y), fabs(a.z - b.z)));
-                        CHECK(d <= 1e-12, "%s, %s, view (%g, %g, %g) of length %g, u2 1 - %g: (%g, %g, %g) against "
-                              "the unit view's (%g, %g, %g), d %g", what, e->name, unit.x, unit.y, unit.z, lengths[j],
-                              1 - u2s[i], a.x, a.y, a.z, b.x, b.y, b.z, d);
+                        CHECK(d <= 1e-12,
+                              "%s, %s, view (%g, %g, %g) of length %g, u2 1 - %g: (%g, %g, %g) against "
+                              "the unit view's (%g, %g, %g), d %g",
+                              what, e->name, unit.x, unit.y, unit.z, lengths[j], 1 - u2s[i], a.x, a.y, a.z, b.x, b.y,
+                              b.z, d);
                     }
                 }
             }
@@ -489,9 +512,11 @@ static void fuzz_regressions(void **state)
                         ggx_sample b = e->sample_direction(&s, &one, 1.5, dirs[q], 0.3, u2r[i], 0.5, GGX_RADIANCE);
                         double d = fmax(fabs(a.w.x - b.w.x), fmax(fabs(a.w.y - b.w.y), fabs(a.w.z - b.w.z)));
                         double dp = b.pdf > 0 ? fabs(a.pdf - b.pdf) / b.pdf : fabs(a.pdf);
-                        CHECK(a.event == b.event && d == 0 && dp <= 1e-9, "%s times %g, %s, view %u, u2 1 - %g: (%g, "
-                              "%g, %g) pdf %g against (%g, %g, %g) pdf %g: d %g, pdf %g relative", what, cs[j], e->name,
-                              q, 1 - u2r[i], a.w.x, a.w.y, a.w.z, a.pdf, b.w.x, b.w.y, b.w.z, b.pdf, d, dp);
+                        CHECK(a.event == b.event && d == 0 && dp <= 1e-9,
+                              "%s times %g, %s, view %u, u2 1 - %g: (%g, "
+                              "%g, %g) pdf %g against (%g, %g, %g) pdf %g: d %g, pdf %g relative",
+                              what, cs[j], e->name, q, 1 - u2r[i], a.w.x, a.w.y, a.w.z, a.pdf, b.w.x, b.w.y, b.w.z,
+                              b.pdf, d, dp);
                     }
                 }
         }
@@ -504,7 +529,7 @@ int main(void)
         const ggx_sampler_info *e = ggx_sampler_get((ggx_sampler_id)id);
         transmits[id] = e->family == GGX_FAMILY_DIRECTION && sampler_transmits(e);
     }
-    const struct CMUnitTest tests[] = {cmocka_unit_test(adversarial), cmocka_unit_test(properties), cmocka_unit_test(fuzz_regressions),
-                                       cmocka_unit_test(caps_proof)};
+    const struct CMUnitTest tests[] = {cmocka_unit_test(adversarial), cmocka_unit_test(properties),
+                                       cmocka_unit_test(fuzz_regressions), cmocka_unit_test(caps_proof)};
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

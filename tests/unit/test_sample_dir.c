@@ -12,10 +12,10 @@
 typedef struct dir_ctx {
     const ggx_sampler_info *info; /* a DIRECTION sampler of the registry */
     const ggx_shape *s;
-    ggx_fresnel f;  /* for reflection sampling */
-    ggx_vec3 v;     /* the known direction */
-    double eta;     /* for the rough dielectric */
-    int transmits;  /* the sampler's pdf is nonzero on the other side of the surface: keys in 2 regions */
+    ggx_fresnel f; /* for reflection sampling */
+    ggx_vec3 v;    /* the known direction */
+    double eta;    /* for the rough dielectric */
+    int transmits; /* the sampler's pdf is nonzero on the other side of the surface: keys in 2 regions */
     double max_weight;
     long checked;
     int control; /* a negative control: the pdf is deliberately not the sampler's, skip the consistency checks */
@@ -136,8 +136,8 @@ static void reflection_sweep(void **state)
                 if ((double)r.invalid / 1e6 > invalid_frac) invalid_frac = (double)r.invalid / 1e6;
             }
         }
-        printf("%s: %d chi-square runs, smallest p %.4g, largest weight %.15f, most samples invalid %.4f\n",
-               info->name, runs, min_p, max_w, invalid_frac);
+        printf("%s: %d chi-square runs, smallest p %.4g, largest weight %.15f, most samples invalid %.4f\n", info->name,
+               runs, min_p, max_w, invalid_frac);
     }
     CHECK(k >= 0, "no direction sampler reflects only: the reflection sweep tested nothing");
     rng r = {8};
@@ -275,7 +275,8 @@ static void bounded_removes_only_below_horizon(void **state)
     printf("bounded: %d shapes, removed cap points reflect to wo.z <= %.3g, smallest kappa %.4f\n", shapes, worst,
            kappa_min);
     printf("bounded per azimuth: removed cap points reflect to wo.z <= %.3g; kappa at scales 1e-5 and 1e5 within "
-           "%.2g relative\n", worst_az, kappa_az_dev);
+           "%.2g relative\n",
+           worst_az, kappa_az_dev);
     CHECK(kappa_az_dev <= 1e-6, "per-azimuth kappa not scale-free: %.3g", kappa_az_dev);
     /* negative control of the chi-square test: the bounded sampler against the unbounded pdf (kappa left out) */
     ggx_sampler_info wrong = *ggx_sampler_get(GGX_SAMPLER_BRDF_BOUNDED);
@@ -290,7 +291,8 @@ static void bounded_removes_only_below_horizon(void **state)
     chi2_result res = chi2_run_quiet(&p, n, nt, np, 77, test_chi2_level());
     CHECK(res.pvalue < test_chi2_level(), "the bounded sampler passed against the unbounded pdf: p = %.3g", res.pvalue);
     printf("negative control, bounded sampler against the unbounded pdf (%s, view 30): %ld invalid, %.0f expected, "
-           "p = %.3g\n", SWEEP_SHAPES[2].name, res.invalid, res.expected_invalid, res.pvalue);
+           "p = %.3g\n",
+           SWEEP_SHAPES[2].name, res.invalid, res.expected_invalid, res.pvalue);
     /* negative control of the bound */
     const double ones[][5] = {{1, 1, 0, 0, 0}, {1, 1, 0, 0, 0.7}, {1, 1, 0.4, -0.3, 0.5}};
     for (int i = 0; i < 3; i++) {
@@ -300,7 +302,8 @@ static void bounded_removes_only_below_horizon(void **state)
             double w = removed_band_max_z(&s, sweep_view(30.0), 0.01, &r, 2000, az);
             CHECK(w > 1e-6, "control %d: a bound raised by 1%% went unnoticed (wo.z <= %.3g)", i, w);
             printf("negative control, alpha = 1 shape %d, %s bound raised 1%%: a removed point reflects to wo.z = "
-                   "%.3g\n", i, az ? "per-azimuth" : "plane", w);
+                   "%.3g\n",
+                   i, az ? "per-azimuth" : "plane", w);
         }
     }
     /* where the unskewed plane is exact: isotropic 0.3 at any view, an unskewed 0.15:0.5 at n */
@@ -311,7 +314,8 @@ static void bounded_removes_only_below_horizon(void **state)
         double w = removed_band_max_z(&s, sweep_view(tight[i][5]), 0.01, &r, 2000, 0);
         CHECK(w > 1e-6, "control %d: a plane bound raised by 1%% went unnoticed (wo.z <= %.3g)", i, w);
         printf("negative control, alpha (%g, %g) at %g degrees, plane bound raised 1%%: a removed point reflects to "
-               "wo.z = %.3g\n", tight[i][0], tight[i][1], tight[i][5], w);
+               "wo.z = %.3g\n",
+               tight[i][0], tight[i][1], tight[i][5], w);
     }
     /* and where only the per-azimuth bound is tight: aniso 0.15:0.5 at n, where it removes the whole waste */
     ggx_shape sa;
@@ -319,7 +323,8 @@ static void bounded_removes_only_below_horizon(void **state)
     double w = removed_band_max_z(&sa, t_vec(0, 0, 1), 0.01, &r, 2000, 1);
     CHECK(w > 1e-6, "control aniso 0.15:0.5: a per-azimuth bound raised by 1%% went unnoticed (wo.z <= %.3g)", w);
     printf("negative control, aniso 0.15:0.5 at n, per-azimuth bound raised 1%%: a removed point reflects to wo.z = "
-           "%.3g\n", w);
+           "%.3g\n",
+           w);
 }
 
 /* The plane bound of unskewed shapes in closed form (docs/design/bounded-vndf.md, "Unskewed shapes"). (1) Isotropic alpha:
@@ -349,20 +354,21 @@ static void bounded_plane_closed_forms(void **state)
             double vsz = wi.z / sqrt(t_dot(av, av)), sxy = 1 + hypot(wi.x, wi.y);
             double k = (1 - a * a) * sxy * sxy / (sxy * sxy + a * a * wi.z * wi.z);
             double pub = (1 + k * vsz) / (1 + vsz), kappa = ggx_k_bound_kappa_d(&s, wi);
-            CHECK(kappa >= pub - 1e-15 && kappa - pub <= 1e-6, "isotropic alpha %g, view %g: kappa %.17g, published %.17g",
-                  al, thetas[j], kappa, pub);
+            CHECK(kappa >= pub - 1e-15 && kappa - pub <= 1e-6,
+                  "isotropic alpha %g, view %g: kappa %.17g, published %.17g", al, thetas[j], kappa, pub);
             worst_iso = fmax(worst_iso, fabs(kappa - pub));
             /* an unskewed anisotropic shape at n, rotated: the smaller alpha decides */
             double ay = al * (1.5 + 3 * rng_uniform(&r));
             make_shape(&s, (shape_params){ay, al, 0, 0, 2 * GGX_PI * rng_uniform(&r)});
             double kn = ggx_k_bound_kappa_d(&s, t_vec(0, 0, 1)), exact = 1 / (1 + a * a);
-            CHECK(kn >= exact - 1e-15 && kn - exact <= 1e-6, "alpha (%g, %g) at n: kappa %.17g, 1 / (1 + a^2) %.17g", ay,
-                  al, kn, exact);
+            CHECK(kn >= exact - 1e-15 && kn - exact <= 1e-6, "alpha (%g, %g) at n: kappa %.17g, 1 / (1 + a^2) %.17g",
+                  ay, al, kn, exact);
             worst_n = fmax(worst_n, fabs(kn - exact));
             n++;
         }
     printf("bounded, unskewed plane: %d isotropic cases within %.2g of Eto and Tokuyoshi's exact bound; %d anisotropic "
-           "shapes at n within %.2g of 1 / (1 + a^2)\n", n, worst_iso, n, worst_n);
+           "shapes at n within %.2g of 1 / (1 + a^2)\n",
+           n, worst_iso, n, worst_n);
 }
 
 #if defined(__SIZEOF_FLOAT128__)
@@ -435,11 +441,19 @@ static void bounded_azimuth_grazing(void **state)
         double ax, ay, tx, ty, tz;
         ggx_vec3 v;
         double u1;
-    } cases[] = {{3031.0204037199787, 0.010173813549975997, 0.15923652269125521, -0.24434595807964984,
-                  3.8169005289864826, {-0.92064824140269552, 0.39039315516626499, 1.2052345546053521e-06},
+    } cases[] = {{3031.0204037199787,
+                  0.010173813549975997,
+                  0.15923652269125521,
+                  -0.24434595807964984,
+                  3.8169005289864826,
+                  {-0.92064824140269552, 0.39039315516626499, 1.2052345546053521e-06},
                   0.49971210449056336},
-                 {4908.101426255319, 0.010073145781315001, -0.68910494676926337, -0.93332448726239403,
-                  6.2456716471753442, {0.22124411245747511, -0.97521845896258796, 1.2407251644364168e-06},
+                 {4908.101426255319,
+                  0.010073145781315001,
+                  -0.68910494676926337,
+                  -0.93332448726239403,
+                  6.2456716471753442,
+                  {0.22124411245747511, -0.97521845896258796, 1.2407251644364168e-06},
                   0.50164449343972517}};
     double worst = -1, control = -1;
     for (unsigned i = 0; i < sizeof cases / sizeof cases[0]; i++) {
@@ -460,7 +474,8 @@ static void bounded_azimuth_grazing(void **state)
                        meridian_band_max_z(&s, v, 2 * (long double)GGX_PI * cases[i].u1, 1 - (1 - b) / (1 + vz), 16));
     }
     printf("bounded per azimuth, grazing views with 1 + vs.z near 1e-6: removed points reflect to wo.z <= %.3g (the "
-           "plane bound placed in absolute z: %.3g)\n", worst, control);
+           "plane bound placed in absolute z: %.3g)\n",
+           worst, control);
     CHECK(worst <= 1e-13, "per-azimuth bound at a grazing view: a removed point reflects to wo.z = %.3g", worst);
     CHECK(control > 1e-9, "negative control: the bound in absolute z went unnoticed (%.3g)", control);
 #endif
@@ -521,7 +536,8 @@ static void bounded_tiny_skew(void **state)
     }
     exact = fmax(exact, band_top_max_z(&d, t_vec(0, 0, 1), 1));
     printf("bounded, tiny skew: band top reflects to wo.z <= %.3g (the unskewed form forced: %.3g); an exactly "
-           "unskewed shape: %.3g\n", worst, forced, exact);
+           "unskewed shape: %.3g\n",
+           worst, forced, exact);
     CHECK(worst <= 1e-13, "tiny skew: a removed point reflects to wo.z = %.3g", worst);
     CHECK(exact <= 1e-13, "aniso 0.3:0.9: a removed point reflects to wo.z = %.3g", exact);
     CHECK(forced > 1e-11, "negative control: the unskewed form on the tiny skew went unnoticed (%.3g)", forced);
@@ -663,15 +679,15 @@ static void bounded_float_follows_double(void **state)
         }
     }
     printf("bounded, float against double: %d samples, direction %.2g, pdf %.2g relative, weight %.2g (plain "
-           "sampler on the same inputs: %.2g, %.2g, %.2g)\n", compared, worst[0][0], worst[0][1], worst[0][2],
-           worst[1][0], worst[1][1], worst[1][2]);
-    CHECK(worst[0][0] <= 1e-4 && worst[0][1] <= 2e-4 && worst[0][2] <= 4e-4, "float bounded sampler off: %.3g %.3g %.3g",
-          worst[0][0], worst[0][1], worst[0][2]);
+           "sampler on the same inputs: %.2g, %.2g, %.2g)\n",
+           compared, worst[0][0], worst[0][1], worst[0][2], worst[1][0], worst[1][1], worst[1][2]);
+    CHECK(worst[0][0] <= 1e-4 && worst[0][1] <= 2e-4 && worst[0][2] <= 4e-4,
+          "float bounded sampler off: %.3g %.3g %.3g", worst[0][0], worst[0][1], worst[0][2]);
     /* The per-azimuth bound jumps at some azimuths and its azimuth is ill-conditioned near the cap's pole, so float
      * and double may take different bounds there (ggx.h): the promise is for all but a fraction 1e-3 of samples. */
     printf("bounded per azimuth, float against double: %ld samples, %ld (%.2g) beyond 1e-4 / 2e-4 / 4e-4; the rest "
-           "within direction %.2g, pdf %.2g relative, weight %.2g\n", az_compared, az_off,
-           (double)az_off / (double)(az_compared + 1), az_worst[0], az_worst[1], az_worst[2]);
+           "within direction %.2g, pdf %.2g relative, weight %.2g\n",
+           az_compared, az_off, (double)az_off / (double)(az_compared + 1), az_worst[0], az_worst[1], az_worst[2]);
     CHECK((double)az_off <= 1e-3 * (double)az_compared, "per-azimuth float sampler off in %ld of %ld samples", az_off,
           az_compared);
 }
@@ -698,12 +714,15 @@ static void dir_coverage(void **state)
 int main(int argc, char **argv)
 {
     part = argc > 1 ? atoi(argv[1]) : 0;
-    const struct CMUnitTest all[] = {cmocka_unit_test(reflection_sweep), cmocka_unit_test(dielectric_sweep),
+    const struct CMUnitTest all[] = {cmocka_unit_test(reflection_sweep),
+                                     cmocka_unit_test(dielectric_sweep),
                                      cmocka_unit_test(bounded_removes_only_below_horizon),
-                                     cmocka_unit_test(bounded_plane_closed_forms), cmocka_unit_test(bounded_tiny_skew),
+                                     cmocka_unit_test(bounded_plane_closed_forms),
+                                     cmocka_unit_test(bounded_tiny_skew),
                                      cmocka_unit_test(bounded_azimuth_grazing),
                                      cmocka_unit_test(bounded_sigma2_scale_free),
-                                     cmocka_unit_test(bounded_unbiased), cmocka_unit_test(bounded_float_follows_double),
+                                     cmocka_unit_test(bounded_unbiased),
+                                     cmocka_unit_test(bounded_float_follows_double),
                                      cmocka_unit_test(dir_coverage)};
     const struct CMUnitTest first[] = {cmocka_unit_test(reflection_sweep), cmocka_unit_test(dir_coverage)};
     const struct CMUnitTest second[] = {cmocka_unit_test(dielectric_sweep),
@@ -713,7 +732,8 @@ int main(int argc, char **argv)
                                         cmocka_unit_test(bounded_azimuth_grazing),
                                         cmocka_unit_test(bounded_sigma2_scale_free),
                                         cmocka_unit_test(bounded_unbiased),
-                                        cmocka_unit_test(bounded_float_follows_double), cmocka_unit_test(dir_coverage)};
+                                        cmocka_unit_test(bounded_float_follows_double),
+                                        cmocka_unit_test(dir_coverage)};
     int rc = part == 1   ? cmocka_run_group_tests_name("reflection", first, NULL, NULL)
              : part == 2 ? cmocka_run_group_tests_name("transmission and bounded", second, NULL, NULL)
                          : cmocka_run_group_tests(all, NULL, NULL);

@@ -159,7 +159,8 @@ static void inverses(void **state)
         CHECK(d.x * d.x + d.y * d.y <= 1 + 1e-15 && e.x * e.x + e.y * e.y <= 1 + 1e-15, "inside the disk");
         ggx_vec2 ud = ggx_disk_concentric_inv(d), ue = ggx_disk_polar_inv(e);
         CHECK(fabs(ud.x - u1) < 1e-12 && fabs(ud.y - u2) < 1e-12, "concentric inverse (%g, %g)", u1, u2);
-        CHECK(fabs(ue.x - u1) < 1e-12 && (fabs(ue.y - u2) < 1e-12 || fabs(fabs(ue.y - u2) - 1) < 1e-12), "polar inverse");
+        CHECK(fabs(ue.x - u1) < 1e-12 && (fabs(ue.y - u2) < 1e-12 || fabs(fabs(ue.y - u2) - 1) < 1e-12),
+              "polar inverse");
         checked++;
     }
     /* The samplers' own cos/sin of 2 pi t (a quarter-turn polynomial) against libm: the polar map at r = 1. */
@@ -244,8 +245,10 @@ static void registry_pdfs(void **state)
             const ggx_sampler_info *e = ggx_sampler_get((ggx_sampler_id)id);
             if (e->family == GGX_FAMILY_DIRECTION) continue;
             double want = e->family == GGX_FAMILY_NDF ? ggx_pdf_ndf(&s, m) : ggx_pdf_vndf(&s, v, m);
-            CHECK(e->pdf(&s, v, m) == want, "%s: registry pdf %.17g, family pdf %.17g at v (%.17g, %.17g, %.17g), "
-                  "m (%.17g, %.17g, %.17g)", e->name, e->pdf(&s, v, m), want, v.x, v.y, v.z, m.x, m.y, m.z);
+            CHECK(e->pdf(&s, v, m) == want,
+                  "%s: registry pdf %.17g, family pdf %.17g at v (%.17g, %.17g, %.17g), "
+                  "m (%.17g, %.17g, %.17g)",
+                  e->name, e->pdf(&s, v, m), want, v.x, v.y, v.z, m.x, m.y, m.z);
         }
     }
 }
@@ -272,8 +275,8 @@ static void defaults(void **state)
 
 int main(void)
 {
-    const struct CMUnitTest tests[] = {cmocka_unit_test(jacobians), cmocka_unit_test(inverses),
-                                       cmocka_unit_test(edge_cases), cmocka_unit_test(defaults),
+    const struct CMUnitTest tests[] = {cmocka_unit_test(jacobians),     cmocka_unit_test(inverses),
+                                       cmocka_unit_test(edge_cases),    cmocka_unit_test(defaults),
                                        cmocka_unit_test(registry_pdfs), cmocka_unit_test(direction_jacobians)};
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

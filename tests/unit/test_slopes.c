@@ -70,13 +70,15 @@ static void student_t_form(void **state)
             double e = (double)fabsl(got / want - 1.0L);
             if (e > worst) worst = e;
             if (kappa_of(p) <= 20.0) within_1e12 = fmax(within_1e12, e);
-            CHECK(e <= slopes_tol(p), "shape (%g, %g, %g, %g, %g), m (%.17g, %.17g, %.17g): D %.17g, from slopes %.17Lg",
-                  p.ax, p.ay, p.tx, p.ty, p.tz, m.x, m.y, m.z, want, got);
+            CHECK(e <= slopes_tol(p),
+                  "shape (%g, %g, %g, %g, %g), m (%.17g, %.17g, %.17g): D %.17g, from slopes %.17Lg", p.ax, p.ay, p.tx,
+                  p.ty, p.tz, m.x, m.y, m.z, want, got);
         }
     }
     CHECK(within_1e12 <= 1e-12, "kappa <= 20: %g", within_1e12);
     printf("student_t_form: %d shapes (%d refused as singular), largest relative difference %.3g (%.3g where "
-           "kappa <= 20)\n", shapes, skipped, worst, within_1e12);
+           "kappa <= 20)\n",
+           shapes, skipped, worst, within_1e12);
 }
 
 /* t = 0 exactly for unskewed shapes, Sigma = alpha^2 I for isotropic GGX and Rz^T diag(ax^2, ay^2) Rz when rotated;
@@ -139,8 +141,8 @@ static void slopes_round_trip(void **state)
             if (d0 < 1e-280) continue;
             double e = fabs(d1 / d0 - 1.0);
             if (e > worst) worst = e;
-            CHECK(e <= slopes_tol(p), "shape (%g, %g, %g, %g, %g): D %.17g, round trip %.17g", p.ax, p.ay, p.tx, p.ty, p.tz,
-                  d0, d1);
+            CHECK(e <= slopes_tol(p), "shape (%g, %g, %g, %g, %g): D %.17g, round trip %.17g", p.ax, p.ay, p.tx, p.ty,
+                  p.tz, d0, d1);
         }
     }
     printf("slopes_round_trip: largest relative difference of D %.3g\n", worst);
@@ -209,8 +211,8 @@ static void ellipsoid_params_round_trip(void **state)
         if (ggx_shape_ellipsoid(&s, p.ax, p.ay, p.tx, p.ty, p.tz) != GGX_OK) continue;
         double ax, ay, tx, ty, tz;
         assert_int_equal(ggx_shape_ellipsoid_params(&s, &ax, &ay, &tx, &ty, &tz), GGX_OK);
-        CHECK(fabs(tx) < GGX_PI / 2 && fabs(ty) < GGX_PI / 2 && fabs(tz) < GGX_PI / 2,
-              "angles out of range: %g %g %g", tx, ty, tz);
+        CHECK(fabs(tx) < GGX_PI / 2 && fabs(ty) < GGX_PI / 2 && fabs(tz) < GGX_PI / 2, "angles out of range: %g %g %g",
+              tx, ty, tz);
         assert_int_equal(ggx_shape_ellipsoid(&b, ax, ay, tx, ty, tz), GGX_OK);
         double kappa = kappa_of(p);
         for (int i = 0; i < 8; i++) {
@@ -219,8 +221,8 @@ static void ellipsoid_params_round_trip(void **state)
             if (d0 < 1e-280) continue;
             double e = fabs(d1 / d0 - 1.0) / kappa;
             if (e > worst) worst = e;
-            CHECK(e <= 1e-12, "shape (%g, %g, %g, %g, %g) -> (%g, %g, %g, %g, %g): D %.17g vs %.17g", p.ax, p.ay,
-                  p.tx, p.ty, p.tz, ax, ay, tx, ty, tz, d0, d1);
+            CHECK(e <= 1e-12, "shape (%g, %g, %g, %g, %g) -> (%g, %g, %g, %g, %g): D %.17g vs %.17g", p.ax, p.ay, p.tx,
+                  p.ty, p.tz, ax, ay, tx, ty, tz, d0, d1);
         }
         int canonical = fabs(p.tx) <= 0.45 && fabs(p.ty) <= 0.45 && fabs(p.tz) <= 0.5 && fabs(log(p.ax / p.ay)) > 1e-3;
         if (canonical) {
@@ -279,9 +281,12 @@ static void from_slopes_domain(void **state)
 int main(int argc, char **argv)
 {
     const struct CMUnitTest tests[] = {
-        cmocka_unit_test(student_t_form),    cmocka_unit_test(slopes_closed_forms),
-        cmocka_unit_test(slopes_round_trip), cmocka_unit_test(sampled_slopes_are_student_t),
-        cmocka_unit_test(ellipsoid_params_round_trip), cmocka_unit_test(from_slopes_domain),
+        cmocka_unit_test(student_t_form),
+        cmocka_unit_test(slopes_closed_forms),
+        cmocka_unit_test(slopes_round_trip),
+        cmocka_unit_test(sampled_slopes_are_student_t),
+        cmocka_unit_test(ellipsoid_params_round_trip),
+        cmocka_unit_test(from_slopes_domain),
     };
     int rc = cmocka_run_group_tests(tests, NULL, NULL);
     return rc | chi2_budget_end("slopes", argc, argv);

@@ -12,8 +12,8 @@
 
 #include "samplers.h"
 
-static const unsigned FAMILIES =
-    FAMILY_BIT(GGX_FAMILY_NDF) | FAMILY_BIT(GGX_FAMILY_VNDF) | FAMILY_BIT(GGX_FAMILY_REJECTION);
+static const unsigned FAMILIES = FAMILY_BIT(GGX_FAMILY_NDF) | FAMILY_BIT(GGX_FAMILY_VNDF) |
+                                 FAMILY_BIT(GGX_FAMILY_REJECTION);
 static const int SHAPES[] = {0, 5, 7};
 static const int VIEWS[] = {0, 3};
 

@@ -12,7 +12,7 @@
 
 #include "ggx/ggx.h"
 
-#if !defined(GGX_VERSION_MAJOR) || !defined(GGX_VERSION_MINOR) || !defined(GGX_VERSION_PATCH) || \
+#if !defined(GGX_VERSION_MAJOR) || !defined(GGX_VERSION_MINOR) || !defined(GGX_VERSION_PATCH) ||                       \
     !defined(GGX_VERSION_STRING)
 #error "ggx.h must give the version macros"
 #endif

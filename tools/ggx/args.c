@@ -127,15 +127,42 @@ void parse_options(int argc, char **argv, int first, options *o, const char *all
                    strcmp(key, "keep-tilt") == 0 || strcmp(key, "y-down") == 0 || strcmp(key, "compensate") == 0 ||
                    strcmp(key, "fast") == 0 || strcmp(key, "perceptual") == 0 || strcmp(key, "tilted") == 0;
         if (flag && inline_val) die("option '%s' takes no value", a);
-        if (strcmp(key, "keep-tilt") == 0) { o->keep_tilt = 1; continue; }
-        if (strcmp(key, "y-down") == 0) { o->y_down = 1; continue; }
-        if (strcmp(key, "compensate") == 0) { o->compensate = 1; continue; }
-        if (strcmp(key, "fast") == 0) { o->fast = 1; continue; }
-        if (strcmp(key, "perceptual") == 0) { o->perceptual = 1; continue; }
-        if (strcmp(key, "tilted") == 0) { o->tilted = 1; continue; }
-        if (strcmp(key, "log") == 0) { o->log_scale = 1; continue; }
-        if (strcmp(key, "progress") == 0) { o->progress = 1; continue; }
-        if (strcmp(key, "no-progress") == 0) { o->progress = 0; continue; }
+        if (strcmp(key, "keep-tilt") == 0) {
+            o->keep_tilt = 1;
+            continue;
+        }
+        if (strcmp(key, "y-down") == 0) {
+            o->y_down = 1;
+            continue;
+        }
+        if (strcmp(key, "compensate") == 0) {
+            o->compensate = 1;
+            continue;
+        }
+        if (strcmp(key, "fast") == 0) {
+            o->fast = 1;
+            continue;
+        }
+        if (strcmp(key, "perceptual") == 0) {
+            o->perceptual = 1;
+            continue;
+        }
+        if (strcmp(key, "tilted") == 0) {
+            o->tilted = 1;
+            continue;
+        }
+        if (strcmp(key, "log") == 0) {
+            o->log_scale = 1;
+            continue;
+        }
+        if (strcmp(key, "progress") == 0) {
+            o->progress = 1;
+            continue;
+        }
+        if (strcmp(key, "no-progress") == 0) {
+            o->progress = 0;
+            continue;
+        }
         if (!val) die("option '%s' needs a value", a);
         if (!inline_val) i++;
         if (strcmp(key, "alpha") == 0) {

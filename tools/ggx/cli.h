@@ -36,8 +36,8 @@ typedef struct options {
     int nout;
     double eta;
     int have_eta, log_scale, size, size_h, dark, help, progress; /* size_h: 0 unless --size W x H */
-    double from; /* --from (degrees), NAN when not given */
-    double phi_d; /* --phi-d (degrees), 90 when not given */
+    double from;                                                 /* --from (degrees), NAN when not given */
+    double phi_d;                                                /* --phi-d (degrees), 90 when not given */
     /* ggx fit */
     const char *heightfield, *normal_map, *normals, *model;
     double spacing[2], z_scale;
@@ -49,10 +49,10 @@ typedef struct options {
     /* ggx microsurface */
     const char *kind;
     double corr, mix; /* 0 when not given */
-    int period;  /* 0 when not given */
-    int bounces; /* ggx microsurface measure: the most reflections of a traced ray; 0 when not given */
-    int risers;  /* ggx microsurface: a sawtooth's period; 0 when not given */
-    int tilted;  /* ggx microsurface measure --tilted */
+    int period;       /* 0 when not given */
+    int bounces;      /* ggx microsurface measure: the most reflections of a traced ray; 0 when not given */
+    int risers;       /* ggx microsurface: a sawtooth's period; 0 when not given */
+    int tilted;       /* ggx microsurface measure --tilted */
     /* ggx render */
     const char *scene, *light, *strategy;
     long spp;
@@ -76,10 +76,10 @@ extern const char SHAPE_HELP[]; /* the help text of the shape syntax */
 
 /* ---- samplers: the library's registry (ggx/ggx_samplers.h) in its order, then the command's one sampler of its
  * own, wrong-s, a deliberately wrong VNDF sampler that `ggx check` must reject on a skewed shape ---- */
-int cli_sampler_count(void);                             /* GGX_SAMPLER_COUNT + 1 */
-const ggx_sampler_info *cli_sampler(int i);              /* 0 <= i < cli_sampler_count() */
+int cli_sampler_count(void);                            /* GGX_SAMPLER_COUNT + 1 */
+const ggx_sampler_info *cli_sampler(int i);             /* 0 <= i < cli_sampler_count() */
 const ggx_sampler_info *find_sampler(const char *name); /* dies on an unknown name */
-void print_samplers(FILE *f);                            /* "samplers:" and one line per sampler, for --help */
+void print_samplers(FILE *f);                           /* "samplers:" and one line per sampler, for --help */
 /* 1 when the shape is in the sampler's domain (an UNSKEWED sampler given a skewed shape: 0). */
 int sampler_applies(const ggx_sampler_info *smp, const ggx_shape *s);
 /* Dies, as a usage error, when the shape is outside the sampler's domain. */
@@ -100,8 +100,8 @@ int draw_sample(const ggx_sampler_info *smp, const ggx_shape *s, ggx_vec3 view, 
  * quietly with status 141, as SIGPIPE would. */
 typedef struct out_file {
     FILE *f;
-    char *path;  /* the file finally written (a link's target) */
-    int slot;    /* its temporary's entry in the pending list, or -1 (in place, stdout) */
+    char *path; /* the file finally written (a link's target) */
+    int slot;   /* its temporary's entry in the pending list, or -1 (in place, stdout) */
     unsigned mode;
 } out_file;
 void out_open(out_file *o, const char *path);
@@ -115,7 +115,7 @@ void out_flush_stdout(void);  /* flushes stdout, out_stdout_failed() on any erro
  * name; out_commit_set renames them all. An error before the commit removes every one. */
 void out_begin_set(void);
 void out_commit_set(void);
-void ensure_dir(const char *dir);             /* mkdir -p of one level; dies if unwritable */
+void ensure_dir(const char *dir); /* mkdir -p of one level; dies if unwritable */
 
 /* ---- progress on a terminal ----
  * A bar on stderr, redrawn in place: "  LABEL [#####.....]  42%". progress_end draws 100% and ends the line.
@@ -153,8 +153,8 @@ typedef struct check_result {
 /* The fewest samples for which the chi-square test means something (cells of the smallest grid then expect 50). */
 #define CHECK_MIN_N 10000
 void require_check_n(long n); /* dies (usage error) below CHECK_MIN_N */
-check_result run_check(const ggx_shape *s, ggx_vec3 view, const ggx_sampler_info *smp, long n,
-                       unsigned long long seed, double alpha, int progress);
+check_result run_check(const ggx_shape *s, ggx_vec3 view, const ggx_sampler_info *smp, long n, unsigned long long seed,
+                       double alpha, int progress);
 void print_check_header(FILE *f);
 void print_check_row(FILE *f, const char *name, check_result r);
 

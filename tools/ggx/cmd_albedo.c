@@ -100,15 +100,16 @@ int cmd_albedo(int argc, char **argv)
             }
     }
     double avg = ggx_albedo_avg(&s), avg_hc = ggx_albedo_avg_height_correlated(&s);
-    static const char *const cols[] = {"view_theta_deg", "view_phi_deg", "E", "E_height_correlated", "E_avg",
-                                       "E_avg_height_correlated"};
+    static const char *const cols[] = {"view_theta_deg",      "view_phi_deg", "E",
+                                       "E_height_correlated", "E_avg",        "E_avg_height_correlated"};
     out_file out;
     out_open(&out, o.out);
     put_header(out.f, json, cols, 6);
     for (int k = 0; k < nv; k++) {
         ggx_vec3 v = views[k];
-        double row[6] = {acos(v.z) / DEG, atan2(v.y, v.x) / DEG, ggx_albedo(&s, v),
-                         ggx_albedo_height_correlated(&s, v), avg, avg_hc};
+        double row[6] = {
+            acos(v.z) / DEG, atan2(v.y, v.x) / DEG, ggx_albedo(&s, v), ggx_albedo_height_correlated(&s, v), avg,
+            avg_hc};
         put_row(out.f, json, cols, row, 6, k + 1 == nv);
     }
     if (json) fprintf(out.f, "]\n");

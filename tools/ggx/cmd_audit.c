@@ -54,7 +54,8 @@ int cmd_audit(int argc, char **argv)
     /* the diagonal column: diag(ax, ay, 1), written out (no rotation, and no limit on the alphas of a given matrix) */
     double A[AUDIT_SHAPES][3][3] = {{{ax0, 0, 0}, {0, ay0, 0}, {0, 0, 1}}};
     ggx_status st;
-    if ((st = ggx_ellipsoid_matrix(A[1], ax, ay, 0, 0, tz * DEG)) != GGX_OK) die("invalid shape: %s", ggx_status_str(st));
+    if ((st = ggx_ellipsoid_matrix(A[1], ax, ay, 0, 0, tz * DEG)) != GGX_OK)
+        die("invalid shape: %s", ggx_status_str(st));
     if (o.have_matrix) memcpy(A[2], o.matrix, sizeof A[2]);
     else if ((st = ggx_ellipsoid_matrix(A[2], ax, ay, tx * DEG, ty * DEG, tz * DEG)) != GGX_OK)
         die("invalid shape: %s", ggx_status_str(st));

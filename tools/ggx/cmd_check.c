@@ -31,8 +31,8 @@ void require_check_n(long n)
     if (n < CHECK_MIN_N) die("-n: the chi-square test needs at least %d samples (%ld given)", CHECK_MIN_N, n);
 }
 
-check_result run_check(const ggx_shape *s, ggx_vec3 view, const ggx_sampler_info *smp, long n,
-                       unsigned long long seed, double alpha, int progress)
+check_result run_check(const ggx_shape *s, ggx_vec3 view, const ggx_sampler_info *smp, long n, unsigned long long seed,
+                       double alpha, int progress)
 {
     check_result res = {0, 1, NAN, 0, 0};
     check_ctx c = {{s, view, smp->pdf}, smp, 0, n, progress};
@@ -55,7 +55,8 @@ check_result run_check(const ggx_shape *s, ggx_vec3 view, const ggx_sampler_info
         int done = 0;
         for (int i = 0; i < 2000 && done < 200; i++) {
             double u1 = 0.02 + 0.96 * rng_uniform(&g), u2 = 0.02 + 0.96 * rng_uniform(&g), h = 1e-6;
-            if (fabs(fabs(2 * u1 - 1) - fabs(2 * u2 - 1)) < 0.02 || fabs(2 * u1 - 1) < 0.02 || fabs(2 * u2 - 1) < 0.02) continue;
+            if (fabs(fabs(2 * u1 - 1) - fabs(2 * u2 - 1)) < 0.02 || fabs(2 * u1 - 1) < 0.02 || fabs(2 * u2 - 1) < 0.02)
+                continue;
 #define MAP(a, b) smp->sample(s, view, a, b)
             ggx_vec3 m = MAP(u1, u2);
             double pdf = c.keys.pdf(s, view, m);
@@ -93,12 +94,14 @@ int cmd_check(int argc, char **argv)
     options o;
     parse_options(argc, argv, 2, &o, SHAPE_OPTS ",sampler,view,n,seed,progress,no-progress");
     if (o.help) {
-        printf("usage: ggx check [shape] [--sampler NAME] [--view DIR] [-n N] [--seed S] [--progress|--no-progress]\n\n"
-               "Checks samplers of normals against their pdfs for your parameters: the pdf's normalisation by adaptive\n"
-               "quadrature, a chi-square goodness-of-fit test with N samples (default 10^6) on 100 x 200 equal-area\n"
-               "cells in sphere space (Sidak-corrected level 0.01 over the samplers checked), and the Jacobian\n"
-               "|dm/du| = 1/pdf by finite differences. Without --sampler every normal sampler that applies is checked.\n"
-               "Exit status 0 only if all pass (1 otherwise, 2 for bad input). A progress bar is shown on a terminal.\n\n");
+        printf(
+            "usage: ggx check [shape] [--sampler NAME] [--view DIR] [-n N] [--seed S] [--progress|--no-progress]\n\n"
+            "Checks samplers of normals against their pdfs for your parameters: the pdf's normalisation by adaptive\n"
+            "quadrature, a chi-square goodness-of-fit test with N samples (default 10^6) on 100 x 200 equal-area\n"
+            "cells in sphere space (Sidak-corrected level 0.01 over the samplers checked), and the Jacobian\n"
+            "|dm/du| = 1/pdf by finite differences. Without --sampler every normal sampler that applies is checked.\n"
+            "Exit status 0 only if all pass (1 otherwise, 2 for bad input). A progress bar is shown on a "
+            "terminal.\n\n");
         print_samplers(stdout);
         printf("\n%s", SHAPE_HELP);
         return 0;

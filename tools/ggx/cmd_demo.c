@@ -54,7 +54,8 @@ static figure_spec demo_spec(const struct demo_figure *d, const ggx_shape *s, in
     if (d->vndf_sampler) f.sampler = ggx_sampler_get(GGX_SAMPLER_HEITZ);
     figure_shape_caption(f.shape_text, sizeof f.shape_text, 0.15, 0.5, SHAPES[k].tx, SHAPES[k].ty, 0);
     if (d->seed)
-        snprintf(f.note, sizeof f.note, "%s: seed %s, %s", k ? "skewed version of" : "reproduces", d->seed, d->seed_figure);
+        snprintf(f.note, sizeof f.note, "%s: seed %s, %s", k ? "skewed version of" : "reproduces", d->seed,
+                 d->seed_figure);
     return f;
 }
 
@@ -63,7 +64,8 @@ enum { NSPHERES = 3 };
 static const struct demo_sphere {
     double tx, ty, tz; /* degrees */
     const char *label;
-} SPHERES[NSPHERES] = {{0, 0, 0, "the seeds' shape"}, {15, -10, 0, "skewed θx 15°, θy −10°"}, {0, 0, 45, "rotated θz 45°"}};
+} SPHERES[NSPHERES] = {
+    {0, 0, 0, "the seeds' shape"}, {15, -10, 0, "skewed θx 15°, θy −10°"}, {0, 0, 45, "rotated θz 45°"}};
 
 static void render_spheres(int px, float *img[NSPHERES])
 {
@@ -73,7 +75,8 @@ static void render_spheres(int px, float *img[NSPHERES])
     for (int k = 0; k < NSPHERES; k++) {
         render_spec r;
         render_spec_defaults(&r);
-        if (ggx_shape_ellipsoid(&r.shape, 0.15, 0.5, SPHERES[k].tx * DEG, SPHERES[k].ty * DEG, SPHERES[k].tz * DEG) != GGX_OK)
+        if (ggx_shape_ellipsoid(&r.shape, 0.15, 0.5, SPHERES[k].tx * DEG, SPHERES[k].ty * DEG, SPHERES[k].tz * DEG) !=
+            GGX_OK)
             die("demo sphere shape");
         ggx_fresnel_conductor(&r.fresnel, 1.0, 6.7);
         r.env = &env, r.width = r.height = px, r.spp = 32;
@@ -131,8 +134,9 @@ static void write_pdf(const char *path, ggx_shape sh[2], float *img[NSPHERES], i
         else snprintf(head, sizeof head, "Beyond the seeds: %s", d->seed_figure);
         text_at(c.cr, 28, 26, 0, 0, head);
         text_font(c.cr, 10, 0);
-        text_at(c.cr, 28, 46, 0, 0, "left: the seeds' shape αx 0.15, αy 0.5 (θv 75° where there is a view); "
-                                    "right: the same shape skewed by θx 15°, θy −10°, which the seeds do not show");
+        text_at(c.cr, 28, 46, 0, 0,
+                "left: the seeds' shape αx 0.15, αy 0.5 (θv 75° where there is a view); "
+                "right: the same shape skewed by θx 15°, θy −10°, which the seeds do not show");
         double pw = 0.5 * (W - 56), ph = fmin(H - 90, pw * figure_aspect(d->kind) * 1.1);
         for (int k = 0; k < 2; k++) {
             figure_spec f = demo_spec(d, &sh[k], k, 0);
@@ -154,23 +158,25 @@ int cmd_demo(int argc, char **argv)
     options o;
     parse_options(argc, argv, 2, &o, "out,n,size,theme");
     if (o.help) {
-        printf("usage: ggx demo [--out DIR] [-n N] [--size W] [--theme light|dark]\n\n"
-               "Draws the seeds' figures for alpha = (0.15, 0.5) and for the same shape skewed by theta_x = 15,\n"
-               "theta_y = -10 degrees into DIR (default out/), the skewed ones prefixed skewed-:\n"
-               "  engstad-stretch: grid-top.svg, grid-side.svg (the 10 x 10 equal-area grid mapped by\n"
-               "    NDF sampling), ndf-top.png, ndf-side.png (the NDF pdf);\n"
-               "  engstad-vndf-proof (visible normals, theta_v = 75, phi_v = P for P = 0 and 90): vndf-75-P-grid-top.svg,\n"
-               "    vndf-75-P-grid-side.svg (the grid mapped by the five-step VNDF sampler), vndf-75-P-top.png,\n"
-               "    vndf-75-P-side.png (the VNDF pdf), each with the grey region of normals that reflect the view\n"
-               "    above the horizon;\n"
-               "  line plots: g1.svg, lambda.svg, ndf-slice.svg, furnace.svg;\n"
-               "  spheres.png: spheres of the material under the built-in sky (ggx render): the seeds' shape, the same\n"
-               "    skewed, the same rotated by theta_z = 45;\n"
-               "  figures.pdf: every figure, one page each in the seeds' order, the seed's shape beside the skewed one;\n"
-               "    the spheres on the last page.\n"
-               "Then checks every sampler for these shapes (N samples each, default 10^6) and prints the table.\n"
-               "--size: the figures' width (default 640; heights follow each figure's aspect). The figures are\n"
-               "written all or none.\n");
+        printf(
+            "usage: ggx demo [--out DIR] [-n N] [--size W] [--theme light|dark]\n\n"
+            "Draws the seeds' figures for alpha = (0.15, 0.5) and for the same shape skewed by theta_x = 15,\n"
+            "theta_y = -10 degrees into DIR (default out/), the skewed ones prefixed skewed-:\n"
+            "  engstad-stretch: grid-top.svg, grid-side.svg (the 10 x 10 equal-area grid mapped by\n"
+            "    NDF sampling), ndf-top.png, ndf-side.png (the NDF pdf);\n"
+            "  engstad-vndf-proof (visible normals, theta_v = 75, phi_v = P for P = 0 and 90): "
+            "vndf-75-P-grid-top.svg,\n"
+            "    vndf-75-P-grid-side.svg (the grid mapped by the five-step VNDF sampler), vndf-75-P-top.png,\n"
+            "    vndf-75-P-side.png (the VNDF pdf), each with the grey region of normals that reflect the view\n"
+            "    above the horizon;\n"
+            "  line plots: g1.svg, lambda.svg, ndf-slice.svg, furnace.svg;\n"
+            "  spheres.png: spheres of the material under the built-in sky (ggx render): the seeds' shape, the same\n"
+            "    skewed, the same rotated by theta_z = 45;\n"
+            "  figures.pdf: every figure, one page each in the seeds' order, the seed's shape beside the skewed one;\n"
+            "    the spheres on the last page.\n"
+            "Then checks every sampler for these shapes (N samples each, default 10^6) and prints the table.\n"
+            "--size: the figures' width (default 640; heights follow each figure's aspect). The figures are\n"
+            "written all or none.\n");
         return 0;
     }
     if (o.n > 0) require_check_n(o.n); /* before any figure is drawn */
@@ -185,7 +191,8 @@ int cmd_demo(int argc, char **argv)
     char path[1024];
     ggx_shape sh[2];
     for (int k = 0; k < 2; k++)
-        if (ggx_shape_ellipsoid(&sh[k], 0.15, 0.5, SHAPES[k].tx * DEG, SHAPES[k].ty * DEG, 0) != GGX_OK) die("demo shape");
+        if (ggx_shape_ellipsoid(&sh[k], 0.15, 0.5, SHAPES[k].tx * DEG, SHAPES[k].ty * DEG, 0) != GGX_OK)
+            die("demo shape");
     printf("ggx demo: figures in %s/\n", dir);
     out_begin_set(); /* all figures or none */
     for (int k = 0; k < 2; k++) {

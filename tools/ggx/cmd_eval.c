@@ -9,12 +9,15 @@ int cmd_eval(int argc, char **argv)
     options o;
     parse_options(argc, argv, 2, &o, SHAPE_OPTS ",wi,wo,fresnel,eta,format,out");
     if (o.help) {
-        printf("usage: ggx eval [shape] [--wi DIR] [--wo DIR]... [--fresnel F] [--eta ETA] [--format csv|json] [--out FILE]\n\n"
-               "Evaluates the model for one incident direction wi and one or more outgoing directions wo (defaults:\n"
-               "wi = 40,0 and wo = 0,0 40,180 60,180 20,90). Columns: the directions, the half vector h, D(h), G1(wi,h),\n"
-               "G1(wo,h), G = G1 G1, the height-correlated G2, Lambda(wi), Lambda(wo), the VNDF pdf of h for wi, the\n"
-               "reflection pdf of wo, the BRDF, and with --eta the rough-dielectric BSDF f(wi -> wo) and its pdf.\n"
-               "--fresnel one | dielectric:ETA | conductor:ETA,K | schlick:F0 (default one)\n\n%s", SHAPE_HELP);
+        printf(
+            "usage: ggx eval [shape] [--wi DIR] [--wo DIR]... [--fresnel F] [--eta ETA] [--format csv|json] [--out "
+            "FILE]\n\n"
+            "Evaluates the model for one incident direction wi and one or more outgoing directions wo (defaults:\n"
+            "wi = 40,0 and wo = 0,0 40,180 60,180 20,90). Columns: the directions, the half vector h, D(h), G1(wi,h),\n"
+            "G1(wo,h), G = G1 G1, the height-correlated G2, Lambda(wi), Lambda(wo), the VNDF pdf of h for wi, the\n"
+            "reflection pdf of wo, the BRDF, and with --eta the rough-dielectric BSDF f(wi -> wo) and its pdf.\n"
+            "--fresnel one | dielectric:ETA | conductor:ETA,K | schlick:F0 (default one)\n\n%s",
+            SHAPE_HELP);
         return 0;
     }
     ggx_shape s;
@@ -28,9 +31,9 @@ int cmd_eval(int argc, char **argv)
     int json = 0;
     if (o.format && strcmp(o.format, "json") == 0) json = 1;
     else if (o.format && strcmp(o.format, "csv") != 0) die("--format: '%s' is not csv or json", o.format);
-    static const char *cols[] = {"wi_x", "wi_y", "wi_z", "wo_x", "wo_y", "wo_z", "h_x", "h_y", "h_z", "D", "G1_wi",
-                                 "G1_wo", "G", "G2_hc", "lambda_wi", "lambda_wo", "pdf_vndf", "pdf_brdf", "brdf",
-                                 "bsdf", "pdf_bsdf"};
+    static const char *cols[] = {"wi_x",      "wi_y",      "wi_z",     "wo_x",     "wo_y",  "wo_z", "h_x",
+                                 "h_y",       "h_z",       "D",        "G1_wi",    "G1_wo", "G",    "G2_hc",
+                                 "lambda_wi", "lambda_wo", "pdf_vndf", "pdf_brdf", "brdf",  "bsdf", "pdf_bsdf"};
     int ncols = o.have_eta ? 21 : 19;
     out_file out;
     out_open(&out, o.out);
@@ -39,10 +42,27 @@ int cmd_eval(int argc, char **argv)
         for (int c = 0; c < ncols; c++) fprintf(out.f, "%s%s", cols[c], c + 1 < ncols ? "," : "\n");
     for (int k = 0; k < o.nwo; k++) {
         ggx_vec3 wi = o.wi, wo = o.wo[k], h = ggx_half_reflect(wi, wo);
-        double v[21] = {wi.x, wi.y, wi.z, wo.x, wo.y, wo.z, h.x, h.y, h.z, ggx_ndf(&s, h), ggx_g1(&s, wi, h),
-                        ggx_g1(&s, wo, h), ggx_g2(&s, wi, wo, h), ggx_g2_height_correlated(&s, wi, wo, h),
-                        ggx_lambda(&s, wi), ggx_lambda(&s, wo), ggx_pdf_vndf(&s, wi, h), ggx_pdf_brdf(&s, wi, wo),
-                        ggx_brdf_eval(&s, &f, wi, wo), 0, 0};
+        double v[21] = {wi.x,
+                        wi.y,
+                        wi.z,
+                        wo.x,
+                        wo.y,
+                        wo.z,
+                        h.x,
+                        h.y,
+                        h.z,
+                        ggx_ndf(&s, h),
+                        ggx_g1(&s, wi, h),
+                        ggx_g1(&s, wo, h),
+                        ggx_g2(&s, wi, wo, h),
+                        ggx_g2_height_correlated(&s, wi, wo, h),
+                        ggx_lambda(&s, wi),
+                        ggx_lambda(&s, wo),
+                        ggx_pdf_vndf(&s, wi, h),
+                        ggx_pdf_brdf(&s, wi, wo),
+                        ggx_brdf_eval(&s, &f, wi, wo),
+                        0,
+                        0};
         if (o.have_eta) {
             v[19] = ggx_bsdf_eval(&s, o.eta, wi, wo, GGX_RADIANCE);
             v[20] = ggx_pdf_bsdf(&s, o.eta, wo, wi);

@@ -49,8 +49,8 @@ static void read_samples(const void *ctx, size_t at, size_t k, double *x, double
 
 static const char *const MODEL_NAMES[GGX_FIT_MODELS] = {"ellipsoid", "anisotropic", "isotropic", "beckmann"};
 static const char *const MODEL_WORDS[GGX_FIT_MODELS] = {
-    "full ellipsoid (skewed GGX: t and Sigma)", "rotated anisotropic GGX (t = 0)", "isotropic GGX (t = 0, Sigma = a^2 I)",
-    "Beckmann (Gaussian slopes, mean and covariance)"};
+    "full ellipsoid (skewed GGX: t and Sigma)", "rotated anisotropic GGX (t = 0)",
+    "isotropic GGX (t = 0, Sigma = a^2 I)", "Beckmann (Gaussian slopes, mean and covariance)"};
 static const char *const PARAM_NAMES[5] = {"t_x", "t_y", "sigma_xx", "sigma_xy", "sigma_yy"};
 
 /* A number for JSON, which has no NaN or infinity: null for them. The text lives in one of 32 buffers used in turn,
@@ -74,47 +74,48 @@ static int show_progress(void *ctx, int it, double ll)
 
 static void usage(void)
 {
-    printf("usage: ggx fit (--heightfield FILE | --normal-map FILE | --normals FILE.csv) [--spacing DX[,DY]]\n"
-           "               [--z-scale Z] [--keep-tilt] [--downsample K] [--y-down]\n"
-           "               [--model ellipsoid|anisotropic|isotropic] [--threads N] [--format md|csv|json] [--out FILE]\n"
-           "\n"
-           "Fits the ellipsoid NDF to a measured surface by maximum likelihood: the slopes of its micro-normals follow\n"
-           "GGX's P22 with a location t (the skew) and a scale Sigma (docs/design/fit.md). Prints the shape in the\n"
-           "command's syntax (--alpha AX,AY --skew TX,TY --rotate TZ, to paste into every other command), the matrix\n"
-           "A, t and Sigma with standard errors (observed information; lower bounds for a height field, whose facets\n"
-           "are correlated), the comparison of isotropic GGX, anisotropic GGX, the full ellipsoid and Beckmann by BIC,\n"
-           "and a chi-square goodness of fit.\n"
-           "\n"
-           "inputs (the format from the file's first bytes, else its extension):\n"
-           "  --heightfield FILE   heights on a regular grid: .x3p (ISO 25178-72), .gsf (Gwyddion), .txt/.asc (a\n"
-           "                       matrix, one row per line; Gwyddion's text header gives the widths and units), .xyz\n"
-           "                       (x y z points of a grid), grey .png (8 or 16 bit levels), .exr (one float channel).\n"
-           "                       The facets of both triangulations of each cell, weighted by projected area.\n"
-           "  --normal-map FILE    a tangent-space normal map: .png (RGB, 8 or 16 bit: n = 2 c / max - 1; grey+alpha\n"
-           "                       or blue 0 everywhere: two channels, z rebuilt) or .exr (R, G[, B] in [-1, 1]);\n"
-           "                       an 8-bit map's texels are fitted as the cells of normals their levels stand for\n"
-           "  --normals FILE.csv   x,y,z[,weight] per line (a header line of names is skipped)\n"
-           "options:\n"
-           "  --spacing DX[,DY]    grid spacing, where the file has none (x3p, gsf, xyz and Gwyddion text have it)\n"
-           "  --z-scale Z          height per unit of the file's values where it has no units (PNG: per level)\n"
-           "  --keep-tilt          keep the height field's mean plane (its tilt becomes the skew t); by default the\n"
-           "                       least-squares plane is removed first, as surface metrology does\n"
-           "  --downsample K       average the heights over K x K blocks first (the NDF depends on the scale)\n"
-           "  --y-down             the normal map's green channel points down (DirectX); default up (OpenGL)\n"
-           "  --model M            the family of the printed shape (default ellipsoid); all four are compared\n"
-           "  --threads N          threads for the fit's passes (results do not depend on N)\n"
-           "  --format md|csv|json (default md)\n"
-           "  --figure FILE        also draw the measured NDF beside the fitted one (top views, one colour scale) with\n"
-           "                       their difference, and the slopes' histogram with the fitted contours (.png, .svg,\n"
-           "                       .pdf); a height field's facets are read back in blocks, once per block\n");
+    printf(
+        "usage: ggx fit (--heightfield FILE | --normal-map FILE | --normals FILE.csv) [--spacing DX[,DY]]\n"
+        "               [--z-scale Z] [--keep-tilt] [--downsample K] [--y-down]\n"
+        "               [--model ellipsoid|anisotropic|isotropic] [--threads N] [--format md|csv|json] [--out FILE]\n"
+        "\n"
+        "Fits the ellipsoid NDF to a measured surface by maximum likelihood: the slopes of its micro-normals follow\n"
+        "GGX's P22 with a location t (the skew) and a scale Sigma (docs/design/fit.md). Prints the shape in the\n"
+        "command's syntax (--alpha AX,AY --skew TX,TY --rotate TZ, to paste into every other command), the matrix\n"
+        "A, t and Sigma with standard errors (observed information; lower bounds for a height field, whose facets\n"
+        "are correlated), the comparison of isotropic GGX, anisotropic GGX, the full ellipsoid and Beckmann by BIC,\n"
+        "and a chi-square goodness of fit.\n"
+        "\n"
+        "inputs (the format from the file's first bytes, else its extension):\n"
+        "  --heightfield FILE   heights on a regular grid: .x3p (ISO 25178-72), .gsf (Gwyddion), .txt/.asc (a\n"
+        "                       matrix, one row per line; Gwyddion's text header gives the widths and units), .xyz\n"
+        "                       (x y z points of a grid), grey .png (8 or 16 bit levels), .exr (one float channel).\n"
+        "                       The facets of both triangulations of each cell, weighted by projected area.\n"
+        "  --normal-map FILE    a tangent-space normal map: .png (RGB, 8 or 16 bit: n = 2 c / max - 1; grey+alpha\n"
+        "                       or blue 0 everywhere: two channels, z rebuilt) or .exr (R, G[, B] in [-1, 1]);\n"
+        "                       an 8-bit map's texels are fitted as the cells of normals their levels stand for\n"
+        "  --normals FILE.csv   x,y,z[,weight] per line (a header line of names is skipped)\n"
+        "options:\n"
+        "  --spacing DX[,DY]    grid spacing, where the file has none (x3p, gsf, xyz and Gwyddion text have it)\n"
+        "  --z-scale Z          height per unit of the file's values where it has no units (PNG: per level)\n"
+        "  --keep-tilt          keep the height field's mean plane (its tilt becomes the skew t); by default the\n"
+        "                       least-squares plane is removed first, as surface metrology does\n"
+        "  --downsample K       average the heights over K x K blocks first (the NDF depends on the scale)\n"
+        "  --y-down             the normal map's green channel points down (DirectX); default up (OpenGL)\n"
+        "  --model M            the family of the printed shape (default ellipsoid); all four are compared\n"
+        "  --threads N          threads for the fit's passes (results do not depend on N)\n"
+        "  --format md|csv|json (default md)\n"
+        "  --figure FILE        also draw the measured NDF beside the fitted one (top views, one colour scale) with\n"
+        "                       their difference, and the slopes' histogram with the fitted contours (.png, .svg,\n"
+        "                       .pdf); a height field's facets are read back in blocks, once per block\n");
 }
 
 /* The samples of the input, fitted. */
 /* 8-bit levels are as coarse as a fine lobe: such a map's texels are fitted as the cells of normals they stand for. */
 static int fit_as_cells(const surface *s) { return s->kind == SURFACE_NORMALS && s->uv && s->bits == 8; }
 
-static void fit_input(const options *o, const surface *s, const ggx_fit_options *fo, ggx_shape *out,
-                      ggx_fit_info *info, const char **what, double *spacing_used, const double **heights)
+static void fit_input(const options *o, const surface *s, const ggx_fit_options *fo, ggx_shape *out, ggx_fit_info *info,
+                      const char **what, double *spacing_used, const double **heights)
 {
     ggx_status st;
     if (fit_as_cells(s)) {
@@ -146,9 +147,9 @@ static void fit_input(const options *o, const surface *s, const ggx_fit_options 
 int cmd_fit(int argc, char **argv)
 {
     options o;
-    parse_options(argc, argv, 2,
-                  &o, "heightfield,normal-map,normals,spacing,z-scale,keep-tilt,downsample,y-down,"
-                      "model,threads,format,out,figure,progress,no-progress");
+    parse_options(argc, argv, 2, &o,
+                  "heightfield,normal-map,normals,spacing,z-scale,keep-tilt,downsample,y-down,"
+                  "model,threads,format,out,figure,progress,no-progress");
     if (o.help) {
         usage();
         return 0;
@@ -197,8 +198,8 @@ int cmd_fit(int argc, char **argv)
         snprintf(qnote, sizeof qnote,
                  "the lobe is narrower than the map's 8-bit levels resolve: its narrowest alpha is held at %.2g "
                  "(0.4 of the levels' spacing %.2g, times (1 + |t|^2)^1.5 for a lobe away from n); a 16-bit map "
-                 "resolves it", 0.4 * 2.0 / 255.0 * pow(1.0 + info.t[0] * info.t[0] + info.t[1] * info.t[1], 1.5),
-                 2.0 / 255.0);
+                 "resolves it",
+                 0.4 * 2.0 / 255.0 * pow(1.0 + info.t[0] * info.t[0] + info.t[1] * info.t[1], 1.5), 2.0 / 255.0);
         fprintf(stderr, "ggx: note: %s\n", qnote);
     }
 
@@ -218,12 +219,12 @@ int cmd_fit(int argc, char **argv)
     FILE *f = out.f;
     if (strcmp(fmt, "md") == 0) {
         fprintf(f, "# ggx fit: %s\n\n", path);
-        fprintf(f, "%s, %zu x %zu; %zu %s used", surface_format_name(s.format), s.nx, s.ny,
-                info.used, what);
+        fprintf(f, "%s, %zu x %zu; %zu %s used", surface_format_name(s.format), s.nx, s.ny, info.used, what);
         if (ignored)
             fprintf(f, ", %zu ignored (%zu at or below the horizon, %zu not finite, %zu of weight 0)", ignored,
                     info.ignored_horizon, info.ignored_nonfinite, info.ignored_weight);
-        if (spacing[0] > 0) fprintf(f, "; spacing %.6g x %.6g%s", spacing[0], spacing[1], o.keep_tilt ? "" : "; levelled");
+        if (spacing[0] > 0)
+            fprintf(f, "; spacing %.6g x %.6g%s", spacing[0], spacing[1], o.keep_tilt ? "" : "; levelled");
         fprintf(f, "\n\nshape: `%s`\n\n", shape);
         fprintf(f, "A = [[%.6g, %.6g, %.6g], [%.6g, %.6g, %.6g], [%.6g, %.6g, %.6g]]\n\n", A[0][0], A[0][1], A[0][2],
                 A[1][0], A[1][1], A[1][2], A[2][0], A[2][1], A[2][2]);
@@ -241,13 +242,13 @@ int cmd_fit(int argc, char **argv)
                     info.gof_chi2, info.gof_cells, info.gof_cells, info.gof_dof, info.gof_pvalue);
         else if (cells)
             fprintf(f, "not computed for texels fitted as cells (a texel's cell straddles the test's cells)\n");
-        else
-            fprintf(f, "too few samples for the cells (n_eff %.0f)\n", info.effective_n);
+        else fprintf(f, "too few samples for the cells (n_eff %.0f)\n", info.effective_n);
         if (qnote[0]) fprintf(f, "\nquantisation: %s\n", qnote);
         fprintf(f, "\nEM: %d iterations, %s (Newton decrement %.2g); effective sample size %.0f%s\n", info.iterations,
                 info.converged ? "converged" : "NOT converged", info.stationarity, info.effective_n,
-                !info.clamped ? "" : cells ? "; Sigma held at the levels' floor" :
-                                             "; Sigma held at the smallest roughness (all slopes nearly equal)");
+                !info.clamped ? ""
+                : cells       ? "; Sigma held at the levels' floor"
+                              : "; Sigma held at the smallest roughness (all slopes nearly equal)");
     } else if (strcmp(fmt, "csv") == 0) {
         fprintf(f, "quantity,value,std_error\n");
         fprintf(f, "alpha_x,%.10g,\nalpha_y,%.10g,\nskew_x_deg,%.10g,\nskew_y_deg,%.10g,\nrotate_deg,%.10g,\n", ax, ay,
@@ -256,8 +257,9 @@ int cmd_fit(int argc, char **argv)
         for (int k = 0; k < GGX_FIT_MODELS; k++)
             fprintf(f, "log_likelihood_%s,%.10g,\nbic_%s,%.10g,\n", MODEL_NAMES[k], mr[k].log_likelihood,
                     MODEL_NAMES[k], mr[k].bic);
-        fprintf(f, "best_model_index,%d,\ngof_chi2,%.10g,\ngof_dof,%d,\ngof_pvalue,%.10g,\nused,%zu,\nignored,%zu,\n"
-                   "effective_n,%.10g,\niterations,%d,\nconverged,%d,\nclamped,%d,\n",
+        fprintf(f,
+                "best_model_index,%d,\ngof_chi2,%.10g,\ngof_dof,%d,\ngof_pvalue,%.10g,\nused,%zu,\nignored,%zu,\n"
+                "effective_n,%.10g,\niterations,%d,\nconverged,%d,\nclamped,%d,\n",
                 (int)info.best, info.gof_chi2, info.gof_dof, info.gof_pvalue, info.used, ignored, info.effective_n,
                 info.iterations, info.converged, info.clamped);
     } else {
@@ -268,11 +270,12 @@ int cmd_fit(int argc, char **argv)
             if ((unsigned char)*p < 0x20) fprintf(f, "\\u%04x", *p);
             else fputc(*p, f);
         }
-        fprintf(f, "\",\n  \"shape\": {\"alpha\": [%s, %s], \"skew_deg\": [%s, %s], \"rotate_deg\": %s},\n", J(ax), J(ay),
-                J(tx), J(ty), J(tz));
+        fprintf(f, "\",\n  \"shape\": {\"alpha\": [%s, %s], \"skew_deg\": [%s, %s], \"rotate_deg\": %s},\n", J(ax),
+                J(ay), J(tx), J(ty), J(tz));
         fprintf(f, "  \"matrix\": [[%s, %s, %s], [%s, %s, %s], [%s, %s, %s]],\n", J(A[0][0]), J(A[0][1]), J(A[0][2]),
                 J(A[1][0]), J(A[1][1]), J(A[1][2]), J(A[2][0]), J(A[2][1]), J(A[2][2]));
-        fprintf(f, "  \"t\": [%s, %s], \"sigma\": [%s, %s, %s],\n", J(val[0]), J(val[1]), J(val[2]), J(val[3]), J(val[4]));
+        fprintf(f, "  \"t\": [%s, %s], \"sigma\": [%s, %s, %s],\n", J(val[0]), J(val[1]), J(val[2]), J(val[3]),
+                J(val[4]));
         fprintf(f, "  \"std_error\": [%s, %s, %s, %s, %s],\n", J(info.std_error[0]), J(info.std_error[1]),
                 J(info.std_error[2]), J(info.std_error[3]), J(info.std_error[4]));
         fprintf(f, "  \"models\": {");
@@ -284,10 +287,10 @@ int cmd_fit(int argc, char **argv)
         if (info.gof_dof > 0)
             fprintf(f, "  \"gof\": {\"chi2\": %s, \"dof\": %d, \"pvalue\": %s},\n", J(info.gof_chi2), info.gof_dof,
                     J(info.gof_pvalue));
-        else
-            fprintf(f, "  \"gof\": null,\n");
-        fprintf(f, "  \"used\": %zu, \"ignored\": %zu, \"effective_n\": %s, \"iterations\": %d, \"converged\": %s, "
-                   "\"clamped\": %s\n}\n",
+        else fprintf(f, "  \"gof\": null,\n");
+        fprintf(f,
+                "  \"used\": %zu, \"ignored\": %zu, \"effective_n\": %s, \"iterations\": %d, \"converged\": %s, "
+                "\"clamped\": %s\n}\n",
                 info.used, ignored, J(info.effective_n), info.iterations, info.converged ? "true" : "false",
                 info.clamped ? "true" : "false");
 #undef J

@@ -38,31 +38,32 @@ static int generate(int argc, char **argv)
     options o;
     parse_options(argc, argv, 3, &o, "kind,alpha,skew,rotate,corr,mix,period,risers,size,seed,out");
     if (o.help) {
-        printf("usage: ggx microsurface generate --kind beckmann|ggx|vgroove [--alpha A[,AY]] [--skew TX,TY]\n"
-               "                                 [--rotate TZ] [--corr L] [--mix M] [--period P] [--risers P]\n"
-               "                                 --size N [--seed S] --out FILE.exr|FILE.x3p\n\n"
-               "A periodic height field on an N x N grid of unit spacing (N even, 64 to 4096), whose facets (both\n"
-               "triangulations of each cell, as ggx fit reads them) have a chosen NDF:\n"
-               "  beckmann  a Gaussian random field: every facet's slope is Gaussian with covariance\n"
-               "            R diag(AX^2, AY^2) R^T / 2 (Beckmann of roughness AX, AY, the axes rotated by TZ degrees),\n"
-               "            its autocorrelation Gaussian with correlation length L grid spacings (default 16;\n"
-               "            4 to N / 4), by FFT (KISS FFT); --seed S picks the field (default 1)\n"
-               "  ggx       GGX slopes of roughness AX, AY rotated by TZ (the shape ggx fit reads back): a Beckmann\n"
-               "            field of slope covariance Sigma divided by sqrt(W), W chi-square of 2 degrees of freedom\n"
-               "            over the tile's area, varying on the mixing length M (default 8 L, L to N / 4): the\n"
-               "            Gaussian scale mixture that GGX's slopes are\n"
-               "            --skew TX,TY (degrees): the skewed ellipsoid of ggx_shape_ellipsoid(AX, AY, TX, TY, TZ),\n"
-               "            its slopes a Student t of location t and scale Sigma (ggx_shape_slopes): GGX of scale\n"
-               "            Sigma on the plane of slope t, t . (x, y) added over the tile. Repeated as it is, that\n"
-               "            tile is not periodic: measure it as a tilted patch (measure --tilted). --risers P makes\n"
-               "            it a periodic sawtooth: t . (x mod P, y mod P), each ramp of P spacings stepping back\n"
-               "            down in one cell, a near-vertical riser (P divides N, at most N / 2)\n"
-               "  vgroove   V-grooves along y of period P spacings (even, default 16) and slope AX along x: two\n"
-               "            facet normals, each on half the area (Torrance-Sparrow's V-cavities)\n"
-               "OpenEXR holds the heights in one float channel Y (ggx fit --heightfield needs --spacing 1 --z-scale\n"
-               "1 for it); x3p in doubles with a grid of 1e-6 m and heights in metres. Prints the surface's\n"
-               "parameters: the heights' standard deviation and the autocorrelation's metric M, C(r) = sigma^2\n"
-               "exp(-r^T M r).\n");
+        printf(
+            "usage: ggx microsurface generate --kind beckmann|ggx|vgroove [--alpha A[,AY]] [--skew TX,TY]\n"
+            "                                 [--rotate TZ] [--corr L] [--mix M] [--period P] [--risers P]\n"
+            "                                 --size N [--seed S] --out FILE.exr|FILE.x3p\n\n"
+            "A periodic height field on an N x N grid of unit spacing (N even, 64 to 4096), whose facets (both\n"
+            "triangulations of each cell, as ggx fit reads them) have a chosen NDF:\n"
+            "  beckmann  a Gaussian random field: every facet's slope is Gaussian with covariance\n"
+            "            R diag(AX^2, AY^2) R^T / 2 (Beckmann of roughness AX, AY, the axes rotated by TZ degrees),\n"
+            "            its autocorrelation Gaussian with correlation length L grid spacings (default 16;\n"
+            "            4 to N / 4), by FFT (KISS FFT); --seed S picks the field (default 1)\n"
+            "  ggx       GGX slopes of roughness AX, AY rotated by TZ (the shape ggx fit reads back): a Beckmann\n"
+            "            field of slope covariance Sigma divided by sqrt(W), W chi-square of 2 degrees of freedom\n"
+            "            over the tile's area, varying on the mixing length M (default 8 L, L to N / 4): the\n"
+            "            Gaussian scale mixture that GGX's slopes are\n"
+            "            --skew TX,TY (degrees): the skewed ellipsoid of ggx_shape_ellipsoid(AX, AY, TX, TY, TZ),\n"
+            "            its slopes a Student t of location t and scale Sigma (ggx_shape_slopes): GGX of scale\n"
+            "            Sigma on the plane of slope t, t . (x, y) added over the tile. Repeated as it is, that\n"
+            "            tile is not periodic: measure it as a tilted patch (measure --tilted). --risers P makes\n"
+            "            it a periodic sawtooth: t . (x mod P, y mod P), each ramp of P spacings stepping back\n"
+            "            down in one cell, a near-vertical riser (P divides N, at most N / 2)\n"
+            "  vgroove   V-grooves along y of period P spacings (even, default 16) and slope AX along x: two\n"
+            "            facet normals, each on half the area (Torrance-Sparrow's V-cavities)\n"
+            "OpenEXR holds the heights in one float channel Y (ggx fit --heightfield needs --spacing 1 --z-scale\n"
+            "1 for it); x3p in doubles with a grid of 1e-6 m and heights in metres. Prints the surface's\n"
+            "parameters: the heights' standard deviation and the autocorrelation's metric M, C(r) = sigma^2\n"
+            "exp(-r^T M r).\n");
         return 0;
     }
     if (!o.kind) die("--kind beckmann|ggx|vgroove is required");
@@ -89,8 +90,8 @@ static int generate(int argc, char **argv)
     if (strcmp(o.kind, "beckmann") == 0) {
         if (o.period) die("--period applies to --kind vgroove");
         if (o.mix > 0) die("--mix applies to --kind ggx");
-        ms_gauss_spec sp = {n, o.alpha[0], o.alpha[1], o.rotate * 3.14159265358979323846 / 180.0,
-                            o.corr > 0 ? o.corr : 16.0, o.seed};
+        ms_gauss_spec sp = {
+            n, o.alpha[0], o.alpha[1], o.rotate * 3.14159265358979323846 / 180.0, o.corr > 0 ? o.corr : 16.0, o.seed};
         if (!o.have_alpha) sp.alpha_x = sp.alpha_y = 0.3;
         ms_gauss_info info;
         if (ms_gauss(&sp, h, &info, err, sizeof err) != 0) {
@@ -100,12 +101,13 @@ static int generate(int argc, char **argv)
         write_heights(o.out, h, n);
         printf("ggx microsurface: %s, %zu x %zu, Beckmann alpha %g, %g rotated %g degrees, correlation length %g: "
                "heights' sigma %.6g, M = [%.6g %.6g; %.6g %.6g], seed %llu\n",
-               o.out, n, n, sp.alpha_x, sp.alpha_y, o.rotate, sp.corr_len, info.sigma, info.metric[0],
-               info.metric[1], info.metric[1], info.metric[2], (unsigned long long)o.seed);
+               o.out, n, n, sp.alpha_x, sp.alpha_y, o.rotate, sp.corr_len, info.sigma, info.metric[0], info.metric[1],
+               info.metric[1], info.metric[2], (unsigned long long)o.seed);
     } else if (strcmp(o.kind, "ggx") == 0) {
         if (o.period) die("--period applies to --kind vgroove");
-        ms_ggx_spec sp = {n, o.alpha[0], o.alpha[1], o.rotate * 3.14159265358979323846 / 180.0,
-                          o.corr > 0 ? o.corr : 8.0, o.mix, o.seed};
+        ms_ggx_spec sp = {
+            n,     o.alpha[0], o.alpha[1], o.rotate * 3.14159265358979323846 / 180.0, o.corr > 0 ? o.corr : 8.0,
+            o.mix, o.seed};
         if (!o.have_alpha) sp.alpha_x = sp.alpha_y = 0.3;
         double t[2] = {0.0, 0.0};
         int rc;
@@ -128,16 +130,18 @@ static int generate(int argc, char **argv)
         }
         write_heights(o.out, h, n);
         printf("ggx microsurface: %s, %zu x %zu, GGX alpha %g, %g rotated %g degrees, correlation length %g, mixing "
-               "length %g, seed %llu\n", o.out, n, n, sp.alpha_x, sp.alpha_y, sp.phi * 180.0 / 3.14159265358979323846 + 0.0,
-               sp.corr_len, sp.mix_len > 0 ? sp.mix_len : 8.0 * sp.corr_len, (unsigned long long)o.seed);
+               "length %g, seed %llu\n",
+               o.out, n, n, sp.alpha_x, sp.alpha_y, sp.phi * 180.0 / 3.14159265358979323846 + 0.0, sp.corr_len,
+               sp.mix_len > 0 ? sp.mix_len : 8.0 * sp.corr_len, (unsigned long long)o.seed);
         if (o.have_skew)
-            printf("skewed %g, %g degrees: slopes of location t = (%.6g, %.6g) on %s\n", o.skew[0], o.skew[1], t[0] + 0.0,
-                   t[1] + 0.0,
+            printf("skewed %g, %g degrees: slopes of location t = (%.6g, %.6g) on %s\n", o.skew[0], o.skew[1],
+                   t[0] + 0.0, t[1] + 0.0,
                    o.risers ? "a sawtooth of ramps stepping down on risers" : "a tilted patch (measure --tilted)");
-        if (o.risers) printf("sawtooth period %d: risers in the columns and rows %d mod %d\n", o.risers, o.risers - 1,
-                             o.risers);
+        if (o.risers)
+            printf("sawtooth period %d: risers in the columns and rows %d mod %d\n", o.risers, o.risers - 1, o.risers);
     } else if (strcmp(o.kind, "vgroove") == 0) {
-        if (o.corr > 0 || o.have_rotate || o.mix > 0) die("--corr, --mix and --rotate apply to --kind beckmann and ggx");
+        if (o.corr > 0 || o.have_rotate || o.mix > 0)
+            die("--corr, --mix and --rotate apply to --kind beckmann and ggx");
         if (o.have_alpha && o.alpha[0] != o.alpha[1]) die("--alpha: a V-groove has one slope");
         double slope = o.have_alpha ? o.alpha[0] : 0.5;
         size_t p = o.period ? (size_t)o.period : 16;
@@ -147,7 +151,8 @@ static int generate(int argc, char **argv)
         }
         write_heights(o.out, h, n);
         printf("ggx microsurface: %s, %zu x %zu, V-grooves of period %zu and slope %g (facet normals at %.6g "
-               "degrees)\n", o.out, n, n, p, slope, atan(slope) * 180.0 / 3.14159265358979323846);
+               "degrees)\n",
+               o.out, n, n, p, slope, atan(slope) * 180.0 / 3.14159265358979323846);
     } else {
         die("--kind: unknown kind '%s' (beckmann, ggx, vgroove)", o.kind);
     }
@@ -191,38 +196,39 @@ static const char *jnum(char buf[32], double x)
 static int measure(int argc, char **argv)
 {
     options o;
-    parse_options(argc, argv, 3, &o, "heightfield,spacing,z-scale,tilted,risers," SHAPE_OPTS
-                                     ",view,n,bounces,threads,seed,format,out");
+    parse_options(argc, argv, 3, &o,
+                  "heightfield,spacing,z-scale,tilted,risers," SHAPE_OPTS ",view,n,bounces,threads,seed,format,out");
     if (o.help) {
-        printf("usage: ggx microsurface measure --heightfield FILE [--spacing D] [--z-scale Z] [--tilted | --risers P]\n"
-               "                                [--alpha A[,AY] [--skew TX,TY] [--rotate TZ] | --matrix M]\n"
-               "                                --view THETA,PHI [-n RAYS] [--bounces K] [--threads N] [--seed S]\n"
-               "                                [--format md|json] [--out FILE]\n\n"
-               "Traces a periodic height field (ggx microsurface generate's, or any square tile whose edges wrap)\n"
-               "from the view v with RAYS rays (default 1e6) on a jittered grid of origins and reports the masking\n"
-               "against the model: G1(v) of the facets (exact for a height field: the footprint's projected area\n"
-               "over the facets'), Smith's G1 for Beckmann slopes of the facets' covariance and for GGX of the\n"
-               "ellipsoid fitted to the facets (ggx_fit_heightfield), and per normal bin (4 rings of equal\n"
-               "sin^2(theta_m) times 8 azimuth sectors) the traced G1(v, m), the visible share of the bin's\n"
-               "projected area, against G1(v): Smith's masking makes them equal. A tile whose edges do not wrap\n"
-               "(differences across them 3 times the inner ones in RMS) is refused. Then the visible normals: the\n"
-               "first facets hit by up to 200,000 rays from random origins (--seed S), chi-square against\n"
-               "ggx_pdf_vndf of the fitted shape (eq 33) on 16 x 16 cells of its sphere space. Then the BRDF with\n"
-               "F = 1 and the light at the view: RAYS rays reflected from facet to facet until they escape (at most\n"
-               "K times, default 100; the rest are counted as still bouncing), binned in 8 x 16 outgoing bins of\n"
-               "equal projected solid angle; single scattering against ggx_brdf_eval of the fitted shape and the\n"
-               "same with the height-correlated G2 in place of eq 5's (its albedo against ggx_albedo and\n"
-               "ggx_albedo_height_correlated), all bounces against\n"
-               "ggx_brdf_compensated_eval of the fitted scale without its skew (the white furnace: albedo 1).\n"
-               "The model's shape is the fit, or the shape given (--alpha, --skew, --rotate or --matrix).\n\n"
-               "Skewed surfaces (generate --skew): --tilted traces the tile as an infinite tilted patch, each copy\n"
-               "raised by the tile's mean slope (its inner differences' mean) times N; --risers P as the sawtooth of\n"
-               "generate --risers P, whose risers (the cells of the columns and rows P - 1 mod P along an axis where\n"
-               "they step by more than 1) are counted apart. G1 of the other facets, traced, is then set beside\n"
-               "Walter's eq 6 (ggx_g1, with its min), the Smith form of eq 32 without it (ggx_g1_smith), vertical\n"
-               "facets (Walter's remedy with Smith's masking), the tilted base (ggx_g1_tilted: Smith's masking\n"
-               "about the plane of slope t) and the sawtooth's (ggx_g1_risers); and the risers' own visible share. A\n"
-               "tilted patch's BRDF is not measured (its directions are the tilted plane's).\n");
+        printf(
+            "usage: ggx microsurface measure --heightfield FILE [--spacing D] [--z-scale Z] [--tilted | --risers P]\n"
+            "                                [--alpha A[,AY] [--skew TX,TY] [--rotate TZ] | --matrix M]\n"
+            "                                --view THETA,PHI [-n RAYS] [--bounces K] [--threads N] [--seed S]\n"
+            "                                [--format md|json] [--out FILE]\n\n"
+            "Traces a periodic height field (ggx microsurface generate's, or any square tile whose edges wrap)\n"
+            "from the view v with RAYS rays (default 1e6) on a jittered grid of origins and reports the masking\n"
+            "against the model: G1(v) of the facets (exact for a height field: the footprint's projected area\n"
+            "over the facets'), Smith's G1 for Beckmann slopes of the facets' covariance and for GGX of the\n"
+            "ellipsoid fitted to the facets (ggx_fit_heightfield), and per normal bin (4 rings of equal\n"
+            "sin^2(theta_m) times 8 azimuth sectors) the traced G1(v, m), the visible share of the bin's\n"
+            "projected area, against G1(v): Smith's masking makes them equal. A tile whose edges do not wrap\n"
+            "(differences across them 3 times the inner ones in RMS) is refused. Then the visible normals: the\n"
+            "first facets hit by up to 200,000 rays from random origins (--seed S), chi-square against\n"
+            "ggx_pdf_vndf of the fitted shape (eq 33) on 16 x 16 cells of its sphere space. Then the BRDF with\n"
+            "F = 1 and the light at the view: RAYS rays reflected from facet to facet until they escape (at most\n"
+            "K times, default 100; the rest are counted as still bouncing), binned in 8 x 16 outgoing bins of\n"
+            "equal projected solid angle; single scattering against ggx_brdf_eval of the fitted shape and the\n"
+            "same with the height-correlated G2 in place of eq 5's (its albedo against ggx_albedo and\n"
+            "ggx_albedo_height_correlated), all bounces against\n"
+            "ggx_brdf_compensated_eval of the fitted scale without its skew (the white furnace: albedo 1).\n"
+            "The model's shape is the fit, or the shape given (--alpha, --skew, --rotate or --matrix).\n\n"
+            "Skewed surfaces (generate --skew): --tilted traces the tile as an infinite tilted patch, each copy\n"
+            "raised by the tile's mean slope (its inner differences' mean) times N; --risers P as the sawtooth of\n"
+            "generate --risers P, whose risers (the cells of the columns and rows P - 1 mod P along an axis where\n"
+            "they step by more than 1) are counted apart. G1 of the other facets, traced, is then set beside\n"
+            "Walter's eq 6 (ggx_g1, with its min), the Smith form of eq 32 without it (ggx_g1_smith), vertical\n"
+            "facets (Walter's remedy with Smith's masking), the tilted base (ggx_g1_tilted: Smith's masking\n"
+            "about the plane of slope t) and the sawtooth's (ggx_g1_risers); and the risers' own visible share. A\n"
+            "tilted patch's BRDF is not measured (its directions are the tilted plane's).\n");
         return 0;
     }
     if (!o.heightfield) die("--heightfield FILE is required");
@@ -280,7 +286,8 @@ static int measure(int argc, char **argv)
         int ring = b / BS, sec = b % BS;
         for (int i = 0; i < 4; i++)
             for (int k = 0; k < 4; k++) {
-                double u = ((double)ring + (i + 0.5) / 4.0) / BR, ph = 2.0 * 3.14159265358979323846 * ((double)sec + (k + 0.5) / 4.0) / BS;
+                double u = ((double)ring + (i + 0.5) / 4.0) / BR,
+                       ph = 2.0 * 3.14159265358979323846 * ((double)sec + (k + 0.5) / 4.0) / BS;
                 ggx_vec3 wo = {sqrt(u) * cos(ph), sqrt(u) * sin(ph), sqrt(1.0 - u)};
                 double f = ggx_brdf_eval(&fit, &one, o.view, wo) / 16.0;
                 /* the height-correlated G2 in place of eq 5's: the same BRDF times their ratio at the half vector */
@@ -292,7 +299,8 @@ static int measure(int argc, char **argv)
         d1 += (f1 - m1) * (f1 - m1), n1 += m1 * m1, d2 += (fa - ma) * (fa - ma), n2 += ma * ma;
         d3 += (f1 - mh) * (f1 - mh), n3 += mh * mh;
     }
-    double l2_single = brdf ? sqrt(d1 / n1) : NAN, l2_all = en ? sqrt(d2 / n2) : NAN, l2_hc = brdf ? sqrt(d3 / n3) : NAN;
+    double l2_single = brdf ? sqrt(d1 / n1) : NAN, l2_all = en ? sqrt(d2 / n2) : NAN,
+           l2_hc = brdf ? sqrt(d3 / n3) : NAN;
     ggx_energy_free(en);
     /* skewed surfaces: the facets off the risers against the masking forms (microsurface.h, skew.c) */
     double ts[2] = {0.0, 0.0}, ss[3];
@@ -308,71 +316,87 @@ static int measure(int argc, char **argv)
     if (o.format && !json && strcmp(o.format, "md") != 0) die("--format: '%s' is not md or json", o.format);
     out_file f;
     out_open(&f, o.out ? o.out : "-");
-    double theta = acos(v[2]) * 180.0 / 3.14159265358979323846, phi = atan2(v[1], v[0]) * 180.0 / 3.14159265358979323846;
+    double theta = acos(v[2]) * 180.0 / 3.14159265358979323846,
+           phi = atan2(v[1], v[0]) * 180.0 / 3.14159265358979323846;
     if (json) {
-        fprintf(f.f, "{\n  \"input\": \"%s\", \"size\": %zu, \"view_deg\": [%.6g, %.6g], \"rays\": %ld, \"missed\": %ld,\n",
+        fprintf(f.f,
+                "{\n  \"input\": \"%s\", \"size\": %zu, \"view_deg\": [%.6g, %.6g], \"rays\": %ld, \"missed\": %ld,\n",
                 o.heightfield, n, theta, phi, r.rays, r.missed);
         char b1[32], b2[32], b3[32], b4[32], b5[32];
-        fprintf(f.f, "  \"slope_cov\": [%.10g, %.10g, %.10g],\n  \"g1\": {\"facets\": %.10g, \"smith_beckmann\": %s, "
-                     "\"smith_ggx_fit\": %s},\n", r.slope_cov[0], r.slope_cov[1], r.slope_cov[2], r.g1, jnum(b1, g_b),
-                jnum(b2, g_ggx));
-        fprintf(f.f, "  \"tilt\": [%.10g, %.10g], \"risers\": [%zu, %zu], \"slope_mean\": [%.10g, %.10g], "
-                     "\"t\": [%s, %s],\n",
+        fprintf(f.f,
+                "  \"slope_cov\": [%.10g, %.10g, %.10g],\n  \"g1\": {\"facets\": %.10g, \"smith_beckmann\": %s, "
+                "\"smith_ggx_fit\": %s},\n",
+                r.slope_cov[0], r.slope_cov[1], r.slope_cov[2], r.g1, jnum(b1, g_b), jnum(b2, g_ggx));
+        fprintf(f.f,
+                "  \"tilt\": [%.10g, %.10g], \"risers\": [%zu, %zu], \"slope_mean\": [%.10g, %.10g], "
+                "\"t\": [%s, %s],\n",
                 tilt[0], tilt[1], r.risers[0], r.risers[1], r.slope_mean[0], r.slope_mean[1], jnum(b1, ts[0]),
                 jnum(b2, ts[1]));
         char b6[32];
-        fprintf(f.f, "  \"skewed_g1\": {\"traced\": %.10g, \"eq6\": %s, \"smith\": %s, \"vertical_facets\": %s, "
-                     "\"tilted_base\": %s, \"sawtooth\": %s, \"risers_area\": %.10g, \"risers_visible\": %s},\n",
+        fprintf(f.f,
+                "  \"skewed_g1\": {\"traced\": %.10g, \"eq6\": %s, \"smith\": %s, \"vertical_facets\": %s, "
+                "\"tilted_base\": %s, \"sawtooth\": %s, \"risers_area\": %.10g, \"risers_visible\": %s},\n",
                 g1v, jnum(b1, g_eq6), jnum(b2, g_ggx), jnum(b3, g_vf), jnum(b4, g_tb), jnum(b5, g_saw), r.riser_area,
                 jnum(b6, g_riser));
         fprintf(f.f, "  \"vndf_chi2\": {\"rays\": %ld, \"stat\": %s, \"dof\": %d, \"pvalue\": %s, \"invalid\": %ld},\n",
                 vrays, jnum(b1, cr.stat), cr.dof, jnum(b2, cr.pvalue), cr.invalid);
         if (brdf)
-            fprintf(f.f, "  \"brdf\": {\"rays\": %ld, \"lost\": %ld, \"capped\": %ld, \"albedo_single\": %.8g, "
-                         "\"albedo_model\": %s, \"albedo_model_height_correlated\": %s, \"albedo_all\": %.8g, "
-                         "\"l2_single\": %s, \"l2_single_height_correlated\": %s, \"l2_all\": %s},\n", br.rays, br.lost,
-                    br.capped, e_single, jnum(b3, e_model), jnum(b1, e_hc), e_all, jnum(b4, l2_single), jnum(b6, l2_hc),
-                    jnum(b5, l2_all));
-        else
-            fprintf(f.f, "  \"brdf\": null,\n");
+            fprintf(f.f,
+                    "  \"brdf\": {\"rays\": %ld, \"lost\": %ld, \"capped\": %ld, \"albedo_single\": %.8g, "
+                    "\"albedo_model\": %s, \"albedo_model_height_correlated\": %s, \"albedo_all\": %.8g, "
+                    "\"l2_single\": %s, \"l2_single_height_correlated\": %s, \"l2_all\": %s},\n",
+                    br.rays, br.lost, br.capped, e_single, jnum(b3, e_model), jnum(b1, e_hc), e_all,
+                    jnum(b4, l2_single), jnum(b6, l2_hc), jnum(b5, l2_all));
+        else fprintf(f.f, "  \"brdf\": null,\n");
         fprintf(f.f, "  \"bins\": [");
     } else {
-        fprintf(f.f, "# ggx microsurface measure: %s, %zu x %zu, view theta %.4g, phi %.4g degrees\n\n", o.heightfield, n,
-                n, theta, phi);
+        fprintf(f.f, "# ggx microsurface measure: %s, %zu x %zu, view theta %.4g, phi %.4g degrees\n\n", o.heightfield,
+                n, n, theta, phi);
         fprintf(f.f, "%ld rays, %ld missed; the facets' slope covariance %.6g, %.6g, %.6g\n\n", r.rays, r.missed,
                 r.slope_cov[0], r.slope_cov[1], r.slope_cov[2]);
-        fprintf(f.f, "| G1(v) | value |\n|---|---|\n| the facets (exact) | %.6f |\n| Smith, Beckmann of the facets' "
-                     "covariance | %.6f |\n| Smith, GGX %s (ggx_g1_smith) | %.6f |\n\n", r.g1, g_b,
-                given ? "given" : "fitted", g_ggx);
+        fprintf(f.f,
+                "| G1(v) | value |\n|---|---|\n| the facets (exact) | %.6f |\n| Smith, Beckmann of the facets' "
+                "covariance | %.6f |\n| Smith, GGX %s (ggx_g1_smith) | %.6f |\n\n",
+                r.g1, g_b, given ? "given" : "fitted", g_ggx);
         if (skewed) {
-            fprintf(f.f, "skewed: %s; the facets off the risers have the mean slope %.6g, %.6g; the model's t = %.6g, "
-                         "%.6g\n\n", o.tilted ? "a tilted patch" : o.risers ? "a sawtooth" : "periodic", r.slope_mean[0],
-                    r.slope_mean[1], ts[0], ts[1]);
-            fprintf(f.f, "| G1(v) of the facets off the risers | value |\n|---|---|\n| traced | %.6f |\n"
-                         "| eq 6 with its min (ggx_g1) | %.6f |\n| Smith form of eq 32 (ggx_g1_smith) | %.6f |\n"
-                         "| vertical facets (Walter's remedy, Smith's masking) | %.6f |\n"
-                         "| tilted base (ggx_g1_tilted) | %.6f |\n"
-                         "| sawtooth (ggx_g1_risers) | %.6f |\n", g1v, g_eq6, g_ggx, g_vf, g_tb,
-                    g_saw);
+            fprintf(f.f,
+                    "skewed: %s; the facets off the risers have the mean slope %.6g, %.6g; the model's t = %.6g, "
+                    "%.6g\n\n",
+                    o.tilted   ? "a tilted patch"
+                    : o.risers ? "a sawtooth"
+                               : "periodic",
+                    r.slope_mean[0], r.slope_mean[1], ts[0], ts[1]);
+            fprintf(f.f,
+                    "| G1(v) of the facets off the risers | value |\n|---|---|\n| traced | %.6f |\n"
+                    "| eq 6 with its min (ggx_g1) | %.6f |\n| Smith form of eq 32 (ggx_g1_smith) | %.6f |\n"
+                    "| vertical facets (Walter's remedy, Smith's masking) | %.6f |\n"
+                    "| tilted base (ggx_g1_tilted) | %.6f |\n"
+                    "| sawtooth (ggx_g1_risers) | %.6f |\n",
+                    g1v, g_eq6, g_ggx, g_vf, g_tb, g_saw);
             if (r.riser_area > 0.0)
                 fprintf(f.f, "| the risers' visible share (projected area %.6f) | %.6f |\n", r.riser_area, g_riser);
             fprintf(f.f, "\n");
         }
         if (cr.dof > 0)
-            fprintf(f.f, "visible normals of %ld rays against ggx_pdf_vndf of the %s shape (eq 33): chi-square %.6g on %d "
-                         "degrees of freedom (%.3g per degree), p = %.3g\n\n", vrays, given ? "given" : "fitted",
-                    cr.stat, cr.dof, cr.stat / cr.dof, cr.pvalue);
-        else
-            fprintf(f.f, "visible normals of %ld rays: too few for a chi-square against ggx_pdf_vndf\n\n", vrays);
+            fprintf(f.f,
+                    "visible normals of %ld rays against ggx_pdf_vndf of the %s shape (eq 33): chi-square %.6g on %d "
+                    "degrees of freedom (%.3g per degree), p = %.3g\n\n",
+                    vrays, given ? "given" : "fitted", cr.stat, cr.dof, cr.stat / cr.dof, cr.pvalue);
+        else fprintf(f.f, "visible normals of %ld rays: too few for a chi-square against ggx_pdf_vndf\n\n", vrays);
         if (!brdf) fprintf(f.f, "the BRDF is not measured on a tilted patch\n\n");
-        else fprintf(f.f, "the BRDF with F = 1 from the light at the view, %ld rays (%ld lost, %ld still bouncing "
-                          "after %d), "
-                     "%d x %d bins:\n\n| | traced | model | relative L2 of the BRDF over the bins |\n|---|---|---|---|\n"
-                     "| single scattering: albedo | %.5f | %.5f (ggx_albedo; height-correlated: %.5f) | %.4f "
-                     "(ggx_brdf_eval; with the height-correlated G2: %.4f) |\n"
-                     "| all bounces: albedo | %.5f | 1 (F = 1) | %.4f (ggx_brdf_compensated_eval) |\n\n", br.rays,
-                br.lost, br.capped, bounces, BR, BS, e_single, e_model, e_hc, l2_single, l2_hc, e_all, l2_all);
-        fprintf(f.f, "| sin^2 theta_m | phi_m, degrees | projected area | traced G1(v, m) | / G1(v) |\n|---|---|---|---|---|\n");
+        else
+            fprintf(f.f,
+                    "the BRDF with F = 1 from the light at the view, %ld rays (%ld lost, %ld still bouncing "
+                    "after %d), "
+                    "%d x %d bins:\n\n| | traced | model | relative L2 of the BRDF over the bins |\n|---|---|---|---|\n"
+                    "| single scattering: albedo | %.5f | %.5f (ggx_albedo; height-correlated: %.5f) | %.4f "
+                    "(ggx_brdf_eval; with the height-correlated G2: %.4f) |\n"
+                    "| all bounces: albedo | %.5f | 1 (F = 1) | %.4f (ggx_brdf_compensated_eval) |\n\n",
+                    br.rays, br.lost, br.capped, bounces, BR, BS, e_single, e_model, e_hc, l2_single, l2_hc, e_all,
+                    l2_all);
+        fprintf(
+            f.f,
+            "| sin^2 theta_m | phi_m, degrees | projected area | traced G1(v, m) | / G1(v) |\n|---|---|---|---|---|\n");
     }
     int first = 1;
     for (int b = 0; b < r.rings * r.sectors; b++) {

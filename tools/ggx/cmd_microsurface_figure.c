@@ -23,17 +23,19 @@ int microsurface_figure(int argc, char **argv)
     parse_options(argc, argv, 3, &o,
                   "heightfield,spacing,z-scale,tilted,risers," SHAPE_OPTS ",from,n,threads,size,theme,out");
     if (o.help) {
-        printf("usage: ggx microsurface figure --heightfield FILE [--spacing D] [--z-scale Z] [--tilted | --risers P]\n"
-               "                               [--alpha A[,AY] [--skew TX,TY] [--rotate TZ] | --matrix M] [--from PHI]\n"
-               "                               [-n RAYS] [--threads N] [--size WxH] [--theme light|dark] --out FILE.png|svg|pdf\n\n"
-               "G1(v) of a height field's facets, traced with RAYS rays (default 100,000) from each view every 5\n"
-               "degrees of the plane of azimuth PHI (default: the skew's direction t, else 0), from 85 degrees on\n"
-               "the side of PHI + 180 (drawn left) to 85 degrees on the side of PHI (right), as marks, beside the\n"
-               "model's forms for the shape fitted to the facets (or given) as curves: for a skewed shape eq 6\n"
-               "(ggx_g1), eq 32 without its min (ggx_g1_smith), vertical facets (Walter's remedy with Smith's\n"
-               "masking), the tilted base (ggx_g1_tilted) and the sawtooth's (ggx_g1_risers); for an unskewed one\n"
-               "Smith's GGX and Smith's Beckmann of the facets' covariance. --tilted and --risers P as for\n"
-               "ggx microsurface measure; views below a tilted patch's plane have no mark.\n");
+        printf(
+            "usage: ggx microsurface figure --heightfield FILE [--spacing D] [--z-scale Z] [--tilted | --risers P]\n"
+            "                               [--alpha A[,AY] [--skew TX,TY] [--rotate TZ] | --matrix M] [--from PHI]\n"
+            "                               [-n RAYS] [--threads N] [--size WxH] [--theme light|dark] --out "
+            "FILE.png|svg|pdf\n\n"
+            "G1(v) of a height field's facets, traced with RAYS rays (default 100,000) from each view every 5\n"
+            "degrees of the plane of azimuth PHI (default: the skew's direction t, else 0), from 85 degrees on\n"
+            "the side of PHI + 180 (drawn left) to 85 degrees on the side of PHI (right), as marks, beside the\n"
+            "model's forms for the shape fitted to the facets (or given) as curves: for a skewed shape eq 6\n"
+            "(ggx_g1), eq 32 without its min (ggx_g1_smith), vertical facets (Walter's remedy with Smith's\n"
+            "masking), the tilted base (ggx_g1_tilted) and the sawtooth's (ggx_g1_risers); for an unskewed one\n"
+            "Smith's GGX and Smith's Beckmann of the facets' covariance. --tilted and --risers P as for\n"
+            "ggx microsurface measure; views below a tilted patch's plane have no mark.\n");
         return 0;
     }
     if (!o.heightfield) die("--heightfield FILE is required");
@@ -48,7 +50,8 @@ int microsurface_figure(int argc, char **argv)
     /* the model's shape: fitted to the facets off the risers, or given */
     ggx_shape fit;
     int given;
-    if (microsurface_model(&o, h, n, risers, &fit, &given) != GGX_OK) die("%s: no shape fits its facets", o.heightfield);
+    if (microsurface_model(&o, h, n, risers, &fit, &given) != GGX_OK)
+        die("%s: no shape fits its facets", o.heightfield);
     double ts[2], ss[3];
     ggx_shape_slopes(&fit, ts, ss);
     /* (a periodic tile has no mean slope: a fit's small t there is the sampling's) */
@@ -105,7 +108,10 @@ int microsurface_figure(int argc, char **argv)
     double back = phi + 180.0 > 180.0 ? phi - 180.0 : phi + 180.0;
     snprintf(l1, sizeof l1, "Masking traced on a microsurface against the model's forms");
     snprintf(l2, sizeof l2, "%s, %zu × %zu%s; the %s GGX shape's slopes: t = (%.3g, %.3g), Σ = (%.3g, %.3g, %.3g)",
-             o.heightfield, n, n, o.tilted ? ", a tilted patch" : o.risers ? ", a sawtooth" : "",
+             o.heightfield, n, n,
+             o.tilted   ? ", a tilted patch"
+             : o.risers ? ", a sawtooth"
+                        : "",
              given ? "given" : "fitted", ts[0] + 0.0, ts[1] + 0.0, ss[0], ss[1], ss[2]);
     snprintf(l3, sizeof l3, "views in the plane of azimuth %.4g° (right) and %.4g° (left)", phi + 0.0, back + 0.0);
     set_rgb(cr, c.th->fg);
@@ -115,7 +121,11 @@ int microsurface_figure(int argc, char **argv)
     text_at(cr, 0.4 * F, 2.0 * F, 0, 0, l2);
     text_at(cr, 0.4 * F, 3.1 * F, 0, 0, l3);
     plot_axes ax = {"view polar angle in the plane (degrees; left: the opposite azimuth)",
-                    o.risers ? "G1(v) of the facets off the risers" : "G1(v)", 0, 1, 0, INFINITY};
+                    o.risers ? "G1(v) of the facets off the risers" : "G1(v)",
+                    0,
+                    1,
+                    0,
+                    INFINITY};
     plot_draw(cr, c.th, 0, 4.2 * F, W, H - 4.2 * F, F, sr, nc + 1, &ax);
     canvas_close_file(&c);
     if (strcmp(o.out, "-") != 0) fprintf(stderr, "ggx: wrote %s (%d x %d)\n", o.out, W, H);

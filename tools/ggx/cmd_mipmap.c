@@ -137,7 +137,8 @@ int cmd_mipmap(int argc, char **argv)
         return 0;
     }
     if (!o.normal_map) die("--normal-map FILE is required");
-    if (o.have_alpha == !!o.roughness_map) die("give the base roughness as one of --alpha A[,AY] or --roughness-map FILE");
+    if (o.have_alpha == !!o.roughness_map)
+        die("give the base roughness as one of --alpha A[,AY] or --roughness-map FILE");
     if (o.perceptual && !o.roughness_map) die("--perceptual applies to --roughness-map");
     int png16 = o.format && strcmp(o.format, "png16") == 0;
     if (o.format && !png16 && strcmp(o.format, "exr") != 0) die("--format: '%s' is not exr or png16", o.format);
@@ -174,7 +175,8 @@ int cmd_mipmap(int argc, char **argv)
     fo.threads = o.threads > 0 ? o.threads : 1;
     if (o.fast) ggx_filter_options_fast(&fo);
     char rough[600];
-    if (o.roughness_map) snprintf(rough, sizeof rough, "roughness %s%s", o.roughness_map, o.perceptual ? " (perceptual)" : "");
+    if (o.roughness_map)
+        snprintf(rough, sizeof rough, "roughness %s%s", o.roughness_map, o.perceptual ? " (perceptual)" : "");
     else snprintf(rough, sizeof rough, "alpha %g, %g", o.alpha[0], o.alpha[1]);
     printf("ggx mipmap: %s, %zu x %zu texels (%zu rejected), %s%s, into %s/\n", o.normal_map, nx, ny, rejected, rough,
            o.fast ? ", fast mode" : "", dir);

@@ -92,35 +92,38 @@ int cmd_render(int argc, char **argv)
                   SHAPE_OPTS ",fresnel,scene,light,spp,size,compensate,sampler,strategy,depth,exposure,threads,seed,"
                              "out,progress,no-progress");
     if (o.help) {
-        printf("usage: ggx render [shape] [--fresnel F] [--scene sphere|plane] [--light sky|white|FILE|point:THETA,PHI[,E]]\n"
-               "                  [--spp N] [--size W[xH]] [--compensate] [--sampler NAME] [--strategy mis|light|bsdf]\n"
-               "                  [--depth N] [--exposure EV] [--threads N] [--seed S] [--out FILE]\n"
-               "       ggx render --normal-map FILE ...: a normal map's filtered chain against its ground truth\n"
-               "                  (ggx render --normal-map x --help)\n\n"
-               "An image of a unit sphere (default) or an infinite plane made of the material, path traced with the\n"
-               "library's BSDFs, samplers and pdfs.\n"
-               "  --fresnel F      one (default), conductor:ETA,K or schlick:F0: a reflector; dielectric:ETA: rough glass\n"
-               "                   (light refracted through the sphere and out; below the plane nothing comes back)\n"
-               "  --scene          sphere: x of the shape along the parallels (east), y to the north pole, seen from\n"
-               "                   -y, 10 degrees up; plane: z = 0, x along world x, seen from azimuth 60, 35 up\n"
-               "  --light          sky (default): a built-in clear sky with a sun at 35 degrees elevation, azimuth -120;\n"
-               "                   white: the uniform environment L = 1; FILE: a latitude-longitude environment in\n"
-               "                   OpenEXR, Radiance .hdr or PFM (row 0 at the zenith +z, column 0 at phi = 0 (+x),\n"
-               "                   phi towards +y; NaN or infinite values are refused, negative ones read as 0);\n"
-               "                   point:THETA,PHI[,E]: a distant light from that direction, irradiance E (default 1)\n"
-               "  --spp N          samples per pixel (default 64);  --size W[xH] pixels (default 256)\n"
-               "  --compensate     add the multiple-scattering lobes (energy compensation; seconds of setup for\n"
-               "                   anisotropic and skewed shapes)\n"
-               "  --sampler NAME   how a reflector samples directions (default brdf-bounded; any sampler but bsdf;\n"
-               "                   samplers of normals reflect the view); the glass always uses bsdf\n"
-               "  --strategy       mis (default): light and BSDF samples by the power heuristic; light, bsdf: one\n"
-               "  --depth N        the most surface interactions of a path (default 32)\n"
-               "  --exposure EV    PNG only: the image is sRGB of min(1, 2^EV L) per channel (clamped, default 0)\n"
-               "  --threads N      default: the processors online; the image is the same for any N and one --seed\n"
-               "  --out FILE       .png (8-bit sRGB, and below it a caption when W >= %d), .exr (linear float RGB)\n"
-               "                   or .pfm (linear float RGB); default render.png; - writes PNG to standard output\n\n"
-               "%s\n",
-               CAPTION_MIN_WIDTH, SHAPE_HELP);
+        printf(
+            "usage: ggx render [shape] [--fresnel F] [--scene sphere|plane] [--light "
+            "sky|white|FILE|point:THETA,PHI[,E]]\n"
+            "                  [--spp N] [--size W[xH]] [--compensate] [--sampler NAME] [--strategy mis|light|bsdf]\n"
+            "                  [--depth N] [--exposure EV] [--threads N] [--seed S] [--out FILE]\n"
+            "       ggx render --normal-map FILE ...: a normal map's filtered chain against its ground truth\n"
+            "                  (ggx render --normal-map x --help)\n\n"
+            "An image of a unit sphere (default) or an infinite plane made of the material, path traced with the\n"
+            "library's BSDFs, samplers and pdfs.\n"
+            "  --fresnel F      one (default), conductor:ETA,K or schlick:F0: a reflector; dielectric:ETA: rough "
+            "glass\n"
+            "                   (light refracted through the sphere and out; below the plane nothing comes back)\n"
+            "  --scene          sphere: x of the shape along the parallels (east), y to the north pole, seen from\n"
+            "                   -y, 10 degrees up; plane: z = 0, x along world x, seen from azimuth 60, 35 up\n"
+            "  --light          sky (default): a built-in clear sky with a sun at 35 degrees elevation, azimuth -120;\n"
+            "                   white: the uniform environment L = 1; FILE: a latitude-longitude environment in\n"
+            "                   OpenEXR, Radiance .hdr or PFM (row 0 at the zenith +z, column 0 at phi = 0 (+x),\n"
+            "                   phi towards +y; NaN or infinite values are refused, negative ones read as 0);\n"
+            "                   point:THETA,PHI[,E]: a distant light from that direction, irradiance E (default 1)\n"
+            "  --spp N          samples per pixel (default 64);  --size W[xH] pixels (default 256)\n"
+            "  --compensate     add the multiple-scattering lobes (energy compensation; seconds of setup for\n"
+            "                   anisotropic and skewed shapes)\n"
+            "  --sampler NAME   how a reflector samples directions (default brdf-bounded; any sampler but bsdf;\n"
+            "                   samplers of normals reflect the view); the glass always uses bsdf\n"
+            "  --strategy       mis (default): light and BSDF samples by the power heuristic; light, bsdf: one\n"
+            "  --depth N        the most surface interactions of a path (default 32)\n"
+            "  --exposure EV    PNG only: the image is sRGB of min(1, 2^EV L) per channel (clamped, default 0)\n"
+            "  --threads N      default: the processors online; the image is the same for any N and one --seed\n"
+            "  --out FILE       .png (8-bit sRGB, and below it a caption when W >= %d), .exr (linear float RGB)\n"
+            "                   or .pfm (linear float RGB); default render.png; - writes PNG to standard output\n\n"
+            "%s\n",
+            CAPTION_MIN_WIDTH, SHAPE_HELP);
         print_samplers(stdout);
         return 0;
     }
@@ -133,9 +136,12 @@ int cmd_render(int argc, char **argv)
     if (o.scene && strcmp(o.scene, "sphere") != 0 && strcmp(o.scene, "plane") != 0)
         die("--scene: unknown scene '%s' (sphere, plane)", o.scene);
     r.scene = o.scene && strcmp(o.scene, "plane") == 0 ? RENDER_PLANE : RENDER_SPHERE;
-    if (o.strategy && strcmp(o.strategy, "mis") != 0 && strcmp(o.strategy, "light") != 0 && strcmp(o.strategy, "bsdf") != 0)
+    if (o.strategy && strcmp(o.strategy, "mis") != 0 && strcmp(o.strategy, "light") != 0 &&
+        strcmp(o.strategy, "bsdf") != 0)
         die("--strategy: unknown strategy '%s' (mis, light, bsdf)", o.strategy);
-    r.strategy = !o.strategy || o.strategy[0] == 'm' ? RENDER_MIS : o.strategy[0] == 'l' ? RENDER_LIGHT_ONLY : RENDER_BSDF_ONLY;
+    r.strategy = !o.strategy || o.strategy[0] == 'm' ? RENDER_MIS
+                 : o.strategy[0] == 'l'              ? RENDER_LIGHT_ONLY
+                                                     : RENDER_BSDF_ONLY;
     r.width = o.size ? o.size : 256;
     r.height = o.size_h ? o.size_h : r.width;
     r.spp = (int)o.spp;
@@ -145,7 +151,8 @@ int cmd_render(int argc, char **argv)
     long cpus = sysconf(_SC_NPROCESSORS_ONLN);
     r.threads = o.threads ? o.threads : cpus >= 1 && cpus <= 256 ? (int)cpus : 1;
     if (o.sampler) r.sampler = find_sampler(o.sampler);
-    if (r.sampler && r.sampler->id >= GGX_SAMPLER_COUNT) die("sampler '%s' is not in the library's registry", o.sampler);
+    if (r.sampler && r.sampler->id >= GGX_SAMPLER_COUNT)
+        die("sampler '%s' is not in the library's registry", o.sampler);
     render_env env;
     memset(&env, 0, sizeof env);
     char light_words[200], err[400];
@@ -177,7 +184,9 @@ int cmd_render(int argc, char **argv)
             snprintf(l0, sizeof l0, "%s  ·  %s", shape, mat);
             snprintf(line, sizeof line, "%d spp, sampler %s, %s, depth %d, seed %llu  ·  sRGB of min(1, 2^%g L)", r.spp,
                      r.compensate && !(r.fresnel.kind == GGX_FRESNEL_DIELECTRIC) ? "brdf-compensated" : r.sampler->name,
-                     r.strategy == RENDER_MIS ? "MIS" : r.strategy == RENDER_LIGHT_ONLY ? "light samples only" : "BSDF samples only",
+                     r.strategy == RENDER_MIS          ? "MIS"
+                     : r.strategy == RENDER_LIGHT_ONLY ? "light samples only"
+                                                       : "BSDF samples only",
                      r.depth, (unsigned long long)r.seed, o.exposure);
             set_rgb(c.cr, c.th->fg);
             double font = CAPTION_FONT * fmin(1.0, r.width / 560.0);

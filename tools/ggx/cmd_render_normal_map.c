@@ -31,8 +31,8 @@ static ggx_vec3 direction_of(const char *what, const char *text)
 }
 
 /* a grey image tone-mapped for render_paint: v / (v + k), k the truth's mean (shown as mid grey) */
-static void paint_grey(cairo_t *cr, double x, double y, double scale, const float *img, size_t w, size_t h,
-                       double k, int clip_w, int clip_h)
+static void paint_grey(cairo_t *cr, double x, double y, double scale, const float *img, size_t w, size_t h, double k,
+                       int clip_w, int clip_h)
 {
     float *rgb = malloc(w * h * 3 * sizeof *rgb);
     if (!rgb) die("out of memory");
@@ -56,7 +56,8 @@ static void paint_diff(cairo_t *cr, double x, double y, double scale, const floa
         for (size_t i = 0; i < w; i++) {
             double c[3];
             colormap(fabs((double)img[j * w + i] - (double)truth[j * w + i]) / vmax, c);
-            uint32_t px = (uint32_t)lround(255 * c[0]) << 16 | (uint32_t)lround(255 * c[1]) << 8 | (uint32_t)lround(255 * c[2]);
+            uint32_t px = (uint32_t)lround(255 * c[0]) << 16 | (uint32_t)lround(255 * c[1]) << 8 |
+                          (uint32_t)lround(255 * c[2]);
             memcpy(d + j * (size_t)stride + 4 * i, &px, 4);
         }
     cairo_save(cr);
@@ -69,11 +70,11 @@ static void paint_diff(cairo_t *cr, double x, double y, double scale, const floa
 int render_normal_map(int argc, char **argv)
 {
     options o;
-    parse_options(argc, argv, 2, &o,
-                  "normal-map,alpha,roughness-map,perceptual,y-down,level,light,view,threads,out");
+    parse_options(argc, argv, 2, &o, "normal-map,alpha,roughness-map,perceptual,y-down,level,light,view,threads,out");
     if (o.help) {
         printf("usage: ggx render --normal-map FILE (--alpha A | --roughness-map FILE [--perceptual]) [--y-down]\n"
-               "                  [--level K] [--light point:THETA,PHI] [--view THETA,PHI] [--threads N] [--out FIG.png]\n\n"
+               "                  [--level K] [--light point:THETA,PHI] [--view THETA,PHI] [--threads N] [--out "
+               "FIG.png]\n\n"
                "A plane textured with the normal map's mip chain (ggx mipmap's, exact and fast) at level K, lit by a\n"
                "distant light (default 45, 180 degrees) and seen from a distant eye (default 45, 0: the mirror\n"
                "direction), beside the ground truth: the full-resolution map supersampled, each level-K texel the\n"
@@ -113,7 +114,8 @@ int render_normal_map(int argc, char **argv)
     char err[512];
     if (surface_read(o.normal_map, &ro, &s, err, sizeof err) != 0) die("%s", err);
     if (s.ny < 1 || s.nx < 1 || (s.ny == 1 && s.format == SURFACE_CSV)) die("%s: not a normal map", o.normal_map);
-    if (s.nx > 4096 || s.ny > 4096) die("%s: %zu x %zu texels; the comparison takes up to 4096 x 4096", o.normal_map, s.nx, s.ny);
+    if (s.nx > 4096 || s.ny > 4096)
+        die("%s: %zu x %zu texels; the comparison takes up to 4096 x 4096", o.normal_map, s.nx, s.ny);
     size_t w = s.nx, h = s.ny;
     double *alpha = NULL;
     if (o.roughness_map) {
@@ -133,13 +135,17 @@ int render_normal_map(int argc, char **argv)
     if (mc_compare(w, h, s.m, alpha, o.alpha[0], views, nviews, threads, levels, K, img, full, err, sizeof err) != 0)
         die("%s", err);
     char rough[600];
-    if (o.roughness_map) snprintf(rough, sizeof rough, "roughness %s%s", o.roughness_map, o.perceptual ? " (perceptual)" : "");
+    if (o.roughness_map)
+        snprintf(rough, sizeof rough, "roughness %s%s", o.roughness_map, o.perceptual ? " (perceptual)" : "");
     else snprintf(rough, sizeof rough, "alpha %g", o.alpha[0]);
     FILE *tab = to_stdout ? stderr : stdout; /* the figure on standard output: the table beside it */
-    fprintf(tab, "ggx render --normal-map: %s, %zu x %zu texels, %s; relative RMSE against the truth, %s\n\n", o.normal_map,
-           w, h, rough, nviews == 1 ? "at the given light and eye" : "pooled over the 37 standard light-eye pairs");
+    fprintf(tab, "ggx render --normal-map: %s, %zu x %zu texels, %s; relative RMSE against the truth, %s\n\n",
+            o.normal_map, w, h, rough,
+            nviews == 1 ? "at the given light and eye" : "pooled over the 37 standard light-eye pairs");
     for (int table = 0; table < 2; table++) {
-        if (table) fprintf(tab, "\nagainst the engines' own truth (each base texel GGX about its normal as a shading normal):\n\n");
+        if (table)
+            fprintf(tab,
+                    "\nagainst the engines' own truth (each base texel GGX about its normal as a shading normal):\n\n");
         fprintf(tab, "| level | size |");
         for (int k = 0; k < MC_METHODS; k++) fprintf(tab, " %s |", mc_name[k]);
         fprintf(tab, "\n|---|---|");
@@ -147,7 +153,8 @@ int render_normal_map(int argc, char **argv)
         fprintf(tab, "\n");
         for (int l = 0; l < nl; l++) {
             fprintf(tab, "| %d | %zu x %zu |", l, levels[l].w, levels[l].h);
-            for (int k = 0; k < MC_METHODS; k++) fprintf(tab, " %.4f |", table ? levels[l].rmse_engine[k] : levels[l].rmse[k]);
+            for (int k = 0; k < MC_METHODS; k++)
+                fprintf(tab, " %.4f |", table ? levels[l].rmse_engine[k] : levels[l].rmse[k]);
             fprintf(tab, "\n");
         }
     }
@@ -169,8 +176,8 @@ int render_normal_map(int argc, char **argv)
     set_rgb(cr, c.th->fg);
     text_font(cr, 12, 1);
     char line[1200];
-    snprintf(line, sizeof line, "%s, %zu x %zu, %s: level %d (%zu x %zu), light θ %.0f°, eye θ %.0f°, F = 1", o.normal_map,
-             w, h, rough, K, wk, hk, acos(given.wi.z) / DEGREES, acos(given.wo.z) / DEGREES);
+    snprintf(line, sizeof line, "%s, %zu x %zu, %s: level %d (%zu x %zu), light θ %.0f°, eye θ %.0f°, F = 1",
+             o.normal_map, w, h, rough, K, wk, hk, acos(given.wi.z) / DEGREES, acos(given.wo.z) / DEGREES);
     text_at(cr, gap, 14, 0, 0.5, line);
     text_font(cr, 10, 0);
     double lv_scale = (double)s0 * ldexp(1.0, K);
@@ -191,7 +198,8 @@ int render_normal_map(int argc, char **argv)
             text_at(cr, x, y2 + ph + 12, 0, 0.5, line);
         }
     }
-    colour_bar(cr, c.th, gap + cols * (pw + gap), top + ph + label, 10, ph, dmax / peak, 0, 0, "of the truth's peak", 9);
+    colour_bar(cr, c.th, gap + cols * (pw + gap), top + ph + label, 10, ph, dmax / peak, 0, 0, "of the truth's peak",
+               9);
     canvas_close_file(&c);
     free(levels), free(img), free(full), free(alpha);
     surface_free(&s);

@@ -66,6 +66,7 @@ figure_kind figure_from_name(const char *name)
     if (k >= 0) return (figure_kind)k;
     char names[256] = "";
     for (int i = 0; i < FIG_COUNT; i++)
-        snprintf(names + strlen(names), sizeof names - strlen(names), "%s%s", i ? ", " : "", figure_name((figure_kind)i));
+        snprintf(names + strlen(names), sizeof names - strlen(names), "%s%s", i ? ", " : "",
+                 figure_name((figure_kind)i));
     die("--figure: unknown figure '%s' (%s)", name ? name : "", names);
 }

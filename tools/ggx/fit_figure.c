@@ -156,8 +156,7 @@ void fit_figure_write(const char *path, const fit_samples *src, const ggx_shape 
                  info->gof_dof, info->gof_pvalue, info->used);
     else if (src->cells)
         snprintf(line, sizeof line, "%zu texels fitted as cells (no goodness of fit for cells)", info->used);
-    else
-        snprintf(line, sizeof line, "%zu samples (too few for the goodness of fit)", info->used);
+    else snprintf(line, sizeof line, "%zu samples (too few for the goodness of fit)", info->used);
     text_at(cr, W / 2.0, H - 22, 0.5, 0.5, line);
     canvas_close_file(&c);
     free(p);

@@ -59,7 +59,8 @@ double *microsurface_heights(const options *o, size_t *n_out, double tilt[2])
             double ratio = sqrt(wrap / var);
             free(h);
             die("%s: not periodic along %c (the differences across its edges are %.3g times the inner ones' RMS "
-                "deviation): the tracer tiles the surface%s", o->heightfield, ax == 0 ? 'x' : 'y', ratio,
+                "deviation): the tracer tiles the surface%s",
+                o->heightfield, ax == 0 ? 'x' : 'y', ratio,
                 o->tilted || P ? "" : " (a tilted patch: --tilted; a sawtooth: --risers P)");
         }
     }

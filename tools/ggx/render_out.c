@@ -40,6 +40,7 @@ void render_material_words(const render_spec *r, char *buf, size_t n)
 
 const char *render_frame_words(render_scene scene)
 {
-    return scene == RENDER_SPHERE ? "sphere: the shape's x along the parallels (east), y to the north pole; θz turns x to y"
-                                  : "plane z = 0: the shape's x along world x, y along world y";
+    return scene == RENDER_SPHERE
+               ? "sphere: the shape's x along the parallels (east), y to the north pole; θz turns x to y"
+               : "plane z = 0: the shape's x along world x, y along world y";
 }

@@ -23,7 +23,7 @@
 #define GGX_HUGE FLT_MAX
 /* The fast paths' "not final" marker. */
 #define GGX_NAN ((float)NAN)
-#define GGX_ROUND_MAGIC 12582912.0f /* 1.5 2^23: x + it - it rounds x to an integer for |x| < 2^22 */
+#define GGX_ROUND_MAGIC 12582912.0f  /* 1.5 2^23: x + it - it rounds x to an integer for |x| < 2^22 */
 #define GGX_QUARTER_MAGIC 3145728.0f /* 1.5 2^21: x + it - it rounds x to a multiple of 1/4 for |x| < 2^20 */
 /* Rim step in sphere space: samples on the rim of the lune (pdf 0) are moved inside by this much, as in double, so
  * that the float sampler follows the double one to the rim (m.v is verified after the move). */
@@ -46,10 +46,10 @@
 /* sin and cos of x in [-pi/4, pi/4] by minimax polynomials of degree 7 and 8: the float evaluation is within 6.9e-8
  * of sin and cos (tests/unit/test_float_regress.c checks it against libm; the fit: docs/design/kernels.md, "The turn
  * sincos"). */
-#define GGX_SIN_POLY(x, x2)                                                                                       \
+#define GGX_SIN_POLY(x, x2)                                                                                            \
     ((x) * (1.0f + (x2) * (-1.666665077e-01f + (x2) * (8.331978694e-03f + (x2) * -1.949564612e-04f))))
-#define GGX_COS_POLY(x2)                                                                                          \
-    (1.0f + (x2) * (-0.5f + (x2) * (4.166662320e-02f + (x2) * (-1.388676348e-03f + (x2) * 2.439045602e-05f))))
+#define GGX_COS_POLY(x2)                                                                                               \
+    (1.0f + (x2) * (-0.5f + (x2) * (4.166662320e-02f + (x2) * (-1.388676348e-03f + (x2)*2.439045602e-05f))))
 /* The caps' sphere-space normal h = vs + c cancels near the rim of the lune (c near -vs): where ||h||^2 < 2^-12 its
  * float direction is off by more than ~1e-5, so those elements take the slow path, which the float kernels run in
  * double. */
@@ -95,7 +95,7 @@
 #define GGX_ATAN2 atan2
 #define GGX_HUGE DBL_MAX
 #define GGX_NAN ((double)NAN)
-#define GGX_ROUND_MAGIC 6755399441055744.0 /* 1.5 2^52 */
+#define GGX_ROUND_MAGIC 6755399441055744.0   /* 1.5 2^52 */
 #define GGX_QUARTER_MAGIC 1688849860263936.0 /* 1.5 2^50 */
 /* 2^-30: far above the rounding of a double dot product (1e-16); the moved set has probability ~1e-9. */
 #define GGX_RIM_STEP 9.313225746154785e-10
@@ -112,12 +112,21 @@
 #define GGX_L2_FAST 1e-28
 #define GGX_FACE_FLOOR(bar, mu2) ((mu2) >= 1e-250)
 /* Taylor series to x^15 and x^16 on [-pi/4, pi/4]: remainders below 7e-17, under double rounding. */
-#define GGX_SIN_POLY(x, x2)                                                                                       \
-    ((x) * (1.0 + (x2) * (-1.0 / 6 + (x2) * (1.0 / 120 + (x2) * (-1.0 / 5040 + (x2) * (1.0 / 362880 +            \
-           (x2) * (-1.0 / 39916800 + (x2) * (1.0 / 6227020800.0 + (x2) * (-1.0 / 1307674368000.0)))))))))
-#define GGX_COS_POLY(x2)                                                                                          \
-    (1.0 + (x2) * (-0.5 + (x2) * (1.0 / 24 + (x2) * (-1.0 / 720 + (x2) * (1.0 / 40320 + (x2) * (-1.0 / 3628800 +  \
-           (x2) * (1.0 / 479001600.0 + (x2) * (-1.0 / 87178291200.0 + (x2) * (1.0 / 20922789888000.0)))))))))
+#define GGX_SIN_POLY(x, x2)                                                                                            \
+    ((x) * (1.0 + (x2) * (-1.0 / 6 +                                                                                   \
+                          (x2) * (1.0 / 120 + (x2) * (-1.0 / 5040 +                                                    \
+                                                      (x2) * (1.0 / 362880 +                                           \
+                                                              (x2) * (-1.0 / 39916800 +                                \
+                                                                      (x2) * (1.0 / 6227020800.0 +                     \
+                                                                              (x2) * (-1.0 / 1307674368000.0)))))))))
+#define GGX_COS_POLY(x2)                                                                                               \
+    (1.0 +                                                                                                             \
+     (x2) * (-0.5 + (x2) * (1.0 / 24 + (x2) * (-1.0 / 720 +                                                            \
+                                               (x2) * (1.0 / 40320 +                                                   \
+                                                       (x2) * (-1.0 / 3628800 +                                        \
+                                                               (x2) * (1.0 / 479001600.0 +                             \
+                                                                       (x2) * (-1.0 / 87178291200.0 +                  \
+                                                                               (x2) * (1.0 / 20922789888000.0)))))))))
 #define GGX_H2_MIN 0.0 /* double resolves h down to the rim step */
 /* No proof in double: ggx_shape has no field for ||A||_F^2, and summing it per call costs more than the check's wait
  * that the proof saves (docs/performance.md, "Choices inside the kernels"). */
