@@ -60,8 +60,20 @@ typedef struct options {
     double exposure;
 } options;
 
-/* Parses argv[first..] into o (defaults first); unknown options and malformed values die(). */
+/* Parses argv[first..] into o (defaults first) from the options named in allowed (comma-separated names of the
+ * command's one option table, options.c); unknown options and malformed values die(). */
 void parse_options(int argc, char **argv, int first, options *o, const char *allowed);
+/* A subcommand's options and its --help: the names it takes and the function that prints its help. */
+typedef struct command_spec {
+    const char *options;
+    void (*help)(void);
+} command_spec;
+/* parse_options over c->options; after --help prints c's help and returns 0 (the subcommand then ends with 0),
+ * else returns 1. */
+int command_options(const command_spec *c, int argc, char **argv, int first, options *o);
+/* Parses exactly count comma-separated finite numbers (count < 0: 1 to -count numbers) for option opt; returns how
+ * many; dies on anything else. */
+int parse_list(const char *opt, const char *text, double *out, int count);
 /* The shape of the options; a bad shape dies with the library's message. */
 void shape_from_options(const options *o, ggx_shape *s);
 /* Parses "theta,phi" (degrees) or "x,y,z" (normalised) into a direction. */

@@ -58,26 +58,29 @@ static int dielectric(const options *o, const ggx_shape *s, int json)
     return 0;
 }
 
+static void albedo_help(void)
+{
+    printf("usage: ggx albedo [shape] [--view DIR] [--eta ETA] [--format csv|json] [--out FILE]\n\n"
+           "The directional albedo E(v) of the BRDF with F = 1 (the energy that single scattering keeps), for the\n"
+           "view DIR or, by default, for theta = 0, 15, 30, 45, 60, 75, 85 and 89 degrees at phi = 0 and 90; and\n"
+           "the average E_avg = (1/pi) int E(v) v.z dv. Columns: view_theta_deg, view_phi_deg, E (separable G,\n"
+           "eq 5, as ggx_brdf_eval), E_height_correlated (the height-correlated G2 most renderers use), E_avg,\n"
+           "E_avg_height_correlated (the same on every row). Deterministic quadrature, absolute error <= 1e-6;\n"
+           "the averages of a skewed shape take about half a minute.\n\n"
+           "With --eta ETA (the index below the surface relative to above, as for the rough dielectric): the\n"
+           "albedo of ggx_bsdf_eval for light arriving from the view, which may be on either side (theta > 90:\n"
+           "from below), by default theta = 0, 30, 60, 80, 89 and 180, 150, 120, 100, 91 at phi = 0. Columns:\n"
+           "view_theta_deg, view_phi_deg, R (reflected), T (transmitted), R_plus_T (the rest is lost to multiple\n"
+           "scattering). Absolute error <= 1e-4.\n\n%s",
+           SHAPE_HELP);
+}
+
+static const command_spec ALBEDO_SPEC = {SHAPE_OPTS ",view,eta,format,out", albedo_help};
+
 int cmd_albedo(int argc, char **argv)
 {
     options o;
-    parse_options(argc, argv, 2, &o, SHAPE_OPTS ",view,eta,format,out");
-    if (o.help) {
-        printf("usage: ggx albedo [shape] [--view DIR] [--eta ETA] [--format csv|json] [--out FILE]\n\n"
-               "The directional albedo E(v) of the BRDF with F = 1 (the energy that single scattering keeps), for the\n"
-               "view DIR or, by default, for theta = 0, 15, 30, 45, 60, 75, 85 and 89 degrees at phi = 0 and 90; and\n"
-               "the average E_avg = (1/pi) int E(v) v.z dv. Columns: view_theta_deg, view_phi_deg, E (separable G,\n"
-               "eq 5, as ggx_brdf_eval), E_height_correlated (the height-correlated G2 most renderers use), E_avg,\n"
-               "E_avg_height_correlated (the same on every row). Deterministic quadrature, absolute error <= 1e-6;\n"
-               "the averages of a skewed shape take about half a minute.\n\n"
-               "With --eta ETA (the index below the surface relative to above, as for the rough dielectric): the\n"
-               "albedo of ggx_bsdf_eval for light arriving from the view, which may be on either side (theta > 90:\n"
-               "from below), by default theta = 0, 30, 60, 80, 89 and 180, 150, 120, 100, 91 at phi = 0. Columns:\n"
-               "view_theta_deg, view_phi_deg, R (reflected), T (transmitted), R_plus_T (the rest is lost to multiple\n"
-               "scattering). Absolute error <= 1e-4.\n\n%s",
-               SHAPE_HELP);
-        return 0;
-    }
+    if (!command_options(&ALBEDO_SPEC, argc, argv, 2, &o)) return 0;
     ggx_shape s;
     shape_from_options(&o, &s);
     int json = 0;

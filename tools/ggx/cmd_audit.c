@@ -5,30 +5,33 @@
 #include "audit.h"
 #include "cli.h"
 
+static void audit_help(void)
+{
+    printf("usage: ggx audit [--alpha AX,AY] [--skew TX,TY] [--rotate TZ] [--matrix ...] [--format md|csv|json]\n"
+           "                 [--out FILE]...\n\n"
+           "Checks each claim of the seeds (normalisation, every sampler's pdf, G1 as a ratio of projected areas,\n"
+           "the crescent factor, the weight bound, ...) for three shapes and prints its verdict for each: holds,\n"
+           "holds with a correction, fails, or not claimed (the seed restricts the claim to other shapes; the\n"
+           "evidence says what happens when it is applied anyway). A claim about every shape is also checked on\n"
+           "23 random shapes of each one's kind, and a failure names the smallest counterexample found. The\n"
+           "shapes, by default:\n"
+           "  diagonal  A = diag(0.15, 0.5, 1)\n"
+           "  rotated   alphas 0.3,0.6 rotated by theta_z = 28.648 degrees (0.5 rad)\n"
+           "  skewed    alphas 0.3,0.6, skew 22.918,-17.189 and rotation 28.648 degrees (0.4, -0.3, 0.5 rad)\n"
+           "--alpha sets the three shapes' alphas; --skew the skewed shape's angles and --rotate both the rotated\n"
+           "and the skewed one's (the defaults for those not given); --matrix replaces the skewed shape (the\n"
+           "diagonal one then takes its alphas when it has them). --format md (default: the document\n"
+           "docs/audit.md, which is this command's output on its defaults), csv (a header row, one row per claim\n"
+           "and shape, each naming its seeds) or json. --out may be given up to four times: one run then writes\n"
+           "every file, each in the format its name ends with (.md, .csv or .json), all or none.\n");
+}
+
+static const command_spec AUDIT_SPEC = {"alpha,skew,rotate,matrix,format,out,progress,no-progress", audit_help};
+
 int cmd_audit(int argc, char **argv)
 {
     options o;
-    parse_options(argc, argv, 2, &o, "alpha,skew,rotate,matrix,format,out,progress,no-progress");
-    if (o.help) {
-        printf("usage: ggx audit [--alpha AX,AY] [--skew TX,TY] [--rotate TZ] [--matrix ...] [--format md|csv|json]\n"
-               "                 [--out FILE]...\n\n"
-               "Checks each claim of the seeds (normalisation, every sampler's pdf, G1 as a ratio of projected areas,\n"
-               "the crescent factor, the weight bound, ...) for three shapes and prints its verdict for each: holds,\n"
-               "holds with a correction, fails, or not claimed (the seed restricts the claim to other shapes; the\n"
-               "evidence says what happens when it is applied anyway). A claim about every shape is also checked on\n"
-               "23 random shapes of each one's kind, and a failure names the smallest counterexample found. The\n"
-               "shapes, by default:\n"
-               "  diagonal  A = diag(0.15, 0.5, 1)\n"
-               "  rotated   alphas 0.3,0.6 rotated by theta_z = 28.648 degrees (0.5 rad)\n"
-               "  skewed    alphas 0.3,0.6, skew 22.918,-17.189 and rotation 28.648 degrees (0.4, -0.3, 0.5 rad)\n"
-               "--alpha sets the three shapes' alphas; --skew the skewed shape's angles and --rotate both the rotated\n"
-               "and the skewed one's (the defaults for those not given); --matrix replaces the skewed shape (the\n"
-               "diagonal one then takes its alphas when it has them). --format md (default: the document\n"
-               "docs/audit.md, which is this command's output on its defaults), csv (a header row, one row per claim\n"
-               "and shape, each naming its seeds) or json. --out may be given up to four times: one run then writes\n"
-               "every file, each in the format its name ends with (.md, .csv or .json), all or none.\n");
-        return 0;
-    }
+    if (!command_options(&AUDIT_SPEC, argc, argv, 2, &o)) return 0;
     /* one output in the format of --format, or several, each in the format its name ends with */
     const char *names[4] = {o.out};
     audit_format fmts[4] = {AUDIT_MD};

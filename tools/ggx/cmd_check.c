@@ -89,23 +89,25 @@ void print_check_row(FILE *f, const char *name, check_result r)
             r.zero_hits ? " (samples where the pdf is 0)" : "");
 }
 
+static void check_help(void)
+{
+    printf("usage: ggx check [shape] [--sampler NAME] [--view DIR] [-n N] [--seed S] [--progress|--no-progress]\n\n"
+           "Checks samplers of normals against their pdfs for your parameters: the pdf's normalisation by adaptive\n"
+           "quadrature, a chi-square goodness-of-fit test with N samples (default 10^6) on 100 x 200 equal-area\n"
+           "cells in sphere space (Sidak-corrected level 0.01 over the samplers checked), and the Jacobian\n"
+           "|dm/du| = 1/pdf by finite differences. Without --sampler every normal sampler that applies is checked.\n"
+           "Exit status 0 only if all pass (1 otherwise, 2 for bad input). A progress bar is shown on a "
+           "terminal.\n\n");
+    print_samplers(stdout);
+    printf("\n%s", SHAPE_HELP);
+}
+
+static const command_spec CHECK_SPEC = {SHAPE_OPTS ",sampler,view,n,seed,progress,no-progress", check_help};
+
 int cmd_check(int argc, char **argv)
 {
     options o;
-    parse_options(argc, argv, 2, &o, SHAPE_OPTS ",sampler,view,n,seed,progress,no-progress");
-    if (o.help) {
-        printf(
-            "usage: ggx check [shape] [--sampler NAME] [--view DIR] [-n N] [--seed S] [--progress|--no-progress]\n\n"
-            "Checks samplers of normals against their pdfs for your parameters: the pdf's normalisation by adaptive\n"
-            "quadrature, a chi-square goodness-of-fit test with N samples (default 10^6) on 100 x 200 equal-area\n"
-            "cells in sphere space (Sidak-corrected level 0.01 over the samplers checked), and the Jacobian\n"
-            "|dm/du| = 1/pdf by finite differences. Without --sampler every normal sampler that applies is checked.\n"
-            "Exit status 0 only if all pass (1 otherwise, 2 for bad input). A progress bar is shown on a "
-            "terminal.\n\n");
-        print_samplers(stdout);
-        printf("\n%s", SHAPE_HELP);
-        return 0;
-    }
+    if (!command_options(&CHECK_SPEC, argc, argv, 2, &o)) return 0;
     ggx_shape s;
     shape_from_options(&o, &s);
     if (!o.have_view) parse_direction("40,0", &o.view);

@@ -153,32 +153,34 @@ static void write_pdf(const char *path, ggx_shape sh[2], float *img[NSPHERES], i
     canvas_close_file(&c);
 }
 
+static void demo_help(void)
+{
+    printf("usage: ggx demo [--out DIR] [-n N] [--size W] [--theme light|dark]\n\n"
+           "Draws the seeds' figures for alpha = (0.15, 0.5) and for the same shape skewed by theta_x = 15,\n"
+           "theta_y = -10 degrees into DIR (default out/), the skewed ones prefixed skewed-:\n"
+           "  engstad-stretch: grid-top.svg, grid-side.svg (the 10 x 10 equal-area grid mapped by\n"
+           "    NDF sampling), ndf-top.png, ndf-side.png (the NDF pdf);\n"
+           "  engstad-vndf-proof (visible normals, theta_v = 75, phi_v = P for P = 0 and 90): "
+           "vndf-75-P-grid-top.svg,\n"
+           "    vndf-75-P-grid-side.svg (the grid mapped by the five-step VNDF sampler), vndf-75-P-top.png,\n"
+           "    vndf-75-P-side.png (the VNDF pdf), each with the grey region of normals that reflect the view\n"
+           "    above the horizon;\n"
+           "  line plots: g1.svg, lambda.svg, ndf-slice.svg, furnace.svg;\n"
+           "  spheres.png: spheres of the material under the built-in sky (ggx render): the seeds' shape, the same\n"
+           "    skewed, the same rotated by theta_z = 45;\n"
+           "  figures.pdf: every figure, one page each in the seeds' order, the seed's shape beside the skewed one;\n"
+           "    the spheres on the last page.\n"
+           "Then checks every sampler for these shapes (N samples each, default 10^6) and prints the table.\n"
+           "--size: the figures' width (default 640; heights follow each figure's aspect). The figures are\n"
+           "written all or none.\n");
+}
+
+static const command_spec DEMO_SPEC = {"out,n,size,theme", demo_help};
+
 int cmd_demo(int argc, char **argv)
 {
     options o;
-    parse_options(argc, argv, 2, &o, "out,n,size,theme");
-    if (o.help) {
-        printf(
-            "usage: ggx demo [--out DIR] [-n N] [--size W] [--theme light|dark]\n\n"
-            "Draws the seeds' figures for alpha = (0.15, 0.5) and for the same shape skewed by theta_x = 15,\n"
-            "theta_y = -10 degrees into DIR (default out/), the skewed ones prefixed skewed-:\n"
-            "  engstad-stretch: grid-top.svg, grid-side.svg (the 10 x 10 equal-area grid mapped by\n"
-            "    NDF sampling), ndf-top.png, ndf-side.png (the NDF pdf);\n"
-            "  engstad-vndf-proof (visible normals, theta_v = 75, phi_v = P for P = 0 and 90): "
-            "vndf-75-P-grid-top.svg,\n"
-            "    vndf-75-P-grid-side.svg (the grid mapped by the five-step VNDF sampler), vndf-75-P-top.png,\n"
-            "    vndf-75-P-side.png (the VNDF pdf), each with the grey region of normals that reflect the view\n"
-            "    above the horizon;\n"
-            "  line plots: g1.svg, lambda.svg, ndf-slice.svg, furnace.svg;\n"
-            "  spheres.png: spheres of the material under the built-in sky (ggx render): the seeds' shape, the same\n"
-            "    skewed, the same rotated by theta_z = 45;\n"
-            "  figures.pdf: every figure, one page each in the seeds' order, the seed's shape beside the skewed one;\n"
-            "    the spheres on the last page.\n"
-            "Then checks every sampler for these shapes (N samples each, default 10^6) and prints the table.\n"
-            "--size: the figures' width (default 640; heights follow each figure's aspect). The figures are\n"
-            "written all or none.\n");
-        return 0;
-    }
+    if (!command_options(&DEMO_SPEC, argc, argv, 2, &o)) return 0;
     if (o.n > 0) require_check_n(o.n); /* before any figure is drawn */
     if (o.size_h) die("--size: the demo takes a width only (each figure keeps its own aspect)");
     struct timespec t0, t1;

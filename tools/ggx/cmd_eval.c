@@ -4,22 +4,24 @@
 
 #include "cli.h"
 
+static void eval_help(void)
+{
+    printf("usage: ggx eval [shape] [--wi DIR] [--wo DIR]... [--fresnel F] [--eta ETA] [--format csv|json] [--out "
+           "FILE]\n\n"
+           "Evaluates the model for one incident direction wi and one or more outgoing directions wo (defaults:\n"
+           "wi = 40,0 and wo = 0,0 40,180 60,180 20,90). Columns: the directions, the half vector h, D(h), G1(wi,h),\n"
+           "G1(wo,h), G = G1 G1, the height-correlated G2, Lambda(wi), Lambda(wo), the VNDF pdf of h for wi, the\n"
+           "reflection pdf of wo, the BRDF, and with --eta the rough-dielectric BSDF f(wi -> wo) and its pdf.\n"
+           "--fresnel one | dielectric:ETA | conductor:ETA,K | schlick:F0 (default one)\n\n%s",
+           SHAPE_HELP);
+}
+
+static const command_spec EVAL_SPEC = {SHAPE_OPTS ",wi,wo,fresnel,eta,format,out", eval_help};
+
 int cmd_eval(int argc, char **argv)
 {
     options o;
-    parse_options(argc, argv, 2, &o, SHAPE_OPTS ",wi,wo,fresnel,eta,format,out");
-    if (o.help) {
-        printf(
-            "usage: ggx eval [shape] [--wi DIR] [--wo DIR]... [--fresnel F] [--eta ETA] [--format csv|json] [--out "
-            "FILE]\n\n"
-            "Evaluates the model for one incident direction wi and one or more outgoing directions wo (defaults:\n"
-            "wi = 40,0 and wo = 0,0 40,180 60,180 20,90). Columns: the directions, the half vector h, D(h), G1(wi,h),\n"
-            "G1(wo,h), G = G1 G1, the height-correlated G2, Lambda(wi), Lambda(wo), the VNDF pdf of h for wi, the\n"
-            "reflection pdf of wo, the BRDF, and with --eta the rough-dielectric BSDF f(wi -> wo) and its pdf.\n"
-            "--fresnel one | dielectric:ETA | conductor:ETA,K | schlick:F0 (default one)\n\n%s",
-            SHAPE_HELP);
-        return 0;
-    }
+    if (!command_options(&EVAL_SPEC, argc, argv, 2, &o)) return 0;
     ggx_shape s;
     shape_from_options(&o, &s);
     ggx_fresnel f = fresnel_from_options(&o);

@@ -144,16 +144,14 @@ static void fit_input(const options *o, const surface *s, const ggx_fit_options 
     if (st != GGX_OK) die("fit: %s", ggx_status_str(st));
 }
 
+static const command_spec FIT_SPEC = {"heightfield,normal-map,normals,spacing,z-scale,keep-tilt,downsample,y-down,"
+                                      "model,threads,format,out,figure,progress,no-progress",
+                                      usage};
+
 int cmd_fit(int argc, char **argv)
 {
     options o;
-    parse_options(argc, argv, 2, &o,
-                  "heightfield,normal-map,normals,spacing,z-scale,keep-tilt,downsample,y-down,"
-                  "model,threads,format,out,figure,progress,no-progress");
-    if (o.help) {
-        usage();
-        return 0;
-    }
+    if (!command_options(&FIT_SPEC, argc, argv, 2, &o)) return 0;
     int inputs = (o.heightfield != NULL) + (o.normal_map != NULL) + (o.normals != NULL);
     if (inputs != 1) die("give one of --heightfield, --normal-map or --normals (see ggx fit --help)");
     const char *fmt = o.format ? o.format : "md";

@@ -33,39 +33,42 @@ static void write_heights(const char *path, double *h, size_t n)
     free(data);
 }
 
+static void generate_help(void)
+{
+    printf("usage: ggx microsurface generate --kind beckmann|ggx|vgroove [--alpha A[,AY]] [--skew TX,TY]\n"
+           "                                 [--rotate TZ] [--corr L] [--mix M] [--period P] [--risers P]\n"
+           "                                 --size N [--seed S] --out FILE.exr|FILE.x3p\n\n"
+           "A periodic height field on an N x N grid of unit spacing (N even, 64 to 4096), whose facets (both\n"
+           "triangulations of each cell, as ggx fit reads them) have a chosen NDF:\n"
+           "  beckmann  a Gaussian random field: every facet's slope is Gaussian with covariance\n"
+           "            R diag(AX^2, AY^2) R^T / 2 (Beckmann of roughness AX, AY, the axes rotated by TZ degrees),\n"
+           "            its autocorrelation Gaussian with correlation length L grid spacings (default 16;\n"
+           "            4 to N / 4), by FFT (KISS FFT); --seed S picks the field (default 1)\n"
+           "  ggx       GGX slopes of roughness AX, AY rotated by TZ (the shape ggx fit reads back): a Beckmann\n"
+           "            field of slope covariance Sigma divided by sqrt(W), W chi-square of 2 degrees of freedom\n"
+           "            over the tile's area, varying on the mixing length M (default 8 L, L to N / 4): the\n"
+           "            Gaussian scale mixture that GGX's slopes are\n"
+           "            --skew TX,TY (degrees): the skewed ellipsoid of ggx_shape_ellipsoid(AX, AY, TX, TY, TZ),\n"
+           "            its slopes a Student t of location t and scale Sigma (ggx_shape_slopes): GGX of scale\n"
+           "            Sigma on the plane of slope t, t . (x, y) added over the tile. Repeated as it is, that\n"
+           "            tile is not periodic: measure it as a tilted patch (measure --tilted). --risers P makes\n"
+           "            it a periodic sawtooth: t . (x mod P, y mod P), each ramp of P spacings stepping back\n"
+           "            down in one cell, a near-vertical riser (P divides N, at most N / 2)\n"
+           "  vgroove   V-grooves along y of period P spacings (even, default 16) and slope AX along x: two\n"
+           "            facet normals, each on half the area (Torrance-Sparrow's V-cavities)\n"
+           "OpenEXR holds the heights in one float channel Y (ggx fit --heightfield needs --spacing 1 --z-scale\n"
+           "1 for it); x3p in doubles with a grid of 1e-6 m and heights in metres. Prints the surface's\n"
+           "parameters: the heights' standard deviation and the autocorrelation's metric M, C(r) = sigma^2\n"
+           "exp(-r^T M r).\n");
+}
+
+static const command_spec GENERATE_SPEC = {"kind,alpha,skew,rotate,corr,mix,period,risers,size,seed,out",
+                                           generate_help};
+
 static int generate(int argc, char **argv)
 {
     options o;
-    parse_options(argc, argv, 3, &o, "kind,alpha,skew,rotate,corr,mix,period,risers,size,seed,out");
-    if (o.help) {
-        printf(
-            "usage: ggx microsurface generate --kind beckmann|ggx|vgroove [--alpha A[,AY]] [--skew TX,TY]\n"
-            "                                 [--rotate TZ] [--corr L] [--mix M] [--period P] [--risers P]\n"
-            "                                 --size N [--seed S] --out FILE.exr|FILE.x3p\n\n"
-            "A periodic height field on an N x N grid of unit spacing (N even, 64 to 4096), whose facets (both\n"
-            "triangulations of each cell, as ggx fit reads them) have a chosen NDF:\n"
-            "  beckmann  a Gaussian random field: every facet's slope is Gaussian with covariance\n"
-            "            R diag(AX^2, AY^2) R^T / 2 (Beckmann of roughness AX, AY, the axes rotated by TZ degrees),\n"
-            "            its autocorrelation Gaussian with correlation length L grid spacings (default 16;\n"
-            "            4 to N / 4), by FFT (KISS FFT); --seed S picks the field (default 1)\n"
-            "  ggx       GGX slopes of roughness AX, AY rotated by TZ (the shape ggx fit reads back): a Beckmann\n"
-            "            field of slope covariance Sigma divided by sqrt(W), W chi-square of 2 degrees of freedom\n"
-            "            over the tile's area, varying on the mixing length M (default 8 L, L to N / 4): the\n"
-            "            Gaussian scale mixture that GGX's slopes are\n"
-            "            --skew TX,TY (degrees): the skewed ellipsoid of ggx_shape_ellipsoid(AX, AY, TX, TY, TZ),\n"
-            "            its slopes a Student t of location t and scale Sigma (ggx_shape_slopes): GGX of scale\n"
-            "            Sigma on the plane of slope t, t . (x, y) added over the tile. Repeated as it is, that\n"
-            "            tile is not periodic: measure it as a tilted patch (measure --tilted). --risers P makes\n"
-            "            it a periodic sawtooth: t . (x mod P, y mod P), each ramp of P spacings stepping back\n"
-            "            down in one cell, a near-vertical riser (P divides N, at most N / 2)\n"
-            "  vgroove   V-grooves along y of period P spacings (even, default 16) and slope AX along x: two\n"
-            "            facet normals, each on half the area (Torrance-Sparrow's V-cavities)\n"
-            "OpenEXR holds the heights in one float channel Y (ggx fit --heightfield needs --spacing 1 --z-scale\n"
-            "1 for it); x3p in doubles with a grid of 1e-6 m and heights in metres. Prints the surface's\n"
-            "parameters: the heights' standard deviation and the autocorrelation's metric M, C(r) = sigma^2\n"
-            "exp(-r^T M r).\n");
-        return 0;
-    }
+    if (!command_options(&GENERATE_SPEC, argc, argv, 3, &o)) return 0;
     if (!o.kind) die("--kind beckmann|ggx|vgroove is required");
     if (!o.size) die("--size N is required");
     if (!o.out) die("--out FILE.exr|FILE.x3p is required");
@@ -193,44 +196,46 @@ static const char *jnum(char buf[32], double x)
     return buf;
 }
 
+static void measure_help(void)
+{
+    printf("usage: ggx microsurface measure --heightfield FILE [--spacing D] [--z-scale Z] [--tilted | --risers P]\n"
+           "                                [--alpha A[,AY] [--skew TX,TY] [--rotate TZ] | --matrix M]\n"
+           "                                --view THETA,PHI [-n RAYS] [--bounces K] [--threads N] [--seed S]\n"
+           "                                [--format md|json] [--out FILE]\n\n"
+           "Traces a periodic height field (ggx microsurface generate's, or any square tile whose edges wrap)\n"
+           "from the view v with RAYS rays (default 1e6) on a jittered grid of origins and reports the masking\n"
+           "against the model: G1(v) of the facets (exact for a height field: the footprint's projected area\n"
+           "over the facets'), Smith's G1 for Beckmann slopes of the facets' covariance and for GGX of the\n"
+           "ellipsoid fitted to the facets (ggx_fit_heightfield), and per normal bin (4 rings of equal\n"
+           "sin^2(theta_m) times 8 azimuth sectors) the traced G1(v, m), the visible share of the bin's\n"
+           "projected area, against G1(v): Smith's masking makes them equal. A tile whose edges do not wrap\n"
+           "(differences across them 3 times the inner ones in RMS) is refused. Then the visible normals: the\n"
+           "first facets hit by up to 200,000 rays from random origins (--seed S), chi-square against\n"
+           "ggx_pdf_vndf of the fitted shape (eq 33) on 16 x 16 cells of its sphere space. Then the BRDF with\n"
+           "F = 1 and the light at the view: RAYS rays reflected from facet to facet until they escape (at most\n"
+           "K times, default 100; the rest are counted as still bouncing), binned in 8 x 16 outgoing bins of\n"
+           "equal projected solid angle; single scattering against ggx_brdf_eval of the fitted shape and the\n"
+           "same with the height-correlated G2 in place of eq 5's (its albedo against ggx_albedo and\n"
+           "ggx_albedo_height_correlated), all bounces against\n"
+           "ggx_brdf_compensated_eval of the fitted scale without its skew (the white furnace: albedo 1).\n"
+           "The model's shape is the fit, or the shape given (--alpha, --skew, --rotate or --matrix).\n\n"
+           "Skewed surfaces (generate --skew): --tilted traces the tile as an infinite tilted patch, each copy\n"
+           "raised by the tile's mean slope (its inner differences' mean) times N; --risers P as the sawtooth of\n"
+           "generate --risers P, whose risers (the cells of the columns and rows P - 1 mod P along an axis where\n"
+           "they step by more than 1) are counted apart. G1 of the other facets, traced, is then set beside\n"
+           "Walter's eq 6 (ggx_g1, with its min), the Smith form of eq 32 without it (ggx_g1_smith), vertical\n"
+           "facets (Walter's remedy with Smith's masking), the tilted base (ggx_g1_tilted: Smith's masking\n"
+           "about the plane of slope t) and the sawtooth's (ggx_g1_risers); and the risers' own visible share. A\n"
+           "tilted patch's BRDF is not measured (its directions are the tilted plane's).\n");
+}
+
+static const command_spec MEASURE_SPEC = {
+    "heightfield,spacing,z-scale,tilted,risers," SHAPE_OPTS ",view,n,bounces,threads,seed,format,out", measure_help};
+
 static int measure(int argc, char **argv)
 {
     options o;
-    parse_options(argc, argv, 3, &o,
-                  "heightfield,spacing,z-scale,tilted,risers," SHAPE_OPTS ",view,n,bounces,threads,seed,format,out");
-    if (o.help) {
-        printf(
-            "usage: ggx microsurface measure --heightfield FILE [--spacing D] [--z-scale Z] [--tilted | --risers P]\n"
-            "                                [--alpha A[,AY] [--skew TX,TY] [--rotate TZ] | --matrix M]\n"
-            "                                --view THETA,PHI [-n RAYS] [--bounces K] [--threads N] [--seed S]\n"
-            "                                [--format md|json] [--out FILE]\n\n"
-            "Traces a periodic height field (ggx microsurface generate's, or any square tile whose edges wrap)\n"
-            "from the view v with RAYS rays (default 1e6) on a jittered grid of origins and reports the masking\n"
-            "against the model: G1(v) of the facets (exact for a height field: the footprint's projected area\n"
-            "over the facets'), Smith's G1 for Beckmann slopes of the facets' covariance and for GGX of the\n"
-            "ellipsoid fitted to the facets (ggx_fit_heightfield), and per normal bin (4 rings of equal\n"
-            "sin^2(theta_m) times 8 azimuth sectors) the traced G1(v, m), the visible share of the bin's\n"
-            "projected area, against G1(v): Smith's masking makes them equal. A tile whose edges do not wrap\n"
-            "(differences across them 3 times the inner ones in RMS) is refused. Then the visible normals: the\n"
-            "first facets hit by up to 200,000 rays from random origins (--seed S), chi-square against\n"
-            "ggx_pdf_vndf of the fitted shape (eq 33) on 16 x 16 cells of its sphere space. Then the BRDF with\n"
-            "F = 1 and the light at the view: RAYS rays reflected from facet to facet until they escape (at most\n"
-            "K times, default 100; the rest are counted as still bouncing), binned in 8 x 16 outgoing bins of\n"
-            "equal projected solid angle; single scattering against ggx_brdf_eval of the fitted shape and the\n"
-            "same with the height-correlated G2 in place of eq 5's (its albedo against ggx_albedo and\n"
-            "ggx_albedo_height_correlated), all bounces against\n"
-            "ggx_brdf_compensated_eval of the fitted scale without its skew (the white furnace: albedo 1).\n"
-            "The model's shape is the fit, or the shape given (--alpha, --skew, --rotate or --matrix).\n\n"
-            "Skewed surfaces (generate --skew): --tilted traces the tile as an infinite tilted patch, each copy\n"
-            "raised by the tile's mean slope (its inner differences' mean) times N; --risers P as the sawtooth of\n"
-            "generate --risers P, whose risers (the cells of the columns and rows P - 1 mod P along an axis where\n"
-            "they step by more than 1) are counted apart. G1 of the other facets, traced, is then set beside\n"
-            "Walter's eq 6 (ggx_g1, with its min), the Smith form of eq 32 without it (ggx_g1_smith), vertical\n"
-            "facets (Walter's remedy with Smith's masking), the tilted base (ggx_g1_tilted: Smith's masking\n"
-            "about the plane of slope t) and the sawtooth's (ggx_g1_risers); and the risers' own visible share. A\n"
-            "tilted patch's BRDF is not measured (its directions are the tilted plane's).\n");
-        return 0;
-    }
+    if (!command_options(&MEASURE_SPEC, argc, argv, 3, &o)) return 0;
     if (!o.heightfield) die("--heightfield FILE is required");
     if (!o.have_view) die("--view THETA,PHI is required");
     if (!(o.view.z > 1e-9)) die("--view: the view must be above the plane");

@@ -17,27 +17,29 @@ static ggx_vec3 plane_view(double a, double phi)
     return (ggx_vec3){sin(th) * cos(p), sin(th) * sin(p), cos(th)};
 }
 
+static void microsurface_figure_help(void)
+{
+    printf("usage: ggx microsurface figure --heightfield FILE [--spacing D] [--z-scale Z] [--tilted | --risers P]\n"
+           "                               [--alpha A[,AY] [--skew TX,TY] [--rotate TZ] | --matrix M] [--from PHI]\n"
+           "                               [-n RAYS] [--threads N] [--size WxH] [--theme light|dark] --out "
+           "FILE.png|svg|pdf\n\n"
+           "G1(v) of a height field's facets, traced with RAYS rays (default 100,000) from each view every 5\n"
+           "degrees of the plane of azimuth PHI (default: the skew's direction t, else 0), from 85 degrees on\n"
+           "the side of PHI + 180 (drawn left) to 85 degrees on the side of PHI (right), as marks, beside the\n"
+           "model's forms for the shape fitted to the facets (or given) as curves: for a skewed shape eq 6\n"
+           "(ggx_g1), eq 32 without its min (ggx_g1_smith), vertical facets (Walter's remedy with Smith's\n"
+           "masking), the tilted base (ggx_g1_tilted) and the sawtooth's (ggx_g1_risers); for an unskewed one\n"
+           "Smith's GGX and Smith's Beckmann of the facets' covariance. --tilted and --risers P as for\n"
+           "ggx microsurface measure; views below a tilted patch's plane have no mark.\n");
+}
+
+static const command_spec MICROSURFACE_FIGURE_SPEC = {
+    "heightfield,spacing,z-scale,tilted,risers," SHAPE_OPTS ",from,n,threads,size,theme,out", microsurface_figure_help};
+
 int microsurface_figure(int argc, char **argv)
 {
     options o;
-    parse_options(argc, argv, 3, &o,
-                  "heightfield,spacing,z-scale,tilted,risers," SHAPE_OPTS ",from,n,threads,size,theme,out");
-    if (o.help) {
-        printf(
-            "usage: ggx microsurface figure --heightfield FILE [--spacing D] [--z-scale Z] [--tilted | --risers P]\n"
-            "                               [--alpha A[,AY] [--skew TX,TY] [--rotate TZ] | --matrix M] [--from PHI]\n"
-            "                               [-n RAYS] [--threads N] [--size WxH] [--theme light|dark] --out "
-            "FILE.png|svg|pdf\n\n"
-            "G1(v) of a height field's facets, traced with RAYS rays (default 100,000) from each view every 5\n"
-            "degrees of the plane of azimuth PHI (default: the skew's direction t, else 0), from 85 degrees on\n"
-            "the side of PHI + 180 (drawn left) to 85 degrees on the side of PHI (right), as marks, beside the\n"
-            "model's forms for the shape fitted to the facets (or given) as curves: for a skewed shape eq 6\n"
-            "(ggx_g1), eq 32 without its min (ggx_g1_smith), vertical facets (Walter's remedy with Smith's\n"
-            "masking), the tilted base (ggx_g1_tilted) and the sawtooth's (ggx_g1_risers); for an unskewed one\n"
-            "Smith's GGX and Smith's Beckmann of the facets' covariance. --tilted and --risers P as for\n"
-            "ggx microsurface measure; views below a tilted patch's plane have no mark.\n");
-        return 0;
-    }
+    if (!command_options(&MICROSURFACE_FIGURE_SPEC, argc, argv, 3, &o)) return 0;
     if (!o.heightfield) die("--heightfield FILE is required");
     if (!o.out) die("--out FILE.png|svg|pdf is required");
     canvas_format fmt = figure_format_of(o.out, FMT_PNG);

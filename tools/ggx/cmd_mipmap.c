@@ -106,36 +106,40 @@ static void remove_made_dir(void)
     if (made_dir) rmdir(made_dir);
 }
 
+static void mipmap_help(void)
+{
+    printf("usage: ggx mipmap --normal-map FILE (--alpha A[,AY] | --roughness-map FILE [--perceptual]) [--fast]\n"
+           "                  [--y-down] [--threads N] [--out DIR] [--format exr|png16]\n\n"
+           "Filters a tangent-space normal map (PNG 8 or 16 bit, RGB or two channels with z rebuilt; OpenEXR R,\n"
+           "G[, B]) of base roughness A (or AX along x, AY along y), or of a roughness per texel from a grey PNG\n"
+           "(level / (2^bits - 1)) or a one-channel OpenEXR of the normal map's size (--perceptual: the map holds\n"
+           "r and alpha = r^2, as glTF and Disney maps do; 0 is raised to 1e-4; a negative or NaN value rejects\n"
+           "its texel), into a mip chain of ellipsoids, with no\n"
+           "shading normal left: each texel of level 0 is the GGX lobe of A translated to its normal's slope (a\n"
+           "skewed ellipsoid, exactly), and each texel of a coarser level the ellipsoid closest (least KL\n"
+           "divergence) to the mixture of its 2 x 2 texels above, by ggx_filter_downsample (odd sizes: the last\n"
+           "column or row filters 2 x 1, 1 x 2 or 1 x 1 boxes). A texel whose normal is NaN, zero or not above\n"
+           "the tangent plane is rejected: weight 0, counted nowhere (an RGB PNG whose blue is 0 everywhere is\n"
+           "read as two channels, z rebuilt). --y-down: the green channel points down\n"
+           "(DirectX maps). Writes DIR/level-K.exr (default DIR: mipmap) for K = 0 to the 1 x 1 level, each\n"
+           "with the float channels t.x, t.y (the slope location: the mean normal is (-t.x, -t.y, 1)\n"
+           "normalised), sigma.xx, sigma.xy, sigma.yy (the slope scale, as ggx_shape_from_slopes takes them)\n"
+           "and weight (the texels behind the texel), all files or none. --format png16 writes instead\n"
+           "DIR/level-K-normal.png (RGB: the mean normal n = (-t.x, -t.y, 1) normalised, as (n + 1) / 2) and\n"
+           "DIR/level-K-sigma.png (RGBA: sqrt(sigma.xx) / 4, sqrt(sigma.yy) / 4, (rho + 1) / 2 with rho =\n"
+           "sigma.xy / sqrt(sigma.xx sigma.yy), weight / 4^K), 16 bits each (widths above 4 saturate). Prints per\n"
+           "level its size, the mean slope location, the mean det(Sigma)^(1/4) (the alpha of an isotropic\n"
+           "lobe as wide) and the time. --fast: one EM step over 2 x 4 nodes per lobe (ggx_filter.h's fast mode:\n"
+           "30 to 80 times faster, at most about 0.005 nats of KL given up on the tests' footprints).\n");
+}
+
+static const command_spec MIPMAP_SPEC = {"normal-map,alpha,roughness-map,perceptual,fast,y-down,threads,out,format",
+                                         mipmap_help};
+
 int cmd_mipmap(int argc, char **argv)
 {
     options o;
-    parse_options(argc, argv, 2, &o, "normal-map,alpha,roughness-map,perceptual,fast,y-down,threads,out,format");
-    if (o.help) {
-        printf("usage: ggx mipmap --normal-map FILE (--alpha A[,AY] | --roughness-map FILE [--perceptual]) [--fast]\n"
-               "                  [--y-down] [--threads N] [--out DIR] [--format exr|png16]\n\n"
-               "Filters a tangent-space normal map (PNG 8 or 16 bit, RGB or two channels with z rebuilt; OpenEXR R,\n"
-               "G[, B]) of base roughness A (or AX along x, AY along y), or of a roughness per texel from a grey PNG\n"
-               "(level / (2^bits - 1)) or a one-channel OpenEXR of the normal map's size (--perceptual: the map holds\n"
-               "r and alpha = r^2, as glTF and Disney maps do; 0 is raised to 1e-4; a negative or NaN value rejects\n"
-               "its texel), into a mip chain of ellipsoids, with no\n"
-               "shading normal left: each texel of level 0 is the GGX lobe of A translated to its normal's slope (a\n"
-               "skewed ellipsoid, exactly), and each texel of a coarser level the ellipsoid closest (least KL\n"
-               "divergence) to the mixture of its 2 x 2 texels above, by ggx_filter_downsample (odd sizes: the last\n"
-               "column or row filters 2 x 1, 1 x 2 or 1 x 1 boxes). A texel whose normal is NaN, zero or not above\n"
-               "the tangent plane is rejected: weight 0, counted nowhere (an RGB PNG whose blue is 0 everywhere is\n"
-               "read as two channels, z rebuilt). --y-down: the green channel points down\n"
-               "(DirectX maps). Writes DIR/level-K.exr (default DIR: mipmap) for K = 0 to the 1 x 1 level, each\n"
-               "with the float channels t.x, t.y (the slope location: the mean normal is (-t.x, -t.y, 1)\n"
-               "normalised), sigma.xx, sigma.xy, sigma.yy (the slope scale, as ggx_shape_from_slopes takes them)\n"
-               "and weight (the texels behind the texel), all files or none. --format png16 writes instead\n"
-               "DIR/level-K-normal.png (RGB: the mean normal n = (-t.x, -t.y, 1) normalised, as (n + 1) / 2) and\n"
-               "DIR/level-K-sigma.png (RGBA: sqrt(sigma.xx) / 4, sqrt(sigma.yy) / 4, (rho + 1) / 2 with rho =\n"
-               "sigma.xy / sqrt(sigma.xx sigma.yy), weight / 4^K), 16 bits each (widths above 4 saturate). Prints per\n"
-               "level its size, the mean slope location, the mean det(Sigma)^(1/4) (the alpha of an isotropic\n"
-               "lobe as wide) and the time. --fast: one EM step over 2 x 4 nodes per lobe (ggx_filter.h's fast mode:\n"
-               "30 to 80 times faster, at most about 0.005 nats of KL given up on the tests' footprints).\n");
-        return 0;
-    }
+    if (!command_options(&MIPMAP_SPEC, argc, argv, 2, &o)) return 0;
     if (!o.normal_map) die("--normal-map FILE is required");
     if (o.have_alpha == !!o.roughness_map)
         die("give the base roughness as one of --alpha A[,AY] or --roughness-map FILE");

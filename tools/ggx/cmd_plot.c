@@ -13,44 +13,46 @@ void shape_caption(const options *o, char *buf, size_t n)
     else figure_shape_caption(buf, n, o->alpha[0], o->alpha[1], o->skew[0], o->skew[1], o->rotate);
 }
 
+static void plot_help(void)
+{
+    printf("usage: ggx plot [shape] [--figure NAME] [--view DIR] [--sampler NAME] [--from DEG] [--size W[xH]]\n"
+           "                [--log] [--theme light|dark] [--eta E] [--phi-d DEG] [--out FILE]\n\n"
+           "Figures (the seeds' hemisphere figures, then line plots):\n"
+           "  ndf, ndf-side      the NDF pdf D(m) (m.n), from above / from the side, with a colour bar (sr^-1)\n"
+           "  vndf, vndf-side    the visible-normal pdf for --view (default 75,0), with engstad-vndf-proof's grey "
+           "region:\n"
+           "                     the normals that reflect the view above the horizon\n"
+           "  grid, grid-side    the 10 x 10 equal-area grid of the unit square mapped onto the hemisphere by\n"
+           "                     --sampler (default stretch; a VNDF sampler maps for --view and shows the region)\n"
+           "  g1, lambda         G1(v) and Lambda(v) against the view's polar angle, at several azimuths\n"
+           "  ndf-slice          D(m) along the two principal planes through its peak (log scale)\n"
+           "  furnace            the weak white furnace G1(v) int D (m.v)+ / (v.n) dm and the albedo E(v); for\n"
+           "                     an anisotropic shape also the isotropic E at sqrt(alpha_x alpha_y) that\n"
+           "                     renderers use in its place\n"
+           "  polar              f cos theta_o, the albedo's integrand over wo, in the incidence plane (at the\n"
+           "                     azimuth of --view) and across it, for incidence 20, 40, 60 and 80 degrees:\n"
+           "                     the BRDF with F = 1, or with --eta E the rough dielectric's BSDF (radiance)\n"
+           "  slice              the BRDF (F = 1) over the half-vector and difference angles (theta_h, theta_d),\n"
+           "                     Rusinkiewicz's coordinates, at --phi-d DEG (default 90), the half vector at\n"
+           "                     phi_h 0 (--rotate turns the shape), log scale over four decades\n\n"
+           "Side views look from the azimuth --from (degrees); by default they show the lobe, which leans toward\n"
+           "the view (VNDF) or the NDF peak: in profile from the lean's azimuth - 90 (the view pointing right;\n"
+           "from -y for phi_v = 0, as in the seeds), or facing it where the lobe is narrower across the profile\n"
+           "plane; the caption states the azimuth. Only the visible half of the hemisphere is drawn.\n"
+           "--log: a logarithmic colour scale over four decades.\n"
+           "--size W or WxH: the file's size, exactly, in pixels (PNG) or points (SVG, PDF); with W alone the\n"
+           "height follows the figure's aspect. Default width 640. --theme: light (default, for print) or dark.\n"
+           "--out FILE: its name says the format (.png, .svg, .pdf); default FIGURE.png for hemisphere figures\n"
+           "and the slice, FIGURE.svg for line plots and polar; - writes the default format to standard output.\n\n%s",
+           SHAPE_HELP);
+}
+
+static const command_spec PLOT_SPEC = {SHAPE_OPTS ",figure,view,sampler,size,log,theme,from,eta,phi-d,out", plot_help};
+
 int cmd_plot(int argc, char **argv)
 {
     options o;
-    parse_options(argc, argv, 2, &o, SHAPE_OPTS ",figure,view,sampler,size,log,theme,from,eta,phi-d,out");
-    if (o.help) {
-        printf(
-            "usage: ggx plot [shape] [--figure NAME] [--view DIR] [--sampler NAME] [--from DEG] [--size W[xH]]\n"
-            "                [--log] [--theme light|dark] [--eta E] [--phi-d DEG] [--out FILE]\n\n"
-            "Figures (the seeds' hemisphere figures, then line plots):\n"
-            "  ndf, ndf-side      the NDF pdf D(m) (m.n), from above / from the side, with a colour bar (sr^-1)\n"
-            "  vndf, vndf-side    the visible-normal pdf for --view (default 75,0), with engstad-vndf-proof's grey "
-            "region:\n"
-            "                     the normals that reflect the view above the horizon\n"
-            "  grid, grid-side    the 10 x 10 equal-area grid of the unit square mapped onto the hemisphere by\n"
-            "                     --sampler (default stretch; a VNDF sampler maps for --view and shows the region)\n"
-            "  g1, lambda         G1(v) and Lambda(v) against the view's polar angle, at several azimuths\n"
-            "  ndf-slice          D(m) along the two principal planes through its peak (log scale)\n"
-            "  furnace            the weak white furnace G1(v) int D (m.v)+ / (v.n) dm and the albedo E(v); for\n"
-            "                     an anisotropic shape also the isotropic E at sqrt(alpha_x alpha_y) that\n"
-            "                     renderers use in its place\n"
-            "  polar              f cos theta_o, the albedo's integrand over wo, in the incidence plane (at the\n"
-            "                     azimuth of --view) and across it, for incidence 20, 40, 60 and 80 degrees:\n"
-            "                     the BRDF with F = 1, or with --eta E the rough dielectric's BSDF (radiance)\n"
-            "  slice              the BRDF (F = 1) over the half-vector and difference angles (theta_h, theta_d),\n"
-            "                     Rusinkiewicz's coordinates, at --phi-d DEG (default 90), the half vector at\n"
-            "                     phi_h 0 (--rotate turns the shape), log scale over four decades\n\n"
-            "Side views look from the azimuth --from (degrees); by default they show the lobe, which leans toward\n"
-            "the view (VNDF) or the NDF peak: in profile from the lean's azimuth - 90 (the view pointing right;\n"
-            "from -y for phi_v = 0, as in the seeds), or facing it where the lobe is narrower across the profile\n"
-            "plane; the caption states the azimuth. Only the visible half of the hemisphere is drawn.\n"
-            "--log: a logarithmic colour scale over four decades.\n"
-            "--size W or WxH: the file's size, exactly, in pixels (PNG) or points (SVG, PDF); with W alone the\n"
-            "height follows the figure's aspect. Default width 640. --theme: light (default, for print) or dark.\n"
-            "--out FILE: its name says the format (.png, .svg, .pdf); default FIGURE.png for hemisphere figures\n"
-            "and the slice, FIGURE.svg for line plots and polar; - writes the default format to standard output.\n\n%s",
-            SHAPE_HELP);
-        return 0;
-    }
+    if (!command_options(&PLOT_SPEC, argc, argv, 2, &o)) return 0;
     ggx_shape s;
     shape_from_options(&o, &s);
     figure_kind k = figure_from_name(o.figure ? o.figure : "ndf");

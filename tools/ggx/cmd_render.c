@@ -82,51 +82,54 @@ static void light_from_options(const options *o, render_spec *r, render_env *env
     r->env = env;
 }
 
+static void render_help(void)
+{
+    printf("usage: ggx render [shape] [--fresnel F] [--scene sphere|plane] [--light "
+           "sky|white|FILE|point:THETA,PHI[,E]]\n"
+           "                  [--spp N] [--size W[xH]] [--compensate] [--sampler NAME] [--strategy mis|light|bsdf]\n"
+           "                  [--depth N] [--exposure EV] [--threads N] [--seed S] [--out FILE]\n"
+           "       ggx render --normal-map FILE ...: a normal map's filtered chain against its ground truth\n"
+           "                  (ggx render --normal-map x --help)\n\n"
+           "An image of a unit sphere (default) or an infinite plane made of the material, path traced with the\n"
+           "library's BSDFs, samplers and pdfs.\n"
+           "  --fresnel F      one (default), conductor:ETA,K or schlick:F0: a reflector; dielectric:ETA: rough "
+           "glass\n"
+           "                   (light refracted through the sphere and out; below the plane nothing comes back)\n"
+           "  --scene          sphere: x of the shape along the parallels (east), y to the north pole, seen from\n"
+           "                   -y, 10 degrees up; plane: z = 0, x along world x, seen from azimuth 60, 35 up\n"
+           "  --light          sky (default): a built-in clear sky with a sun at 35 degrees elevation, azimuth -120;\n"
+           "                   white: the uniform environment L = 1; FILE: a latitude-longitude environment in\n"
+           "                   OpenEXR, Radiance .hdr or PFM (row 0 at the zenith +z, column 0 at phi = 0 (+x),\n"
+           "                   phi towards +y; NaN or infinite values are refused, negative ones read as 0);\n"
+           "                   point:THETA,PHI[,E]: a distant light from that direction, irradiance E (default 1)\n"
+           "  --spp N          samples per pixel (default 64);  --size W[xH] pixels (default 256)\n"
+           "  --compensate     add the multiple-scattering lobes (energy compensation; seconds of setup for\n"
+           "                   anisotropic and skewed shapes)\n"
+           "  --sampler NAME   how a reflector samples directions (default brdf-bounded; any sampler but bsdf;\n"
+           "                   samplers of normals reflect the view); the glass always uses bsdf\n"
+           "  --strategy       mis (default): light and BSDF samples by the power heuristic; light, bsdf: one\n"
+           "  --depth N        the most surface interactions of a path (default 32)\n"
+           "  --exposure EV    PNG only: the image is sRGB of min(1, 2^EV L) per channel (clamped, default 0)\n"
+           "  --threads N      default: the processors online; the image is the same for any N and one --seed\n"
+           "  --out FILE       .png (8-bit sRGB, and below it a caption when W >= %d), .exr (linear float RGB)\n"
+           "                   or .pfm (linear float RGB); default render.png; - writes PNG to standard output\n\n"
+           "%s\n",
+           CAPTION_MIN_WIDTH, SHAPE_HELP);
+    print_samplers(stdout);
+}
+
+static const command_spec RENDER_SPEC = {
+    SHAPE_OPTS ",fresnel,scene,light,spp,size,compensate,sampler,strategy,depth,exposure,threads,seed,"
+               "out,progress,no-progress",
+    render_help};
+
 int cmd_render(int argc, char **argv)
 {
     for (int i = 2; i < argc; i++)
         if (strcmp(argv[i], "--normal-map") == 0 || strncmp(argv[i], "--normal-map=", 13) == 0)
             return render_normal_map(argc, argv); /* a normal map's filtered chain against its ground truth */
     options o;
-    parse_options(argc, argv, 2, &o,
-                  SHAPE_OPTS ",fresnel,scene,light,spp,size,compensate,sampler,strategy,depth,exposure,threads,seed,"
-                             "out,progress,no-progress");
-    if (o.help) {
-        printf(
-            "usage: ggx render [shape] [--fresnel F] [--scene sphere|plane] [--light "
-            "sky|white|FILE|point:THETA,PHI[,E]]\n"
-            "                  [--spp N] [--size W[xH]] [--compensate] [--sampler NAME] [--strategy mis|light|bsdf]\n"
-            "                  [--depth N] [--exposure EV] [--threads N] [--seed S] [--out FILE]\n"
-            "       ggx render --normal-map FILE ...: a normal map's filtered chain against its ground truth\n"
-            "                  (ggx render --normal-map x --help)\n\n"
-            "An image of a unit sphere (default) or an infinite plane made of the material, path traced with the\n"
-            "library's BSDFs, samplers and pdfs.\n"
-            "  --fresnel F      one (default), conductor:ETA,K or schlick:F0: a reflector; dielectric:ETA: rough "
-            "glass\n"
-            "                   (light refracted through the sphere and out; below the plane nothing comes back)\n"
-            "  --scene          sphere: x of the shape along the parallels (east), y to the north pole, seen from\n"
-            "                   -y, 10 degrees up; plane: z = 0, x along world x, seen from azimuth 60, 35 up\n"
-            "  --light          sky (default): a built-in clear sky with a sun at 35 degrees elevation, azimuth -120;\n"
-            "                   white: the uniform environment L = 1; FILE: a latitude-longitude environment in\n"
-            "                   OpenEXR, Radiance .hdr or PFM (row 0 at the zenith +z, column 0 at phi = 0 (+x),\n"
-            "                   phi towards +y; NaN or infinite values are refused, negative ones read as 0);\n"
-            "                   point:THETA,PHI[,E]: a distant light from that direction, irradiance E (default 1)\n"
-            "  --spp N          samples per pixel (default 64);  --size W[xH] pixels (default 256)\n"
-            "  --compensate     add the multiple-scattering lobes (energy compensation; seconds of setup for\n"
-            "                   anisotropic and skewed shapes)\n"
-            "  --sampler NAME   how a reflector samples directions (default brdf-bounded; any sampler but bsdf;\n"
-            "                   samplers of normals reflect the view); the glass always uses bsdf\n"
-            "  --strategy       mis (default): light and BSDF samples by the power heuristic; light, bsdf: one\n"
-            "  --depth N        the most surface interactions of a path (default 32)\n"
-            "  --exposure EV    PNG only: the image is sRGB of min(1, 2^EV L) per channel (clamped, default 0)\n"
-            "  --threads N      default: the processors online; the image is the same for any N and one --seed\n"
-            "  --out FILE       .png (8-bit sRGB, and below it a caption when W >= %d), .exr (linear float RGB)\n"
-            "                   or .pfm (linear float RGB); default render.png; - writes PNG to standard output\n\n"
-            "%s\n",
-            CAPTION_MIN_WIDTH, SHAPE_HELP);
-        print_samplers(stdout);
-        return 0;
-    }
+    if (!command_options(&RENDER_SPEC, argc, argv, 2, &o)) return 0;
     render_spec r;
     render_spec_defaults(&r);
     shape_from_options(&o, &r.shape);

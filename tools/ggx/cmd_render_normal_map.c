@@ -67,29 +67,33 @@ static void paint_diff(cairo_t *cr, double x, double y, double scale, const floa
     cairo_restore(cr);
 }
 
+static void render_normal_map_help(void)
+{
+    printf("usage: ggx render --normal-map FILE (--alpha A | --roughness-map FILE [--perceptual]) [--y-down]\n"
+           "                  [--level K] [--light point:THETA,PHI] [--view THETA,PHI] [--threads N] [--out "
+           "FIG.png]\n\n"
+           "A plane textured with the normal map's mip chain (ggx mipmap's, exact and fast) at level K, lit by a\n"
+           "distant light (default 45, 180 degrees) and seen from a distant eye (default 45, 0: the mirror\n"
+           "direction), beside the ground truth: the full-resolution map supersampled, each level-K texel the\n"
+           "mean radiance f(wi, wo) wi.z (F = 1) of its base texels, each the skewed ellipsoid of its normal and\n"
+           "roughness. Beside ours, the engines' filters, each a shading normal (the renormalised mean normal)\n"
+           "with an unskewed lobe: no filtering, Toksvig, variance widening (Tokuyoshi-Kaplanyan, clamped at\n"
+           "0.18) and ours without skew. Row 1: the truth and each method; row 2: the map at full resolution and\n"
+           "each method's |difference| from the truth at this light and eye. Prints for every level and method\n"
+           "the relative RMS error sqrt(sum (value - truth)^2 / sum truth^2) over the level's texels and the 37\n"
+           "standard light-eye pairs (lights at 25, 50, 75 degrees in four azimuths, eyes at 0, 45, 70, and the\n"
+           "mirror pair at 45), or the given pair alone when --light or --view is given; against the truth, and\n"
+           "against the engines' own truth (each base texel GGX about its normal as a shading normal). Default\n"
+           "level: 3 (8 x 8 base texels per texel), or the last.\n");
+}
+
+static const command_spec RENDER_NORMAL_MAP_SPEC = {
+    "normal-map,alpha,roughness-map,perceptual,y-down,level,light,view,threads,out", render_normal_map_help};
+
 int render_normal_map(int argc, char **argv)
 {
     options o;
-    parse_options(argc, argv, 2, &o, "normal-map,alpha,roughness-map,perceptual,y-down,level,light,view,threads,out");
-    if (o.help) {
-        printf("usage: ggx render --normal-map FILE (--alpha A | --roughness-map FILE [--perceptual]) [--y-down]\n"
-               "                  [--level K] [--light point:THETA,PHI] [--view THETA,PHI] [--threads N] [--out "
-               "FIG.png]\n\n"
-               "A plane textured with the normal map's mip chain (ggx mipmap's, exact and fast) at level K, lit by a\n"
-               "distant light (default 45, 180 degrees) and seen from a distant eye (default 45, 0: the mirror\n"
-               "direction), beside the ground truth: the full-resolution map supersampled, each level-K texel the\n"
-               "mean radiance f(wi, wo) wi.z (F = 1) of its base texels, each the skewed ellipsoid of its normal and\n"
-               "roughness. Beside ours, the engines' filters, each a shading normal (the renormalised mean normal)\n"
-               "with an unskewed lobe: no filtering, Toksvig, variance widening (Tokuyoshi-Kaplanyan, clamped at\n"
-               "0.18) and ours without skew. Row 1: the truth and each method; row 2: the map at full resolution and\n"
-               "each method's |difference| from the truth at this light and eye. Prints for every level and method\n"
-               "the relative RMS error sqrt(sum (value - truth)^2 / sum truth^2) over the level's texels and the 37\n"
-               "standard light-eye pairs (lights at 25, 50, 75 degrees in four azimuths, eyes at 0, 45, 70, and the\n"
-               "mirror pair at 45), or the given pair alone when --light or --view is given; against the truth, and\n"
-               "against the engines' own truth (each base texel GGX about its normal as a shading normal). Default\n"
-               "level: 3 (8 x 8 base texels per texel), or the last.\n");
-        return 0;
-    }
+    if (!command_options(&RENDER_NORMAL_MAP_SPEC, argc, argv, 2, &o)) return 0;
     if (!o.normal_map) die("--normal-map FILE is required");
     if (o.have_alpha == !!o.roughness_map) die("give the base roughness as one of --alpha A or --roughness-map FILE");
     if (o.have_alpha && o.alpha[0] != o.alpha[1]) die("--alpha: the comparison takes an isotropic A");

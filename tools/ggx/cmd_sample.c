@@ -6,24 +6,27 @@
 
 enum { SAMPLE_PROGRESS_MIN = 1 << 20 };
 
+static void sample_help(void)
+{
+    printf("usage: ggx sample [shape] [--sampler NAME] [--view DIR] [-n N] [--seed S] [--format csv|f32] [--out "
+           "FILE]\n"
+           "                  [--progress|--no-progress]\n\n"
+           "Draws N samples (default 1000) with columns x,y,z,pdf,weight. For normal samplers the weight is 1;\n"
+           "for samplers of directions it is f |w.n| / pdf. Invalid samples are written as 0,0,0,0,0. --format f32\n"
+           "writes 5 little-endian float32 per sample (to a file or a pipe, not to a terminal). --view is the\n"
+           "view / known direction (default 40,0). Runs of %d samples or more show a progress bar on a terminal.\n\n",
+           SAMPLE_PROGRESS_MIN);
+    print_samplers(stdout);
+    printf("\n%s", SHAPE_HELP);
+}
+
+static const command_spec SAMPLE_SPEC = {SHAPE_OPTS ",sampler,view,n,seed,format,out,fresnel,eta,progress,no-progress",
+                                         sample_help};
+
 int cmd_sample(int argc, char **argv)
 {
     options o;
-    parse_options(argc, argv, 2, &o, SHAPE_OPTS ",sampler,view,n,seed,format,out,fresnel,eta,progress,no-progress");
-    if (o.help) {
-        printf(
-            "usage: ggx sample [shape] [--sampler NAME] [--view DIR] [-n N] [--seed S] [--format csv|f32] [--out "
-            "FILE]\n"
-            "                  [--progress|--no-progress]\n\n"
-            "Draws N samples (default 1000) with columns x,y,z,pdf,weight. For normal samplers the weight is 1;\n"
-            "for samplers of directions it is f |w.n| / pdf. Invalid samples are written as 0,0,0,0,0. --format f32\n"
-            "writes 5 little-endian float32 per sample (to a file or a pipe, not to a terminal). --view is the\n"
-            "view / known direction (default 40,0). Runs of %d samples or more show a progress bar on a terminal.\n\n",
-            SAMPLE_PROGRESS_MIN);
-        print_samplers(stdout);
-        printf("\n%s", SHAPE_HELP);
-        return 0;
-    }
+    if (!command_options(&SAMPLE_SPEC, argc, argv, 2, &o)) return 0;
     ggx_shape s;
     shape_from_options(&o, &s);
     const ggx_sampler_info *smp = o.sampler ? find_sampler(o.sampler) : ggx_sampler_get(GGX_SAMPLER_CAPS);
