@@ -232,60 +232,146 @@ static void measure_help(void)
 static const command_spec MEASURE_SPEC = {
     "heightfield,spacing,z-scale,tilted,risers," SHAPE_OPTS ",view,n,bounces,threads,seed,format,out", measure_help};
 
-static int measure(int argc, char **argv)
-{
-    options o;
-    if (!command_options(&MEASURE_SPEC, argc, argv, 3, &o)) return 0;
-    if (!o.heightfield) die("--heightfield FILE is required");
-    if (!o.have_view) die("--view THETA,PHI is required");
-    if (!(o.view.z > 1e-9)) die("--view: the view must be above the plane");
+/* What ggx microsurface measure found, for its report. */
+typedef struct measured {
+    const options *o;
     size_t n;
-    double tilt[2], *h;
-    size_t risers[2];
-    ms_tracer *t = microsurface_open(&o, &h, &n, tilt, risers);
-    char err[400];
-    double v[3] = {o.view.x, o.view.y, o.view.z};
-    long rays = o.n > 0 ? o.n : 1000000;
-    int threads = o.threads > 0 ? o.threads : 1;
+    double v[3], theta, phi, tilt[2], ts[2];
     ms_g1 r;
-    if (ms_measure_g1(t, h, n, v, rays, 4, 8, risers, threads, &r, err, sizeof err) != 0) die("%s", err);
-    ggx_shape fit;
-    int given;
-    ggx_status st = microsurface_model(&o, h, n, risers, &fit, &given);
-    double g_ggx = st == GGX_OK ? ggx_g1_smith(&fit, o.view) : NAN, g_b = ms_beckmann_g1(r.slope_cov, v);
-    /* the visible normals against eq 33 for the fitted shape, 16 x 16 cells of its sphere space */
-    chi2_result cr = {0};
-    long vrays = rays < 200000 ? rays : 200000;
-    if (st == GGX_OK) {
-        double zmin, zmax;
-        ms_tracer_bounds(t, &zmin, &zmax);
-        vndf_ctx c = {{&fit, o.view, vndf_pdf}, t, risers, n, {-v[0], -v[1], -v[2]}, (double)n, zmax};
-        chi2_problem p = {"traced visible normals", 1, vndf_draw, normal_keys_key, normal_keys_density, &c};
-        cr = chi2_run_quiet(&p, vrays, 16, 16, o.seed, 0.01);
-    }
-    /* the BRDF with F = 1 from the light v: traced single and all bounces against ggx_brdf_eval of the fitted shape
-     * and the energy-compensated BRDF of the fitted scale without its (small) skew */
-    enum { BR = 8, BS = 16 };
     ms_brdf br;
-    memset(&br, 0, sizeof br);
-    int bounces = o.bounces > 0 ? o.bounces : 100, brdf = !o.tilted;
-    if (brdf && ms_measure_brdf(t, n, v, rays, BR, BS, bounces, threads, &br, err, sizeof err) != 0) die("%s", err);
-    double e_single = 0.0, e_all = 0.0, d1 = 0.0, n1 = 0.0, d2 = 0.0, n2 = 0.0, d3 = 0.0, n3 = 0.0;
-    double e_model = NAN, e_hc = NAN;
+    int given, skewed, brdf, bounces;
+    long vrays;
+    chi2_result cr;
+    double g_b, g_ggx, g_eq6, g_vf, g_tb, g_saw, g_riser, g1v;
+    double e_single, e_all, e_model, e_hc, l2_single, l2_all, l2_hc;
+} measured;
+
+enum { BR = 8, BS = 16 }; /* the BRDF's bins: rings of equal sin^2 theta times sectors */
+
+static void report_json(FILE *f, const measured *m)
+{
+    fprintf(f, "{\n  \"input\": \"%s\", \"size\": %zu, \"view_deg\": [%.6g, %.6g], \"rays\": %ld, \"missed\": %ld,\n",
+            m->o->heightfield, m->n, m->theta, m->phi, m->r.rays, m->r.missed);
+    char b1[32], b2[32], b3[32], b4[32], b5[32];
+    fprintf(f,
+            "  \"slope_cov\": [%.10g, %.10g, %.10g],\n  \"g1\": {\"facets\": %.10g, \"smith_beckmann\": %s, "
+            "\"smith_ggx_fit\": %s},\n",
+            m->r.slope_cov[0], m->r.slope_cov[1], m->r.slope_cov[2], m->r.g1, jnum(b1, m->g_b), jnum(b2, m->g_ggx));
+    fprintf(f,
+            "  \"tilt\": [%.10g, %.10g], \"risers\": [%zu, %zu], \"slope_mean\": [%.10g, %.10g], "
+            "\"t\": [%s, %s],\n",
+            m->tilt[0], m->tilt[1], m->r.risers[0], m->r.risers[1], m->r.slope_mean[0], m->r.slope_mean[1],
+            jnum(b1, m->ts[0]), jnum(b2, m->ts[1]));
+    char b6[32];
+    fprintf(f,
+            "  \"skewed_g1\": {\"traced\": %.10g, \"eq6\": %s, \"smith\": %s, \"vertical_facets\": %s, "
+            "\"tilted_base\": %s, \"sawtooth\": %s, \"risers_area\": %.10g, \"risers_visible\": %s},\n",
+            m->g1v, jnum(b1, m->g_eq6), jnum(b2, m->g_ggx), jnum(b3, m->g_vf), jnum(b4, m->g_tb), jnum(b5, m->g_saw),
+            m->r.riser_area, jnum(b6, m->g_riser));
+    fprintf(f, "  \"vndf_chi2\": {\"rays\": %ld, \"stat\": %s, \"dof\": %d, \"pvalue\": %s, \"invalid\": %ld},\n",
+            m->vrays, jnum(b1, m->cr.stat), m->cr.dof, jnum(b2, m->cr.pvalue), m->cr.invalid);
+    if (m->brdf)
+        fprintf(f,
+                "  \"brdf\": {\"rays\": %ld, \"lost\": %ld, \"capped\": %ld, \"albedo_single\": %.8g, "
+                "\"albedo_model\": %s, \"albedo_model_height_correlated\": %s, \"albedo_all\": %.8g, "
+                "\"l2_single\": %s, \"l2_single_height_correlated\": %s, \"l2_all\": %s},\n",
+                m->br.rays, m->br.lost, m->br.capped, m->e_single, jnum(b3, m->e_model), jnum(b1, m->e_hc), m->e_all,
+                jnum(b4, m->l2_single), jnum(b6, m->l2_hc), jnum(b5, m->l2_all));
+    else fprintf(f, "  \"brdf\": null,\n");
+    fprintf(f, "  \"bins\": [");
+}
+
+static void report_md(FILE *f, const measured *m)
+{
+    fprintf(f, "# ggx microsurface measure: %s, %zu x %zu, view theta %.4g, phi %.4g degrees\n\n", m->o->heightfield,
+            m->n, m->n, m->theta, m->phi);
+    fprintf(f, "%ld rays, %ld missed; the facets' slope covariance %.6g, %.6g, %.6g\n\n", m->r.rays, m->r.missed,
+            m->r.slope_cov[0], m->r.slope_cov[1], m->r.slope_cov[2]);
+    fprintf(f,
+            "| G1(v) | value |\n|---|---|\n| the facets (exact) | %.6f |\n| Smith, Beckmann of the facets' "
+            "covariance | %.6f |\n| Smith, GGX %s (ggx_g1_smith) | %.6f |\n\n",
+            m->r.g1, m->g_b, m->given ? "given" : "fitted", m->g_ggx);
+    if (m->skewed) {
+        fprintf(f,
+                "skewed: %s; the facets off the risers have the mean slope %.6g, %.6g; the model's t = %.6g, "
+                "%.6g\n\n",
+                m->o->tilted   ? "a tilted patch"
+                : m->o->risers ? "a sawtooth"
+                               : "periodic",
+                m->r.slope_mean[0], m->r.slope_mean[1], m->ts[0], m->ts[1]);
+        fprintf(f,
+                "| G1(v) of the facets off the risers | value |\n|---|---|\n| traced | %.6f |\n"
+                "| eq 6 with its min (ggx_g1) | %.6f |\n| Smith form of eq 32 (ggx_g1_smith) | %.6f |\n"
+                "| vertical facets (Walter's remedy, Smith's masking) | %.6f |\n"
+                "| tilted base (ggx_g1_tilted) | %.6f |\n"
+                "| sawtooth (ggx_g1_risers) | %.6f |\n",
+                m->g1v, m->g_eq6, m->g_ggx, m->g_vf, m->g_tb, m->g_saw);
+        if (m->r.riser_area > 0.0)
+            fprintf(f, "| the risers' visible share (projected area %.6f) | %.6f |\n", m->r.riser_area, m->g_riser);
+        fprintf(f, "\n");
+    }
+    if (m->cr.dof > 0)
+        fprintf(f,
+                "visible normals of %ld rays against ggx_pdf_vndf of the %s shape (eq 33): chi-square %.6g on %d "
+                "degrees of freedom (%.3g per degree), p = %.3g\n\n",
+                m->vrays, m->given ? "given" : "fitted", m->cr.stat, m->cr.dof, m->cr.stat / m->cr.dof, m->cr.pvalue);
+    else fprintf(f, "visible normals of %ld rays: too few for a chi-square against ggx_pdf_vndf\n\n", m->vrays);
+    if (!m->brdf) fprintf(f, "the BRDF is not measured on a tilted patch\n\n");
+    else
+        fprintf(f,
+                "the BRDF with F = 1 from the light at the view, %ld rays (%ld lost, %ld still bouncing "
+                "after %d), "
+                "%d x %d bins:\n\n| | traced | model | relative L2 of the BRDF over the bins |\n|---|---|---|---|\n"
+                "| single scattering: albedo | %.5f | %.5f (ggx_albedo; height-correlated: %.5f) | %.4f "
+                "(ggx_brdf_eval; with the height-correlated G2: %.4f) |\n"
+                "| all bounces: albedo | %.5f | 1 (F = 1) | %.4f (ggx_brdf_compensated_eval) |\n\n",
+                m->br.rays, m->br.lost, m->br.capped, m->bounces, BR, BS, m->e_single, m->e_model, m->e_hc,
+                m->l2_single, m->l2_hc, m->e_all, m->l2_all);
+    fprintf(f,
+            "| sin^2 theta_m | phi_m, degrees | projected area | traced G1(v, m) | / G1(v) |\n|---|---|---|---|---|\n");
+}
+
+/* the normal bins with enough of the projected area: traced G1(v, m) */
+static void report_bins(FILE *f, const measured *m, int json)
+{
+    int first = 1;
+    for (int b = 0; b < m->r.rings * m->r.sectors; b++) {
+        if (!(m->r.area[b] > 1e-4 * m->v[2])) continue; /* bins with under 1e-4 of the projected area: too few rays */
+        int ring = b / m->r.sectors, sec = b % m->r.sectors;
+        double g = m->r.visible[b] / m->r.area[b];
+        if (json)
+            fprintf(f, "%s\n    {\"ring\": %d, \"sector\": %d, \"area\": %.8g, \"g1\": %.8g}", first ? "" : ",", ring,
+                    sec, m->r.area[b], g);
+        else
+            fprintf(f, "| %.2f-%.2f | %.0f-%.0f | %.5f | %.5f | %.4f |\n", (double)ring / m->r.rings,
+                    (double)(ring + 1) / m->r.rings, 360.0 * sec / m->r.sectors, 360.0 * (sec + 1) / m->r.sectors,
+                    m->r.area[b], g, g / m->g1v);
+        first = 0;
+    }
+}
+
+/* The BRDF with F = 1 from the light at the view: the traced albedos, and the relative L2 over the bins of the traced
+ * single scattering against ggx_brdf_eval of the shape (and with the height-correlated G2), and of all bounces against
+ * the energy-compensated BRDF of the shape's scale without its (small) skew. fit NULL: no shape to compare with. */
+static void brdf_against_model(measured *m, const ggx_shape *fit)
+{
+    double d1 = 0.0, n1 = 0.0, d2 = 0.0, n2 = 0.0, d3 = 0.0, n3 = 0.0;
     ggx_energy *en = NULL;
     ggx_fresnel one;
     ggx_fresnel_one(&one);
-    if (st == GGX_OK && brdf) {
+    m->e_model = m->e_hc = NAN;
+    if (fit) {
         double ts[2], ss[3];
         ggx_shape flat;
-        ggx_shape_slopes(&fit, ts, ss);
+        ggx_shape_slopes(fit, ts, ss);
         if (ggx_shape_from_slopes(&flat, 0.0, 0.0, ss[0], ss[1], ss[2]) == GGX_OK) ggx_energy_create(&flat, &en);
-        e_model = ggx_albedo(&fit, o.view), e_hc = ggx_albedo_height_correlated(&fit, o.view);
+        m->e_model = ggx_albedo(fit, m->o->view), m->e_hc = ggx_albedo_height_correlated(fit, m->o->view);
     }
-    for (int b = 0; brdf && b < BR * BS; b++) {
-        double f1 = br.single[b] * BR * BS / 3.14159265358979323846, fa = br.all[b] * BR * BS / 3.14159265358979323846;
-        e_single += br.single[b], e_all += br.all[b];
-        if (st != GGX_OK) continue;
+    for (int b = 0; b < BR * BS; b++) {
+        double f1 = m->br.single[b] * BR * BS / 3.14159265358979323846,
+               fa = m->br.all[b] * BR * BS / 3.14159265358979323846;
+        m->e_single += m->br.single[b], m->e_all += m->br.all[b];
+        if (!fit) continue;
         /* the model's mean over the bin (uniform in sin^2 theta and phi: uniform in projected solid angle) */
         double m1 = 0.0, ma = 0.0, mh = 0.0;
         int ring = b / BS, sec = b % BS;
@@ -294,133 +380,80 @@ static int measure(int argc, char **argv)
                 double u = ((double)ring + (i + 0.5) / 4.0) / BR,
                        ph = 2.0 * 3.14159265358979323846 * ((double)sec + (k + 0.5) / 4.0) / BS;
                 ggx_vec3 wo = {sqrt(u) * cos(ph), sqrt(u) * sin(ph), sqrt(1.0 - u)};
-                double f = ggx_brdf_eval(&fit, &one, o.view, wo) / 16.0;
+                double f = ggx_brdf_eval(fit, &one, m->o->view, wo) / 16.0;
                 /* the height-correlated G2 in place of eq 5's: the same BRDF times their ratio at the half vector */
-                ggx_vec3 hv = ggx_half_reflect(o.view, wo);
-                double g2 = ggx_g2(&fit, o.view, wo, hv);
-                m1 += f, mh += g2 > 0.0 ? f * ggx_g2_height_correlated(&fit, o.view, wo, hv) / g2 : 0.0;
-                if (en) ma += ggx_brdf_compensated_eval(en, &one, o.view, wo) / 16.0;
+                ggx_vec3 hv = ggx_half_reflect(m->o->view, wo);
+                double g2 = ggx_g2(fit, m->o->view, wo, hv);
+                m1 += f, mh += g2 > 0.0 ? f * ggx_g2_height_correlated(fit, m->o->view, wo, hv) / g2 : 0.0;
+                if (en) ma += ggx_brdf_compensated_eval(en, &one, m->o->view, wo) / 16.0;
             }
         d1 += (f1 - m1) * (f1 - m1), n1 += m1 * m1, d2 += (fa - ma) * (fa - ma), n2 += ma * ma;
         d3 += (f1 - mh) * (f1 - mh), n3 += mh * mh;
     }
-    double l2_single = brdf ? sqrt(d1 / n1) : NAN, l2_all = en ? sqrt(d2 / n2) : NAN,
-           l2_hc = brdf ? sqrt(d3 / n3) : NAN;
+    m->l2_single = sqrt(d1 / n1), m->l2_all = en ? sqrt(d2 / n2) : NAN, m->l2_hc = sqrt(d3 / n3);
     ggx_energy_free(en);
+}
+
+static int measure(int argc, char **argv)
+{
+    options o;
+    if (!command_options(&MEASURE_SPEC, argc, argv, 3, &o)) return 0;
+    if (!o.heightfield) die("--heightfield FILE is required");
+    if (!o.have_view) die("--view THETA,PHI is required");
+    if (!(o.view.z > 1e-9)) die("--view: the view must be above the plane");
+    measured m;
+    memset(&m, 0, sizeof m);
+    m.o = &o;
+    double *h;
+    size_t risers[2];
+    ms_tracer *t = microsurface_open(&o, &h, &m.n, m.tilt, risers);
+    char err[400];
+    m.v[0] = o.view.x, m.v[1] = o.view.y, m.v[2] = o.view.z;
+    long rays = o.n > 0 ? o.n : 1000000;
+    int threads = o.threads > 0 ? o.threads : 1;
+    if (ms_measure_g1(t, h, m.n, m.v, rays, 4, 8, risers, threads, &m.r, err, sizeof err) != 0) die("%s", err);
+    ggx_shape fit;
+    ggx_status st = microsurface_model(&o, h, m.n, risers, &fit, &m.given);
+    m.g_ggx = st == GGX_OK ? ggx_g1_smith(&fit, o.view) : NAN, m.g_b = ms_beckmann_g1(m.r.slope_cov, m.v);
+    /* the visible normals against eq 33 for the fitted shape, 16 x 16 cells of its sphere space */
+    m.vrays = rays < 200000 ? rays : 200000;
+    if (st == GGX_OK) {
+        double zmin, zmax;
+        ms_tracer_bounds(t, &zmin, &zmax);
+        vndf_ctx c = {{&fit, o.view, vndf_pdf}, t, risers, m.n, {-m.v[0], -m.v[1], -m.v[2]}, (double)m.n, zmax};
+        chi2_problem p = {"traced visible normals", 1, vndf_draw, normal_keys_key, normal_keys_density, &c};
+        m.cr = chi2_run_quiet(&p, m.vrays, 16, 16, o.seed, 0.01);
+    }
+    m.bounces = o.bounces > 0 ? o.bounces : 100, m.brdf = !o.tilted;
+    m.e_model = m.e_hc = m.l2_single = m.l2_all = m.l2_hc = NAN;
+    if (m.brdf) {
+        if (ms_measure_brdf(t, m.n, m.v, rays, BR, BS, m.bounces, threads, &m.br, err, sizeof err) != 0) die("%s", err);
+        brdf_against_model(&m, st == GGX_OK ? &fit : NULL);
+    }
     /* skewed surfaces: the facets off the risers against the masking forms (microsurface.h, skew.c) */
-    double ts[2] = {0.0, 0.0}, ss[3];
-    if (st == GGX_OK) ggx_shape_slopes(&fit, ts, ss);
-    double g_eq6 = st == GGX_OK ? ggx_g1(&fit, o.view, o.view) : NAN;
-    double g_vf = st == GGX_OK ? ms_g1_vertical_facets(&fit, v) : NAN;
-    double g_tb = st == GGX_OK ? ggx_g1_tilted(&fit, o.view, o.view) : NAN;
-    double g_saw = st == GGX_OK ? ggx_g1_risers(&fit, o.view, o.view) : NAN;
-    double g_riser = r.riser_area > 0.0 ? r.riser_visible / r.riser_area : NAN;
-    int skewed = o.tilted || o.risers || (given && hypot(ts[0], ts[1]) > 1e-9); /* a periodic tile has no mean slope */
-    double g1v = risers[0] || risers[1] ? r.g1_off_risers : r.g1;
+    double ss[3];
+    if (st == GGX_OK) ggx_shape_slopes(&fit, m.ts, ss);
+    m.g_eq6 = st == GGX_OK ? ggx_g1(&fit, o.view, o.view) : NAN;
+    m.g_vf = st == GGX_OK ? ms_g1_vertical_facets(&fit, m.v) : NAN;
+    m.g_tb = st == GGX_OK ? ggx_g1_tilted(&fit, o.view, o.view) : NAN;
+    m.g_saw = st == GGX_OK ? ggx_g1_risers(&fit, o.view, o.view) : NAN;
+    m.g_riser = m.r.riser_area > 0.0 ? m.r.riser_visible / m.r.riser_area : NAN;
+    /* a periodic tile has no mean slope */
+    m.skewed = o.tilted || o.risers || (m.given && hypot(m.ts[0], m.ts[1]) > 1e-9);
+    m.g1v = risers[0] || risers[1] ? m.r.g1_off_risers : m.r.g1;
     int json = o.format && strcmp(o.format, "json") == 0;
     if (o.format && !json && strcmp(o.format, "md") != 0) die("--format: '%s' is not md or json", o.format);
     out_file f;
     out_open(&f, o.out ? o.out : "-");
-    double theta = acos(v[2]) * 180.0 / 3.14159265358979323846,
-           phi = atan2(v[1], v[0]) * 180.0 / 3.14159265358979323846;
-    if (json) {
-        fprintf(f.f,
-                "{\n  \"input\": \"%s\", \"size\": %zu, \"view_deg\": [%.6g, %.6g], \"rays\": %ld, \"missed\": %ld,\n",
-                o.heightfield, n, theta, phi, r.rays, r.missed);
-        char b1[32], b2[32], b3[32], b4[32], b5[32];
-        fprintf(f.f,
-                "  \"slope_cov\": [%.10g, %.10g, %.10g],\n  \"g1\": {\"facets\": %.10g, \"smith_beckmann\": %s, "
-                "\"smith_ggx_fit\": %s},\n",
-                r.slope_cov[0], r.slope_cov[1], r.slope_cov[2], r.g1, jnum(b1, g_b), jnum(b2, g_ggx));
-        fprintf(f.f,
-                "  \"tilt\": [%.10g, %.10g], \"risers\": [%zu, %zu], \"slope_mean\": [%.10g, %.10g], "
-                "\"t\": [%s, %s],\n",
-                tilt[0], tilt[1], r.risers[0], r.risers[1], r.slope_mean[0], r.slope_mean[1], jnum(b1, ts[0]),
-                jnum(b2, ts[1]));
-        char b6[32];
-        fprintf(f.f,
-                "  \"skewed_g1\": {\"traced\": %.10g, \"eq6\": %s, \"smith\": %s, \"vertical_facets\": %s, "
-                "\"tilted_base\": %s, \"sawtooth\": %s, \"risers_area\": %.10g, \"risers_visible\": %s},\n",
-                g1v, jnum(b1, g_eq6), jnum(b2, g_ggx), jnum(b3, g_vf), jnum(b4, g_tb), jnum(b5, g_saw), r.riser_area,
-                jnum(b6, g_riser));
-        fprintf(f.f, "  \"vndf_chi2\": {\"rays\": %ld, \"stat\": %s, \"dof\": %d, \"pvalue\": %s, \"invalid\": %ld},\n",
-                vrays, jnum(b1, cr.stat), cr.dof, jnum(b2, cr.pvalue), cr.invalid);
-        if (brdf)
-            fprintf(f.f,
-                    "  \"brdf\": {\"rays\": %ld, \"lost\": %ld, \"capped\": %ld, \"albedo_single\": %.8g, "
-                    "\"albedo_model\": %s, \"albedo_model_height_correlated\": %s, \"albedo_all\": %.8g, "
-                    "\"l2_single\": %s, \"l2_single_height_correlated\": %s, \"l2_all\": %s},\n",
-                    br.rays, br.lost, br.capped, e_single, jnum(b3, e_model), jnum(b1, e_hc), e_all,
-                    jnum(b4, l2_single), jnum(b6, l2_hc), jnum(b5, l2_all));
-        else fprintf(f.f, "  \"brdf\": null,\n");
-        fprintf(f.f, "  \"bins\": [");
-    } else {
-        fprintf(f.f, "# ggx microsurface measure: %s, %zu x %zu, view theta %.4g, phi %.4g degrees\n\n", o.heightfield,
-                n, n, theta, phi);
-        fprintf(f.f, "%ld rays, %ld missed; the facets' slope covariance %.6g, %.6g, %.6g\n\n", r.rays, r.missed,
-                r.slope_cov[0], r.slope_cov[1], r.slope_cov[2]);
-        fprintf(f.f,
-                "| G1(v) | value |\n|---|---|\n| the facets (exact) | %.6f |\n| Smith, Beckmann of the facets' "
-                "covariance | %.6f |\n| Smith, GGX %s (ggx_g1_smith) | %.6f |\n\n",
-                r.g1, g_b, given ? "given" : "fitted", g_ggx);
-        if (skewed) {
-            fprintf(f.f,
-                    "skewed: %s; the facets off the risers have the mean slope %.6g, %.6g; the model's t = %.6g, "
-                    "%.6g\n\n",
-                    o.tilted   ? "a tilted patch"
-                    : o.risers ? "a sawtooth"
-                               : "periodic",
-                    r.slope_mean[0], r.slope_mean[1], ts[0], ts[1]);
-            fprintf(f.f,
-                    "| G1(v) of the facets off the risers | value |\n|---|---|\n| traced | %.6f |\n"
-                    "| eq 6 with its min (ggx_g1) | %.6f |\n| Smith form of eq 32 (ggx_g1_smith) | %.6f |\n"
-                    "| vertical facets (Walter's remedy, Smith's masking) | %.6f |\n"
-                    "| tilted base (ggx_g1_tilted) | %.6f |\n"
-                    "| sawtooth (ggx_g1_risers) | %.6f |\n",
-                    g1v, g_eq6, g_ggx, g_vf, g_tb, g_saw);
-            if (r.riser_area > 0.0)
-                fprintf(f.f, "| the risers' visible share (projected area %.6f) | %.6f |\n", r.riser_area, g_riser);
-            fprintf(f.f, "\n");
-        }
-        if (cr.dof > 0)
-            fprintf(f.f,
-                    "visible normals of %ld rays against ggx_pdf_vndf of the %s shape (eq 33): chi-square %.6g on %d "
-                    "degrees of freedom (%.3g per degree), p = %.3g\n\n",
-                    vrays, given ? "given" : "fitted", cr.stat, cr.dof, cr.stat / cr.dof, cr.pvalue);
-        else fprintf(f.f, "visible normals of %ld rays: too few for a chi-square against ggx_pdf_vndf\n\n", vrays);
-        if (!brdf) fprintf(f.f, "the BRDF is not measured on a tilted patch\n\n");
-        else
-            fprintf(f.f,
-                    "the BRDF with F = 1 from the light at the view, %ld rays (%ld lost, %ld still bouncing "
-                    "after %d), "
-                    "%d x %d bins:\n\n| | traced | model | relative L2 of the BRDF over the bins |\n|---|---|---|---|\n"
-                    "| single scattering: albedo | %.5f | %.5f (ggx_albedo; height-correlated: %.5f) | %.4f "
-                    "(ggx_brdf_eval; with the height-correlated G2: %.4f) |\n"
-                    "| all bounces: albedo | %.5f | 1 (F = 1) | %.4f (ggx_brdf_compensated_eval) |\n\n",
-                    br.rays, br.lost, br.capped, bounces, BR, BS, e_single, e_model, e_hc, l2_single, l2_hc, e_all,
-                    l2_all);
-        fprintf(
-            f.f,
-            "| sin^2 theta_m | phi_m, degrees | projected area | traced G1(v, m) | / G1(v) |\n|---|---|---|---|---|\n");
-    }
-    int first = 1;
-    for (int b = 0; b < r.rings * r.sectors; b++) {
-        if (!(r.area[b] > 1e-4 * v[2])) continue; /* bins with under 1e-4 of the projected area: too few rays */
-        int ring = b / r.sectors, sec = b % r.sectors;
-        double g = r.visible[b] / r.area[b];
-        if (json)
-            fprintf(f.f, "%s\n    {\"ring\": %d, \"sector\": %d, \"area\": %.8g, \"g1\": %.8g}", first ? "" : ",", ring,
-                    sec, r.area[b], g);
-        else
-            fprintf(f.f, "| %.2f-%.2f | %.0f-%.0f | %.5f | %.5f | %.4f |\n", (double)ring / r.rings,
-                    (double)(ring + 1) / r.rings, 360.0 * sec / r.sectors, 360.0 * (sec + 1) / r.sectors, r.area[b], g,
-                    g / g1v);
-        first = 0;
-    }
+    m.theta = acos(m.v[2]) * 180.0 / 3.14159265358979323846;
+    m.phi = atan2(m.v[1], m.v[0]) * 180.0 / 3.14159265358979323846;
+    if (json) report_json(f.f, &m);
+    else report_md(f.f, &m);
+    report_bins(f.f, &m, json);
     if (json) fprintf(f.f, "\n  ]\n}\n");
     out_close(&f);
-    ms_g1_free(&r);
-    ms_brdf_free(&br);
+    ms_g1_free(&m.r);
+    ms_brdf_free(&m.br);
     ms_tracer_free(t);
     free(h);
     return 0;

@@ -230,31 +230,76 @@ typedef struct option_def {
     void (*set)(options *o, const char *a, const char *val);
 } option_def;
 
-#define FLAG(name, member, value) {name, OPT_FLAG, offsetof(options, member), value, NULL}
-#define TEXT(name, member) {name, OPT_TEXT, offsetof(options, member), 0, NULL}
-#define SET(name, fn) {name, OPT_SET, 0, 0, fn}
+#define FLAG(name, member, value)                                                                                      \
+    {                                                                                                                  \
+        name, OPT_FLAG, offsetof(options, member), value, NULL                                                         \
+    }
+#define TEXT(name, member)                                                                                             \
+    {                                                                                                                  \
+        name, OPT_TEXT, offsetof(options, member), 0, NULL                                                             \
+    }
+#define SET(name, fn)                                                                                                  \
+    {                                                                                                                  \
+        name, OPT_SET, 0, 0, fn                                                                                        \
+    }
 
 static const option_def OPTIONS[] = {
     /* shape */
-    SET("alpha", set_alpha), SET("skew", set_skew), SET("rotate", set_rotate), SET("matrix", set_matrix),
+    SET("alpha", set_alpha),
+    SET("skew", set_skew),
+    SET("rotate", set_rotate),
+    SET("matrix", set_matrix),
     /* directions, counts, output */
-    SET("view", set_view), SET("wi", set_wi), SET("wo", set_wo), SET("n", set_n), SET("seed", set_seed),
-    SET("size", set_size), SET("theme", set_theme), SET("from", set_from), SET("phi-d", set_phi_d),
-    SET("eta", set_eta), SET("out", set_out), TEXT("format", format), TEXT("sampler", sampler),
-    TEXT("figure", figure), TEXT("fresnel", fresnel), TEXT("claim", claim), FLAG("log", log_scale, 1),
-    FLAG("progress", progress, 1), FLAG("no-progress", progress, 0),
+    SET("view", set_view),
+    SET("wi", set_wi),
+    SET("wo", set_wo),
+    SET("n", set_n),
+    SET("seed", set_seed),
+    SET("size", set_size),
+    SET("theme", set_theme),
+    SET("from", set_from),
+    SET("phi-d", set_phi_d),
+    SET("eta", set_eta),
+    SET("out", set_out),
+    TEXT("format", format),
+    TEXT("sampler", sampler),
+    TEXT("figure", figure),
+    TEXT("fresnel", fresnel),
+    TEXT("claim", claim),
+    FLAG("log", log_scale, 1),
+    FLAG("progress", progress, 1),
+    FLAG("no-progress", progress, 0),
     /* measured surfaces: fit, mipmap */
-    TEXT("heightfield", heightfield), TEXT("normal-map", normal_map), TEXT("roughness-map", roughness_map),
-    TEXT("normals", normals), TEXT("model", model), SET("spacing", set_spacing), SET("z-scale", set_z_scale),
-    FLAG("keep-tilt", keep_tilt, 1), FLAG("y-down", y_down, 1), FLAG("fast", fast, 1),
-    FLAG("perceptual", perceptual, 1), SET("downsample", set_downsample), SET("threads", set_threads),
+    TEXT("heightfield", heightfield),
+    TEXT("normal-map", normal_map),
+    TEXT("roughness-map", roughness_map),
+    TEXT("normals", normals),
+    TEXT("model", model),
+    SET("spacing", set_spacing),
+    SET("z-scale", set_z_scale),
+    FLAG("keep-tilt", keep_tilt, 1),
+    FLAG("y-down", y_down, 1),
+    FLAG("fast", fast, 1),
+    FLAG("perceptual", perceptual, 1),
+    SET("downsample", set_downsample),
+    SET("threads", set_threads),
     SET("level", set_level),
     /* render */
-    TEXT("scene", scene), TEXT("light", light), TEXT("strategy", strategy), SET("spp", set_spp),
-    SET("depth", set_depth), SET("exposure", set_exposure), FLAG("compensate", compensate, 1),
+    TEXT("scene", scene),
+    TEXT("light", light),
+    TEXT("strategy", strategy),
+    SET("spp", set_spp),
+    SET("depth", set_depth),
+    SET("exposure", set_exposure),
+    FLAG("compensate", compensate, 1),
     /* microsurface */
-    TEXT("kind", kind), SET("corr", set_corr), SET("mix", set_mix), SET("period", set_period),
-    SET("risers", set_risers), SET("bounces", set_bounces), FLAG("tilted", tilted, 1),
+    TEXT("kind", kind),
+    SET("corr", set_corr),
+    SET("mix", set_mix),
+    SET("period", set_period),
+    SET("risers", set_risers),
+    SET("bounces", set_bounces),
+    FLAG("tilted", tilted, 1),
 };
 
 static const option_def *option_named(const char *name)
