@@ -1,7 +1,9 @@
-/* The native half of the Python package `ggx` (python/ggx/__init__.py loads it with ctypes): one element loop per
- * signature of the double API, each calling the library function it is given by pointer, so an array result is
- * bit for bit what the C API returns for each element. The library's objects are linked into this module, which
- * therefore exports the whole ggx_* API too (the float batch functions are called directly from Python).
+/* The native half of the Python package `ggx` (python/ggx/_native.py loads it with ctypes): one element loop per
+ * signature of the double API, each calling the library function it is given by pointer (the samplers' loops: the
+ * registry's sampler of an id), so an array result is bit for bit what the C API returns for each element; beside
+ * them, what Python needs of the C structs, and the entry points of the fits, the surfaces' readers and the
+ * renderer. The module links libggx (a static build links the library's objects into it instead), so Python finds
+ * every ggx_* function through it: the float batch functions are called directly from Python.
  *
  * Every loop reads its inputs through ggxpy_in: a pointer and a step in doubles from one element to the next (3 for
  * a contiguous array of directions, 1 for scalars, 0 for one value broadcast over all elements), so broadcasting

@@ -1,4 +1,4 @@
-"""The Python package against the C API and against its own promises (python/ggx/__init__.py's docstrings).
+"""The Python package against the C API and against its own promises (the docstrings of python/ggx).
 
 The C reference is libggx.so (GGX_LIBGGX, set by ctest), called element by element through ctypes with structs by
 value (libffi), a path independent of the package's native loops; both are built from the same objects, so float64

@@ -1,0 +1,242 @@
+"""The native module and the helpers every part of the package shares: _ggx_native.so loaded with ctypes, _proto
+(which declares one of its functions; each module declares those it calls), the conversion of arguments (real
+numbers, float64 arrays, dtypes, choices), _Args (inputs broadcast and laid out for a native loop), the float32
+rounding of results, status messages and the float batch API's settings."""
+
+import ctypes
+import decimal
+import math
+import numbers
+import os
+
+import numpy as np
+
+# The native module; the library's own functions are found through it: in libggx, which it links, or in the module
+# itself where the library is static.
+_lib = ctypes.CDLL(os.path.join(os.path.dirname(os.path.abspath(__file__)), "_ggx_native.so"))
+
+_vp = ctypes.c_void_p
+_sz = ctypes.c_size_t
+_d = ctypes.c_double
+_i = ctypes.c_int
+
+
+class _In(ctypes.Structure):
+    """An input array of the native loops: its address and the step in doubles between elements (0: broadcast)."""
+    _fields_ = [("p", _vp), ("step", ctypes.c_ssize_t)]
+
+
+_inp = ctypes.POINTER(_In)
+
+
+def _proto(name, restype, *argtypes):
+    f = getattr(_lib, name)
+    f.restype = restype
+    f.argtypes = list(argtypes)
+    return f
+
+
+#: The version of the libggx the package runs with, "MAJOR.MINOR.PATCH" (ggx_version).
+__version__ = _proto("ggx_version", ctypes.c_char_p)().decode()
+_status_str = _proto("ggx_status_str", ctypes.c_char_p, _i)
+
+_FN = {}
+
+
+def _fn(name):
+    """The address of a C function of the library, for the native loops (looked up once)."""
+    p = _FN.get(name)
+    if p is None:
+        p = _FN[name] = ctypes.cast(getattr(_lib, name), _vp).value
+    return p
+
+
+def status_message(status):
+    """The library's one-line message for a status code (ggx_status_str; "unknown status" for other values)."""
+    k = int(status)
+    return _status_str(k if -2 ** 31 <= k < 2 ** 31 else -1).decode()
+
+
+def _check(status):
+    if status != 0:
+        raise ValueError(status_message(status))
+
+
+def _real(x, what):
+    """A real number for a setup parameter (NaN and infinities pass: the library refuses them with its status)."""
+    try:
+        if isinstance(x, (numbers.Real, decimal.Decimal)):
+            v = float(x)
+            if math.isinf(v) and not (isinstance(x, float) or x != x or abs(x) == float("inf")):
+                raise OverflowError  # a finite number beyond float64's range
+            return v
+        a = np.asarray(x)
+        if a.shape != () or a.dtype.kind not in "biuf":
+            raise TypeError
+        return float(a)
+    except (TypeError, ValueError, OverflowError):
+        raise ValueError(f"{what}: expected a real number, got {x!r}") from None
+
+
+def _array(x, what):
+    """x as a float64 array of real numbers: a complex value (which would lose its imaginary part), a string or
+    other non-number, or a masked array (whose mask would be ignored) is an error."""
+    if isinstance(x, np.ma.MaskedArray):
+        raise ValueError(f"{what}: masked arrays are not supported (use .filled() or select the valid elements)")
+    try:
+        a = np.asarray(x)
+        if a.dtype.kind == "O":
+            if not all(isinstance(e, numbers.Real) for e in a.flat):
+                raise TypeError
+        elif a.dtype.kind not in "biuf":
+            raise TypeError
+        d = np.asarray(a, dtype=np.float64)
+        if a.dtype.kind in "fO" and a.dtype != np.float64 and a.dtype != np.float32 and a.dtype != np.float16:
+            with np.errstate(invalid="ignore"):
+                if np.any(np.isinf(d) & ~np.isinf(a.astype(np.longdouble))):
+                    raise OverflowError  # a finite long double or Python number beyond float64's range
+        return d
+    except (TypeError, ValueError, OverflowError):
+        raise ValueError(f"{what}: expected real numbers, got {x!r}") from None
+
+
+def _dtype(dtype):
+    try:
+        dt = np.dtype(dtype)
+    except TypeError:
+        raise ValueError(f"dtype: expected float64 or float32, got {dtype!r}") from None
+    if dt not in (np.dtype(np.float64), np.dtype(np.float32)):
+        raise ValueError(f"dtype: expected float64 or float32, got {dt}")
+    return dt
+
+
+def _choice(value, choices, what):
+    if not isinstance(value, str) or value not in choices:
+        raise ValueError(f"{what}: expected one of {', '.join(map(repr, choices))}, got {value!r}")
+    return choices[value] if isinstance(choices, dict) else value
+
+
+# The transport modes of the BSDF, for bsdf and the sampler "bsdf".
+_MODES = {"radiance": 0, "importance": 1}
+
+
+class _Args:
+    """Inputs converted, broadcast and laid out for a native loop: .shape (the broadcast leading shape), .n, .ins
+    (the _In array), and .arrays (kept alive for the call). Each spec is (value, name, width): width 3 for
+    directions, 1 for numbers."""
+
+    def __init__(self, *specs):
+        arrays = []
+        for value, what, width in specs:
+            a = _array(value, what)
+            if width == 3 and (a.ndim == 0 or a.shape[-1] != 3):
+                raise ValueError(f"{what}: expected an array of shape (..., 3), got shape {a.shape}")
+            arrays.append(a)
+        lead = [a.shape[:-1] if w == 3 else a.shape for a, (_, _, w) in zip(arrays, specs)]
+        try:
+            self.shape = np.broadcast_shapes(*lead)
+        except ValueError:
+            names = ", ".join(f"{what} {s}" for (_, what, _), s in zip(specs, lead))
+            raise ValueError(f"inputs do not broadcast together: {names}") from None
+        self.n = math.prod(self.shape)
+        self.widths = [w for _, _, w in specs]
+        self.ins = (_In * max(len(specs), 1))()
+        self.arrays = []
+        for k, (a, (_, _, width)) in enumerate(zip(arrays, specs)):
+            core = lead[k]
+            if math.prod(core) == 1:  # one value for every element: no copy
+                a = np.ascontiguousarray(a.reshape(width))
+                step = 0
+            else:
+                if core != self.shape or not a.flags.c_contiguous:
+                    full = self.shape + ((3,) if width == 3 else ())
+                    a = np.ascontiguousarray(np.broadcast_to(a, full))
+                step = width
+            self.arrays.append(a)
+            self.ins[k].p = a.ctypes.data
+            self.ins[k].step = step
+
+    def out(self, *tail, dtype=np.float64):
+        return np.empty(self.shape + tail, dtype=dtype)
+
+    def soa32(self, k, role=None):
+        """Input k as float32 arrays of n elements (x, y, z for a direction), for the batch API. Values beyond
+        float's range become infinities (0 for an evaluation, as in float64). role "u": a u below 1 that rounds to 1
+        becomes the largest float below 1 (the batch samplers take u in [0, 1)). role "view": a sampler's view is
+        normalised in float64 first, since the samplers depend on its direction only (a view of length 1e-50 or
+        1e300 would underflow or overflow in float)."""
+        width = self.widths[k]
+        a = self.arrays[k].reshape(-1, width)
+        if role == "view":
+            big = np.max(np.abs(a), axis=1, keepdims=True)
+            with np.errstate(invalid="ignore", divide="ignore"):
+                b = a / big
+                a = b / np.sqrt(np.sum(b * b, axis=1, keepdims=True))
+            a = np.where(np.isfinite(a).all(axis=1, keepdims=True), a, 0.0)  # zero, infinite, NaN: no view
+        full = np.broadcast_to(a, (self.n, width))
+        with np.errstate(over="ignore"):
+            cols = [np.ascontiguousarray(full[:, c], dtype=np.float32) for c in range(width)]
+        if role == "u":
+            below_one = full[:, 0] < 1
+            cols[0][below_one & (cols[0] >= 1)] = _U32_MAX
+        return cols
+
+
+_U32_MAX = np.nextafter(np.float32(1), np.float32(0))
+
+
+def _ptr(a):
+    return a.ctypes.data
+
+
+def _call(loop, head, specs, dtype=np.float64):
+    """The common wrapper: inputs converted and broadcast, loop(*head, n, inputs, out) run, the result in dtype."""
+    a = _Args(*specs)
+    out = a.out()
+    if a.n:
+        loop(*head, a.n, a.ins, _ptr(out))
+    return _as(_scalar(out), dtype)
+
+
+def _scalar(out):
+    """numpy's convention: a 0-d result is returned as a numpy scalar."""
+    return out[()] if out.ndim == 0 else out
+
+
+def _as(x, dtype):
+    """A float64 result (array, numpy scalar, or a tuple of them) in the requested dtype: the rounded result for
+    float32, where the batch API has no loop for the function."""
+    dt = _dtype(dtype)
+    if dt == np.float64:
+        return x
+    if isinstance(x, tuple):
+        items = [_as(e, dtype) if np.asarray(e).dtype == np.float64 else e for e in x]
+        return type(x)(*items) if hasattr(x, "_fields") else tuple(items)
+    a = np.asarray(x)
+    if a.dtype == np.float64:
+        big = np.abs(a[np.isfinite(a)])
+        if big.size and big.max() > np.finfo(np.float32).max:
+            raise ValueError(f"a result ({big.max():.6g}) is beyond float32's range (absolute areas and curvatures "
+                             "scale with A): use dtype=np.float64")
+    return _scalar(a.astype(np.float32))
+
+
+# --- The float batch API's settings (include/ggx/ggx_batch.h) ----------------------------------------------------
+
+_batch_get_isa = _proto("ggx_batch_get_isa", _i)
+_batch_isa_name = _proto("ggx_batch_isa_name", ctypes.c_char_p, _i)
+_batch_set_threads = _proto("ggx_batch_set_threads", _i, _i)
+
+
+def batch_isa():
+    """The instruction set the float batch API uses ('scalar', 'avx2' or 'avx512'; ggx_batch_get_isa)."""
+    return _batch_isa_name(_batch_get_isa()).decode()
+
+
+def set_batch_threads(threads):
+    """Worker threads of the float batch API for arrays of 65536 elements or more (ggx_batch_set_threads;
+    an integer from 1 to 256)."""
+    t = _real(threads, "threads")
+    if not (1 <= t <= 256 and t == int(t)):
+        raise ValueError(f"threads: expected an integer from 1 to 256, got {threads!r}")
+    _check(_batch_set_threads(int(t)))
