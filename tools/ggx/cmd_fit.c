@@ -148,6 +148,106 @@ static const command_spec FIT_SPEC = {"heightfield,normal-map,normals,spacing,z-
                                       "model,threads,format,out,figure,progress,no-progress",
                                       usage};
 
+/* What ggx fit found, for its report. */
+typedef struct fit_report {
+    const char *path, *what;
+    const surface *s;
+    const ggx_fit_info *info;
+    const ggx_fit_model_result *mr;
+    ggx_fit_model model;
+    double ax, ay, tx, ty, tz, A[3][3], val[5], spacing[2], best_bic;
+    int keep_tilt, cells;
+    size_t ignored;
+    char shape[200], qnote[400];
+} fit_report;
+
+static void report_md(FILE *f, const fit_report *r)
+{
+    fprintf(f, "# ggx fit: %s\n\n", r->path);
+    fprintf(f, "%s, %zu x %zu; %zu %s used", surface_format_name(r->s->format), r->s->nx, r->s->ny, r->info->used,
+            r->what);
+    if (r->ignored)
+        fprintf(f, ", %zu ignored (%zu at or below the horizon, %zu not finite, %zu of weight 0)", r->ignored,
+                r->info->ignored_horizon, r->info->ignored_nonfinite, r->info->ignored_weight);
+    if (r->spacing[0] > 0)
+        fprintf(f, "; spacing %.6g x %.6g%s", r->spacing[0], r->spacing[1], r->keep_tilt ? "" : "; levelled");
+    fprintf(f, "\n\nshape: `%s`\n\n", r->shape);
+    fprintf(f, "A = [[%.6g, %.6g, %.6g], [%.6g, %.6g, %.6g], [%.6g, %.6g, %.6g]]\n\n", r->A[0][0], r->A[0][1],
+            r->A[0][2], r->A[1][0], r->A[1][1], r->A[1][2], r->A[2][0], r->A[2][1], r->A[2][2]);
+    fprintf(f, "| parameter | value | standard error |\n|---|---|---|\n");
+    for (int i = 0; i < 5; i++)
+        fprintf(f, "| %s | %.6g | %s%.3g |\n", PARAM_NAMES[i], r->val[i], r->info->std_error[i] > 0 ? "" : "fixed ",
+                r->info->std_error[i]);
+    fprintf(f, "\n| model | parameters | log-likelihood per sample | BIC | BIC - best |\n|---|---|---|---|---|\n");
+    for (int k = 0; k < GGX_FIT_MODELS; k++)
+        fprintf(f, "| %s%s | %d | %.6f | %.1f | %.1f |\n", MODEL_WORDS[k], k == (int)r->info->best ? " **best**" : "",
+                r->mr[k].parameters, r->mr[k].log_likelihood, r->mr[k].bic, r->mr[k].bic - r->best_bic);
+    fprintf(f, "\ngoodness of fit (%s): ", MODEL_NAMES[r->model]);
+    if (r->info->gof_dof > 0)
+        fprintf(f, "chi-square %.1f on %d x %d equal-probability cells, %d degrees of freedom, p = %.3g\n",
+                r->info->gof_chi2, r->info->gof_cells, r->info->gof_cells, r->info->gof_dof, r->info->gof_pvalue);
+    else if (r->cells)
+        fprintf(f, "not computed for texels fitted as cells (a texel's cell straddles the test's cells)\n");
+    else fprintf(f, "too few samples for the cells (n_eff %.0f)\n", r->info->effective_n);
+    if (r->qnote[0]) fprintf(f, "\nquantisation: %s\n", r->qnote);
+    fprintf(f, "\nEM: %d iterations, %s (Newton decrement %.2g); effective sample size %.0f%s\n", r->info->iterations,
+            r->info->converged ? "converged" : "NOT converged", r->info->stationarity, r->info->effective_n,
+            !r->info->clamped ? ""
+            : r->cells        ? "; Sigma held at the levels' floor"
+                              : "; Sigma held at the smallest roughness (all slopes nearly equal)");
+}
+
+static void report_csv(FILE *f, const fit_report *r)
+{
+    fprintf(f, "quantity,value,std_error\n");
+    fprintf(f, "alpha_x,%.10g,\nalpha_y,%.10g,\nskew_x_deg,%.10g,\nskew_y_deg,%.10g,\nrotate_deg,%.10g,\n", r->ax,
+            r->ay, r->tx, r->ty, r->tz);
+    for (int i = 0; i < 5; i++) fprintf(f, "%s,%.10g,%.10g\n", PARAM_NAMES[i], r->val[i], r->info->std_error[i]);
+    for (int k = 0; k < GGX_FIT_MODELS; k++)
+        fprintf(f, "log_likelihood_%s,%.10g,\nbic_%s,%.10g,\n", MODEL_NAMES[k], r->mr[k].log_likelihood, MODEL_NAMES[k],
+                r->mr[k].bic);
+    fprintf(f,
+            "best_model_index,%d,\ngof_chi2,%.10g,\ngof_dof,%d,\ngof_pvalue,%.10g,\nused,%zu,\nignored,%zu,\n"
+            "effective_n,%.10g,\niterations,%d,\nconverged,%d,\nclamped,%d,\n",
+            (int)r->info->best, r->info->gof_chi2, r->info->gof_dof, r->info->gof_pvalue, r->info->used, r->ignored,
+            r->info->effective_n, r->info->iterations, r->info->converged, r->info->clamped);
+}
+
+static void report_json(FILE *f, const fit_report *r)
+{
+#define J(v) json_number(v)
+    fprintf(f, "{\n  \"input\": \"");
+    for (const char *p = r->path; *p; p++) {
+        if (*p == '"' || *p == '\\') fputc('\\', f);
+        if ((unsigned char)*p < 0x20) fprintf(f, "\\u%04x", *p);
+        else fputc(*p, f);
+    }
+    fprintf(f, "\",\n  \"shape\": {\"alpha\": [%s, %s], \"skew_deg\": [%s, %s], \"rotate_deg\": %s},\n", J(r->ax),
+            J(r->ay), J(r->tx), J(r->ty), J(r->tz));
+    fprintf(f, "  \"matrix\": [[%s, %s, %s], [%s, %s, %s], [%s, %s, %s]],\n", J(r->A[0][0]), J(r->A[0][1]),
+            J(r->A[0][2]), J(r->A[1][0]), J(r->A[1][1]), J(r->A[1][2]), J(r->A[2][0]), J(r->A[2][1]), J(r->A[2][2]));
+    fprintf(f, "  \"t\": [%s, %s], \"sigma\": [%s, %s, %s],\n", J(r->val[0]), J(r->val[1]), J(r->val[2]), J(r->val[3]),
+            J(r->val[4]));
+    fprintf(f, "  \"std_error\": [%s, %s, %s, %s, %s],\n", J(r->info->std_error[0]), J(r->info->std_error[1]),
+            J(r->info->std_error[2]), J(r->info->std_error[3]), J(r->info->std_error[4]));
+    fprintf(f, "  \"models\": {");
+    for (int k = 0; k < GGX_FIT_MODELS; k++)
+        fprintf(f, "%s\"%s\": {\"parameters\": %d, \"log_likelihood\": %s, \"bic\": %s}", k ? ", " : "", MODEL_NAMES[k],
+                r->mr[k].parameters, J(r->mr[k].log_likelihood), J(r->mr[k].bic));
+    fprintf(f, "},\n  \"best\": \"%s\",\n", MODEL_NAMES[r->info->best]);
+    fprintf(f, r->qnote[0] ? "  \"quantisation_note\": \"%s\",\n" : "%s", r->qnote);
+    if (r->info->gof_dof > 0)
+        fprintf(f, "  \"gof\": {\"chi2\": %s, \"dof\": %d, \"pvalue\": %s},\n", J(r->info->gof_chi2), r->info->gof_dof,
+                J(r->info->gof_pvalue));
+    else fprintf(f, "  \"gof\": null,\n");
+    fprintf(f,
+            "  \"used\": %zu, \"ignored\": %zu, \"effective_n\": %s, \"iterations\": %d, \"converged\": %s, "
+            "\"clamped\": %s\n}\n",
+            r->info->used, r->ignored, J(r->info->effective_n), r->info->iterations,
+            r->info->converged ? "true" : "false", r->info->clamped ? "true" : "false");
+#undef J
+}
+
 int cmd_fit(int argc, char **argv)
 {
     options o;
@@ -188,111 +288,36 @@ int cmd_fit(int argc, char **argv)
     const double *heights = NULL;
     fit_input(&o, &s, &fo, &fit, &info, &what, spacing, &heights);
     if (bar) progress_end("fit", 200);
+    fit_report r;
+    memset(&r, 0, sizeof r);
+    r.path = path, r.what = what, r.s = &s, r.info = &info, r.mr = info.models, r.model = fo.model;
+    r.spacing[0] = spacing[0], r.spacing[1] = spacing[1], r.keep_tilt = o.keep_tilt;
     /* An 8-bit map is fitted as cells (fit_input), which holds Sigma at (0.4 q)^2 (1 + |t|^2)^3: say so when that
      * binds. */
-    const int cells = fit_as_cells(&s);
-    char qnote[400] = "";
-    if (cells && info.clamped) {
-        snprintf(qnote, sizeof qnote,
+    r.cells = fit_as_cells(&s);
+    if (r.cells && info.clamped) {
+        snprintf(r.qnote, sizeof r.qnote,
                  "the lobe is narrower than the map's 8-bit levels resolve: its narrowest alpha is held at %.2g "
                  "(0.4 of the levels' spacing %.2g, times (1 + |t|^2)^1.5 for a lobe away from n); a 16-bit map "
                  "resolves it",
                  0.4 * 2.0 / 255.0 * pow(1.0 + info.t[0] * info.t[0] + info.t[1] * info.t[1], 1.5), 2.0 / 255.0);
-        fprintf(stderr, "ggx: note: %s\n", qnote);
+        fprintf(stderr, "ggx: note: %s\n", r.qnote);
     }
-
-    double ax, ay, tx, ty, tz, A[3][3];
-    ggx_shape_ellipsoid_params(&fit, &ax, &ay, &tx, &ty, &tz);
-    ggx_ellipsoid_matrix(A, ax, ay, tx, ty, tz);
-    char shape[200];
-    tx = tx / DEG + 0.0, ty = ty / DEG + 0.0, tz = tz / DEG + 0.0; /* degrees; + 0.0 turns -0 into 0 */
-    snprintf(shape, sizeof shape, "--alpha %.6g,%.6g --skew %.6g,%.6g --rotate %.6g", ax, ay, tx, ty, tz);
+    ggx_shape_ellipsoid_params(&fit, &r.ax, &r.ay, &r.tx, &r.ty, &r.tz);
+    ggx_ellipsoid_matrix(r.A, r.ax, r.ay, r.tx, r.ty, r.tz);
+    r.tx = r.tx / DEG + 0.0, r.ty = r.ty / DEG + 0.0, r.tz = r.tz / DEG + 0.0; /* degrees; + 0.0 turns -0 into 0 */
+    snprintf(r.shape, sizeof r.shape, "--alpha %.6g,%.6g --skew %.6g,%.6g --rotate %.6g", r.ax, r.ay, r.tx, r.ty, r.tz);
     const double val[5] = {info.t[0], info.t[1], info.sigma[0], info.sigma[1], info.sigma[2]};
-    const ggx_fit_model_result *mr = info.models;
-    double best_bic = mr[info.best].bic;
-    size_t ignored = info.ignored_horizon + info.ignored_nonfinite + info.ignored_weight;
+    memcpy(r.val, val, sizeof val);
+    r.best_bic = info.models[info.best].bic;
+    r.ignored = info.ignored_horizon + info.ignored_nonfinite + info.ignored_weight;
 
     out_file out;
     out_open(&out, o.out);
     FILE *f = out.f;
-    if (strcmp(fmt, "md") == 0) {
-        fprintf(f, "# ggx fit: %s\n\n", path);
-        fprintf(f, "%s, %zu x %zu; %zu %s used", surface_format_name(s.format), s.nx, s.ny, info.used, what);
-        if (ignored)
-            fprintf(f, ", %zu ignored (%zu at or below the horizon, %zu not finite, %zu of weight 0)", ignored,
-                    info.ignored_horizon, info.ignored_nonfinite, info.ignored_weight);
-        if (spacing[0] > 0)
-            fprintf(f, "; spacing %.6g x %.6g%s", spacing[0], spacing[1], o.keep_tilt ? "" : "; levelled");
-        fprintf(f, "\n\nshape: `%s`\n\n", shape);
-        fprintf(f, "A = [[%.6g, %.6g, %.6g], [%.6g, %.6g, %.6g], [%.6g, %.6g, %.6g]]\n\n", A[0][0], A[0][1], A[0][2],
-                A[1][0], A[1][1], A[1][2], A[2][0], A[2][1], A[2][2]);
-        fprintf(f, "| parameter | value | standard error |\n|---|---|---|\n");
-        for (int i = 0; i < 5; i++)
-            fprintf(f, "| %s | %.6g | %s%.3g |\n", PARAM_NAMES[i], val[i], info.std_error[i] > 0 ? "" : "fixed ",
-                    info.std_error[i]);
-        fprintf(f, "\n| model | parameters | log-likelihood per sample | BIC | BIC - best |\n|---|---|---|---|---|\n");
-        for (int k = 0; k < GGX_FIT_MODELS; k++)
-            fprintf(f, "| %s%s | %d | %.6f | %.1f | %.1f |\n", MODEL_WORDS[k], k == (int)info.best ? " **best**" : "",
-                    mr[k].parameters, mr[k].log_likelihood, mr[k].bic, mr[k].bic - best_bic);
-        fprintf(f, "\ngoodness of fit (%s): ", MODEL_NAMES[fo.model]);
-        if (info.gof_dof > 0)
-            fprintf(f, "chi-square %.1f on %d x %d equal-probability cells, %d degrees of freedom, p = %.3g\n",
-                    info.gof_chi2, info.gof_cells, info.gof_cells, info.gof_dof, info.gof_pvalue);
-        else if (cells)
-            fprintf(f, "not computed for texels fitted as cells (a texel's cell straddles the test's cells)\n");
-        else fprintf(f, "too few samples for the cells (n_eff %.0f)\n", info.effective_n);
-        if (qnote[0]) fprintf(f, "\nquantisation: %s\n", qnote);
-        fprintf(f, "\nEM: %d iterations, %s (Newton decrement %.2g); effective sample size %.0f%s\n", info.iterations,
-                info.converged ? "converged" : "NOT converged", info.stationarity, info.effective_n,
-                !info.clamped ? ""
-                : cells       ? "; Sigma held at the levels' floor"
-                              : "; Sigma held at the smallest roughness (all slopes nearly equal)");
-    } else if (strcmp(fmt, "csv") == 0) {
-        fprintf(f, "quantity,value,std_error\n");
-        fprintf(f, "alpha_x,%.10g,\nalpha_y,%.10g,\nskew_x_deg,%.10g,\nskew_y_deg,%.10g,\nrotate_deg,%.10g,\n", ax, ay,
-                tx, ty, tz);
-        for (int i = 0; i < 5; i++) fprintf(f, "%s,%.10g,%.10g\n", PARAM_NAMES[i], val[i], info.std_error[i]);
-        for (int k = 0; k < GGX_FIT_MODELS; k++)
-            fprintf(f, "log_likelihood_%s,%.10g,\nbic_%s,%.10g,\n", MODEL_NAMES[k], mr[k].log_likelihood,
-                    MODEL_NAMES[k], mr[k].bic);
-        fprintf(f,
-                "best_model_index,%d,\ngof_chi2,%.10g,\ngof_dof,%d,\ngof_pvalue,%.10g,\nused,%zu,\nignored,%zu,\n"
-                "effective_n,%.10g,\niterations,%d,\nconverged,%d,\nclamped,%d,\n",
-                (int)info.best, info.gof_chi2, info.gof_dof, info.gof_pvalue, info.used, ignored, info.effective_n,
-                info.iterations, info.converged, info.clamped);
-    } else {
-#define J(v) json_number(v)
-        fprintf(f, "{\n  \"input\": \"");
-        for (const char *p = path; *p; p++) {
-            if (*p == '"' || *p == '\\') fputc('\\', f);
-            if ((unsigned char)*p < 0x20) fprintf(f, "\\u%04x", *p);
-            else fputc(*p, f);
-        }
-        fprintf(f, "\",\n  \"shape\": {\"alpha\": [%s, %s], \"skew_deg\": [%s, %s], \"rotate_deg\": %s},\n", J(ax),
-                J(ay), J(tx), J(ty), J(tz));
-        fprintf(f, "  \"matrix\": [[%s, %s, %s], [%s, %s, %s], [%s, %s, %s]],\n", J(A[0][0]), J(A[0][1]), J(A[0][2]),
-                J(A[1][0]), J(A[1][1]), J(A[1][2]), J(A[2][0]), J(A[2][1]), J(A[2][2]));
-        fprintf(f, "  \"t\": [%s, %s], \"sigma\": [%s, %s, %s],\n", J(val[0]), J(val[1]), J(val[2]), J(val[3]),
-                J(val[4]));
-        fprintf(f, "  \"std_error\": [%s, %s, %s, %s, %s],\n", J(info.std_error[0]), J(info.std_error[1]),
-                J(info.std_error[2]), J(info.std_error[3]), J(info.std_error[4]));
-        fprintf(f, "  \"models\": {");
-        for (int k = 0; k < GGX_FIT_MODELS; k++)
-            fprintf(f, "%s\"%s\": {\"parameters\": %d, \"log_likelihood\": %s, \"bic\": %s}", k ? ", " : "",
-                    MODEL_NAMES[k], mr[k].parameters, J(mr[k].log_likelihood), J(mr[k].bic));
-        fprintf(f, "},\n  \"best\": \"%s\",\n", MODEL_NAMES[info.best]);
-        fprintf(f, qnote[0] ? "  \"quantisation_note\": \"%s\",\n" : "%s", qnote);
-        if (info.gof_dof > 0)
-            fprintf(f, "  \"gof\": {\"chi2\": %s, \"dof\": %d, \"pvalue\": %s},\n", J(info.gof_chi2), info.gof_dof,
-                    J(info.gof_pvalue));
-        else fprintf(f, "  \"gof\": null,\n");
-        fprintf(f,
-                "  \"used\": %zu, \"ignored\": %zu, \"effective_n\": %s, \"iterations\": %d, \"converged\": %s, "
-                "\"clamped\": %s\n}\n",
-                info.used, ignored, J(info.effective_n), info.iterations, info.converged ? "true" : "false",
-                info.clamped ? "true" : "false");
-#undef J
-    }
+    if (strcmp(fmt, "md") == 0) report_md(f, &r);
+    else if (strcmp(fmt, "csv") == 0) report_csv(f, &r);
+    else report_json(f, &r);
     if (o.figure) out_begin_set(); /* the report and the figure appear together or not at all */
     out_close(&out);
     if (o.figure) {
@@ -300,7 +325,7 @@ int cmd_fit(int argc, char **argv)
         size_t nsamp = s.nx * s.ny;
         if (s.kind == SURFACE_HEIGHTS)
             ggx_heightfield_facets(NULL, 0, 0, heights, s.nx, s.ny, spacing[2], spacing[3], &fc.ho, &nsamp);
-        fit_samples fs = {read_samples, &fc, nsamp, cells};
+        fit_samples fs = {read_samples, &fc, nsamp, r.cells};
         char title[300];
         snprintf(title, sizeof title, "ggx fit: %s", path);
         fit_figure_write(o.figure, &fs, &fit, &info, MODEL_NAMES[fo.model], title);
