@@ -75,6 +75,14 @@ EOF_PY
         --out none.png
     one_line "light below the plane" "--light" 2 "$GGX" render --normal-map "$MAPS/bumps.png" --alpha 0.1 \
         --light point:95,0 --out none.png
+    # --light as ggx render takes it: an irradiance scales the truth and the levels alike (the same table); the
+    # direction alone, without point:, is no light
+    "$GGX" render --normal-map "$MAPS/bumps.png" --alpha 0.1 --light point:30,90,2.5 --view 10,0 --level 1 \
+        --out one_e.png > one_e.txt && [ "$(table one_e.txt)" = "$(table one.txt)" ] && ok ||
+        bad "--light point:30,90,2.5: $(head -3 one_e.txt)"
+    one_line "light without point:" "point:THETA,PHI" 2 "$GGX" render --normal-map "$MAPS/bumps.png" --alpha 0.1 \
+        --light 30,90 --out none.png
+    one_line "light of one angle" "point:THETA,PHI" 2 "$GGX" render --light point:30 --size 64 --out none.png
     one_line "no roughness" "give the base roughness" 2 "$GGX" render --normal-map "$MAPS/bumps.png" --out none.png
     one_line "anisotropic alpha" "isotropic" 2 "$GGX" render --normal-map "$MAPS/bumps.png" --alpha 0.1,0.2 \
         --out none.png

@@ -51,13 +51,18 @@ int parse_list(const char *opt, const char *text, double *out, int count)
     return n;
 }
 
+ggx_vec3 direction_deg(double theta, double phi)
+{
+    double t = theta * DEG, p = phi * DEG;
+    return (ggx_vec3){sin(t) * cos(p), sin(t) * sin(p), cos(t)};
+}
+
 int parse_direction(const char *text, ggx_vec3 *v)
 {
     double x[3];
     int n = parse_list("direction", text, x, -3);
     if (n == 2) {
-        double t = x[0] * DEG, p = x[1] * DEG;
-        v->x = sin(t) * cos(p), v->y = sin(t) * sin(p), v->z = cos(t);
+        *v = direction_deg(x[0], x[1]);
         return 1;
     }
     if (n != 3) die("direction '%s': give theta,phi in degrees or x,y,z", text);
@@ -68,6 +73,16 @@ int parse_direction(const char *text, ggx_vec3 *v)
     double l = sqrt(x[0] * x[0] + x[1] * x[1] + x[2] * x[2]);
     v->x = x[0] / l, v->y = x[1] / l, v->z = x[2] / l;
     return 1;
+}
+
+void parse_light_point(const char *text, ggx_vec3 *dir, double v[3])
+{
+    const char *usage = "give point:THETA,PHI[,E] (degrees; irradiance E >= 0, default 1)";
+    if (strncmp(text, "point:", 6) != 0) die("--light '%s': %s", text, usage);
+    v[2] = 1.0;
+    int n = parse_list("--light", text + 6, v, -3);
+    if (n < 2 || !(fabs(v[0]) <= 360 && fabs(v[1]) <= 360 && v[2] >= 0)) die("--light '%s': %s", text, usage);
+    *dir = direction_deg(v[0], v[1]);
 }
 
 /* The shortest decimal that reads back as v (90.0000001, not 90), in a static buffer. */

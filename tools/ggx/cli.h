@@ -76,8 +76,13 @@ int command_options(const command_spec *c, int argc, char **argv, int first, opt
 int parse_list(const char *opt, const char *text, double *out, int count);
 /* The shape of the options; a bad shape dies with the library's message. */
 void shape_from_options(const options *o, ggx_shape *s);
-/* Parses "theta,phi" (degrees) or "x,y,z" (normalised) into a direction. */
+/* Parses "theta,phi" (degrees) or "x,y,z" (normalised) into a direction: the one syntax of every direction. */
 int parse_direction(const char *text, ggx_vec3 *v);
+/* The unit direction of polar angle theta and azimuth phi, in degrees. */
+ggx_vec3 direction_deg(double theta, double phi);
+/* --light point:THETA,PHI[,E], the one syntax of a distant light: its direction and v = {theta, phi, E} (E = 1 when
+ * not given); dies with one line otherwise (angles within 360 degrees, E >= 0). */
+void parse_light_point(const char *text, ggx_vec3 *dir, double v[3]);
 ggx_fresnel fresnel_from_options(const options *o);
 /* The caption's words for the shape of the options (alphas and angles, or the matrix). */
 void shape_caption(const options *o, char *buf, size_t n);

@@ -43,22 +43,9 @@ static void light_from_options(const options *o, render_spec *r, render_env *env
         if (render_env_white(env, 1.0, err, sizeof err) != 0) die("--light white: %s", err);
         snprintf(words, n, "uniform white environment, L = 1 (the furnace)");
     } else if (strncmp(l, "point:", 6) == 0) {
-        double v[3] = {0, 0, 1};
-        char *end;
-        const char *p = l + 6;
-        int k = 0;
-        for (; k < 3; k++) {
-            v[k] = strtod(p, &end);
-            if (end == p || !isfinite(v[k])) break;
-            p = end;
-            if (*p == ',') p++;
-            else break;
-        }
-        if (*end != '\0' || k < 1 || !(v[2] >= 0) || fabs(v[0]) > 360 || fabs(v[1]) > 360)
-            die("--light '%s': give point:THETA,PHI[,E] (degrees; irradiance E >= 0, default 1)", l);
-        double t = v[0] * DEG, ph = v[1] * DEG;
+        double v[3];
+        parse_light_point(l, &r->light_dir, v);
         r->light = RENDER_LIGHT_DIRECTIONAL;
-        r->light_dir = (ggx_vec3){sin(t) * cos(ph), sin(t) * sin(ph), cos(t)};
         r->light_irradiance = v[2];
         snprintf(words, n, "distant light from θ %g°, φ %g°, irradiance %g", v[0], v[1], v[2]);
         return;

@@ -11,26 +11,6 @@
 #include "mip_compare.h"
 #include "surface.h"
 
-#define DEGREES (3.14159265358979323846 / 180.0)
-
-/* --light point:THETA,PHI or THETA,PHI, --view THETA,PHI: degrees */
-static ggx_vec3 direction_of(const char *what, const char *text)
-{
-    if (strncmp(text, "point:", 6) == 0) text += 6;
-    double v[2];
-    char *end;
-    v[0] = strtod(text, &end);
-    if (end == text || *end != ',') die("%s '%s': give THETA,PHI in degrees", what, text);
-    const char *p = end + 1;
-    v[1] = strtod(p, &end);
-    if (end == p || *end != '\0' || !isfinite(v[0]) || !isfinite(v[1]) || !(v[0] >= 0.0 && v[0] < 90.0))
-        die("%s '%s': give THETA,PHI in degrees, THETA in [0, 90)", what, text);
-    ggx_vec3 d = {sin(v[0] * DEGREES) * cos(v[1] * DEGREES), sin(v[0] * DEGREES) * sin(v[1] * DEGREES),
-                  cos(v[0] * DEGREES)};
-    return d;
-}
-
-/* a grey image tone-mapped for render_paint: v / (v + k), k the truth's mean (shown as mid grey) */
 static void paint_grey(cairo_t *cr, double x, double y, double scale, const float *img, size_t w, size_t h, double k,
                        int clip_w, int clip_h)
 {
@@ -70,10 +50,11 @@ static void paint_diff(cairo_t *cr, double x, double y, double scale, const floa
 static void render_normal_map_help(void)
 {
     printf("usage: ggx render --normal-map FILE (--alpha A | --roughness-map FILE [--perceptual]) [--y-down]\n"
-           "                  [--level K] [--light point:THETA,PHI] [--view THETA,PHI] [--threads N] [--out "
+           "                  [--level K] [--light point:THETA,PHI[,E]] [--view THETA,PHI] [--threads N] [--out "
            "FIG.png]\n\n"
            "A plane textured with the normal map's mip chain (ggx mipmap's, exact and fast) at level K, lit by a\n"
-           "distant light (default 45, 180 degrees) and seen from a distant eye (default 45, 0: the mirror\n"
+           "distant light (--light as ggx render takes it; default 45, 180 degrees) and seen from a distant eye "
+           "(default 45, 0: the mirror\n"
            "direction), beside the ground truth: the full-resolution map supersampled, each level-K texel the\n"
            "mean radiance f(wi, wo) wi.z (F = 1) of its base texels, each the skewed ellipsoid of its normal and\n"
            "roughness. Beside ours, the engines' filters, each a shading normal (the renormalised mean normal)\n"
@@ -98,8 +79,13 @@ int render_normal_map(int argc, char **argv)
     if (o.have_alpha == !!o.roughness_map) die("give the base roughness as one of --alpha A or --roughness-map FILE");
     if (o.have_alpha && o.alpha[0] != o.alpha[1]) die("--alpha: the comparison takes an isotropic A");
     if (o.perceptual && !o.roughness_map) die("--perceptual applies to --roughness-map");
-    mc_view given = {direction_of("--light", "45,180"), direction_of("--view", "45,0")}; /* mc_standard_views' first */
-    if (o.light) given.wi = direction_of("--light", o.light);
+    mc_view given = {direction_deg(45, 180), direction_deg(45, 0)}; /* mc_standard_views' first */
+    if (o.light) {
+        double v[3];
+        parse_light_point(o.light, &given.wi, v); /* E scales the truth and the levels alike: no error changes */
+        if (!(given.wi.z > 1e-9))
+            die("--light '%s': the light must be above the plane (theta below 90 degrees)", o.light);
+    }
     if (o.have_view) {
         if (!(o.view.z > 1e-9)) die("--view: the eye must be above the plane (theta below 90 degrees)");
         given.wo = o.view;
@@ -181,7 +167,7 @@ int render_normal_map(int argc, char **argv)
     text_font(cr, 12, 1);
     char line[1200];
     snprintf(line, sizeof line, "%s, %zu x %zu, %s: level %d (%zu x %zu), light θ %.0f°, eye θ %.0f°, F = 1",
-             o.normal_map, w, h, rough, K, wk, hk, acos(given.wi.z) / DEGREES, acos(given.wo.z) / DEGREES);
+             o.normal_map, w, h, rough, K, wk, hk, acos(given.wi.z) / DEG, acos(given.wo.z) / DEG);
     text_at(cr, gap, 14, 0, 0.5, line);
     text_font(cr, 10, 0);
     double lv_scale = (double)s0 * ldexp(1.0, K);
