@@ -102,6 +102,9 @@ int surface_encode_pfm(const surface *s, unsigned char **data, size_t *n, char *
 
 /* Shared by the parsers: a formatted reason into err (returns -1), and the normal of a map's texel. */
 int surface_fail(char *err, size_t errn, const char *fmt, ...) __attribute__((format(printf, 3, 4)));
+/* Writes the n bytes of an encoded file (malloc'd; freed here) to path: 0, or -1 with "cannot write" in err and no
+ * partial file left. */
+int surface_write_bytes(const char *path, unsigned char *data, size_t n, char *err, size_t errn);
 /* The normal of a texel whose components are c[0..channels) in [-1, 1]: two channels rebuild z = sqrt(1 - x^2 - y^2)
  * (clamped at 0); y negated for y_down. Returns the zero vector (ignored by the fit) for NaN or zero-length. */
 ggx_vec3 surface_texel_normal(const double *c, int channels, int y_down);

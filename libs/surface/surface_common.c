@@ -1,5 +1,5 @@
 /* What every reader and writer of measured surfaces shares (surface.h): the error message, freeing a surface, a
- * normal map's texel as a unit normal. The dispatch over the formats (surface.c) sits above the formats' files,
+ * normal map's texel as a unit normal, an encoded file written out. The dispatch over the formats (surface.c) sits above the formats' files,
  * which call down into this one only. SPDX-License-Identifier: MIT */
 #include <math.h>
 #include <stdarg.h>
@@ -38,4 +38,17 @@ ggx_vec3 surface_texel_normal(const double *c, int channels, int y_down)
     double l = sqrt(x * x + y * y + w * w);
     if (!(l > 0.0)) return z;
     return (ggx_vec3){x / l, y / l, w / l};
+}
+
+int surface_write_bytes(const char *path, unsigned char *data, size_t n, char *err, size_t errn)
+{
+    FILE *f = fopen(path, "wb");
+    int ok = f && fwrite(data, 1, n, f) == n;
+    if (f && fclose(f) != 0) ok = 0;
+    free(data);
+    if (!ok) {
+        if (f) remove(path);
+        return surface_fail(err, errn, "cannot write '%s'", path);
+    }
+    return 0;
 }

@@ -477,15 +477,7 @@ int surface_write_exr(const char *path, const surface *s, char *err, size_t errn
     char why[160];
     if (surface_encode_exr(s, &data, &n, why, sizeof why) != 0)
         return surface_fail(err, errn, "cannot write '%s' (%s)", path, why);
-    FILE *f = fopen(path, "wb");
-    int ok = f && fwrite(data, 1, n, f) == n;
-    if (f && fclose(f) != 0) ok = 0;
-    free(data);
-    if (!ok) {
-        if (f) remove(path);
-        return surface_fail(err, errn, "cannot write '%s'", path);
-    }
-    return 0;
+    return surface_write_bytes(path, data, n, err, errn);
 }
 
 #else

@@ -118,56 +118,9 @@ int surface_parse_png(const unsigned char *data, size_t n, const surface_read_op
     return rc;
 }
 
-int surface_write_png(const char *path, const surface *s, int bits, double *z_scale, char *err, size_t errn)
-{
-    FILE *f = fopen(path, "wb");
-    if (!f) return surface_fail(err, errn, "cannot write '%s'", path);
-    png_structp png = png_create_write_struct(PNG_LIBPNG_VER_STRING, NULL, fail_jump, quiet);
-    png_infop info = png ? png_create_info_struct(png) : NULL;
-    unsigned char *volatile row = NULL;
-    if (!info || setjmp(png_jmpbuf(png))) {
-        png_destroy_write_struct(&png, &info);
-        free(row);
-        fclose(f);
-        return surface_fail(err, errn, "cannot write '%s'", path);
-    }
-    png_init_io(png, f);
-    int heights = s->kind == SURFACE_HEIGHTS, ch = heights ? 1 : 3, bpc = bits == 16 ? 2 : 1;
-    double max = bits == 16 ? 65535.0 : 255.0, lo = 0.0, hi = 1.0;
-    if (heights) {
-        lo = HUGE_VAL, hi = -HUGE_VAL;
-        for (size_t i = 0; i < s->nx * s->ny; i++) lo = fmin(lo, s->h[i]), hi = fmax(hi, s->h[i]);
-        if (!(hi > lo)) hi = lo + 1.0;
-        if (z_scale) *z_scale = (hi - lo) / max;
-    }
-    png_set_IHDR(png, info, (png_uint_32)s->nx, (png_uint_32)s->ny, bits == 16 ? 16 : 8,
-                 heights ? PNG_COLOR_TYPE_GRAY : PNG_COLOR_TYPE_RGB, PNG_INTERLACE_NONE, PNG_COMPRESSION_TYPE_DEFAULT,
-                 PNG_FILTER_TYPE_DEFAULT);
-    png_write_info(png, info);
-    row = malloc(s->nx * (size_t)(ch * bpc));
-    if (!row) png_error(png, "memory");
-    for (size_t y = 0; y < s->ny; y++) {
-        for (size_t x = 0; x < s->nx; x++) {
-            size_t i = y * s->nx + x;
-            double c[3] = {s->m ? s->m[i].x : 0, s->m ? s->m[i].y : 0, s->m ? s->m[i].z : 0};
-            for (int k = 0; k < ch; k++) {
-                double v = heights ? (s->h[i] - lo) / (hi - lo) : 0.5 * (c[k] + 1.0);
-                unsigned l = (unsigned)lround(fmin(fmax(v, 0.0), 1.0) * max);
-                unsigned char *p = row + (x * (size_t)ch + (size_t)k) * (size_t)bpc;
-                if (bpc == 2) p[0] = (unsigned char)(l >> 8), p[1] = (unsigned char)l;
-                else p[0] = (unsigned char)l;
-            }
-        }
-        png_write_row(png, row);
-    }
-    png_write_end(png, NULL);
-    png_destroy_write_struct(&png, &info);
-    free(row);
-    if (fclose(f) != 0) return surface_fail(err, errn, "cannot write '%s'", path);
-    return 0;
-}
-int surface_write_png_channels(FILE *f, size_t nx, size_t ny, int nch, const double *const *planes, char *err,
-                               size_t errn)
+/* planes[k] in [0, 1] (clamped; NaN as 0) as the levels of 8 or 16 bits, rounded to the nearest */
+static int write_png_levels(FILE *f, size_t nx, size_t ny, int nch, int bits, const double *const *planes, char *err,
+                            size_t errn)
 {
     static const int types[5] = {0, PNG_COLOR_TYPE_GRAY, PNG_COLOR_TYPE_GRAY_ALPHA, PNG_COLOR_TYPE_RGB,
                                  PNG_COLOR_TYPE_RGB_ALPHA};
@@ -182,24 +135,64 @@ int surface_write_png_channels(FILE *f, size_t nx, size_t ny, int nch, const dou
         return surface_fail(err, errn, "PNG encoding failed");
     }
     png_init_io(png, f);
-    png_set_IHDR(png, info, (png_uint_32)nx, (png_uint_32)ny, 16, types[nch], PNG_INTERLACE_NONE,
+    int bpc = bits == 16 ? 2 : 1;
+    double max = bits == 16 ? 65535.0 : 255.0;
+    png_set_IHDR(png, info, (png_uint_32)nx, (png_uint_32)ny, bits == 16 ? 16 : 8, types[nch], PNG_INTERLACE_NONE,
                  PNG_COMPRESSION_TYPE_DEFAULT, PNG_FILTER_TYPE_DEFAULT);
     png_write_info(png, info);
-    row = malloc(nx * (size_t)nch * 2);
+    row = malloc(nx * (size_t)nch * (size_t)bpc);
     if (!row) png_error(png, "memory");
     for (size_t y = 0; y < ny; y++) {
         for (size_t x = 0; x < nx; x++)
             for (int k = 0; k < nch; k++) {
                 double v = planes[k][y * nx + x];
-                unsigned l = (unsigned)lround(fmin(fmax(isnan(v) ? 0.0 : v, 0.0), 1.0) * 65535.0);
-                unsigned char *p = row + (x * (size_t)nch + (size_t)k) * 2;
-                p[0] = (unsigned char)(l >> 8), p[1] = (unsigned char)l;
+                unsigned l = (unsigned)lround(fmin(fmax(isnan(v) ? 0.0 : v, 0.0), 1.0) * max);
+                unsigned char *p = row + (x * (size_t)nch + (size_t)k) * (size_t)bpc;
+                if (bpc == 2) p[0] = (unsigned char)(l >> 8), p[1] = (unsigned char)l;
+                else p[0] = (unsigned char)l;
             }
         png_write_row(png, row);
     }
     png_write_end(png, NULL);
     png_destroy_write_struct(&png, &info);
     free(row);
+    return 0;
+}
+
+int surface_write_png_channels(FILE *f, size_t nx, size_t ny, int nch, const double *const *planes, char *err,
+                               size_t errn)
+{
+    return write_png_levels(f, nx, ny, nch, 16, planes, err, errn);
+}
+
+int surface_write_png(const char *path, const surface *s, int bits, double *z_scale, char *err, size_t errn)
+{
+    int heights = s->kind == SURFACE_HEIGHTS, ch = heights ? 1 : 3;
+    size_t n = s->nx * s->ny;
+    double *v = malloc(n * (size_t)ch * sizeof *v), lo = 0.0, hi = 1.0;
+    if (!v) return surface_fail(err, errn, "cannot write '%s': out of memory", path);
+    if (heights) { /* the heights' range over the levels; z_scale, the height of one level */
+        lo = HUGE_VAL, hi = -HUGE_VAL;
+        for (size_t i = 0; i < n; i++) lo = fmin(lo, s->h[i]), hi = fmax(hi, s->h[i]);
+        if (!(hi > lo)) hi = lo + 1.0;
+        if (z_scale) *z_scale = (hi - lo) / (bits == 16 ? 65535.0 : 255.0);
+    }
+    for (size_t i = 0; i < n; i++) {
+        if (heights) v[i] = (s->h[i] - lo) / (hi - lo);
+        else { /* a tangent-space normal map: 0.5 (c + 1) per channel */ v[i] = s->m ? 0.5 * (s->m[i].x + 1.0) : 0.5;
+            v[n + i] = s->m ? 0.5 * (s->m[i].y + 1.0) : 0.5;
+            v[2 * n + i] = s->m ? 0.5 * (s->m[i].z + 1.0) : 0.5;
+        }
+    }
+    const double *planes[3] = {v, v + n, v + 2 * n};
+    FILE *f = fopen(path, "wb");
+    int rc = f ? write_png_levels(f, s->nx, s->ny, ch, bits, planes, err, errn) : -1;
+    if (f && fclose(f) != 0) rc = -1;
+    free(v);
+    if (rc != 0) {
+        if (f) remove(path);
+        return surface_fail(err, errn, "cannot write '%s'", path);
+    }
     return 0;
 }
 #else

@@ -55,7 +55,7 @@ typedef struct options {
     int tilted;       /* ggx microsurface measure --tilted */
     /* ggx render */
     const char *scene, *light, *strategy;
-    long spp;
+    int spp; /* ggx render --spp: whole numbers of OPT_WHOLE are ints */
     int depth, compensate;
     double exposure;
 } options;

@@ -174,52 +174,13 @@ static double positive_length(const char *a, const char *val)
 static void set_corr(options *o, const char *a, const char *val) { o->corr = positive_length(a, val); }
 static void set_mix(options *o, const char *a, const char *val) { o->mix = positive_length(a, val); }
 
-static void set_spp(options *o, const char *a, const char *val)
-{
-    o->spp = (long)whole_number(a, val, 1, 1048576, "a number of samples per pixel");
-}
-
-static void set_depth(options *o, const char *a, const char *val)
-{
-    o->depth = (int)whole_number(a, val, 1, 1024, "a path depth");
-}
-
-static void set_bounces(options *o, const char *a, const char *val)
-{
-    o->bounces = (int)whole_number(a, val, 1, 10000, "a number of bounces");
-}
-
-static void set_period(options *o, const char *a, const char *val)
-{
-    o->period = (int)whole_number(a, val, 2, 4096, "a whole number");
-}
-
-static void set_risers(options *o, const char *a, const char *val)
-{
-    o->risers = (int)whole_number(a, val, 2, 8192, "a sawtooth's period");
-}
-
-static void set_level(options *o, const char *a, const char *val)
-{
-    o->level = (int)whole_number(a, val, 0, 64, "a level");
-}
-
-static void set_downsample(options *o, const char *a, const char *val)
-{
-    o->downsample = (int)whole_number(a, val, 1, 256, "a whole number");
-}
-
-static void set_threads(options *o, const char *a, const char *val)
-{
-    o->threads = (int)whole_number(a, val, 1, 256, "a whole number");
-}
-
 /* ---- the table ---- */
 
 typedef enum option_kind {
-    OPT_FLAG, /* no value: the int at `field` becomes `flag` */
-    OPT_TEXT, /* the value as given, into the const char * at `field` */
-    OPT_SET   /* the value through `set` */
+    OPT_FLAG,  /* no value: the int at `field` becomes `flag` */
+    OPT_TEXT,  /* the value as given, into the const char * at `field` */
+    OPT_WHOLE, /* a whole number in [lo, hi] (else "is not `what` from lo to hi"), into the int at `field` */
+    OPT_SET    /* the value through `set` */
 } option_kind;
 
 typedef struct option_def {
@@ -228,20 +189,17 @@ typedef struct option_def {
     size_t field;
     int flag;
     void (*set)(options *o, const char *a, const char *val);
+    double lo, hi;
+    const char *what;
 } option_def;
 
-#define FLAG(name, member, value)                                                                                      \
-    {                                                                                                                  \
-        name, OPT_FLAG, offsetof(options, member), value, NULL                                                         \
-    }
-#define TEXT(name, member)                                                                                             \
-    {                                                                                                                  \
-        name, OPT_TEXT, offsetof(options, member), 0, NULL                                                             \
-    }
-#define SET(name, fn)                                                                                                  \
-    {                                                                                                                  \
-        name, OPT_SET, 0, 0, fn                                                                                        \
-    }
+/* rows of the table, not blocks: */
+// clang-format off
+#define FLAG(name, member, value) {name, OPT_FLAG, offsetof(options, member), value, NULL, 0, 0, NULL}
+#define TEXT(name, member) {name, OPT_TEXT, offsetof(options, member), 0, NULL, 0, 0, NULL}
+#define WHOLE(name, member, lo, hi, what) {name, OPT_WHOLE, offsetof(options, member), 0, NULL, lo, hi, what}
+#define SET(name, fn) {name, OPT_SET, 0, 0, fn, 0, 0, NULL}
+// clang-format on
 
 static const option_def OPTIONS[] = {
     /* shape */
@@ -281,24 +239,24 @@ static const option_def OPTIONS[] = {
     FLAG("y-down", y_down, 1),
     FLAG("fast", fast, 1),
     FLAG("perceptual", perceptual, 1),
-    SET("downsample", set_downsample),
-    SET("threads", set_threads),
-    SET("level", set_level),
+    WHOLE("downsample", downsample, 1, 256, "a whole number"),
+    WHOLE("threads", threads, 1, 256, "a whole number"),
+    WHOLE("level", level, 0, 64, "a level"),
     /* render */
     TEXT("scene", scene),
     TEXT("light", light),
     TEXT("strategy", strategy),
-    SET("spp", set_spp),
-    SET("depth", set_depth),
+    WHOLE("spp", spp, 1, 1048576, "a number of samples per pixel"),
+    WHOLE("depth", depth, 1, 1024, "a path depth"),
     SET("exposure", set_exposure),
     FLAG("compensate", compensate, 1),
     /* microsurface */
     TEXT("kind", kind),
     SET("corr", set_corr),
     SET("mix", set_mix),
-    SET("period", set_period),
-    SET("risers", set_risers),
-    SET("bounces", set_bounces),
+    WHOLE("period", period, 2, 4096, "a whole number"),
+    WHOLE("risers", risers, 2, 8192, "a sawtooth's period"),
+    WHOLE("bounces", bounces, 1, 10000, "a number of bounces"),
     FLAG("tilted", tilted, 1),
 };
 
@@ -364,6 +322,8 @@ void parse_options(int argc, char **argv, int first, options *o, const char *all
         if (!val) die("option '%s' needs a value", a);
         if (!inline_val) i++;
         if (d->kind == OPT_TEXT) *(const char **)((char *)o + d->field) = val;
+        else if (d->kind == OPT_WHOLE)
+            *(int *)((char *)o + d->field) = (int)whole_number(a, val, d->lo, d->hi, d->what);
         else d->set(o, a, val);
     }
 }
