@@ -27,7 +27,8 @@ libdir=${libdir%/pkgconfig}
 tool=
 [ -x "$build/ggx" ] && tool="bin/ggx share/man/man1/ggx.1"
 for f in include/ggx/ggx.h include/ggx/ggx_version.h include/ggx/ggx_inline.h include/ggx/ggx_batch.h \
-         include/ggx/ggx_samplers.h include/ggx/ggx_fit.h $tool; do
+         include/ggx/ggx_samplers.h include/ggx/ggx_fit.h include/ggx/ggx_experimental.h include/ggx/ggx_filter.h \
+         $tool; do
   test -f "$prefix/$f" || { echo "install: $f missing" >&2; exit 1; }
 done
 for f in "$soname" libggx.so cmake/ggx/ggxConfig.cmake cmake/ggx/ggxConfigVersion.cmake pkgconfig/ggx.pc; do
