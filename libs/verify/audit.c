@@ -522,6 +522,48 @@ static void rows_ndf_areas_g1(const au_ctx *ctx)
     }
 }
 
+/* The blog's Jacobian against finite differences of m' = normalize(A^-T m), then the pdf it leads to. */
+static void jacobian_blog_row(audit_row *r, int k, const ggx_shape *s, ggx_vec3 v)
+{
+    rng g = {72};
+    double worst_blog = 0, worst_true = 0;
+    for (int i = 0; i < 200; i++) {
+        ggx_vec3 m = t_dir(acos(0.2 + 0.8 * rng_uniform(&g)), 2 * GGX_PI * rng_uniform(&g)), t1, t2;
+        t_frame(m, &t1, &t2);
+        const double h = 1e-6;
+        ggx_vec3 a = t_add(key_of_normal(s, t_normalize(t_add(m, t_scale(t1, h)))),
+                           t_scale(key_of_normal(s, t_normalize(t_add(m, t_scale(t1, -h)))), -1));
+        ggx_vec3 b = t_add(key_of_normal(s, t_normalize(t_add(m, t_scale(t2, h)))),
+                           t_scale(key_of_normal(s, t_normalize(t_add(m, t_scale(t2, -h)))), -1));
+        ggx_vec3 c = t_cross(a, b);
+        double fd = sqrt(t_dot(c, c)) / (4 * h * h);
+        ggx_vec3 q = t_matvec((const double(*)[3])s->ainv_t, m);
+        double ql = sqrt(t_dot(q, q));
+        worst_blog = fmax(worst_blog, fabs(s->det * ql / fd - 1));
+        worst_true = fmax(worst_true, fabs(1.0 / (s->det * ql * ql * ql) / fd - 1));
+    }
+    /* The same derivation also writes D(m, v) = |A| D_s(m', v') / ||Av||, off by ||A^-T m||^4 where its
+     * Jacobian is off by |A|^2 ||A^-T m||^4 the other way: its final p(m) = D(m, v) (m.v) / s, with its
+     * D(m, v) = |A| / (pi ||Av|| ||A^-T m||^4) and Walter's s (A n; the blog's A^-T n is row crescent-blog), is
+     * the VNDF pdf times the constant |A|^2 at every m: exact if that |A| is read as 1 / |A| (Walter eq 1). */
+    double lo = INFINITY, hi = 0;
+    ggx_vec3 av = t_matvec((const double(*)[3])s->a, v), an = t_matvec((const double(*)[3])s->a, N_UP);
+    double avl = sqrt(t_dot(av, av)), sw = 0.5 * (1 + t_dot(av, an) / (avl * sqrt(t_dot(an, an))));
+    for (int i = 0; i < 200; i++) {
+        ggx_vec3 m = t_dir(acos(rng_uniform(&g)), 2 * GGX_PI * rng_uniform(&g)),
+                 q = t_matvec((const double(*)[3])s->ainv_t, m);
+        double mv = t_dot(m, v), ql = sqrt(t_dot(q, q));
+        if (!(mv > 0)) continue;
+        double p_blog = s->det / (GGX_PI * avl * ql * ql * ql * ql) * mv / sw;
+        double x = p_blog / ggx_pdf_vndf(s, v, m) / (s->det * s->det);
+        lo = fmin(lo, x), hi = fmax(hi, x);
+    }
+    au_set(r, k, worst_blog < 1e-6 ? AUDIT_HOLDS : AUDIT_FAILS,
+           "off by up to %.0f %% (finite differences, 200 normals); 1 / (|A| ||A^-T m||^3) holds to %.0e. Its D(m, v) "
+           "step errs by the inverse factor: the final p(m) = D(m,v)(m.v)/s is |A|^2 VNDF to %.0e",
+           100 * worst_blog, worst_true, fmax(fabs(lo - 1), fabs(hi - 1)));
+}
+
 /* ---- the samplers of normals, the VNDF and the blog's derivation of it ---- */
 static void rows_samplers(const au_ctx *ctx, ggx_vec3 v)
 {
@@ -558,47 +600,7 @@ static void rows_samplers(const au_ctx *ctx, ggx_vec3 v)
     r = add_row(ctx, "jacobian-blog",
                 "solid-angle Jacobian |d omega' / d omega| = |A| ||A^-T m|| for m' = normalize(A^-T m)", SEED_BLOG2,
                 "VNDF pdf derivation", AUDIT_SCOPE_ANY);
-    for (int k = 0; k < AUDIT_SHAPES; k++) {
-        rng g = {72};
-        double worst_blog = 0, worst_true = 0;
-        for (int i = 0; i < 200; i++) {
-            ggx_vec3 m = t_dir(acos(0.2 + 0.8 * rng_uniform(&g)), 2 * GGX_PI * rng_uniform(&g)), t1, t2;
-            t_frame(m, &t1, &t2);
-            const double h = 1e-6;
-            ggx_vec3 a = t_add(key_of_normal(&ctx->sh[k], t_normalize(t_add(m, t_scale(t1, h)))),
-                               t_scale(key_of_normal(&ctx->sh[k], t_normalize(t_add(m, t_scale(t1, -h)))), -1));
-            ggx_vec3 b = t_add(key_of_normal(&ctx->sh[k], t_normalize(t_add(m, t_scale(t2, h)))),
-                               t_scale(key_of_normal(&ctx->sh[k], t_normalize(t_add(m, t_scale(t2, -h)))), -1));
-            ggx_vec3 c = t_cross(a, b);
-            double fd = sqrt(t_dot(c, c)) / (4 * h * h);
-            ggx_vec3 q = t_matvec((const double(*)[3])ctx->sh[k].ainv_t, m);
-            double ql = sqrt(t_dot(q, q));
-            worst_blog = fmax(worst_blog, fabs(ctx->sh[k].det * ql / fd - 1));
-            worst_true = fmax(worst_true, fabs(1.0 / (ctx->sh[k].det * ql * ql * ql) / fd - 1));
-        }
-        /* The same derivation also writes D(m, v) = |A| D_s(m', v') / ||Av||, off by ||A^-T m||^4 where its
-         * Jacobian is off by |A|^2 ||A^-T m||^4 the other way: its final p(m) = D(m, v) (m.v) / s, with its
-         * D(m, v) = |A| / (pi ||Av|| ||A^-T m||^4) and Walter's s (A n; the blog's A^-T n is row crescent-blog), is
-         * the VNDF pdf times the constant |A|^2 at every m: exact if that |A| is read as 1 / |A| (Walter eq 1). */
-        double lo = INFINITY, hi = 0;
-        ggx_vec3 av = t_matvec((const double(*)[3])ctx->sh[k].a, v),
-                 an = t_matvec((const double(*)[3])ctx->sh[k].a, N_UP);
-        double avl = sqrt(t_dot(av, av)), sw = 0.5 * (1 + t_dot(av, an) / (avl * sqrt(t_dot(an, an))));
-        for (int i = 0; i < 200; i++) {
-            ggx_vec3 m = t_dir(acos(rng_uniform(&g)), 2 * GGX_PI * rng_uniform(&g)),
-                     q = t_matvec((const double(*)[3])ctx->sh[k].ainv_t, m);
-            double mv = t_dot(m, v), ql = sqrt(t_dot(q, q));
-            if (!(mv > 0)) continue;
-            double p_blog = ctx->sh[k].det / (GGX_PI * avl * ql * ql * ql * ql) * mv / sw;
-            double x = p_blog / ggx_pdf_vndf(&ctx->sh[k], v, m) / (ctx->sh[k].det * ctx->sh[k].det);
-            lo = fmin(lo, x), hi = fmax(hi, x);
-        }
-        au_set(
-            r, k, worst_blog < 1e-6 ? AUDIT_HOLDS : AUDIT_FAILS,
-            "off by up to %.0f %% (finite differences, 200 normals); 1 / (|A| ||A^-T m||^3) holds to %.0e. Its D(m, v) "
-            "step errs by the inverse factor: the final p(m) = D(m,v)(m.v)/s is |A|^2 VNDF to %.0e",
-            100 * worst_blog, worst_true, fmax(fabs(lo - 1), fabs(hi - 1)));
-    }
+    for (int k = 0; k < AUDIT_SHAPES; k++) jacobian_blog_row(r, k, &ctx->sh[k], v);
 }
 
 /* ---- sampling the reflection: its weight, directions below the horizon, rejection ---- */
@@ -902,6 +904,50 @@ static void rows_engstad(const au_ctx *ctx)
     }
 }
 
+static void dof_row(audit_row *r, int k, const ggx_shape *s, const double A[3][3])
+{
+    /* the rank of the Jacobian of (D(m_1), ..., D(m_40)) with respect to A's 9 entries, by central differences:
+     * the eigenvalues of J^T J, counted above 1e-8 of the largest */
+    enum { NM = 40 };
+    double J[NM][9], JTJ[9][9], ev[9];
+    rng g = {86};
+    ggx_vec3 ms[NM];
+    for (int i = 0; i < NM; i++) ms[i] = au_random_upper(&g);
+    int bad = 0;
+    for (int e = 0; e < 9; e++) {
+        double Ap[3][3], Am[3][3], h = 1e-6;
+        memcpy(Ap, A, sizeof Ap), memcpy(Am, A, sizeof Am);
+        Ap[e / 3][e % 3] += h, Am[e / 3][e % 3] -= h;
+        ggx_shape sp, sm;
+        bad |= ggx_shape_matrix(&sp, (const double(*)[3])Ap) != GGX_OK ||
+               ggx_shape_matrix(&sm, (const double(*)[3])Am) != GGX_OK;
+        for (int i = 0; i < NM && !bad; i++)
+            J[i][e] = (ggx_ndf(&sp, ms[i]) - ggx_ndf(&sm, ms[i])) / (2 * h) / ggx_ndf(s, ms[i]);
+    }
+    if (bad) {
+        au_set(r, k, AUDIT_FAILS, "a perturbed A was refused");
+        return;
+    }
+    for (int a = 0; a < 9; a++)
+        for (int b = 0; b < 9; b++) {
+            JTJ[a][b] = 0;
+            for (int i = 0; i < NM; i++) JTJ[a][b] += J[i][a] * J[i][b];
+        }
+    au_sym_eigenvalues(9, JTJ, ev);
+    double top = 0;
+    for (int i = 0; i < 9; i++) top = fmax(top, ev[i]);
+    int rank = 0;
+    double gap_lo = INFINITY, gap_hi = 0; /* the smallest kept and the largest dropped eigenvalue */
+    for (int i = 0; i < 9; i++) {
+        if (ev[i] > 1e-8 * top) rank++, gap_lo = fmin(gap_lo, ev[i] / top);
+        else gap_hi = fmax(gap_hi, ev[i] / top);
+    }
+    au_set(r, k, rank == 5 ? AUDIT_HOLDS : AUDIT_FAILS,
+           "rank of d D(m_i) / d A over 40 normals: %d (eigenvalues of J^T J: "
+           "smallest kept %.1e, largest dropped %.1e of the largest)",
+           rank, gap_lo, gap_hi);
+}
+
 /* ---- the ellipsoid's curvature, the degrees of freedom of A, the lean of the visible normals ---- */
 static void rows_curvature_dof_lean(const au_ctx *ctx)
 {
@@ -916,48 +962,7 @@ static void rows_curvature_dof_lean(const au_ctx *ctx)
 
     r = add_row(ctx, "dof", "of the 9 entries of A only 5 are useful degrees of freedom (3 of rotation, 2 of scale)",
                 SEED_WALTER, "section 1", AUDIT_SCOPE_ANY);
-    for (int k = 0; k < AUDIT_SHAPES; k++) {
-        /* the rank of the Jacobian of (D(m_1), ..., D(m_40)) with respect to A's 9 entries, by central differences:
-         * the eigenvalues of J^T J, counted above 1e-8 of the largest */
-        enum { NM = 40 };
-        double J[NM][9], JTJ[9][9], ev[9];
-        rng g = {86};
-        ggx_vec3 ms[NM];
-        for (int i = 0; i < NM; i++) ms[i] = au_random_upper(&g);
-        int bad = 0;
-        for (int e = 0; e < 9; e++) {
-            double Ap[3][3], Am[3][3], h = 1e-6;
-            memcpy(Ap, ctx->A[k], sizeof Ap), memcpy(Am, ctx->A[k], sizeof Am);
-            Ap[e / 3][e % 3] += h, Am[e / 3][e % 3] -= h;
-            ggx_shape sp, sm;
-            bad |= ggx_shape_matrix(&sp, (const double(*)[3])Ap) != GGX_OK ||
-                   ggx_shape_matrix(&sm, (const double(*)[3])Am) != GGX_OK;
-            for (int i = 0; i < NM && !bad; i++)
-                J[i][e] = (ggx_ndf(&sp, ms[i]) - ggx_ndf(&sm, ms[i])) / (2 * h) / ggx_ndf(&ctx->sh[k], ms[i]);
-        }
-        if (bad) {
-            au_set(r, k, AUDIT_FAILS, "a perturbed A was refused");
-            continue;
-        }
-        for (int a = 0; a < 9; a++)
-            for (int b = 0; b < 9; b++) {
-                JTJ[a][b] = 0;
-                for (int i = 0; i < NM; i++) JTJ[a][b] += J[i][a] * J[i][b];
-            }
-        au_sym_eigenvalues(9, JTJ, ev);
-        double top = 0;
-        for (int i = 0; i < 9; i++) top = fmax(top, ev[i]);
-        int rank = 0;
-        double gap_lo = INFINITY, gap_hi = 0; /* the smallest kept and the largest dropped eigenvalue */
-        for (int i = 0; i < 9; i++) {
-            if (ev[i] > 1e-8 * top) rank++, gap_lo = fmin(gap_lo, ev[i] / top);
-            else gap_hi = fmax(gap_hi, ev[i] / top);
-        }
-        au_set(r, k, rank == 5 ? AUDIT_HOLDS : AUDIT_FAILS,
-               "rank of d D(m_i) / d A over 40 normals: %d (eigenvalues of J^T J: "
-               "smallest kept %.1e, largest dropped %.1e of the largest)",
-               rank, gap_lo, gap_hi);
-    }
+    for (int k = 0; k < AUDIT_SHAPES; k++) dof_row(r, k, &ctx->sh[k], ctx->A[k]);
 
     r = add_row(ctx, "vndf-phi90",
                 "at theta_v = 75 degrees the VNDF leans toward the view more for phi_v = 90 than for phi_v = "
