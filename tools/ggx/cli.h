@@ -63,14 +63,18 @@ typedef struct options {
 /* Parses argv[first..] into o (defaults first) from the options named in allowed (comma-separated names of the
  * command's one option table, options.c); unknown options and malformed values die(). */
 void parse_options(int argc, char **argv, int first, options *o, const char *allowed);
-/* A subcommand's options and its --help: the names it takes and the function that prints its help. */
+/* A subcommand's options and its --help: the names it takes, the function that prints its help, and whether it takes
+ * a shape (the options of SHAPE_OPTS too, and --help ends with SHAPE_HELP). */
 typedef struct command_spec {
     const char *options;
     void (*help)(void);
+    int shape;
 } command_spec;
-/* parse_options over c->options; after --help prints c's help and returns 0 (the subcommand then ends with 0),
+/* parse_options over c's options; after --help prints c's help and returns 0 (the subcommand then ends with 0),
  * else returns 1. */
 int command_options(const command_spec *c, int argc, char **argv, int first, options *o);
+/* command_options, then the shape of the options into s (a bad shape dies with the library's message). */
+int command_shape(const command_spec *c, int argc, char **argv, int first, options *o, ggx_shape *s);
 /* Parses exactly count comma-separated finite numbers (count < 0: 1 to -count numbers) for option opt; returns how
  * many; dies on anything else. */
 int parse_list(const char *opt, const char *text, double *out, int count);

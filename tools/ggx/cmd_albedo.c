@@ -71,18 +71,16 @@ static void albedo_help(void)
            "albedo of ggx_bsdf_eval for light arriving from the view, which may be on either side (theta > 90:\n"
            "from below), by default theta = 0, 30, 60, 80, 89 and 180, 150, 120, 100, 91 at phi = 0. Columns:\n"
            "view_theta_deg, view_phi_deg, R (reflected), T (transmitted), R_plus_T (the rest is lost to multiple\n"
-           "scattering). Absolute error <= 1e-4.\n\n%s",
-           SHAPE_HELP);
+           "scattering). Absolute error <= 1e-4.\n\n");
 }
 
-static const command_spec ALBEDO_SPEC = {SHAPE_OPTS ",view,eta,format,out", albedo_help};
+static const command_spec ALBEDO_SPEC = {"view,eta,format,out", albedo_help, 1};
 
 int cmd_albedo(int argc, char **argv)
 {
     options o;
-    if (!command_options(&ALBEDO_SPEC, argc, argv, 2, &o)) return 0;
     ggx_shape s;
-    shape_from_options(&o, &s);
+    if (!command_shape(&ALBEDO_SPEC, argc, argv, 2, &o, &s)) return 0;
     int json = 0;
     if (o.format && strcmp(o.format, "json") == 0) json = 1;
     else if (o.format && strcmp(o.format, "csv") != 0) die("--format: '%s' is not csv or json", o.format);

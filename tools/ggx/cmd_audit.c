@@ -26,7 +26,7 @@ static void audit_help(void)
            "every file, each in the format its name ends with (.md, .csv or .json), all or none.\n");
 }
 
-static const command_spec AUDIT_SPEC = {"alpha,skew,rotate,matrix,format,out,progress,no-progress", audit_help};
+static const command_spec AUDIT_SPEC = {"alpha,skew,rotate,matrix,format,out,progress,no-progress", audit_help, 0};
 
 int cmd_audit(int argc, char **argv)
 {

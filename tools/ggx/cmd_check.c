@@ -99,17 +99,16 @@ static void check_help(void)
            "Exit status 0 only if all pass (1 otherwise, 2 for bad input). A progress bar is shown on a "
            "terminal.\n\n");
     print_samplers(stdout);
-    printf("\n%s", SHAPE_HELP);
+    printf("\n");
 }
 
-static const command_spec CHECK_SPEC = {SHAPE_OPTS ",sampler,view,n,seed,progress,no-progress", check_help};
+static const command_spec CHECK_SPEC = {"sampler,view,n,seed,progress,no-progress", check_help, 1};
 
 int cmd_check(int argc, char **argv)
 {
     options o;
-    if (!command_options(&CHECK_SPEC, argc, argv, 2, &o)) return 0;
     ggx_shape s;
-    shape_from_options(&o, &s);
+    if (!command_shape(&CHECK_SPEC, argc, argv, 2, &o, &s)) return 0;
     if (!o.have_view) parse_direction("40,0", &o.view);
     const ggx_sampler_info *list[GGX_SAMPLER_COUNT + 1];
     int nl = 0;

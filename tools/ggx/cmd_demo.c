@@ -175,7 +175,7 @@ static void demo_help(void)
            "written all or none.\n");
 }
 
-static const command_spec DEMO_SPEC = {"out,n,size,theme", demo_help};
+static const command_spec DEMO_SPEC = {"out,n,size,theme", demo_help, 0};
 
 int cmd_demo(int argc, char **argv)
 {

@@ -12,18 +12,16 @@ static void eval_help(void)
            "wi = 40,0 and wo = 0,0 40,180 60,180 20,90). Columns: the directions, the half vector h, D(h), G1(wi,h),\n"
            "G1(wo,h), G = G1 G1, the height-correlated G2, Lambda(wi), Lambda(wo), the VNDF pdf of h for wi, the\n"
            "reflection pdf of wo, the BRDF, and with --eta the rough-dielectric BSDF f(wi -> wo) and its pdf.\n"
-           "--fresnel one | dielectric:ETA | conductor:ETA,K | schlick:F0 (default one)\n\n%s",
-           SHAPE_HELP);
+           "--fresnel one | dielectric:ETA | conductor:ETA,K | schlick:F0 (default one)\n\n");
 }
 
-static const command_spec EVAL_SPEC = {SHAPE_OPTS ",wi,wo,fresnel,eta,format,out", eval_help};
+static const command_spec EVAL_SPEC = {"wi,wo,fresnel,eta,format,out", eval_help, 1};
 
 int cmd_eval(int argc, char **argv)
 {
     options o;
-    if (!command_options(&EVAL_SPEC, argc, argv, 2, &o)) return 0;
     ggx_shape s;
-    shape_from_options(&o, &s);
+    if (!command_shape(&EVAL_SPEC, argc, argv, 2, &o, &s)) return 0;
     ggx_fresnel f = fresnel_from_options(&o);
     if (!o.have_wi) parse_direction("40,0", &o.wi);
     if (o.nwo == 0) {

@@ -146,7 +146,7 @@ static void fit_input(const options *o, const surface *s, const ggx_fit_options 
 
 static const command_spec FIT_SPEC = {"heightfield,normal-map,normals,spacing,z-scale,keep-tilt,downsample,y-down,"
                                       "model,threads,format,out,figure,progress,no-progress",
-                                      usage};
+                                      usage, 0};
 
 /* What ggx fit found, for its report. */
 typedef struct fit_report {

@@ -62,8 +62,8 @@ static void generate_help(void)
            "exp(-r^T M r).\n");
 }
 
-static const command_spec GENERATE_SPEC = {"kind,alpha,skew,rotate,corr,mix,period,risers,size,seed,out",
-                                           generate_help};
+static const command_spec GENERATE_SPEC = {"kind,alpha,skew,rotate,corr,mix,period,risers,size,seed,out", generate_help,
+                                           0};
 
 static int generate(int argc, char **argv)
 {
@@ -230,7 +230,7 @@ static void measure_help(void)
 }
 
 static const command_spec MEASURE_SPEC = {
-    "heightfield,spacing,z-scale,tilted,risers," SHAPE_OPTS ",view,n,bounces,threads,seed,format,out", measure_help};
+    "heightfield,spacing,z-scale,tilted,risers," SHAPE_OPTS ",view,n,bounces,threads,seed,format,out", measure_help, 0};
 
 /* What ggx microsurface measure found, for its report. */
 typedef struct measured {

@@ -33,8 +33,9 @@ static void microsurface_figure_help(void)
            "ggx microsurface measure; views below a tilted patch's plane have no mark.\n");
 }
 
-static const command_spec MICROSURFACE_FIGURE_SPEC = {
-    "heightfield,spacing,z-scale,tilted,risers," SHAPE_OPTS ",from,n,threads,size,theme,out", microsurface_figure_help};
+static const command_spec MICROSURFACE_FIGURE_SPEC = {"heightfield,spacing,z-scale,tilted,risers," SHAPE_OPTS
+                                                      ",from,n,threads,size,theme,out",
+                                                      microsurface_figure_help, 0};
 
 int microsurface_figure(int argc, char **argv)
 {

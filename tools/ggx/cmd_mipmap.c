@@ -134,7 +134,7 @@ static void mipmap_help(void)
 }
 
 static const command_spec MIPMAP_SPEC = {"normal-map,alpha,roughness-map,perceptual,fast,y-down,threads,out,format",
-                                         mipmap_help};
+                                         mipmap_help, 0};
 
 int cmd_mipmap(int argc, char **argv)
 {

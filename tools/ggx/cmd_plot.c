@@ -43,18 +43,16 @@ static void plot_help(void)
            "--size W or WxH: the file's size, exactly, in pixels (PNG) or points (SVG, PDF); with W alone the\n"
            "height follows the figure's aspect. Default width 640. --theme: light (default, for print) or dark.\n"
            "--out FILE: its name says the format (.png, .svg, .pdf); default FIGURE.png for hemisphere figures\n"
-           "and the slice, FIGURE.svg for line plots and polar; - writes the default format to standard output.\n\n%s",
-           SHAPE_HELP);
+           "and the slice, FIGURE.svg for line plots and polar; - writes the default format to standard output.\n\n");
 }
 
-static const command_spec PLOT_SPEC = {SHAPE_OPTS ",figure,view,sampler,size,log,theme,from,eta,phi-d,out", plot_help};
+static const command_spec PLOT_SPEC = {"figure,view,sampler,size,log,theme,from,eta,phi-d,out", plot_help, 1};
 
 int cmd_plot(int argc, char **argv)
 {
     options o;
-    if (!command_options(&PLOT_SPEC, argc, argv, 2, &o)) return 0;
     ggx_shape s;
-    shape_from_options(&o, &s);
+    if (!command_shape(&PLOT_SPEC, argc, argv, 2, &o, &s)) return 0;
     figure_kind k = figure_from_name(o.figure ? o.figure : "ndf");
     int line = k >= FIG_G1 && k != FIG_SLICE; /* line plots default to SVG, images to PNG */
     if (!o.have_view) parse_direction("75,0", &o.view);

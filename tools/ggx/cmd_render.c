@@ -108,7 +108,7 @@ static void render_help(void)
 static const command_spec RENDER_SPEC = {
     SHAPE_OPTS ",fresnel,scene,light,spp,size,compensate,sampler,strategy,depth,exposure,threads,seed,"
                "out,progress,no-progress",
-    render_help};
+    render_help, 0};
 
 int cmd_render(int argc, char **argv)
 {

@@ -69,7 +69,7 @@ static void render_normal_map_help(void)
 }
 
 static const command_spec RENDER_NORMAL_MAP_SPEC = {
-    "normal-map,alpha,roughness-map,perceptual,y-down,level,light,view,threads,out", render_normal_map_help};
+    "normal-map,alpha,roughness-map,perceptual,y-down,level,light,view,threads,out", render_normal_map_help, 0};
 
 int render_normal_map(int argc, char **argv)
 {

@@ -17,18 +17,17 @@ static void sample_help(void)
            "view / known direction (default 40,0). Runs of %d samples or more show a progress bar on a terminal.\n\n",
            SAMPLE_PROGRESS_MIN);
     print_samplers(stdout);
-    printf("\n%s", SHAPE_HELP);
+    printf("\n");
 }
 
-static const command_spec SAMPLE_SPEC = {SHAPE_OPTS ",sampler,view,n,seed,format,out,fresnel,eta,progress,no-progress",
-                                         sample_help};
+static const command_spec SAMPLE_SPEC = {"sampler,view,n,seed,format,out,fresnel,eta,progress,no-progress", sample_help,
+                                         1};
 
 int cmd_sample(int argc, char **argv)
 {
     options o;
-    if (!command_options(&SAMPLE_SPEC, argc, argv, 2, &o)) return 0;
     ggx_shape s;
-    shape_from_options(&o, &s);
+    if (!command_shape(&SAMPLE_SPEC, argc, argv, 2, &o, &s)) return 0;
     const ggx_sampler_info *smp = o.sampler ? find_sampler(o.sampler) : ggx_sampler_get(GGX_SAMPLER_CAPS);
     require_domain(smp, &s);
     if (!o.have_view) parse_direction("40,0", &o.view);

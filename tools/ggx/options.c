@@ -330,8 +330,18 @@ void parse_options(int argc, char **argv, int first, options *o, const char *all
 
 int command_options(const command_spec *c, int argc, char **argv, int first, options *o)
 {
-    parse_options(argc, argv, first, o, c->options);
+    char allowed[512];
+    snprintf(allowed, sizeof allowed, "%s%s%s", c->shape ? SHAPE_OPTS : "", c->shape ? "," : "", c->options);
+    parse_options(argc, argv, first, o, allowed);
     if (!o->help) return 1;
     c->help();
+    if (c->shape) fputs(SHAPE_HELP, stdout);
     return 0;
+}
+
+int command_shape(const command_spec *c, int argc, char **argv, int first, options *o, ggx_shape *s)
+{
+    if (!command_options(c, argc, argv, first, o)) return 0;
+    shape_from_options(o, s);
+    return 1;
 }
