@@ -80,7 +80,7 @@ example: build
 # sweeps (scale 1), the command's audit and check runs and the packaging test included.
 TEST_QUICK_SCALE = 0.2
 test: build
-	@cd $(BUILD) && GGX_TEST_SCALE=$(TEST_QUICK_SCALE) GGX_CLI_QUICK=1 ctest --output-on-failure -j $(JOBS) -E '^consumer$$'
+	@cd $(BUILD) && GGX_TEST_SCALE=$(TEST_QUICK_SCALE) GGX_CLI_QUICK=1 ctest --output-on-failure -j $(JOBS) -E '^(consumer|install|header_matrix|cuda_compile)$$'
 
 test-full: build
 	@cd $(BUILD) && GGX_TEST_SCALE=1 ctest --output-on-failure -j $(JOBS)

@@ -1,4 +1,4 @@
-/* libFuzzer target: the ggx command's parsers (options, numbers, shape syntax, directions, Fresnel, figure and
+/* libFuzzer target: the ggx command's parsers (options, numbers, shape syntax, directions, a distant light, Fresnel,
  * sampler names, with the sampler's domain and view checks) fed from raw bytes split into arguments at NUL bytes.
  * die() jumps back instead of exiting. SPDX-License-Identifier: MIT */
 #include <math.h>
@@ -10,7 +10,7 @@
 
 #define ALL_OPTS                                                                                                       \
     "alpha,skew,rotate,matrix,wi,wo,view,n,seed,out,format,sampler,figure,fresnel,eta,size,log,claim,progress,no-"     \
-    "progress"
+    "progress,light,spp,depth,level,threads"
 
 int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
 {
@@ -35,7 +35,12 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
         if (!(s.det > 0)) abort();
         ggx_fresnel f = fresnel_from_options(&o);
         if (!(ggx_fresnel_eval(&f, 0.5) >= 0 && ggx_fresnel_eval(&f, 0.5) <= 1)) abort();
-        if (o.figure) figure_from_name(o.figure);
+        if (o.light) { /* the one syntax of a distant light: a unit direction and an irradiance >= 0 */
+            ggx_vec3 d;
+            double v[3];
+            parse_light_point(o.light, &d, v);
+            if (!(fabs(d.x * d.x + d.y * d.y + d.z * d.z - 1) < 1e-12 && v[2] >= 0)) abort();
+        }
         if (o.sampler) { /* the name, then the shape and view against the sampler's registry entry */
             const ggx_sampler_info *smp = find_sampler(o.sampler);
             require_domain(smp, &s);
