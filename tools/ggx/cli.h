@@ -145,16 +145,28 @@ int progress_wanted(int option);
 void progress_show(const char *label, long done, long total);
 void progress_end(const char *label, long total);
 
-/* ---- subcommands ---- */
-int cmd_demo(int argc, char **argv);
-int cmd_eval(int argc, char **argv);
-int cmd_albedo(int argc, char **argv);
-int cmd_sample(int argc, char **argv);
-int cmd_plot(int argc, char **argv);
-int cmd_check(int argc, char **argv);
-int cmd_audit(int argc, char **argv);
-int cmd_fit(int argc, char **argv);
-int cmd_mipmap(int argc, char **argv);
+/* ---- subcommands ----
+ * Each runs on the options main.c parsed for it (its command_spec there) and, where it takes one, the shape of the
+ * options (NULL otherwise); its help prints its --help. ggx render and ggx microsurface parse their own arguments
+ * (their modes take other options). */
+int cmd_demo(options *o, const ggx_shape *s);
+int cmd_eval(options *o, const ggx_shape *s);
+int cmd_albedo(options *o, const ggx_shape *s);
+int cmd_sample(options *o, const ggx_shape *s);
+int cmd_plot(options *o, const ggx_shape *s);
+int cmd_check(options *o, const ggx_shape *s);
+int cmd_audit(options *o, const ggx_shape *s);
+int cmd_fit(options *o, const ggx_shape *s);
+int cmd_mipmap(options *o, const ggx_shape *s);
+void demo_help(void);
+void eval_help(void);
+void albedo_help(void);
+void sample_help(void);
+void plot_help(void);
+void check_help(void);
+void audit_help(void);
+void fit_help(void);
+void mipmap_help(void);
 int cmd_render(int argc, char **argv);
 int cmd_microsurface(int argc, char **argv);
 /* --roughness-map of the options as alpha per texel (malloc'd, nx * ny): a grey PNG's levels / (2^bits - 1) or a

@@ -58,7 +58,7 @@ static int dielectric(const options *o, const ggx_shape *s, int json)
     return 0;
 }
 
-static void albedo_help(void)
+void albedo_help(void)
 {
     printf("usage: ggx albedo [shape] [--view DIR] [--eta ETA] [--format csv|json] [--out FILE]\n\n"
            "The directional albedo E(v) of the BRDF with F = 1 (the energy that single scattering keeps), for the\n"
@@ -74,22 +74,17 @@ static void albedo_help(void)
            "scattering). Absolute error <= 1e-4.\n\n");
 }
 
-static const command_spec ALBEDO_SPEC = {"view,eta,format,out", albedo_help, 1};
-
-int cmd_albedo(int argc, char **argv)
+int cmd_albedo(options *o, const ggx_shape *s)
 {
-    options o;
-    ggx_shape s;
-    if (!command_shape(&ALBEDO_SPEC, argc, argv, 2, &o, &s)) return 0;
     int json = 0;
-    if (o.format && strcmp(o.format, "json") == 0) json = 1;
-    else if (o.format && strcmp(o.format, "csv") != 0) die("--format: '%s' is not csv or json", o.format);
-    if (o.have_eta) return dielectric(&o, &s, json);
+    if (o->format && strcmp(o->format, "json") == 0) json = 1;
+    else if (o->format && strcmp(o->format, "csv") != 0) die("--format: '%s' is not csv or json", o->format);
+    if (o->have_eta) return dielectric(o, s, json);
     ggx_vec3 views[16];
     int nv = 0;
-    if (o.have_view) {
-        if (!(o.view.z > 0)) die("--view: the view must be above the horizon (theta < 90)");
-        views[nv++] = o.view;
+    if (o->have_view) {
+        if (!(o->view.z > 0)) die("--view: the view must be above the horizon (theta < 90)");
+        views[nv++] = o->view;
     } else {
         const double th[] = {0, 15, 30, 45, 60, 75, 85, 89};
         for (int p = 0; p < 2; p++)
@@ -100,17 +95,16 @@ int cmd_albedo(int argc, char **argv)
                 views[nv++] = v;
             }
     }
-    double avg = ggx_albedo_avg(&s), avg_hc = ggx_albedo_avg_height_correlated(&s);
+    double avg = ggx_albedo_avg(s), avg_hc = ggx_albedo_avg_height_correlated(s);
     static const char *const cols[] = {"view_theta_deg",      "view_phi_deg", "E",
                                        "E_height_correlated", "E_avg",        "E_avg_height_correlated"};
     out_file out;
-    out_open(&out, o.out);
+    out_open(&out, o->out);
     put_header(out.f, json, cols, 6);
     for (int k = 0; k < nv; k++) {
         ggx_vec3 v = views[k];
         double row[6] = {
-            acos(v.z) / DEG, atan2(v.y, v.x) / DEG, ggx_albedo(&s, v), ggx_albedo_height_correlated(&s, v), avg,
-            avg_hc};
+            acos(v.z) / DEG, atan2(v.y, v.x) / DEG, ggx_albedo(s, v), ggx_albedo_height_correlated(s, v), avg, avg_hc};
         put_row(out.f, json, cols, row, 6, k + 1 == nv);
     }
     if (json) fprintf(out.f, "]\n");

@@ -5,7 +5,7 @@
 #include "audit.h"
 #include "cli.h"
 
-static void audit_help(void)
+void audit_help(void)
 {
     printf("usage: ggx audit [--alpha AX,AY] [--skew TX,TY] [--rotate TZ] [--matrix ...] [--format md|csv|json]\n"
            "                 [--out FILE]...\n\n"
@@ -26,40 +26,37 @@ static void audit_help(void)
            "every file, each in the format its name ends with (.md, .csv or .json), all or none.\n");
 }
 
-static const command_spec AUDIT_SPEC = {"alpha,skew,rotate,matrix,format,out,progress,no-progress", audit_help, 0};
-
-int cmd_audit(int argc, char **argv)
+int cmd_audit(options *o, const ggx_shape *no_shape)
 {
-    options o;
-    if (!command_options(&AUDIT_SPEC, argc, argv, 2, &o)) return 0;
+    (void)no_shape;
     /* one output in the format of --format, or several, each in the format its name ends with */
-    const char *names[4] = {o.out};
+    const char *names[4] = {o->out};
     audit_format fmts[4] = {AUDIT_MD};
-    int nout = o.nout > 1 ? o.nout : 1;
-    if (o.nout > 1) {
-        if (o.format) die("--format: with several --out files each file's name gives its format");
+    int nout = o->nout > 1 ? o->nout : 1;
+    if (o->nout > 1) {
+        if (o->format) die("--format: with several --out files each file's name gives its format");
         for (int i = 0; i < nout; i++) {
-            const char *dot = strrchr(o.outs[i], '.');
-            names[i] = o.outs[i];
+            const char *dot = strrchr(o->outs[i], '.');
+            names[i] = o->outs[i];
             if (dot && strcmp(dot, ".md") == 0) fmts[i] = AUDIT_MD;
             else if (dot && strcmp(dot, ".csv") == 0) fmts[i] = AUDIT_CSV;
             else if (dot && strcmp(dot, ".json") == 0) fmts[i] = AUDIT_JSON;
-            else die("--out: '%s' does not end with .md, .csv or .json", o.outs[i]);
+            else die("--out: '%s' does not end with .md, .csv or .json", o->outs[i]);
         }
-    } else if (o.format && strcmp(o.format, "csv") == 0) fmts[0] = AUDIT_CSV;
-    else if (o.format && strcmp(o.format, "json") == 0) fmts[0] = AUDIT_JSON;
-    else if (o.format && strcmp(o.format, "md") != 0) die("--format: '%s' is not md, csv or json", o.format);
+    } else if (o->format && strcmp(o->format, "csv") == 0) fmts[0] = AUDIT_CSV;
+    else if (o->format && strcmp(o->format, "json") == 0) fmts[0] = AUDIT_JSON;
+    else if (o->format && strcmp(o->format, "md") != 0) die("--format: '%s' is not md, csv or json", o->format);
     /* what the user gave, option by option: a default is never guessed from a value */
-    double ax0 = o.have_alpha ? o.alpha[0] : 0.15, ay0 = o.have_alpha ? o.alpha[1] : 0.5;
-    double ax = o.have_alpha ? o.alpha[0] : 0.3, ay = o.have_alpha ? o.alpha[1] : 0.6;
-    double tx = o.have_skew ? o.skew[0] : 22.918311805232928, ty = o.have_skew ? o.skew[1] : -17.188733853924695;
-    double tz = o.have_rotate ? o.rotate : 28.64788975654116;
+    double ax0 = o->have_alpha ? o->alpha[0] : 0.15, ay0 = o->have_alpha ? o->alpha[1] : 0.5;
+    double ax = o->have_alpha ? o->alpha[0] : 0.3, ay = o->have_alpha ? o->alpha[1] : 0.6;
+    double tx = o->have_skew ? o->skew[0] : 22.918311805232928, ty = o->have_skew ? o->skew[1] : -17.188733853924695;
+    double tz = o->have_rotate ? o->rotate : 28.64788975654116;
     /* the diagonal column: diag(ax, ay, 1), written out (no rotation, and no limit on the alphas of a given matrix) */
     double A[AUDIT_SHAPES][3][3] = {{{ax0, 0, 0}, {0, ay0, 0}, {0, 0, 1}}};
     ggx_status st;
     if ((st = ggx_ellipsoid_matrix(A[1], ax, ay, 0, 0, tz * DEG)) != GGX_OK)
         die("invalid shape: %s", ggx_status_str(st));
-    if (o.have_matrix) memcpy(A[2], o.matrix, sizeof A[2]);
+    if (o->have_matrix) memcpy(A[2], o->matrix, sizeof A[2]);
     else if ((st = ggx_ellipsoid_matrix(A[2], ax, ay, tx * DEG, ty * DEG, tz * DEG)) != GGX_OK)
         die("invalid shape: %s", ggx_status_str(st));
     ggx_shape s;
@@ -67,17 +64,17 @@ int cmd_audit(int argc, char **argv)
         st = ggx_shape_matrix(&s, (const double(*)[3])A[k]);
         if (st != GGX_OK) die("invalid shape: %s", ggx_status_str(st));
     }
-    if (o.have_matrix) { /* the diagonal column uses the alphas of the given matrix when it has them */
+    if (o->have_matrix) { /* the diagonal column uses the alphas of the given matrix when it has them */
         ggx_shape_matrix(&s, (const double(*)[3])A[2]);
         if (s.kind != GGX_SHAPE_SKEWED) A[0][0][0] = s.alpha_x, A[0][1][1] = s.alpha_y;
     }
     audit_row rows[AUDIT_MAX_ROWS];
-    int progress = o.progress >= 0 ? o.progress : 0;
+    int progress = o->progress >= 0 ? o->progress : 0;
     int n = audit_run((const double(*)[3][3])A, rows, progress);
     char label[AUDIT_SHAPES][96];
     snprintf(label[0], sizeof label[0], "diagonal A (%.4g, %.4g)", A[0][0][0], A[0][1][1]);
     snprintf(label[1], sizeof label[1], "rotated A (%.4g, %.4g; theta_z %.4g deg)", ax, ay, tz);
-    if (o.have_matrix) snprintf(label[2], sizeof label[2], "given matrix");
+    if (o->have_matrix) snprintf(label[2], sizeof label[2], "given matrix");
     else snprintf(label[2], sizeof label[2], "skewed A (%.4g, %.4g; %.4g, %.4g, %.4g deg)", ax, ay, tx, ty, tz);
     const char *const labels[AUDIT_SHAPES] = {label[0], label[1], label[2]};
     if (nout > 1) out_begin_set();

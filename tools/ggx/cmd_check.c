@@ -89,7 +89,7 @@ void print_check_row(FILE *f, const char *name, check_result r)
             r.zero_hits ? " (samples where the pdf is 0)" : "");
 }
 
-static void check_help(void)
+void check_help(void)
 {
     printf("usage: ggx check [shape] [--sampler NAME] [--view DIR] [-n N] [--seed S] [--progress|--no-progress]\n\n"
            "Checks samplers of normals against their pdfs for your parameters: the pdf's normalisation by adaptive\n"
@@ -102,36 +102,31 @@ static void check_help(void)
     printf("\n");
 }
 
-static const command_spec CHECK_SPEC = {"sampler,view,n,seed,progress,no-progress", check_help, 1};
-
-int cmd_check(int argc, char **argv)
+int cmd_check(options *o, const ggx_shape *s)
 {
-    options o;
-    ggx_shape s;
-    if (!command_shape(&CHECK_SPEC, argc, argv, 2, &o, &s)) return 0;
-    if (!o.have_view) parse_direction("40,0", &o.view);
+    if (!o->have_view) parse_direction("40,0", &o->view);
     const ggx_sampler_info *list[GGX_SAMPLER_COUNT + 1];
     int nl = 0;
-    if (o.sampler) {
-        list[nl++] = find_sampler(o.sampler);
+    if (o->sampler) {
+        list[nl++] = find_sampler(o->sampler);
         if (list[0]->family == GGX_FAMILY_DIRECTION)
-            die("ggx check checks samplers of normals; '%s' samples directions", o.sampler);
-        require_domain(list[0], &s);
+            die("ggx check checks samplers of normals; '%s' samples directions", o->sampler);
+        require_domain(list[0], s);
     } else { /* the library's samplers of normals that apply to the shape (wrong-s only when asked for) */
         for (int i = 0; i < GGX_SAMPLER_COUNT; i++) {
             const ggx_sampler_info *smp = ggx_sampler_get((ggx_sampler_id)i);
-            if (smp->family != GGX_FAMILY_DIRECTION && sampler_applies(smp, &s)) list[nl++] = smp;
+            if (smp->family != GGX_FAMILY_DIRECTION && sampler_applies(smp, s)) list[nl++] = smp;
         }
     }
-    for (int i = 0; i < nl; i++) require_view(list[i], o.view);
-    int progress = progress_wanted(o.progress);
-    long n = o.n > 0 ? o.n : 1000000;
+    for (int i = 0; i < nl; i++) require_view(list[i], o->view);
+    int progress = progress_wanted(o->progress);
+    long n = o->n > 0 ? o->n : 1000000;
     require_check_n(n);
     double alpha = chi2_sidak(nl);
     print_check_header(stdout);
     int all = 1, no_jac = 0;
     for (int i = 0; i < nl; i++) {
-        check_result r = run_check(&s, o.view, list[i], n, o.seed + (unsigned long long)i, alpha, progress);
+        check_result r = run_check(s, o->view, list[i], n, o->seed + (unsigned long long)i, alpha, progress);
         print_check_row(stdout, list[i]->name, r);
         out_flush_stdout(); /* a reader that has gone stops the run */
         all &= r.pass;

@@ -153,7 +153,7 @@ static void write_pdf(const char *path, ggx_shape sh[2], float *img[NSPHERES], i
     canvas_close_file(&c);
 }
 
-static void demo_help(void)
+void demo_help(void)
 {
     printf("usage: ggx demo [--out DIR] [-n N] [--size W] [--theme light|dark]\n\n"
            "Draws the seeds' figures for alpha = (0.15, 0.5) and for the same shape skewed by theta_x = 15,\n"
@@ -175,19 +175,16 @@ static void demo_help(void)
            "written all or none.\n");
 }
 
-static const command_spec DEMO_SPEC = {"out,n,size,theme", demo_help, 0};
-
-int cmd_demo(int argc, char **argv)
+int cmd_demo(options *o, const ggx_shape *no_shape)
 {
-    options o;
-    if (!command_options(&DEMO_SPEC, argc, argv, 2, &o)) return 0;
-    if (o.n > 0) require_check_n(o.n); /* before any figure is drawn */
-    if (o.size_h) die("--size: the demo takes a width only (each figure keeps its own aspect)");
+    (void)no_shape;
+    if (o->n > 0) require_check_n(o->n); /* before any figure is drawn */
+    if (o->size_h) die("--size: the demo takes a width only (each figure keeps its own aspect)");
     struct timespec t0, t1;
     clock_gettime(CLOCK_MONOTONIC, &t0);
-    const char *dir = o.out ? o.out : "out";
+    const char *dir = o->out ? o->out : "out";
     ensure_dir(dir);
-    int size = o.size ? o.size : 640;
+    int size = o->size ? o->size : 640;
     ggx_vec3 v0;
     parse_direction("75,0", &v0);
     char path[1024];
@@ -200,7 +197,7 @@ int cmd_demo(int argc, char **argv)
     for (int k = 0; k < 2; k++) {
         for (int i = 0; i < NFIGS; i++) {
             snprintf(path, sizeof path, "%s/%s%s", dir, SHAPES[k].prefix, FIGS[i].file);
-            figure_spec f = demo_spec(&FIGS[i], &sh[k], k, o.dark);
+            figure_spec f = demo_spec(&FIGS[i], &sh[k], k, o->dark);
             figure_write(&f, path, format_of_path(path, FMT_PNG), size, figure_height(f.kind, size));
             printf("  %s\n", path);
             out_flush_stdout();
@@ -219,7 +216,7 @@ int cmd_demo(int argc, char **argv)
     out_commit_set();
     clock_gettime(CLOCK_MONOTONIC, &t1);
     printf("figures drawn in %.1f s\n", (double)(t1.tv_sec - t0.tv_sec) + 1e-9 * (double)(t1.tv_nsec - t0.tv_nsec));
-    long n = o.n > 0 ? o.n : 1000000;
+    long n = o->n > 0 ? o->n : 1000000;
     /* every sampler of normals of the library, on each shape in its domain */
     int runs = 0;
     for (int k = 0; k < 2; k++)

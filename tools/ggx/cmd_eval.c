@@ -4,7 +4,7 @@
 
 #include "cli.h"
 
-static void eval_help(void)
+void eval_help(void)
 {
     printf("usage: ggx eval [shape] [--wi DIR] [--wo DIR]... [--fresnel F] [--eta ETA] [--format csv|json] [--out "
            "FILE]\n\n"
@@ -15,33 +15,28 @@ static void eval_help(void)
            "--fresnel one | dielectric:ETA | conductor:ETA,K | schlick:F0 (default one)\n\n");
 }
 
-static const command_spec EVAL_SPEC = {"wi,wo,fresnel,eta,format,out", eval_help, 1};
-
-int cmd_eval(int argc, char **argv)
+int cmd_eval(options *o, const ggx_shape *s)
 {
-    options o;
-    ggx_shape s;
-    if (!command_shape(&EVAL_SPEC, argc, argv, 2, &o, &s)) return 0;
-    ggx_fresnel f = fresnel_from_options(&o);
-    if (!o.have_wi) parse_direction("40,0", &o.wi);
-    if (o.nwo == 0) {
+    ggx_fresnel f = fresnel_from_options(o);
+    if (!o->have_wi) parse_direction("40,0", &o->wi);
+    if (o->nwo == 0) {
         const char *d[] = {"0,0", "40,180", "60,180", "20,90"};
-        for (int i = 0; i < 4; i++) parse_direction(d[i], &o.wo[o.nwo++]);
+        for (int i = 0; i < 4; i++) parse_direction(d[i], &o->wo[o->nwo++]);
     }
     int json = 0;
-    if (o.format && strcmp(o.format, "json") == 0) json = 1;
-    else if (o.format && strcmp(o.format, "csv") != 0) die("--format: '%s' is not csv or json", o.format);
+    if (o->format && strcmp(o->format, "json") == 0) json = 1;
+    else if (o->format && strcmp(o->format, "csv") != 0) die("--format: '%s' is not csv or json", o->format);
     static const char *cols[] = {"wi_x",      "wi_y",      "wi_z",     "wo_x",     "wo_y",  "wo_z", "h_x",
                                  "h_y",       "h_z",       "D",        "G1_wi",    "G1_wo", "G",    "G2_hc",
                                  "lambda_wi", "lambda_wo", "pdf_vndf", "pdf_brdf", "brdf",  "bsdf", "pdf_bsdf"};
-    int ncols = o.have_eta ? 21 : 19;
+    int ncols = o->have_eta ? 21 : 19;
     out_file out;
-    out_open(&out, o.out);
+    out_open(&out, o->out);
     if (json) fprintf(out.f, "[\n");
     else
         for (int c = 0; c < ncols; c++) fprintf(out.f, "%s%s", cols[c], c + 1 < ncols ? "," : "\n");
-    for (int k = 0; k < o.nwo; k++) {
-        ggx_vec3 wi = o.wi, wo = o.wo[k], h = ggx_half_reflect(wi, wo);
+    for (int k = 0; k < o->nwo; k++) {
+        ggx_vec3 wi = o->wi, wo = o->wo[k], h = ggx_half_reflect(wi, wo);
         double v[21] = {wi.x,
                         wi.y,
                         wi.z,
@@ -51,28 +46,28 @@ int cmd_eval(int argc, char **argv)
                         h.x,
                         h.y,
                         h.z,
-                        ggx_ndf(&s, h),
-                        ggx_g1(&s, wi, h),
-                        ggx_g1(&s, wo, h),
-                        ggx_g2(&s, wi, wo, h),
-                        ggx_g2_height_correlated(&s, wi, wo, h),
-                        ggx_lambda(&s, wi),
-                        ggx_lambda(&s, wo),
-                        ggx_pdf_vndf(&s, wi, h),
-                        ggx_pdf_brdf(&s, wi, wo),
-                        ggx_brdf_eval(&s, &f, wi, wo),
+                        ggx_ndf(s, h),
+                        ggx_g1(s, wi, h),
+                        ggx_g1(s, wo, h),
+                        ggx_g2(s, wi, wo, h),
+                        ggx_g2_height_correlated(s, wi, wo, h),
+                        ggx_lambda(s, wi),
+                        ggx_lambda(s, wo),
+                        ggx_pdf_vndf(s, wi, h),
+                        ggx_pdf_brdf(s, wi, wo),
+                        ggx_brdf_eval(s, &f, wi, wo),
                         0,
                         0};
-        if (o.have_eta) {
-            v[19] = ggx_bsdf_eval(&s, o.eta, wi, wo, GGX_RADIANCE);
-            v[20] = ggx_pdf_bsdf(&s, o.eta, wo, wi);
+        if (o->have_eta) {
+            v[19] = ggx_bsdf_eval(s, o->eta, wi, wo, GGX_RADIANCE);
+            v[20] = ggx_pdf_bsdf(s, o->eta, wo, wi);
         }
         if (json) fprintf(out.f, "  {");
         for (int c = 0; c < ncols; c++) {
             if (json) fprintf(out.f, "\"%s\": %.17g%s", cols[c], v[c], c + 1 < ncols ? ", " : "");
             else fprintf(out.f, "%.17g%s", v[c], c + 1 < ncols ? "," : "\n");
         }
-        if (json) fprintf(out.f, "}%s\n", k + 1 < o.nwo ? "," : "");
+        if (json) fprintf(out.f, "}%s\n", k + 1 < o->nwo ? "," : "");
     }
     if (json) fprintf(out.f, "]\n");
     out_close(&out);

@@ -72,7 +72,7 @@ static int show_progress(void *ctx, int it, double ll)
     return 0;
 }
 
-static void usage(void)
+void fit_help(void)
 {
     printf(
         "usage: ggx fit (--heightfield FILE | --normal-map FILE | --normals FILE.csv) [--spacing DX[,DY]]\n"
@@ -143,10 +143,6 @@ static void fit_input(const options *o, const surface *s, const ggx_fit_options 
     }
     if (st != GGX_OK) die("fit: %s", ggx_status_str(st));
 }
-
-static const command_spec FIT_SPEC = {"heightfield,normal-map,normals,spacing,z-scale,keep-tilt,downsample,y-down,"
-                                      "model,threads,format,out,figure,progress,no-progress",
-                                      usage, 0};
 
 /* What ggx fit found, for its report. */
 typedef struct fit_report {
@@ -248,50 +244,49 @@ static void report_json(FILE *f, const fit_report *r)
 #undef J
 }
 
-int cmd_fit(int argc, char **argv)
+int cmd_fit(options *o, const ggx_shape *no_shape)
 {
-    options o;
-    if (!command_options(&FIT_SPEC, argc, argv, 2, &o)) return 0;
-    int inputs = (o.heightfield != NULL) + (o.normal_map != NULL) + (o.normals != NULL);
+    (void)no_shape;
+    int inputs = (o->heightfield != NULL) + (o->normal_map != NULL) + (o->normals != NULL);
     if (inputs != 1) die("give one of --heightfield, --normal-map or --normals (see ggx fit --help)");
-    const char *fmt = o.format ? o.format : "md";
+    const char *fmt = o->format ? o->format : "md";
     if (strcmp(fmt, "md") != 0 && strcmp(fmt, "csv") != 0 && strcmp(fmt, "json") != 0)
         die("--format: '%s' is not md, csv or json", fmt);
     ggx_fit_options fo;
     memset(&fo, 0, sizeof fo);
-    if (o.model) {
+    if (o->model) {
         int k = 0;
-        while (k < 3 && strcmp(o.model, MODEL_NAMES[k]) != 0) k++;
-        if (k == 3) die("--model: '%s' is not ellipsoid, anisotropic or isotropic", o.model);
+        while (k < 3 && strcmp(o->model, MODEL_NAMES[k]) != 0) k++;
+        if (k == 3) die("--model: '%s' is not ellipsoid, anisotropic or isotropic", o->model);
         fo.model = (ggx_fit_model)k;
     }
-    if ((o.keep_tilt || o.downsample || o.have_z_scale) && !o.heightfield)
+    if ((o->keep_tilt || o->downsample || o->have_z_scale) && !o->heightfield)
         die("--keep-tilt, --downsample and --z-scale apply to --heightfield");
-    if (o.y_down && !o.normal_map) die("--y-down applies to --normal-map");
-    fo.threads = o.threads;
-    int bar = progress_wanted(o.progress);
+    if (o->y_down && !o->normal_map) die("--y-down applies to --normal-map");
+    fo.threads = o->threads;
+    int bar = progress_wanted(o->progress);
     fo.progress = show_progress;
     fo.progress_ctx = &bar;
 
-    const char *path = o.heightfield ? o.heightfield : o.normal_map ? o.normal_map : o.normals;
-    surface_read_options ro = {o.heightfield ? SURFACE_HEIGHTS : SURFACE_NORMALS, o.y_down};
+    const char *path = o->heightfield ? o->heightfield : o->normal_map ? o->normal_map : o->normals;
+    surface_read_options ro = {o->heightfield ? SURFACE_HEIGHTS : SURFACE_NORMALS, o->y_down};
     surface s;
     char err[512];
     if (bar) progress_show("read", 0, 1);
     if (surface_read(path, &ro, &s, err, sizeof err) != 0) die("%s", err);
-    if (o.normals && s.ny != 1) die("--normals: '%s' is not a CSV list of normals", path);
-    if (o.normal_map && s.ny == 1) die("--normal-map: '%s' is a list of normals (use --normals)", path);
+    if (o->normals && s.ny != 1) die("--normals: '%s' is not a CSV list of normals", path);
+    if (o->normal_map && s.ny == 1) die("--normal-map: '%s' is a list of normals (use --normals)", path);
     ggx_shape fit;
     ggx_fit_info info;
     const char *what = "";
     double spacing[4] = {0, 0, 0, 0}; /* the grid's spacing; the spacing the fit took (over z_scale) */
     const double *heights = NULL;
-    fit_input(&o, &s, &fo, &fit, &info, &what, spacing, &heights);
+    fit_input(o, &s, &fo, &fit, &info, &what, spacing, &heights);
     if (bar) progress_end("fit", 200);
     fit_report r;
     memset(&r, 0, sizeof r);
     r.path = path, r.what = what, r.s = &s, r.info = &info, r.mr = info.models, r.model = fo.model;
-    r.spacing[0] = spacing[0], r.spacing[1] = spacing[1], r.keep_tilt = o.keep_tilt;
+    r.spacing[0] = spacing[0], r.spacing[1] = spacing[1], r.keep_tilt = o->keep_tilt;
     /* An 8-bit map is fitted as cells (fit_input), which holds Sigma at (0.4 q)^2 (1 + |t|^2)^3: say so when that
      * binds. */
     r.cells = fit_as_cells(&s);
@@ -313,22 +308,22 @@ int cmd_fit(int argc, char **argv)
     r.ignored = info.ignored_horizon + info.ignored_nonfinite + info.ignored_weight;
 
     out_file out;
-    out_open(&out, o.out);
+    out_open(&out, o->out);
     FILE *f = out.f;
     if (strcmp(fmt, "md") == 0) report_md(f, &r);
     else if (strcmp(fmt, "csv") == 0) report_csv(f, &r);
     else report_json(f, &r);
-    if (o.figure) out_begin_set(); /* the report and the figure appear together or not at all */
+    if (o->figure) out_begin_set(); /* the report and the figure appear together or not at all */
     out_close(&out);
-    if (o.figure) {
-        figure_ctx fc = {&s, heights, spacing[2], spacing[3], {o.keep_tilt, o.downsample}};
+    if (o->figure) {
+        figure_ctx fc = {&s, heights, spacing[2], spacing[3], {o->keep_tilt, o->downsample}};
         size_t nsamp = s.nx * s.ny;
         if (s.kind == SURFACE_HEIGHTS)
             ggx_heightfield_facets(NULL, 0, 0, heights, s.nx, s.ny, spacing[2], spacing[3], &fc.ho, &nsamp);
         fit_samples fs = {read_samples, &fc, nsamp, r.cells};
         char title[300];
         snprintf(title, sizeof title, "ggx fit: %s", path);
-        fit_figure_write(o.figure, &fs, &fit, &info, MODEL_NAMES[fo.model], title);
+        fit_figure_write(o->figure, &fs, &fit, &info, MODEL_NAMES[fo.model], title);
         out_commit_set();
     }
     surface_free(&s);

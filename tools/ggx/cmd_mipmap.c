@@ -106,7 +106,7 @@ static void remove_made_dir(void)
     if (made_dir) rmdir(made_dir);
 }
 
-static void mipmap_help(void)
+void mipmap_help(void)
 {
     printf("usage: ggx mipmap --normal-map FILE (--alpha A[,AY] | --roughness-map FILE [--perceptual]) [--fast]\n"
            "                  [--y-down] [--threads N] [--out DIR] [--format exr|png16]\n\n"
@@ -133,57 +133,53 @@ static void mipmap_help(void)
            "30 to 80 times faster, at most about 0.005 nats of KL given up on the tests' footprints).\n");
 }
 
-static const command_spec MIPMAP_SPEC = {"normal-map,alpha,roughness-map,perceptual,fast,y-down,threads,out,format",
-                                         mipmap_help, 0};
-
-int cmd_mipmap(int argc, char **argv)
+int cmd_mipmap(options *o, const ggx_shape *no_shape)
 {
-    options o;
-    if (!command_options(&MIPMAP_SPEC, argc, argv, 2, &o)) return 0;
-    if (!o.normal_map) die("--normal-map FILE is required");
-    if (o.have_alpha == !!o.roughness_map)
+    (void)no_shape;
+    if (!o->normal_map) die("--normal-map FILE is required");
+    if (o->have_alpha == !!o->roughness_map)
         die("give the base roughness as one of --alpha A[,AY] or --roughness-map FILE");
-    if (o.perceptual && !o.roughness_map) die("--perceptual applies to --roughness-map");
-    int png16 = o.format && strcmp(o.format, "png16") == 0;
-    if (o.format && !png16 && strcmp(o.format, "exr") != 0) die("--format: '%s' is not exr or png16", o.format);
+    if (o->perceptual && !o->roughness_map) die("--perceptual applies to --roughness-map");
+    int png16 = o->format && strcmp(o->format, "png16") == 0;
+    if (o->format && !png16 && strcmp(o->format, "exr") != 0) die("--format: '%s' is not exr or png16", o->format);
     double none_d[GGX_LOBE_PARAMS];
     ggx_vec3 none_v = {0.0, 0.0, 1.0};
     ggx_status st = GGX_OK;
-    if (o.have_alpha) st = ggx_texel_lobes(none_d, none_d, &none_v, 0, o.alpha[0], o.alpha[1], 0.0, NULL);
+    if (o->have_alpha) st = ggx_texel_lobes(none_d, none_d, &none_v, 0, o->alpha[0], o->alpha[1], 0.0, NULL);
     if (st != GGX_OK) die("--alpha: %s", ggx_status_str(st)); /* before the map is read */
-    surface_read_options ro = {SURFACE_NORMALS, o.y_down};
+    surface_read_options ro = {SURFACE_NORMALS, o->y_down};
     surface s;
     char err[512];
-    if (surface_read(o.normal_map, &ro, &s, err, sizeof err) != 0) die("%s", err);
-    if (s.ny < 1 || s.nx < 1 || (s.ny == 1 && s.format == SURFACE_CSV)) die("%s: not a normal map", o.normal_map);
+    if (surface_read(o->normal_map, &ro, &s, err, sizeof err) != 0) die("%s", err);
+    if (s.ny < 1 || s.nx < 1 || (s.ny == 1 && s.format == SURFACE_CSV)) die("%s: not a normal map", o->normal_map);
     size_t nx = s.nx, ny = s.ny, count = nx * ny;
     double *lobes = malloc(count * GGX_LOBE_PARAMS * sizeof *lobes), *w = malloc(count * sizeof *w);
     double *next = malloc(((nx + 1) / 2) * ((ny + 1) / 2) * GGX_LOBE_PARAMS * sizeof *next);
     double *wn = malloc(((nx + 1) / 2) * ((ny + 1) / 2) * sizeof *wn);
     if (!lobes || !w || !next || !wn) die("out of memory");
     size_t rejected;
-    if (o.roughness_map) {
-        double *alpha = roughness_map_read(&o, nx, ny);
+    if (o->roughness_map) {
+        double *alpha = roughness_map_read(o, nx, ny);
         st = ggx_texel_lobes_roughness(lobes, w, s.m, alpha, NULL, count, 0.0, &rejected);
         free(alpha);
     } else {
-        st = ggx_texel_lobes(lobes, w, s.m, count, o.alpha[0], o.alpha[1], 0.0, &rejected);
+        st = ggx_texel_lobes(lobes, w, s.m, count, o->alpha[0], o->alpha[1], 0.0, &rejected);
     }
     if (st != GGX_OK) die("--alpha: %s", ggx_status_str(st));
     surface_free(&s);
-    const char *dir = o.out ? o.out : "mipmap";
+    const char *dir = o->out ? o->out : "mipmap";
     int made = access(dir, F_OK) != 0;
     ensure_dir(dir);
     if (made) made_dir = dir, atexit(remove_made_dir);
     ggx_filter_options fo = {0};
-    fo.threads = o.threads > 0 ? o.threads : 1;
-    if (o.fast) ggx_filter_options_fast(&fo);
+    fo.threads = o->threads > 0 ? o->threads : 1;
+    if (o->fast) ggx_filter_options_fast(&fo);
     char rough[600];
-    if (o.roughness_map)
-        snprintf(rough, sizeof rough, "roughness %s%s", o.roughness_map, o.perceptual ? " (perceptual)" : "");
-    else snprintf(rough, sizeof rough, "alpha %g, %g", o.alpha[0], o.alpha[1]);
-    printf("ggx mipmap: %s, %zu x %zu texels (%zu rejected), %s%s, into %s/\n", o.normal_map, nx, ny, rejected, rough,
-           o.fast ? ", fast mode" : "", dir);
+    if (o->roughness_map)
+        snprintf(rough, sizeof rough, "roughness %s%s", o->roughness_map, o->perceptual ? " (perceptual)" : "");
+    else snprintf(rough, sizeof rough, "alpha %g, %g", o->alpha[0], o->alpha[1]);
+    printf("ggx mipmap: %s, %zu x %zu texels (%zu rejected), %s%s, into %s/\n", o->normal_map, nx, ny, rejected, rough,
+           o->fast ? ", fast mode" : "", dir);
     printf("| level | size | mean t | mean det(Sigma)^(1/4) | seconds to the next |\n|---|---|---|---|---|\n");
     out_begin_set(); /* every level or none */
     char path[1024];

@@ -13,7 +13,7 @@ void shape_caption(const options *o, char *buf, size_t n)
     else figure_shape_caption(buf, n, o->alpha[0], o->alpha[1], o->skew[0], o->skew[1], o->rotate);
 }
 
-static void plot_help(void)
+void plot_help(void)
 {
     printf("usage: ggx plot [shape] [--figure NAME] [--view DIR] [--sampler NAME] [--from DEG] [--size W[xH]]\n"
            "                [--log] [--theme light|dark] [--eta E] [--phi-d DEG] [--out FILE]\n\n"
@@ -46,39 +46,34 @@ static void plot_help(void)
            "and the slice, FIGURE.svg for line plots and polar; - writes the default format to standard output.\n\n");
 }
 
-static const command_spec PLOT_SPEC = {"figure,view,sampler,size,log,theme,from,eta,phi-d,out", plot_help, 1};
-
-int cmd_plot(int argc, char **argv)
+int cmd_plot(options *o, const ggx_shape *s)
 {
-    options o;
-    ggx_shape s;
-    if (!command_shape(&PLOT_SPEC, argc, argv, 2, &o, &s)) return 0;
-    figure_kind k = figure_from_name(o.figure ? o.figure : "ndf");
+    figure_kind k = figure_from_name(o->figure ? o->figure : "ndf");
     int line = k >= FIG_G1 && k != FIG_SLICE; /* line plots default to SVG, images to PNG */
-    if (!o.have_view) parse_direction("75,0", &o.view);
-    if ((k == FIG_VNDF || k == FIG_VNDF_SIDE) && !(o.view.z > 0))
+    if (!o->have_view) parse_direction("75,0", &o->view);
+    if ((k == FIG_VNDF || k == FIG_VNDF_SIDE) && !(o->view.z > 0))
         die("--view must be above the horizon for a VNDF figure");
-    const ggx_sampler_info *smp = o.sampler ? find_sampler(o.sampler) : ggx_sampler_get(GGX_SAMPLER_STRETCH);
+    const ggx_sampler_info *smp = o->sampler ? find_sampler(o->sampler) : ggx_sampler_get(GGX_SAMPLER_STRETCH);
     if (k == FIG_GRID || k == FIG_GRID_SIDE) {
-        require_domain(smp, &s);
+        require_domain(smp, s);
         if (!smp->sample) die("sampler '%s' is not a map of the unit square; grids need one", smp->name);
-        if (smp->family == GGX_FAMILY_VNDF && !(o.view.z > 0))
+        if (smp->family == GGX_FAMILY_VNDF && !(o->view.z > 0))
             die("--view must be above the horizon for sampler '%s'", smp->name);
     }
     canvas_format deflt = line ? FMT_SVG : FMT_PNG;
     char fallback[64];
     snprintf(fallback, sizeof fallback, "%s%s", figure_name(k), format_ext(deflt));
-    const char *path = o.out ? o.out : fallback;
+    const char *path = o->out ? o->out : fallback;
     /* a file name says its format; standard output ("-") and what is not a regular file (a device, a FIFO) take
      * the figure's default format */
     canvas_format fmt = figure_format_of(path, deflt);
-    if (o.have_eta && k != FIG_POLAR) die("--eta is for --figure polar (the BSDF)");
-    if (k == FIG_POLAR && o.have_eta && o.eta == 1.0) die("--eta 1: no interface, no BSDF to plot");
+    if (o->have_eta && k != FIG_POLAR) die("--eta is for --figure polar (the BSDF)");
+    if (k == FIG_POLAR && o->have_eta && o->eta == 1.0) die("--eta 1: no interface, no BSDF to plot");
     figure_spec f = {
-        k, &s, o.view, smp, o.log_scale, o.dark, o.from * DEG, "", "", o.have_eta ? o.eta : 0.0, o.phi_d * DEG};
-    shape_caption(&o, f.shape_text, sizeof f.shape_text);
-    int w = o.size ? o.size : 640;
-    int h = o.size_h ? o.size_h : figure_height(k, w);
+        k, s, o->view, smp, o->log_scale, o->dark, o->from * DEG, "", "", o->have_eta ? o->eta : 0.0, o->phi_d * DEG};
+    shape_caption(o, f.shape_text, sizeof f.shape_text);
+    int w = o->size ? o->size : 640;
+    int h = o->size_h ? o->size_h : figure_height(k, w);
     figure_write(&f, path, fmt, w, h);
     if (strcmp(path, "-") != 0) fprintf(stderr, "ggx: wrote %s (%d x %d)\n", path, w, h);
     return 0;

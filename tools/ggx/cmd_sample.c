@@ -6,7 +6,7 @@
 
 enum { SAMPLE_PROGRESS_MIN = 1 << 20 };
 
-static void sample_help(void)
+void sample_help(void)
 {
     printf("usage: ggx sample [shape] [--sampler NAME] [--view DIR] [-n N] [--seed S] [--format csv|f32] [--out "
            "FILE]\n"
@@ -20,34 +20,28 @@ static void sample_help(void)
     printf("\n");
 }
 
-static const command_spec SAMPLE_SPEC = {"sampler,view,n,seed,format,out,fresnel,eta,progress,no-progress", sample_help,
-                                         1};
-
-int cmd_sample(int argc, char **argv)
+int cmd_sample(options *o, const ggx_shape *s)
 {
-    options o;
-    ggx_shape s;
-    if (!command_shape(&SAMPLE_SPEC, argc, argv, 2, &o, &s)) return 0;
-    const ggx_sampler_info *smp = o.sampler ? find_sampler(o.sampler) : ggx_sampler_get(GGX_SAMPLER_CAPS);
-    require_domain(smp, &s);
-    if (!o.have_view) parse_direction("40,0", &o.view);
-    require_view(smp, o.view);
-    ggx_fresnel f = fresnel_from_options(&o);
+    const ggx_sampler_info *smp = o->sampler ? find_sampler(o->sampler) : ggx_sampler_get(GGX_SAMPLER_CAPS);
+    require_domain(smp, s);
+    if (!o->have_view) parse_direction("40,0", &o->view);
+    require_view(smp, o->view);
+    ggx_fresnel f = fresnel_from_options(o);
     int f32 = 0;
-    if (o.format && strcmp(o.format, "f32") == 0) f32 = 1;
-    else if (o.format && strcmp(o.format, "csv") != 0) die("--format: '%s' is not csv or f32", o.format);
-    int to_stdout = !o.out || strcmp(o.out, "-") == 0;
+    if (o->format && strcmp(o->format, "f32") == 0) f32 = 1;
+    else if (o->format && strcmp(o->format, "csv") != 0) die("--format: '%s' is not csv or f32", o->format);
+    int to_stdout = !o->out || strcmp(o->out, "-") == 0;
     if (f32 && to_stdout && isatty(1)) die("--format f32 is binary: give --out FILE or redirect standard output");
-    long n = o.n > 0 ? o.n : 1000;
-    rng r = {o.seed};
-    int progress = progress_wanted(o.progress) && n >= SAMPLE_PROGRESS_MIN;
+    long n = o->n > 0 ? o->n : 1000;
+    rng r = {o->seed};
+    int progress = progress_wanted(o->progress) && n >= SAMPLE_PROGRESS_MIN;
     out_file out;
-    out_open(&out, o.out);
+    out_open(&out, o->out);
     if (!f32) fprintf(out.f, "x,y,z,pdf,weight\n");
     for (long i = 0; i < n; i++) {
         ggx_vec3 w;
         double pdf, weight;
-        if (!draw_sample(smp, &s, o.view, &f, o.eta, &r, &w, &pdf, &weight)) w = t_vec(0, 0, 0), pdf = 0, weight = 0;
+        if (!draw_sample(smp, s, o->view, &f, o->eta, &r, &w, &pdf, &weight)) w = t_vec(0, 0, 0), pdf = 0, weight = 0;
         if (f32) {
             float v[5] = {(float)w.x, (float)w.y, (float)w.z, (float)pdf, (float)weight};
             fwrite(v, sizeof v, 1, out.f);

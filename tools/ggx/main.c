@@ -5,24 +5,72 @@
 
 #include "cli.h"
 
-/* The one list of subcommands: dispatch and the usage text both come from it. */
+/* The one list of subcommands: dispatch, the options each takes and the usage text all come from it. A command
+ * with run_argv parses its own arguments. */
 static const struct command {
     const char *name;
-    int (*run)(int argc, char **argv);
+    command_spec spec;
+    int (*run)(options *o, const ggx_shape *s);
+    int (*run_argv)(int argc, char **argv);
     const char *summary;
 } COMMANDS[] = {
-    {"demo", cmd_demo, "draw the seeds' figures into out/ and check every sampler (what `make run` runs)"},
-    {"eval", cmd_eval, "D, G1, G, pdfs, BRDF and BSDF for a shape and directions, as CSV or JSON"},
-    {"albedo", cmd_albedo, "directional and average albedo E(v), E_avg (separable and height-correlated G)"},
-    {"sample", cmd_sample, "N samples of a chosen sampler, as CSV or float32, with pdf and weight"},
-    {"plot", cmd_plot,
+    {"demo",
+     {"out,n,size,theme", demo_help, 0},
+     cmd_demo,
+     NULL,
+     "draw the seeds' figures into out/ and check every sampler (what `make run` runs)"},
+    {"eval",
+     {"wi,wo,fresnel,eta,format,out", eval_help, 1},
+     cmd_eval,
+     NULL,
+     "D, G1, G, pdfs, BRDF and BSDF for a shape and directions, as CSV or JSON"},
+    {"albedo",
+     {"view,eta,format,out", albedo_help, 1},
+     cmd_albedo,
+     NULL,
+     "directional and average albedo E(v), E_avg (separable and height-correlated G)"},
+    {"sample",
+     {"sampler,view,n,seed,format,out,fresnel,eta,progress,no-progress", sample_help, 1},
+     cmd_sample,
+     NULL,
+     "N samples of a chosen sampler, as CSV or float32, with pdf and weight"},
+    {"plot",
+     {"figure,view,sampler,size,log,theme,from,eta,phi-d,out", plot_help, 1},
+     cmd_plot,
+     NULL,
      "one figure (PNG, SVG or PDF) for any shape, view and sampler: the seeds' figures and line plots"},
-    {"check", cmd_check, "chi-square, normalisation and Jacobian checks; exit status 0 only if all pass"},
-    {"audit", cmd_audit, "the table of the seeds' claims for default or given shapes"},
-    {"render", cmd_render, "an image of a sphere or plane of the material under a sky, an environment map or a light"},
-    {"fit", cmd_fit, "the shape A of a measured height field, normal map or list of normals, by maximum likelihood"},
-    {"mipmap", cmd_mipmap, "a normal map filtered into a mip chain of per-texel ellipsoids (OpenEXR per level)"},
-    {"microsurface", cmd_microsurface, "height fields with a chosen NDF, traced against the model's masking"},
+    {"check",
+     {"sampler,view,n,seed,progress,no-progress", check_help, 1},
+     cmd_check,
+     NULL,
+     "chi-square, normalisation and Jacobian checks; exit status 0 only if all pass"},
+    {"audit",
+     {"alpha,skew,rotate,matrix,format,out,progress,no-progress", audit_help, 0},
+     cmd_audit,
+     NULL,
+     "the table of the seeds' claims for default or given shapes"},
+    {"render",
+     {NULL, NULL, 0},
+     NULL,
+     cmd_render,
+     "an image of a sphere or plane of the material under a sky, an environment map or a light"},
+    {"fit",
+     {"heightfield,normal-map,normals,spacing,z-scale,keep-tilt,downsample,y-down,model,threads,format,out,figure,"
+      "progress,no-progress",
+      fit_help, 0},
+     cmd_fit,
+     NULL,
+     "the shape A of a measured height field, normal map or list of normals, by maximum likelihood"},
+    {"mipmap",
+     {"normal-map,alpha,roughness-map,perceptual,fast,y-down,threads,out,format", mipmap_help, 0},
+     cmd_mipmap,
+     NULL,
+     "a normal map filtered into a mip chain of per-texel ellipsoids (OpenEXR per level)"},
+    {"microsurface",
+     {NULL, NULL, 0},
+     NULL,
+     cmd_microsurface,
+     "height fields with a chosen NDF, traced against the model's masking"},
 };
 enum { NCOMMANDS = sizeof COMMANDS / sizeof COMMANDS[0] };
 
@@ -66,7 +114,15 @@ int main(int argc, char **argv)
         printf("ggx %d.%d.%d\n", GGX_VERSION_MAJOR, GGX_VERSION_MINOR, GGX_VERSION_PATCH);
         return finish(0);
     }
-    for (int i = 0; i < NCOMMANDS; i++)
-        if (strcmp(c, COMMANDS[i].name) == 0) return finish(COMMANDS[i].run(argc, argv));
+    for (int i = 0; i < NCOMMANDS; i++) {
+        const struct command *k = &COMMANDS[i];
+        if (strcmp(c, k->name) != 0) continue;
+        if (k->run_argv) return finish(k->run_argv(argc, argv));
+        options o;
+        ggx_shape s;
+        if (!command_options(&k->spec, argc, argv, 2, &o)) return finish(0); /* --help */
+        if (k->spec.shape) shape_from_options(&o, &s);
+        return finish(k->run(&o, k->spec.shape ? &s : NULL));
+    }
     die("unknown command '%s' (see ggx --help)", c);
 }
