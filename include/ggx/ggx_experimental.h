@@ -4,14 +4,16 @@
  * to reproduce and compare the seeds' methods (the registry ggx_samplers.h lists them, `ggx check` and the tests run
  * each against its pdf); a renderer needs only the defaults. Their names and contracts are as tested as the stable
  * API's, but a later minor release may add to them or change them where a seed's method is better served otherwise.
- * Included by ggx.h; including it alone includes ggx.h.
+ * Included by ggx.h, at its end (it needs ggx.h's types): programs include ggx.h.
  *
  * SPDX-License-Identifier: MIT
  */
 #ifndef GGX_GGX_EXPERIMENTAL_H
 #define GGX_GGX_EXPERIMENTAL_H
 
-#include "ggx.h"
+#ifndef GGX_GGX_H
+#error "include ggx/ggx.h: it declares the types these functions take, and includes this header"
+#endif
 
 #ifdef __cplusplus
 extern "C" {

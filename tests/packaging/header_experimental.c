@@ -1,5 +1,7 @@
-/* ggx_experimental.h alone: it brings ggx.h with it, and its samplers link and keep their contract (a sampler of
- * visible normals gives a normal the view sees). SPDX-License-Identifier: MIT */
+/* ggx_experimental.h named beside ggx.h (its guard keeps one copy), its samplers link and keep their contract (a
+ * sampler of visible normals gives a normal the view sees, and its inverse map gives back the numbers).
+ * SPDX-License-Identifier: MIT */
+#include "ggx/ggx.h"
 #include "ggx/ggx_experimental.h"
 
 int main(void)

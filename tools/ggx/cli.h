@@ -73,8 +73,6 @@ typedef struct command_spec {
 /* parse_options over c's options; after --help prints c's help and returns 0 (the subcommand then ends with 0),
  * else returns 1. */
 int command_options(const command_spec *c, int argc, char **argv, int first, options *o);
-/* command_options, then the shape of the options into s (a bad shape dies with the library's message). */
-int command_shape(const command_spec *c, int argc, char **argv, int first, options *o, ggx_shape *s);
 /* Parses exactly count comma-separated finite numbers (count < 0: 1 to -count numbers) for option opt; returns how
  * many; dies on anything else. */
 int parse_list(const char *opt, const char *text, double *out, int count);

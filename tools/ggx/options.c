@@ -338,10 +338,3 @@ int command_options(const command_spec *c, int argc, char **argv, int first, opt
     if (c->shape) fputs(SHAPE_HELP, stdout);
     return 0;
 }
-
-int command_shape(const command_spec *c, int argc, char **argv, int first, options *o, ggx_shape *s)
-{
-    if (!command_options(c, argc, argv, first, o)) return 0;
-    shape_from_options(o, s);
-    return 1;
-}
