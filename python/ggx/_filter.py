@@ -5,7 +5,7 @@ import ctypes
 
 import numpy as np
 
-from ._native import _array, _check, _d, _i, _proto, _real, _sz, _vp
+from ._native import _array, _check, _d, _i, _integer, _proto, _real, _sz, _vp
 from ._shape import _SHAPE_SIZE, Shape, _shape, _shape_slopes
 
 
@@ -69,13 +69,13 @@ def _filter_options(max_iterations, tolerance, nodes, fast=False):
     if fast:  # ggx_filter_options_fast: one EM step over 2 x 4 nodes, unless these are given
         _check(_filter_options_fast(ctypes.byref(o)))
     if max_iterations is not None:
-        o.max_iterations = int(max_iterations)
+        o.max_iterations = _integer(max_iterations, "max_iterations")
     if tolerance is not None:
         o.tolerance = _real(tolerance, "tolerance")
     if nodes is not None:
-        if len(nodes) != 2:
+        if isinstance(nodes, (str, bytes)) or np.ndim(nodes) != 1 or len(nodes) != 2:
             raise ValueError(f"nodes: expected (radial, angular), got {nodes!r}")
-        o.radial_nodes, o.angular_nodes = int(nodes[0]), int(nodes[1])
+        o.radial_nodes, o.angular_nodes = _integer(nodes[0], "nodes[0]"), _integer(nodes[1], "nodes[1]")
     return o
 
 
@@ -136,14 +136,15 @@ def mipmap(normal_map, alpha, alpha_y=None, threads=1, max_iterations=None, tole
             if m is None:
                 maps.append(None)
                 continue
-            m = np.broadcast_to(np.asarray(m, dtype=np.float64), (h, w)) if np.ndim(m) == 0 else np.asarray(m)
+            m = _array(m, name)
+            m = np.broadcast_to(m, (h, w)) if m.ndim == 0 else m
             if m.shape != (h, w):
                 raise ValueError(f"{name}: a roughness map of shape {m.shape}, the normal map is {(h, w)}")
             maps.append(np.ascontiguousarray(m, dtype=np.float64).reshape(-1))
         _check(_texel_lobes_roughness(lobes.ctypes.data, weights.ctypes.data, n.ctypes.data, maps[0].ctypes.data,
                                       None if maps[1] is None else maps[1].ctypes.data, h * w, 0.0, None))
     o = _filter_options(max_iterations, tolerance, nodes, fast)
-    o.threads = int(threads)
+    o.threads = _integer(threads, "threads", 1, 256)
     chain = [(lobes.reshape(h, w, 5), weights.reshape(h, w))]
     while h > 1 or w > 1:
         h2, w2 = (h + 1) // 2, (w + 1) // 2

@@ -7,7 +7,7 @@ import os
 
 import numpy as np
 
-from ._native import _array, _check, _choice, _d, _i, _proto, _real, _sz, _vp
+from ._native import _array, _check, _choice, _cstring, _d, _i, _integer, _proto, _real, _sz, _vp
 from ._shape import _SHAPE_SIZE, Shape
 
 _fit_normals = _proto("ggxpy_fit_normals", _i, _vp, _vp, _vp, _sz, _i, _i, _i, _d, _vp)
@@ -68,16 +68,12 @@ class FitInfo:
 
 def _fit_settings(model, threads, max_iterations, tolerance):
     m = _choice(model, _FIT_SHAPE_MODELS, "model")
-    t = _real(threads, "threads")
-    if not (1 <= t <= 256 and t == int(t)):
-        raise ValueError(f"threads: expected an integer from 1 to 256, got {threads!r}")
-    it = 0 if max_iterations is None else _real(max_iterations, "max_iterations")
-    if not (0 <= it <= 2 ** 31 - 1 and it == int(it)):
-        raise ValueError(f"max_iterations: expected a non-negative integer, got {max_iterations!r}")
+    t = _integer(threads, "threads", 1, 256)
+    it = 0 if max_iterations is None else _integer(max_iterations, "max_iterations", 0)
     tol = 0.0 if tolerance is None else _real(tolerance, "tolerance")
     if not tol >= 0:
         raise ValueError(f"tolerance: expected a non-negative number, got {tolerance!r}")
-    return m, int(t), int(it), tol
+    return m, t, it, tol
 
 
 def _fitted(status, buf, flat):
@@ -148,14 +144,12 @@ def fit_heightfield(h, spacing=(1.0, 1.0), keep_tilt=False, downsample=0, model=
         sp = np.array([sp[0], sp[0]])
     if sp.shape != (2,):
         raise ValueError(f"spacing: expected (dx, dy), got {spacing!r}")
-    ds = _real(downsample, "downsample")
-    if not (0 <= ds <= 2 ** 31 - 1 and ds == int(ds)):
-        raise ValueError(f"downsample: expected a non-negative integer, got {downsample!r}")
+    ds = _integer(downsample, "downsample", 0)
     md, t, it, tol = _fit_settings(model, threads, max_iterations, tolerance)
     buf = ctypes.create_string_buffer(_SHAPE_SIZE)
     flat = np.zeros(_FIT_SIZE)
     st = _fit_heightfield(buf, a.ctypes.data, a.shape[1], a.shape[0], float(sp[0]), float(sp[1]), int(bool(keep_tilt)),
-                          int(ds), md, t, it, tol, flat.ctypes.data)
+                          ds, md, t, it, tol, flat.ctypes.data)
     return _fitted(st, buf, flat)
 
 
@@ -176,7 +170,7 @@ def read_surface(path, kind="heights", y_down=False):
     want = _choice(kind, {"heights": 0, "normals": 1}, "kind")
     meta = np.zeros(9)
     err = ctypes.create_string_buffer(600)
-    h = _surface_read(os.fsencode(os.fspath(path)), want, int(bool(y_down)),
+    h = _surface_read(_cstring(path, "path", path=True), want, int(bool(y_down)),
                       meta.ctypes.data, err, 600)
     if not h:
         raise ValueError(err.value.decode(errors="replace"))

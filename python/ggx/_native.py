@@ -7,6 +7,7 @@ import ctypes
 import decimal
 import math
 import numbers
+import operator
 import os
 
 import numpy as np
@@ -76,6 +77,54 @@ def _real(x, what):
         return float(a)
     except (TypeError, ValueError, OverflowError):
         raise ValueError(f"{what}: expected a real number, got {x!r}") from None
+
+
+class _NotAnInteger(TypeError, ValueError):
+    """A count given as something other than an integer (a float, a bool, a string): a TypeError, and a ValueError
+    as every argument error of the package."""
+
+
+class _BeyondC(OverflowError, ValueError):
+    """An integer beyond the range of the C type that takes it (which would wrap): an OverflowError, and a
+    ValueError as every argument error of the package."""
+
+
+_C_INT = (-2 ** 31, 2 ** 31 - 1)
+_C_UINT64 = (0, 2 ** 64 - 1)
+
+
+def _integer(x, what, lo=None, hi=None, c=_C_INT):
+    """A count or other integer argument: a Python or numpy integer (a bool, float, string or other object is a
+    TypeError), within the C type c's range (else OverflowError), and within [lo, hi] when given (else
+    ValueError)."""
+    if isinstance(x, (bool, np.bool_)):
+        raise _NotAnInteger(f"{what}: expected an integer, got {x!r}")
+    try:
+        v = operator.index(x)
+    except TypeError:
+        raise _NotAnInteger(f"{what}: expected an integer, got {x!r}") from None
+    if not c[0] <= v <= c[1]:
+        raise _BeyondC(f"{what}: {v} is beyond the range of the C integer that takes it ({c[0]} to {c[1]})")
+    if (lo is not None and v < lo) or (hi is not None and v > hi):
+        raise ValueError(f"{what}: expected an integer from {lo} to {hi}, got {v}")
+    return v
+
+
+def _cstring(x, what, path=False):
+    """A string argument as the bytes a C function reads up to its NUL: a str (or, for a path, bytes or an
+    os.PathLike; encoded as the file system does); an embedded NUL, which would cut it short, is an error."""
+    if path:
+        try:
+            b = os.fsencode(os.fspath(x))
+        except TypeError:
+            raise ValueError(f"{what}: expected a path, got {x!r}") from None
+    elif isinstance(x, str):
+        b = x.encode()
+    else:
+        raise ValueError(f"{what}: expected a string, got {x!r}")
+    if b"\0" in b:
+        raise ValueError(f"{what}: embedded NUL character in {x!r}")
+    return b
 
 
 def _array(x, what):
@@ -236,7 +285,4 @@ def batch_isa():
 def set_batch_threads(threads):
     """Worker threads of the float batch API for arrays of 65536 elements or more (ggx_batch_set_threads;
     an integer from 1 to 256)."""
-    t = _real(threads, "threads")
-    if not (1 <= t <= 256 and t == int(t)):
-        raise ValueError(f"threads: expected an integer from 1 to 256, got {threads!r}")
-    _check(_batch_set_threads(int(t)))
+    _check(_batch_set_threads(_integer(threads, "threads", 1, 256)))

@@ -5,7 +5,7 @@ import os
 
 import numpy as np
 
-from ._native import _choice, _d, _i, _proto, _sz, _vp
+from ._native import _C_UINT64, _choice, _cstring, _d, _i, _integer, _proto, _real, _sz, _vp
 from ._shape import _fresnel, _shape
 
 _render = _proto("ggxpy_render", _i, _vp, _vp, ctypes.c_char_p, _i, _i, _i, ctypes.c_char_p, _vp, _d, _i, _i, _i,
@@ -25,10 +25,12 @@ def render(shape, fresnel=None, scene="sphere", light="sky", spp=64, size=(256, 
     variance=True also returns the variance of each pixel's mean. Bad arguments raise ValueError with the
     renderer's one-line reason."""
     s, f = _shape(shape), _fresnel(fresnel)
-    w, h = (int(size), int(size)) if np.ndim(size) == 0 else (int(size[0]), int(size[1]))
-    for v, what in ((w, "width"), (h, "height"), (spp, "spp"), (depth, "depth")):
-        if not (1 <= int(v) <= 1 << 20):
-            raise ValueError(f"{what}: {v} is not from 1 to 2^20")
+    if np.ndim(size) == 1 and len(size) == 2:
+        w, h = _integer(size[0], "width", 1, 1 << 20), _integer(size[1], "height", 1, 1 << 20)
+    else:
+        w = h = _integer(size, "size", 1, 1 << 20)
+    spp, depth = _integer(spp, "spp", 1, 1 << 20), _integer(depth, "depth", 1, 1 << 20)
+    seed = _integer(seed, "seed", c=_C_UINT64)
     if w * h > 1 << 26:
         raise ValueError(f"size: {w} x {h} pixels is too large")
     scene_id = _choice(scene, {"sphere": 0, "plane": 1}, "scene")
@@ -37,26 +39,25 @@ def render(shape, fresnel=None, scene="sphere", light="sky", spp=64, size=(256, 
     if isinstance(light, str) and light in ("sky", "white"):
         light_id = 0 if light == "sky" else 1
     elif isinstance(light, (tuple, list)) and len(light) in (3, 4) and light[0] == "point":
-        th, ph = float(light[1]), float(light[2])
-        irradiance = float(light[3]) if len(light) == 4 else 1.0
+        th, ph = _real(light[1], "light theta"), _real(light[2], "light phi")
+        irradiance = _real(light[3], "light irradiance") if len(light) == 4 else 1.0
         direction = np.array([np.sin(th) * np.cos(ph), np.sin(th) * np.sin(ph), np.cos(th)])
         if not (np.all(np.isfinite(direction)) and irradiance >= 0):
             raise ValueError(f"light: {light!r} needs finite angles and an irradiance >= 0")
         light_id = 3
     elif isinstance(light, (str, bytes, os.PathLike)):
-        light_id, path = 2, os.fsencode(os.fspath(light))
+        light_id, path = 2, _cstring(light, "light", path=True)
     else:
         raise ValueError(f"light: expected 'sky', 'white', a path or ('point', theta, phi[, E]), got {light!r}")
     if threads is None:
         threads = os.cpu_count() or 1
-    if not (1 <= int(threads) <= 256):
-        raise ValueError(f"threads: {threads} is not from 1 to 256")
+    threads = _integer(threads, "threads", 1, 256)
     img = np.empty((h, w, 3), dtype=np.float32)
     var = np.empty((h, w, 3), dtype=np.float32) if variance else None
     err = ctypes.create_string_buffer(600)
-    rc = _render(s._buf, f._buf, None if sampler is None else str(sampler).encode(), int(bool(compensate)), scene_id,
-                 light_id, path, direction.ctypes.data, irradiance, strategy_id, w, h, int(spp), int(depth),
-                 int(seed) & (2 ** 64 - 1), int(threads), int(bool(jitter)), img.ctypes.data,
+    rc = _render(s._buf, f._buf, None if sampler is None else _cstring(sampler, "sampler"), int(bool(compensate)), scene_id,
+                 light_id, path, direction.ctypes.data, irradiance, strategy_id, w, h, spp, depth,
+                 seed, threads, int(bool(jitter)), img.ctypes.data,
                  None if var is None else var.ctypes.data, err, 600)
     if rc != 0:
         raise ValueError(err.value.decode(errors="replace"))
