@@ -45,7 +45,8 @@ from ._fit import FitInfo, Surface, fit_heightfield, fit_normal_cells, fit_norma
 from ._native import __version__, batch_isa, set_batch_threads, status_message
 from ._native import _Args  # python/tests/test_ggx.py makes one directly
 from ._render import render
-from ._sample import (BrdfSample, DirectionSample, SamplerInfo, pdf, pdf_brdf, pdf_bsdf, sample, sample_brdf,
+from ._sample import (BrdfSample, DirectionSample, SampleEval, SamplerInfo, pdf, pdf_brdf, pdf_bsdf, sample, sample_brdf,
+                      sample_eval,
                       sample_bsdf, sample_inverse, sample_ndf, sample_vndf, samplers)
 from ._shape import Fresnel, Shape
 
@@ -55,7 +56,7 @@ __all__ = [
     "g1_tilted", "g1_risers",
     "g2", "pdf_ndf", "pdf_vndf", "brdf", "bsdf", "albedo", "albedo_avg", "bsdf_albedo", "albedo_iso_table",
     "albedo_avg_iso_table", "bsdf_albedo_iso_table", "albedo_aniso_table",
-    "sample", "pdf", "sample_inverse", "sample_ndf", "sample_vndf", "sample_brdf",
+    "sample", "pdf", "sample_inverse", "sample_ndf", "sample_vndf", "sample_brdf", "sample_eval", "SampleEval",
     "pdf_brdf", "sample_bsdf", "pdf_bsdf", "reflect", "half_reflect", "batch_isa", "set_batch_threads",
     "FitInfo", "Surface", "fit_normals", "fit_normal_cells", "fit_heightfield", "read_surface", "render",
     "texel_lobe", "filter_lobes", "filter_kl", "mipmap",

@@ -4,8 +4,8 @@ and the geometry helpers reflect and half_reflect."""
 
 import numpy as np
 
-from ._native import (_MODES, _Args, _as, _call, _choice, _d, _dtype, _fn, _i, _inp, _proto, _ptr, _real, _scalar,
-                      _sz, _vp)
+from ._native import (_MODES, _Args, _as, _call, _choice, _d, _dtype, _fn, _i, _inp, _proto, _ptr, _real, _run32,
+                      _scalar, _sz, _vp)
 from ._shape import _fresnel, _shape
 
 # The native loops (python/src/native.c).
@@ -14,41 +14,42 @@ _loop_sf_vv = _proto("ggxpy_sf_vv", None, _vp, _vp, _vp, _sz, _inp, _vp)
 _loop_bsdf = _proto("ggxpy_bsdf", None, _vp, _d, _i, _sz, _inp, _vp)
 _loop_vv_v = _proto("ggxpy_vv_v", None, _vp, _sz, _inp, _vp)
 
-# The float batch API (include/ggx/ggx_batch.h), called directly.
-_batch_ndf = _proto("ggx_batch_ndf", None, _vp, _sz, _vp, _vp, _vp, _vp)
-_batch_g1 = _proto("ggx_batch_g1", None, _vp, _sz, _vp, _vp, _vp, _vp, _vp, _vp, _vp)
-_batch_pdf_vndf = _proto("ggx_batch_pdf_vndf", None, _vp, _sz, _vp, _vp, _vp, _vp, _vp, _vp, _vp)
-_batch_brdf = _proto("ggx_batch_brdf", None, _vp, _sz, _vp, _vp, _vp, _vp, _vp, _vp, _vp, _vp)
 
 
-def _eval(cname, shape, *specs):
+def _eval(cname, shape, *specs, out=None):
     """A double function of the shape and of directions (width 3) or numbers (width 1), through its native loop."""
     s = _shape(shape)
     a = _Args(*specs)
-    out = a.out()
+    res = a.out(out=out)
     key = "".join("v" if w == 3 else "d" for _, _, w in specs)
     if a.n:
-        _loop_s[key](_fn(cname), s._buf, a.n, a.ins, _ptr(out))
-    return a, out
+        _loop_s[key](_fn(cname), s._buf, a.n, a.ins, _ptr(res))
+    return a, res
 
 
-def _batch_eval(batch, shape, dt, cname, *specs, pre=()):
-    """A function that the float batch API has: its batch loop for float32, the double loop otherwise."""
+def _batch_eval(op, shape, dt, cname, *specs, fresnel=None, out=None):
+    """A function that the float batch API has: the float32 path for float32, the double loop otherwise (or, for
+    brdf, ggxpy_sf_vv with the Fresnel term). The result, or out when given."""
     dt = _dtype(dt)
-    if dt == np.float64:
-        return _scalar(_eval(cname, shape, *specs)[1])
     s = _shape(shape)
-    a = _Args(*specs)
-    out = a.out(dtype=np.float32)
-    if a.n:
-        cols = [c for k in range(len(specs)) for c in a.soa32(k)]
-        batch(_ptr(out), a.n, s._buf, *[p._buf for p in pre], *[_ptr(c) for c in cols])
-    return _scalar(out)
+    if dt == np.float64:
+        if fresnel is None:
+            res = _eval(cname, s, *specs, out=out)[1]
+        else:
+            a = _Args(*specs)
+            res = a.out(out=out)
+            if a.n:
+                _loop_sf_vv(_fn(cname), s._buf, fresnel._buf, a.n, a.ins, _ptr(res))
+    else:
+        a = _Args(*specs)
+        res = a.out(dtype=np.float32, out=out)
+        _run32(op, a, [res], s, fresnel)
+    return res if out is not None else _scalar(res)
 
 
-def ndf(shape, m, dtype=np.float64):
+def ndf(shape, m, dtype=np.float64, out=None):
     """D(m) (ggx_ndf, Walter eq 1): >= 0, 0 for m.z < 0."""
-    return _batch_eval(_batch_ndf, shape, dtype, "ggx_ndf", (m, "m", 3))
+    return _batch_eval("ndf", shape, dtype, "ggx_ndf", (m, "m", 3), out=out)
 
 
 def ndf_spherical(shape, theta, phi, dtype=np.float64):
@@ -81,9 +82,9 @@ def lambda_(shape, u, dtype=np.float64):
     return _as(_scalar(_eval("ggx_lambda", shape, (u, "u", 3))[1]), dtype)
 
 
-def g1(shape, u, m, dtype=np.float64):
+def g1(shape, u, m, dtype=np.float64, out=None):
     """Walter's masking G1(u, m) (ggx_g1, eq 6 / 32): in [0, 1]; 0 for u.z <= 0 or u.m <= 0."""
-    return _batch_eval(_batch_g1, shape, dtype, "ggx_g1", (u, "u", 3), (m, "m", 3))
+    return _batch_eval("g1", shape, dtype, "ggx_g1", (u, "u", 3), (m, "m", 3), out=out)
 
 
 def g1_smith(shape, u, dtype=np.float64):
@@ -115,18 +116,15 @@ def pdf_ndf(shape, m, dtype=np.float64):
     return _as(_scalar(_eval("ggx_pdf_ndf", shape, (m, "m", 3))[1]), dtype)
 
 
-def pdf_vndf(shape, v, m, dtype=np.float64):
+def pdf_vndf(shape, v, m, dtype=np.float64, out=None):
     """The density of visible normals D_v(m) for view v (ggx_pdf_vndf, Walter eq 33); 0 for v.z <= 0."""
-    return _batch_eval(_batch_pdf_vndf, shape, dtype, "ggx_pdf_vndf", (v, "v", 3), (m, "m", 3))
+    return _batch_eval("pdf_vndf", shape, dtype, "ggx_pdf_vndf", (v, "v", 3), (m, "m", 3), out=out)
 
 
-def brdf(shape, wi, wo, fresnel=None, dtype=np.float64):
+def brdf(shape, wi, wo, fresnel=None, dtype=np.float64, out=None):
     """The microfacet BRDF f_r(wi, wo) (ggx_brdf_eval, Walter eq 4 with G of eq 5); fresnel None means F = 1."""
-    f = _fresnel(fresnel)
-    dt = _dtype(dtype)
-    if dt == np.float32:
-        return _batch_eval(_batch_brdf, shape, dt, "ggx_brdf_eval", (wi, "wi", 3), (wo, "wo", 3), pre=(f,))
-    return _call(_loop_sf_vv, (_fn("ggx_brdf_eval"), _shape(shape)._buf, f._buf), [(wi, "wi", 3), (wo, "wo", 3)])
+    return _batch_eval("brdf", shape, dtype, "ggx_brdf_eval", (wi, "wi", 3), (wo, "wo", 3), fresnel=_fresnel(fresnel),
+                       out=out)
 
 
 def bsdf(shape, eta, wi, wo, mode="radiance", dtype=np.float64):

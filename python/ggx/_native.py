@@ -23,8 +23,9 @@ _i = ctypes.c_int
 
 
 class _In(ctypes.Structure):
-    """An input array of the native loops: its address and the step in doubles between elements (0: broadcast)."""
-    _fields_ = [("p", _vp), ("step", ctypes.c_ssize_t)]
+    """An input array of the native loops: its address, the step in elements between items (0: broadcast) and
+    whether its elements are floats (float32) or doubles."""
+    _fields_ = [("p", _vp), ("step", ctypes.c_ssize_t), ("f32", _i)]
 
 
 _inp = ctypes.POINTER(_In)
@@ -127,13 +128,18 @@ def _cstring(x, what, path=False):
     return b
 
 
-def _array(x, what):
-    """x as a float64 array of real numbers: a complex value (which would lose its imaginary part), a string or
-    other non-number, or a masked array (whose mask would be ignored) is an error."""
+def _array(x, what, keep32=False):
+    """x as a float64 array of real numbers (keep32: a float32 array stays as it is, for the loops that read floats
+    in place): a complex value (which would lose its imaginary part), a string or other non-number, or a masked array
+    (whose mask would be ignored) is an error. A float64 or float32 array is checked by its dtype alone (O(1))."""
     if isinstance(x, np.ma.MaskedArray):
         raise ValueError(f"{what}: masked arrays are not supported (use .filled() or select the valid elements)")
+    if type(x) is np.ndarray and (x.dtype == np.float64 or (keep32 and x.dtype == np.float32)):
+        return x
     try:
         a = np.asarray(x)
+        if keep32 and a.dtype == np.float32:
+            return a
         if a.dtype.kind == "O":
             if not all(isinstance(e, numbers.Real) for e in a.flat):
                 raise TypeError
@@ -172,23 +178,24 @@ _MODES = {"radiance": 0, "importance": 1}
 class _Args:
     """Inputs converted, broadcast and laid out for a native loop: .shape (the broadcast leading shape), .n, .ins
     (the _In array), and .arrays (kept alive for the call). Each spec is (value, name, width): width 3 for
-    directions, 1 for numbers."""
+    directions, 1 for numbers. float64 and float32 arrays are read in place (the loops read either); other real
+    dtypes are converted to float64 once. A single item broadcast and a C-contiguous array of the full shape cost no
+    copy; other layouts are copied once."""
 
     def __init__(self, *specs):
         arrays = []
         for value, what, width in specs:
-            a = _array(value, what)
+            a = _array(value, what, keep32=True)
             if width == 3 and (a.ndim == 0 or a.shape[-1] != 3):
                 raise ValueError(f"{what}: expected an array of shape (..., 3), got shape {a.shape}")
             arrays.append(a)
         lead = [a.shape[:-1] if w == 3 else a.shape for a, (_, _, w) in zip(arrays, specs)]
         try:
-            self.shape = np.broadcast_shapes(*lead)
+            self.shape = lead[0] if all(x == lead[0] for x in lead) else np.broadcast_shapes(*lead)
         except ValueError:
             names = ", ".join(f"{what} {s}" for (_, what, _), s in zip(specs, lead))
             raise ValueError(f"inputs do not broadcast together: {names}") from None
         self.n = math.prod(self.shape)
-        self.widths = [w for _, _, w in specs]
         self.ins = (_In * max(len(specs), 1))()
         self.arrays = []
         for k, (a, (_, _, width)) in enumerate(zip(arrays, specs)):
@@ -204,47 +211,65 @@ class _Args:
             self.arrays.append(a)
             self.ins[k].p = a.ctypes.data
             self.ins[k].step = step
+            self.ins[k].f32 = a.dtype == np.float32
 
-    def out(self, *tail, dtype=np.float64):
-        return np.empty(self.shape + tail, dtype=dtype)
+    def out(self, *tail, dtype=np.float64, out=None, what="out"):
+        """A new result array (shape + tail), or out checked to be one: a writeable C-contiguous array of that shape
+        and dtype sharing no memory with the inputs (a loop that reuses its arrays allocates nothing)."""
+        shape = self.shape + tail
+        if out is None:
+            return np.empty(shape, dtype=dtype)
+        if not (isinstance(out, np.ndarray) and out.dtype == dtype and out.shape == shape and out.flags.c_contiguous
+                and out.flags.writeable):
+            got = f"{out.dtype} {out.shape}" if isinstance(out, np.ndarray) else repr(type(out).__name__)
+            raise ValueError(f"{what}: expected a writeable C-contiguous {np.dtype(dtype)} array of shape {shape}, "
+                             f"got {got}")
+        if any(np.may_share_memory(out, x) for x in self.arrays):
+            raise ValueError(f"{what}: shares memory with an input")
+        return out
 
-    def soa32(self, k, role=None):
-        """Input k as float32 arrays of n elements (x, y, z for a direction), for the batch API. Values beyond
-        float's range become infinities (0 for an evaluation, as in float64). role "u": a u below 1 that rounds to 1
-        becomes the largest float below 1 (the batch samplers take u in [0, 1)). role "view": a sampler's view is
-        normalised in float64 first, since the samplers depend on its direction only (a view of length 1e-50 or
-        1e300 would underflow or overflow in float)."""
-        width = self.widths[k]
-        a = self.arrays[k].reshape(-1, width)
-        if role == "view":
-            big = np.max(np.abs(a), axis=1, keepdims=True)
-            with np.errstate(invalid="ignore", divide="ignore"):
-                b = a / big
-                a = b / np.sqrt(np.sum(b * b, axis=1, keepdims=True))
-            a = np.where(np.isfinite(a).all(axis=1, keepdims=True), a, 0.0)  # zero, infinite, NaN: no view
-        full = np.broadcast_to(a, (self.n, width))
-        with np.errstate(over="ignore"):
-            cols = [np.ascontiguousarray(full[:, c], dtype=np.float32) for c in range(width)]
-        if role == "u":
-            below_one = full[:, 0] < 1
-            cols[0][below_one & (cols[0] >= 1)] = _U32_MAX
-        return cols
+    def outs(self, out, *specs):
+        """The result arrays of specs ((tail, dtype) each): new, or the tuple out checked element by element."""
+        if out is None:
+            return [self.out(*tail, dtype=dt) for tail, dt in specs]
+        if not isinstance(out, (tuple, list)) or len(out) != len(specs):
+            raise ValueError(f"out: expected a tuple of {len(specs)} arrays, got {type(out).__name__}")
+        res = [self.out(*tail, dtype=dt, out=o, what=f"out[{k}]") for k, ((tail, dt), o) in enumerate(zip(specs, out))]
+        if len({id(r) for r in res}) != len(res) or any(np.may_share_memory(x, y) for i, x in enumerate(res)
+                                                        for y in res[i + 1:]):
+            raise ValueError("out: the arrays share memory")
+        return res
 
 
-_U32_MAX = np.nextafter(np.float32(1), np.float32(0))
+# The float32 path (python/src/native.c, ggxpy_f32): one call runs a float batch function of ggx_batch.h over the
+# inputs in chunks, with the worker threads set_batch_threads sets.
+_f32 = _proto("ggxpy_f32", _i, _i, _i, _vp, _vp, _sz, _inp, _vp, _vp, _vp, _vp, _vp, _i)
+_F32 = {"ndf": 0, "g1": 1, "pdf_vndf": 2, "brdf": 3, "normals": 4, "directions": 5, "sample_eval": 6, "pdf_brdf": 7}
+_THREADS = [1]
+
+
+def _run32(op, a, outs, shape, fresnel=None, sampler=0):
+    """The float32 path's op on _Args a, writing the arrays outs (None: not wanted) in the op's order."""
+    if a.n:
+        p = [None if o is None else o.ctypes.data for o in outs] + [None] * (5 - len(outs))
+        _check(_f32(_F32[op], sampler, shape._buf, None if fresnel is None else fresnel._buf, a.n, a.ins, *p,
+                    _THREADS[0]))
 
 
 def _ptr(a):
     return a.ctypes.data
 
 
-def _call(loop, head, specs, dtype=np.float64):
-    """The common wrapper: inputs converted and broadcast, loop(*head, n, inputs, out) run, the result in dtype."""
+def _call(loop, head, specs, dtype=np.float64, out=None):
+    """The common wrapper: inputs converted and broadcast, loop(*head, n, inputs, out) run, the result in dtype
+    (into out when given, for float64)."""
     a = _Args(*specs)
-    out = a.out()
+    if out is not None and _dtype(dtype) != np.float64:
+        raise ValueError("out: this function computes in float64; out= is taken with dtype=np.float64")
+    res = a.out(out=out)
     if a.n:
-        loop(*head, a.n, a.ins, _ptr(out))
-    return _as(_scalar(out), dtype)
+        loop(*head, a.n, a.ins, _ptr(res))
+    return res if out is not None else _as(_scalar(res), dtype)
 
 
 def _scalar(out):
@@ -283,6 +308,8 @@ def batch_isa():
 
 
 def set_batch_threads(threads):
-    """Worker threads of the float batch API for arrays of 65536 elements or more (ggx_batch_set_threads;
-    an integer from 1 to 256)."""
-    _check(_batch_set_threads(_integer(threads, "threads", 1, 256)))
+    """Worker threads of the float batch API, and of the package's float32 path, for arrays of 65536 elements or
+    more (ggx_batch_set_threads; an integer from 1 to 256; the results do not depend on it)."""
+    t = _integer(threads, "threads", 1, 256)
+    _check(_batch_set_threads(t))
+    _THREADS[0] = t

@@ -5,9 +5,10 @@
  * renderer. The module links libggx (a static build links the library's objects into it instead), so Python finds
  * every ggx_* function through it: the float batch functions are called directly from Python.
  *
- * Every loop reads its inputs through ggxpy_in: a pointer and a step in doubles from one element to the next (3 for
- * a contiguous array of directions, 1 for scalars, 0 for one value broadcast over all elements), so broadcasting
- * one direction or one number costs no copy. Outputs are contiguous. SPDX-License-Identifier: MIT */
+ * Every loop reads its inputs through ggxpy_in: a pointer, a step in elements from one item to the next (3 for a
+ * contiguous array of directions, 1 for scalars, 0 for one value broadcast over all items) and whether the elements
+ * are floats or doubles, so broadcasting one direction or one number costs no copy and float32 arrays are read in
+ * place. Outputs are contiguous. The float32 path (ggxpy_f32, at the end) runs the float batch API. SPDX-License-Identifier: MIT */
 #include <stddef.h>
 #include <stdint.h>
 #include <stdio.h>
@@ -19,16 +20,26 @@
 #define EXPORT __attribute__((visibility("default")))
 
 typedef struct ggxpy_in {
-    const double *p;
-    ptrdiff_t step;
+    const void *p;
+    ptrdiff_t step; /* in elements from one item to the next: 3, 1, or 0 for one item broadcast */
+    int f32;        /* the elements are floats (numpy float32), else doubles */
 } ggxpy_in;
 
 static ggx_vec3 vec(const ggxpy_in *a, size_t i)
 {
-    const double *p = a->p + (ptrdiff_t)i * a->step;
+    ptrdiff_t k = (ptrdiff_t)i * a->step;
+    if (a->f32) {
+        const float *p = (const float *)a->p + k;
+        return (ggx_vec3){p[0], p[1], p[2]};
+    }
+    const double *p = (const double *)a->p + k;
     return (ggx_vec3){p[0], p[1], p[2]};
 }
-static double num(const ggxpy_in *a, size_t i) { return a->p[(ptrdiff_t)i * a->step]; }
+static double num(const ggxpy_in *a, size_t i)
+{
+    ptrdiff_t k = (ptrdiff_t)i * a->step;
+    return a->f32 ? (double)((const float *)a->p)[k] : ((const double *)a->p)[k];
+}
 static void put(double *out, size_t i, ggx_vec3 v) { out[3 * i] = v.x, out[3 * i + 1] = v.y, out[3 * i + 2] = v.z; }
 
 /* Sizes and fields the Python side needs without restating the C structs. */
@@ -402,4 +413,232 @@ EXPORT int ggxpy_render(const ggx_shape *s, const ggx_fresnel *f, const char *sa
     render_release(&r);
     render_env_free(&env);
     return rc;
+}
+
+/* ---- The float32 path: the float batch API (ggx/ggx_batch.h) over the Python layout ----
+ * ggxpy_f32 runs one batch function over n items whose inputs are ggxpy_in (floats or doubles, directions
+ * interleaved (n, 3) or broadcast) and whose outputs are the caller's contiguous float arrays ((n, 3) for directions,
+ * (n,) for numbers). It works in chunks of CHUNK items held on the stack: each chunk's inputs are gathered into the
+ * struct-of-arrays the batch API takes (a float input of numbers is passed in place), the batch function runs on the
+ * chunk and its directions are interleaved into the output. No array of n items is made, and each chunk stays in
+ * the cache. A sampler's view is normalised here, in double (the samplers depend on its direction only, and float
+ * cannot hold a view of length 1e-50 or 1e300): a zero, NaN or infinite view becomes the zero vector (no sample).
+ * A sampler's u read from a double below 1 that rounds to 1 becomes the largest float below 1 (the batch samplers
+ * take u in [0, 1)). threads > 1 splits [0, n) into as many contiguous ranges, run by ggx_internal_parallel_for;
+ * the results do not depend on it. */
+#include <math.h>
+
+#include "common/parallel.h"
+#include "ggx/ggx_batch.h"
+#include "ggx/ggx_inline.h"
+
+enum { CHUNK = 512 };
+
+/* What ggxpy_f32 runs; inputs and outputs in this order. */
+enum {
+    F32_NDF,         /* m -> D */
+    F32_G1,          /* u, m -> G1 */
+    F32_PDF_VNDF,    /* v, m -> pdf */
+    F32_BRDF,        /* wi, wo -> f_r (fresnel) */
+    F32_NORMALS,     /* view v, u1, u2 -> m (ggx_batch_sample_normals) */
+    F32_DIRECTIONS,  /* view wi, u1, u2 -> w, pdf, weight, event (ggx_batch_sample_directions) */
+    F32_SAMPLE_EVAL, /* view wi, u1, u2 -> w, pdf, weight, event, f_r (ggx_batch_brdf of the sampled w) */
+    F32_PDF_BRDF     /* wi, wo -> pdf of the direction sampler (its float kernel: no batch function has it) */
+};
+
+typedef struct f32job {
+    int op, sampler;
+    const ggx_shape *s;
+    const ggx_fresnel *f;
+    ggx_shapef sf;
+    const ggxpy_in *in;
+    void *out[5];
+    size_t n, per;
+    ggx_status status;
+} f32job;
+
+typedef struct soa3 {
+    float x[CHUNK], y[CHUNK], z[CHUNK];
+} soa3;
+
+/* Directions [b, b + c) of a as floats. */
+static void gather(const ggxpy_in *a, size_t b, size_t c, soa3 *o)
+{
+    if (a->f32) {
+        const float *p = (const float *)a->p + (ptrdiff_t)b * a->step;
+        for (size_t i = 0; i < c; i++, p += a->step) o->x[i] = p[0], o->y[i] = p[1], o->z[i] = p[2];
+    } else {
+        const double *p = (const double *)a->p + (ptrdiff_t)b * a->step;
+        for (size_t i = 0; i < c; i++, p += a->step)
+            o->x[i] = (float)p[0], o->y[i] = (float)p[1], o->z[i] = (float)p[2];
+    }
+}
+
+/* A view: unit in double, then rounded; the zero vector where it has no direction. */
+static void unit_view(double x, double y, double z, float *ox, float *oy, float *oz)
+{
+    double big = fmax(fabs(x), fmax(fabs(y), fabs(z)));
+    x /= big, y /= big, z /= big;
+    double l = sqrt(x * x + y * y + z * z);
+    x /= l, y /= l, z /= l;
+    int ok = isfinite(x) && isfinite(y) && isfinite(z);
+    *ox = ok ? (float)x : 0.0f, *oy = ok ? (float)y : 0.0f, *oz = ok ? (float)z : 0.0f;
+}
+
+static void gather_view(const ggxpy_in *a, size_t b, size_t c, soa3 *o)
+{
+    if (a->step == 0) { /* one view: normalised once */
+        ggx_vec3 v = vec(a, 0);
+        float x, y, z;
+        unit_view(v.x, v.y, v.z, &x, &y, &z);
+        for (size_t i = 0; i < c; i++) o->x[i] = x, o->y[i] = y, o->z[i] = z;
+        return;
+    }
+    if (a->f32) { /* a float's square neither overflows nor underflows in double: no scaling needed */
+        const float *p = (const float *)a->p + (ptrdiff_t)b * a->step;
+        for (size_t i = 0; i < c; i++, p += a->step) {
+            double x = p[0], y = p[1], z = p[2], r = 1.0 / sqrt(x * x + y * y + z * z);
+            int ok = r > 0 && r < INFINITY; /* NaN, zero and infinite views fail */
+            o->x[i] = ok ? (float)(x * r) : 0.0f, o->y[i] = ok ? (float)(y * r) : 0.0f;
+            o->z[i] = ok ? (float)(z * r) : 0.0f;
+        }
+        return;
+    }
+    const double *p = (const double *)a->p + (ptrdiff_t)b * a->step;
+    for (size_t i = 0; i < c; i++, p += a->step) unit_view(p[0], p[1], p[2], &o->x[i], &o->y[i], &o->z[i]);
+}
+
+/* Numbers [b, b + c) of a as floats: in place for a contiguous float input, else copied into buf. For u (is_u), a
+ * double below 1 that rounds to 1 becomes the largest float below 1. */
+static const float *gather_num(const ggxpy_in *a, size_t b, size_t c, float *buf, int is_u)
+{
+    if (a->f32 && a->step == 1) return (const float *)a->p + b;
+    if (a->f32) {
+        float v = *(const float *)a->p;
+        for (size_t i = 0; i < c; i++) buf[i] = v;
+        return buf;
+    }
+    const double *p = (const double *)a->p + (ptrdiff_t)b * a->step;
+    const float below_one = 0x1.fffffep-1f;
+    for (size_t i = 0; i < c; i++, p += a->step) {
+        float v = (float)*p;
+        buf[i] = is_u && v >= 1.0f && *p < 1.0 ? below_one : v;
+    }
+    return buf;
+}
+
+static void scatter(float *out, size_t b, size_t c, const soa3 *o)
+{
+    float *q = out + 3 * b;
+    for (size_t i = 0; i < c; i++, q += 3) q[0] = o->x[i], q[1] = o->y[i], q[2] = o->z[i];
+}
+
+/* The pdf of a direction sampler from its float kernel. */
+static float pdf_direction_f(int sampler, const ggx_shapef *s, ggx_vec3f wi, ggx_vec3f wo)
+{
+    return sampler == GGX_SAMPLER_BRDF_BOUNDED ? ggx_pdf_brdf_bounded_f(s, wi, wo) : ggx_pdf_brdf_f(s, wi, wo);
+}
+
+static void f32_range(f32job *j, size_t begin, size_t end)
+{
+    soa3 a, m;
+    float u1b[CHUNK], u2b[CHUNK], pdf[CHUNK], weight[CHUNK];
+    const ggx_shape *s = j->s;
+    for (size_t b = begin; b < end; b += CHUNK) {
+        size_t c = end - b < CHUNK ? end - b : CHUNK;
+        float *o0 = j->out[0], *o1 = j->out[1], *o2 = j->out[2], *o4 = j->out[4];
+        int8_t *ev = j->out[3];
+        switch (j->op) {
+        case F32_NDF:
+            gather(&j->in[0], b, c, &m);
+            ggx_batch_ndf(o0 + b, c, s, m.x, m.y, m.z);
+            break;
+        case F32_G1:
+        case F32_PDF_VNDF:
+        case F32_BRDF:
+            gather(&j->in[0], b, c, &a);
+            gather(&j->in[1], b, c, &m);
+            if (j->op == F32_G1) ggx_batch_g1(o0 + b, c, s, a.x, a.y, a.z, m.x, m.y, m.z);
+            else if (j->op == F32_PDF_VNDF) ggx_batch_pdf_vndf(o0 + b, c, s, a.x, a.y, a.z, m.x, m.y, m.z);
+            else ggx_batch_brdf(o0 + b, c, s, j->f, a.x, a.y, a.z, m.x, m.y, m.z);
+            break;
+        case F32_PDF_BRDF:
+            gather(&j->in[0], b, c, &a);
+            gather(&j->in[1], b, c, &m);
+            for (size_t i = 0; i < c; i++)
+                o0[b + i] = pdf_direction_f(j->sampler, &j->sf, (ggx_vec3f){a.x[i], a.y[i], a.z[i]},
+                                            (ggx_vec3f){m.x[i], m.y[i], m.z[i]});
+            break;
+        default: { /* the samplers */
+            gather_view(&j->in[0], b, c, &a);
+            const float *u1 = gather_num(&j->in[1], b, c, u1b, 1), *u2 = gather_num(&j->in[2], b, c, u2b, 1);
+            if (j->op == F32_NORMALS) {
+                j->status = ggx_batch_sample_normals((ggx_sampler_id)j->sampler, m.x, m.y, m.z, c, s, a.x, a.y, a.z, u1,
+                                                     u2);
+                scatter(o0, b, c, &m);
+                break;
+            }
+            float *p = o1 ? o1 + b : pdf, *w = o2 ? o2 + b : weight;
+            j->status = ggx_batch_sample_directions((ggx_sampler_id)j->sampler, m.x, m.y, m.z, p, w, c, s, j->f, a.x,
+                                                    a.y, a.z, u1, u2);
+            scatter(o0, b, c, &m);
+            if (ev)
+                for (size_t i = 0; i < c; i++) ev[b + i] = (int8_t)(p[i] > 0);
+            if (j->op == F32_SAMPLE_EVAL) ggx_batch_brdf(o4 + b, c, s, j->f, a.x, a.y, a.z, m.x, m.y, m.z);
+        }
+        }
+        if (j->status != GGX_OK) return;
+    }
+}
+
+/* Range k of [0, n), run by thread k with its own copy of the job (its own status). */
+static void f32_part(void *ctx, int k)
+{
+    f32job *j = (f32job *)ctx + k;
+    size_t begin = (size_t)k * j->per < j->n ? (size_t)k * j->per : j->n;
+    size_t end = begin + j->per < j->n ? begin + j->per : j->n;
+    f32_range(j, begin, end);
+}
+
+enum { THREAD_MIN = 65536 };
+
+/* out: outputs in the op's order (pdf, weight and event may be NULL for the samplers). Returns a ggx_status. */
+EXPORT int ggxpy_f32(int op, int sampler, const ggx_shape *s, const ggx_fresnel *f, size_t n, const ggxpy_in *in,
+                     void *out0, void *out1, void *out2, void *out3, void *out4, int threads)
+{
+    f32job j;
+    memset(&j, 0, sizeof j);
+    j.op = op, j.sampler = sampler, j.s = s, j.f = f, j.in = in, j.n = j.per = n, j.status = GGX_OK;
+    j.out[0] = out0, j.out[1] = out1, j.out[2] = out2, j.out[3] = out3, j.out[4] = out4;
+    ggx_shapef_from(&j.sf, s);
+    if (threads <= 1 || n < THREAD_MIN) {
+        f32_range(&j, 0, n);
+        return j.status;
+    }
+    f32job parts[256];
+    threads = threads < 256 ? threads : 256;
+    /* whole chunks per thread: the chunks (whose bounds decide which elements a vectorised loop's tail takes) are
+     * the same for every count of threads */
+    size_t per = ((n + (size_t)threads - 1) / (size_t)threads + CHUNK - 1) / CHUNK * CHUNK;
+    for (int k = 0; k < threads; k++) parts[k] = j, parts[k].per = per;
+    ggx_internal_parallel_for(threads, f32_part, parts);
+    for (int k = 0; k < threads; k++)
+        if (parts[k].status != GGX_OK) return parts[k].status;
+    return GGX_OK;
+}
+
+/* The fused step of a renderer in double: the sample of a direction sampler (w, pdf, weight, event) and the BRDF of
+ * the sampled direction, f_r(wi, w) (ggx_brdf_eval), per item. Inputs wi, u1, u2. */
+EXPORT void ggxpy_sample_eval(int id, const ggx_shape *s, const ggx_fresnel *fr, size_t n, const ggxpy_in *in,
+                              double *w, double *pdf, double *weight, int8_t *event, double *f_r)
+{
+    ggx_sample (*f)(const ggx_shape *, const ggx_fresnel *, double, ggx_vec3, double, double, double,
+                    ggx_transport) = ggx_sampler_get((ggx_sampler_id)id)->sample_direction;
+    for (size_t i = 0; i < n; i++) {
+        ggx_vec3 wi = vec(&in[0], i);
+        ggx_sample r = f(s, fr, 1.5, wi, num(&in[1], i), num(&in[2], i), 0.0, GGX_RADIANCE);
+        put(w, i, r.w);
+        pdf[i] = r.pdf, weight[i] = r.weight, event[i] = (int8_t)r.event;
+        f_r[i] = ggx_brdf_eval(s, fr, wi, r.w);
+    }
 }

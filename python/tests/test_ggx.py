@@ -494,6 +494,12 @@ def test_float32_batch_path():
             assert np.max(np.abs(lo.w[both] - hi.w[both])) <= 1e-4
             assert np.max(np.abs(lo.pdf[both] / hi.pdf[both] - 1)) <= 1e-4
             assert np.max(np.abs(lo.weight[both] - hi.weight[both])) <= 2e-4
+            # their pdfs by the float kernels, and the VNDF samplers' pdf by the batch API's
+            name = "brdf-bounded" if bounded else "brdf"
+            plo, phi = ggx.pdf_brdf(s, v, hi.w, bounded=bounded, dtype=np.float32), ggx.pdf_brdf(s, v, hi.w, bounded=bounded)
+            assert plo.dtype == np.float32 and same(plo, ggx.pdf(name, s, v, hi.w, dtype=np.float32))
+            assert np.max(np.abs(plo[both] / phi[both] - 1)) <= 1e-4, name
+        assert same(ggx.pdf("caps", s, v, m, dtype=np.float32), ggx.pdf_vndf(s, v, m, dtype=np.float32))
     # samplers without a batch loop: the float64 result, rounded
     s = ggx.Shape.ellipsoid(*SHAPES[3])
     u = upper(r, 50)
@@ -748,8 +754,8 @@ def test_dtype_everywhere():
              lambda d: ggx.g1_smith(s, u, dtype=d), lambda d: ggx.g2(s, u, m, m, dtype=d),
              lambda d: ggx.pdf_ndf(s, m, dtype=d), lambda d: ggx.bsdf(s, 1.5, u, -m, dtype=d),
              lambda d: ggx.albedo(s, u[:2], dtype=d), lambda d: ggx.albedo_iso_table(0.3, u[:, 2], dtype=d),
-             lambda d: ggx.pdf("caps", s, u, m, dtype=d), lambda d: ggx.sample_inverse("caps", s, u, m, dtype=d),
-             lambda d: ggx.pdf_brdf(s, u, m, dtype=d), lambda d: ggx.pdf_bsdf(s, 1.5, u, m, dtype=d),
+             lambda d: ggx.pdf("ellipse", s, u, m, dtype=d), lambda d: ggx.sample_inverse("caps", s, u, m, dtype=d),
+             lambda d: ggx.pdf_bsdf(s, 1.5, u, m, dtype=d),
              lambda d: ggx.reflect(u, m, dtype=d), lambda d: ggx.half_reflect(u, m, dtype=d),
              lambda d: ggx.Fresnel.schlick(0.04)(u[:, 2], dtype=d), lambda d: ggx.bsdf_albedo(s, 1.5, u[:2], dtype=d),
              lambda d: ggx.sample_bsdf(s, 1.5, u, 0.3, 0.6, 0.5, dtype=d).w]
