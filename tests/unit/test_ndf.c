@@ -269,12 +269,32 @@ static void lune_by_quadrature(void **state)
     printf("lune areas: 40 views, largest relative error %.3g\n", worst);
 }
 
+/* The sign of theta_z (docs/design/render.md, "Scene and frames"): A = S Rz(theta_z) puts the axis of alpha_x at
+ * azimuth -theta_z. With alpha (0.3, 0.6) and theta_z = +30 degrees, D at a fixed tilt is smallest at azimuth -30
+ * (the axis of the smaller alpha) and largest at +60; a sign error would swap them. */
+static void rotation_sign(void **state)
+{
+    (void)state;
+    const double deg = GGX_PI / 180;
+    ggx_shape s;
+    CHECK(ggx_shape_ellipsoid(&s, 0.3, 0.6, 0, 0, 30 * deg) == GGX_OK, "shape");
+    double lo = INFINITY, hi = 0;
+    int at_lo = 0, at_hi = 0;
+    for (int d = -90; d < 90; d += 5) {
+        ggx_vec3 m = {sin(0.3) * cos(d * deg), sin(0.3) * sin(d * deg), cos(0.3)};
+        double v = ggx_ndf(&s, m);
+        if (v < lo) lo = v, at_lo = d;
+        if (v > hi) hi = v, at_hi = d;
+    }
+    CHECK(at_lo == -30 && at_hi == 60, "D smallest at azimuth %d, largest at %d (want -30 and 60)", at_lo, at_hi);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(normalisation),      cmocka_unit_test(spherical_density),  cmocka_unit_test(closed_forms),
         cmocka_unit_test(slope_space),        cmocka_unit_test(gaussian_curvature), cmocka_unit_test(projected_areas),
-        cmocka_unit_test(lune_by_quadrature),
+        cmocka_unit_test(lune_by_quadrature), cmocka_unit_test(rotation_sign),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }
