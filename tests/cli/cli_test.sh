@@ -247,6 +247,12 @@ expect2 "option of another command" "unknown option '--figure'" "$GGX" sample --
 expect2 "malformed number" "not a list of numbers" "$GGX" eval --alpha 0.1x
 expect2 "NaN" "not a finite number" "$GGX" eval --alpha nan
 expect2 "infinity" "not a finite number" "$GGX" sample --view inf,0
+expect2 "beyond the doubles" "beyond the largest double" "$GGX" eval --alpha 1e400
+expect2 "below the doubles" "below the smallest positive double" "$GGX" eval --alpha 1e-400
+# a subnormal is a finite number: the shape's own words for it
+"$GGX" eval --alpha 1e-310 > /dev/null 2> sub.err && grep -q "raised to the smallest accepted roughness" sub.err &&
+    ! grep -q "finite" sub.err && ok || bad "a subnormal alpha: $(cat sub.err)"
+expect2 "Schlick F0 above 1" "Schlick's F0 is a reflectance, from 0 to 1 (1.5 given)" "$GGX" eval --fresnel schlick:1.5
 expect2 "alpha <= 0" "invalid shape" "$GGX" eval --alpha -0.2
 expect2 "skew too large" "invalid shape" "$GGX" eval --skew 100,0
 expect2 "singular matrix" "singular" "$GGX" eval --matrix 1,2,3,2,4,6,0,0,1

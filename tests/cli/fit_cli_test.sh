@@ -135,5 +135,16 @@ if "$GGX" fit --normals tilt.csv > tilt.md; then
 else
     bad "fit of equal tilted normals"
 fi
+# a subnormal height is a finite number
+printf '0 1e-310 0 0\n1 0 1 0\n0 1 0 1\n1 0 0 0\n' > subh.txt
+"$GGX" fit --heightfield subh.txt --spacing 1 --z-scale 1 > /dev/null 2> err.txt && ok ||
+    bad "a subnormal height: $(cat err.txt)"
+# a negative weight and a spacing beyond the doubles over the height unit are named
+printf '0,0,1,1\n0.1,0,1,-1\n0,0.1,1,1\n0.1,0.1,1,1\n0.2,0,1,1\n0,0.2,1,1\n' > negw.csv
+one_line "negative weight" "the weight of normal 2 is negative (-1)" 2 "$GGX" fit --normals negw.csv
+printf '0 1 0\n1 0 1\n0 1 0\n' > h3.txt
+one_line "spacing over z-scale overflows" "beyond the range of a double" 2 "$GGX" fit --heightfield h3.txt \
+    --spacing 1e308 --z-scale 0.5
+
 echo "fit CLI: $pass passed, $fail failed"
 [ $fail -eq 0 ]
