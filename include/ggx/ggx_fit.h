@@ -111,7 +111,9 @@ typedef struct ggx_fit_info {
  * Newton decrement is below opt->tolerance or opt->max_iterations (above 2^22 samples, EM on a subsample and then
  * Newton steps that each raise the likelihood of all samples: ggx_fit_options.full_em). Samples below the horizon, non-finite or of
  * weight 0 are ignored and counted. info (may be NULL) receives the fit's statistics and the comparison of all four
- * models. Sigma's eigenvalues are held at GGX_ALPHA_MIN^2 or above (info->clamped says when that binds).
+ * models. Sigma's eigenvalues are held at GGX_ALPHA_MIN^2 or above (info->clamped says when that binds); a lobe held
+ * there away from n whose ellipsoid alphas would fall below GGX_ALPHA_MIN is the shape with them raised to it (*out,
+ * info->t and info->sigma are one shape).
  * Errors: GGX_ERR_NULL (out NULL, or m NULL with n > 0); GGX_ERR_RANGE (a negative weight; opt->model Beckmann or
  * unknown; opt->threads outside [0, 256] or max_iterations, tolerance negative); GGX_ERR_DATA (fewer than 5 usable
  * samples); GGX_ERR_MEMORY; GGX_ERR_ALPHA (the fitted Sigma has an eigenvalue above GGX_ALPHA_MAX^2: slopes

@@ -38,6 +38,17 @@ static double next_uniform(uint64_t *s)
     return (double)(*s >> 11) * 0x1p-53;
 }
 
+/* the seed of row r's stream of a ray loop (salt: the loop's own), nonzero: each row draws the same numbers
+ * whichever thread traces it, so the result does not depend on the threads */
+static uint64_t row_seed(uint64_t salt, long r)
+{
+    uint64_t z = salt + 0x9E3779B97F4A7C15ull * ((uint64_t)r + 1);
+    z = (z ^ (z >> 30)) * 0xBF58476D1CE4E5B9ull;
+    z = (z ^ (z >> 27)) * 0x94D049BB133111EBull;
+    z ^= z >> 31;
+    return z ? z : 1;
+}
+
 /* the jobs of a ray loop: job k is jobs + k size bytes */
 typedef struct job_array {
     void (*fn)(void *job);
@@ -211,6 +222,24 @@ double ms_facets_g1(const double *h, size_t n, const double tilt[2], const doubl
     return g1;
 }
 
+/* 1 with err where rays along v (times passes) would cross more tiles than MS_MAX_CROSSINGS: the tracer's work */
+static int work_refused(const ms_tracer *t, size_t n, const double v[3], long rays, double passes, const char *what,
+                        char *err, size_t errn)
+{
+    double per = ms_tracer_crossings(t, v), g = ceil(sqrt((double)rays)), work = g * g * per * passes;
+    if (work <= MS_MAX_CROSSINGS) return 0;
+    double zmin, zmax, side = floor(sqrt(MS_MAX_CROSSINGS / (per * passes))); /* the grid of rays that fits */
+    ms_tracer_bounds(t, &zmin, &zmax);
+    char fewer[64] = "";
+    if (side >= 1.0) snprintf(fewer, sizeof fewer, "at most %.0f rays, ", side * side);
+    snprintf(err, errn,
+             "%s: the heights span %.3g spacings over a tile of %zu, so each ray at this view crosses about %.3g "
+             "tiles: %.3g crossings for %.0f rays, more than the %.3g the tracer takes on (give %sa steeper view, "
+             "or a tile without its outliers)",
+             what, zmax - zmin, n, per, work, g * g, MS_MAX_CROSSINGS, fewer);
+    return 1;
+}
+
 typedef struct g1_job {
     const ms_tracer *t;
     const double *h;
@@ -228,7 +257,7 @@ static void g1_rows(void *p)
     g1_job *j = p;
     double zmin, zmax, d[3] = {-j->v[0], -j->v[1], -j->v[2]}, step = (double)j->n / (double)j->g;
     ms_tracer_bounds(j->t, &zmin, &zmax);
-    uint64_t s = 0x9E3779B97F4A7C15ull ^ (uint64_t)j->row0;
+    uint64_t s;
     size_t g = (size_t)j->g;
     double *o = malloc(3 * g * sizeof *o);
     ms_hit *hits = malloc(g * sizeof *hits);
@@ -240,6 +269,7 @@ static void g1_rows(void *p)
     }
     for (long r = j->row0; r < j->row1; r++) {
         /* a row of the jittered grid, traced as one stream of coherent rays */
+        s = row_seed(0x9E3779B97F4A7C15ull, r);
         for (size_t c = 0; c < g; c++) {
             double u = next_uniform(&s), w = next_uniform(&s);
             o[3 * c] = ((double)c + u) * step, o[3 * c + 1] = ((double)r + w) * step, o[3 * c + 2] = zmax + 1.0;
@@ -290,6 +320,7 @@ int ms_measure_g1(const ms_tracer *t, const double *h, size_t n, const double v[
         snprintf(err, errn, "masking: a view above the plane, rays, bins and threads are required");
         return -1;
     }
+    if (work_refused(t, n, v, rays, 1.0, "masking", err, errn)) return -1;
     int bins = rings * sectors;
     r->rings = rings, r->sectors = sectors;
     r->area = calloc(2 * (size_t)bins, sizeof *r->area);
@@ -335,10 +366,13 @@ int ms_measure_g1(const ms_tracer *t, const double *h, size_t n, const double v[
      * (of a tilted patch too: its surface repeats, tile after tile, under parallel rays) */
     double per = footprint(tilt, v) / (double)r->rays, seen = 0.0, front = 0.0;
     long riser_hits = 0;
+    /* the threads' counts summed as integers first: the same sums in any order */
     for (int k = 0; k < threads; k++) {
         r->missed += jobs[k].missed, riser_hits += jobs[k].riser_hits;
-        for (int b = 0; b < bins; b++) r->visible[b] += per * (double)hits[(size_t)k * (size_t)bins + (size_t)b];
+        if (k > 0)
+            for (int b = 0; b < bins; b++) hits[b] += hits[(size_t)k * (size_t)bins + (size_t)b];
     }
+    for (int b = 0; b < bins; b++) r->visible[b] = per * (double)hits[b];
     for (int b = 0; b < bins; b++) seen += r->visible[b], front += r->area[b];
     r->riser_visible = per * (double)riser_hits;
     r->g1_off_risers = seen / front;
@@ -361,8 +395,8 @@ static void brdf_rows(void *p)
     brdf_job *j = p;
     double zmin, zmax, step = (double)j->n / (double)j->g;
     ms_tracer_bounds(j->t, &zmin, &zmax);
-    uint64_t s = 0xD1B54A32D192ED03ull ^ (uint64_t)j->row0;
-    for (long r = j->row0; r < j->row1; r++)
+    for (long r = j->row0; r < j->row1; r++) {
+        uint64_t s = row_seed(0xD1B54A32D192ED03ull, r);
         for (long c = 0; c < j->g; c++) {
             double u = next_uniform(&s), w = next_uniform(&s);
             double o[3] = {((double)c + u) * step, ((double)r + w) * step, zmax + 1.0}, d[3];
@@ -395,6 +429,7 @@ static void brdf_rows(void *p)
             j->all[b]++;
             if (bounces == 1) j->single[b]++;
         }
+    }
 }
 
 void ms_brdf_free(ms_brdf *r)
@@ -413,6 +448,7 @@ static int brdf_run(const ms_tracer *t, size_t n, const double *wi, int in_bin, 
         snprintf(err, errn, "BRDF: a light above the plane, rays, bins, bounces and threads are required");
         return -1;
     }
+    if (wi && work_refused(t, n, wi, rays, 2.0, "BRDF", err, errn)) return -1;
     int bins = rings * sectors;
     long g = (long)ceil(sqrt((double)rays));
     if (threads > g) threads = (int)g;
@@ -433,12 +469,15 @@ static int brdf_run(const ms_tracer *t, size_t n, const double *wi, int in_bin, 
             max_bounces, c, c + bins, 0,      0};
     }
     run_jobs(brdf_rows, jobs, sizeof *jobs, threads);
+    /* the threads' counts summed as integers first: the same sums in any order */
     for (int k = 0; k < threads; k++) {
         r->lost += jobs[k].lost, r->capped += jobs[k].capped;
-        for (int b = 0; b < bins; b++) {
-            r->single[b] += (double)jobs[k].single[b] / (double)r->rays;
-            r->all[b] += (double)jobs[k].all[b] / (double)r->rays;
-        }
+        if (k > 0)
+            for (int b = 0; b < bins; b++) jobs[0].single[b] += jobs[k].single[b], jobs[0].all[b] += jobs[k].all[b];
+    }
+    for (int b = 0; b < bins; b++) {
+        r->single[b] = (double)jobs[0].single[b] / (double)r->rays;
+        r->all[b] = (double)jobs[0].all[b] / (double)r->rays;
     }
     free(counts), free(jobs);
     return 0;

@@ -77,6 +77,13 @@ void ms_tracer_free(ms_tracer *t);
 void ms_tracer_bounds(const ms_tracer *t, double *zmin, double *zmax);
 /* The tilt it was made with (0, 0 for none). */
 void ms_tracer_tilt(const ms_tracer *t, double tilt[2]);
+/* The tiles a ray along d (not along the plane) crosses while it passes through the heights' band, about: 1 + the
+ * band's thickness times the ray's run over its fall, over the tile's size (the tracer's work per ray grows with
+ * it: a tile with one tall spike makes every ray walk through many tiles). HUGE_VAL along the plane. */
+double ms_tracer_crossings(const ms_tracer *t, const double d[3]);
+/* The most tile crossings ms_measure_g1 and ms_measure_brdf take on (rays times ms_tracer_crossings, for the BRDF
+ * twice that: in and out): seconds of tracing; more is refused with the estimate. */
+#define MS_MAX_CROSSINGS 67108864.0
 /* The first hit of the ray (o, d) on the tiled surface beyond a distance of 1e-4 (so that a ray leaving a hit point
  * does not hit its own facet): 1 and *hit (its height that of the tile's copy at x, y in [0, n)), or 0 where the
  * ray escapes (it is above the surface's top going up from the mean plane, or along it), or -1 where it leaves
@@ -113,8 +120,9 @@ typedef struct ms_g1 {
 /* Traces about rays rays (a jittered grid of g x g origins, g = ceil(sqrt(rays))) from above along -v on threads
  * threads and fills r (ms_g1_free releases it); the tracer's tilt applies (the tile's differences across its sides
  * raised by it). risers (may be NULL: none): ms_find_risers' periods, whose cells' facets are counted apart from the
- * others' (bins, covariance, g1_off_risers). Returns 0 or -1 with err: the view not clear of the plane
- * (ms_view_clear). */
+ * others' (bins, covariance, g1_off_risers). Each row of the grid draws its jitter from its own stream and the
+ * threads' counts are summed as integers, so the result is the same for any number of threads. Returns 0 or -1
+ * with err: the view not clear of the plane (ms_view_clear), more work than MS_MAX_CROSSINGS. */
 int ms_measure_g1(const ms_tracer *t, const double *h, size_t n, const double v[3], long rays, int rings, int sectors,
                   const size_t risers[2], int threads, ms_g1 *r, char *err, size_t errn);
 /* The risers of a sawtooth of period P (P divides n, 2 <= P <= n / 2; ms_ramp's): along x, the columns x = P - 1
@@ -127,7 +135,8 @@ void ms_g1_free(ms_g1 *r);
 /* The BRDF of the tiled surface with F = 1, traced: rays from wi (a jittered grid of origins) reflect specularly at
  * every facet they meet until they escape, at most max_bounces times. Outgoing directions are binned in rings of
  * equal sin^2(theta_o) times sectors of equal azimuth, bins of equal projected solid angle pi / bins, so a bin's
- * BRDF is its share of the rays times bins / pi. */
+ * BRDF is its share of the rays times bins / pi. The same for any number of threads (as ms_measure_g1); more work
+ * than MS_MAX_CROSSINGS is refused. */
 typedef struct ms_brdf {
     int rings, sectors;
     long rays, lost, capped; /* lost: left below the surface (none if the tracer works); capped: still bouncing */

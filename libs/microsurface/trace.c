@@ -19,6 +19,20 @@ struct ms_tracer {
     double rmin, rmax; /* the range of z - tilt . (x, y) over the surface: the band the rays cross */
 };
 
+/* Embree's error code in words. */
+static const char *embree_error_words(enum RTCError e)
+{
+    switch (e) {
+    case RTC_ERROR_NONE: return "no error";
+    case RTC_ERROR_INVALID_ARGUMENT: return "an invalid argument";
+    case RTC_ERROR_INVALID_OPERATION: return "an invalid operation";
+    case RTC_ERROR_OUT_OF_MEMORY: return "out of memory";
+    case RTC_ERROR_UNSUPPORTED_CPU: return "this processor is not supported";
+    case RTC_ERROR_CANCELLED: return "cancelled";
+    default: return "an unknown error";
+    }
+}
+
 ms_tracer *ms_tracer_new(const double *h, size_t n, const double tilt[2], char *err, size_t errn)
 {
     if (tilt && !(isfinite(tilt[0]) && isfinite(tilt[1]) && fabs(tilt[0]) <= 100.0 && fabs(tilt[1]) <= 100.0)) {
@@ -38,7 +52,7 @@ ms_tracer *ms_tracer_new(const double *h, size_t n, const double tilt[2], char *
     if (tilt) t->tilt[0] = tilt[0], t->tilt[1] = tilt[1];
     t->device = rtcNewDevice(NULL);
     if (!t->device) {
-        snprintf(err, errn, "tracer: Embree did not start (error %d)", (int)rtcGetDeviceError(NULL));
+        snprintf(err, errn, "tracer: Embree did not start (%s)", embree_error_words(rtcGetDeviceError(NULL)));
         free(t);
         return NULL;
     }
@@ -86,7 +100,7 @@ ms_tracer *ms_tracer_new(const double *h, size_t n, const double tilt[2], char *
     enum RTCError e = rtcGetDeviceError(t->device);
     if (e != RTC_ERROR_NONE) {
         snprintf(err, errn, "tracer: Embree could not build the surface of %zu x %zu heights (%s)", n, n,
-                 e == RTC_ERROR_OUT_OF_MEMORY ? "out of memory" : "Embree error");
+                 embree_error_words(e));
         ms_tracer_free(t);
         return NULL;
     }
@@ -104,6 +118,13 @@ void ms_tracer_free(ms_tracer *t)
 void ms_tracer_bounds(const ms_tracer *t, double *zmin, double *zmax) { *zmin = t->zmin, *zmax = t->zmax; }
 
 void ms_tracer_tilt(const ms_tracer *t, double tilt[2]) { tilt[0] = t->tilt[0], tilt[1] = t->tilt[1]; }
+
+double ms_tracer_crossings(const ms_tracer *t, const double d[3])
+{
+    double dr = fabs(d[2] - t->tilt[0] * d[0] - t->tilt[1] * d[1]), run = hypot(d[0], d[1]);
+    if (!(dr > 0.0)) return HUGE_VAL;
+    return 1.0 + (t->rmax - t->rmin) * run / dr / (double)t->n;
+}
 
 /* One ray's walk through the tiles: its position in the tile's frame, the steps taken, and the end of the segment
  * being traced (where it leaves the tile's column or the heights' band). */
@@ -242,6 +263,11 @@ void ms_tracer_tilt(const ms_tracer *t, double tilt[2])
 {
     (void)t;
     tilt[0] = tilt[1] = 0.0;
+}
+double ms_tracer_crossings(const ms_tracer *t, const double d[3])
+{
+    (void)t, (void)d;
+    return 1.0;
 }
 int ms_trace(const ms_tracer *t, const double o[3], const double d[3], ms_hit *hit)
 {

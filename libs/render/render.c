@@ -273,9 +273,9 @@ int render_prepare(render_spec *r, char *err, size_t errn)
     if (r->width < 1 || r->height < 1 || r->spp < 1 || r->depth < 1 || r->threads < 1)
         return surface_fail(err, errn, "an image needs a size, samples, a depth and threads of at least 1");
     if (r->light == RENDER_LIGHT_ENV && !r->env) return surface_fail(err, errn, "no environment to light with");
-    if (r->light == RENDER_LIGHT_DIRECTIONAL &&
-        !(fabs(ggx_k_dot_d(r->light_dir, r->light_dir) - 1) < 1e-9 && r->light_irradiance >= 0))
-        return surface_fail(err, errn, "a distant light needs a unit direction and a non-negative irradiance");
+    if (r->light == RENDER_LIGHT_DIRECTIONAL && !(fabs(ggx_k_dot_d(r->light_dir, r->light_dir) - 1) < 1e-9 &&
+                                                  r->light_irradiance >= 0 && isfinite(r->light_irradiance)))
+        return surface_fail(err, errn, "a distant light needs a unit direction and a finite, non-negative irradiance");
     const ggx_sampler_info *bounded = ggx_sampler_get(GGX_SAMPLER_BRDF_BOUNDED);
     if (is_glass(r)) {
         if (r->sampler && r->sampler->id != GGX_SAMPLER_BSDF)
@@ -298,6 +298,11 @@ int render_prepare(render_spec *r, char *err, size_t errn)
     if (!r->compensate) return 0;
     ggx_status st = is_glass(r) ? ggx_bsdf_energy_create(&r->shape, r->fresnel.eta, &r->bsdf_energy)
                                 : ggx_energy_create(&r->shape, &r->energy);
+    if (st == GGX_ERR_RANGE)
+        return surface_fail(err, errn,
+                            "no energy compensation for this %s: its albedo has a feature finer than the energy "
+                            "table resolves (render without --compensate)",
+                            is_glass(r) ? "shape and eta" : "shape");
     if (st != GGX_OK)
         return surface_fail(err, errn, "no energy compensation for this %s: %s",
                             is_glass(r) ? "shape and eta" : "shape", ggx_status_str(st));
@@ -317,14 +322,16 @@ typedef struct job {
     camera cam;
     float *rgb, *var;
     int tiles_x, tiles;
-    int next;  /* the next tile to take (atomic) */
-    long done; /* pixels finished (atomic) */
+    int next;        /* the next tile to take (atomic) */
+    long done;       /* pixels finished (atomic) */
+    long overflowed; /* values beyond the largest float (atomic) */
 } job;
 
 static void render_tile(job *j, int tile)
 {
     const render_spec *r = j->r;
     int x0 = tile % j->tiles_x * TILE, y0 = tile / j->tiles_x * TILE;
+    long over = 0;
     for (int y = y0; y < y0 + TILE && y < r->height; y++)
         for (int x = x0; x < x0 + TILE && x < r->width; x++) {
             uint64_t pixel = (uint64_t)y * (uint64_t)r->width + (uint64_t)x;
@@ -338,15 +345,21 @@ static void render_tile(job *j, int tile)
             }
             for (int k = 0; k < 3; k++) {
                 double mean = sum[k] / r->spp;
-                j->rgb[3 * pixel + k] = (float)mean;
-                if (j->var)
-                    j->var[3 * pixel + k] = r->spp > 1 ? (float)(fmax(0.0, sq[k] - r->spp * mean * mean) /
-                                                                 ((double)r->spp * (r->spp - 1)))
-                                                       : 0.0f;
+                float m = (float)mean;
+                j->rgb[3 * pixel + k] = m;
+                over += !isfinite(m);
+                if (j->var) {
+                    float v = r->spp > 1
+                                  ? (float)(fmax(0.0, sq[k] - r->spp * mean * mean) / ((double)r->spp * (r->spp - 1)))
+                                  : 0.0f;
+                    j->var[3 * pixel + k] = v;
+                    over += !isfinite(v);
+                }
             }
         }
     long px = (long)((x0 + TILE < r->width ? TILE : r->width - x0) * (y0 + TILE < r->height ? TILE : r->height - y0));
     __atomic_fetch_add(&j->done, px, __ATOMIC_RELAXED);
+    if (over) __atomic_fetch_add(&j->overflowed, over, __ATOMIC_RELAXED);
 }
 
 /* worker k: tiles taken in turn from the shared counter until none is left; worker 0 (the calling thread) reports
@@ -364,7 +377,7 @@ static void worker(void *ctx, int k)
     }
 }
 
-void render_image(const render_spec *r, float *rgb, float *var)
+long render_image(const render_spec *r, float *rgb, float *var)
 {
     job j;
     memset(&j, 0, sizeof j);
@@ -374,4 +387,5 @@ void render_image(const render_spec *r, float *rgb, float *var)
     long total = (long)r->width * r->height;
     ggx_internal_parallel_for(r->threads > j.tiles ? j.tiles : r->threads, worker, &j);
     if (r->progress) r->progress(r->progress_ctx, total, total);
+    return j.overflowed;
 }

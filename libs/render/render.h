@@ -111,8 +111,11 @@ void render_release(render_spec *r);
 /* The image: rgb (3 width height floats, the top row first) of each pixel's mean radiance over its spp samples;
  * var, when not NULL, the variance of that mean per channel (the samples' variance / spp; 0 for spp = 1). Each
  * pixel's samples come from its own stream of random numbers (from seed and the pixel's index), so the image is the
- * same bit for bit for any number of threads (threads that cannot be started leave their tiles to the others). */
-void render_image(const render_spec *r, float *rgb, float *var);
+ * same bit for bit for any number of threads (threads that cannot be started leave their tiles to the others).
+ * The means are computed in double; returns the number of values (of rgb and var) beyond the largest float, which
+ * are stored as infinity (a light bright enough that the image does not fit single precision): 0 for an image of
+ * finite values only. */
+long render_image(const render_spec *r, float *rgb, float *var);
 
 /* The camera ray through image point (x, y) (pixels; (0, 0) the top-left corner) and what it sees first: returns 1
  * when it hits the surface, with the hit point, the tangent frame (t, b, n) and the view (towards the camera) in

@@ -36,7 +36,8 @@ typedef struct surface {
     double *uv;     /* normal maps of integer levels (PNG): each texel's decoded red and green, 2 level / (2^bits - 1)
                      * - 1 (green negated with y_down), the centre of its cell of normals (ggx_fit_normal_cells,
                      * q = 2 / (2^bits - 1)), 2 per texel; else NULL */
-    double dx, dy;  /* spacing from the file (x3p, gsf, XYZ, a Gwyddion text header), 0 where it has none */
+    double dx, dy;  /* spacing from the file (x3p, gsf, XYZ, a Gwyddion text header, OpenEXR's "spacing"), 0 where
+                     * it has none */
     double z_scale; /* what brings a height into the unit of dx, dy where the file says both (x3p, gsf, XYZ and a
                      * text header with units: 1e-6 for heights in micrometres beside metres), else 0 */
     int bits;       /* 8 or 16 for PNG, 0 for float data */
@@ -85,7 +86,8 @@ int surface_parse_hdr(const unsigned char *data, size_t n, surface *s, char *err
 int surface_parse_pfm(const unsigned char *data, size_t n, surface *s, char *err, size_t errn);
 int surface_write_pfm(const char *path, const surface *s, char *err, size_t errn);
 /* The bytes of an OpenEXR file (surface_write_exr's) in *data (malloc'd, *n bytes), for callers that write them
- * through their own output; 0, or -1 with err. Radiance is written as R, G, B in FLOAT. */
+ * through their own output; 0, or -1 with err. Radiance is written as R, G, B in FLOAT; heights as Y, times z_scale
+ * where it is set, and where dx and dy are set the header attribute "spacing" (dx, dy) that the reader returns. */
 int surface_encode_exr(const surface *s, unsigned char **data, size_t *n, char *err, size_t errn);
 /* Heights as an x3p archive in memory (malloc'd), for writers that must put the file in place atomically. */
 int surface_encode_x3p(const surface *s, unsigned char **data, size_t *n, char *err, size_t errn);

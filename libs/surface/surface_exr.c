@@ -5,7 +5,8 @@
  * is R, G, B (or a grey image's Y, else its first channel, for all three). Subsampled
  * channels are skipped over in files compressed as bytes (none, RLE, ZIP) and refused elsewhere. Written as a
  * scanline file with ZIP compression (16 lines a chunk) in FLOAT: heights in one channel "Y" (times z_scale where it
- * is set), normals and radiance in R, G, B. SPDX-License-Identifier: MIT */
+ * is set) with their grid spacing dx, dy (where set) in the header attribute "spacing" (v2d, in the heights' unit,
+ * read back as dx, dy with z_scale 1), normals and radiance in R, G, B. SPDX-License-Identifier: MIT */
 #include <math.h>
 #include <stdint.h>
 #include <stdio.h>
@@ -21,6 +22,8 @@
 /* a chunk that decompresses to more than this is refused before the library allocates it */
 #define EXR_MAX_CHUNK_BYTES ((uint64_t)1 << 30)
 #define EXR_UNREADABLE "not a readable OpenEXR file (corrupt or truncated)"
+/* the header attribute (v2d) of a height field's grid spacing along x and y, in the unit of its heights */
+#define EXR_SPACING_ATTR "spacing"
 
 typedef struct exr_mem {
     const unsigned char *p;
@@ -272,6 +275,11 @@ static int exr_parse_part(exr_reader *r, size_t n, char *err, size_t errn)
         r->want[0] = k, r->nwant = 1;
         r->s->kind = SURFACE_HEIGHTS;
         r->s->channels = cl->num_channels; /* the file's: a caller that wants one channel alone can refuse more */
+        /* the grid spacing, where the file states it (surface_encode_exr's "spacing"): heights in its unit */
+        exr_attr_v2d_t sp;
+        if (exr_attr_get_v2d(r->ctx, 0, EXR_SPACING_ATTR, &sp) == EXR_ERR_SUCCESS && isfinite(sp.x) && isfinite(sp.y) &&
+            sp.x > 0.0 && sp.y > 0.0)
+            r->s->dx = sp.x, r->s->dy = sp.y, r->s->z_scale = 1.0;
     } else if (r->o->want == SURFACE_RADIANCE) {
         /* R, G, B; else a grey image's Y (or its first channel) for all three */
         r->want[0] = exr_find_channel(cl, "R"), r->want[1] = exr_find_channel(cl, "G");
@@ -374,8 +382,9 @@ static int64_t exr_sink_write(exr_const_context_t ctx, void *user, const void *b
     return (int64_t)sz;
 }
 
-int surface_encode_exr_channels(size_t nx, size_t ny, int nch, const char *const *names, float *const *plane,
-                                unsigned char **data, size_t *n, char *err, size_t errn)
+/* surface_encode_exr_channels, with the attribute "spacing" in the header where spacing is not NULL. */
+static int encode_channels(size_t nx, size_t ny, int nch, const char *const *names, float *const *plane,
+                           const double *spacing, unsigned char **data, size_t *n, char *err, size_t errn)
 {
     *data = NULL, *n = 0;
     if (nx < 1 || ny < 1 || nx > INT32_MAX || ny > INT32_MAX || nch < 1)
@@ -397,6 +406,10 @@ int surface_encode_exr_channels(size_t nx, size_t ny, int nch, const char *const
         rv = exr_initialize_required_attr_simple(ctx, part, (int32_t)nx, (int32_t)ny, EXR_COMPRESSION_ZIP);
     for (int k = 0; k < nch && rv == EXR_ERR_SUCCESS; k++)
         rv = exr_add_channel(ctx, part, names[k], EXR_PIXEL_FLOAT, EXR_PERCEPTUALLY_LINEAR, 1, 1);
+    if (rv == EXR_ERR_SUCCESS && spacing) {
+        exr_attr_v2d_t sp = {.x = spacing[0], .y = spacing[1]};
+        rv = exr_attr_set_v2d(ctx, part, EXR_SPACING_ATTR, &sp);
+    }
     if (rv == EXR_ERR_SUCCESS) rv = exr_write_header(ctx);
     if (rv == EXR_ERR_SUCCESS) rv = exr_get_scanlines_per_chunk(ctx, part, &lines);
     if (rv == EXR_ERR_SUCCESS && lines < 1) rv = EXR_ERR_UNKNOWN;
@@ -437,6 +450,12 @@ int surface_encode_exr_channels(size_t nx, size_t ny, int nch, const char *const
     return 0;
 }
 
+int surface_encode_exr_channels(size_t nx, size_t ny, int nch, const char *const *names, float *const *plane,
+                                unsigned char **data, size_t *n, char *err, size_t errn)
+{
+    return encode_channels(nx, ny, nch, names, plane, NULL, data, n, err, errn);
+}
+
 int surface_encode_exr(const surface *s, unsigned char **data, size_t *n, char *err, size_t errn)
 {
     *data = NULL, *n = 0;
@@ -465,7 +484,10 @@ int surface_encode_exr(const surface *s, unsigned char **data, size_t *n, char *
             plane[0][i] = (float)s->m[i].x, plane[1][i] = (float)s->m[i].y, plane[2][i] = (float)s->m[i].z;
         }
     }
-    int rc = surface_encode_exr_channels(s->nx, s->ny, nch, heights ? y : rgb, plane, data, n, err, errn);
+    /* heights written times z_scale are in the unit of the spacing, which the header then states */
+    double spacing[2] = {s->dx, s->dy};
+    int spaced = heights && s->dx > 0 && s->dy > 0 && isfinite(s->dx) && isfinite(s->dy);
+    int rc = encode_channels(s->nx, s->ny, nch, heights ? y : rgb, plane, spaced ? spacing : NULL, data, n, err, errn);
     for (int k = 0; k < nch; k++) free(plane[k]);
     return rc;
 }

@@ -9,7 +9,8 @@
 #include "surface.h"
 
 /* Numbers of one line into v (at most max), separated by blanks, commas or semicolons; returns the count, -1 on a
- * token that is not a finite number (its text in bad). */
+ * token that is not a finite number in a double's range: not a number, NaN, infinite, or beyond the doubles' range
+ * (its text in bad; subnormals are finite numbers). */
 static int numbers(const char *line, double *v, int max, char *bad, size_t badn)
 {
     int k = 0;
@@ -20,7 +21,9 @@ static int numbers(const char *line, double *v, int max, char *bad, size_t badn)
         char *end;
         errno = 0;
         double x = strtod(p, &end);
-        if (end == p || !isfinite(x) || errno == ERANGE || (*end && !strchr(" \t,;\r", *end))) {
+        /* an underflow to a subnormal is a finite number (kept); to 0 or an overflow is not the value written */
+        int lost = errno == ERANGE && !(x != 0.0 && fabs(x) < 1.0);
+        if (end == p || !isfinite(x) || lost || (*end && !strchr(" \t,;\r", *end))) {
             size_t len = strcspn(p, " \t,;\r");
             snprintf(bad, badn, "%.*s", (int)(len > 40 ? 40 : len), p);
             return -1;
@@ -131,7 +134,10 @@ int surface_parse_text(surface_format f, const unsigned char *data, size_t n, su
             continue;
         }
         if (k < 0) {
-            rc = surface_fail(err, errn, "line %zu: '%s' is not a finite number", line_no, bad);
+            rc = surface_fail(err, errn,
+                              "line %zu: '%s' is not a finite number in a double's range (4.9e-324 to "
+                              "1.8e308)",
+                              line_no, bad);
             break;
         }
         if (f == SURFACE_CSV) {

@@ -15,9 +15,7 @@ GGX_API const char *ggx_status_str(ggx_status status)
     case GGX_ERR_ETA:
         return "an index of refraction must be in (0, 1e300] (and k >= 0), and not exactly 1 for a rough "
                "dielectric's energy tables";
-    case GGX_ERR_RANGE:
-        return "a parameter is outside its documented range (for an energy table: the shape's albedo has a feature "
-               "finer than the table resolves)";
+    case GGX_ERR_RANGE: return "a parameter is outside its documented range";
     case GGX_ERR_MEMORY: return "memory could not be allocated";
     case GGX_ERR_DATA:
         return "too few usable samples to fit: fewer than 5 normals above the horizon with finite components and a "

@@ -129,6 +129,30 @@ static ggx_status fit_constants(fit_data *d, const double c[2], double a[FIT_MOM
     return GGX_OK;
 }
 
+/* A fit held at the floor (Sigma's eigenvalues at it) with its lobe away from n can be a shape whose ellipsoid
+ * alphas fall below GGX_ALPHA_MIN, which the shape's constructors raise (ggx_shape_ellipsoid, ggx_ellipsoid_matrix):
+ * its printed alphas, matrix and (t, Sigma) would be three shapes. r becomes the nearest shape they keep, its alphas
+ * raised to GGX_ALPHA_MIN (t kept, Sigma that shape's, the likelihood there, the covariance 0 as for any fit held at
+ * the floor). */
+static ggx_status representable(const fit_data *d, ggx_fit_model model, fit_result *r)
+{
+    ggx_shape s;
+    double ax, ay, tx, ty, tz, dec;
+    ggx_status st = ggx_shape_from_slopes(&s, r->t[0], r->t[1], r->sigma[0], r->sigma[1], r->sigma[2]);
+    if (st != GGX_OK) return st;
+    ggx_shape_ellipsoid_params(&s, &ax, &ay, &tx, &ty, &tz);
+    if (fmin(ax, ay) >= GGX_ALPHA_MIN * (1.0 - 1e-7)) return GGX_OK; /* to rounding: at the floor exactly */
+    if ((st = ggx_shape_ellipsoid(&s, fmax(ax, GGX_ALPHA_MIN), fmax(ay, GGX_ALPHA_MIN), tx, ty, tz)) != GGX_OK)
+        return st;
+    /* its Sigma, at the fitted t (the round trip through the angles moves t by about 1e-9) */
+    double t[2];
+    if ((st = ggx_shape_slopes(&s, t, r->sigma)) != GGX_OK) return st;
+    r->sigma[1] += 0.0; /* -0 as 0 */
+    if ((st = fit_information(d, model, r->t, r->sigma, &r->log_likelihood, &dec, r->cov, NULL)) != GGX_OK) return st;
+    memset(r->cov, 0, sizeof r->cov);
+    return GGX_OK;
+}
+
 ggx_status fit_run(const fit_source *src, const ggx_fit_options *opt, ggx_shape *out, ggx_fit_info *info)
 {
     fit_data d;
@@ -205,6 +229,7 @@ ggx_status fit_run(const fit_source *src, const ggx_fit_options *opt, ggx_shape 
                 return st;
             memset(fr[k].cov, 0, sizeof fr[k].cov);
         }
+        if (fr[k].clamped && (st = representable(&d, mk, &fr[k])) != GGX_OK) return st;
         mr[k] = (ggx_fit_model_result){fr[k].log_likelihood,     0.0,
                                        fit_model_parameters(mk), fr[k].iterations,
                                        {fr[k].t[0], fr[k].t[1]}, {fr[k].sigma[0], fr[k].sigma[1], fr[k].sigma[2]}};

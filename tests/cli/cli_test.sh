@@ -220,6 +220,23 @@ expect2 "render black environment" "black everywhere" "$GGX" render --light blac
 expect2 "render bad point light" "point:THETA,PHI" "$GGX" render --light point:30 --out no.png
 expect2 "render glass with another sampler" "own sampler" "$GGX" render --fresnel dielectric:1.5 --sampler caps --out no.png
 expect2 "render compensated with another sampler" "compensation" "$GGX" render --compensate --sampler caps --out no.png
+# lights whose image passes the largest float are refused, nothing written (an infinite irradiance at parsing)
+printf 'PF\n2 2\n-1.0\n' > bright.pfm; printf '\346\261\141\177%.0s' 1 2 3 4 5 6 7 8 9 10 11 12 >> bright.pfm
+expect2 "render point light of 3e38" "exceed the largest float" "$GGX" render --size 64 --spp 1 --light point:0,0,3e38 --out no.pfm
+expect2 "render environment of 3e38" "exceed the largest float" "$GGX" render --size 64 --spp 1 --light bright.pfm --out no.exr
+expect2 "render infinite point light" "not a finite number" "$GGX" render --size 64 --spp 1 --light point:0,0,inf --out no.pfm
+[ ! -e no.pfm ] && [ ! -e no.exr ] && ok || bad "render wrote an image that does not fit single precision"
+# a Radiance .hdr (flat, 4 x 2 pixels of radiance 1) cut to half its pixels is refused; whole, it lights
+printf '#?RADIANCE\nFORMAT=32-bit_rle_rgbe\n\n-Y 2 +X 4\n' > env.hdr; cp env.hdr half.hdr
+printf '\200\200\200\201%.0s' 1 2 3 4 >> half.hdr; cat half.hdr > env.hdr; printf '\200\200\200\201%.0s' 1 2 3 4 >> env.hdr
+"$GGX" render --size 64 --spp 1 --light env.hdr --out hdr.pfm && ok || bad "render: a whole .hdr environment refused"
+expect2 "render truncated .hdr" "truncated Radiance .hdr" "$GGX" render --size 64 --spp 1 --light half.hdr --out no.png
+# an environment of subnormal radiance renders its light, and says why the PNG is black
+printf 'PF\n2 2\n-1.0\n' > dim.pfm; printf '\302\026\001\000%.0s' 1 2 3 4 5 6 7 8 9 10 11 12 >> dim.pfm
+"$GGX" render --size 64 --spp 1 --light dim.pfm --out dim.pfm.pfm 2> dim.err && grep -q "note: .* subnormal float" dim.err &&
+    [ "$(od -An -tx1 -j 13 dim.pfm.pfm | tr -d ' \n' | tr -d 0)" != "" ] && ok || bad "render dim environment: $(cat dim.err)"
+"$GGX" render --size 64 --spp 1 --light dim.pfm --out dim.png 2> dim.err && grep -q "note: the PNG is black" dim.err &&
+    ok || bad "render dim environment to PNG: $(cat dim.err)"
 [ ! -e no.png ] && [ ! -e no.jpg ] && ok || bad "render left a file after an error"
 
 # --- bad input: exit 2, exactly one line on stderr starting with "ggx: ", no output file left behind (expect2,
@@ -230,6 +247,12 @@ expect2 "option of another command" "unknown option '--figure'" "$GGX" sample --
 expect2 "malformed number" "not a list of numbers" "$GGX" eval --alpha 0.1x
 expect2 "NaN" "not a finite number" "$GGX" eval --alpha nan
 expect2 "infinity" "not a finite number" "$GGX" sample --view inf,0
+expect2 "beyond the doubles" "beyond the largest double" "$GGX" eval --alpha 1e400
+expect2 "below the doubles" "below the smallest positive double" "$GGX" eval --alpha 1e-400
+# a subnormal is a finite number: the shape's own words for it
+"$GGX" eval --alpha 1e-310 > /dev/null 2> sub.err && grep -q "raised to the smallest accepted roughness" sub.err &&
+    ! grep -q "finite" sub.err && ok || bad "a subnormal alpha: $(cat sub.err)"
+expect2 "Schlick F0 above 1" "Schlick's F0 is a reflectance, from 0 to 1 (1.5 given)" "$GGX" eval --fresnel schlick:1.5
 expect2 "alpha <= 0" "invalid shape" "$GGX" eval --alpha -0.2
 expect2 "skew too large" "invalid shape" "$GGX" eval --skew 100,0
 expect2 "singular matrix" "singular" "$GGX" eval --matrix 1,2,3,2,4,6,0,0,1

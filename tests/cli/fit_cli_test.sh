@@ -116,5 +116,35 @@ while IFS= read -r line; do
 done < cmds.txt
 [ -s fit.png ] && grep -q "ellipsoid" readme_out.txt && ok || bad "README fit: no figure or no report"
 
+# --- a fit held at the smallest roughness with its lobe away from n: the printed shape line (run by ggx eval) has
+# the printed t and Sigma's D at the peak, 1 / (pi sqrt(det Sigma) cos^4), and no alpha below 1e-4
+awk 'BEGIN { for (i = 0; i < 200; i++) { x = 0.5 + (i % 7) * 1e-9; y = 0.2 + (i % 5) * 1e-9; l = sqrt(x * x + y * y + 1)
+             printf "%.17g,%.17g,%.17g\n", x / l, y / l, 1 / l } }' > tilt.csv
+if "$GGX" fit --normals tilt.csv > tilt.md; then
+    line=$(sed -n 's/^shape: `\(.*\)`$/\1/p' tilt.md)
+    v() { awk -F'|' -v k="$1" '$2 == " " k " " { gsub(/ /, "", $3); print $3 }' tilt.md; }
+    tx=$(v t_x) ty=$(v t_y) sxx=$(v sigma_xx) sxy=$(v sigma_xy) syy=$(v sigma_yy)
+    peak=$(awk -v x="$tx" -v y="$ty" 'BEGIN { printf "%.9g,%.9g,1\n", -x, -y }')
+    grep -q "held at the smallest roughness" tilt.md && [ -n "$line" ] && [ -n "$syy" ] &&
+        "$GGX" eval $line --wi "$peak" --wo "$peak" > tilt.out &&
+        awk -F, -v a="$sxx" -v b="$sxy" -v c="$syy" -v tx="$tx" -v ty="$ty" -v line="$line" 'NR == 2 {
+            c2 = 1 / (1 + tx * tx + ty * ty); want = 1 / (3.14159265358979 * sqrt(a * c - b * b) * c2 * c2)
+            split(line, w, /[ ,]/); d = $10 / want - 1; if (d < 0) d = -d
+            exit !(d < 1e-3 && w[2] >= 1e-4 && w[3] >= 1e-4) }' tilt.out && ok ||
+        bad "a clamped fit's shape line, t and Sigma are not one shape: $line; t $tx $ty; Sigma $sxx $sxy $syy: $(cat tilt.out)"
+else
+    bad "fit of equal tilted normals"
+fi
+# a subnormal height is a finite number
+printf '0 1e-310 0 0\n1 0 1 0\n0 1 0 1\n1 0 0 0\n' > subh.txt
+"$GGX" fit --heightfield subh.txt --spacing 1 --z-scale 1 > /dev/null 2> err.txt && ok ||
+    bad "a subnormal height: $(cat err.txt)"
+# a negative weight and a spacing beyond the doubles over the height unit are named
+printf '0,0,1,1\n0.1,0,1,-1\n0,0.1,1,1\n0.1,0.1,1,1\n0.2,0,1,1\n0,0.2,1,1\n' > negw.csv
+one_line "negative weight" "the weight of normal 2 is negative (-1)" 2 "$GGX" fit --normals negw.csv
+printf '0 1 0\n1 0 1\n0 1 0\n' > h3.txt
+one_line "spacing over z-scale overflows" "beyond the range of a double" 2 "$GGX" fit --heightfield h3.txt \
+    --spacing 1e308 --z-scale 0.5
+
 echo "fit CLI: $pass passed, $fail failed"
 [ $fail -eq 0 ]

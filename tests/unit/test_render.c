@@ -380,6 +380,31 @@ static void environment(void **state)
     CHECK(render_env_init(&e, 2, 2, bad, NULL, err, sizeof err) == -1 && strstr(err, "black"), "black accepted");
 }
 
+/* A light bright enough that the image's values pass the largest float: render_image counts them; an infinite
+ * irradiance is refused. */
+static void overflowing_light(void **state)
+{
+    (void)state;
+    render_spec r;
+    render_spec_defaults(&r);
+    r.light = RENDER_LIGHT_DIRECTIONAL, r.light_irradiance = 3e38, r.width = r.height = 16, r.spp = 1;
+    prepare(&r);
+    size_t n = (size_t)r.width * (size_t)r.height * 3;
+    float *rgb = malloc(n * sizeof *rgb), *var = malloc(n * sizeof *var);
+    CHECK(rgb && var, "memory");
+    long over = render_image(&r, rgb, var), inf = 0;
+    for (size_t i = 0; i < n; i++) inf += !isfinite(rgb[i]) + !isfinite(var[i]);
+    CHECK(over > 0 && over == inf, "irradiance 3e38: %ld values over the largest float counted, %ld infinite", over,
+          inf);
+    r.light_irradiance = 1;
+    CHECK(render_image(&r, rgb, var) == 0, "irradiance 1 overflows");
+    r.light_irradiance = INFINITY;
+    char err[200] = "";
+    CHECK(render_prepare(&r, err, sizeof err) == -1 && strstr(err, "finite"), "an infinite irradiance accepted: %s",
+          err);
+    free(rgb), free(var);
+}
+
 /* Radiance files: PFM and OpenEXR written and read back exactly, Radiance .hdr (written here by stb_image_write) to
  * its 8-bit mantissas; a truncated file is refused with a reason. */
 static void radiance_files(void **state)
@@ -427,6 +452,25 @@ static void radiance_files(void **state)
     printf("radiance files: .hdr within %.2g of each pixel's largest channel\n", worst);
     CHECK(t.nx == 9 && t.ny == 5 && worst <= 1.0 / 128, ".hdr round trip off by %.3g", worst);
     surface_free(&t);
+    /* cut to half its pixels, run-length encoded (9 pixels a row) and flat (4), it is refused; whole, it is read */
+    for (int w = 9; w >= 4; w -= 5) {
+        snprintf(path, sizeof path, "%s/w%d.hdr", dir, w);
+        CHECK(stbi_write_hdr(path, w, 5, 3, s.rgb) != 0, "stbi_write_hdr");
+        FILE *f = fopen(path, "rb");
+        CHECK(f != NULL, "%s", path);
+        unsigned char buf[4096];
+        size_t len = fread(buf, 1, sizeof buf, f);
+        fclose(f);
+        CHECK(surface_parse(SURFACE_HDR, buf, len, &ro, &t, err, sizeof err) == 0, "%s: %s", path, err);
+        surface_free(&t);
+        size_t header = 0;
+        while (header + 1 < len && !(buf[header] == '\n' && buf[header + 1] == '\n')) header++;
+        while (++header < len && buf[header] != '\n') continue; /* the resolution line */
+        size_t half = header + 1 + (len - header - 1) / 2;
+        memset(&t, 0, sizeof t);
+        CHECK(surface_parse(SURFACE_HDR, buf, half, &ro, &t, err, sizeof err) == -1 && strstr(err, "truncated"),
+              "a .hdr of width %d cut to half its pixels accepted (%s)", w, err);
+    }
 #endif
     surface_free(&s);
     char cmd[96];
@@ -437,10 +481,15 @@ static void radiance_files(void **state)
 int main(int argc, char **argv)
 {
     const struct CMUnitTest tests[] = {
-        cmocka_unit_test(environment),         cmocka_unit_test(radiance_files),
-        cmocka_unit_test(distant_light),       cmocka_unit_test(thread_invariance),
-        cmocka_unit_test(furnace_compensated), cmocka_unit_test(furnace_albedo_every_sampler),
-        cmocka_unit_test(furnace_glass),       cmocka_unit_test(strategies_agree),
+        cmocka_unit_test(environment),
+        cmocka_unit_test(radiance_files),
+        cmocka_unit_test(overflowing_light),
+        cmocka_unit_test(distant_light),
+        cmocka_unit_test(thread_invariance),
+        cmocka_unit_test(furnace_compensated),
+        cmocka_unit_test(furnace_albedo_every_sampler),
+        cmocka_unit_test(furnace_glass),
+        cmocka_unit_test(strategies_agree),
     };
     int rc = cmocka_run_group_tests(tests, NULL, NULL);
     return rc | chi2_budget_end("render", argc, argv);

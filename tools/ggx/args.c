@@ -41,7 +41,12 @@ int parse_list(const char *opt, const char *text, double *out, int count)
         errno = 0;
         double v = strtod(p, &end);
         if (end == p || (*end != ',' && *end != '\0')) die("%s: '%s' is not a list of numbers", opt, text);
-        if (!isfinite(v) || errno == ERANGE) die("%s: '%s' contains a value that is not a finite number", opt, text);
+        /* strtod's ERANGE: an overflow (HUGE_VAL) or an underflow; a subnormal result is a finite number, kept */
+        if (!isfinite(v) && errno != ERANGE) die("%s: '%s' contains a value that is not a finite number", opt, text);
+        if (errno == ERANGE && fabs(v) > 1.0)
+            die("%s: '%s' contains a value beyond the largest double (1.8e308)", opt, text);
+        if (errno == ERANGE && v == 0.0)
+            die("%s: '%s' contains a value below the smallest positive double (4.9e-324)", opt, text);
         if (n == max) die("%s: '%s' has more than %d value%s", opt, text, max, max > 1 ? "s" : "");
         out[n++] = v;
         if (*end == '\0') break;
@@ -132,6 +137,8 @@ ggx_fresnel fresnel_from_options(const options *o)
         st = ggx_fresnel_conductor(&f, v[0], v[1]);
     } else if (len == 7 && strncmp(o->fresnel, "schlick", len) == 0) {
         parse_list("--fresnel", colon + 1, v, 1);
+        if (!(v[0] >= 0.0 && v[0] <= 1.0))
+            die("--fresnel '%s': Schlick's F0 is a reflectance, from 0 to 1 (%s given)", o->fresnel, shortest(v[0]));
         st = ggx_fresnel_schlick(&f, v[0]);
     } else {
         die("--fresnel: unknown kind in '%s' (one, dielectric, conductor, schlick)", o->fresnel);

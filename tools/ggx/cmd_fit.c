@@ -1,6 +1,7 @@
 /* ggx fit: the shape of a measured surface (a height field, a normal map or a list of normals) by maximum likelihood
  * (ggx_fit.h), printed in the command's own shape syntax with its standard errors, the model comparison and the
  * goodness of fit, as Markdown, CSV or JSON. SPDX-License-Identifier: MIT */
+#include <float.h>
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
@@ -122,6 +123,10 @@ static void fit_input(const options *o, const surface *s, const ggx_fit_options 
         st = ggx_fit_normal_cells(out, s->uv, NULL, s->nx * s->ny, 2.0 / 255.0, fo, info);
         *what = "normal-map texels (8-bit: each fitted as its cell of normals)";
     } else if (s->kind == SURFACE_NORMALS) {
+        for (size_t i = 0; s->w && i < s->nx * s->ny; i++)
+            if (s->w[i] < 0.0)
+                die("the weight of normal %zu is negative (%g): a weight is a share of area, 0 or more", i + 1,
+                    s->w[i]);
         st = ggx_fit_normals(out, s->m, s->w, s->nx * s->ny, fo, info);
         *what = s->ny > 1 ? "normal-map texels" : "normals";
     } else {
@@ -134,7 +139,14 @@ static void fit_input(const options *o, const surface *s, const ggx_fit_options 
                 "values, in the spacing's unit)");
         if (o->downsample >= 2 && (s->nx / (size_t)o->downsample < 2 || s->ny / (size_t)o->downsample < 2))
             die("--downsample %d leaves fewer than 2 x 2 heights of the %zu x %zu", o->downsample, s->nx, s->ny);
-        /* slopes are z_scale h / dx: the file's heights with the spacing divided by z_scale, no copy */
+        /* slopes are z_scale h / dx: the file's heights with the spacing divided by z_scale, no copy; a quotient
+         * beyond the doubles' normal range has no slopes to fit */
+        double q[2] = {dx / zs, dy / zs};
+        for (int k = 0; k < 2; k++)
+            if (!(q[k] >= DBL_MIN && q[k] <= DBL_MAX))
+                die("--heightfield: the grid spacing %g over the height unit %g is %g, beyond the range of a double "
+                    "(%g to %g): give --spacing and --z-scale in nearer units",
+                    k ? dy : dx, zs, q[k], DBL_MIN, DBL_MAX);
         ggx_heightfield_options ho = {o->keep_tilt, o->downsample};
         st = ggx_fit_heightfield(out, s->h, s->nx, s->ny, dx / zs, dy / zs, &ho, fo, info);
         *heights = s->h;

@@ -20,8 +20,10 @@ static void write_heights(const char *path, double *h, size_t n)
     s.kind = SURFACE_HEIGHTS, s.nx = n, s.ny = n, s.h = h;
     size_t len = strlen(path);
     int x3p = len >= 4 && strcmp(path + len - 4, ".x3p") == 0;
-    /* x3p in metres: a grid of 1 micrometre, heights in the same unit, so slopes are the field's; OpenEXR as is */
+    /* x3p in metres: a grid of 1 micrometre, heights in the same unit, so slopes are the field's; OpenEXR as is,
+     * with its spacing of 1 in its header */
     if (x3p) s.dx = s.dy = 1e-6, s.z_scale = 1e-6;
+    else s.dx = s.dy = 1.0, s.z_scale = 1.0;
     if (!x3p && !(len >= 4 && strcmp(path + len - 4, ".exr") == 0)) die("--out '%s': give a .exr or .x3p name", path);
     unsigned char *data;
     size_t bytes;
@@ -56,8 +58,8 @@ static void generate_help(void)
            "            down in one cell, a near-vertical riser (P divides N, at most N / 2)\n"
            "  vgroove   V-grooves along y of period P spacings (even, default 16) and slope AX along x: two\n"
            "            facet normals, each on half the area (Torrance-Sparrow's V-cavities)\n"
-           "OpenEXR holds the heights in one float channel Y (ggx fit --heightfield needs --spacing 1 --z-scale\n"
-           "1 for it); x3p in doubles with a grid of 1e-6 m and heights in metres. Prints the surface's\n"
+           "OpenEXR holds the heights in one float channel Y and the grid spacing 1 in its header attribute\n"
+           "spacing; x3p in doubles with a grid of 1e-6 m and heights in metres. Prints the surface's\n"
            "parameters: the heights' standard deviation and the autocorrelation's metric M, C(r) = sigma^2\n"
            "exp(-r^T M r).\n");
 }

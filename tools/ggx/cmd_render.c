@@ -1,5 +1,6 @@
 /* ggx render: an image of a sphere or a plane of the material (render.h), as PNG (tone-mapped, with a caption), OpenEXR
  * or PFM (linear). SPDX-License-Identifier: MIT */
+#include <float.h>
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
@@ -55,7 +56,14 @@ static void light_from_options(const options *o, render_spec *r, render_env *env
         if (surface_read(l, &ro, &s, err, sizeof err) != 0) die("--light: %s", err);
         if (s.nx > 65536 || s.ny > 65536) die("--light '%s': too large", l);
         long neg = 0;
-        float *rgb = s.rgb;
+        float *rgb = s.rgb, peak = 0.0f;
+        for (size_t i = 0; i < 3 * s.nx * s.ny; i++)
+            if (rgb[i] > peak) peak = rgb[i];
+        if (peak > 0.0f && peak < FLT_MIN)
+            fprintf(stderr,
+                    "ggx: note: the brightest radiance of '%s' is %g, a subnormal float (below %g): it keeps fewer "
+                    "digits, and so does the image\n",
+                    l, (double)peak, (double)FLT_MIN);
         s.rgb = NULL;
         int w = (int)s.nx, h = (int)s.ny;
         surface_free(&s);
@@ -153,8 +161,20 @@ int cmd_render(int argc, char **argv)
     size_t count = (size_t)r.width * (size_t)r.height * 3;
     float *rgb = malloc(count * sizeof *rgb);
     if (!rgb) die("out of memory for a %d x %d image", r.width, r.height);
-    render_image(&r, rgb, NULL);
+    long over = render_image(&r, rgb, NULL);
     if (r.progress) fputc('\n', stderr);
+    if (over)
+        die("the image does not fit single precision: %ld pixel values exceed the largest float (%g) with this light "
+            "(%s); lower its radiance or irradiance",
+            over, (double)FLT_MAX, light_words);
+    float brightest = 0.0f;
+    for (size_t i = 0; i < count; i++) brightest = fmaxf(brightest, rgb[i]);
+    /* the PNG's first 8-bit level: sRGB 0.5 / 255, linear 0.5 / 255 / 12.92 */
+    if (kind == OUT_PNG && brightest > 0.0f && exp2(o.exposure) * brightest < 0.5 / 255.0 / 12.92)
+        fprintf(stderr,
+                "ggx: note: the PNG is black: the image's brightest value is %g, below its first 8-bit level at "
+                "--exposure %g (write .exr or .pfm for the linear values)\n",
+                (double)brightest, o.exposure);
     surface img;
     memset(&img, 0, sizeof img);
     img.kind = SURFACE_RADIANCE, img.nx = (size_t)r.width, img.ny = (size_t)r.height, img.rgb = rgb;

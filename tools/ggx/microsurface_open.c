@@ -1,5 +1,6 @@
 /* What the subcommands of ggx microsurface share (cmd_microsurface.h): the tile of --heightfield, its fit, its
  * tracer and the model's shape. SPDX-License-Identifier: MIT */
+#include <float.h>
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -23,6 +24,10 @@ double *microsurface_heights(const options *o, size_t *n_out, double tilt[2])
     if (!(dx > 0 && dy > 0)) die("%s: the file gives no grid spacing: give --spacing DX", o->heightfield);
     if (!(zs > 0)) die("%s: the file gives no height unit: give --z-scale Z", o->heightfield);
     if (fabs(dx - dy) > 1e-9 * dx) die("%s: spacing %g x %g: the tracer takes equal spacings", o->heightfield, dx, dy);
+    if (!(zs / dx >= DBL_MIN && zs / dx <= DBL_MAX))
+        die("%s: the height unit %g over the grid spacing %g is %g, beyond the range of a double (%g to %g): give "
+            "--spacing and --z-scale in nearer units",
+            o->heightfield, zs, dx, zs / dx, DBL_MIN, DBL_MAX);
     size_t n = s.nx, count = n * n, P = (size_t)o->risers;
     double *h = s.h;
     s.h = NULL;
