@@ -40,7 +40,8 @@ void canvas_close_file(canvas *c)
 int path_is_stream(const char *path)
 {
     struct stat st;
-    return !path || strcmp(path, "-") == 0 || (stat(path, &st) == 0 && !S_ISREG(st.st_mode) && !S_ISDIR(st.st_mode));
+    return !path || strcmp(path, "-") == 0 || out_descriptor(path) >= 0 ||
+           (stat(path, &st) == 0 && !S_ISREG(st.st_mode) && !S_ISDIR(st.st_mode));
 }
 
 canvas_format figure_format_of(const char *path, canvas_format deflt)

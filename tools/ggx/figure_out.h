@@ -11,7 +11,8 @@
 void canvas_open_file(canvas *c, const char *path, canvas_format fmt, int w, int h, int dark);
 void canvas_close_file(canvas *c);
 
-/* 1 for "-" (standard output) and for what is not a regular file (a device, a FIFO): written in any format. */
+/* 1 for "-" (standard output), a descriptor named as a file (/dev/stdout, /dev/fd/N: out_descriptor) and what is
+ * not a regular file (a device, a FIFO): written in any format. */
 int path_is_stream(const char *path);
 /* The format of a figure's --out: its name's (.png, .svg, .pdf), or deflt for a stream; dies with one line for a
  * file name that ends in none of them. */
