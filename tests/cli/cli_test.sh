@@ -92,6 +92,9 @@ for fig in ndf ndf-side vndf vndf-side grid grid-side g1 lambda ndf-slice furnac
         ok || bad "plot --figure $fig as PDF"
 done
 "$GGX" plot --figure furnace 2>/dev/null && xmllint --noout furnace.svg && ok || bad "plot line figure defaults to SVG"
+# extensions in any case, the same in every subcommand (render's below)
+"$GGX" plot --size 200 --out UP.PNG 2>/dev/null && [ "$("$PNG_INFO" UP.PNG)" = "200 172" ] && ok || bad "plot --out UP.PNG"
+"$GGX" plot --figure g1 --size 200 --out UP.Svg 2>/dev/null && xmllint --noout UP.Svg && ok || bad "plot --out UP.Svg"
 "$GGX" plot --figure polar --eta 1.5 --size 500 --out pb.png 2>/dev/null && [ "$("$PNG_INFO" pb.png)" = "500 350" ] && ok ||
     bad "plot --figure polar --eta: $("$PNG_INFO" pb.png)"
 "$GGX" plot --figure slice --phi-d 45 2>/dev/null && [ "$("$PNG_INFO" slice.png)" = "640 525" ] && ok || bad "plot --figure slice defaults to PNG: $("$PNG_INFO" slice.png)"
@@ -179,6 +182,7 @@ done > domain.txt
 [ -z "$(ls chi2_*.csv 2>/dev/null)" ] && ok || bad "ggx check left files in the working folder"
 
 # --- ggx render: sizes and formats, and its bad input
+"$GGX" render --size 64 --spp 1 --out RU.PNG 2> /dev/null && [ "$("$PNG_INFO" RU.PNG)" = "64 64" ] && ok || bad "render --out RU.PNG"
 "$GGX" render --size 96x64 --spp 2 --out r.png 2> r.err && [ "$("$PNG_INFO" r.png)" = "96 64" ] && [ ! -s r.err ] &&
     ok || bad "render png: $("$PNG_INFO" r.png) $(cat r.err)"
 "$GGX" render --size 256x64 --spp 1 --scene plane --light point:30,20 --out rc.png &&

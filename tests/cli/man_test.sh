@@ -28,7 +28,7 @@ printf '%s\n' "$text" | grep -q "141 the reader of stdout" || bad "exit status 1
 # OUTPUT states where --out writes in place instead of renaming a temporary over the file (the roff source, whose
 # lines are the help's: the rendered text is filled and hyphenated)
 for w in "renamed over it" "written in place" "/dev/stdout" "hard links" "extended attributes" \
-         "a folder the user may not write"; do
+         "a folder the user may not write" "in any case"; do
   sed 's/\\-/-/g' "$page" | grep -qF -- "$w" || bad "OUTPUT does not state '$w'"
 done
 printf '%s\n' "$text" | grep -q "libggx $("$ggx" --version | sed 's/^ggx //')" || bad "version missing"

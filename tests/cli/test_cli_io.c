@@ -1,6 +1,6 @@
 /* The command's output files and folders (cli.h): many processes creating the same folder at once all succeed (a
  * folder that another process made first is success, not "File exists"); the descriptors named as files (/dev/stdout, /dev/fd/N, links to them) and
- * nothing else; strings of any length. SPDX-License-Identifier: MIT */
+ * nothing else; extensions in any case; strings of any length. SPDX-License-Identifier: MIT */
 #define _POSIX_C_SOURCE 200809L
 #include <stdio.h>
 #include <stdlib.h>
@@ -75,6 +75,14 @@ int main(void)
     expect(out_descriptor(digits) == -1 && out_descriptor("1") == -1 && out_descriptor("-") == -1 &&
                out_descriptor("/dev/null") == -1 && out_descriptor("/dev/fd/") == -1,
            "names that are no descriptor");
+
+    /* one test of extensions, in any case */
+    expect(path_has_ext("a.png", ".png") && path_has_ext("A.PNG", ".png") && path_has_ext("dir/x.Svg", ".svg") &&
+               path_has_ext(".md", ".md"),
+           "extensions in any case");
+    expect(!path_has_ext("a.png.txt", ".png") && !path_has_ext("png", ".png") && !path_has_ext(NULL, ".png") &&
+               !path_has_ext("a.jpg", ".png"),
+           "other names");
 
     /* a string longer than any fixed buffer */
     char *longer = alloc_printf("%0*d/%s", 5000, 7, "level-0.exr");

@@ -150,6 +150,8 @@ void out_commit_set(void);
 /* The descriptor path names (/dev/stdout, /dev/fd/N, /proc/self/fd/N or a link to one of them), or -1: a file name
  * made of digits in this process's folder of descriptors, following symbolic links. */
 int out_descriptor(const char *path);
+/* 1 when path ends with ext (".png"), in any case: the one test of a file name's extension in the command. */
+int path_has_ext(const char *path, const char *ext);
 /* printf into a string of the length needed (malloc'd): paths have no fixed limit; dies when out of memory. */
 char *alloc_printf(const char *fmt, ...) __attribute__((format(printf, 1, 2)));
 void ensure_dir(const char *dir); /* mkdir -p of one level; dies if unwritable */

@@ -198,7 +198,7 @@ int cmd_demo(options *o, const ggx_shape *no_shape)
         for (int i = 0; i < NFIGS; i++) {
             snprintf(path, sizeof path, "%s/%s%s", dir, SHAPES[k].prefix, FIGS[i].file);
             figure_spec f = demo_spec(&FIGS[i], &sh[k], k, o->dark);
-            figure_write(&f, path, format_of_path(path, FMT_PNG), size, figure_height(f.kind, size));
+            figure_write(&f, path, format_of_name(path, FMT_PNG), size, figure_height(f.kind, size));
             printf("  %s\n", path);
             out_flush_stdout();
         }

@@ -44,12 +44,19 @@ int path_is_stream(const char *path)
            (stat(path, &st) == 0 && !S_ISREG(st.st_mode) && !S_ISDIR(st.st_mode));
 }
 
-canvas_format figure_format_of(const char *path, canvas_format deflt)
+canvas_format format_of_name(const char *path, canvas_format deflt)
 {
-    canvas_format fmt = format_of_path(path, deflt);
-    size_t pl = strlen(path);
-    if (!path_is_stream(path) && (pl < 4 || strcmp(path + pl - 4, format_ext(fmt)) != 0))
-        die("--out: '%s' does not name a format: end it in .png, .svg or .pdf (or give - for standard output)", path);
+    static const canvas_format FORMATS[] = {FMT_PNG, FMT_SVG, FMT_PDF};
+    for (int i = 0; i < 3; i++)
+        if (path_has_ext(path, format_ext(FORMATS[i]))) return FORMATS[i];
+    return deflt;
+}
+
+canvas_format figure_format_of(const char *opt, const char *path, canvas_format deflt)
+{
+    canvas_format fmt = format_of_name(path, deflt);
+    if (!path_is_stream(path) && !path_has_ext(path, format_ext(fmt)))
+        die("%s: '%s' does not name a format: end it in .png, .svg or .pdf (or give - for standard output)", opt, path);
     return fmt;
 }
 

@@ -7,6 +7,7 @@
 #include <stdarg.h>
 #include <stdlib.h>
 #include <string.h>
+#include <strings.h>
 #include <sys/stat.h>
 #if defined(__linux__)
 #include <sys/xattr.h>
@@ -27,6 +28,12 @@ char *alloc_printf(const char *fmt, ...)
     vsnprintf(s, (size_t)n + 1, fmt, ap);
     va_end(ap);
     return s;
+}
+
+int path_has_ext(const char *path, const char *ext)
+{
+    size_t n = path ? strlen(path) : 0, k = strlen(ext);
+    return n >= k && strcasecmp(path + n - k, ext) == 0;
 }
 
 /* ---- pending temporaries ----

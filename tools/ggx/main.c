@@ -89,7 +89,7 @@ static void usage(FILE *f)
           "as a redirect writes it, where a rename would lose what a redirect keeps: /dev/stdout, /dev/stderr,\n"
           "/dev/fd/N (the descriptor as opened: >> appends); a device, FIFO or socket; a file with hard links\n"
           "or extended attributes (ACLs); a file in a folder the user may not write, or whose owner the user\n"
-          "cannot give.\n"
+          "cannot give. File names' extensions (.png, .PNG) are read in any case.\n"
           "\n"
           "exit status: 0 success; 1 a check failed (ggx check); 2 bad input or a failed write, with one line\n"
           "\"ggx: ...\" on stderr; 141 the reader of stdout went away (also where SIGPIPE is ignored).\n",
