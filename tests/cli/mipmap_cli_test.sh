@@ -157,6 +157,23 @@ EOF_PY
     # a texel below the tangent plane is rejected and counted
     "$GGX" mipmap --normal-map edge.png --alpha 0.3 --out em > em.txt && grep -q "(1 rejected)" em.txt && ok ||
         bad "rejected texel: $(head -1 em.txt)"
+    # output folders of any length: 1016 and 2040 bytes, and 4080 (whose temporaries' names pass the system's limit
+    # on paths: the levels are created in place); past that limit the system's refusal, in one line
+    c=$(printf 'c%.0s' $(seq 1 200))
+    long_dir() { # a relative path of exactly $1 bytes, of components of at most 200 bytes
+        p=""
+        while [ $((${#p} + 201)) -lt "$1" ]; do p="$p$c/"; done
+        printf '%s%s' "$p" "$(printf 'e%.0s' $(seq 1 $(($1 - ${#p}))))"
+    }
+    for len in 1016 2040 4080; do
+        d=$(long_dir $len)
+        mkdir -p "${d%/*}" && "$GGX" mipmap --normal-map row.png --alpha 0.2 --out "$d" > /dev/null &&
+            [ "$(ls "$d" | tr '\n' ' ')" = "level-0.exr level-1.exr level-2.exr " ] &&
+            [ "$(find "$c" -type f | wc -l)" -eq 3 ] && ok || bad "mipmap into a $len-byte folder: $(find "$c" -type f | sed 's|.*/||')"
+        rm -rf "$c"
+    done
+    one_line "a folder past the system's limit on paths" "File name too long" 2 "$GGX" mipmap --normal-map row.png \
+        --alpha 0.2 --out "$(long_dir 4200)"
 elif grep -q "not built" cm.err; then
     echo "mipmap CLI: PNG or OpenEXR support is off, the maps are not tested"
 else

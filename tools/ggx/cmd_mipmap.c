@@ -64,15 +64,16 @@ static void write_level_png(const char *dir, int level, const double *lobes, con
         pl[0][i] = 0.5 * (1.0 - c[0] / l), pl[1][i] = 0.5 * (1.0 - c[1] / l), pl[2][i] = 0.5 * (1.0 + 1.0 / l);
         pl[3][i] = sx / 4.0, pl[4][i] = sy / 4.0, pl[5][i] = 0.5 * (1.0 + c[3] / (sx * sy)), pl[6][i] = w[i] / box;
     }
-    char path[1024], err[256];
+    char err[256];
     for (int part = 0; part < 2; part++) {
-        snprintf(path, sizeof path, "%s/level-%d-%s.png", dir, level, part ? "sigma" : "normal");
+        char *path = alloc_printf("%s/level-%d-%s.png", dir, level, part ? "sigma" : "normal");
         out_file out;
         out_open(&out, path);
         const double *const *planes = (const double *const *)(pl + (part ? 3 : 0));
         if (surface_write_png_channels(out.f, nx, ny, part ? 4 : 3, planes, err, sizeof err) != 0)
             die("cannot write '%s': %s", path, err);
         out_close(&out);
+        free(path);
     }
     for (int k = 0; k < 7; k++) free(pl[k]);
 }
@@ -182,13 +183,13 @@ int cmd_mipmap(options *o, const ggx_shape *no_shape)
            o->fast ? ", fast mode" : "", dir);
     printf("| level | size | mean t | mean det(Sigma)^(1/4) | seconds to the next |\n|---|---|---|---|---|\n");
     out_begin_set(); /* every level or none */
-    char path[1024];
     for (int level = 0;; level++) {
         if (png16) {
             write_level_png(dir, level, lobes, w, nx, ny);
         } else {
-            snprintf(path, sizeof path, "%s/level-%d.exr", dir, level);
+            char *path = alloc_printf("%s/level-%d.exr", dir, level);
             write_level(path, lobes, w, nx, ny);
+            free(path);
         }
         double t[2], alpha;
         summary(lobes, w, nx * ny, t, &alpha);

@@ -8,7 +8,7 @@
 /* A canvas's file: the command's output file and its name for messages. */
 typedef struct canvas_file {
     out_file out;
-    char path[1024];
+    char *path;
 } canvas_file;
 
 static int write_file(void *closure, const unsigned char *data, size_t n)
@@ -21,7 +21,7 @@ void canvas_open_file(canvas *c, const char *path, canvas_format fmt, int w, int
 {
     canvas_file *cf = calloc(1, sizeof *cf);
     if (!cf) die("out of memory");
-    snprintf(cf->path, sizeof cf->path, "%s", path ? path : "-");
+    cf->path = alloc_printf("%s", path ? path : "-");
     out_open(&cf->out, path);
     if (canvas_open(c, fmt, w, h, dark, write_file, cf) != 0) die("cannot draw '%s': %s", cf->path, c->error);
 }
@@ -34,6 +34,7 @@ void canvas_close_file(canvas *c)
         die("cannot write '%s': %s", cf->path, c->error);
     }
     out_close(&cf->out);
+    free(cf->path);
     free(cf);
 }
 
