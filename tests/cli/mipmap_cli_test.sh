@@ -174,6 +174,31 @@ EOF_PY
     done
     one_line "a folder past the system's limit on paths" "File name too long" 2 "$GGX" mipmap --normal-map row.png \
         --alpha 0.2 --out "$(long_dir 4200)"
+    # SIGTERM or SIGINT while the chain is written: the folder the command made goes with the temporaries; a folder
+    # that was there stays, with what the user had put in it (SIGINT through perl: a background job ignores it)
+    "$PY" - <<'EOF_PY' || bad "writing the large map"
+import math, struct, zlib
+w = h = 256
+raw = b"".join(b"\0" + bytes(v for i in range(w) for v in (int(127.5 + 40 * math.sin(0.7 * i)),
+                                                        int(127.5 + 40 * math.cos(1.3 * j)), 240)) for j in range(h))
+chunk = lambda k, b: struct.pack(">I", len(b)) + k + b + struct.pack(">I", zlib.crc32(k + b) & 0xFFFFFFFF)
+open("wide.png", "wb").write(b"\x89PNG\r\n\x1a\n" + chunk(b"IHDR", struct.pack(">IIBBBBB", w, h, 8, 2, 0, 0, 0)) +
+                             chunk(b"IDAT", zlib.compress(raw)) + chunk(b"IEND", b""))
+EOF_PY
+    for sig in TERM INT; do
+        for folder in made found; do
+            rm -rf sig
+            [ $folder = found ] && mkdir sig && echo mine > sig/mine.txt
+            perl -e '$SIG{INT} = "DEFAULT"; exec @ARGV' "$GGX_BIN" mipmap --normal-map wide.png --alpha 0.2 --out sig \
+                > /dev/null &
+            pid=$!
+            i=0; while [ $i -lt 250 ] && [ -z "$(ls sig 2>/dev/null | grep tmp)" ]; do sleep 0.02; i=$((i + 1)); done
+            kill -$sig $pid; wait $pid; rc=$?
+            if [ $folder = made ]; then left=$(ls -d sig 2>/dev/null); else left=$(ls sig | grep -vx mine.txt); fi
+            [ $rc -gt 128 ] && [ -z "$left" ] && { [ $folder = made ] || [ "$(cat sig/mine.txt)" = mine ]; } && ok ||
+                bad "SIG$sig during mipmap into a folder it $folder: status $rc, left $left $(ls sig 2>/dev/null)"
+        done
+    done
 elif grep -q "not built" cm.err; then
     echo "mipmap CLI: PNG or OpenEXR support is off, the maps are not tested"
 else

@@ -1,7 +1,9 @@
 /* The command's output files and folders (cli.h): many processes creating the same folder at once all succeed (a
- * folder that another process made first is success, not "File exists"); the descriptors named as files (/dev/stdout, /dev/fd/N, links to them) and
+ * folder that another process made first is success, not "File exists"); a folder ensure_dir made goes again on
+ * SIGTERM and SIGINT, one it found stays; the descriptors named as files (/dev/stdout, /dev/fd/N, links to them) and
  * nothing else; extensions in any case; strings of any length. SPDX-License-Identifier: MIT */
 #define _POSIX_C_SOURCE 200809L
+#include <signal.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -54,14 +56,35 @@ static int race(const char *base)
     return failed;
 }
 
+/* ensure_dir(dir) in a child that then ends by sig: 1 when dir exists afterwards. */
+static int survives_signal(const char *dir, int sig)
+{
+    pid_t pid = fork();
+    if (pid == 0) {
+        signal(sig, SIG_DFL);
+        ensure_dir(dir);
+        raise(sig);
+        _exit(0);
+    }
+    int st;
+    waitpid(pid, &st, 0);
+    expect(WIFSIGNALED(st) && WTERMSIG(st) == sig, "the child ends by the signal");
+    struct stat s;
+    return stat(dir, &s) == 0;
+}
+
 int main(void)
 {
     char base[] = "/tmp/ggx-dirrace-XXXXXX";
     if (!mkdtemp(base)) return perror("mkdtemp"), 1;
     expect(race(base) == 0, "ensure_dir raced by several processes");
 
-    char *kept = alloc_printf("%s/kept", base);
+    /* a folder made by the command goes on SIGTERM and SIGINT; one that was there stays, with what is in it */
+    char *made = alloc_printf("%s/made", base), *kept = alloc_printf("%s/kept", base);
+    expect(!survives_signal(made, SIGTERM), "a folder ensure_dir made stays after SIGTERM");
+    expect(!survives_signal(made, SIGINT), "a folder ensure_dir made stays after SIGINT");
     expect(mkdir(kept, 0777) == 0, "mkdir");
+    expect(survives_signal(kept, SIGTERM), "a folder that was there is removed on SIGTERM");
 
     /* descriptors named as files, directly or through links; digits elsewhere are names */
     expect(out_descriptor("/dev/stdout") == 1 && out_descriptor("/dev/stderr") == 2, "/dev/stdout, /dev/stderr");
@@ -89,7 +112,7 @@ int main(void)
     expect(strlen(longer) == 5012 && strcmp(longer + 5000, "/level-0.exr") == 0, "alloc_printf of 5012 bytes");
 
     unlink(link2), unlink(link), rmdir(kept), rmdir(base);
-    free(kept), free(pid_fd), free(link), free(link2), free(digits), free(longer);
+    free(made), free(kept), free(pid_fd), free(link), free(link2), free(digits), free(longer);
     printf("cli io: %s\n", failures ? "FAILED" : "all pass");
     return failures != 0;
 }

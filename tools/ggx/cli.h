@@ -154,7 +154,12 @@ int out_descriptor(const char *path);
 int path_has_ext(const char *path, const char *ext);
 /* printf into a string of the length needed (malloc'd): paths have no fixed limit; dies when out of memory. */
 char *alloc_printf(const char *fmt, ...) __attribute__((format(printf, 1, 2)));
-void ensure_dir(const char *dir); /* mkdir -p of one level; dies if unwritable */
+/* Makes the output folder dir (one level: a folder that exists, or that another process makes at the same time, is
+ * success); dies if it cannot be made or is not writable. A folder it makes is removed again, when empty, on every
+ * way out before out_keep_dirs (exit, and the signals that remove the temporaries), so that a failed or interrupted
+ * run leaves none; what others put in it stays. */
+void ensure_dir(const char *dir);
+void out_keep_dirs(void); /* the run is complete: the folders ensure_dir made stay */
 
 /* ---- progress on a terminal ----
  * A bar on stderr, redrawn in place: "  LABEL [#####.....]  42%". progress_end draws 100% and ends the line.

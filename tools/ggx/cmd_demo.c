@@ -217,6 +217,7 @@ int cmd_demo(options *o, const ggx_shape *no_shape)
     printf("  %s (%d pages)\n", path, NFIGS + 1);
     free(path);
     out_commit_set();
+    out_keep_dirs(); /* the figures are complete: a folder made for them stays */
     clock_gettime(CLOCK_MONOTONIC, &t1);
     printf("figures drawn in %.1f s\n", (double)(t1.tv_sec - t0.tv_sec) + 1e-9 * (double)(t1.tv_nsec - t0.tv_nsec));
     long n = o->n > 0 ? o->n : 1000000;

@@ -99,14 +99,6 @@ double *roughness_map_read(const options *o, size_t nx, size_t ny)
     return alpha;
 }
 
-/* The output folder when this command made it: removed (if still empty) on every exit before the chain is
- * complete, so that a failed run leaves nothing. */
-static const char *made_dir;
-static void remove_made_dir(void)
-{
-    if (made_dir) rmdir(made_dir);
-}
-
 void mipmap_help(void)
 {
     printf("usage: ggx mipmap --normal-map FILE (--alpha A[,AY] | --roughness-map FILE [--perceptual]) [--fast]\n"
@@ -131,7 +123,8 @@ void mipmap_help(void)
            "sigma.xy / sqrt(sigma.xx sigma.yy), weight / 4^K), 16 bits each (widths above 4 saturate). Prints per\n"
            "level its size, the mean slope location, the mean det(Sigma)^(1/4) (the alpha of an isotropic\n"
            "lobe as wide) and the time. --fast: one EM step over 2 x 4 nodes per lobe (ggx_filter.h's fast mode:\n"
-           "30 to 80 times faster, at most about 0.005 nats of KL given up on the tests' footprints).\n");
+           "30 to 80 times faster, at most about 0.005 nats of KL given up on the tests' footprints).\n"
+           "A folder DIR that the command makes is removed again if the run fails or is ended by a signal.\n");
 }
 
 int cmd_mipmap(options *o, const ggx_shape *no_shape)
@@ -169,9 +162,7 @@ int cmd_mipmap(options *o, const ggx_shape *no_shape)
     if (st != GGX_OK) die("--alpha: %s", ggx_status_str(st));
     surface_free(&s);
     const char *dir = o->out ? o->out : "mipmap";
-    int made = access(dir, F_OK) != 0;
-    ensure_dir(dir);
-    if (made) made_dir = dir, atexit(remove_made_dir);
+    ensure_dir(dir); /* a folder it makes goes again, when empty, on an error or a signal before the chain is whole */
     ggx_filter_options fo = {0};
     fo.threads = o->threads > 0 ? o->threads : 1;
     if (o->fast) ggx_filter_options_fast(&fo);
@@ -211,7 +202,7 @@ int cmd_mipmap(options *o, const ggx_shape *no_shape)
         lobes = next, w = wn, next = tl, wn = tw;
     }
     out_commit_set();
-    made_dir = NULL; /* complete: the folder stays */
+    out_keep_dirs(); /* complete: the folder stays */
     free(lobes), free(w), free(next), free(wn);
     return 0;
 }

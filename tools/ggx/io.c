@@ -1,5 +1,5 @@
-/* Output files, written atomically where a replacement keeps what a redirect keeps and in place elsewhere; output
- * folders; progress bars. SPDX-License-Identifier: MIT */
+/* Output files, written atomically where a replacement keeps what a redirect keeps and in place elsewhere; the
+ * folders the command makes; progress bars. SPDX-License-Identifier: MIT */
 #include <errno.h>
 #include <fcntl.h>
 #include <limits.h>
@@ -36,23 +36,29 @@ int path_has_ext(const char *path, const char *ext)
     return n >= k && strcasecmp(path + n - k, ext) == 0;
 }
 
-/* ---- pending temporaries ----
- * The temporary files being written (and new files created in place), and those of a set (out_begin_set) finished
- * but not yet renamed. They are removed on every way out that does not complete them: exit (atexit: die() exits),
- * and the signals that end a command (SIGINT, SIGTERM, SIGHUP, SIGPIPE: the handler unlinks them, then ends the
- * process by the same signal). The handler reads only this array; an entry is published after its string is complete
- * and cleared before it is freed. */
+/* ---- pending temporaries and folders made ----
+ * The temporary files being written (and new files created in place), those of a set (out_begin_set) finished but
+ * not yet renamed, and the folders ensure_dir made. They are removed on every way out that does not complete them:
+ * exit (atexit: die() exits), and the signals that end a command (SIGINT, SIGTERM, SIGHUP, SIGPIPE: the handler
+ * unlinks the files and removes the folders if empty, then ends the process by the same signal). The handler reads
+ * only these arrays; an entry is published after its string is complete and cleared before it is freed. */
 enum { MAX_PENDING = 64 };
 static char *volatile pending[MAX_PENDING];
 static char *set_path[MAX_PENDING];     /* the final names of a set's finished temporaries, by pending slot */
 static char pending_final[MAX_PENDING]; /* 1: the entry is the final file, created in place (nothing to rename) */
 static int set_open;
+enum { MAX_MADE = 4 };
+static char *volatile made[MAX_MADE];
 
 static void unlink_pending(void)
 {
     for (int i = 0; i < MAX_PENDING; i++) {
         char *t = pending[i];
         if (t) unlink(t);
+    }
+    for (int i = MAX_MADE - 1; i >= 0; i--) {
+        char *d = made[i];
+        if (d) rmdir(d); /* only when empty: what another process put there stays */
     }
 }
 
@@ -109,14 +115,37 @@ static char *dup_or_die(const char *s)
 
 void ensure_dir(const char *dir)
 {
+    install_cleanup();
+    char *name = dup_or_die(dir);
+    sigset_t all, old;
+    sigfillset(&all);
+    sigprocmask(SIG_BLOCK, &all, &old); /* no signal between making the folder and recording it */
+    int r = mkdir(dir, 0777), e = errno, slot = -1;
+    if (r == 0)
+        for (int i = 0; i < MAX_MADE && slot < 0; i++)
+            if (!made[i]) made[slot = i] = name;
+    sigprocmask(SIG_SETMASK, &old, NULL);
+    if (slot < 0) free(name);
+    if (r == 0 && slot < 0) {
+        rmdir(dir);
+        die("too many output folders at once");
+    }
     /* mkdir first: a folder that another process makes between a check and mkdir (EEXIST) is success */
     struct stat st;
-    if (mkdir(dir, 0777) != 0) {
-        int e = errno;
+    if (r != 0) {
         if (stat(dir, &st) != 0) die("cannot create output folder '%s': %s", dir, strerror(e));
         if (!S_ISDIR(st.st_mode)) die("output folder '%s' is not a folder", dir);
     }
     if (access(dir, W_OK) != 0) die("output folder '%s' is not writable", dir);
+}
+
+void out_keep_dirs(void)
+{
+    for (int i = 0; i < MAX_MADE; i++) {
+        char *d = made[i];
+        made[i] = NULL;
+        free(d);
+    }
 }
 
 void out_stdout_failed(void)
