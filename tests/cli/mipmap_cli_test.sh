@@ -157,6 +157,21 @@ EOF_PY
     # a texel below the tangent plane is rejected and counted
     "$GGX" mipmap --normal-map edge.png --alpha 0.3 --out em > em.txt && grep -q "(1 rejected)" em.txt && ok ||
         bad "rejected texel: $(head -1 em.txt)"
+    # a chain into the folder of an earlier, longer one: the deeper levels of the earlier one go, of the format
+    # written only; other names (the user's files, names the command does not write) stay
+    "$GGX" mipmap --normal-map const.png --alpha 0.2 --out stale > /dev/null &&
+        "$GGX" mipmap --normal-map const.png --alpha 0.2 --format png16 --out stale > /dev/null &&
+        touch stale/level-03.exr stale/level-9.txt stale/notes.exr stale/level-5-sigma.png.bak &&
+        "$GGX" mipmap --normal-map row.png --alpha 0.2 --out stale > /dev/null 2> stale.err &&
+        [ "$(cd stale && ls level-[0-9]*.exr | tr '\n' ' ')" = "level-0.exr level-03.exr level-1.exr level-2.exr " ] &&
+        [ -e stale/level-9.txt ] && [ -e stale/notes.exr ] && [ -e stale/level-4-sigma.png ] &&
+        grep -q "removed 2 files of levels 3 and beyond" stale.err && ok ||
+        bad "stale exr levels: $(ls stale | tr '\n' ' ') $(cat stale.err)"
+    "$GGX" mipmap --normal-map row.png --alpha 0.2 --format png16 --out stale > /dev/null 2> stale.err &&
+        [ "$(cd stale && ls level-*.png | tr '\n' ' ')" = "level-0-normal.png level-0-sigma.png level-1-normal.png \
+level-1-sigma.png level-2-normal.png level-2-sigma.png " ] && [ -e stale/level-5-sigma.png.bak ] &&
+        [ "$(ls stale/level-*.exr | wc -l)" -eq 4 ] && grep -q "removed 4 files" stale.err && ok ||
+        bad "stale png16 levels: $(ls stale | tr '\n' ' ') $(cat stale.err)"
     # output folders of any length: 1016 and 2040 bytes, and 4080 (whose temporaries' names pass the system's limit
     # on paths: the levels are created in place); past that limit the system's refusal, in one line
     c=$(printf 'c%.0s' $(seq 1 200))

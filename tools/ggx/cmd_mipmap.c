@@ -1,9 +1,12 @@
 /* ggx mipmap: a tangent-space normal map filtered into a chain of per-texel ellipsoids (ggx_filter.h), one OpenEXR
  * file per level holding each texel's slope location t, scale Sigma and weight. SPDX-License-Identifier: MIT */
+#include <dirent.h>
+#include <errno.h>
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <sys/stat.h>
 #include <time.h>
 #include <unistd.h>
 
@@ -99,6 +102,45 @@ double *roughness_map_read(const options *o, size_t nx, size_t ny)
     return alpha;
 }
 
+/* The file names of the chain's levels in format png16 or exr: "level-K" then each suffix. */
+static const char *const PNG16_SUFFIXES[] = {"-normal.png", "-sigma.png", NULL};
+static const char *const EXR_SUFFIXES[] = {".exr", NULL};
+
+/* The level K of a name of the chain's pattern ("level-K" in decimal without leading zeros, then one of the
+ * suffixes, exactly as the command writes them), else -1. */
+static long level_of_name(const char *name, const char *const *suffixes)
+{
+    if (strncmp(name, "level-", 6) != 0) return -1;
+    const char *d = name + 6;
+    size_t digits = strspn(d, "0123456789");
+    if (digits == 0 || digits > 9 || (d[0] == '0' && digits > 1)) return -1;
+    for (int i = 0; suffixes[i]; i++)
+        if (strcmp(d + digits, suffixes[i]) == 0) return strtol(d, NULL, 10);
+    return -1;
+}
+
+/* Removes from dir the files of the chain's own names (suffixes) at levels from levels on: what an earlier, longer
+ * chain left, which would otherwise read as part of this one. Files of other names, and of the other format, stay.
+ * Returns how many it removed; dies when one cannot be removed. */
+static int remove_stale_levels(const char *dir, int levels, const char *const *suffixes)
+{
+    DIR *d = opendir(dir);
+    if (!d) die("cannot read output folder '%s': %s", dir, strerror(errno));
+    int removed = 0;
+    for (struct dirent *e; (e = readdir(d));) {
+        if (level_of_name(e->d_name, suffixes) < levels) continue;
+        char *path = alloc_printf("%s/%s", dir, e->d_name);
+        struct stat st;
+        if (lstat(path, &st) == 0 && (S_ISREG(st.st_mode) || S_ISLNK(st.st_mode))) {
+            if (unlink(path) != 0) die("cannot remove '%s' of an earlier chain: %s", path, strerror(errno));
+            removed++;
+        }
+        free(path);
+    }
+    closedir(d);
+    return removed;
+}
+
 void mipmap_help(void)
 {
     printf("usage: ggx mipmap --normal-map FILE (--alpha A[,AY] | --roughness-map FILE [--perceptual]) [--fast]\n"
@@ -124,7 +166,9 @@ void mipmap_help(void)
            "level its size, the mean slope location, the mean det(Sigma)^(1/4) (the alpha of an isotropic\n"
            "lobe as wide) and the time. --fast: one EM step over 2 x 4 nodes per lobe (ggx_filter.h's fast mode:\n"
            "30 to 80 times faster, at most about 0.005 nats of KL given up on the tests' footprints).\n"
-           "A folder DIR that the command makes is removed again if the run fails or is ended by a signal.\n");
+           "A folder DIR that the command makes is removed again if the run fails or is ended by a signal. In the\n"
+           "folder of an earlier, longer chain, that chain's deeper levels in the format written (the command's\n"
+           "own names only) are removed once the new chain is complete.\n");
 }
 
 int cmd_mipmap(options *o, const ggx_shape *no_shape)
@@ -174,7 +218,9 @@ int cmd_mipmap(options *o, const ggx_shape *no_shape)
            o->fast ? ", fast mode" : "", dir);
     printf("| level | size | mean t | mean det(Sigma)^(1/4) | seconds to the next |\n|---|---|---|---|---|\n");
     out_begin_set(); /* every level or none */
+    int levels = 0;
     for (int level = 0;; level++) {
+        levels++;
         if (png16) {
             write_level_png(dir, level, lobes, w, nx, ny);
         } else {
@@ -203,6 +249,11 @@ int cmd_mipmap(options *o, const ggx_shape *no_shape)
     }
     out_commit_set();
     out_keep_dirs(); /* complete: the folder stays */
+    int stale = remove_stale_levels(dir, levels, png16 ? PNG16_SUFFIXES : EXR_SUFFIXES);
+    if (stale)
+        fprintf(stderr,
+                "ggx: note: removed %d file%s of levels %d and beyond, left in %s/ by an earlier, longer chain\n",
+                stale, stale == 1 ? "" : "s", levels, dir);
     free(lobes), free(w), free(next), free(wn);
     return 0;
 }
