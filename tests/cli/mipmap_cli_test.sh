@@ -25,12 +25,14 @@ write("checker.csv", 8, 8, lambda i, j: (0.3 if (i + j) % 2 else -0.3, 0.0))
 write("flat_edge.csv", 4, 4, lambda i, j: (0.6, 0.0, -0.8) if i == 0 and j == 0 else (0.0, 0.0))
 write("one.csv", 1, 1, lambda i, j: (0.3, -0.2))
 write("row.csv", 1, 3, lambda i, j: (0.3 * j, 0.0))
+write("below.csv", 2, 2, lambda i, j: (0.6, 0.0, -0.8))
 EOF_PY
 if ! "$PY" "$ROOT/tests/support/fit_png_map.py" const.csv 10 6 const.png c1.csv ||
    ! "$PY" "$ROOT/tests/support/fit_png_map.py" checker.csv 8 8 checker.png c2.csv ||
    ! "$PY" "$ROOT/tests/support/fit_png_map.py" flat_edge.csv 4 4 edge.png c3.csv ||
    ! "$PY" "$ROOT/tests/support/fit_png_map.py" one.csv 1 1 one.png c4.csv ||
-   ! "$PY" "$ROOT/tests/support/fit_png_map.py" row.csv 1 3 row.png c5.csv; then
+   ! "$PY" "$ROOT/tests/support/fit_png_map.py" row.csv 1 3 row.png c5.csv ||
+   ! "$PY" "$ROOT/tests/support/fit_png_map.py" below.csv 2 2 below.png c6.csv; then
     bad "writing the test maps"
 fi
 if "$GGX" mipmap --normal-map const.png --alpha 0.2 --out cm > cm.txt 2> cm.err; then
@@ -154,9 +156,12 @@ EOF_PY
     "$GGX" mipmap --normal-map row.png --alpha 0.2 --out row > row.txt &&
         [ "$(grep '^| [0-9]' row.txt | cut -d'|' -f3 | tr -d ' ' | tr '\n' ' ')" = "1x3 1x2 1x1 " ] && ok ||
         bad "1 x 3 map: $(cat row.txt)"
-    # a texel below the tangent plane is rejected and counted
+    # a texel below the tangent plane is rejected and counted; a map of rejected texels only is no chain: one line,
+    # exit 2, no folder
     "$GGX" mipmap --normal-map edge.png --alpha 0.3 --out em > em.txt && grep -q "(1 rejected)" em.txt && ok ||
         bad "rejected texel: $(head -1 em.txt)"
+    one_line "every texel rejected" "below.png: every texel is rejected" 2 "$GGX" mipmap --normal-map below.png \
+        --alpha 0.3 --out none
     # a chain into the folder of an earlier, longer one: the deeper levels of the earlier one go, of the format
     # written only; other names (the user's files, names the command does not write) stay
     "$GGX" mipmap --normal-map const.png --alpha 0.2 --out stale > /dev/null &&

@@ -155,7 +155,8 @@ void mipmap_help(void)
            "divergence) to the mixture of its 2 x 2 texels above, by ggx_filter_downsample (odd sizes: the last\n"
            "column or row filters 2 x 1, 1 x 2 or 1 x 1 boxes). A texel whose normal is NaN, zero or not above\n"
            "the tangent plane is rejected: weight 0, counted nowhere (an RGB PNG whose blue is 0 everywhere is\n"
-           "read as two channels, z rebuilt). --y-down: the green channel points down\n"
+           "read as two channels, z rebuilt); a map of rejected texels only is an error. --y-down: the green\n"
+           "channel points down\n"
            "(DirectX maps). Writes DIR/level-K.exr (default DIR: mipmap) for K = 0 to the 1 x 1 level, each\n"
            "with the float channels t.x, t.y (the slope location: the mean normal is (-t.x, -t.y, 1)\n"
            "normalised), sigma.xx, sigma.xy, sigma.yy (the slope scale, as ggx_shape_from_slopes takes them)\n"
@@ -204,6 +205,9 @@ int cmd_mipmap(options *o, const ggx_shape *no_shape)
         st = ggx_texel_lobes(lobes, w, s.m, count, o->alpha[0], o->alpha[1], 0.0, &rejected);
     }
     if (st != GGX_OK) die("--alpha: %s", ggx_status_str(st));
+    if (rejected == count)
+        die("%s: every texel is rejected (its normal NaN, zero or not above the tangent plane%s): no chain to filter",
+            o->normal_map, o->roughness_map ? ", or its roughness negative or NaN" : "");
     surface_free(&s);
     const char *dir = o->out ? o->out : "mipmap";
     ensure_dir(dir); /* a folder it makes goes again, when empty, on an error or a signal before the chain is whole */
