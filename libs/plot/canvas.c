@@ -31,15 +31,6 @@ const theme *theme_get(int dark) { return dark ? &DARK : &LIGHT; }
 
 void set_rgb(cairo_t *cr, const double c[3]) { cairo_set_source_rgb(cr, c[0], c[1], c[2]); }
 
-canvas_format format_of_path(const char *path, canvas_format fallback)
-{
-    size_t n = path ? strlen(path) : 0;
-    if (n >= 4 && strcmp(path + n - 4, ".png") == 0) return FMT_PNG;
-    if (n >= 4 && strcmp(path + n - 4, ".svg") == 0) return FMT_SVG;
-    if (n >= 4 && strcmp(path + n - 4, ".pdf") == 0) return FMT_PDF;
-    return fallback;
-}
-
 const char *format_ext(canvas_format f) { return f == FMT_PNG ? ".png" : f == FMT_SVG ? ".svg" : ".pdf"; }
 
 /* cairo's writer: into the caller's, remembering a refusal (canvas_close reports it). */

@@ -20,8 +20,7 @@ typedef struct theme {
 const theme *theme_get(int dark);
 void set_rgb(cairo_t *cr, const double c[3]);
 
-/* The format a file name asks for (.png, .svg, .pdf), else fallback; format_ext is its extension with the dot. */
-canvas_format format_of_path(const char *path, canvas_format fallback);
+/* The extension of a format, with the dot (".png", ".svg", ".pdf"). */
 const char *format_ext(canvas_format f);
 
 /* Where a canvas's encoded bytes go, in order: returns 0 when all n bytes were taken, else nonzero. */

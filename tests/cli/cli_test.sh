@@ -92,6 +92,9 @@ for fig in ndf ndf-side vndf vndf-side grid grid-side g1 lambda ndf-slice furnac
         ok || bad "plot --figure $fig as PDF"
 done
 "$GGX" plot --figure furnace 2>/dev/null && xmllint --noout furnace.svg && ok || bad "plot line figure defaults to SVG"
+# extensions in any case, the same in every subcommand (render's below)
+"$GGX" plot --size 200 --out UP.PNG 2>/dev/null && [ "$("$PNG_INFO" UP.PNG)" = "200 172" ] && ok || bad "plot --out UP.PNG"
+"$GGX" plot --figure g1 --size 200 --out UP.Svg 2>/dev/null && xmllint --noout UP.Svg && ok || bad "plot --out UP.Svg"
 "$GGX" plot --figure polar --eta 1.5 --size 500 --out pb.png 2>/dev/null && [ "$("$PNG_INFO" pb.png)" = "500 350" ] && ok ||
     bad "plot --figure polar --eta: $("$PNG_INFO" pb.png)"
 "$GGX" plot --figure slice --phi-d 45 2>/dev/null && [ "$("$PNG_INFO" slice.png)" = "640 525" ] && ok || bad "plot --figure slice defaults to PNG: $("$PNG_INFO" slice.png)"
@@ -179,6 +182,7 @@ done > domain.txt
 [ -z "$(ls chi2_*.csv 2>/dev/null)" ] && ok || bad "ggx check left files in the working folder"
 
 # --- ggx render: sizes and formats, and its bad input
+"$GGX" render --size 64 --spp 1 --out RU.PNG 2> /dev/null && [ "$("$PNG_INFO" RU.PNG)" = "64 64" ] && ok || bad "render --out RU.PNG"
 "$GGX" render --size 96x64 --spp 2 --out r.png 2> r.err && [ "$("$PNG_INFO" r.png)" = "96 64" ] && [ ! -s r.err ] &&
     ok || bad "render png: $("$PNG_INFO" r.png) $(cat r.err)"
 "$GGX" render --size 256x64 --spp 1 --scene plane --light point:30,20 --out rc.png &&
@@ -309,6 +313,52 @@ echo old > target.csv && ln -s target.csv link.csv && "$GGX" sample -n 3 --out l
     [ "$(wc -l < target.csv)" -eq 4 ] && ok || bad "--out symlink"
 ln -s made.csv dangling.csv && "$GGX" sample -n 3 --out dangling.csv && [ -L dangling.csv ] && [ "$(wc -l < made.csv)" -eq 4 ] && ok || bad "--out dangling symlink"
 echo old > private.csv && chmod 600 private.csv && "$GGX" sample -n 2 --out private.csv && [ "$(stat -c %a private.csv)" = 600 ] && ok || bad "--out keeps permissions: $(stat -c %a private.csv)"
+# --out as a redirect wherever a replacement would lose what a redirect keeps (cli.h states the rules): a plain file
+# is replaced (a new inode); the others are written in place (the same inode)
+ino() { stat -c %i "$1"; }
+echo old > plain.csv && i=$(ino plain.csv) && "$GGX" sample -n 2 --out plain.csv && [ "$(ino plain.csv)" != "$i" ] &&
+    [ "$(wc -l < plain.csv)" -eq 3 ] && ok || bad "a plain file is not replaced whole"
+# a descriptor named as a file is written as it is open: an appending redirect keeps the log's lines
+echo first > log.csv && "$GGX" sample -n 2 --out /dev/stdout >> log.csv && [ "$(head -1 log.csv)" = first ] &&
+    [ "$(wc -l < log.csv)" -eq 4 ] && ok || bad "--out /dev/stdout >> log: $(head -2 log.csv)"
+echo first > log3.csv && "$GGX" sample -n 2 --out /dev/fd/3 3>> log3.csv && [ "$(head -1 log3.csv)" = first ] &&
+    [ "$(wc -l < log3.csv)" -eq 4 ] && ok || bad "--out /dev/fd/3 3>> log: $(head -2 log3.csv)"
+ln -s /dev/stdout out-link && echo first > log4.csv && "$GGX" sample -n 2 --out out-link >> log4.csv &&
+    [ "$(head -1 log4.csv)" = first ] && [ -L out-link ] && ok || bad "--out a link to /dev/stdout >> log"
+"$GGX" plot --out /dev/stdout > dev.png 2>/dev/null && [ "$("$PNG_INFO" dev.png)" = "640 550" ] && ok || bad "plot --out /dev/stdout"
+one_line "--out a descriptor not open" "cannot write '/dev/fd/57'" 2 "$GGX" sample -n 2 --out /dev/fd/57
+# hard links: every name sees the new content
+echo old > h1.csv && ln h1.csv h2.csv && i=$(ino h1.csv) && "$GGX" sample -n 2 --out h1.csv && [ "$(wc -l < h2.csv)" -eq 3 ] &&
+    cmp -s h1.csv h2.csv && [ "$(ino h1.csv)" = "$i" ] && ok || bad "--out onto a hard-linked file split it: $(cat h2.csv)"
+# extended attributes, an ACL among them, are kept (where the file system has them)
+echo old > attr.csv && echo old > acl.csv
+if /usr/bin/python3 -c 'import os; os.setxattr("attr.csv", "user.origin", b"kept")' 2>/dev/null; then
+    "$GGX" sample -n 2 --out attr.csv && [ "$(wc -l < attr.csv)" -eq 3 ] &&
+        /usr/bin/python3 -c 'import os, sys; sys.exit(os.getxattr("attr.csv", "user.origin") != b"kept")' && ok ||
+        bad "--out dropped an extended attribute"
+else
+    echo "cli: no user extended attributes here: not tested"
+fi
+ACL='import os, struct, sys
+acl = struct.pack("<I", 2) + b"".join(struct.pack("<HHI", *e) for e in
+      [(1, 6, 2**32 - 1), (2, 4, 65534), (4, 4, 2**32 - 1), (16, 4, 2**32 - 1), (32, 4, 2**32 - 1)])
+if sys.argv[1] == "set": os.setxattr("acl.csv", "system.posix_acl_access", acl)
+else: sys.exit(os.getxattr("acl.csv", "system.posix_acl_access") != acl)'
+if /usr/bin/python3 -c "$ACL" set 2>/dev/null; then
+    "$GGX" sample -n 2 --out acl.csv && [ "$(wc -l < acl.csv)" -eq 3 ] && /usr/bin/python3 -c "$ACL" check && ok ||
+        bad "--out dropped an ACL"
+else
+    echo "cli: no ACLs here: not tested"
+fi
+# names up to the longest the file system takes: the temporary's name is cut to fit (new, then replaced); a longer
+# one is the system's refusal, in one line
+n254=$(printf 'n%.0s' $(seq 1 250)).csv
+for n in "$n254" "${n254%.csv}m.csv"; do
+    "$GGX" sample -n 2 --out "$n" && "$GGX" sample -n 3 --out "$n" && [ "$(wc -l < "$n")" -eq 4 ] && ok ||
+        bad "--out with a ${#n}-byte name"
+done
+one_line "--out with a 256-byte name" "File name too long" 2 "$GGX" sample -n 2 --out "${n254%.csv}mm.csv"
+[ -z "$(find . -name '*.tmp*')" ] && ok || bad "temporaries of long names left: $(find . -name '*.tmp*')"
 # --out as a redirect: a file the user may not write is an error (exit 2, untouched); a replaced file keeps its
 # owner where the user could give it, else it is written in place. As an unprivileged user where the test runs as
 # root (CI), else as the user running it (the read-only case only).
@@ -316,6 +366,14 @@ echo keep > ro.csv && chmod 444 ro.csv
 if [ "$(id -u)" = 0 ] && command -v setpriv >/dev/null 2>&1 && id nobody >/dev/null 2>&1; then
     AS="setpriv --reuid=nobody --regid=$(id -g nobody) --clear-groups"
     mkdir perm && chmod 755 . && chown nobody perm && chown nobody ro.csv && mv ro.csv perm/
+    # a file the user may write in a folder they may not (no temporary there): written in place; a new file there is
+    # refused, as a redirect refuses it
+    mkdir rodir && echo root > rodir/open.csv && chmod 666 rodir/open.csv
+    $AS "$GGX_BIN" sample -n 2 --out rodir/open.csv && [ "$(wc -l < rodir/open.csv)" -eq 3 ] &&
+        [ "$(stat -c %U rodir/open.csv)" = root ] && ok || bad "--out onto a writable file in a read-only folder"
+    one_line "--out a new file in a read-only folder" "cannot write 'rodir/new.csv': Permission denied" 2 \
+        $AS "$GGX_BIN" sample -n 2 --out rodir/new.csv
+    rm -rf rodir
     echo root > perm/rootfile && chmod 644 perm/rootfile
     echo shared > perm/shared && chmod 666 perm/shared
     echo theirs > perm/theirs && chown nobody perm/theirs && chmod 600 perm/theirs
@@ -331,6 +389,11 @@ if [ "$(id -u)" = 0 ] && command -v setpriv >/dev/null 2>&1 && id nobody >/dev/n
 elif [ "$(id -u)" != 0 ]; then
     one_line "--out onto a read-only file" "Permission denied" 2 "$GGX" sample -n 2 --out ro.csv
     [ "$(cat ro.csv)" = keep ] && ok || bad "a read-only file was replaced"
+    mkdir rodir && echo old > rodir/open.csv && chmod 555 rodir
+    "$GGX" sample -n 2 --out rodir/open.csv && [ "$(wc -l < rodir/open.csv)" -eq 3 ] && ok ||
+        bad "--out onto a writable file in a read-only folder"
+    one_line "--out a new file in a read-only folder" "Permission denied" 2 "$GGX" sample -n 2 --out rodir/new.csv
+    chmod 755 rodir && rm -rf rodir
 fi
 rm -f ro.csv
 (umask 027 && "$GGX" sample -n 2 --out fresh.csv) && [ "$(stat -c %a fresh.csv)" = 640 ] && ok || bad "new file mode follows umask: $(stat -c %a fresh.csv)"

@@ -37,6 +37,17 @@ head -1 fit.csv | grep -q "^quantity,value,std_error$" && grep -q "^sigma_xy,0,0
 "$GGX" fit --normals n.csv --figure fig.svg > /dev/null && grep -q "<svg" fig.svg && ok || bad "--figure SVG"
 rm -f fig2.png
 "$GGX" fit --normals short.csv --figure fig2.png > /dev/null 2>&1; [ ! -e fig2.png ] && ok || bad "figure left by a failure"
+# the figure's name says its format, in any case, as plot's --out: another extension is refused before any work, no
+# report and no figure written
+"$GGX" fit --normals n.csv --figure FIG.PNG > /dev/null && [ "$(head -c 4 FIG.PNG | od -An -c | tr -d ' ')" = "211PNG" ] &&
+    ok || bad "--figure FIG.PNG"
+for x in jpg gif tiff; do
+    rm -f err.txt rep3.md
+    "$GGX" fit --normals n.csv --out rep3.md --figure "fig.$x" > /dev/null 2> err.txt
+    rc=$?
+    [ $rc -eq 2 ] && [ "$(wc -l < err.txt)" -eq 1 ] && grep -q "^ggx: --figure: 'fig.$x' does not name a format" err.txt &&
+        [ ! -e "fig.$x" ] && [ ! -e rep3.md ] && ok || bad "--figure fig.$x: rc $rc, $(cat err.txt), $(ls fig.$x rep3.md 2>&1)"
+done
 
 # --- a height field as a Gwyddion text export: separable Gaussian random walks (Gaussian slopes: Beckmann)
 awk 'BEGIN { srand(3); n = 120; pi = 3.141592653589793

@@ -21,10 +21,16 @@ printf '%s\n' "$text" | grep -qF -- "$usage" || bad "'render --normal-map --help
 for s in $("$ggx" sample --help | awk '/^samplers:$/ {on = 1; next} on && /^$/ {exit} on {print $1}'); do
   printf '%s\n' "$text" | grep -q "^ *$s  " || bad "sampler '$s' missing"
 done
-for h in NAME SYNOPSIS DESCRIPTION "EXIT STATUS" COMMANDS; do
+for h in NAME SYNOPSIS DESCRIPTION OUTPUT "EXIT STATUS" COMMANDS; do
   printf '%s\n' "$text" | grep -q "^$h\$" || bad "no $h section"
 done
 printf '%s\n' "$text" | grep -q "141 the reader of stdout" || bad "exit status 141 not described"
+# OUTPUT states where --out writes in place instead of renaming a temporary over the file (the roff source, whose
+# lines are the help's: the rendered text is filled and hyphenated)
+for w in "renamed over it" "written in place" "/dev/stdout" "hard links" "extended attributes" \
+         "a folder the user may not write" "in any case"; do
+  sed 's/\\-/-/g' "$page" | grep -qF -- "$w" || bad "OUTPUT does not state '$w'"
+done
 printf '%s\n' "$text" | grep -q "libggx $("$ggx" --version | sed 's/^ggx //')" || bad "version missing"
 [ $fail = 0 ] && echo "man page: $(printf '%s\n' "$text" | wc -l) lines, every command and sampler, no groff warning"
 exit $fail

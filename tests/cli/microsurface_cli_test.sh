@@ -16,6 +16,11 @@ if "$GGX" microsurface generate --kind beckmann --alpha 0.3 --corr 8 --size 256 
     "$GGX" microsurface generate --kind beckmann --alpha 0.2,0.4 --rotate 30 --corr 8 --size 256 --out b.exr > /dev/null &&
         "$GGX" fit --heightfield b.exr --spacing 1 --z-scale 1 > fe.txt && grep -q "Beckmann.*\*\*best\*\*" fe.txt &&
         ok || bad "fit of the OpenEXR field: $(grep -i beckmann fe.txt)"
+    # the name's extension in any case, as every subcommand reads it
+    "$GGX" microsurface generate --kind beckmann --alpha 0.3 --corr 4 --size 64 --out UP.EXR > /dev/null &&
+        [ "$(head -c 4 UP.EXR | od -An -tx1 | tr -d ' ')" = 762f3101 ] &&
+        "$GGX" microsurface generate --kind beckmann --alpha 0.3 --corr 4 --size 64 --out UP.X3P > /dev/null &&
+        [ "$(head -c 2 UP.X3P)" = PK ] && ok || bad "generate --out UP.EXR, UP.X3P"
     # measure a Gaussian field at 80 degrees: Smith's G1 for Beckmann slopes of the facets' covariance is the facets'
     # G1 to 1e-2 (the ensemble is exactly Gaussian)
     if "$GGX" microsurface measure --heightfield b.x3p --view 80,30 -n 40000 --threads 2 --format json > bm.json 2> err.txt; then

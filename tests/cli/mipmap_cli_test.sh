@@ -25,12 +25,14 @@ write("checker.csv", 8, 8, lambda i, j: (0.3 if (i + j) % 2 else -0.3, 0.0))
 write("flat_edge.csv", 4, 4, lambda i, j: (0.6, 0.0, -0.8) if i == 0 and j == 0 else (0.0, 0.0))
 write("one.csv", 1, 1, lambda i, j: (0.3, -0.2))
 write("row.csv", 1, 3, lambda i, j: (0.3 * j, 0.0))
+write("below.csv", 2, 2, lambda i, j: (0.6, 0.0, -0.8))
 EOF_PY
 if ! "$PY" "$ROOT/tests/support/fit_png_map.py" const.csv 10 6 const.png c1.csv ||
    ! "$PY" "$ROOT/tests/support/fit_png_map.py" checker.csv 8 8 checker.png c2.csv ||
    ! "$PY" "$ROOT/tests/support/fit_png_map.py" flat_edge.csv 4 4 edge.png c3.csv ||
    ! "$PY" "$ROOT/tests/support/fit_png_map.py" one.csv 1 1 one.png c4.csv ||
-   ! "$PY" "$ROOT/tests/support/fit_png_map.py" row.csv 1 3 row.png c5.csv; then
+   ! "$PY" "$ROOT/tests/support/fit_png_map.py" row.csv 1 3 row.png c5.csv ||
+   ! "$PY" "$ROOT/tests/support/fit_png_map.py" below.csv 2 2 below.png c6.csv; then
     bad "writing the test maps"
 fi
 if "$GGX" mipmap --normal-map const.png --alpha 0.2 --out cm > cm.txt 2> cm.err; then
@@ -154,9 +156,69 @@ EOF_PY
     "$GGX" mipmap --normal-map row.png --alpha 0.2 --out row > row.txt &&
         [ "$(grep '^| [0-9]' row.txt | cut -d'|' -f3 | tr -d ' ' | tr '\n' ' ')" = "1x3 1x2 1x1 " ] && ok ||
         bad "1 x 3 map: $(cat row.txt)"
-    # a texel below the tangent plane is rejected and counted
+    # a texel below the tangent plane is rejected and counted; a map of rejected texels only is no chain: one line,
+    # exit 2, no folder
     "$GGX" mipmap --normal-map edge.png --alpha 0.3 --out em > em.txt && grep -q "(1 rejected)" em.txt && ok ||
         bad "rejected texel: $(head -1 em.txt)"
+    one_line "every texel rejected" "below.png: every texel is rejected" 2 "$GGX" mipmap --normal-map below.png \
+        --alpha 0.3 --out none
+    # a chain into the folder of an earlier, longer one: the deeper levels of the earlier one go, of the format
+    # written only; other names (the user's files, names the command does not write) stay
+    "$GGX" mipmap --normal-map const.png --alpha 0.2 --out stale > /dev/null &&
+        "$GGX" mipmap --normal-map const.png --alpha 0.2 --format png16 --out stale > /dev/null &&
+        touch stale/level-03.exr stale/level-9.txt stale/notes.exr stale/level-5-sigma.png.bak &&
+        "$GGX" mipmap --normal-map row.png --alpha 0.2 --out stale > /dev/null 2> stale.err &&
+        [ "$(cd stale && ls level-[0-9]*.exr | tr '\n' ' ')" = "level-0.exr level-03.exr level-1.exr level-2.exr " ] &&
+        [ -e stale/level-9.txt ] && [ -e stale/notes.exr ] && [ -e stale/level-4-sigma.png ] &&
+        grep -q "removed 2 files of levels 3 and beyond" stale.err && ok ||
+        bad "stale exr levels: $(ls stale | tr '\n' ' ') $(cat stale.err)"
+    "$GGX" mipmap --normal-map row.png --alpha 0.2 --format png16 --out stale > /dev/null 2> stale.err &&
+        [ "$(cd stale && ls level-*.png | tr '\n' ' ')" = "level-0-normal.png level-0-sigma.png level-1-normal.png \
+level-1-sigma.png level-2-normal.png level-2-sigma.png " ] && [ -e stale/level-5-sigma.png.bak ] &&
+        [ "$(ls stale/level-*.exr | wc -l)" -eq 4 ] && grep -q "removed 4 files" stale.err && ok ||
+        bad "stale png16 levels: $(ls stale | tr '\n' ' ') $(cat stale.err)"
+    # output folders of any length: 1016 and 2040 bytes, and 4080 (whose temporaries' names pass the system's limit
+    # on paths: the levels are created in place); past that limit the system's refusal, in one line
+    c=$(printf 'c%.0s' $(seq 1 200))
+    long_dir() { # a relative path of exactly $1 bytes, of components of at most 200 bytes
+        p=""
+        while [ $((${#p} + 201)) -lt "$1" ]; do p="$p$c/"; done
+        printf '%s%s' "$p" "$(printf 'e%.0s' $(seq 1 $(($1 - ${#p}))))"
+    }
+    for len in 1016 2040 4080; do
+        d=$(long_dir $len)
+        mkdir -p "${d%/*}" && "$GGX" mipmap --normal-map row.png --alpha 0.2 --out "$d" > /dev/null &&
+            [ "$(ls "$d" | tr '\n' ' ')" = "level-0.exr level-1.exr level-2.exr " ] &&
+            [ "$(find "$c" -type f | wc -l)" -eq 3 ] && ok || bad "mipmap into a $len-byte folder: $(find "$c" -type f | sed 's|.*/||')"
+        rm -rf "$c"
+    done
+    one_line "a folder past the system's limit on paths" "File name too long" 2 "$GGX" mipmap --normal-map row.png \
+        --alpha 0.2 --out "$(long_dir 4200)"
+    # SIGTERM or SIGINT while the chain is written: the folder the command made goes with the temporaries; a folder
+    # that was there stays, with what the user had put in it (SIGINT through perl: a background job ignores it)
+    "$PY" - <<'EOF_PY' || bad "writing the large map"
+import math, struct, zlib
+w = h = 256
+raw = b"".join(b"\0" + bytes(v for i in range(w) for v in (int(127.5 + 40 * math.sin(0.7 * i)),
+                                                        int(127.5 + 40 * math.cos(1.3 * j)), 240)) for j in range(h))
+chunk = lambda k, b: struct.pack(">I", len(b)) + k + b + struct.pack(">I", zlib.crc32(k + b) & 0xFFFFFFFF)
+open("wide.png", "wb").write(b"\x89PNG\r\n\x1a\n" + chunk(b"IHDR", struct.pack(">IIBBBBB", w, h, 8, 2, 0, 0, 0)) +
+                             chunk(b"IDAT", zlib.compress(raw)) + chunk(b"IEND", b""))
+EOF_PY
+    for sig in TERM INT; do
+        for folder in made found; do
+            rm -rf sig
+            [ $folder = found ] && mkdir sig && echo mine > sig/mine.txt
+            perl -e '$SIG{INT} = "DEFAULT"; exec @ARGV' "$GGX_BIN" mipmap --normal-map wide.png --alpha 0.2 --out sig \
+                > /dev/null &
+            pid=$!
+            i=0; while [ $i -lt 250 ] && [ -z "$(ls sig 2>/dev/null | grep tmp)" ]; do sleep 0.02; i=$((i + 1)); done
+            kill -$sig $pid; wait $pid; rc=$?
+            if [ $folder = made ]; then left=$(ls -d sig 2>/dev/null); else left=$(ls sig | grep -vx mine.txt); fi
+            [ $rc -gt 128 ] && [ -z "$left" ] && { [ $folder = made ] || [ "$(cat sig/mine.txt)" = mine ]; } && ok ||
+                bad "SIG$sig during mipmap into a folder it $folder: status $rc, left $left $(ls sig 2>/dev/null)"
+        done
+    done
 elif grep -q "not built" cm.err; then
     echo "mipmap CLI: PNG or OpenEXR support is off, the maps are not tested"
 else

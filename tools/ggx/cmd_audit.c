@@ -36,11 +36,10 @@ int cmd_audit(options *o, const ggx_shape *no_shape)
     if (o->nout > 1) {
         if (o->format) die("--format: with several --out files each file's name gives its format");
         for (int i = 0; i < nout; i++) {
-            const char *dot = strrchr(o->outs[i], '.');
             names[i] = o->outs[i];
-            if (dot && strcmp(dot, ".md") == 0) fmts[i] = AUDIT_MD;
-            else if (dot && strcmp(dot, ".csv") == 0) fmts[i] = AUDIT_CSV;
-            else if (dot && strcmp(dot, ".json") == 0) fmts[i] = AUDIT_JSON;
+            if (path_has_ext(names[i], ".md")) fmts[i] = AUDIT_MD;
+            else if (path_has_ext(names[i], ".csv")) fmts[i] = AUDIT_CSV;
+            else if (path_has_ext(names[i], ".json")) fmts[i] = AUDIT_JSON;
             else die("--out: '%s' does not end with .md, .csv or .json", o->outs[i]);
         }
     } else if (o->format && strcmp(o->format, "csv") == 0) fmts[0] = AUDIT_CSV;

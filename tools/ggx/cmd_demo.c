@@ -187,7 +187,7 @@ int cmd_demo(options *o, const ggx_shape *no_shape)
     int size = o->size ? o->size : 640;
     ggx_vec3 v0;
     parse_direction("75,0", &v0);
-    char path[1024];
+    char *path;
     ggx_shape sh[2];
     for (int k = 0; k < 2; k++)
         if (ggx_shape_ellipsoid(&sh[k], 0.15, 0.5, SHAPES[k].tx * DEG, SHAPES[k].ty * DEG, 0) != GGX_OK)
@@ -196,24 +196,28 @@ int cmd_demo(options *o, const ggx_shape *no_shape)
     out_begin_set(); /* all figures or none */
     for (int k = 0; k < 2; k++) {
         for (int i = 0; i < NFIGS; i++) {
-            snprintf(path, sizeof path, "%s/%s%s", dir, SHAPES[k].prefix, FIGS[i].file);
+            path = alloc_printf("%s/%s%s", dir, SHAPES[k].prefix, FIGS[i].file);
             figure_spec f = demo_spec(&FIGS[i], &sh[k], k, o->dark);
-            figure_write(&f, path, format_of_path(path, FMT_PNG), size, figure_height(f.kind, size));
+            figure_write(&f, path, format_of_name(path, FMT_PNG), size, figure_height(f.kind, size));
             printf("  %s\n", path);
+            free(path);
             out_flush_stdout();
         }
     }
     int px = size * 2 / 5;
     float *img[NSPHERES];
     render_spheres(px, img);
-    snprintf(path, sizeof path, "%s/spheres.png", dir);
+    path = alloc_printf("%s/spheres.png", dir);
     write_spheres(path, img, px, size);
     printf("  %s\n", path);
-    snprintf(path, sizeof path, "%s/figures.pdf", dir);
+    free(path);
+    path = alloc_printf("%s/figures.pdf", dir);
     write_pdf(path, sh, img, px);
     for (int k = 0; k < NSPHERES; k++) free(img[k]);
     printf("  %s (%d pages)\n", path, NFIGS + 1);
+    free(path);
     out_commit_set();
+    out_keep_dirs(); /* the figures are complete: a folder made for them stays */
     clock_gettime(CLOCK_MONOTONIC, &t1);
     printf("figures drawn in %.1f s\n", (double)(t1.tv_sec - t0.tv_sec) + 1e-9 * (double)(t1.tv_nsec - t0.tv_nsec));
     long n = o->n > 0 ? o->n : 1000000;

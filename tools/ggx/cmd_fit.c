@@ -275,6 +275,8 @@ int cmd_fit(options *o, const ggx_shape *no_shape)
     if ((o->keep_tilt || o->downsample || o->have_z_scale) && !o->heightfield)
         die("--keep-tilt, --downsample and --z-scale apply to --heightfield");
     if (o->y_down && !o->normal_map) die("--y-down applies to --normal-map");
+    /* the figure's name says its format, as plot's --out does: refused before any work */
+    canvas_format figure_fmt = o->figure ? figure_format_of("--figure", o->figure, FMT_PNG) : FMT_PNG;
     fo.threads = o->threads;
     int bar = progress_wanted(o->progress);
     fo.progress = show_progress;
@@ -335,7 +337,7 @@ int cmd_fit(options *o, const ggx_shape *no_shape)
         fit_samples fs = {read_samples, &fc, nsamp, r.cells};
         char title[300];
         snprintf(title, sizeof title, "ggx fit: %s", path);
-        fit_figure_write(o->figure, &fs, &fit, &info, MODEL_NAMES[fo.model], title);
+        fit_figure_write(o->figure, figure_fmt, &fs, &fit, &info, MODEL_NAMES[fo.model], title);
         out_commit_set();
     }
     surface_free(&s);

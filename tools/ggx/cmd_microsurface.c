@@ -18,13 +18,12 @@ static void write_heights(const char *path, double *h, size_t n)
     surface s;
     memset(&s, 0, sizeof s);
     s.kind = SURFACE_HEIGHTS, s.nx = n, s.ny = n, s.h = h;
-    size_t len = strlen(path);
-    int x3p = len >= 4 && strcmp(path + len - 4, ".x3p") == 0;
+    int x3p = path_has_ext(path, ".x3p");
     /* x3p in metres: a grid of 1 micrometre, heights in the same unit, so slopes are the field's; OpenEXR as is,
      * with its spacing of 1 in its header */
     if (x3p) s.dx = s.dy = 1e-6, s.z_scale = 1e-6;
     else s.dx = s.dy = 1.0, s.z_scale = 1.0;
-    if (!x3p && !(len >= 4 && strcmp(path + len - 4, ".exr") == 0)) die("--out '%s': give a .exr or .x3p name", path);
+    if (!x3p && !path_has_ext(path, ".exr")) die("--out '%s': give a .exr or .x3p name", path);
     unsigned char *data;
     size_t bytes;
     char err[400];

@@ -43,7 +43,7 @@ int microsurface_figure(int argc, char **argv)
     if (!command_options(&MICROSURFACE_FIGURE_SPEC, argc, argv, 3, &o)) return 0;
     if (!o.heightfield) die("--heightfield FILE is required");
     if (!o.out) die("--out FILE.png|svg|pdf is required");
-    canvas_format fmt = figure_format_of(o.out, FMT_PNG);
+    canvas_format fmt = figure_format_of("--out", o.out, FMT_PNG);
     size_t n, risers[2];
     double tilt[2], *h;
     ms_tracer *t = microsurface_open(&o, &h, &n, tilt, risers);

@@ -1,9 +1,12 @@
 /* ggx mipmap: a tangent-space normal map filtered into a chain of per-texel ellipsoids (ggx_filter.h), one OpenEXR
  * file per level holding each texel's slope location t, scale Sigma and weight. SPDX-License-Identifier: MIT */
+#include <dirent.h>
+#include <errno.h>
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <sys/stat.h>
 #include <time.h>
 #include <unistd.h>
 
@@ -64,15 +67,16 @@ static void write_level_png(const char *dir, int level, const double *lobes, con
         pl[0][i] = 0.5 * (1.0 - c[0] / l), pl[1][i] = 0.5 * (1.0 - c[1] / l), pl[2][i] = 0.5 * (1.0 + 1.0 / l);
         pl[3][i] = sx / 4.0, pl[4][i] = sy / 4.0, pl[5][i] = 0.5 * (1.0 + c[3] / (sx * sy)), pl[6][i] = w[i] / box;
     }
-    char path[1024], err[256];
+    char err[256];
     for (int part = 0; part < 2; part++) {
-        snprintf(path, sizeof path, "%s/level-%d-%s.png", dir, level, part ? "sigma" : "normal");
+        char *path = alloc_printf("%s/level-%d-%s.png", dir, level, part ? "sigma" : "normal");
         out_file out;
         out_open(&out, path);
         const double *const *planes = (const double *const *)(pl + (part ? 3 : 0));
         if (surface_write_png_channels(out.f, nx, ny, part ? 4 : 3, planes, err, sizeof err) != 0)
             die("cannot write '%s': %s", path, err);
         out_close(&out);
+        free(path);
     }
     for (int k = 0; k < 7; k++) free(pl[k]);
 }
@@ -98,12 +102,43 @@ double *roughness_map_read(const options *o, size_t nx, size_t ny)
     return alpha;
 }
 
-/* The output folder when this command made it: removed (if still empty) on every exit before the chain is
- * complete, so that a failed run leaves nothing. */
-static const char *made_dir;
-static void remove_made_dir(void)
+/* The file names of the chain's levels in format png16 or exr: "level-K" then each suffix. */
+static const char *const PNG16_SUFFIXES[] = {"-normal.png", "-sigma.png", NULL};
+static const char *const EXR_SUFFIXES[] = {".exr", NULL};
+
+/* The level K of a name of the chain's pattern ("level-K" in decimal without leading zeros, then one of the
+ * suffixes, exactly as the command writes them), else -1. */
+static long level_of_name(const char *name, const char *const *suffixes)
 {
-    if (made_dir) rmdir(made_dir);
+    if (strncmp(name, "level-", 6) != 0) return -1;
+    const char *d = name + 6;
+    size_t digits = strspn(d, "0123456789");
+    if (digits == 0 || digits > 9 || (d[0] == '0' && digits > 1)) return -1;
+    for (int i = 0; suffixes[i]; i++)
+        if (strcmp(d + digits, suffixes[i]) == 0) return strtol(d, NULL, 10);
+    return -1;
+}
+
+/* Removes from dir the files of the chain's own names (suffixes) at levels from levels on: what an earlier, longer
+ * chain left, which would otherwise read as part of this one. Files of other names, and of the other format, stay.
+ * Returns how many it removed; dies when one cannot be removed. */
+static int remove_stale_levels(const char *dir, int levels, const char *const *suffixes)
+{
+    DIR *d = opendir(dir);
+    if (!d) die("cannot read output folder '%s': %s", dir, strerror(errno));
+    int removed = 0;
+    for (struct dirent *e; (e = readdir(d));) {
+        if (level_of_name(e->d_name, suffixes) < levels) continue;
+        char *path = alloc_printf("%s/%s", dir, e->d_name);
+        struct stat st;
+        if (lstat(path, &st) == 0 && (S_ISREG(st.st_mode) || S_ISLNK(st.st_mode))) {
+            if (unlink(path) != 0) die("cannot remove '%s' of an earlier chain: %s", path, strerror(errno));
+            removed++;
+        }
+        free(path);
+    }
+    closedir(d);
+    return removed;
 }
 
 void mipmap_help(void)
@@ -120,7 +155,8 @@ void mipmap_help(void)
            "divergence) to the mixture of its 2 x 2 texels above, by ggx_filter_downsample (odd sizes: the last\n"
            "column or row filters 2 x 1, 1 x 2 or 1 x 1 boxes). A texel whose normal is NaN, zero or not above\n"
            "the tangent plane is rejected: weight 0, counted nowhere (an RGB PNG whose blue is 0 everywhere is\n"
-           "read as two channels, z rebuilt). --y-down: the green channel points down\n"
+           "read as two channels, z rebuilt); a map of rejected texels only is an error. --y-down: the green\n"
+           "channel points down\n"
            "(DirectX maps). Writes DIR/level-K.exr (default DIR: mipmap) for K = 0 to the 1 x 1 level, each\n"
            "with the float channels t.x, t.y (the slope location: the mean normal is (-t.x, -t.y, 1)\n"
            "normalised), sigma.xx, sigma.xy, sigma.yy (the slope scale, as ggx_shape_from_slopes takes them)\n"
@@ -130,7 +166,10 @@ void mipmap_help(void)
            "sigma.xy / sqrt(sigma.xx sigma.yy), weight / 4^K), 16 bits each (widths above 4 saturate). Prints per\n"
            "level its size, the mean slope location, the mean det(Sigma)^(1/4) (the alpha of an isotropic\n"
            "lobe as wide) and the time. --fast: one EM step over 2 x 4 nodes per lobe (ggx_filter.h's fast mode:\n"
-           "30 to 80 times faster, at most about 0.005 nats of KL given up on the tests' footprints).\n");
+           "30 to 80 times faster, at most about 0.005 nats of KL given up on the tests' footprints).\n"
+           "A folder DIR that the command makes is removed again if the run fails or is ended by a signal. In the\n"
+           "folder of an earlier, longer chain, that chain's deeper levels in the format written (the command's\n"
+           "own names only) are removed once the new chain is complete.\n");
 }
 
 int cmd_mipmap(options *o, const ggx_shape *no_shape)
@@ -166,11 +205,12 @@ int cmd_mipmap(options *o, const ggx_shape *no_shape)
         st = ggx_texel_lobes(lobes, w, s.m, count, o->alpha[0], o->alpha[1], 0.0, &rejected);
     }
     if (st != GGX_OK) die("--alpha: %s", ggx_status_str(st));
+    if (rejected == count)
+        die("%s: every texel is rejected (its normal NaN, zero or not above the tangent plane%s): no chain to filter",
+            o->normal_map, o->roughness_map ? ", or its roughness negative or NaN" : "");
     surface_free(&s);
     const char *dir = o->out ? o->out : "mipmap";
-    int made = access(dir, F_OK) != 0;
-    ensure_dir(dir);
-    if (made) made_dir = dir, atexit(remove_made_dir);
+    ensure_dir(dir); /* a folder it makes goes again, when empty, on an error or a signal before the chain is whole */
     ggx_filter_options fo = {0};
     fo.threads = o->threads > 0 ? o->threads : 1;
     if (o->fast) ggx_filter_options_fast(&fo);
@@ -182,13 +222,15 @@ int cmd_mipmap(options *o, const ggx_shape *no_shape)
            o->fast ? ", fast mode" : "", dir);
     printf("| level | size | mean t | mean det(Sigma)^(1/4) | seconds to the next |\n|---|---|---|---|---|\n");
     out_begin_set(); /* every level or none */
-    char path[1024];
+    int levels = 0;
     for (int level = 0;; level++) {
+        levels++;
         if (png16) {
             write_level_png(dir, level, lobes, w, nx, ny);
         } else {
-            snprintf(path, sizeof path, "%s/level-%d.exr", dir, level);
+            char *path = alloc_printf("%s/level-%d.exr", dir, level);
             write_level(path, lobes, w, nx, ny);
+            free(path);
         }
         double t[2], alpha;
         summary(lobes, w, nx * ny, t, &alpha);
@@ -210,7 +252,12 @@ int cmd_mipmap(options *o, const ggx_shape *no_shape)
         lobes = next, w = wn, next = tl, wn = tw;
     }
     out_commit_set();
-    made_dir = NULL; /* complete: the folder stays */
+    out_keep_dirs(); /* complete: the folder stays */
+    int stale = remove_stale_levels(dir, levels, png16 ? PNG16_SUFFIXES : EXR_SUFFIXES);
+    if (stale)
+        fprintf(stderr,
+                "ggx: note: removed %d file%s of levels %d and beyond, left in %s/ by an earlier, longer chain\n",
+                stale, stale == 1 ? "" : "s", levels, dir);
     free(lobes), free(w), free(next), free(wn);
     return 0;
 }

@@ -66,7 +66,7 @@ int cmd_plot(options *o, const ggx_shape *s)
     const char *path = o->out ? o->out : fallback;
     /* a file name says its format; standard output ("-") and what is not a regular file (a device, a FIFO) take
      * the figure's default format */
-    canvas_format fmt = figure_format_of(path, deflt);
+    canvas_format fmt = figure_format_of("--out", path, deflt);
     if (o->have_eta && k != FIG_POLAR) die("--eta is for --figure polar (the BSDF)");
     if (k == FIG_POLAR && o->have_eta && o->eta == 1.0) die("--eta 1: no interface, no BSDF to plot");
     figure_spec f = {

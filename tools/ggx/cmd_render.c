@@ -25,10 +25,9 @@ typedef enum out_kind { OUT_PNG, OUT_EXR, OUT_PFM } out_kind;
 
 static out_kind out_kind_of(const char *path)
 {
-    size_t n = strlen(path);
-    if (strcmp(path, "-") == 0 || (n >= 4 && strcasecmp(path + n - 4, ".png") == 0)) return OUT_PNG;
-    if (n >= 4 && strcasecmp(path + n - 4, ".exr") == 0) return OUT_EXR;
-    if (n >= 4 && strcasecmp(path + n - 4, ".pfm") == 0) return OUT_PFM;
+    if (path_has_ext(path, ".exr")) return OUT_EXR;
+    if (path_has_ext(path, ".pfm")) return OUT_PFM;
+    if (path_has_ext(path, ".png") || path_is_stream(path)) return OUT_PNG; /* standard output, a device: PNG */
     die("--out '%s': give a .png (tone-mapped), .exr or .pfm (linear) name", path);
 }
 

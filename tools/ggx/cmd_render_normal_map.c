@@ -95,9 +95,8 @@ int render_normal_map(int argc, char **argv)
     views[0] = given;
     int nviews = o.light || o.have_view ? 1 : MC_VIEWS;
     const char *path = o.out ? o.out : "normal-map.png";
-    size_t plen = strlen(path);
     int to_stdout = strcmp(path, "-") == 0;
-    if (!to_stdout && !path_is_stream(path) && !(plen >= 4 && strcasecmp(path + plen - 4, ".png") == 0))
+    if (!to_stdout && !path_is_stream(path) && !path_has_ext(path, ".png"))
         die("--out '%s': give a .png name (or - for standard output)", path);
     surface_read_options ro = {SURFACE_NORMALS, o.y_down};
     surface s;

@@ -8,7 +8,7 @@
 /* A canvas's file: the command's output file and its name for messages. */
 typedef struct canvas_file {
     out_file out;
-    char path[1024];
+    char *path;
 } canvas_file;
 
 static int write_file(void *closure, const unsigned char *data, size_t n)
@@ -21,7 +21,7 @@ void canvas_open_file(canvas *c, const char *path, canvas_format fmt, int w, int
 {
     canvas_file *cf = calloc(1, sizeof *cf);
     if (!cf) die("out of memory");
-    snprintf(cf->path, sizeof cf->path, "%s", path ? path : "-");
+    cf->path = alloc_printf("%s", path ? path : "-");
     out_open(&cf->out, path);
     if (canvas_open(c, fmt, w, h, dark, write_file, cf) != 0) die("cannot draw '%s': %s", cf->path, c->error);
 }
@@ -34,21 +34,30 @@ void canvas_close_file(canvas *c)
         die("cannot write '%s': %s", cf->path, c->error);
     }
     out_close(&cf->out);
+    free(cf->path);
     free(cf);
 }
 
 int path_is_stream(const char *path)
 {
     struct stat st;
-    return !path || strcmp(path, "-") == 0 || (stat(path, &st) == 0 && !S_ISREG(st.st_mode) && !S_ISDIR(st.st_mode));
+    return !path || strcmp(path, "-") == 0 || out_descriptor(path) >= 0 ||
+           (stat(path, &st) == 0 && !S_ISREG(st.st_mode) && !S_ISDIR(st.st_mode));
 }
 
-canvas_format figure_format_of(const char *path, canvas_format deflt)
+canvas_format format_of_name(const char *path, canvas_format deflt)
 {
-    canvas_format fmt = format_of_path(path, deflt);
-    size_t pl = strlen(path);
-    if (!path_is_stream(path) && (pl < 4 || strcmp(path + pl - 4, format_ext(fmt)) != 0))
-        die("--out: '%s' does not name a format: end it in .png, .svg or .pdf (or give - for standard output)", path);
+    static const canvas_format FORMATS[] = {FMT_PNG, FMT_SVG, FMT_PDF};
+    for (int i = 0; i < 3; i++)
+        if (path_has_ext(path, format_ext(FORMATS[i]))) return FORMATS[i];
+    return deflt;
+}
+
+canvas_format figure_format_of(const char *opt, const char *path, canvas_format deflt)
+{
+    canvas_format fmt = format_of_name(path, deflt);
+    if (!path_is_stream(path) && !path_has_ext(path, format_ext(fmt)))
+        die("%s: '%s' does not name a format: end it in .png, .svg or .pdf (or give - for standard output)", opt, path);
     return fmt;
 }
 

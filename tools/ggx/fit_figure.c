@@ -58,8 +58,8 @@ static void draw_grid(cairo_t *cr, double x0, double y0, double size, double val
     paint_image(cr, img, x0, y0, size / RES);
 }
 
-void fit_figure_write(const char *path, const fit_samples *src, const ggx_shape *fit, const ggx_fit_info *info,
-                      const char *family, const char *title)
+void fit_figure_write(const char *path, canvas_format fmt, const fit_samples *src, const ggx_shape *fit,
+                      const ggx_fit_info *info, const char *family, const char *title)
 {
     panels *p = calloc(1, sizeof *p);
     static double fitted[RES][RES], resid[RES][RES], model[RES][RES];
@@ -97,7 +97,7 @@ void fit_figure_write(const char *path, const fit_samples *src, const ggx_shape 
 
     const int W = 1100, H = 1130;
     canvas c;
-    canvas_open_file(&c, path, format_of_path(path, FMT_PNG), W, H, 0);
+    canvas_open_file(&c, path, fmt, W, H, 0);
     cairo_t *cr = c.cr;
     const theme *th = c.th;
     set_rgb(cr, th->fg);

@@ -4,6 +4,7 @@
 
 #include <stddef.h>
 
+#include "canvas.h"
 #include "cli.h"
 #include "ggx/ggx_fit.h"
 
@@ -15,9 +16,9 @@ typedef struct fit_samples {
     int cells; /* the samples are texels fitted as cells (ggx_fit_normal_cells): no goodness of fit */
 } fit_samples;
 
-/* Writes the figure (PNG, SVG or PDF by the name's extension): measured and fitted D(m) in top views on one colour
+/* Writes the figure in format fmt (figure_format_of of --figure): measured and fitted D(m) in top views on one colour
  * scale, their difference, and the slopes' histogram about t with the fitted P22's contours. Dies on error. */
-void fit_figure_write(const char *path, const fit_samples *src, const ggx_shape *fit, const ggx_fit_info *info,
-                      const char *family, const char *title);
+void fit_figure_write(const char *path, canvas_format fmt, const fit_samples *src, const ggx_shape *fit,
+                      const ggx_fit_info *info, const char *family, const char *title);
 
 #endif

@@ -1,41 +1,64 @@
-/* Output files written atomically, and progress bars. SPDX-License-Identifier: MIT */
+/* Output files, written atomically where a replacement keeps what a redirect keeps and in place elsewhere; the
+ * folders the command makes; progress bars. SPDX-License-Identifier: MIT */
 #include <errno.h>
+#include <fcntl.h>
+#include <limits.h>
 #include <signal.h>
+#include <stdarg.h>
 #include <stdlib.h>
 #include <string.h>
+#include <strings.h>
 #include <sys/stat.h>
+#if defined(__linux__)
+#include <sys/xattr.h>
+#endif
 #include <unistd.h>
 
 #include "cli.h"
 
-void ensure_dir(const char *dir)
+char *alloc_printf(const char *fmt, ...)
 {
-    /* mkdir first: a folder that another process makes between a check and mkdir (EEXIST) is success */
-    struct stat st;
-    if (mkdir(dir, 0777) != 0) {
-        int e = errno;
-        if (stat(dir, &st) != 0) die("cannot create output folder '%s': %s", dir, strerror(e));
-        if (!S_ISDIR(st.st_mode)) die("output folder '%s' is not a folder", dir);
-    }
-    if (access(dir, W_OK) != 0) die("output folder '%s' is not writable", dir);
+    va_list ap;
+    va_start(ap, fmt);
+    int n = vsnprintf(NULL, 0, fmt, ap);
+    va_end(ap);
+    char *s = n >= 0 ? malloc((size_t)n + 1) : NULL;
+    if (!s) die("out of memory");
+    va_start(ap, fmt);
+    vsnprintf(s, (size_t)n + 1, fmt, ap);
+    va_end(ap);
+    return s;
 }
 
-/* ---- pending temporaries ----
- * The temporary files being written, and those of a set (out_begin_set) finished but not yet renamed. They are
- * removed on every way out that does not rename them: exit (atexit: die() exits), and the signals that end a
- * command (SIGINT, SIGTERM, SIGHUP, SIGPIPE: the handler unlinks them, then ends the process by the same signal).
- * The handler reads only this array; an entry is published after its string is complete and cleared before it is
- * freed. */
+int path_has_ext(const char *path, const char *ext)
+{
+    size_t n = path ? strlen(path) : 0, k = strlen(ext);
+    return n >= k && strcasecmp(path + n - k, ext) == 0;
+}
+
+/* ---- pending temporaries and folders made ----
+ * The temporary files being written (and new files created in place), those of a set (out_begin_set) finished but
+ * not yet renamed, and the folders ensure_dir made. They are removed on every way out that does not complete them:
+ * exit (atexit: die() exits), and the signals that end a command (SIGINT, SIGTERM, SIGHUP, SIGPIPE: the handler
+ * unlinks the files and removes the folders if empty, then ends the process by the same signal). The handler reads
+ * only these arrays; an entry is published after its string is complete and cleared before it is freed. */
 enum { MAX_PENDING = 64 };
 static char *volatile pending[MAX_PENDING];
-static char *set_path[MAX_PENDING]; /* the final names of a set's finished temporaries, by pending slot */
+static char *set_path[MAX_PENDING];     /* the final names of a set's finished temporaries, by pending slot */
+static char pending_final[MAX_PENDING]; /* 1: the entry is the final file, created in place (nothing to rename) */
 static int set_open;
+enum { MAX_MADE = 4 };
+static char *volatile made[MAX_MADE];
 
 static void unlink_pending(void)
 {
     for (int i = 0; i < MAX_PENDING; i++) {
         char *t = pending[i];
         if (t) unlink(t);
+    }
+    for (int i = MAX_MADE - 1; i >= 0; i--) {
+        char *d = made[i];
+        if (d) rmdir(d); /* only when empty: what another process put there stays */
     }
 }
 
@@ -80,6 +103,7 @@ static void drop_pending(int slot)
     free(t);
     free(set_path[slot]);
     set_path[slot] = NULL;
+    pending_final[slot] = 0;
 }
 
 static char *dup_or_die(const char *s)
@@ -87,6 +111,41 @@ static char *dup_or_die(const char *s)
     char *d = strdup(s);
     if (!d) die("out of memory");
     return d;
+}
+
+void ensure_dir(const char *dir)
+{
+    install_cleanup();
+    char *name = dup_or_die(dir);
+    sigset_t all, old;
+    sigfillset(&all);
+    sigprocmask(SIG_BLOCK, &all, &old); /* no signal between making the folder and recording it */
+    int r = mkdir(dir, 0777), e = errno, slot = -1;
+    if (r == 0)
+        for (int i = 0; i < MAX_MADE && slot < 0; i++)
+            if (!made[i]) made[slot = i] = name;
+    sigprocmask(SIG_SETMASK, &old, NULL);
+    if (slot < 0) free(name);
+    if (r == 0 && slot < 0) {
+        rmdir(dir);
+        die("too many output folders at once");
+    }
+    /* mkdir first: a folder that another process makes between a check and mkdir (EEXIST) is success */
+    struct stat st;
+    if (r != 0) {
+        if (stat(dir, &st) != 0) die("cannot create output folder '%s': %s", dir, strerror(e));
+        if (!S_ISDIR(st.st_mode)) die("output folder '%s' is not a folder", dir);
+    }
+    if (access(dir, W_OK) != 0) die("output folder '%s' is not writable", dir);
+}
+
+void out_keep_dirs(void)
+{
+    for (int i = 0; i < MAX_MADE; i++) {
+        char *d = made[i];
+        made[i] = NULL;
+        free(d);
+    }
 }
 
 void out_stdout_failed(void)
@@ -134,6 +193,151 @@ static void open_in_place(out_file *o, const char *path)
     o->path = dup_or_die(path);
 }
 
+/* A new file created in place (its temporary could not be made): it is the command's, so it is removed on every way
+ * out that does not complete it, as a temporary is. One that appears meanwhile is written in place. */
+static void open_created(out_file *o, const char *path)
+{
+    char *name = dup_or_die(path);
+    sigset_t all, old;
+    sigfillset(&all);
+    sigprocmask(SIG_BLOCK, &all, &old); /* no signal between creating the file and recording it */
+    int fd = open(path, O_WRONLY | O_CREAT | O_EXCL, 0666);
+    int e = errno;
+    if (fd >= 0) o->slot = add_pending(name), pending_final[o->slot] = 1;
+    sigprocmask(SIG_SETMASK, &old, NULL);
+    if (fd < 0) {
+        free(name);
+        if (e == EEXIST) {
+            open_in_place(o, path);
+            return;
+        }
+        die("cannot write '%s': %s", path, strerror(e));
+    }
+    o->f = fdopen(fd, "wb");
+    if (!o->f) die("cannot write '%s': %s", path, strerror(errno));
+    o->path = dup_or_die(path);
+}
+
+/* The descriptor path names, already open: standard output is the command's stdout (so that its writes keep their
+ * order), another a duplicate of it. Its offset and flags are the caller's: an appending descriptor appends. */
+static void open_descriptor(out_file *o, const char *path, int fd)
+{
+    if (fd == 1) {
+        o->f = stdout;
+        return;
+    }
+    int d = fcntl(fd, F_DUPFD_CLOEXEC, 3);
+    if (d < 0) die("cannot write '%s': %s", path, strerror(errno));
+    o->f = fdopen(d, "wb");
+    if (!o->f) die("cannot write '%s': %s", path, strerror(errno));
+    o->path = dup_or_die(path);
+}
+
+/* 1 when dir is this process's folder of descriptors (/dev/fd, /proc/self/fd, /proc/PID/fd or a thread's). */
+static int descriptor_folder(const char *dir)
+{
+    char *real = realpath(dir, NULL);
+    if (!real) return 0;
+    char own[48];
+    snprintf(own, sizeof own, "/proc/%ld/", (long)getpid());
+    size_t k = strlen(own);
+    int yes = strcmp(real, "/dev/fd") == 0;
+    if (!yes && strncmp(real, own, k) == 0) {
+        const char *r = real + k;
+        if (strncmp(r, "task/", 5) == 0) {
+            r += 5 + strspn(r + 5, "0123456789");
+            r = *r == '/' ? r + 1 : "";
+        }
+        yes = strcmp(r, "fd") == 0;
+    }
+    free(real);
+    return yes;
+}
+
+/* The target of the symbolic link p (malloc'd), NULL if p is none. */
+static char *read_link(const char *p)
+{
+    for (size_t n = 256;; n *= 2) {
+        char *b = malloc(n);
+        if (!b) die("out of memory");
+        ssize_t k = readlink(p, b, n);
+        if (k < 0) {
+            free(b);
+            return NULL;
+        }
+        if ((size_t)k < n) {
+            b[k] = '\0';
+            return b;
+        }
+        free(b);
+    }
+}
+
+int out_descriptor(const char *path)
+{
+    if (!path || !*path) return -1;
+    static const char *const STD[3] = {"/dev/stdin", "/dev/stdout", "/dev/stderr"};
+    char *p = dup_or_die(path);
+    int fd = -1;
+    for (int hop = 0; hop < 40 && fd < 0; hop++) { /* 40: the kernel's limit on links followed */
+        for (int i = 0; i < 3; i++)
+            if (strcmp(p, STD[i]) == 0) fd = i;
+        char *slash = strrchr(p, '/');
+        const char *base = slash ? slash + 1 : p;
+        size_t digits = strspn(base, "0123456789");
+        if (fd < 0 && digits > 0 && digits < 10 && base[digits] == '\0') {
+            char *dir = slash ? alloc_printf("%.*s", slash == p ? 1 : (int)(slash - p), p) : dup_or_die(".");
+            if (descriptor_folder(dir)) fd = atoi(base);
+            free(dir);
+        }
+        if (fd >= 0) break;
+        struct stat ls;
+        char *t = lstat(p, &ls) == 0 && S_ISLNK(ls.st_mode) ? read_link(p) : NULL;
+        if (!t) break;
+        if (t[0] != '/' && slash) { /* relative to the link's folder */
+            char *j = alloc_printf("%.*s/%s", (int)(slash - p), p, t);
+            free(t);
+            t = j;
+        }
+        free(p);
+        p = t;
+    }
+    free(p);
+    return fd;
+}
+
+/* 1 when the file has extended attributes (ACLs among them), which a replacement would not carry. */
+static int has_xattrs(const char *path)
+{
+#if defined(__linux__)
+    return listxattr(path, NULL, 0) > 0;
+#else
+    (void)path;
+    return 0;
+#endif
+}
+
+/* The temporary's name beside target: its name, cut where needed so that name and suffix fit the folder's longest
+ * file name, then ".tmpXXXXXX" (mkstemp's pattern). */
+static char *temp_name(const char *target)
+{
+    const char *slash = strrchr(target, '/');
+    size_t dlen = slash ? (size_t)(slash - target) + 1 : 0; /* the folder, with its slash */
+    const char *base = target + dlen;
+    char *dir = dlen ? alloc_printf("%.*s", (int)dlen, target) : dup_or_die(".");
+    long name_max = pathconf(dir, _PC_NAME_MAX);
+    free(dir);
+    if (name_max <= 0) name_max = NAME_MAX;
+    size_t keep = strlen(base), suffix = strlen(".tmpXXXXXX");
+    if (keep + suffix > (size_t)name_max) {
+        keep = (size_t)name_max > suffix ? (size_t)name_max - suffix : 0;
+        while (keep > 0 && ((unsigned char)base[keep] & 0xC0) == 0x80) keep--; /* not inside a UTF-8 character */
+    }
+    return alloc_printf("%.*s%.*s.tmpXXXXXX", (int)dlen, target, (int)keep, base);
+}
+
+/* The one place that decides how a file is written: in place (as a redirect writes it) or through a temporary
+ * renamed over it. cli.h states the rules. */
 void out_open(out_file *o, const char *path)
 {
     memset(o, 0, sizeof *o);
@@ -143,20 +347,26 @@ void out_open(out_file *o, const char *path)
         o->f = stdout;
         return;
     }
+    int fd = out_descriptor(path);
+    if (fd >= 0) {
+        open_descriptor(o, path, fd); /* /dev/stdout, /dev/fd/N: as the caller opened them */
+        return;
+    }
     struct stat st, lst;
     const char *target = path;
     char *resolved = NULL;
     mode_t mode;
-    int have_old = 0;
-    if (stat(path, &st) == 0) {
-        have_old = 1;
+    int have_old = stat(path, &st) == 0;
+    if (have_old) {
         if (S_ISDIR(st.st_mode)) die("cannot write '%s': it is a folder", path);
-        if (!S_ISREG(st.st_mode)) {
-            open_in_place(o, path); /* a device, a FIFO, a socket (or a link to one): never replaced */
+        /* as a redirect: a file the user may not write is an error, and stays as it was */
+        if (S_ISREG(st.st_mode) && access(path, W_OK) != 0) die("cannot write '%s': %s", path, strerror(errno));
+        /* what a replacement would not keep: a device, a FIFO, a socket (or a link to one); a file of several names
+         * (hard links); extended attributes (ACLs among them) */
+        if (!S_ISREG(st.st_mode) || st.st_nlink > 1 || has_xattrs(path)) {
+            open_in_place(o, path);
             return;
         }
-        /* as a redirect: a file the user may not write is an error, and stays as it was */
-        if (access(path, W_OK) != 0) die("cannot write '%s': %s", path, strerror(errno));
         mode = st.st_mode & 07777;
         if (lstat(path, &lst) == 0 && S_ISLNK(lst.st_mode)) {
             /* a link to a regular file: its target is replaced, the link kept */
@@ -168,42 +378,45 @@ void out_open(out_file *o, const char *path)
         open_in_place(o, path); /* a dangling link: the file it names is created through it */
         return;
     } else if (errno != ENOENT) {
-        die("cannot write '%s': %s", path, strerror(errno));
+        die("cannot write '%s': %s", path, strerror(errno)); /* a name too long among them */
     } else {
         mode_t mask = umask(0);
         umask(mask);
         mode = 0666 & ~mask;
     }
-    size_t n = strlen(target) + 16;
-    char *tmp = malloc(n);
-    if (!tmp) die("out of memory");
-    snprintf(tmp, n, "%s.tmpXXXXXX", target);
-    o->path = dup_or_die(target);
-    o->mode = mode;
+    char *tmp = temp_name(target), *final = dup_or_die(target); /* a link's target: renamed over, the link kept */
     free(resolved);
     sigset_t all, old;
     sigfillset(&all);
     sigprocmask(SIG_BLOCK, &all, &old); /* no signal between creating the file and recording it */
-    int fd = mkstemp(tmp);
+    int tfd = mkstemp(tmp);
     int e = errno;
-    if (fd >= 0) o->slot = add_pending(tmp);
+    if (tfd >= 0) o->slot = add_pending(tmp);
     sigprocmask(SIG_SETMASK, &old, NULL);
-    if (fd < 0) {
+    if (tfd < 0) {
         free(tmp);
-        die("cannot write '%s': %s", path, strerror(e));
+        free(final);
+        /* no temporary beside it (a folder the user may not write, a path at the system's limit): the file is
+         * written in place, as a redirect writes it */
+        if (e != EACCES && e != EPERM && e != ENAMETOOLONG) die("cannot write '%s': %s", path, strerror(e));
+        if (have_old) open_in_place(o, path);
+        else open_created(o, path);
+        return;
     }
     /* The replacement keeps the file's owner and group; where the user cannot give it them (another user's file
      * in a folder of theirs), the file is written in place, as a redirect writes it. */
-    if (have_old && (st.st_uid != geteuid() || st.st_gid != getegid()) && fchown(fd, st.st_uid, st.st_gid) != 0) {
-        close(fd);
+    if (have_old && (st.st_uid != geteuid() || st.st_gid != getegid()) && fchown(tfd, st.st_uid, st.st_gid) != 0) {
+        close(tfd);
         unlink(tmp);
         drop_pending(o->slot);
-        free(o->path);
         o->slot = -1;
+        free(final);
         open_in_place(o, path);
         return;
     }
-    o->f = fdopen(fd, "wb");
+    o->path = final;
+    o->mode = mode;
+    o->f = fdopen(tfd, "wb");
     if (!o->f) die("cannot write '%s': %s", path, strerror(errno));
 }
 
@@ -217,14 +430,15 @@ void out_close(out_file *o)
     if (fflush(o->f) != 0 && !bad) bad = 1, e = errno;
     if (fclose(o->f) != 0 && !bad) bad = 1, e = errno;
     o->f = NULL;
-    if (bad) die("cannot write '%s': %s", o->path, strerror(e)); /* the temporary goes at exit */
+    if (bad) die("cannot write '%s': %s", o->path, strerror(e)); /* a temporary (or a file created) goes at exit */
     if (o->slot >= 0) {
-        chmod(pending[o->slot], o->mode);
+        if (!pending_final[o->slot]) chmod(pending[o->slot], o->mode);
         if (set_open) {
-            set_path[o->slot] = o->path; /* renamed by out_commit_set */
+            set_path[o->slot] = o->path; /* renamed (or, created in place, kept) by out_commit_set */
             o->path = NULL;
         } else {
-            if (rename(pending[o->slot], o->path) != 0) die("cannot write '%s': %s", o->path, strerror(errno));
+            if (!pending_final[o->slot] && rename(pending[o->slot], o->path) != 0)
+                die("cannot write '%s': %s", o->path, strerror(errno));
             drop_pending(o->slot);
         }
     }
@@ -247,7 +461,8 @@ void out_commit_set(void)
     set_open = 0;
     for (int i = 0; i < MAX_PENDING; i++) {
         if (!set_path[i]) continue;
-        if (rename(pending[i], set_path[i]) != 0) die("cannot write '%s': %s", set_path[i], strerror(errno));
+        if (!pending_final[i] && rename(pending[i], set_path[i]) != 0)
+            die("cannot write '%s': %s", set_path[i], strerror(errno));
         drop_pending(i);
     }
 }
