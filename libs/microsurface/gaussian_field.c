@@ -37,9 +37,13 @@ static double wave(size_t i, size_t n)
 }
 
 /* S(k) = exp(-k^T M^-1 k / 4), the Gaussian autocorrelation's spectrum up to a constant, and from it the variance of
- * the heights and the covariance of the forward differences of Re sum_k A(k) W(k) e^{i k.x}, A = sqrt(c S), E|W|^2 =
- * 1: var = c/2 sum S, cov_ab = c/2 sum S Re[(e^{i k_a} - 1) conj(e^{i k_b} - 1)]. */
-static void moments(size_t n, const double M[3], double *var, double cov[3])
+ * the heights, the covariance of the slopes of the four facets of a cell (both triangulations) and the mixed
+ * difference's share, for Re sum_k A(k) W(k) e^{i k.x}, A = sqrt(c S), E|W|^2 = 1: var = c/2 sum S; the diagonal
+ * c/2 sum S |e^{i k_a} - 1|^2 = c/2 sum S 4 sin^2(k_a/2); the off-diagonal, the mean of the cut from (x+1, y) to
+ * (x, y+1) (Re[(e^{i kx} - 1) conj(e^{i ky} - 1)]) and of the other cut (Re[(1 - e^{-i kx}) conj(e^{i ky} - 1)]),
+ * c/2 sum S sin kx sin ky; mixed = E[D^2] / 4 = c/2 sum S 4 sin^2(kx/2) sin^2(ky/2), D = h(x+1, y+1) - h(x+1, y) -
+ * h(x, y+1) + h(x, y), by which the first cut's off-diagonal exceeds that mean and the second's falls short of it. */
+static void moments(size_t n, const double M[3], double *var, double cov[3], double *mixed)
 {
     double det = M[0] * M[2] - M[1] * M[1], ixx = M[2] / det, ixy = -M[1] / det, iyy = M[0] / det;
     double *t = malloc(4 * n * sizeof *t); /* per index: k, sin(k/2)^2, cos k, sin k */
@@ -51,19 +55,20 @@ static void moments(size_t n, const double M[3], double *var, double cov[3])
         double k = wave(i, n), h = sin(0.5 * k);
         t[4 * i] = k, t[4 * i + 1] = h * h, t[4 * i + 2] = cos(k), t[4 * i + 3] = sin(k);
     }
-    double sv = 0.0, sxx = 0.0, sxy = 0.0, syy = 0.0;
+    double sv = 0.0, sxx = 0.0, sxy = 0.0, syy = 0.0, sm = 0.0;
     for (size_t j = 0; j < n; j++) {
         const double *b = t + 4 * j;
         for (size_t i = 0; i < n; i++) {
             const double *a = t + 4 * i;
             double S = exp(-0.25 * (ixx * a[0] * a[0] + 2.0 * ixy * a[0] * b[0] + iyy * b[0] * b[0]));
-            /* |e^{ik} - 1|^2 = 4 sin^2(k/2); Re[(e^{ia} - 1) conj(e^{ib} - 1)] = cos(a - b) - cos a - cos b + 1 */
+            /* the two cuts' off-diagonals, cos(a - b) - cos a - cos b + 1 and cos a + cos b - cos(a + b) - 1, average
+             * to sin a sin b; their difference is 2 (1 - cos a)(1 - cos b) = 8 sin^2(a/2) sin^2(b/2) */
             sv += S, sxx += S * 4.0 * a[1], syy += S * 4.0 * b[1];
-            sxy += S * (a[2] * b[2] + a[3] * b[3] - a[2] - b[2] + 1.0);
+            sxy += S * a[3] * b[3], sm += S * 4.0 * a[1] * b[1];
         }
     }
     free(t);
-    *var = 0.5 * sv, cov[0] = 0.5 * sxx, cov[1] = 0.5 * sxy, cov[2] = 0.5 * syy;
+    *var = 0.5 * sv, cov[0] = 0.5 * sxx, cov[1] = 0.5 * sxy, cov[2] = 0.5 * syy, *mixed = 0.5 * sm;
 }
 
 static int fail(char *err, size_t errn, const char *what)
@@ -92,14 +97,14 @@ int ms_gauss(const ms_gauss_spec *sp, double *h, ms_gauss_info *info, char *err,
     double det_t = target[0] * target[2] - target[1] * target[1];
     double sigma2 = sp->corr_len * sp->corr_len * sqrt(det_t) / 2.0;
     double M[3] = {target[0] / (2.0 * sigma2), target[1] / (2.0 * sigma2), target[2] / (2.0 * sigma2)};
-    /* correct M until the forward differences of the lattice's field have Sigma_s (the continuous field's slopes
+    /* correct M until the four facets of the lattice's cells have Sigma_s together (the continuous field's slopes
      * would have 2 sigma^2 M); the spectrum's constant keeps the heights' variance sigma^2 */
-    double var, cov[3], scale = 1.0;
+    double var, cov[3], mixed = 0.0, scale = 1.0;
     int it = 0;
     for (; it < 50; it++) {
-        moments(n, M, &var, cov);
+        moments(n, M, &var, cov, &mixed);
         if (!(var > 0.0)) return fail(err, errn, "Gaussian surface: out of memory");
-        scale = sigma2 / var;
+        scale = sigma2 / var, mixed *= scale;
         double e = 0.0;
         for (int k = 0; k < 3; k++) {
             cov[k] *= scale;
@@ -139,6 +144,7 @@ int ms_gauss(const ms_gauss_spec *sp, double *h, ms_gauss_info *info, char *err,
     if (info) {
         info->sigma = sqrt(sigma2), info->iterations = it;
         memcpy(info->metric, M, sizeof M), memcpy(info->slope_cov, cov, sizeof cov);
+        info->cut_xy = mixed;
     }
     return 0;
 #endif

@@ -8,15 +8,19 @@
 
 #include "ggx/ggx.h"
 
-/* A Gaussian random field whose facets have Beckmann slopes: every forward difference (h(x+1, y) - h(x, y),
- * h(x, y+1) - h(x, y)), the slopes of the triangles of both triangulations of a cell, is Gaussian with covariance
- * Sigma_s = half the slope scale of ggx_shape_ellipsoid(alpha_x, alpha_y, 0, 0, phi) (ggx_shape_slopes: Sigma_xx =
- * (ax^2 c^2 + ay^2 s^2) / 2, Sigma_xy = (ay^2 - ax^2) c s / 2, c = cos phi, s = sin phi: the same axes as the
- * library's shape of that rotation), over the ensemble of fields (a field's own
- * covariance scatters about it by about corr_len / n). Its autocorrelation is Gaussian, C(r) = sigma^2 exp(-r^T M r)
- * sampled on the periodic lattice, sigma^2 = corr_len^2 sqrt(det Sigma_s) / 2 (corr_len in grid spacings): the
- * continuous field of M0 = Sigma_s / (2 sigma^2), det(M0)^(-1/4) = corr_len, would have slopes of covariance
- * Sigma_s; M is M0 corrected so that the forward differences have it (det(M)^(-1/4) within 2 % of corr_len for
+/* A Gaussian random field whose facets have Beckmann slopes: the facets of a cell are the four triangles of its two
+ * triangulations (as ggx_fit_heightfield reads them), whose slopes pair the forward differences a = h(x+1, y) -
+ * h(x, y), b = h(x+1, y+1) - h(x, y+1) with c = h(x, y+1) - h(x, y), d = h(x+1, y+1) - h(x+1, y): (a, c), (b, d)
+ * for the cut from (x+1, y) to (x, y+1), the tracer's, and (a, d), (b, c) for the other. The four together are
+ * Gaussian with covariance Sigma_s = half the slope scale of ggx_shape_ellipsoid(alpha_x, alpha_y, 0, 0, phi)
+ * (ggx_shape_slopes: Sigma_xx = (ax^2 c^2 + ay^2 s^2) / 2, Sigma_xy = (ay^2 - ax^2) c s / 2, c = cos phi, s = sin phi:
+ * the same axes as the library's shape of that rotation), over the ensemble of fields (a field's own covariance
+ * scatters about it by about corr_len / n). Each cut alone has Sigma_s's diagonal, but no height field can give both
+ * cuts its off-diagonal: a c + b d - a d - b c = D^2, D = b - a the cell's mixed difference, so the tracer's cut has
+ * Sigma_xy + cut_xy and the other Sigma_xy - cut_xy (ms_gauss_info). Its autocorrelation is Gaussian, C(r) = sigma^2
+ * exp(-r^T M r) sampled on the periodic lattice, sigma^2 = corr_len^2 sqrt(det Sigma_s) / 2 (corr_len in grid
+ * spacings): the continuous field of M0 = Sigma_s / (2 sigma^2), det(M0)^(-1/4) = corr_len, would have slopes of
+ * covariance Sigma_s; M is M0 corrected so that the four facets have it (det(M)^(-1/4) within 2 % of corr_len for
  * isotropic shapes and for corr_len >= 16; 9 % off at 8 for alphas 0.1, 0.4). Periodic: h(n, y) = h(0, y). */
 typedef struct ms_gauss_spec {
     size_t n;                     /* even, 8 to 16384 */
@@ -29,7 +33,9 @@ typedef struct ms_gauss_spec {
 typedef struct ms_gauss_info {
     double sigma;        /* the heights' standard deviation */
     double metric[3];    /* M: M_xx, M_xy, M_yy */
-    double slope_cov[3]; /* the forward differences' covariance by the spectrum: Sigma_s to 1e-9 relative */
+    double slope_cov[3]; /* the four facets' covariance by the spectrum: Sigma_s to 1e-9 relative */
+    double cut_xy;       /* E[D^2] / 4 by the spectrum: what the tracer's cut adds to Sigma_xy and the other cut
+                          * takes from it (about 0.05 sqrt(det Sigma_s) at corr_len 4, 0.013 at 8) */
     int iterations;      /* the corrections of M */
 } ms_gauss_info;
 

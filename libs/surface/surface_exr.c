@@ -382,6 +382,27 @@ static int64_t exr_sink_write(exr_const_context_t ctx, void *user, const void *b
     return (int64_t)sz;
 }
 
+/* The library's compression step, which exr_compress_or_store calls. */
+typedef struct exr_compress_step {
+    exr_result_t (*fn)(exr_encode_pipeline_t *e);
+} exr_compress_step;
+
+/* The library's compression step, then a chunk that it did not shrink stored as it is: OpenEXRCore keeps a
+ * compressed chunk exactly as large as the raw one, which every reader takes for raw data (a chunk whose packed size
+ * equals its unpacked size is uncompressed). */
+static exr_result_t exr_compress_or_store(exr_encode_pipeline_t *e)
+{
+    const exr_compress_step *step = e->encoding_user_data;
+    exr_result_t rv = step->fn(e);
+    if (rv != EXR_ERR_SUCCESS || e->packed_bytes == 0 || e->compressed_bytes < e->packed_bytes ||
+        e->compressed_buffer == e->packed_buffer)
+        return rv;
+    if (!e->compressed_buffer || e->compressed_alloc_size < e->packed_bytes) return EXR_ERR_OUT_OF_MEMORY;
+    memcpy(e->compressed_buffer, e->packed_buffer, e->packed_bytes);
+    e->compressed_bytes = e->packed_bytes;
+    return rv;
+}
+
 /* surface_encode_exr_channels, with the attribute "spacing" in the header where spacing is not NULL. */
 static int encode_channels(size_t nx, size_t ny, int nch, const char *const *names, float *const *plane,
                            const double *spacing, unsigned char **data, size_t *n, char *err, size_t errn)
@@ -399,6 +420,7 @@ static int encode_channels(size_t nx, size_t ny, int nch, const char *const *nam
     memset(&enc, 0, sizeof enc);
     int enc_ready = 0, part = 0, started = 0;
     int32_t lines = 0;
+    exr_compress_step step = {NULL};
     exr_result_t rv = exr_start_write(&ctx, "<memory>", EXR_WRITE_FILE_DIRECTLY, &init);
     if (rv == EXR_ERR_SUCCESS) started = 1;
     if (rv == EXR_ERR_SUCCESS) rv = exr_add_part(ctx, NULL, EXR_STORAGE_SCANLINE, &part);
@@ -436,6 +458,11 @@ static int encode_channels(size_t nx, size_t ny, int nch, const char *const *nam
             ch->user_data_type = EXR_PIXEL_FLOAT;
         }
         if (rv == EXR_ERR_SUCCESS) rv = exr_encoding_choose_default_routines(ctx, part, &enc);
+        if (rv == EXR_ERR_SUCCESS && enc.compress_fn) {
+            step.fn = enc.compress_fn;
+            enc.encoding_user_data = &step;
+            enc.compress_fn = exr_compress_or_store;
+        }
         if (rv == EXR_ERR_SUCCESS) rv = exr_encoding_run(ctx, part, &enc);
     }
     if (enc_ready) exr_encoding_destroy(ctx, &enc);

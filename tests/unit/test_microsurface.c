@@ -36,17 +36,25 @@ static void target_cov(double ax, double ay, double phi, double t[3])
     for (int k = 0; k < 3; k++) t[k] *= 0.5;
 }
 
-/* the forward differences' sample covariance over the whole periodic field, the wrap included */
-static void sample_cov(const double *h, size_t n, double c[3])
+/* The sample covariance of the four facets of every cell of the periodic field, the wrap included (a = h10 - h00,
+ * b = h11 - h01, c = h01 - h00, d = h11 - h10; facets (a, c), (b, d), (a, d), (b, c): the off-diagonal's mean is
+ * (a + b)(c + d) / 4), and where cut is not NULL the off-diagonal of the tracer's cut alone, (a c + b d) / 2. */
+static void facet_cov(const double *h, size_t n, double cv[3], double *cut)
 {
-    c[0] = c[1] = c[2] = 0.0;
+    double s[4] = {0};
     for (size_t y = 0; y < n; y++)
         for (size_t x = 0; x < n; x++) {
-            double dx = h[y * n + (x + 1) % n] - h[y * n + x], dy = h[((y + 1) % n) * n + x] - h[y * n + x];
-            c[0] += dx * dx, c[1] += dx * dy, c[2] += dy * dy;
+            size_t x1 = (x + 1) % n, y1 = (y + 1) % n;
+            double h00 = h[y * n + x], h10 = h[y * n + x1], h01 = h[y1 * n + x], h11 = h[y1 * n + x1];
+            double a = h10 - h00, b = h11 - h01, c = h01 - h00, d = h11 - h10;
+            s[0] += 0.5 * (a * a + b * b), s[1] += 0.25 * (a + b) * (c + d), s[2] += 0.5 * (c * c + d * d);
+            s[3] += 0.5 * (a * c + b * d);
         }
-    for (int k = 0; k < 3; k++) c[k] /= (double)(n * n);
+    for (int k = 0; k < 3; k++) cv[k] = s[k] / (double)(n * n);
+    if (cut) *cut = s[3] / (double)(n * n);
 }
+
+static void sample_cov(const double *h, size_t n, double c[3]) { facet_cov(h, n, c, NULL); }
 
 /* The spectrum's covariance of the forward differences is the target to 1e-9 relative, for shapes from isotropic to
  * 1:4 rotated, alphas from 1e-3 to 5, correlation lengths from 4 to n / 4; the corrected metric's length is the
@@ -338,6 +346,62 @@ static void ggx_field(void **state)
     ggx_vec3 vv = {v[0], v[1], v[2]};
     double g = ms_facets_g1(h, N, NULL, v), s = ggx_g1_smith(&want, vv);
     CHECK(fabs(g / s - 1.0) > 0.06, "negative control: a Beckmann field's G1 %g passes for GGX's %g", g, s);
+    free(h);
+}
+
+/* The four facets of the cells of both triangulations, which ggx_fit_heightfield reads, have the covariance asked
+ * for at the shortest correlation length, 4, where the two cuts' off-diagonals differ most (a c + b d - a d - b c =
+ * D^2): a Gaussian field's sample covariance within 4 % of each entry of Sigma_s for alphas 0.2, 0.4 rotated 30
+ * degrees (the tracer's cut alone has Sigma_xy + cut_xy, 12 % more, which the sample shows), its off-diagonal within
+ * 1 % of the scale for an isotropic shape, and ggx_fit_heightfield of a GGX field of either shape within 4 % of each
+ * entry of Sigma (the off-diagonal of the isotropic one within 1.5 % of the scale). */
+static void triangulations(void **state)
+{
+    (void)state;
+    if (!gauss_built()) return;
+    enum { N = 512 };
+    double *h = malloc(N * N * sizeof *h);
+    const double shapes[2][3] = {{0.2, 0.4, 3.14159265358979323846 / 6.0}, {0.3, 0.3, 0.0}};
+    char err[256];
+    for (int c = 0; c < 2; c++) {
+        double ax = shapes[c][0], ay = shapes[c][1], phi = shapes[c][2], t[3], cv[3], cut;
+        target_cov(ax, ay, phi, t);
+        double scale = sqrt(t[0] * t[2]);
+        ms_gauss_spec gs = {N, ax, ay, phi, 4, 7};
+        ms_gauss_info gi;
+        CHECK(ms_gauss(&gs, h, &gi, err, sizeof err) == 0, "%s", err);
+        facet_cov(h, N, cv, &cut);
+        for (int k = 0; k < 3; k++)
+            if (fabs(t[k]) > 1e-9 * scale)
+                CHECK_CLOSE(cv[k], t[k], 0, 0.04 * fabs(t[k]), "shape %d: the facets' Sigma entry %d %g, want %g", c, k,
+                            cv[k], t[k]);
+            else
+                CHECK_CLOSE(cv[k], 0.0, 0, 0.01 * scale, "shape %d: the facets' Sigma entry %d %g, want 0", c, k,
+                            cv[k]);
+        CHECK(gi.cut_xy > 0.03 * scale, "shape %d: cut_xy %g", c, gi.cut_xy);
+        CHECK_CLOSE(cut - cv[1], gi.cut_xy, 0.1, 0, "shape %d: the tracer's cut exceeds the mean by %g, cut_xy %g", c,
+                    cut - cv[1], gi.cut_xy);
+        printf(
+            "triangulations, shape %d: the four facets' Sigma_s %.5g %.5g %.5g (want %.5g %.5g %.5g), the tracer's cut "
+            "Sigma_xy %.5g, cut_xy %.5g\n",
+            c, cv[0], cv[1], cv[2], t[0], t[1], t[2], cut, gi.cut_xy);
+        ms_ggx_spec sp = {N, ax, ay, phi, 4, 0, 7};
+        CHECK(ms_ggx(&sp, h, err, sizeof err) == 0, "%s", err);
+        ggx_shape fit, want;
+        CHECK(ggx_fit_heightfield(&fit, h, N, N, 1.0, 1.0, NULL, NULL, NULL) == GGX_OK, "fit");
+        CHECK(ggx_shape_ellipsoid(&want, ax, ay, 0, 0, phi) == GGX_OK, "shape");
+        double tf[2], sf[3], tw[2], sw[3];
+        ggx_shape_slopes(&fit, tf, sf), ggx_shape_slopes(&want, tw, sw);
+        printf("triangulations, shape %d: the GGX field's fitted Sigma %.5g %.5g %.5g (want %.5g %.5g %.5g)\n", c,
+               sf[0], sf[1], sf[2], sw[0], sw[1], sw[2]);
+        for (int k = 0; k < 3; k++)
+            if (fabs(sw[k]) > 1e-9 * scale)
+                CHECK_CLOSE(sf[k], sw[k], 0, 0.04 * fabs(sw[k]), "shape %d: the GGX fit's Sigma entry %d %g, want %g",
+                            c, k, sf[k], sw[k]);
+            else
+                CHECK_CLOSE(sf[k], 0.0, 0, 0.015 * sqrt(sw[0] * sw[2]),
+                            "shape %d: the GGX fit's Sigma entry %d %g, want 0", c, k, sf[k]);
+    }
     free(h);
 }
 
@@ -745,7 +809,7 @@ int main(int argc, char **argv)
         cmocka_unit_test(vgrooves),         cmocka_unit_test(vgroove_trace),  cmocka_unit_test(mirror_and_furnace),
         cmocka_unit_test(ggx_field),        cmocka_unit_test(diagonal),       cmocka_unit_test(watertight),
         cmocka_unit_test(reciprocity),      cmocka_unit_test(skewed_masking), cmocka_unit_test(skewed_claims),
-        cmocka_unit_test(coherent_streams), cmocka_unit_test(bad_specs),
+        cmocka_unit_test(coherent_streams), cmocka_unit_test(bad_specs),      cmocka_unit_test(triangulations),
     };
     int rc = cmocka_run_group_tests(tests, NULL, NULL);
     return rc | chi2_budget_end("microsurface", argc, argv);
