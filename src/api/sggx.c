@@ -86,7 +86,7 @@ GGX_API double ggx_sggx_sigma(const ggx_sggx *f, ggx_vec3 w) { return ggx_intern
 
 GGX_API double ggx_sggx_phase_specular(const ggx_sggx *f, ggx_vec3 wi, ggx_vec3 wo)
 {
-    ggx_vec3 h = ggx_k_normalize_d(ggx_k_add_d(wi, wo));
-    if (ggx_k_is_zero_d(h)) return 0.0;
-    return ggx_k_finite0_d(ggx_sggx_ndf(f, h) / (4.0 * ggx_internal_sggx_sigma(f, wi)));
+    ggx_vec3 i = ggx_k_unit_d(wi), o = ggx_k_unit_d(wo), h = ggx_k_normalize_d(ggx_k_add_d(i, o));
+    if (ggx_k_is_zero_d(i) || ggx_k_is_zero_d(o) || ggx_k_is_zero_d(h)) return 0.0;
+    return ggx_k_finite0_d(ggx_sggx_ndf(f, h) / (4.0 * ggx_internal_sggx_sigma(f, i)));
 }
