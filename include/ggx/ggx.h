@@ -679,5 +679,7 @@ double ggx_pdf_bsdf_compensated(const ggx_bsdf_energy *e, ggx_vec3 v, ggx_vec3 w
 /* The research entry points (the seeds' other samplers): declared apart so that what this header shows is the stable
  * API, and included so that every program written against ggx.h keeps compiling. */
 #include "ggx_experimental.h"
+/* The ellipsoid as a volume of microflakes (SGGX): flake distributions, their phase functions and samplers. */
+#include "ggx_sggx.h"
 
 #endif /* GGX_GGX_H */

@@ -108,6 +108,7 @@ typedef struct sctx {
     double u1[NS], u2[NS];
     float ax, ay, fv[NS][3], fu1[NS], fu2[NS]; /* the same inputs in float, for the float reference */
     ggx_shapef sf;                             /* s in float, for the inline float kernels */
+    const ggx_sggx *g;                         /* a flake distribution, for the SGGX table */
 } sctx;
 
 #define SCALAR_BENCH(name, expr)                                                                                       \
@@ -134,6 +135,45 @@ SCALAR_BENCH(b_sbrdf, ggx_sample_brdf(c->s, &c->f, c->v[k], c->u1[k], c->u2[k]).
 SCALAR_BENCH(b_vndf, ggx_sample_vndf(c->s, c->v[k], c->u1[k], c->u2[k]).z)
 SCALAR_BENCH(b_sbrdfb, ggx_sample_brdf_bounded(c->s, &c->f, c->v[k], c->u1[k], c->u2[k]).weight)
 SCALAR_BENCH(b_sbrdfa, ggx_sample_brdf_bounded_azimuth(c->s, &c->f, c->v[k], c->u1[k], c->u2[k]).weight)
+SCALAR_BENCH(b_sggx_ndf, ggx_sggx_ndf(c->g, c->m[k]))
+SCALAR_BENCH(b_sggx_vndf, ggx_sggx_sample_vndf(c->g, c->v[k], c->u1[k], c->u2[k]).z)
+SCALAR_BENCH(b_sggx_spec, ggx_sggx_phase_specular(c->g, c->v[k], c->m[k]))
+SCALAR_BENCH(b_sggx_diff, ggx_sggx_phase_diffuse(c->g, c->v[k], c->m[k]))
+SCALAR_BENCH(b_sggx_sdiff, ggx_sggx_sample_diffuse(c->g, c->v[k], c->u1[k], c->u2[k], c->u2[k], c->u1[k]).z)
+
+/* The SGGX functions on flake distributions of three shapes (S = A^T A): the skewed A of the scalar table, isotropic
+ * alpha = 1 (S = I) and alpha = 0.01 (eigenvalue ratio 1e4); the surface's VNDF sampler beside the flakes'. */
+static void sggx_table(sctx *c, const ggx_shape *skew, long ns)
+{
+    ggx_shape iso1, iso01;
+    ggx_sggx g[3];
+    ggx_shape_iso(&iso1, 1.0);
+    ggx_shape_iso(&iso01, 0.01);
+    ggx_sggx_from_shape(&g[0], skew);
+    ggx_sggx_from_shape(&g[1], &iso1);
+    ggx_sggx_from_shape(&g[2], &iso01);
+    struct {
+        const char *name;
+        bench_fn f;
+        long n;
+    } sb[] = {{"ggx_sggx_ndf", b_sggx_ndf, ns},
+              {"ggx_sggx_sample_vndf", b_sggx_vndf, ns},
+              {"ggx_sggx_phase_specular", b_sggx_spec, ns},
+              {"ggx_sggx_sample_diffuse", b_sggx_sdiff, ns},
+              {"ggx_sggx_phase_diffuse", b_sggx_diff, ns / 200}};
+    printf("\nSGGX (double)                  skewed A   alpha = 1   alpha = 0.01\n");
+    for (unsigned k = 0; k < sizeof sb / sizeof sb[0]; k++) {
+        printf("%-28s", sb[k].name);
+        for (int i = 0; i < 3; i++) {
+            c->g = &g[i];
+            printf(" %10.2f", time_it(sb[k].f, c, sb[k].n, NULL));
+        }
+        printf("\n");
+    }
+    c->s = skew;
+    printf("%-28s %10.2f   (the surface's sampler, ggx_sample_vndf)\n", "ggx_sample_vndf",
+           time_it(b_vndf, c, ns, NULL));
+}
 /* energy compensation: the table of c->s is bench_energy */
 static const ggx_energy *bench_energy;
 SCALAR_BENCH(b_ealb, ggx_energy_albedo(bench_energy, c->v[k]))
@@ -659,5 +699,6 @@ int main(int argc, char **argv)
            caps_skew / vndf_best, caps_skew / vndf_scalar_isa);
     for (int k = 0; k < 7; k++) free(in[k]);
     for (int k = 0; k < 5; k++) free(out[k]);
+    sggx_table(&sc, &skew, ns);
     return 0;
 }

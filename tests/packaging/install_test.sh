@@ -28,6 +28,7 @@ tool=
 [ -x "$build/ggx" ] && tool="bin/ggx share/man/man1/ggx.1"
 for f in include/ggx/ggx.h include/ggx/ggx_version.h include/ggx/ggx_inline.h include/ggx/ggx_batch.h \
          include/ggx/ggx_samplers.h include/ggx/ggx_fit.h include/ggx/ggx_experimental.h include/ggx/ggx_filter.h \
+         include/ggx/ggx_sggx.h \
          $tool; do
   test -f "$prefix/$f" || { echo "install: $f missing" >&2; exit 1; }
 done
