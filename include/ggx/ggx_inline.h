@@ -138,11 +138,22 @@ static inline GGX_UNUSED void ggx_shapef_from(ggx_shapef *out, const ggx_shape *
     out->a_frob2 = (float)f2;
 }
 
-/* The float Fresnel term of f. */
+/* The float Fresnel term of f. Indices beyond float's range keep their F: a conductor's eta and k are scaled by one
+ * factor so that the larger is within [1e-30, 1e30] (F depends on their scale only within rounding there, see
+ * fresnel_conductor_eval), an eta that float would round to 0 raised to FLT_MIN, and a dielectric's eta is clamped to [FLT_MIN, FLT_MAX] (F is 1 within rounding beyond
+ * both; eta_wide keeps the exact index for the critical angle). */
 static inline GGX_UNUSED void ggx_fresnelf_from(ggx_fresnelf *out, const ggx_fresnel *f)
 {
+    double eta = f->eta, k = f->k, m = eta > k ? eta : k;
+    if (f->kind == GGX_FRESNEL_CONDUCTOR && m > 0 && m <= DBL_MAX) {
+        double sc = m > 1e30 ? 1e30 / m : m < 1e-30 ? 1e-30 / m : 1.0;
+        eta *= sc, k *= sc;
+        if (eta > 0 && eta < FLT_MIN) eta = FLT_MIN; /* a positive eta stays positive in float */
+    }
+    if (f->kind == GGX_FRESNEL_DIELECTRIC && eta > 0 && eta <= DBL_MAX)
+        eta = eta > FLT_MAX ? FLT_MAX : eta < FLT_MIN ? FLT_MIN : eta;
     out->kind = f->kind;
-    out->eta = (float)f->eta, out->k = (float)f->k, out->f0 = (float)f->f0;
+    out->eta = (float)eta, out->k = (float)k, out->f0 = (float)f->f0;
     out->eta_wide = f->eta;
 }
 

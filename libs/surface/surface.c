@@ -116,11 +116,11 @@ int surface_read(const char *path, const surface_read_options *o, surface *s, ch
         if (!nb) free(buf);
         buf = nb, cap *= 2;
     }
-    int bad = ferror(f);
+    int bad = ferror(f), why_bad = errno;
     fclose(f);
     if (bad) {
         free(buf);
-        return surface_fail(err, errn, "cannot read '%s'", path);
+        return surface_fail(err, errn, "cannot read '%s': %s", path, strerror(why_bad));
     }
     if (n == 0) {
         free(buf);

@@ -107,6 +107,10 @@ def _integer(x, what, lo=None, hi=None, c=_C_INT):
     if not c[0] <= v <= c[1]:
         raise _BeyondC(f"{what}: {v} is beyond the range of the C integer that takes it ({c[0]} to {c[1]})")
     if (lo is not None and v < lo) or (hi is not None and v > hi):
+        if hi is None:
+            raise ValueError(f"{what}: expected an integer of at least {lo}, got {v}")
+        if lo is None:
+            raise ValueError(f"{what}: expected an integer of at most {hi}, got {v}")
         raise ValueError(f"{what}: expected an integer from {lo} to {hi}, got {v}")
     return v
 

@@ -9,6 +9,7 @@
  * contiguous array of directions, 1 for scalars, 0 for one value broadcast over all items) and whether the elements
  * are floats or doubles, so broadcasting one direction or one number costs no copy and float32 arrays are read in
  * place. Outputs are contiguous. The float32 path (ggxpy_f32, at the end) runs the float batch API. SPDX-License-Identifier: MIT */
+#include <float.h>
 #include <stddef.h>
 #include <stdint.h>
 #include <stdio.h>
@@ -409,7 +410,14 @@ EXPORT int ggxpy_render(const ggx_shape *s, const ggx_fresnel *f, const char *sa
     }
     if (rc == 0 && light <= 2) r.env = &env;
     if (rc == 0) rc = render_prepare(&r, err, errn);
-    if (rc == 0) render_image(&r, rgb, var);
+    if (rc == 0) {
+        long over = render_image(&r, rgb, var);
+        if (over)
+            rc = surface_fail(err, errn,
+                              "the image does not fit single precision: %ld pixel values exceed the largest float "
+                              "(%g) with this light; lower its radiance or irradiance",
+                              over, (double)FLT_MAX);
+    }
     render_release(&r);
     render_env_free(&env);
     return rc;

@@ -104,3 +104,13 @@ def test_argument_errors_stay_value_errors():
     for call in (lambda: ggx.render(S, spp=2.7, size=4), lambda: ggx.render(S, seed=2 ** 64 + 1, **TINY)):
         with pytest.raises(ValueError):
             call()
+
+
+def test_one_sided_ranges_name_their_bound():
+    """A count with a lower bound only says that bound, not a missing upper one."""
+    for call, what in ((lambda: ggx.fit_heightfield(np.zeros((4, 4)), downsample=-1), "downsample"),
+                       (lambda: ggx.fit_normals(np.tile([0.0, 0.0, 1.0], (8, 1)), max_iterations=-1),
+                        "max_iterations")):
+        with pytest.raises(ValueError, match=f"{what}: expected an integer of at least 0, got -1") as e:
+            call()
+        assert "None" not in str(e.value)

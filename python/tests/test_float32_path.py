@@ -123,3 +123,15 @@ def test_threads_change_no_result():
     for a, b in zip(one, three):
         for x, y in zip(a if isinstance(a, tuple) else (a,), b if isinstance(b, tuple) else (b,)):
             assert same(x, y)
+
+
+def test_fresnel_indices_beyond_float():
+    """A conductor or dielectric index beyond float's range (or far from 1 in double) keeps F near 1 in both paths:
+    the float path is not 0 where float cannot hold eta or k, and the double path not 0 where eta^2 k^2 overflows."""
+    r = np.random.default_rng(5)
+    v, m = upper(r, 600), upper(r, 600)
+    for f in (ggx.Fresnel.conductor(1e200, 1e200), ggx.Fresnel.conductor(0.5, 1e160),
+              ggx.Fresnel.conductor(1e-200, 0.0), ggx.Fresnel.dielectric(1e300), ggx.Fresnel.dielectric(1e-300)):
+        one = ggx.brdf(S, v, m, ggx.Fresnel.one())
+        assert np.allclose(ggx.brdf(S, v, m, f), one, rtol=1e-12, atol=0), f
+        assert np.allclose(ggx.brdf(S, v, m, f, dtype=np.float32), one, rtol=2e-5, atol=0), f

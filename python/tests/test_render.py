@@ -55,7 +55,8 @@ def test_bad_arguments():
     for kw, msg in [({"scene": "cube"}, "scene"), ({"strategy": "luck"}, "strategy"), ({"spp": 0}, "spp"),
                     ({"light": "/nonexistent/env.exr"}, "cannot read"), ({"sampler": "magic"}, "unknown sampler"),
                     ({"fresnel": ggx.Fresnel.dielectric(1.5), "sampler": "caps"}, "own sampler"),
-                    ({"light": ("point", math.nan, 0)}, "finite")]:
+                    ({"light": ("point", math.nan, 0)}, "finite"),
+                    ({"light": ("point", 0, 0, 1e308)}, "does not fit single precision")]:
         args = {"size": 8, "spp": 1, **kw}
         with pytest.raises(ValueError, match=msg):
             ggx.render(s, **args)

@@ -17,6 +17,9 @@ for c in demo eval sample plot check audit; do
 done
 "$GGX" demo $N > demo.txt 2>&1 && ok || bad "ggx demo: $(tail -3 demo.txt)"
 grep -q "all checks pass" demo.txt && ok || bad "demo summary"
+# --out - is standard output, which holds no folder of figures: refused before anything is drawn
+one_line "demo --out -" "'-' is standard output" 2 "$GGX" demo --out -
+[ ! -e ./- ] && ok || bad "demo --out - made a folder named -"
 # the demo's figures: each seed figure for both shapes, at 640 wide and each figure's own height
 svg_size() { xmllint --xpath 'concat(/*[local-name()="svg"]/@width, " ", /*[local-name()="svg"]/@height)' "$1" 2>/dev/null; }
 for p in "" skewed-; do

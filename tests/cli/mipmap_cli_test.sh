@@ -162,6 +162,13 @@ EOF_PY
         bad "rejected texel: $(head -1 em.txt)"
     one_line "every texel rejected" "below.png: every texel is rejected" 2 "$GGX" mipmap --normal-map below.png \
         --alpha 0.3 --out none
+    # --out - is standard output, no folder: refused with no folder named - made; a folder given as the map is
+    # refused with the system's reason
+    one_line "--out -" "'-' is standard output" 2 "$GGX" mipmap --normal-map const.png --alpha 0.2 --out -
+    [ ! -e ./- ] && ok || bad "--out - made a folder named -"
+    mkdir adir.png
+    one_line "a folder as the map" "cannot read 'adir.png': Is a directory" 2 "$GGX" mipmap --normal-map adir.png \
+        --alpha 0.2 --out dm
     # a chain into the folder of an earlier, longer one: the deeper levels of the earlier one go, of the format
     # written only; other names (the user's files, names the command does not write) stay
     "$GGX" mipmap --normal-map const.png --alpha 0.2 --out stale > /dev/null &&

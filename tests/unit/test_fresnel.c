@@ -3,6 +3,7 @@
 #include <complex.h>
 #include <math.h>
 
+#include "ggx/ggx_inline.h"
 #include "testlib.h"
 
 /* Unpolarised reflectance from the s and p amplitude coefficients with a complex relative index n~:
@@ -98,12 +99,57 @@ static void schlick_and_setup(void **state)
     CHECK(ggx_fresnel_eval(&zero, 0.1) == 1.0, "zero-initialised is F = 1");
 }
 
+/* Indices far from 1, which every setup function accepts: eta^2 k^2 overflowed above |eta + i k| ~ 1e154 and
+ * a^2 + b^2 underflowed to 0 below ~1e-162, and the term fell to 0 there, where the exact F is 1 within
+ * 4 / |eta + i k| (above) or 4 |eta + i k| (below). Double against the complex equations from 1e-140 to 1e140 and
+ * against 1 beyond; float through ggx_fresnelf_from, whose float eta and k would be 0 or infinite as they stand. */
+static void conductor_extreme_indices(void **state)
+{
+    (void)state;
+    rng r = {33};
+    for (int i = 0; i < 20000; i++) {
+        double eta = exp(rng_range(&r, log(1e-140), log(1e140)));
+        double k = i % 4 == 0 ? 0.0 : exp(rng_range(&r, log(1e-140), log(1e140)));
+        double c = i % 10 == 0 ? 1.0 : rng_uniform(&r);
+        CHECK_CLOSE(ggx_fresnel_conductor_eval(c, eta, k), fresnel_complex(c, eta + k * I), 0, 1e-12,
+                    "cos %g eta %g k %g", c, eta, k);
+    }
+    const double far[][2] = {{1e160, 0},  {0.5, 1e160},     {1e300, 1e300}, {1.7e308, 1.7e308}, {1e200, 1e-200},
+                             {1e-163, 0}, {1e-200, 1e-200}, {4.9e-324, 0},  {1e-300, 4.9e-324}};
+    for (int i = 0; i < (int)(sizeof far / sizeof far[0]); i++) {
+        ggx_fresnel f;
+        CHECK(ggx_fresnel_conductor(&f, far[i][0], far[i][1]) == GGX_OK, "setup %d", i);
+        ggx_fresnelf ff;
+        ggx_fresnelf_from(&ff, &f);
+        for (int j = 0; j <= 4; j++) {
+            double c = j / 4.0;
+            CHECK_CLOSE(ggx_fresnel_eval(&f, c), 1.0, 0, 1e-12, "eta %g k %g cos %g", far[i][0], far[i][1], c);
+            CHECK_CLOSE(ggx_fresnel_eval_f(&ff, (float)c), 1.0, 0, 1e-6, "float: eta %g k %g cos %g", far[i][0],
+                        far[i][1], c);
+        }
+    }
+    /* a dielectric's index beyond float's range: F is 1 within rounding in double, and in float too */
+    const double etas[] = {1e39, 1e300, 1e-39, 1e-300};
+    for (int i = 0; i < 4; i++) {
+        ggx_fresnel f;
+        ggx_fresnelf ff;
+        CHECK(ggx_fresnel_dielectric(&f, etas[i]) == GGX_OK, "setup");
+        ggx_fresnelf_from(&ff, &f);
+        for (int j = 0; j <= 4; j++) {
+            double c = j / 4.0;
+            CHECK_CLOSE(ggx_fresnel_eval_f(&ff, (float)c), ggx_fresnel_eval(&f, c), 0, 1e-6, "float: eta %g cos %g",
+                        etas[i], c);
+        }
+    }
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(conductor_matches_complex),
         cmocka_unit_test(dielectric),
         cmocka_unit_test(schlick_and_setup),
+        cmocka_unit_test(conductor_extreme_indices),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

@@ -115,6 +115,9 @@ static char *dup_or_die(const char *s)
 
 void ensure_dir(const char *dir)
 {
+    if (strcmp(dir, "-") == 0)
+        die("--out: '-' is standard output, which cannot hold a folder of files: give a folder's name (./- for one "
+            "named -)");
     install_cleanup();
     char *name = dup_or_die(dir);
     sigset_t all, old;

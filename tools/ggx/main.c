@@ -79,8 +79,8 @@ static void usage(FILE *f)
     fprintf(f, "usage: ggx <command> [options]   (ggx <command> --help for each)\n\ncommands:\n");
     for (int i = 0; i < NCOMMANDS; i++) fprintf(f, "  %-12s %s\n", COMMANDS[i].name, COMMANDS[i].summary);
     fputs("\n"
-          "options: --name VALUE or --name=VALUE; -n N counts; --out PATH (- or absent: stdout); --seed S;\n"
-          "--help on every command; -V (--version) prints the version.\n"
+          "options: --name VALUE or --name=VALUE; -n N counts; --out PATH (- or absent: stdout; demo and mipmap\n"
+          "write a folder and refuse -); --seed S; --help on every command; -V (--version) prints the version.\n"
           "\n"
           "output: --out writes what a shell redirect (> PATH) would. A new file, or a regular file (or the target\n"
           "of a link to one) of one name and no extended attributes, is written under a temporary name in its\n"

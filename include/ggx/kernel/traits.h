@@ -21,6 +21,10 @@
 #define GGX_ATAN2 atan2f
 /* The largest finite value: results above it are overflow and become 0 by the contract. */
 #define GGX_HUGE FLT_MAX
+/* The conductor's |eta + i k| is scaled into [TINY, BIG] (fresnel_conductor_eval): (BIG^2)^2 stays below FLT_MAX and
+ * TINY^4 above FLT_MIN, and F is 1 within 4e-8 beyond them. */
+#define GGX_COND_BIG GGX_C(1e8)
+#define GGX_COND_TINY GGX_C(1e-8)
 /* The fast paths' "not final" marker. */
 #define GGX_NAN ((float)NAN)
 #define GGX_ROUND_MAGIC 12582912.0f  /* 1.5 2^23: x + it - it rounds x to an integer for |x| < 2^22 */
@@ -94,6 +98,9 @@
 #define GGX_ATAN atan
 #define GGX_ATAN2 atan2
 #define GGX_HUGE DBL_MAX
+/* As in float: (BIG^2)^2 far below DBL_MAX, TINY^4 far above DBL_MIN, F is 1 within 4e-30 beyond them. */
+#define GGX_COND_BIG 1e30
+#define GGX_COND_TINY 1e-30
 #define GGX_NAN ((double)NAN)
 #define GGX_ROUND_MAGIC 6755399441055744.0   /* 1.5 2^52 */
 #define GGX_QUARTER_MAGIC 1688849860263936.0 /* 1.5 2^50 */

@@ -16,6 +16,8 @@
 #undef GGX_ATAN
 #undef GGX_ATAN2
 #undef GGX_HUGE
+#undef GGX_COND_BIG
+#undef GGX_COND_TINY
 #undef GGX_NAN
 #undef GGX_ROUND_MAGIC
 #undef GGX_QUARTER_MAGIC
