@@ -83,8 +83,7 @@ typedef enum ggx_status {
     GGX_ERR_ANGLE,     /* |theta_x| or |theta_y| > GGX_SKEW_MAX */
     GGX_ERR_SINGULAR,  /* the shape matrix is singular or too close to singular */
     GGX_ERR_ETA,       /* an index of refraction is <= 0 or above 1e300 (or 1 where a function refuses it) */
-    GGX_ERR_RANGE,     /* a parameter is outside its documented range (e.g. Schlick f0 outside [0, 1]), or an
-                          * energy table would not meet its promise (ggx_energy_create) */
+    GGX_ERR_RANGE,     /* a parameter is outside its documented range (e.g. Schlick f0 outside [0, 1]) */
     GGX_ERR_MEMORY,    /* memory could not be allocated (ggx_energy_create) */
     GGX_ERR_DATA       /* too few usable samples to fit (ggx_fit.h: fewer than 5 normals above the horizon with
                           * finite components and a positive weight) */
@@ -537,12 +536,13 @@ double ggx_albedo_aniso_table(double alpha_x, double alpha_y, ggx_vec3 v);
  *   f_ms(wi, wo) = F_ms (1 - E(wi)) (1 - E(wo)) / (pi (1 - E_avg)),  F_ms = F_avg^2 E_avg / (1 - F_avg (1 - E_avg)),
  * with E a per-shape table of ggx_albedo (separable G, the library's BRDF) built by ggx_energy_create and read by
  * interpolation, and E_avg the table's own average. With F = 1 the compensated albedo is then 1 + (E - E_table)(wi):
- * within 1e-3 of 1 (so never above 1 + 1e-3) for views with wi.z >= 0.0175 (89 degrees) and every shape that
- * ggx_energy_create accepts (tests/unit/test_energy.c, tests/unit/test_energy_domain.c: alpha 1e-4 to 2, anisotropy to 1:200,
- * skews to 1.2 rad); for unskewed anisotropic shapes read from the shipped table, within that table's 1.1e-3. A shape
- * whose E has a feature narrower than the table's nodes resolve (the mirror horizon of a sharp skewed lobe) is
- * refused, so that no table underestimates E by more than that. Beyond 89 degrees the table is not promised
- * (docs/design/energy.md has the errors there). F_avg is the cosine-weighted average of F (ggx_fresnel_avg): one
+ * never above 1 + 1e-3, for every shape and every view (tests/unit/test_energy_domain.c tries alpha 1e-3 to 10,
+ * anisotropy to 1:200, skews to pi / 2 and views to 89.9 degrees), and within 1e-3 of 1 for views with wi.z >= 0.0175
+ * (89 degrees) wherever E has no feature narrower than the table's nodes; for unskewed anisotropic shapes read from
+ * the shipped table, within that table's 1.1e-3. Where E has such a feature (the mirror horizon of a sharp skewed
+ * lobe, the azimuth at grazing of extreme anisotropy) the table's cells around it are guarded: they hold a value not
+ * below E, so that the compensation there returns less than all of the lost energy (up to a few percent of the light,
+ * over a band of views about as wide as a cell) but never adds energy (docs/design/energy.md has the losses). F_avg is the cosine-weighted average of F (ggx_fresnel_avg): one
  * channel, one wavelength, as everywhere in this API.
  * A NULL ggx_fresnel means F = 1. Directions need not be unit (they are normalised); wi.z <= 0 or wo.z <= 0, zero or
  * non-finite vectors give 0 or an invalid sample. An energy object is read-only after creation: any number of
@@ -552,23 +552,21 @@ double ggx_albedo_aniso_table(double alpha_x, double alpha_y, ggx_vec3 v);
 /* A shape's albedo table (opaque; about 100 KB for anisotropic and skewed shapes, 1.6 KB for isotropic ones). */
 typedef struct ggx_energy ggx_energy;
 
-/* Builds the table of shape s (copied; s may be freed after; docs/design/energy.md, "The table"). Isotropic shapes
- * with alpha in [1e-3, 2] and unskewed anisotropic ones with both alphas in [1e-2, 2] and anisotropy to 1:20 read it
- * from the shipped tables (microseconds); the others compute it by ggx_albedo's quadrature (seconds:
- * docs/performance.md; build tables once per material, at scene setup) and check the interpolation: where the table
- * is more than 1e-3 off ggx_albedo, a finer one, and where that is off too, GGX_ERR_RANGE (which shapes pass:
- * docs/design/energy.md, "Where the table cannot follow E").
- * Errors: GGX_ERR_NULL (s or out NULL), GGX_ERR_RANGE (E has a feature narrower than the table resolves: render
- * without compensation, which loses the multiple scattering but adds no energy), GGX_ERR_MEMORY; *out is NULL then. */
+/* Builds the table of shape s (copied; s may be freed after; docs/design/energy.md, "The table"), for every shape.
+ * Isotropic shapes with alpha in [1e-3, 2] and unskewed anisotropic ones with both alphas in [1e-2, 2] and anisotropy
+ * to 1:20 read it from the shipped tables (microseconds); the others compute it by ggx_albedo's quadrature (seconds:
+ * docs/performance.md; build tables once per material, at scene setup) and guard the cells where the interpolation
+ * falls below ggx_albedo (docs/design/energy.md, "Where the table cannot follow E").
+ * Errors: GGX_ERR_NULL (s or out NULL), GGX_ERR_MEMORY; *out is NULL then. */
 ggx_status ggx_energy_create(const ggx_shape *s, ggx_energy **out);
 /* Frees e (NULL is allowed). */
 void ggx_energy_free(ggx_energy *e);
 /* The shape e was built for; NULL for e NULL. */
 const ggx_shape *ggx_energy_shape(const ggx_energy *e);
 
-/* E(v) from the table: ggx_albedo(s, v) within 1e-3 absolute for v.z >= 0.0175 (89 degrees), 1.1e-3 for unskewed
- * anisotropic shapes read from the shipped table (their nodes and errors are ggx_albedo_aniso_table's), in [0, 1].
- * v.z <= 0: 0. */
+/* E(v) from the table, in [0, 1]: never below ggx_albedo(s, v) by more than 1e-3; within 1e-3 of it for
+ * v.z >= 0.0175 (89 degrees) outside the guarded cells, 1.1e-3 for unskewed anisotropic shapes read from the shipped
+ * table (their nodes and errors are ggx_albedo_aniso_table's). v.z <= 0: 0. */
 double ggx_energy_albedo(const ggx_energy *e, ggx_vec3 v);
 /* E_avg of the table: (1 / pi) int E(v) v.z dv of its interpolant, within 1e-3 of ggx_albedo_avg. */
 double ggx_energy_albedo_avg(const ggx_energy *e);
@@ -609,11 +607,11 @@ double ggx_pdf_brdf_compensated(const ggx_energy *e, const ggx_fresnel *f, ggx_v
  * loses more), and f_ms(wi, wo) / eta_o^2 = f_ms(wo, wi) / eta_i^2, the generalised reciprocity of ggx_bsdf_eval
  * (derivation: docs/design/energy.md).
  * E_a is a per-(shape, eta) table of ggx_bsdf_albedo for each side, built by ggx_bsdf_energy_create and read by
- * interpolation, so that a non-absorbing interface keeps R + T = 1 + (E_a - E_a,table)(wi): within 1e-3 of 1 from
- * both sides for views with |wi.z| >= 0.0175 (89 degrees), for every (shape, eta) that ggx_bsdf_energy_create accepts
- * and that tests/unit/test_energy_bsdf.c and tests/unit/test_energy_domain.c try (isotropic alpha 0.05 to 1, anisotropic to
- * 1:10, rotated, skewed to 0.5 rad; eta 1.001 to 2 and below 1). Tables whose nodes are computed are checked as the
- * conductor's are, and refused where the check fails.
+ * interpolation, so that a non-absorbing interface keeps R + T = 1 + (E_a - E_a,table)(wi): never above 1 + 1e-3 from
+ * either side, and within 1e-3 of 1 for views with |wi.z| >= 0.0175 (89 degrees) outside the guarded cells, for every
+ * (shape, eta) (tests/unit/test_energy_bsdf.c and tests/unit/test_energy_domain.c try isotropic alpha 0.05 to 1,
+ * anisotropic to 1:10, rotated, skewed, random shapes as the conductor's; eta 1.001 to 2.5 and below 1). Tables whose
+ * nodes are computed are guarded as the conductor's are.
  * Sides, directions and modes as for ggx_bsdf_eval: eta = eta_below / eta_above, directions point away from the
  * surface on either side, GGX_IMPORTANCE gives the adjoint f(wo, wi). Directions need not be unit (they are
  * normalised); w.z = 0, zero or non-finite vectors give 0 or an invalid sample; e NULL gives 0 or an invalid sample.
@@ -629,9 +627,8 @@ typedef struct ggx_bsdf_energy ggx_bsdf_energy;
  * shapes with alpha in [0.025, 2] and eta or 1 / eta in [1.05, 3] read them from the shipped table of
  * ggx_bsdf_albedo_iso_table instead (microseconds).
  * Errors: GGX_ERR_NULL (s or out NULL), GGX_ERR_NONFINITE (eta NaN or infinite), GGX_ERR_ETA (eta <= 0, above 1e300,
- * or exactly 1, where the transmission is a delta that ggx_bsdf_eval does not represent), GGX_ERR_RANGE (the check
- * of the interpolation finds either side's table more than 1e-3 off ggx_bsdf_albedo: sharp skewed lobes, as for
- * ggx_energy_create), GGX_ERR_MEMORY; *out is NULL then. */
+ * or exactly 1, where the transmission is a delta that ggx_bsdf_eval does not represent), GGX_ERR_MEMORY; *out is
+ * NULL then. */
 ggx_status ggx_bsdf_energy_create(const ggx_shape *s, double eta, ggx_bsdf_energy **out);
 /* Frees e (NULL is allowed). */
 void ggx_bsdf_energy_free(ggx_bsdf_energy *e);
@@ -639,8 +636,9 @@ void ggx_bsdf_energy_free(ggx_bsdf_energy *e);
 const ggx_shape *ggx_bsdf_energy_shape(const ggx_bsdf_energy *e);
 double ggx_bsdf_energy_eta(const ggx_bsdf_energy *e);
 
-/* E(v) = R + T of light arriving from v (either side) from the table: ggx_bsdf_albedo's sum within 1e-3 absolute for
- * |v.z| >= 0.0175 (89 degrees; the largest errors are in docs/design/energy.md), in [0, 1]. v.z = 0: 0. */
+/* E(v) = R + T of light arriving from v (either side) from the table, in [0, 1]: never below ggx_bsdf_albedo's sum by
+ * more than 1e-3; within 1e-3 of it for |v.z| >= 0.0175 (89 degrees) outside the guarded cells (the largest errors
+ * are in docs/design/energy.md). v.z = 0: 0. */
 double ggx_bsdf_energy_albedo(const ggx_bsdf_energy *e, ggx_vec3 v);
 /* E_avg of one side's table, (1 / pi) int E(v) |v.z| dv over that side: below = 0 for light from above, else from
  * below. */

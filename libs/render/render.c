@@ -298,11 +298,6 @@ int render_prepare(render_spec *r, char *err, size_t errn)
     if (!r->compensate) return 0;
     ggx_status st = is_glass(r) ? ggx_bsdf_energy_create(&r->shape, r->fresnel.eta, &r->bsdf_energy)
                                 : ggx_energy_create(&r->shape, &r->energy);
-    if (st == GGX_ERR_RANGE)
-        return surface_fail(err, errn,
-                            "no energy compensation for this %s: its albedo has a feature finer than the energy "
-                            "table resolves (render without --compensate)",
-                            is_glass(r) ? "shape and eta" : "shape");
     if (st != GGX_OK)
         return surface_fail(err, errn, "no energy compensation for this %s: %s",
                             is_glass(r) ? "shape and eta" : "shape", ggx_status_str(st));

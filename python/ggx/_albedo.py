@@ -87,9 +87,10 @@ class Energy:
     """A shape's albedo table and Kulla-Conty energy compensation (ggx_energy_create; docs/design/energy.md).
 
     Building it takes microseconds for shapes read from the shipped tables, 3 to 7 s for other unskewed shapes and
-    7 to 30 s for skewed ones; it is immutable after that and safe to share between threads. A shape whose albedo has
-    a feature finer than the table resolves (a sharp skewed lobe) raises ValueError (GGX_ERR_RANGE): render it
-    without compensation. Directions need not be unit; fresnel None means F = 1.
+    7 to 14 s for skewed ones; it is immutable after that and safe to share between threads. Every shape gets a
+    table; where its albedo has a feature finer than the table's nodes (a sharp skewed lobe), the table's cells there
+    lie above E, so the compensation loses a little energy there but never adds any. Directions need not be unit;
+    fresnel None means F = 1.
     """
 
     __slots__ = ("_handle", "_shape", "_finalizer", "__weakref__")

@@ -19,13 +19,10 @@
  * anisotropic shapes has sharp features in the azimuth at grazing: 64 columns left errors of 1.6e-3 to 3.8e-3 at
  * 89 degrees, 128 columns 1.5e-4 to 4e-4; docs/design/energy.md). The others (skewed shapes, roughnesses or anisotropy
  * outside the shipped tables) compute their nodes by quadrature, to TABLE_TOL, on 65 rows (with 33, skewed lobes of
- * alpha 0.05 erred by 1e-2 near grazing, with 65 by 1.6e-3) and 128 columns, then CHECK_COLUMNS where the check of
- * the interpolation (energy_table.c) finds more than TABLE_PROMISE; a shape that the finer table does not meet
- * either is refused (GGX_ERR_RANGE): its E has a feature narrower than the nodes (the lobe's mirror horizon, for
- * sharp skewed lobes), where an interpolated E would be off by up to the feature's height, in either direction. */
+ * alpha 0.05 erred by 1e-2 near grazing, with 65 by 1.6e-3) and 128 columns, and are guarded where the interpolation
+ * falls below E (energy_table.c). */
 #define TABLE_TOL 1e-4
-#define TABLE_PROMISE 1e-3
-enum { ROWS = 33, FINE_ROWS = 65, COLUMNS = 128, CHECK_COLUMNS = 256 };
+enum { ROWS = 33, FINE_ROWS = 65, COLUMNS = 128 };
 struct ggx_energy {
     ggx_shape s;
     energy_table t;
@@ -81,16 +78,6 @@ GGX_API ggx_status ggx_energy_create(const ggx_shape *s, ggx_energy **out)
     else if (s->kind != GGX_SHAPE_SKEWED && ggx_internal_aniso_table_serves(s->alpha_x, s->alpha_y)) shipped = 2;
     ggx_energy *e = build(s, shipped, shipped == 2 ? ROWS : FINE_ROWS, COLUMNS);
     if (!e) return GGX_ERR_MEMORY;
-    /* a finer table where the check finds the interpolation off by at most 3e-3 (twice the columns divide the
-     * error by about 2 to 3; a larger error is a narrower feature, which they would not mend) */
-    if (e->t.check_err > TABLE_PROMISE && !iso && e->t.check_err <= 3 * TABLE_PROMISE) {
-        ggx_energy_free(e);
-        if (!(e = build(s, 0, FINE_ROWS, CHECK_COLUMNS))) return GGX_ERR_MEMORY;
-    }
-    if (e->t.check_err > TABLE_PROMISE) {
-        ggx_energy_free(e);
-        return GGX_ERR_RANGE;
-    }
     *out = e;
     return GGX_OK;
 }

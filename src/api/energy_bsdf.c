@@ -25,8 +25,6 @@
 
 /* The nodes are computed to TABLE_TOL; the lookup's error is dominated by the interpolation (docs/design/energy.md). */
 #define TABLE_TOL 1e-4
-/* The check of the interpolation refuses a shape whose tables it finds further than this from the quadrature. */
-#define TABLE_PROMISE 1e-3
 /* 65 rows: with 33 (the conductor's) the lookup erred by up to 1.6e-3 near the critical angle from the denser side,
  * where E dips over a width ~alpha; 128 columns: with 64 it erred by 3.9e-3 at grazing for alpha (0.1, 1)
  * (docs/design/energy.md). */
@@ -100,11 +98,6 @@ GGX_API ggx_status ggx_bsdf_energy_create(const ggx_shape *s, double eta, ggx_bs
     /* a second thread only when there are quadratures to share */
     ggx_internal_parallel_for(shipped ? 1 : 2, build_side, c);
     if (shipped) build_side(c, 1);
-    /* the check of the interpolation (energy_table.c): a shape whose E has features narrower than the nodes */
-    if (e->side[0].check_err > TABLE_PROMISE || e->side[1].check_err > TABLE_PROMISE) {
-        free(e);
-        return GGX_ERR_RANGE;
-    }
     double l0 = 0.5 * e->side[0].total, l1 = 0.5 * e->side[1].total; /* pi (1 - E_avg) */
     double t0 = transmittance_avg(eta), t1 = transmittance_avg(1.0 / eta);
     double lmax = l0 > l1 ? l0 : l1, t = 0.0;

@@ -23,8 +23,11 @@ typedef struct energy_table {
     double *pad;        /* the same with ghost nodes around it: (nm + 2) x pw, pw = np + 3 (1 if np = 1) */
     int pw;
     double *cdf;      /* (nm - 1) np + 1 cumulative cell weights, cdf[0] = 0 */
-    double check_err; /* the largest |E of the interpolant - E of the node function| found by the check (0 when
-                         * not checked) */
+    double *guard;    /* 2 (nm - 1) np: per cell the guard's lift of I (NaN: not guarded; infinite: the constant cap),
+                       * then its cap (energy_table.c: guard_cells, and the grazing band) */
+    int guarded;      /* the number of guarded cells */
+    double check_err; /* the largest amount by which the interpolant fell below E of the node function at the check's
+                       * samples, before guarding (0 when not checked) */
 } energy_table;
 
 /* E of the table's shape at a unit view v with v.z > 0, divided by P(v); y is the view's row coordinate
@@ -37,11 +40,11 @@ size_t ggx_internal_etab_size(const ggx_shape *s, int nm, int np_full);
 /* Fills t for shape s (kept by pointer: it must outlive t) with nm rows and np_full columns in storage of
  * ggx_internal_etab_size(s, nm, np_full) doubles, calling node once per distinct node (the symmetries of unskewed shapes
  * fill the rest). warp: the columns' warp k for an unskewed s (1: uniform azimuths; skewed shapes always have 1).
- * check: compare the interpolant with node() where the nodes show a feature (energy_table.c, check_cells), the
- * largest difference into t->check_err; node must then compute E, not interpolate a table. */
+ * check: compare the interpolant with node() where the nodes show a feature, and guard the cells where it falls below
+ * E (energy_table.c, guard_cells); node must then compute E, not interpolate a table. */
 void ggx_internal_etab_build(energy_table *t, const ggx_shape *s, int nm, int np_full, double warp, int check,
                              double *storage, energy_node_fn node, void *ctx);
-/* E at a unit v with v.z > 0, in [0, 1]. */
+/* E at a unit v with v.z > 0, in [0, 1]: the interpolant, or in a guarded cell a value not below E there. */
 double ggx_internal_etab_albedo(const energy_table *t, ggx_vec3 v);
 /* The piecewise-constant density, per solid angle, that follows (1 - E(w)) w.z over the table's cells, at a unit w
  * with w.z > 0, and a direction drawn from it (the zero vector when 1 - E vanishes everywhere). */

@@ -161,7 +161,9 @@ static void white_furnace(void **state)
                             thetas[a]);
                 if (fabs(total - 1) > worst[side]) worst[side] = fabs(total - 1);
                 double et = ggx_bsdf_energy_albedo(tables[i], wi);
-                CHECK_CLOSE(ms, 1 - et, 0, 1e-6, "%s: int f_ms = 1 - E_table", CONFIGS[i].name);
+                /* 1 - E_table(wo) steps at the edges of the cells beyond 89 degrees (they hold a constant I), which
+                 * the adaptive quadrature over wo resolves to about 1e-6 */
+                CHECK_CLOSE(ms, 1 - et, 0, 3e-6, "%s: int f_ms = 1 - E_table", CONFIGS[i].name);
                 CHECK(trans >= 0 && trans <= ms + 1e-9, "%s: transmitted part %g of %g", CONFIGS[i].name, trans, ms);
                 if (fabs(ms - (1 - et)) > worst_identity) worst_identity = fabs(ms - (1 - et));
                 if (1 - ss > worst_loss) worst_loss = 1 - ss;
