@@ -72,9 +72,10 @@ double ggx_sggx_ndf(const ggx_sggx *f, ggx_vec3 w);
 double ggx_sggx_sigma(const ggx_sggx *f, ggx_vec3 w);
 
 /* The distribution of normals visible from wi, pdf D_wi(m) = max(0, wi.m) D(m) / sigma(wi) (which integrates to 1
- * over the sphere): with H = S^(1/2), a point of the unit disk facing a = H wi / ||H wi|| (polar map, r = sqrt(u1),
- * phi = 2 pi u2) lifted onto the unit hemisphere around a, and m = normalize(H u). Any wi != 0 (only its direction
- * matters); wi.m > 0 for u1 < 1; u1 = 1 gives a normal edge-on to wi (pdf 0). */
+ * over the sphere): with H = S^(1/2) and a = H wi / ||H wi||, a sphere-space point cosine-distributed about a, drawn
+ * as a + s with s uniform on the unit sphere (z = 1 - 2 u1, azimuth 2 pi u2; no frame), and m = normalize(H (a + s)).
+ * Any wi != 0 (only its direction matters); wi.m > 0 for every u. The s within 2^-20 of -a (probability 2^-42, where
+ * a + s would be rounding) give the normal at a, normalize(S wi). */
 ggx_vec3 ggx_sggx_sample_vndf(const ggx_sggx *f, ggx_vec3 wi, double u1, double u2);
 
 /* The specular flakes' phase function, f(wi, wo) = D(h) / (4 sigma(wi)) with h = normalize(wi + wo): the flake
@@ -82,8 +83,9 @@ ggx_vec3 ggx_sggx_sample_vndf(const ggx_sggx *f, ggx_vec3 wi, double u1, double 
  * exactly (h undefined, a set of measure zero) gives 0. */
 double ggx_sggx_phase_specular(const ggx_sggx *f, ggx_vec3 wi, ggx_vec3 wo);
 
-/* Samples ggx_sggx_phase_specular exactly: m = ggx_sggx_sample_vndf(f, wi, u1, u2), wo = 2 (wi.m) m - wi, whose pdf
- * is ggx_sggx_phase_specular(f, wi, wo) (the weight is 1). Unit wi. */
+/* Samples ggx_sggx_phase_specular exactly: m = ggx_sggx_sample_vndf(f, wi, u1, u2), wo = 2 (wi.m) m - wi normalised,
+ * whose pdf is ggx_sggx_phase_specular(f, wi, wo) (the weight is 1). Unit wi (the normalisation makes wo the mirror of
+ * wi's direction for any moderate length). */
 ggx_vec3 ggx_sggx_sample_specular(const ggx_sggx *f, ggx_vec3 wi, double u1, double u2);
 
 /* The diffuse (Lambertian) flakes' phase function, f(wi, wo) = integral of D_wi(m) max(0, wo.m) / pi dm, evaluated
@@ -99,8 +101,9 @@ ggx_vec3 ggx_sggx_sample_specular(const ggx_sggx *f, ggx_vec3 wi, double u1, dou
 double ggx_sggx_phase_diffuse(const ggx_sggx *f, ggx_vec3 wi, ggx_vec3 wo);
 
 /* Samples ggx_sggx_phase_diffuse exactly: m = ggx_sggx_sample_vndf(f, wi, u1, u2), then wo cosine-distributed about
- * m (a uniform disk point, polar map from u3, u4, lifted), so that the pdf of wo is ggx_sggx_phase_diffuse(f, wi, wo)
- * (the weight is 1). Unit wi. */
+ * m, drawn as m + s normalised with s uniform on the unit sphere from u3, u4 (as the VNDF sampler draws a + s; wo = m
+ * where s is within 2^-20 of -m), so that the pdf of wo is ggx_sggx_phase_diffuse(f, wi, wo) (the weight is 1). Any
+ * wi != 0. */
 ggx_vec3 ggx_sggx_sample_diffuse(const ggx_sggx *f, ggx_vec3 wi, double u1, double u2, double u3, double u4);
 
 #ifdef __cplusplus
