@@ -541,6 +541,8 @@ static double rnd(uint64_t *s)
 int main(int argc, char **argv)
 {
     int quick = argc > 1 && strcmp(argv[1], "--quick") == 0;
+    int sggx_only = argc > 1 && strcmp(argv[1], "--sggx") == 0; /* the SGGX table alone, at the quick size */
+    quick |= sggx_only;
     uint64_t seed = 1;
     ggx_shape diag, skew;
     ggx_shape_aniso(&diag, 0.15, 0.5);
@@ -559,6 +561,10 @@ int main(int argc, char **argv)
     sc.ax = 0.15f, sc.ay = 0.5f; /* diag's alphas */
     long ns = quick ? 200000 : 2000000;
     printf("libggx benchmark (%s); ns per call, median of 9 runs\n\n", quick ? "quick" : "full");
+    if (sggx_only) {
+        sggx_table(&sc, &skew, ns);
+        return 0;
+    }
     printf("scalar double API              diagonal A    skewed A   skewed/diag\n");
     struct {
         const char *name;

@@ -48,6 +48,8 @@ from ._render import render
 from ._sample import (BrdfSample, DirectionSample, SampleEval, SamplerInfo, pdf, pdf_brdf, pdf_bsdf, sample, sample_brdf,
                       sample_eval,
                       sample_bsdf, sample_inverse, sample_ndf, sample_vndf, samplers)
+from ._sggx import (Flakes, sggx_ndf, sggx_phase_diffuse, sggx_phase_specular, sggx_sample_diffuse,
+                    sggx_sample_specular, sggx_sample_vndf, sggx_sigma)
 from ._shape import Fresnel, Shape
 
 __all__ = [
@@ -60,6 +62,8 @@ __all__ = [
     "pdf_brdf", "sample_bsdf", "pdf_bsdf", "reflect", "half_reflect", "batch_isa", "set_batch_threads",
     "FitInfo", "Surface", "fit_normals", "fit_normal_cells", "fit_heightfield", "read_surface", "render",
     "texel_lobe", "filter_lobes", "filter_kl", "mipmap",
+    "Flakes", "sggx_ndf", "sggx_sigma", "sggx_sample_vndf", "sggx_phase_specular", "sggx_sample_specular",
+    "sggx_phase_diffuse", "sggx_sample_diffuse",
 ]
 
 # The public objects say they are ggx's, as they did in one file: their reprs, help and pickles name ggx.Shape, not

@@ -236,6 +236,42 @@ EXPORT void ggxpy_energy_sample(int compensated, const ggx_energy *e, const ggx_
     }
 }
 
+/* ---- SGGX flakes (ggx/ggx_sggx.h): the same loops over a ggx_sggx in place of the shape ---- */
+
+EXPORT size_t ggxpy_sizeof_sggx(void) { return sizeof(ggx_sggx); }
+/* S, its eigenvalues (ascending) and unit eigenvectors (rows), for the Python object's properties. */
+EXPORT void ggxpy_sggx_fields(const ggx_sggx *g, double s[9], double eig[3], double axes[9])
+{
+    memcpy(s, g->s, sizeof g->s);
+    memcpy(eig, g->eig, sizeof g->eig);
+    memcpy(axes, g->axes, sizeof g->axes);
+}
+
+/* Evaluations: f(g, w) (ndf, sigma) and f(g, wi, wo) (the phase functions). */
+EXPORT void ggxpy_sggx_v(double (*f)(const ggx_sggx *, ggx_vec3), const ggx_sggx *g, size_t n, const ggxpy_in *in,
+                         double *out)
+{
+    for (size_t i = 0; i < n; i++) out[i] = f(g, vec(&in[0], i));
+}
+EXPORT void ggxpy_sggx_vv(double (*f)(const ggx_sggx *, ggx_vec3, ggx_vec3), const ggx_sggx *g, size_t n,
+                          const ggxpy_in *in, double *out)
+{
+    for (size_t i = 0; i < n; i++) out[i] = f(g, vec(&in[0], i), vec(&in[1], i));
+}
+
+/* Samplers: w = f(g, wi, u1, u2) (VNDF, specular), inputs wi, u1, u2; and the diffuse one, inputs wi, u1 to u4. */
+EXPORT void ggxpy_sggx_sample2(ggx_vec3 (*f)(const ggx_sggx *, ggx_vec3, double, double), const ggx_sggx *g, size_t n,
+                               const ggxpy_in *in, double *w)
+{
+    for (size_t i = 0; i < n; i++) put(w, i, f(g, vec(&in[0], i), num(&in[1], i), num(&in[2], i)));
+}
+EXPORT void ggxpy_sggx_sample4(const ggx_sggx *g, size_t n, const ggxpy_in *in, double *w)
+{
+    for (size_t i = 0; i < n; i++)
+        put(w, i,
+            ggx_sggx_sample_diffuse(g, vec(&in[0], i), num(&in[1], i), num(&in[2], i), num(&in[3], i), num(&in[4], i)));
+}
+
 /* ---- fits (ggx/ggx_fit.h) and measured surfaces (libs/surface/surface.h) ----
  * ggx_fit_info reaches Python as one flat array of doubles whose fields are listed once, here: FIT_FIELDS gives each
  * field's name and length, ggxpy_fit_fields() the names as "name:length,..." for the Python side to unpack. */

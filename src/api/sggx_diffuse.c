@@ -15,12 +15,13 @@
 #include "internal.h"
 #include "sggx_internal.h"
 
-/* phi(z) = atan(sqrt z) / sqrt z for z > 0, atanh(sqrt -z) / sqrt -z for -1 < z < 0, 1 at 0 (its series near 0). */
+/* phi(z) = atan(sqrt z) / sqrt z for z > 0, atanh(sqrt -z) / sqrt -z for -1 < z < 0, 1 at 0 (its series near 0);
+ * atanh(r) as log((1 + r) / (1 - r)) / 2, a quarter of the time of libm's atanh (r >= 0.03 here: no cancellation). */
 static double phi_z(double z)
 {
     if (fabs(z) < 1e-3) return 1.0 + z * (-1.0 / 3 + z * (1.0 / 5 + z * (-1.0 / 7 + z * (1.0 / 9))));
     double r = sqrt(fabs(z));
-    return z > 0 ? atan(r) / r : atanh(r) / r;
+    return z > 0 ? atan(r) / r : 0.5 * log((1.0 + r) / (1.0 - r)) / r;
 }
 
 /* 2 mu^2 / X^4 times the integral over the half circle of the terms of one eigen-direction (the design document's
@@ -117,9 +118,10 @@ static void gk15(const lune *L, panel *P)
 
 enum { MAX_PANELS = 128, MAX_CUTS = 10 };
 /* The adaptive rule stops when the estimated error (the Gauss rule's, which overstates the Kronrod rule's by orders
- * of magnitude on these smooth panels) is below this fraction of the integral. */
+ * of magnitude on these smooth panels) is below this fraction of the integral: the header's accuracy is measured at
+ * this value (a tolerance of 1e-3 lets errors of 4e-4 through). */
 #ifndef DIFFUSE_RTOL
-#define DIFFUSE_RTOL 1e-5
+#define DIFFUSE_RTOL 1e-4
 #endif
 /* Cuts are made where an eigenvalue of S is below this fraction of the next one (milder S give smooth integrands). */
 #ifndef CUT_RATIO
@@ -218,7 +220,7 @@ static double cut_width(double ratio, double s)
     return sqrt((ratio + s2) / (1.0 - s2));
 }
 
-GGX_API double ggx_sggx_phase_diffuse(const ggx_sggx *f, ggx_vec3 wi, ggx_vec3 wo)
+GGX_API GGX_HOT double ggx_sggx_phase_diffuse(const ggx_sggx *f, ggx_vec3 wi, ggx_vec3 wo)
 {
     ggx_vec3 a = ggx_k_normalize_d(ggx_k_mul_d(f->half, ggx_k_unit_d(wi)));
     ggx_vec3 hb = ggx_k_mul_d(f->half, ggx_k_unit_d(wo));

@@ -267,13 +267,14 @@ static double diffuse_reference(const ggx_sggx *f, const ggx_shape *s, ggx_vec3 
 }
 
 /* Against the independent quadrature, for random S with eigenvalue ratios to 1e4 and shapes to alpha = 1e-3 (ratio
- * 1e6), skewed and rotated; pairs in general position and in a common plane with an axis of S. */
+ * 1e6), skewed and rotated; pairs in general position and in a common plane with an axis of S; within the header's
+ * 1e-4. */
 static void diffuse_vs_quadrature(void **state)
 {
     (void)state;
     rng r = {534};
     double worst = 0.0;
-    int cases = test_quick() ? 4 : 10;
+    int cases = test_quick() ? 6 : 40;
     for (int k = 0; k < cases; k++) {
         ggx_sggx f;
         ggx_shape s;
@@ -297,7 +298,7 @@ static void diffuse_vs_quadrature(void **state)
             double got = ggx_sggx_phase_diffuse(&f, wi, wo), want = diffuse_reference(&f, &s, wi, wo);
             double e = fabs(got - want) / want;
             worst = fmax(worst, e);
-            CHECK(e < 1e-6, "case %d pair %d: %.12g vs quadrature %.12g (eigenvalues %g %g %g)", k, i, got, want,
+            CHECK(e < 1e-4, "case %d pair %d: %.12g vs quadrature %.12g (eigenvalues %g %g %g)", k, i, got, want,
                   f.eig[0], f.eig[1], f.eig[2]);
         }
     }
@@ -305,7 +306,7 @@ static void diffuse_vs_quadrature(void **state)
 }
 
 /* Against Monte Carlo: the mean of max(0, wo.m) / pi over visible normals m drawn by ggx_sggx_sample_vndf (1e6
- * samples at the quick tier, 1e8 at the full one), within 5 standard errors plus the stated 1e-6. */
+ * samples at the quick tier, 1e8 at the full one), within 5 standard errors plus the stated 1e-4. */
 static void diffuse_vs_monte_carlo(void **state)
 {
     (void)state;
@@ -327,7 +328,7 @@ static void diffuse_vs_monte_carlo(void **state)
         double dn = (double)n, mean = sum / dn, se = sqrt(fmax(0.0, sum2 / dn - mean * mean) / dn);
         double got = ggx_sggx_phase_diffuse(&f, wi, wo);
         worst = fmax(worst, fabs(got - mean) / se);
-        CHECK(fabs(got - mean) <= 5.0 * se + 1e-6 * got, "case %d: exact %.9g, Monte Carlo %.9g +- %.3g", k, got, mean,
+        CHECK(fabs(got - mean) <= 5.0 * se + 1e-4 * got, "case %d: exact %.9g, Monte Carlo %.9g +- %.3g", k, got, mean,
               se);
     }
     printf("diffuse_vs_monte_carlo: %ld samples each, largest difference %.2f standard errors\n", n, worst);
@@ -484,8 +485,18 @@ static void edges(void **state)
             for (int k = 0; k < 3; k++)
                 CHECK(fabs(sqrt(t_dot(o[k], o[k])) - 1.0) <= 1e-12, "sampler %d at u = (%g, %g): |w| = %.17g", k, us[i],
                       us[j], sqrt(t_dot(o[k], o[k])));
-            CHECK(us[i] >= 1.0 || t_dot(o[0], w) > 0, "visible normal at u = (%g, %g)", us[i], us[j]);
+            CHECK(t_dot(o[0], w) > 0, "visible normal at u = (%g, %g)", us[i], us[j]);
         }
+    /* the sphere point antipodal to the sphere-space view (a + s = 0 exactly: S diagonal, wi and s along z) */
+    double D3[3][3] = {{0.3, 0, 0}, {0, 0.05, 0}, {0, 0, 2.0}};
+    ggx_sggx fd;
+    make_sggx(&fd, (const double(*)[3])D3);
+    ggx_vec3 zi = t_vec(0, 0, 1), mz = ggx_sggx_sample_vndf(&fd, zi, 1.0, 0.0);
+    ggx_vec3 wz = ggx_sggx_sample_diffuse(&fd, zi, 1.0, 0.0, 1.0, 0.0);
+    CHECK(fabs(t_dot(mz, mz) - 1.0) <= 1e-12 && t_dot(mz, zi) > 0, "vndf at the antipode: (%g, %g, %g)", mz.x, mz.y,
+          mz.z);
+    CHECK(fabs(t_dot(wz, wz) - 1.0) <= 1e-12 && t_dot(wz, zi) > 0, "diffuse at the antipodes: (%g, %g, %g)", wz.x, wz.y,
+          wz.z);
     /* the samplers depend on wi's direction only */
     ggx_vec3 a = ggx_sggx_sample_vndf(&f, w, 0.3, 0.8), b = ggx_sggx_sample_vndf(&f, t_scale(w, 1e-3), 0.3, 0.8);
     CHECK(fabs(a.x - b.x) + fabs(a.y - b.y) + fabs(a.z - b.z) < 1e-15, "vndf of a scaled wi");
