@@ -11,6 +11,10 @@
 #include "surface.h"
 #include "testlib.h"
 
+#if __has_include(<png.h>)
+#include <png.h>
+#define HAVE_PNG 1
+#endif
 #if __has_include(<zip.h>)
 #include <zip.h>
 #define HAVE_ZIP 1
@@ -317,6 +321,77 @@ static void quantisation(void **state)
     }
 }
 
+#ifdef HAVE_PNG
+/* Grey PNGs of 1, 2, 4, 8 and 16 bits read as their own levels (not libpng's expansion to 8 bits), W x 1 and 1 x H
+ * refused alike as heights. */
+static void png_grey_depths(void **state)
+{
+    (void)state;
+    static const int depths[5] = {1, 2, 4, 8, 16};
+    for (int d = 0; d < 5; d++) {
+        int bits = depths[d];
+        unsigned top = (1u << bits) - 1;
+        for (int shape = 0; shape < 3; shape++) {
+            png_uint_32 w = shape == 1 ? 1 : 4, h = shape == 2 ? 1 : 3;
+            FILE *f = fopen(tmp("grey.png"), "wb");
+            png_structp png = png_create_write_struct(PNG_LIBPNG_VER_STRING, NULL, NULL, NULL);
+            png_infop info = png_create_info_struct(png);
+            png_init_io(png, f);
+            png_set_IHDR(png, info, w, h, bits, PNG_COLOR_TYPE_GRAY, PNG_INTERLACE_NONE, PNG_COMPRESSION_TYPE_DEFAULT,
+                         PNG_FILTER_TYPE_DEFAULT);
+            png_write_info(png, info);
+            if (bits < 8) png_set_packing(png);
+            unsigned char row[8];
+            for (png_uint_32 y = 0; y < h; y++) {
+                for (png_uint_32 x = 0; x < w; x++) {
+                    unsigned v = (x + y * w) % (top + 1);
+                    if (bits == 16) row[2 * x] = (unsigned char)(v >> 8), row[2 * x + 1] = (unsigned char)v;
+                    else row[x] = (unsigned char)v;
+                }
+                png_write_row(png, row);
+            }
+            png_write_end(png, NULL);
+            png_destroy_write_struct(&png, &info);
+            fclose(f);
+            surface s;
+            surface_read_options o = {SURFACE_HEIGHTS, 0};
+            char err[512] = "";
+            int rc = surface_read(tmp("grey.png"), &o, &s, err, sizeof err);
+            if (shape) {
+                CHECK(rc != 0 && strstr(err, "at least 2 x 2"), "%d-bit %u x %u: %s", bits, (unsigned)w, (unsigned)h,
+                      err);
+                continue;
+            }
+            CHECK(rc == 0 && s.bits == bits, "%d-bit grey: %s", bits, err);
+            for (size_t i = 0; i < 12; i++)
+                CHECK(s.h[i] == (double)(i % (top + 1)), "%d-bit grey: level %zu read as %g", bits, i, s.h[i]);
+            surface_free(&s);
+        }
+    }
+}
+#endif
+
+/* One absurd finite height (1e308) among ordinary ones: left out of the levelling and its facets, the fit as
+ * without it (rather than every slope overflowing). */
+static void absurd_height(void **state)
+{
+    (void)state;
+    size_t nx = 40, ny = 40;
+    double *h = malloc(nx * ny * sizeof *h);
+    rng r = {9};
+    for (size_t i = 0; i < nx * ny; i++) h[i] = rng_range(&r, -1.0, 1.0) + 0.01 * (double)(i % nx);
+    ggx_shape a, b;
+    ggx_fit_info ia, ib;
+    CHECK(ggx_fit_heightfield(&a, h, nx, ny, 1.0, 1.0, NULL, NULL, &ia) == GGX_OK, "the ordinary field");
+    h[20 * nx + 20] = 1e308;
+    ggx_status st = ggx_fit_heightfield(&b, h, nx, ny, 1.0, 1.0, NULL, NULL, &ib);
+    CHECK(st == GGX_OK && ib.used == ia.used - 16 && ib.ignored_nonfinite == 16, "one absurd height: %s, used %zu",
+          ggx_status_str(st), ib.used);
+    CHECK(fabs(ib.sigma[0] / ia.sigma[0] - 1) < 0.02 && fabs(ib.t[0] - ia.t[0]) < 0.02, "sigma %g against %g",
+          ib.sigma[0], ia.sigma[0]);
+    free(h);
+}
+
 #ifndef GGX_SOURCE_DIR
 #define GGX_SOURCE_DIR "."
 #endif
@@ -519,6 +594,10 @@ int main(void)
     const struct CMUnitTest tests[] = {cmocka_unit_test(height_round_trips), cmocka_unit_test(normal_round_trips),
                                        cmocka_unit_test(malformed),          cmocka_unit_test(gwyddion_text_header),
                                        cmocka_unit_test(quantisation),       cmocka_unit_test(x3p_public),
+                                       cmocka_unit_test(absurd_height),
+#ifdef HAVE_PNG
+                                       cmocka_unit_test(png_grey_depths),
+#endif
 #ifdef HAVE_ZIP
                                        cmocka_unit_test(x3p_variants)
 #endif
