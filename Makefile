@@ -10,11 +10,11 @@ MAKEFLAGS += --no-print-directory
 
 all: build
 
-# Debian packages: what `make run` needs (compiler, CMake, cairo and a font for the figures; libpng, libzip, libxml2 and OpenEXR for the surfaces `ggx fit` reads, stb_image for the .hdr environments of `ggx render`, KISS FFT and Embree for the microsurfaces of `ggx microsurface` and their tracer), and what the test suite adds (cmocka, g++ for the
+# Debian packages: what `make run` needs (compiler, CMake, cairo and a font for the figures; libpng, libzip, libxml2 (and libcrypto, for x3p's MD5 checksums) and OpenEXR for the surfaces `ggx fit` reads, stb_image for the .hdr environments of `ggx render`, KISS FFT and Embree for the microsurfaces of `ggx microsurface` and their tracer), and what the test suite adds (cmocka, g++ for the
 # header's C++ test, make for the install test, xmllint and poppler (pdfinfo) for the figures, groff for the man page,
 # universal-ctags for the header index,
 # Python with numpy, pytest and matplotlib for the Python package's tests and its example).
-RUN_PKGS = cmake make gcc libc6-dev pkg-config libcairo2-dev fonts-dejavu-core libpng-dev libzip-dev libxml2-dev \
+RUN_PKGS = cmake make gcc libc6-dev pkg-config libcairo2-dev fonts-dejavu-core libpng-dev libzip-dev libxml2-dev libssl-dev \
            libopenexr-dev libstb-dev libkissfft-dev libembree-dev
 TEST_PKGS = $(RUN_PKGS) g++ clang libcmocka-dev libxml2-utils poppler-utils groff-base universal-ctags python3 \
             python3-numpy python3-pytest python3-matplotlib

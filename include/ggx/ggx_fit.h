@@ -164,8 +164,11 @@ typedef struct ggx_heightfield_options {
  * both triangulations are used (the two diagonals), each triangle weighted by its projected area, dx dy / 4: the four
  * facet slopes of a cell are then the four pairs of its x and y differences, ((h10 - h00) or (h11 - h01)) / dx with
  * ((h01 - h00) or (h11 - h10)) / dy, and no diagonal is preferred (one triangulation alone would tie the NDF's
- * anisotropy to its diagonal). Cells with a non-finite height, or whose levelled slopes' squares overflow, are
- * ignored (counted in ignored_nonfinite); levelling uses the finite heights. opt and info as in ggx_fit_normals; hopt may be NULL.
+ * anisotropy to its diagonal). Heights more than 1e6 times the span of the finite heights' 1st to 99th percentiles
+ * from their median (from an even subsample of at most 65 536) are missing, as a non-finite one is: such a height
+ * is no measurement, and one finite 1e308 would otherwise overflow the levelling plane and every slope. Cells with a
+ * missing height, or whose levelled slopes' squares overflow, are ignored (counted in ignored_nonfinite); levelling
+ * uses the other heights. opt and info as in ggx_fit_normals; hopt may be NULL.
  * Errors: GGX_ERR_NULL; GGX_ERR_RANGE (nx or ny below 2, nx * ny overflowing, dx or dy not positive, downsample
  * negative or leaving fewer than 2 x 2 heights); GGX_ERR_NONFINITE (dx or dy NaN or infinite); as ggx_fit_normals. */
 ggx_status ggx_fit_heightfield(ggx_shape *out, const double *h, size_t nx, size_t ny, double dx, double dy,
@@ -173,7 +176,7 @@ ggx_status ggx_fit_heightfield(ggx_shape *out, const double *h, size_t nx, size_
 
 /* The slopes (x~, y~) of facets [first, first + count) of the height field, as ggx_fit_heightfield takes them
  * (facet k % 4 of cell k / 4, cells row by row; levelled or downsampled by hopt), into slopes[2 k], slopes[2 k + 1];
- * NaN for a cell with a non-finite height. *total (may be NULL) receives the number of facets,
+ * NaN for a cell with a missing height. *total (may be NULL) receives the number of facets,
  * 4 (nx' - 1)(ny' - 1) for the grid after downsampling. Costs a pass over the heights for the levelling plane on
  * every call, so read large ranges. Errors: as ggx_fit_heightfield; GGX_ERR_RANGE for a range past *total. */
 ggx_status ggx_heightfield_facets(double *slopes, size_t first, size_t count, const double *h, size_t nx, size_t ny,

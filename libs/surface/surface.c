@@ -130,7 +130,11 @@ int surface_read(const char *path, const surface_read_options *o, surface *s, ch
     surface_format fmt = surface_format_of(path, buf, n);
     int rc = surface_parse(fmt, buf, n, o, s, why, sizeof why);
     free(buf);
-    if (rc != 0) return surface_fail(err, errn, "'%s' (%s): %s", path, surface_format_name(fmt), why);
+    if (rc != 0) {
+        for (char *c = why; *c; c++) /* one line, whatever a reason quotes from the file */
+            if ((unsigned char)*c < 0x20 || *c == 0x7f) *c = ' ';
+        return surface_fail(err, errn, "'%s' (%s): %s", path, surface_format_name(fmt), why);
+    }
     return 0;
 }
 

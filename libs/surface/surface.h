@@ -40,7 +40,7 @@ typedef struct surface {
                      * it has none */
     double z_scale; /* what brings a height into the unit of dx, dy where the file says both (x3p, gsf, XYZ and a
                      * text header with units: 1e-6 for heights in micrometres beside metres), else 0 */
-    int bits;       /* 8 or 16 for PNG, 0 for float data */
+    int bits;       /* 8 or 16 for PNG (1, 2 or 4 for grey of those depths), 0 for float data */
     int channels;   /* channels of a normal map: 2 (z rebuilt) or 3; of an OpenEXR height field, the file's count */
     surface_format format; /* what the file was read as */
 } surface;

@@ -1,5 +1,6 @@
 /* PNG surfaces through libpng: grey height maps (8 or 16 bit, raw levels) and tangent-space normal maps (RGB or RGBA;
- * an RGB map whose blue is 0 everywhere, or grey + alpha, as two channels with z rebuilt). SPDX-License-Identifier: MIT */
+ * an RGB map whose blue is 0 everywhere, or grey + alpha, as two channels with z rebuilt). Grey of 1, 2 or 4 bits
+ * reads as its levels too. SPDX-License-Identifier: MIT */
 #include <math.h>
 #include <setjmp.h>
 #include <stdint.h>
@@ -57,6 +58,9 @@ int surface_parse_png(const unsigned char *data, size_t n, const surface_read_op
     png_read_info(png, info);
     png_uint_32 w = png_get_image_width(png, info), h = png_get_image_height(png, info);
     int depth = png_get_bit_depth(png, info), type = png_get_color_type(png, info);
+    /* grey of 1, 2 or 4 bits is expanded to 8 by libpng's scaling (levels times 255, 85 or 17): undone below, so
+     * heights are the file's own levels */
+    const int grey_bits = type == PNG_COLOR_TYPE_GRAY && depth < 8 ? depth : 0;
     if (type == PNG_COLOR_TYPE_PALETTE) png_set_palette_to_rgb(png);
     if (type == PNG_COLOR_TYPE_GRAY && depth < 8) png_set_expand_gray_1_2_4_to_8(png);
     if (png_get_valid(png, info, PNG_INFO_tRNS)) png_set_tRNS_to_alpha(png);
@@ -82,14 +86,15 @@ int surface_parse_png(const unsigned char *data, size_t n, const surface_read_op
                  : (double)pixels[(i)*ch + (c)])
     /* rows have no padding beyond ch * depth / 8 bytes per pixel: stride = w * ch * depth / 8 */
     int rc = 0;
-    s->nx = w, s->ny = h, s->bits = depth;
+    s->nx = w, s->ny = h, s->bits = grey_bits ? grey_bits : depth;
+    const double unscale = grey_bits ? 255.0 / (double)((1 << grey_bits) - 1) : 1.0;
     if (o->want == SURFACE_HEIGHTS || ch == 1) {
         if (ch > 2) {
             rc = surface_fail(err, errn, "a colour PNG is not a height map (give a grey PNG)");
         } else if (!(s->h = malloc(count * sizeof *s->h))) {
             rc = surface_fail(err, errn, "out of memory");
         } else {
-            for (size_t i = 0; i < count; i++) s->h[i] = LEVEL(i, 0);
+            for (size_t i = 0; i < count; i++) s->h[i] = LEVEL(i, 0) / unscale;
             s->kind = SURFACE_HEIGHTS;
         }
     } else {

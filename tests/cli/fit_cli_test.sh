@@ -157,5 +157,35 @@ printf '0 1 0\n1 0 1\n0 1 0\n' > h3.txt
 one_line "spacing over z-scale overflows" "beyond the range of a double" 2 "$GGX" fit --heightfield h3.txt \
     --spacing 1e308 --z-scale 0.5
 
+# --- odd inputs (tests/support/fit_odd_inputs.py): W x 1 and 1 x H normal maps alike, 8- and 16-bit maps below the
+# plane refused alike, one absurd height left out of the levelling, damaged x3p archives refused in one line, and the
+# public x3p files of tests/data/x3p fitted (the point cloud and the one with a stale MD5 refused)
+if [ -n "$PY" ] && "$PY" "$ROOT/tests/support/fit_odd_inputs.py"; then
+    "$GGX" fit --normal-map row.png --format csv > row.csv && "$GGX" fit --normal-map column.png --format csv > col.csv &&
+        ok || bad "64 x 1 and 1 x 64 normal maps"
+    expect2 "8-bit map below the plane" "too few usable samples" "$GGX" fit --normal-map below8.png
+    expect2 "16-bit map below the plane" "too few usable samples" "$GGX" fit --normal-map below16.png
+    "$GGX" fit --heightfield absurd.txt --spacing 1 --z-scale 1 --format json > absurd.json &&
+        grep -q '"used": 6068' absurd.json && ok || bad "one absurd height: $(grep used absurd.json)"
+    expect2 "--z-scale 1e308" "slopes beyond the range of a double" "$GGX" fit --heightfield h3.txt --spacing 100 \
+        --z-scale 1e308
+    "$GGX" fit --heightfield good.x3p --format csv > /dev/null && ok || bad "written x3p"
+    expect2 "truncated x3p" "zip" "$GGX" fit --heightfield truncated.x3p
+    expect2 "x3p CRC" "CRC" "$GGX" fit --heightfield crc.x3p
+    expect2 "x3p main.xml MD5" "main.xml's MD5 is" "$GGX" fit --heightfield md5.x3p
+    expect2 "x3p data MD5" "MD5ChecksumPointData" "$GGX" fit --heightfield datamd5.x3p
+    expect2 "x3p lying sizes" "holds 128 bytes, not the 160" "$GGX" fit --heightfield lying.x3p
+    expect2 "x3p profile" "is a profile" "$GGX" fit --heightfield profile.x3p
+else
+    echo "fit CLI: no python3, the odd inputs are not tested"
+fi
+for f in ISO5436-sample1 ISO5436-sample1_bin ISO5436-sample3 ISO5436-sample4 ISO5436-sample4_bin \
+    KautschukInfiniteFocus sample-land pyramid testing; do
+    "$GGX" fit --heightfield "$ROOT/tests/data/x3p/$f.x3p" --format csv > x3p.csv && grep -q "^alpha_x," x3p.csv && ok ||
+        bad "public $f.x3p"
+done
+expect2 "public point cloud" "is a point cloud" "$GGX" fit --heightfield "$ROOT/tests/data/x3p/ISO5436-sample2.x3p"
+expect2 "public stale MD5" "main.xml's MD5 is" "$GGX" fit --heightfield "$ROOT/tests/data/x3p/csafe-logo.x3p"
+
 echo "fit CLI: $pass passed, $fail failed"
 [ $fail -eq 0 ]

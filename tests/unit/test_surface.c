@@ -11,6 +11,15 @@
 #include "surface.h"
 #include "testlib.h"
 
+#if __has_include(<png.h>)
+#include <png.h>
+#define HAVE_PNG 1
+#endif
+#if __has_include(<zip.h>)
+#include <zip.h>
+#define HAVE_ZIP 1
+#endif
+
 static char dir[64];
 
 static const char *tmp(const char *name)
@@ -312,13 +321,287 @@ static void quantisation(void **state)
     }
 }
 
+#ifdef HAVE_PNG
+/* Grey PNGs of 1, 2, 4, 8 and 16 bits read as their own levels (not libpng's expansion to 8 bits), W x 1 and 1 x H
+ * refused alike as heights. */
+static void png_grey_depths(void **state)
+{
+    (void)state;
+    static const int depths[5] = {1, 2, 4, 8, 16};
+    for (int d = 0; d < 5; d++) {
+        int bits = depths[d];
+        unsigned top = (1u << bits) - 1;
+        for (int shape = 0; shape < 3; shape++) {
+            png_uint_32 w = shape == 1 ? 1 : 4, h = shape == 2 ? 1 : 3;
+            FILE *f = fopen(tmp("grey.png"), "wb");
+            png_structp png = png_create_write_struct(PNG_LIBPNG_VER_STRING, NULL, NULL, NULL);
+            png_infop info = png_create_info_struct(png);
+            png_init_io(png, f);
+            png_set_IHDR(png, info, w, h, bits, PNG_COLOR_TYPE_GRAY, PNG_INTERLACE_NONE, PNG_COMPRESSION_TYPE_DEFAULT,
+                         PNG_FILTER_TYPE_DEFAULT);
+            png_write_info(png, info);
+            if (bits < 8) png_set_packing(png);
+            unsigned char row[8];
+            for (png_uint_32 y = 0; y < h; y++) {
+                for (png_uint_32 x = 0; x < w; x++) {
+                    unsigned v = (x + y * w) % (top + 1);
+                    if (bits == 16) row[2 * x] = (unsigned char)(v >> 8), row[2 * x + 1] = (unsigned char)v;
+                    else row[x] = (unsigned char)v;
+                }
+                png_write_row(png, row);
+            }
+            png_write_end(png, NULL);
+            png_destroy_write_struct(&png, &info);
+            fclose(f);
+            surface s;
+            surface_read_options o = {SURFACE_HEIGHTS, 0};
+            char err[512] = "";
+            int rc = surface_read(tmp("grey.png"), &o, &s, err, sizeof err);
+            if (shape) {
+                CHECK(rc != 0 && strstr(err, "at least 2 x 2"), "%d-bit %u x %u: %s", bits, (unsigned)w, (unsigned)h,
+                      err);
+                continue;
+            }
+            CHECK(rc == 0 && s.bits == bits, "%d-bit grey: %s", bits, err);
+            for (size_t i = 0; i < 12; i++)
+                CHECK(s.h[i] == (double)(i % (top + 1)), "%d-bit grey: level %zu read as %g", bits, i, s.h[i]);
+            surface_free(&s);
+        }
+    }
+}
+#endif
+
+/* One absurd finite height (1e308) among ordinary ones: left out of the levelling and its facets, the fit as
+ * without it (rather than every slope overflowing). */
+static void absurd_height(void **state)
+{
+    (void)state;
+    size_t nx = 40, ny = 40;
+    double *h = malloc(nx * ny * sizeof *h);
+    rng r = {9};
+    for (size_t i = 0; i < nx * ny; i++) h[i] = rng_range(&r, -1.0, 1.0) + 0.01 * (double)(i % nx);
+    ggx_shape a, b;
+    ggx_fit_info ia, ib;
+    CHECK(ggx_fit_heightfield(&a, h, nx, ny, 1.0, 1.0, NULL, NULL, &ia) == GGX_OK, "the ordinary field");
+    h[20 * nx + 20] = 1e308;
+    ggx_status st = ggx_fit_heightfield(&b, h, nx, ny, 1.0, 1.0, NULL, NULL, &ib);
+    CHECK(st == GGX_OK && ib.used == ia.used - 16 && ib.ignored_nonfinite == 16, "one absurd height: %s, used %zu",
+          ggx_status_str(st), ib.used);
+    CHECK(fabs(ib.sigma[0] / ia.sigma[0] - 1) < 0.02 && fabs(ib.t[0] - ia.t[0]) < 0.02, "sigma %g against %g",
+          ib.sigma[0], ia.sigma[0]);
+    free(h);
+}
+
+#ifndef GGX_SOURCE_DIR
+#define GGX_SOURCE_DIR "."
+#endif
+
+/* The public x3p files of tests/data/x3p (README.md there names their sources): each read with its size, spacing and
+ * missing points, and fitted; the point cloud and the file whose main.xml no longer matches its checksum refused. */
+static void x3p_public(void **state)
+{
+    (void)state;
+    static const struct {
+        const char *file;
+        size_t nx, ny, missing;
+        double dx, dy, h0; /* h0: the first height */
+        const char *refused;
+    } files[] = {
+        {"ISO5436-sample1.x3p", 4, 4, 1, 1.6016e-2, 1.6016e-2, 4.86219120804151e-1, NULL},
+        {"ISO5436-sample1_bin.x3p", 4, 4, 1, 1.6016e-2, 1.6016e-2, 4.86219120804151e-1, NULL},
+        {"ISO5436-sample3.x3p", 4, 4, 1, 1.6016e-2, 2.0, 2.0 + 4.86219120804151e-1, NULL},
+        {"ISO5436-sample4.x3p", 4, 4, 1, 1.6016e-2, 1.6016e-2, -0.5 + 986 * 0.001, NULL},
+        {"ISO5436-sample4_bin.x3p", 4, 4, 1, 1.6016e-2, 1.6016e-2, -0.5 + 986 * 0.001, NULL},
+        {"KautschukInfiniteFocus.x3p", 860, 634, 5296, 2.279984215e-6, 2.279794519e-6, NAN, NULL},
+        {"sample-land.x3p", 918, 256, 25292, 2.58e-6, 2.58e-6, NAN, NULL},
+        {"pyramid.x3p", 5, 5, 0, 1.0, 1.0, NAN, NULL},
+        {"testing.x3p", 30, 20, 0, 0.0274999996026357, 0.0274999996026357, NAN, NULL},
+        {"ISO5436-sample2.x3p", 0, 0, 0, 0, 0, 0, "point cloud"},
+        {"csafe-logo.x3p", 0, 0, 0, 0, 0, 0, "main.xml's MD5 is"},
+    };
+    for (size_t f = 0; f < sizeof files / sizeof *files; f++) {
+        char path[512], err[512] = "";
+        snprintf(path, sizeof path, "%s/tests/data/x3p/%s", GGX_SOURCE_DIR, files[f].file);
+        surface s;
+        surface_read_options o = {SURFACE_HEIGHTS, 0};
+        int rc = surface_read(path, &o, &s, err, sizeof err);
+        if (files[f].refused) {
+            CHECK(rc != 0 && strstr(err, files[f].refused) && !strchr(err, '\n'), "%s: '%s'", files[f].file, err);
+            continue;
+        }
+        CHECK(rc == 0, "%s: %s", files[f].file, err);
+        if (rc != 0) continue;
+        size_t missing = 0;
+        for (size_t i = 0; i < s.nx * s.ny; i++) missing += !isfinite(s.h[i]);
+        CHECK(s.nx == files[f].nx && s.ny == files[f].ny && missing == files[f].missing, "%s: %zu x %zu, %zu missing",
+              files[f].file, s.nx, s.ny, missing);
+        CHECK(fabs(s.dx / files[f].dx - 1) < 1e-9 && fabs(s.dy / files[f].dy - 1) < 1e-9, "%s: spacing %g x %g",
+              files[f].file, s.dx, s.dy);
+        if (isfinite(files[f].h0)) CHECK(fabs(s.h[0] - files[f].h0) < 1e-12, "%s: h[0] = %.17g", files[f].file, s.h[0]);
+        ggx_shape out;
+        ggx_fit_info info;
+        ggx_status st = ggx_fit_heightfield(&out, s.h, s.nx, s.ny, s.dx / s.z_scale, s.dy / s.z_scale, NULL, NULL,
+                                            &info);
+        CHECK(st == GGX_OK && info.used > 0, "%s: fit: %s", files[f].file, ggx_status_str(st));
+        surface_free(&s);
+    }
+}
+
+#ifdef HAVE_ZIP
+/* An archive of named members (name, bytes, length; a NULL name ends the list) as a file; its bytes in *n. */
+static unsigned char *zip_members(const char *path, const char *const *names, const char *const *data,
+                                  const size_t *len, size_t *n)
+{
+    remove(path);
+    int e;
+    zip_t *z = zip_open(path, ZIP_CREATE | ZIP_TRUNCATE, &e);
+    for (int k = 0; names[k]; k++) {
+        zip_source_t *src = zip_source_buffer(z, data[k], len[k] ? len[k] : strlen(data[k]), 0);
+        zip_file_add(z, names[k], src, ZIP_FL_ENC_UTF_8);
+    }
+    zip_close(z);
+    return (unsigned char *)slurp(path, n);
+}
+
+/* main.xml with the given axes and Record3 body, of an areal surface. */
+static void x3p_xml(char *out, size_t n, const char *feature, const char *cx, const char *cy, const char *cz,
+                    const char *record3)
+{
+    snprintf(out, n,
+             "<?xml version=\"1.0\"?><p:ISO5436_2 xmlns:p=\"http://www.opengps.eu/2008/ISO5436_2\"><Record1>"
+             "<Revision>ISO5436 - 2000</Revision><FeatureType>%s</FeatureType><Axes><CX>%s</CX><CY>%s</CY>"
+             "<CZ>%s</CZ></Axes></Record1><Record3>%s</Record3></p:ISO5436_2>",
+             feature, cx, cy, cz, record3);
+}
+
+static int parse_x3p_bytes(const unsigned char *b, size_t n, surface *s, char *err, size_t errn)
+{
+    surface_read_options o = {SURFACE_HEIGHTS, 0};
+    return surface_parse(SURFACE_X3P, b, n, &o, s, err, errn);
+}
+
+/* The layouts the standard allows, and every damaged or lying archive refused with its reason. */
+static void x3p_variants(void **state)
+{
+    (void)state;
+    const char *inc = "<AxisType>I</AxisType><DataType>D</DataType><Increment>1e-6</Increment><Offset>0</Offset>";
+    char xml[4096], err[512];
+    size_t n;
+    surface s;
+    /* inline heights of every DataType, an empty Datum a missing point */
+    static const char *const types[4] = {"I", "L", "F", "D"};
+    for (int t = 0; t < 4; t++) {
+        char cz[200];
+        snprintf(cz, sizeof cz,
+                 "<AxisType>A</AxisType><DataType>%s</DataType><Increment>%s</Increment>"
+                 "<Offset>1</Offset>",
+                 types[t], t < 2 ? "0.5" : "1");
+        x3p_xml(xml, sizeof xml, "SUR", inc, inc, cz,
+                "<MatrixDimension><SizeX>3</SizeX><SizeY>2</SizeY><SizeZ>1</SizeZ></MatrixDimension><DataList>"
+                "<Datum>1</Datum><Datum>-2</Datum><Datum/><Datum>4</Datum><Datum> 5 </Datum><Datum>6</Datum>"
+                "</DataList>");
+        unsigned char *b = zip_members(tmp("inline.x3p"), (const char *[]){"main.xml", NULL}, (const char *[]){xml},
+                                       (size_t[]){0}, &n);
+        CHECK(parse_x3p_bytes(b, n, &s, err, sizeof err) == 0, "DataType %s inline: %s", types[t], err);
+        double k = t < 2 ? 0.5 : 1.0;
+        CHECK(s.nx == 3 && s.ny == 2 && s.h[0] == 1 + k && s.h[1] == 1 - 2 * k && isnan(s.h[2]) && s.h[5] == 1 + 6 * k,
+              "DataType %s inline: %g %g %g", types[t], s.h[0], s.h[1], s.h[2]);
+        surface_free(&s);
+        free(b);
+    }
+    /* an integer out of its type's range, and a Datum of two values where one is due */
+    x3p_xml(xml, sizeof xml, "SUR", inc, inc, "<AxisType>A</AxisType><DataType>I</DataType>",
+            "<MatrixDimension><SizeX>2</SizeX><SizeY>2</SizeY><SizeZ>1</SizeZ></MatrixDimension><DataList>"
+            "<Datum>1</Datum><Datum>40000</Datum><Datum>1</Datum><Datum>1</Datum></DataList>");
+    unsigned char *b = zip_members(tmp("bad.x3p"), (const char *[]){"main.xml", NULL}, (const char *[]){xml},
+                                   (size_t[]){0}, &n);
+    refuse(SURFACE_X3P, (const char *)b, n, SURFACE_HEIGHTS, "Datum 2 is not 1 value");
+    free(b);
+    /* an absolute x axis: regular (decreasing, so mirrored) read, irregular refused; main.xml in a folder */
+    const char *absx = "<AxisType>A</AxisType><DataType>D</DataType><Offset>0</Offset>";
+    const char *zd = "<AxisType>A</AxisType><DataType>D</DataType>";
+    x3p_xml(xml, sizeof xml, "SUR", absx, inc, zd,
+            "<MatrixDimension><SizeX>3</SizeX><SizeY>2</SizeY><SizeZ>1</SizeZ></MatrixDimension><DataList>"
+            "<Datum>4e-6;1</Datum><Datum>2e-6;2</Datum><Datum>0;3</Datum><Datum>4e-6;4</Datum><Datum/>"
+            "<Datum>0;6</Datum></DataList>");
+    b = zip_members(tmp("absx.x3p"), (const char *[]){"scan/main.xml", NULL}, (const char *[]){xml}, (size_t[]){0}, &n);
+    CHECK(parse_x3p_bytes(b, n, &s, err, sizeof err) == 0, "absolute x: %s", err);
+    CHECK(fabs(s.dx - 2e-6) < 1e-18 && s.h[0] == 3 && s.h[2] == 1 && s.h[3] == 6 && isnan(s.h[4]),
+          "absolute x: dx %g, %g %g %g", s.dx, s.h[0], s.h[2], s.h[3]);
+    surface_free(&s);
+    free(b);
+    x3p_xml(xml, sizeof xml, "SUR", absx, inc, zd,
+            "<MatrixDimension><SizeX>3</SizeX><SizeY>2</SizeY><SizeZ>1</SizeZ></MatrixDimension><DataList>"
+            "<Datum>0;1</Datum><Datum>1e-6;2</Datum><Datum>3e-6;3</Datum><Datum>0;4</Datum><Datum>1e-6;5</Datum>"
+            "<Datum>3e-6;6</Datum></DataList>");
+    b = zip_members(tmp("irr.x3p"), (const char *[]){"main.xml", NULL}, (const char *[]){xml}, (size_t[]){0}, &n);
+    refuse(SURFACE_X3P, (const char *)b, n, SURFACE_HEIGHTS, "absolute CX axis is irregular");
+    free(b);
+    /* main.xml in two folders, a profile, a list */
+    b = zip_members(tmp("two.x3p"), (const char *[]){"a/main.xml", "b/main.xml", NULL}, (const char *[]){xml, xml},
+                    (size_t[]){0, 0}, &n);
+    refuse(SURFACE_X3P, (const char *)b, n, SURFACE_HEIGHTS, "more than one folder");
+    free(b);
+    x3p_xml(xml, sizeof xml, "PRF", inc, inc, zd,
+            "<MatrixDimension><SizeX>3</SizeX><SizeY>1</SizeY><SizeZ>1</SizeZ></MatrixDimension><DataList>"
+            "<Datum>1</Datum><Datum>2</Datum><Datum>3</Datum></DataList>");
+    b = zip_members(tmp("prf.x3p"), (const char *[]){"main.xml", NULL}, (const char *[]){xml}, (size_t[]){0}, &n);
+    refuse(SURFACE_X3P, (const char *)b, n, SURFACE_HEIGHTS, "FeatureType PRF is a profile");
+    free(b);
+    /* binary data: XML lying about the size, and wrong MD5s */
+    double pts[6] = {1, 2, 3, 4, 5, 6};
+    x3p_xml(xml, sizeof xml, "SUR", inc, inc, zd,
+            "<MatrixDimension><SizeX>3</SizeX><SizeY>3</SizeY><SizeZ>1</SizeZ></MatrixDimension><DataLink>"
+            "<PointDataLink>bindata/data.bin</PointDataLink></DataLink>");
+    b = zip_members(tmp("lie.x3p"), (const char *[]){"main.xml", "bindata/data.bin", NULL},
+                    (const char *[]){xml, (const char *)pts}, (size_t[]){0, sizeof pts}, &n);
+    refuse(SURFACE_X3P, (const char *)b, n, SURFACE_HEIGHTS, "holds 48 bytes, not the 72");
+    free(b);
+    x3p_xml(xml, sizeof xml, "SUR", inc, inc, zd,
+            "<MatrixDimension><SizeX>3</SizeX><SizeY>2</SizeY><SizeZ>1</SizeZ></MatrixDimension><DataLink>"
+            "<PointDataLink>bindata/data.bin</PointDataLink>"
+            "<MD5ChecksumPointData>00000000000000000000000000000000</MD5ChecksumPointData></DataLink>");
+    b = zip_members(tmp("md5d.x3p"), (const char *[]){"main.xml", "bindata/data.bin", NULL},
+                    (const char *[]){xml, (const char *)pts}, (size_t[]){0, sizeof pts}, &n);
+    refuse(SURFACE_X3P, (const char *)b, n, SURFACE_HEIGHTS, "MD5ChecksumPointData");
+    free(b);
+    b = zip_members(tmp("md5x.x3p"), (const char *[]){"main.xml", "md5checksum.hex", NULL},
+                    (const char *[]){xml, "0123456789abcdef0123456789abcdef *main.xml\n"}, (size_t[]){0, 0}, &n);
+    refuse(SURFACE_X3P, (const char *)b, n, SURFACE_HEIGHTS, "main.xml's MD5 is");
+    free(b);
+    /* a written archive with main.xml's CRC flipped, in its local header and the central directory alike */
+    surface h = heights();
+    CHECK(surface_write(tmp("crc.x3p"), SURFACE_X3P, &h, 0, NULL, err, sizeof err) == 0, "%s", err);
+    surface_free(&h);
+    char *c = slurp(tmp("crc.x3p"), &n);
+    CHECK(parse_x3p_bytes((unsigned char *)c, n, &s, err, sizeof err) == 0, "written x3p: %s", err);
+    surface_free(&s);
+    int flipped = 0;
+    for (size_t i = 0; i + 46 < n; i++) {
+        if (memcmp(c + i, "PK\x03\x04", 4) == 0 && memcmp(c + i + 30, "main.xml", 8) == 0) c[i + 14] ^= 1, flipped++;
+        if (memcmp(c + i, "PK\x01\x02", 4) == 0 && memcmp(c + i + 46, "main.xml", 8) == 0) c[i + 16] ^= 1, flipped++;
+    }
+    CHECK(flipped == 2, "main.xml's headers: %d", flipped);
+    refuse(SURFACE_X3P, c, n, SURFACE_HEIGHTS, "CRC");
+    free(c);
+}
+#endif
+
 int main(void)
 {
     snprintf(dir, sizeof dir, "/tmp/ggx-surface-XXXXXX");
     if (!mkdtemp(dir)) return 1;
     const struct CMUnitTest tests[] = {cmocka_unit_test(height_round_trips), cmocka_unit_test(normal_round_trips),
-                                       cmocka_unit_test(malformed), cmocka_unit_test(gwyddion_text_header),
-                                       cmocka_unit_test(quantisation)};
+                                       cmocka_unit_test(malformed),          cmocka_unit_test(gwyddion_text_header),
+                                       cmocka_unit_test(quantisation),       cmocka_unit_test(x3p_public),
+                                       cmocka_unit_test(absurd_height),
+#ifdef HAVE_PNG
+                                       cmocka_unit_test(png_grey_depths),
+#endif
+#ifdef HAVE_ZIP
+                                       cmocka_unit_test(x3p_variants)
+#endif
+    };
     int rc = cmocka_run_group_tests(tests, NULL, NULL);
     char cmd[96];
     snprintf(cmd, sizeof cmd, "rm -rf '%s'", dir);

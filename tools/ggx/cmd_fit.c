@@ -120,7 +120,16 @@ static void fit_input(const options *o, const surface *s, const ggx_fit_options 
 {
     ggx_status st;
     if (fit_as_cells(s)) {
-        st = ggx_fit_normal_cells(out, s->uv, NULL, s->nx * s->ny, 2.0 / 255.0, fo, info);
+        /* the cells' fit reads red and green only: texels whose normal (blue included) points at or below the plane
+         * are left out here and counted at the horizon, as the fit of 16-bit texels counts them */
+        size_t n = s->nx * s->ny, kept = 0;
+        double *uv = malloc(2 * n * sizeof *uv + 1);
+        if (!uv) die("out of memory");
+        for (size_t i = 0; i < n; i++)
+            if (s->m[i].z > 0.0) uv[2 * kept] = s->uv[2 * i], uv[2 * kept + 1] = s->uv[2 * i + 1], kept++;
+        st = ggx_fit_normal_cells(out, uv, NULL, kept, 2.0 / 255.0, fo, info);
+        free(uv);
+        info->ignored_horizon += n - kept;
         *what = "normal-map texels (8-bit: each fitted as its cell of normals)";
     } else if (s->kind == SURFACE_NORMALS) {
         for (size_t i = 0; s->w && i < s->nx * s->ny; i++)
@@ -128,7 +137,7 @@ static void fit_input(const options *o, const surface *s, const ggx_fit_options 
                 die("the weight of normal %zu is negative (%g): a weight is a share of area, 0 or more", i + 1,
                     s->w[i]);
         st = ggx_fit_normals(out, s->m, s->w, s->nx * s->ny, fo, info);
-        *what = s->ny > 1 ? "normal-map texels" : "normals";
+        *what = s->format != SURFACE_CSV ? "normal-map texels" : "normals";
     } else {
         double dx = o->have_spacing ? o->spacing[0] : s->dx, dy = o->have_spacing ? o->spacing[1] : s->dy;
         double zs = o->have_z_scale ? o->z_scale : s->z_scale;
@@ -149,6 +158,13 @@ static void fit_input(const options *o, const surface *s, const ggx_fit_options 
                     k ? dy : dx, zs, q[k], DBL_MIN, DBL_MAX);
         ggx_heightfield_options ho = {o->keep_tilt, o->downsample};
         st = ggx_fit_heightfield(out, s->h, s->nx, s->ny, dx / zs, dy / zs, &ho, fo, info);
+        /* facets left out for slopes beyond a double, or for a missing height (NaN or outside the fence of
+         * ggx_fit_heightfield): said with the units that made them, where they leave too few */
+        if (st == GGX_ERR_DATA && info->ignored_nonfinite > 0)
+            die("--heightfield: %zu of the %zu facets have a missing height or slopes beyond the range of a double "
+                "(height differences x %g / spacing %g x %g), %zu are left: too few to fit%s",
+                info->ignored_nonfinite, info->ignored_nonfinite + info->used + info->ignored_horizon, zs, dx, dy,
+                info->used, info->used ? "" : "; give --spacing and --z-scale in nearer units");
         *heights = s->h;
         *what = "facets";
         spacing_used[0] = dx, spacing_used[1] = dy, spacing_used[2] = dx / zs, spacing_used[3] = dy / zs;
@@ -288,8 +304,9 @@ int cmd_fit(options *o, const ggx_shape *no_shape)
     char err[512];
     if (bar) progress_show("read", 0, 1);
     if (surface_read(path, &ro, &s, err, sizeof err) != 0) die("%s", err);
-    if (o->normals && s.ny != 1) die("--normals: '%s' is not a CSV list of normals", path);
-    if (o->normal_map && s.ny == 1) die("--normal-map: '%s' is a list of normals (use --normals)", path);
+    /* a list of normals is a CSV file, a normal map an image of any size (W x 1 and 1 x H alike) */
+    if (o->normals && s.format != SURFACE_CSV) die("--normals: '%s' is not a CSV list of normals", path);
+    if (o->normal_map && s.format == SURFACE_CSV) die("--normal-map: '%s' is a list of normals (use --normals)", path);
     ggx_shape fit;
     ggx_fit_info info;
     const char *what = "";
