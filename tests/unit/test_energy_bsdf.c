@@ -155,6 +155,7 @@ static void white_furnace(void **state)
         if (!used(i)) continue;
         for (int side = 0; side < 2; side++)
             for (int a = 0; a < 5; a++) {
+                if (test_quick() && (a == 1 || a == 3)) continue; /* the quick tier: 0, 60 and 89 degrees */
                 ggx_vec3 wi = view_mu(cos(thetas[a] * GGX_PI / 180), 0.7 + 2.1 * a, side);
                 double trans, ms = ms_albedo(tables[i], wi, &trans), ss = exact_albedo(i, wi), total = ss + ms;
                 CHECK_CLOSE(total, 1.0, 0, PROMISE, "%s: furnace from side %d at theta %g", CONFIGS[i].name, side,
