@@ -176,7 +176,9 @@ static void white_furnace(void **state)
                 CHECK_CLOSE(ms, 1 - ggx_energy_albedo(e, wi), 0, 1e-6, "%s: int f_ms = 1 - E_table", SHAPES[i].name);
                 if (a == 2) {
                     double msc = ms_albedo(e, &cond, wi);
-                    CHECK_CLOSE(msc, fms * (1 - ggx_energy_albedo(e, wi)), 1e-6, 1e-9, "%s: conductor F_ms",
+                    /* 1 - E_table(wo) steps at the edges of the cells beyond 89 degrees (constant I there), which
+                     * the adaptive quadrature over wo resolves to a few 1e-6 of this small integral */
+                    CHECK_CLOSE(msc, fms * (1 - ggx_energy_albedo(e, wi)), 2e-5, 1e-9, "%s: conductor F_ms",
                                 SHAPES[i].name);
                     /* the compensated entry point is the sum of the two lobes */
                     ggx_vec3 wo = t_dir(0.4, 2.0);

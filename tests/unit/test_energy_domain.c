@@ -15,6 +15,7 @@
 #include "testlib.h"
 
 #define GAIN_PROMISE 1e-3 /* the table never below E by more than this: the furnace never above 1 + 1e-3 */
+#define EXACT_MU 0.0175   /* cos 89 degrees: the accuracy's promise (ggx.h); beyond it the table only bounds E */
 
 typedef struct view_case {
     double theta_deg, phi; /* phi < 0: no particular view */
@@ -77,8 +78,8 @@ static void check_furnace(const char *what, double f, double sigma, double e_tru
 }
 
 /* One BRDF shape: accepted, its table never below E by more than GAIN_PROMISE at the views of the scan (nphi azimuths
- * at each elevation to 89.9 degrees) and at the given view, within GAIN_PROMISE of E where expect_exact (a shape
- * with no feature finer than the nodes), and its furnace checked at the views where the table is furthest below E
+ * at each elevation to 89.9 degrees) and at the given view, within GAIN_PROMISE of E up to 89 degrees where
+ * expect_exact (a shape with no feature finer than the nodes), and its furnace checked at the views where the table is furthest below E
  * and where it loses most. */
 static void brdf_shape(const char *name, shape_params p, view_case vc, int nphi, int nfurnace, int expect_exact)
 {
@@ -106,7 +107,7 @@ static void brdf_shape(const char *name, shape_params p, view_case vc, int nphi,
         double want = ggx_albedo(&s, v), got = ggx_energy_albedo(e, v);
         CHECK(want - got <= GAIN_PROMISE, "%s: table E %.6f below ggx_albedo %.6f at (%.5f, %.5f, %.5f)", name, got,
               want, v.x, v.y, v.z);
-        if (expect_exact)
+        if (expect_exact && v.z >= EXACT_MU) /* beyond 89 degrees the grazing band may lie above E */
             CHECK(got - want <= GAIN_PROMISE, "%s: table E %.6f above ggx_albedo %.6f at (%.5f, %.5f, %.5f)", name, got,
                   want, v.x, v.y, v.z);
         n++;
