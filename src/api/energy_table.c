@@ -158,7 +158,6 @@ enum { GUARD_SAMPLES = 5 };
 
 static void guard_one(energy_table *t, size_t c, double lift, double cap)
 {
-    if (isnan(t->guard[c])) t->guarded++;
     t->guard[c] = lift;
     t->guard[(size_t)(t->nm - 1) * t->np + c] = cap;
 }
@@ -177,7 +176,6 @@ static void guard_cells(energy_table *t, energy_node_fn fn, void *ctx)
     static const double at[GUARD_SAMPLES][2] = {{0.5, 0.5}, {0.25, 0.25}, {0.25, 0.75}, {0.75, 0.25}, {0.75, 0.75}};
     /* unskewed shapes: the first quarter turn from phi0 (the others are its mirror images) */
     int np = t->np, pw = t->pw, jn = t->s->kind == GGX_SHAPE_SKEWED || np == 1 ? np : np / 4;
-    t->check_err = 0.0;
     for (int i = 0; i < t->nm - 1; i++)
         for (int j = 0; j < jn; j++) {
             const double *r0 = t->pad + (size_t)i * pw; /* node row i - 1 */
@@ -207,7 +205,6 @@ static void guard_cells(energy_table *t, energy_node_fn fn, void *ctx)
                 under_i = fmax(under_i, iv - ii);
                 top = fmax(top, iv);
             }
-            if (under > t->check_err) t->check_err = under;
             if (under > GUARD_TOL) guard_cell(t, i, j, GUARD_LIFT * under_i, top);
         }
 }
@@ -230,7 +227,6 @@ void ggx_internal_etab_build(energy_table *t, const ggx_shape *s, int nm, int np
     t->cdf = t->pad + (size_t)(t->nm + 2) * pw;
     t->guard = t->cdf + (size_t)(t->nm - 1) * np + 1;
     for (size_t c = 0; c < 2 * (size_t)(t->nm - 1) * np; c++) t->guard[c] = NAN;
-    t->guarded = 0;
 
     /* Nodes. Unskewed: E(phi0 + d) = E(phi0 - d) = E(phi0 + pi - d), so columns 0..np/4 determine the rest. */
     int jmax = s->kind == GGX_SHAPE_SKEWED ? np - 1 : np / 4;
@@ -261,7 +257,6 @@ void ggx_internal_etab_build(energy_table *t, const ggx_shape *s, int nm, int np
         for (int c = 0; c < pw; c++) t->pad[(size_t)r * pw + c] = node(t, r - 1, c - 1);
     }
 
-    t->check_err = 0.0;
     if (check) guard_cells(t, fn, ctx);
     double y_band = rows_y_of_theta(GRAZING_DEG * GGX_PI / 180);
     for (int i = 0; (double)(i + 1) / (t->nm - 1) <= y_band; i++)

@@ -22,12 +22,9 @@ typedef struct energy_table {
     double *tab;        /* nm x np values of I, row-major */
     double *pad;        /* the same with ghost nodes around it: (nm + 2) x pw, pw = np + 3 (1 if np = 1) */
     int pw;
-    double *cdf;      /* (nm - 1) np + 1 cumulative cell weights, cdf[0] = 0 */
-    double *guard;    /* 2 (nm - 1) np: per cell the guard's lift of I (NaN: not guarded; infinite: the constant cap),
+    double *cdf;   /* (nm - 1) np + 1 cumulative cell weights, cdf[0] = 0 */
+    double *guard; /* 2 (nm - 1) np: per cell the guard's lift of I (NaN: not guarded; infinite: the constant cap),
                        * then its cap (energy_table.c: guard_cells, and the grazing band) */
-    int guarded;      /* the number of guarded cells */
-    double check_err; /* the largest amount by which the interpolant fell below E of the node function at the check's
-                       * samples, before guarding (0 when not checked) */
 } energy_table;
 
 /* E of the table's shape at a unit view v with v.z > 0, divided by P(v); y is the view's row coordinate
