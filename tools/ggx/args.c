@@ -1,4 +1,4 @@
-/* The ggx command's shared parsers: die, number lists, directions, the shape and the Fresnel term of the options.
+/* The ggx command's shared parsers: number lists, directions, the shape and the Fresnel term of the options.
  * SPDX-License-Identifier: MIT */
 #include <errno.h>
 #include <math.h>
@@ -8,8 +8,6 @@
 
 #include "cli.h"
 
-jmp_buf *cli_die_jump;
-
 const char SHAPE_HELP[] =
     "shape (one syntax for every subcommand):\n"
     "  --alpha AX[,AY]       roughness (default 0.15,0.5); one value for isotropic\n"
@@ -17,18 +15,6 @@ const char SHAPE_HELP[] =
     "  --rotate TZ           rotation of the anisotropy in the tangent plane, degrees (default 0)\n"
     "  --matrix a,b,c,d,e,f,g,h,i   any invertible A, row-major (replaces the three above)\n"
     "directions are THETA,PHI in degrees or X,Y,Z (normalised); n = +z, pointing away from the surface\n";
-
-void die(const char *fmt, ...)
-{
-    if (cli_die_jump) longjmp(*cli_die_jump, 1);
-    va_list ap;
-    va_start(ap, fmt);
-    fputs("ggx: ", stderr);
-    vfprintf(stderr, fmt, ap);
-    fputc('\n', stderr);
-    va_end(ap);
-    exit(2);
-}
 
 
 int parse_list(const char *opt, const char *text, double *out, int count)

@@ -1,5 +1,5 @@
-/* Output files, written atomically where a replacement keeps what a redirect keeps and in place elsewhere; the
- * folders the command makes; progress bars. SPDX-License-Identifier: MIT */
+/* A command's way out (die) and its output files, written atomically where a replacement keeps what a redirect keeps
+ * and in place elsewhere; the folders the command makes; progress bars (output.h). SPDX-License-Identifier: MIT */
 #include <errno.h>
 #include <fcntl.h>
 #include <limits.h>
@@ -14,7 +14,21 @@
 #endif
 #include <unistd.h>
 
-#include "cli.h"
+#include "output.h"
+
+jmp_buf *cli_die_jump;
+
+void die(const char *fmt, ...)
+{
+    if (cli_die_jump) longjmp(*cli_die_jump, 1);
+    va_list ap;
+    va_start(ap, fmt);
+    fputs("ggx: ", stderr);
+    vfprintf(stderr, fmt, ap);
+    fputc('\n', stderr);
+    va_end(ap);
+    exit(2);
+}
 
 char *alloc_printf(const char *fmt, ...)
 {

@@ -1,4 +1,4 @@
-/* The command's output files and folders (cli.h): many processes creating the same folder at once all succeed (a
+/* The command's output files and folders (libs/output): many processes creating the same folder at once all succeed (a
  * folder that another process made first is success, not "File exists"); a folder ensure_dir made goes again on
  * SIGTERM and SIGINT, one it found stays; the descriptors named as files (/dev/stdout, /dev/fd/N, links to them) and
  * nothing else; extensions in any case; strings of any length. SPDX-License-Identifier: MIT */
@@ -11,7 +11,7 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
-#include "cli.h"
+#include "output.h"
 
 enum { ROUNDS = 200, PROCS = 8 };
 
