@@ -291,6 +291,231 @@ static zip_int64_t find_main(zip_t *z, char *base, size_t basen, char *err, size
     return found;
 }
 
+/* What the steps of reading an archive share: the archive, main.xml's root and folder, the axes, the grid and the
+ * coordinates read (vals[k] for the absolute axes, NULL for the others; vals[2] the heights). */
+typedef struct x3p_read {
+    zip_t *z;
+    xmlNode *root;
+    char base[256];
+    axis ax[3];
+    size_t nx, ny, count, rec;
+    int nf;
+    double *vals[3];
+    char *err;
+    size_t errn;
+} x3p_read;
+
+/* md5checksum.hex (Record4/ChecksumFile, where given): the MD5 of main.xml. */
+static int check_main_md5(x3p_read *r, const unsigned char *xml, size_t xl)
+{
+    char sumfile[256] = "", path[600], why[400], md5[33] = "";
+    text_of(r->root, (const char *[]){"Record4", "ChecksumFile", NULL}, sumfile, sizeof sumfile);
+    snprintf(path, sizeof path, "%s%s", r->base, sumfile[0] ? sumfile : "md5checksum.hex");
+    if (!sumfile[0] && zip_name_locate(r->z, path, 0) < 0) return 0;
+    size_t hl = 0;
+    unsigned char *hex = member(r->z, path, 4096, &hl, why, sizeof why);
+    if (!hex) return surface_fail(r->err, r->errn, "the checksum file of main.xml: %s", why);
+    size_t k = 0;
+    while (k < hl && k < 32 && isxdigit(hex[k])) k++;
+    int rc = 0;
+    if (k != 32) rc = surface_fail(r->err, r->errn, "'%s' does not start with 32 hexadecimal digits (an MD5)", path);
+    else if (!md5_matches(xml, xl, (const char *)hex, md5))
+        rc = surface_fail(r->err, r->errn,
+                          "main.xml's MD5 is %s, not the %.32s of '%s': the file is damaged or was changed after it "
+                          "was written",
+                          md5, (const char *)hex, path);
+    free(hex);
+    return rc;
+}
+
+/* Record1's feature type (SUR), the axes (z absolute) and Record3's matrix size: r->ax, nx, ny, count, nf, rec. */
+static int read_grid(x3p_read *r)
+{
+    char feat[16] = "";
+    text_of(r->root, (const char *[]){"Record1", "FeatureType", NULL}, feat, sizeof feat);
+    if (strcmp(feat, "PRF") == 0 || strcmp(feat, "PCL") == 0)
+        return surface_fail(r->err, r->errn,
+                            "FeatureType %s is %s, not an areal surface (SUR): ggx fit needs a grid of heights", feat,
+                            feat[1] == 'R' ? "a profile" : "a point cloud");
+    if (strcmp(feat, "SUR") != 0)
+        return surface_fail(r->err, r->errn, "FeatureType '%s' is not SUR (an areal surface)", feat);
+    if (read_axis(r->root, "CX", &r->ax[0], r->err, r->errn) || read_axis(r->root, "CY", &r->ax[1], r->err, r->errn) ||
+        read_axis(r->root, "CZ", &r->ax[2], r->err, r->errn))
+        return -1;
+    if (!r->ax[2].absolute)
+        return surface_fail(r->err, r->errn, "the z axis is incremental (AxisType I): the standard has it absolute");
+    if (child(r->root, (const char *[]){"Record3", "ListDimension", NULL}))
+        return surface_fail(r->err, r->errn,
+                            "Record3 holds a list of points (ListDimension), not a matrix: ggx fit needs a grid");
+    char sx[32] = "", sy[32] = "", sz[32] = "";
+    text_of(r->root, (const char *[]){"Record3", "MatrixDimension", "SizeX", NULL}, sx, sizeof sx);
+    text_of(r->root, (const char *[]){"Record3", "MatrixDimension", "SizeY", NULL}, sy, sizeof sy);
+    text_of(r->root, (const char *[]){"Record3", "MatrixDimension", "SizeZ", NULL}, sz, sizeof sz);
+    char *e1, *e2, *e3;
+    unsigned long long nxl = strtoull(sx, &e1, 10), nyl = strtoull(sy, &e2, 10),
+                       nzl = sz[0] ? strtoull(sz, &e3, 10) : 1;
+    if (!sx[0] || !sy[0] || *e1 || *e2 || (sz[0] && *e3) || nxl < 2 || nyl < 2 || nxl > 1000000 || nyl > 1000000 ||
+        nzl != 1 || nxl * nyl > 1ull << 28)
+        return surface_fail(r->err, r->errn,
+                            "MatrixDimension %s x %s x %s: need 2 to 1e6 points a side, 2^28 in all, and one layer", sx,
+                            sy, sz);
+    r->nx = (size_t)nxl, r->ny = (size_t)nyl, r->count = r->nx * r->ny;
+    point_layout(r->ax, &r->nf, &r->rec);
+    return 0;
+}
+
+/* One Datum's text: the absolute axes' values separated by ';' into point i (an empty Datum: a missing point). */
+static int read_datum(x3p_read *r, const char *p, size_t i)
+{
+    while (isspace((unsigned char)*p)) p++;
+    if (!*p) {
+        for (int k = 0; k < 3; k++)
+            if (r->vals[k]) r->vals[k][i] = NAN;
+        return 0;
+    }
+    for (int k = 0, f = 0; k < 3; k++) {
+        if (!r->ax[k].absolute) continue;
+        const char *end;
+        double v;
+        if (f++ > 0) {
+            while (isspace((unsigned char)*p)) p++;
+            if (*p++ != ';') return -1;
+        }
+        if (text_value(&r->ax[k], p, &end, &v) != 0) return -1;
+        r->vals[k][i] = coordinate(&r->ax[k], v), p = end;
+    }
+    while (isspace((unsigned char)*p)) p++;
+    return *p ? -1 : 0;
+}
+
+/* Inline points (Record3/DataList): one Datum per point, x fastest. */
+static int read_inline(x3p_read *r, xmlNode *list)
+{
+    const axis *ax = r->ax;
+    size_t i = 0;
+    for (xmlNode *d = list->children; d; d = d->next) {
+        if (d->type != XML_ELEMENT_NODE || strcmp((const char *)d->name, "Datum") != 0) continue;
+        if (i == r->count)
+            return surface_fail(r->err, r->errn, "DataList holds more than the %zu x %zu points of MatrixDimension",
+                                r->nx, r->ny);
+        xmlChar *t = xmlNodeGetContent(d);
+        int bad = read_datum(r, t ? (const char *)t : "", i);
+        if (t) xmlFree(t);
+        if (bad)
+            return surface_fail(r->err, r->errn,
+                                "Datum %zu is not %d value%s separated by ';' of the DataType%s (%s%s%s)", i + 1, r->nf,
+                                r->nf > 1 ? "s" : "", r->nf > 1 ? "s" : "", ax[0].absolute ? ax[0].dtype : "",
+                                ax[1].absolute ? ax[1].dtype : "", ax[2].dtype);
+        i++;
+    }
+    if (i != r->count)
+        return surface_fail(r->err, r->errn, "DataList holds %zu points, not the %zu x %zu of MatrixDimension", i,
+                            r->nx, r->ny);
+    return 0;
+}
+
+/* Binary points (Record3/DataLink): the same values per point, little-endian, checked against their MD5 where given,
+ * and the valid-points bit array where there is one. */
+static int read_binary(x3p_read *r, const char *link)
+{
+    char vlink[256] = "", lsum[64] = "", vsum[64] = "", path[600], why[400], md5[33] = "";
+    text_of(r->root, (const char *[]){"Record3", "DataLink", "MD5ChecksumPointData", NULL}, lsum, sizeof lsum);
+    text_of(r->root, (const char *[]){"Record3", "DataLink", "ValidPointsLink", NULL}, vlink, sizeof vlink);
+    text_of(r->root, (const char *[]){"Record3", "DataLink", "MD5ChecksumValidPoints", NULL}, vsum, sizeof vsum);
+    size_t count = r->count, rec = r->rec, dl = 0, vl = 0;
+    snprintf(path, sizeof path, "%s%s", r->base, link);
+    unsigned char *bin = member(r->z, path, count * rec, &dl, why, sizeof why), *valid = NULL;
+    int rc = 0;
+    if (!bin) return surface_fail(r->err, r->errn, "the point data: %s", why);
+    if (dl != count * rec) {
+        rc = surface_fail(r->err, r->errn,
+                          "the point data '%s' holds %zu bytes, not the %zu of %zu x %zu points of %zu bytes", link, dl,
+                          count * rec, r->nx, r->ny, rec);
+        goto done;
+    }
+    if (lsum[0] && !md5_matches(bin, dl, lsum, md5)) {
+        rc = surface_fail(r->err, r->errn, "the point data's MD5 is %s, not the MD5ChecksumPointData %s", md5, lsum);
+        goto done;
+    }
+    for (size_t i = 0; i < count; i++) {
+        const unsigned char *b = bin + i * rec;
+        for (int k = 0; k < 3; k++)
+            if (r->ax[k].absolute)
+                r->vals[k][i] = coordinate(&r->ax[k], binary_value(&r->ax[k], b)), b += r->ax[k].size;
+    }
+    if (!vlink[0]) goto done;
+    snprintf(path, sizeof path, "%s%s", r->base, vlink);
+    if (!(valid = member(r->z, path, (count + 7) / 8, &vl, why, sizeof why)) || vl != (count + 7) / 8) {
+        rc = valid ? surface_fail(r->err, r->errn, "the valid-points array '%s' holds %zu bytes, not %zu", vlink, vl,
+                                  (count + 7) / 8)
+                   : surface_fail(r->err, r->errn, "the valid-points array: %s", why);
+        goto done;
+    }
+    if (vsum[0] && !md5_matches(valid, vl, vsum, md5)) {
+        rc = surface_fail(r->err, r->errn, "the valid-points array's MD5 is %s, not the MD5ChecksumValidPoints %s", md5,
+                          vsum);
+        goto done;
+    }
+    for (size_t i = 0; i < count; i++)
+        if (!(valid[i / 8] >> (i % 8) & 1))
+            for (int k = 0; k < 3; k++)
+                if (r->vals[k]) r->vals[k][i] = NAN;
+done:
+    free(bin), free(valid);
+    return rc;
+}
+
+/* The grid's spacings from the absolute axes' coordinates (a point missing one coordinate is missing), and the
+ * heights in the order of increasing x and y (a decreasing axis mirrored). */
+static int place_points(x3p_read *r, surface *s)
+{
+    double *xc = r->vals[0], *yc = r->vals[1], *h = r->vals[2];
+    size_t nx = r->nx, ny = r->ny;
+    for (size_t i = 0; i < r->count; i++)
+        if ((xc && !isfinite(xc[i])) || (yc && !isfinite(yc[i])) || !isfinite(h[i])) {
+            h[i] = NAN;
+            if (xc) xc[i] = NAN;
+            if (yc) yc[i] = NAN;
+        }
+    double dx = r->ax[0].increment, dy = r->ax[1].increment;
+    if ((xc && regular_step(&r->ax[0], xc, nx, ny, 1, &dx, r->err, r->errn) != 0) ||
+        (yc && regular_step(&r->ax[1], yc, nx, ny, 0, &dy, r->err, r->errn) != 0))
+        return -1;
+    if (dx < 0) /* a decreasing x axis: each row mirrored */
+        for (size_t j = 0; j < ny; j++)
+            for (size_t i = 0; i < nx / 2; i++) {
+                double t = h[j * nx + i];
+                h[j * nx + i] = h[j * nx + nx - 1 - i], h[j * nx + nx - 1 - i] = t;
+            }
+    if (dy < 0) /* a decreasing y axis: the rows in reverse order */
+        for (size_t j = 0; j < ny / 2; j++)
+            for (size_t i = 0; i < nx; i++) {
+                double t = h[j * nx + i];
+                h[j * nx + i] = h[(ny - 1 - j) * nx + i], h[(ny - 1 - j) * nx + i] = t;
+            }
+    s->kind = SURFACE_HEIGHTS, s->nx = nx, s->ny = ny, s->dx = fabs(dx), s->dy = fabs(dy), s->z_scale = 1.0;
+    return 0;
+}
+
+/* main.xml's steps once it is parsed: its checksum, the grid, the points (inline or binary), their placement. */
+static int read_main(x3p_read *r, const unsigned char *xml, size_t xl, surface *s)
+{
+    if (check_main_md5(r, xml, xl) || read_grid(r)) return -1;
+    size_t count = r->count;
+    if (!(s->h = malloc(count * sizeof *s->h)) ||
+        (r->ax[0].absolute && !(r->vals[0] = malloc(count * sizeof(double)))) ||
+        (r->ax[1].absolute && !(r->vals[1] = malloc(count * sizeof(double)))))
+        return surface_fail(r->err, r->errn, "out of memory");
+    r->vals[2] = s->h;
+    xmlNode *list = child(r->root, (const char *[]){"Record3", "DataList", NULL});
+    char link[256] = "";
+    text_of(r->root, (const char *[]){"Record3", "DataLink", "PointDataLink", NULL}, link, sizeof link);
+    int rc = list      ? read_inline(r, list)
+             : link[0] ? read_binary(r, link)
+                       : surface_fail(r->err, r->errn, "Record3 has neither a DataList nor a DataLink's PointDataLink");
+    return rc ? rc : place_points(r, s);
+}
+
 int surface_parse_x3p(const unsigned char *data, size_t n, surface *s, char *err, size_t errn)
 {
     zip_error_t ze;
@@ -305,18 +530,14 @@ int surface_parse_x3p(const unsigned char *data, size_t n, surface *s, char *err
                             code == ZIP_ER_INCONS ? " (its directory and its entries disagree)" : "");
     }
     zip_error_fini(&ze);
-    int rc = 0;
-    size_t xl = 0, dl = 0, vl = 0, hl = 0;
-    unsigned char *xml = NULL, *bin = NULL, *valid = NULL, *hex = NULL;
-    double *xc = NULL, *yc = NULL;
+    x3p_read r = {.z = z, .err = err, .errn = errn};
+    int rc = -1;
+    size_t xl = 0;
+    unsigned char *xml = NULL;
     xmlDoc *doc = NULL;
-    char base[256], path[600], why[400], md5[33] = "";
-    zip_int64_t at = find_main(z, base, sizeof base, err, errn);
-    if (at < 0) {
-        rc = -1;
-        goto done;
-    }
-    snprintf(path, sizeof path, "%smain.xml", base);
+    char path[600], why[400];
+    if (find_main(z, r.base, sizeof r.base, err, errn) < 0) goto done;
+    snprintf(path, sizeof path, "%smain.xml", r.base);
     if (!(xml = member(z, path, 1 << 26, &xl, why, sizeof why))) {
         rc = surface_fail(err, errn, "%s", why);
         goto done;
@@ -327,209 +548,15 @@ int surface_parse_x3p(const unsigned char *data, size_t n, surface *s, char *err
     }
     doc = xmlReadMemory((const char *)xml, (int)xl, "main.xml", NULL,
                         XML_PARSE_NONET | XML_PARSE_NOERROR | XML_PARSE_NOWARNING | XML_PARSE_HUGE);
-    xmlNode *root = doc ? xmlDocGetRootElement(doc) : NULL;
-    if (!root) {
+    if (!(r.root = doc ? xmlDocGetRootElement(doc) : NULL)) {
         rc = surface_fail(err, errn, "main.xml is not well-formed XML");
         goto done;
     }
-    /* md5checksum.hex (Record4/ChecksumFile): the MD5 of main.xml */
-    char sumfile[256] = "", feat[16] = "";
-    text_of(root, (const char *[]){"Record4", "ChecksumFile", NULL}, sumfile, sizeof sumfile);
-    snprintf(path, sizeof path, "%s%s", base, sumfile[0] ? sumfile : "md5checksum.hex");
-    if (sumfile[0] || zip_name_locate(z, path, 0) >= 0) {
-        if (!(hex = member(z, path, 4096, &hl, why, sizeof why))) {
-            rc = surface_fail(err, errn, "the checksum file of main.xml: %s", why);
-            goto done;
-        }
-        size_t k = 0;
-        while (k < hl && k < 32 && isxdigit(hex[k])) k++;
-        if (k != 32) {
-            rc = surface_fail(err, errn, "'%s' does not start with 32 hexadecimal digits (an MD5)", path);
-            goto done;
-        }
-        if (!md5_matches(xml, xl, (const char *)hex, md5)) {
-            rc = surface_fail(err, errn,
-                              "main.xml's MD5 is %s, not the %.32s of '%s': the file is damaged or was "
-                              "changed after it was written",
-                              md5, (const char *)hex, path);
-            goto done;
-        }
-    }
-    text_of(root, (const char *[]){"Record1", "FeatureType", NULL}, feat, sizeof feat);
-    if (strcmp(feat, "PRF") == 0 || strcmp(feat, "PCL") == 0) {
-        rc = surface_fail(err, errn,
-                          "FeatureType %s is %s, not an areal surface (SUR): ggx fit needs a grid of heights", feat,
-                          feat[1] == 'R' ? "a profile" : "a point cloud");
-        goto done;
-    }
-    if (strcmp(feat, "SUR") != 0) {
-        rc = surface_fail(err, errn, "FeatureType '%s' is not SUR (an areal surface)", feat);
-        goto done;
-    }
-    axis ax[3];
-    if (read_axis(root, "CX", &ax[0], err, errn) || read_axis(root, "CY", &ax[1], err, errn) ||
-        read_axis(root, "CZ", &ax[2], err, errn)) {
-        rc = -1;
-        goto done;
-    }
-    if (!ax[2].absolute) {
-        rc = surface_fail(err, errn, "the z axis is incremental (AxisType I): the standard has it absolute");
-        goto done;
-    }
-    char sx[32] = "", sy[32] = "", sz[32] = "";
-    if (child(root, (const char *[]){"Record3", "ListDimension", NULL})) {
-        rc = surface_fail(err, errn,
-                          "Record3 holds a list of points (ListDimension), not a matrix: ggx fit needs a grid");
-        goto done;
-    }
-    text_of(root, (const char *[]){"Record3", "MatrixDimension", "SizeX", NULL}, sx, sizeof sx);
-    text_of(root, (const char *[]){"Record3", "MatrixDimension", "SizeY", NULL}, sy, sizeof sy);
-    text_of(root, (const char *[]){"Record3", "MatrixDimension", "SizeZ", NULL}, sz, sizeof sz);
-    char *e1, *e2, *e3;
-    unsigned long long nxl = strtoull(sx, &e1, 10), nyl = strtoull(sy, &e2, 10),
-                       nzl = sz[0] ? strtoull(sz, &e3, 10) : 1;
-    if (!sx[0] || !sy[0] || *e1 || *e2 || (sz[0] && *e3) || nxl < 2 || nyl < 2 || nxl > 1000000 || nyl > 1000000 ||
-        nzl != 1 || nxl * nyl > 1ull << 28) {
-        rc = surface_fail(err, errn,
-                          "MatrixDimension %s x %s x %s: need 2 to 1e6 points a side, 2^28 in all, and one layer", sx,
-                          sy, sz);
-        goto done;
-    }
-    size_t nx = (size_t)nxl, ny = (size_t)nyl, count = nx * ny;
-    int nf;
-    size_t rec;
-    point_layout(ax, &nf, &rec);
-    double *vals[3] = {NULL, NULL, NULL};
-    if (!(s->h = malloc(count * sizeof *s->h)) || (ax[0].absolute && !(xc = malloc(count * sizeof *xc))) ||
-        (ax[1].absolute && !(yc = malloc(count * sizeof *yc)))) {
-        rc = surface_fail(err, errn, "out of memory");
-        goto done;
-    }
-    vals[0] = xc, vals[1] = yc, vals[2] = s->h;
-    xmlNode *list = child(root, (const char *[]){"Record3", "DataList", NULL});
-    char link[256] = "", vlink[256] = "", lsum[64] = "", vsum[64] = "";
-    text_of(root, (const char *[]){"Record3", "DataLink", "PointDataLink", NULL}, link, sizeof link);
-    text_of(root, (const char *[]){"Record3", "DataLink", "MD5ChecksumPointData", NULL}, lsum, sizeof lsum);
-    text_of(root, (const char *[]){"Record3", "DataLink", "ValidPointsLink", NULL}, vlink, sizeof vlink);
-    text_of(root, (const char *[]){"Record3", "DataLink", "MD5ChecksumValidPoints", NULL}, vsum, sizeof vsum);
-    if (list) { /* inline: one Datum per point, the absolute axes' values separated by ';' */
-        size_t i = 0;
-        for (xmlNode *d = list->children; d; d = d->next) {
-            if (d->type != XML_ELEMENT_NODE || strcmp((const char *)d->name, "Datum") != 0) continue;
-            if (i == count) {
-                rc = surface_fail(err, errn, "DataList holds more than the %zu x %zu points of MatrixDimension", nx,
-                                  ny);
-                goto done;
-            }
-            xmlChar *t = xmlNodeGetContent(d);
-            const char *p = t ? (const char *)t : "";
-            while (isspace((unsigned char)*p)) p++;
-            if (!*p) { /* an empty Datum: a missing point */
-                for (int k = 0; k < 3; k++)
-                    if (vals[k]) vals[k][i] = NAN;
-            } else {
-                int bad = 0;
-                for (int k = 0, f = 0; k < 3 && !bad; k++) {
-                    if (!ax[k].absolute) continue;
-                    const char *end;
-                    double v;
-                    if (f++ > 0) {
-                        while (isspace((unsigned char)*p)) p++;
-                        if (*p++ != ';') bad = 1;
-                    }
-                    if (bad || text_value(&ax[k], p, &end, &v) != 0) bad = 1;
-                    else vals[k][i] = coordinate(&ax[k], v), p = end;
-                }
-                while (isspace((unsigned char)*p)) p++;
-                if (bad || *p) {
-                    rc = surface_fail(err, errn,
-                                      "Datum %zu is not %d value%s separated by ';' of the DataType%s (%s%s%s)", i + 1,
-                                      nf, nf > 1 ? "s" : "", nf > 1 ? "s" : "", ax[0].absolute ? ax[0].dtype : "",
-                                      ax[1].absolute ? ax[1].dtype : "", ax[2].dtype);
-                    if (t) xmlFree(t);
-                    goto done;
-                }
-            }
-            if (t) xmlFree(t);
-            i++;
-        }
-        if (i != count) {
-            rc = surface_fail(err, errn, "DataList holds %zu points, not the %zu x %zu of MatrixDimension", i, nx, ny);
-            goto done;
-        }
-    } else if (link[0]) { /* binary: the same values per point, little-endian */
-        snprintf(path, sizeof path, "%s%s", base, link);
-        if (!(bin = member(z, path, count * rec, &dl, why, sizeof why))) {
-            rc = surface_fail(err, errn, "the point data: %s", why);
-            goto done;
-        }
-        if (dl != count * rec) {
-            rc = surface_fail(err, errn,
-                              "the point data '%s' holds %zu bytes, not the %zu of %zu x %zu points of %zu bytes", link,
-                              dl, count * rec, nx, ny, rec);
-            goto done;
-        }
-        if (lsum[0] && !md5_matches(bin, dl, lsum, md5)) {
-            rc = surface_fail(err, errn, "the point data's MD5 is %s, not the MD5ChecksumPointData %s", md5, lsum);
-            goto done;
-        }
-        for (size_t i = 0; i < count; i++) {
-            const unsigned char *b = bin + i * rec;
-            for (int k = 0; k < 3; k++)
-                if (ax[k].absolute) vals[k][i] = coordinate(&ax[k], binary_value(&ax[k], b)), b += ax[k].size;
-        }
-        if (vlink[0]) {
-            snprintf(path, sizeof path, "%s%s", base, vlink);
-            if (!(valid = member(z, path, (count + 7) / 8, &vl, why, sizeof why)) || vl != (count + 7) / 8) {
-                rc = valid ? surface_fail(err, errn, "the valid-points array '%s' holds %zu bytes, not %zu", vlink, vl,
-                                          (count + 7) / 8)
-                           : surface_fail(err, errn, "the valid-points array: %s", why);
-                goto done;
-            }
-            if (vsum[0] && !md5_matches(valid, vl, vsum, md5)) {
-                rc = surface_fail(err, errn, "the valid-points array's MD5 is %s, not the MD5ChecksumValidPoints %s",
-                                  md5, vsum);
-                goto done;
-            }
-            for (size_t i = 0; i < count; i++)
-                if (!(valid[i / 8] >> (i % 8) & 1))
-                    for (int k = 0; k < 3; k++)
-                        if (vals[k]) vals[k][i] = NAN;
-        }
-    } else {
-        rc = surface_fail(err, errn, "Record3 has neither a DataList nor a DataLink's PointDataLink");
-        goto done;
-    }
-    /* a point missing one coordinate is missing */
-    for (size_t i = 0; i < count; i++)
-        if ((xc && !isfinite(xc[i])) || (yc && !isfinite(yc[i])) || !isfinite(s->h[i])) {
-            s->h[i] = NAN;
-            if (xc) xc[i] = NAN;
-            if (yc) yc[i] = NAN;
-        }
-    double dx = ax[0].increment, dy = ax[1].increment;
-    if ((xc && regular_step(&ax[0], xc, nx, ny, 1, &dx, err, errn) != 0) ||
-        (yc && regular_step(&ax[1], yc, nx, ny, 0, &dy, err, errn) != 0)) {
-        rc = -1;
-        goto done;
-    }
-    if (dx < 0) /* a decreasing x axis: each row mirrored */
-        for (size_t j = 0; j < ny; j++)
-            for (size_t i = 0; i < nx / 2; i++) {
-                double t = s->h[j * nx + i];
-                s->h[j * nx + i] = s->h[j * nx + nx - 1 - i], s->h[j * nx + nx - 1 - i] = t;
-            }
-    if (dy < 0) /* a decreasing y axis: the rows in reverse order */
-        for (size_t j = 0; j < ny / 2; j++)
-            for (size_t i = 0; i < nx; i++) {
-                double t = s->h[j * nx + i];
-                s->h[j * nx + i] = s->h[(ny - 1 - j) * nx + i], s->h[(ny - 1 - j) * nx + i] = t;
-            }
-    s->kind = SURFACE_HEIGHTS, s->nx = nx, s->ny = ny, s->dx = fabs(dx), s->dy = fabs(dy), s->z_scale = 1.0;
+    rc = read_main(&r, xml, xl, s);
 done:
     if (rc != 0) free(s->h), s->h = NULL;
     if (doc) xmlFreeDoc(doc);
-    free(xml), free(bin), free(valid), free(hex), free(xc), free(yc);
+    free(xml), free(r.vals[0]), free(r.vals[1]);
     zip_discard(z);
     return rc;
 }
