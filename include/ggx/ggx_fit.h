@@ -74,6 +74,26 @@ typedef struct ggx_fit_model_result {
                             * mean and covariance (alpha_x^2 / 2 etc. for Beckmann's alphas) */
 } ggx_fit_model_result;
 
+/* The Student-t slope family of free tails (Ribardiere et al.'s STD; docs/design/fit.md, "How far from GGX"), fitted
+ * to the same samples by maximum likelihood:
+ *     P(x~) = (1 + delta / (g - 1))^-g / (pi sqrt(det Sigma)),   g = 1 + nu / 2,
+ * delta = (x~ - t)^T Sigma^-1 (x~ - t): the bivariate Student t of nu degrees of freedom and scale Sigma / 2. At
+ * nu = 2 it is GGX's P22 (the shapes' family), as nu grows it tends to Beckmann's Gaussian of covariance Sigma / 2;
+ * nu < 2 has heavier tails than GGX (a peak sharper than its shoulders), nu > 2 lighter (a flatter peak). Not a shape:
+ * t and Sigma are its location and scale, and ggx_fit_info's shape is the model asked for. */
+typedef struct ggx_fit_tails {
+    double nu;           /* in [0.1, 1e4]; NaN when not fitted: cells of a normal map (ggx_fit_normal_cells), whose
+                          * shares are of the nu = 2 density, or a fit held at GGX_ALPHA_MIN */
+    double nu_std_error; /* from the observed information of (t, Sigma, nu), scaled to n_eff (a lower bound for
+                          * correlated samples, as every standard error of a fit); NaN at the range's ends */
+    double log_likelihood, bic; /* per sample, of the normals' density as ggx_fit_info's; 6 parameters */
+    double t[2], sigma[3];
+    int iterations; /* passes over the samples */
+    int converged;  /* the Newton decrement of (t, Sigma, log(nu)) below 1e-2 at the end */
+    int subsample;  /* 1: fitted on ggx_fit_options.full_em's subsample of 2^20 (inputs above 2^22 samples), its
+                     * standard error that estimate's */
+} ggx_fit_tails;
+
 typedef struct ggx_fit_info {
     int iterations;        /* EM iterations of the model of `out` */
     int converged;         /* 1 when the closing iterate met the tolerance */
@@ -102,7 +122,8 @@ typedef struct ggx_fit_info {
     double effective_n;       /* n_eff */
     int clamped;              /* an eigenvalue of Sigma was held at GGX_ALPHA_MIN^2 (e.g. all normals equal) */
     ggx_fit_model_result models[GGX_FIT_MODELS]; /* every model fitted to the same samples, indexed by ggx_fit_model */
-    ggx_fit_model best;                          /* the model of least BIC */
+    ggx_fit_model best;                          /* the model of least BIC (of the four above) */
+    ggx_fit_tails tails;                         /* how far the slopes' tails are from GGX's */
 } ggx_fit_info;
 
 /* Fits the shape of n normals m (weights `weight`, or all 1 when NULL) by maximum likelihood in the family

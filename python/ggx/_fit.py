@@ -34,7 +34,8 @@ class FitInfo:
     gof_dof, used, ignored_horizon, ignored_nonfinite, ignored_weight, effective_n, clamped, best (the model name of
     least BIC) and models: {name: {"log_likelihood", "bic", "parameters", "iterations", "t", "sigma"}} for
     "ellipsoid", "anisotropic", "isotropic" and "beckmann" (Beckmann's t and sigma are the slopes' mean and
-    covariance)."""
+    covariance) and tails: {"nu", "nu_std_error", "log_likelihood", "bic", "t", "sigma", "iterations", "converged",
+    "subsample"}, the Student-t slope family of free nu (GGX at nu = 2; ggx_fit_tails: nu NaN for fit_normal_cells)."""
 
     def __init__(self, flat):
         at, raw = 0, {}
@@ -42,7 +43,7 @@ class FitInfo:
             raw[name] = flat[at:at + n].copy()
             at += n
         for name, v in raw.items():
-            if name.startswith("model_"):
+            if name.startswith(("model_", "tails_")):
                 continue
             if name in _INT_FIELDS:
                 setattr(self, name, int(v[0]))
@@ -60,6 +61,9 @@ class FitInfo:
                            "iterations": int(raw["model_iterations"][k]),
                            "t": raw["model_t"][2 * k:2 * k + 2],
                            "sigma": raw["model_sigma"][3 * k:3 * k + 3]} for k, m in enumerate(_FIT_MODELS)}
+        self.tails = {name[6:]: (v if len(v) > 1 else int(v[0]) if name == "tails_iterations"
+                                 else bool(v[0]) if name in ("tails_converged", "tails_subsample") else float(v[0]))
+                      for name, v in raw.items() if name.startswith("tails_")}
 
     def __repr__(self):
         return (f"FitInfo(best={self.best!r}, t={self.t.tolist()}, sigma={self.sigma.tolist()}, "

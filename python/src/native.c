@@ -305,7 +305,16 @@ EXPORT void ggxpy_sggx_sample4(const ggx_sggx *g, size_t n, const ggxpy_in *in, 
     X(model_parameters, 4, (double)i->models[k].parameters)                                                            \
     X(model_iterations, 4, (double)i->models[k].iterations)                                                            \
     X(model_t, 8, i->models[k / 2].t[k % 2])                                                                           \
-    X(model_sigma, 12, i->models[k / 3].sigma[k % 3])
+    X(model_sigma, 12, i->models[k / 3].sigma[k % 3])                                                                  \
+    X(tails_nu, 1, i->tails.nu)                                                                                        \
+    X(tails_nu_std_error, 1, i->tails.nu_std_error)                                                                    \
+    X(tails_log_likelihood, 1, i->tails.log_likelihood)                                                                \
+    X(tails_bic, 1, i->tails.bic)                                                                                      \
+    X(tails_t, 2, i->tails.t[k])                                                                                       \
+    X(tails_sigma, 3, i->tails.sigma[k])                                                                               \
+    X(tails_iterations, 1, (double)i->tails.iterations)                                                                \
+    X(tails_converged, 1, (double)i->tails.converged)                                                                  \
+    X(tails_subsample, 1, (double)i->tails.subsample)
 
 EXPORT const char *ggxpy_fit_fields(void)
 {

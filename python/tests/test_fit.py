@@ -69,6 +69,14 @@ def test_fit_normals_recovers_and_reports():
     mm = np.vstack([m[:100], [[1, 0, 0], [0, 0, -1], [np.nan, 0, 1]]])
     _, c = ggx.fit_normals(mm)
     assert (c.used, c.ignored_horizon, c.ignored_nonfinite) == (100, 2, 1)
+    # the tails: GGX's samples give nu = 2 within 4 standard errors, the family's likelihood at least GGX's
+    tl = info.tails
+    assert set(tl) == {"nu", "nu_std_error", "log_likelihood", "bic", "t", "sigma", "iterations", "converged",
+                       "subsample"}
+    assert tl["converged"] and not tl["subsample"] and isinstance(tl["iterations"], int)
+    assert abs(tl["nu"] - 2.0) <= 4 * tl["nu_std_error"], tl
+    assert tl["log_likelihood"] >= info.models["ellipsoid"]["log_likelihood"] - 1e-12
+    assert tl["t"].shape == (2,) and tl["sigma"].shape == (3,)
 
 
 def test_fit_normals_refuses():

@@ -112,6 +112,11 @@ double fit_change(const double t[2], const double s[3], const double tn[2], cons
 int fit_inverse(const double sigma[3], double p[3]);
 /* log det Sigma without overflow, for a positive definite Sigma. */
 double fit_log_det(const double sigma[3]);
+/* The Cholesky factor L (lower triangular, a = L L^T) of a symmetric k x k matrix (k <= FIT_MAX_P), and the inverse of
+ * a symmetric positive definite one by it; 0 when not positive definite. */
+enum { FIT_MAX_P = 6 };
+int fit_cholesky(int k, double a[FIT_MAX_P][FIT_MAX_P], double l[FIT_MAX_P][FIT_MAX_P]);
+int fit_spd_inverse(int k, double a[FIT_MAX_P][FIT_MAX_P], double inv[FIT_MAX_P][FIT_MAX_P]);
 
 /* The M step of PX-EM for the Student-t models (docs/design/fit.md) from the sums a of an E step taken about t (the
  * FIT_PASS_ESTEP layout: W, sum w c, sum w c r (2), sum w c r r^T (3), ...; r = x~ - t, c = 1 / (1 + delta)):
@@ -155,6 +160,10 @@ ggx_status fit_newton(const fit_data *d, const fit_data *sub, ggx_fit_model mode
 /* Above FIT_SUBSAMPLE_MIN samples the models are fitted by EM on FIT_SUBSAMPLE_N of them (pieces of FIT_PIECE spread
  * evenly over the data), then polished by fit_newton on all of them. */
 enum { FIT_SUBSAMPLE_MIN = 1 << 22, FIT_SUBSAMPLE_N = 1 << 20 };
+
+/* The Student-t family of free nu (ggx_fit_tails) on d's samples, from the ellipsoid's fit (t0, sigma0) at nu = 2;
+ * censored sources are not fitted (nu NaN: their cells' shares are of the nu = 2 density). */
+ggx_status fit_tails(const fit_data *d, const double t0[2], const double sigma0[3], ggx_fit_tails *out);
 
 /* Validates opt (NULL: defaults) into d's settings; GGX_ERR_RANGE for a bad option. */
 ggx_status fit_settings(const ggx_fit_options *opt, fit_data *d, ggx_fit_model *model);

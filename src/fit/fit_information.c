@@ -42,10 +42,9 @@ static int free_directions(ggx_fit_model model, double J[5][5])
     return k;
 }
 
-/* The Cholesky factor L (lower triangular, a = L L^T) of a symmetric k x k matrix; 0 when not positive definite. */
-static int cholesky(int k, double a[5][5], double l[5][5])
+int fit_cholesky(int k, double a[FIT_MAX_P][FIT_MAX_P], double l[FIT_MAX_P][FIT_MAX_P])
 {
-    memset(l, 0, sizeof(double) * 25);
+    memset(l, 0, sizeof(double) * FIT_MAX_P * FIT_MAX_P);
     for (int j = 0; j < k; j++) {
         double d = a[j][j];
         for (int m = 0; m < j; m++) d -= l[j][m] * l[j][m];
@@ -60,13 +59,12 @@ static int cholesky(int k, double a[5][5], double l[5][5])
     return 1;
 }
 
-/* Inverse of a symmetric positive definite k x k matrix by Cholesky; 0 when not positive definite. */
-static int spd_inverse(int k, double a[5][5], double inv[5][5])
+int fit_spd_inverse(int k, double a[FIT_MAX_P][FIT_MAX_P], double inv[FIT_MAX_P][FIT_MAX_P])
 {
-    double l[5][5];
-    if (!cholesky(k, a, l)) return 0;
+    double l[FIT_MAX_P][FIT_MAX_P];
+    if (!fit_cholesky(k, a, l)) return 0;
     for (int c = 0; c < k; c++) { /* solve L L^T x = e_c */
-        double y[5], x[5];
+        double y[FIT_MAX_P], x[FIT_MAX_P];
         for (int i = 0; i < k; i++) {
             double v = i == c;
             for (int m = 0; m < i; m++) v -= l[i][m] * y[m];
@@ -173,11 +171,11 @@ static ggx_status cells_hessian(const fit_data *d, const fit_point *at, const do
 {
     ggx_status st = fit_gradient(d, t, sigma, ll, g);
     if (st != GGX_OK) return st;
-    double gp_[5], Hp[5][5], W, llp, nh[5][5], inv[5][5], L[5][5];
+    double gp_[5], Hp[5][5], W, llp, nh[FIT_MAX_P][FIT_MAX_P], inv[FIT_MAX_P][FIT_MAX_P], L[FIT_MAX_P][FIT_MAX_P];
     if ((st = point_hessian(d, at, sigma, &llp, gp_, Hp, &W)) != GGX_OK) return st;
     for (int i = 0; i < 5; i++)
         for (int j = 0; j < 5; j++) nh[i][j] = -Hp[i][j] * d->n_eff / W;
-    if (!spd_inverse(5, nh, inv) || !cholesky(5, inv, L)) {
+    if (!fit_spd_inverse(5, nh, inv) || !fit_cholesky(5, inv, L)) {
         const double ex = sqrt(sigma[0]), ey = sqrt(sigma[2]);
         const double h[5] = {1e-4 * ex, 1e-4 * ey, 1e-4 * sigma[0], 1e-4 * ex * ey, 1e-4 * sigma[2]};
         memset(L, 0, sizeof L);
@@ -222,7 +220,7 @@ ggx_status fit_information(const fit_data *d, ggx_fit_model model, const double 
     if (st != GGX_OK) return st;
     if (!d->src->censored) scale = d->n_eff / W;
     /* In the model's free parameters, scaled from W to n_eff. */
-    double J[5][5], nh[5][5], gf[5], inv[5][5];
+    double J[5][5], nh[FIT_MAX_P][FIT_MAX_P], gf[5], inv[FIT_MAX_P][FIT_MAX_P];
     int k = free_directions(model, J);
     for (int p = 0; p < k; p++) {
         gf[p] = 0.0;
@@ -234,7 +232,7 @@ ggx_status fit_information(const fit_data *d, ggx_fit_model model, const double 
             nh[p][q] = -v * scale;
         }
     }
-    if (!spd_inverse(k, nh, inv)) return GGX_OK;
+    if (!fit_spd_inverse(k, nh, inv)) return GGX_OK;
     double lam2 = 0.0;
     for (int p = 0; p < k; p++)
         for (int q = 0; q < k; q++) lam2 += gf[p] * inv[p][q] * gf[q];

@@ -234,6 +234,14 @@ ggx_status fit_run(const fit_source *src, const ggx_fit_options *opt, ggx_shape 
                                        fit_model_parameters(mk), fr[k].iterations,
                                        {fr[k].t[0], fr[k].t[1]}, {fr[k].sigma[0], fr[k].sigma[1], fr[k].sigma[2]}};
     }
+    /* the tails from the ellipsoid's fit, on the samples its EM ran on */
+    if (fr[GGX_FIT_ELLIPSOID].clamped) {
+        memset(&info->tails, 0, sizeof info->tails);
+        info->tails.nu = info->tails.nu_std_error = info->tails.log_likelihood = info->tails.bic = NAN;
+    } else if ((st = fit_tails(two_stage ? &ds : &d, fr[0].t, fr[0].sigma, &info->tails)) != GGX_OK) {
+        return st;
+    }
+    info->tails.subsample = two_stage && !src->censored;
     info->best = GGX_FIT_ELLIPSOID;
     for (int k = 0; k < GGX_FIT_MODELS; k++) {
         mr[k].bic = -2.0 * d.n_eff * mr[k].log_likelihood + mr[k].parameters * log(d.n_eff);

@@ -206,6 +206,16 @@ static void report_md(FILE *f, const fit_report *r)
     for (int k = 0; k < GGX_FIT_MODELS; k++)
         fprintf(f, "| %s%s | %d | %.6f | %.1f | %.1f |\n", MODEL_WORDS[k], k == (int)r->info->best ? " **best**" : "",
                 r->mr[k].parameters, r->mr[k].log_likelihood, r->mr[k].bic, r->mr[k].bic - r->best_bic);
+    const ggx_fit_tails *tl = &r->info->tails;
+    if (isfinite(tl->nu))
+        fprintf(
+            f,
+            "\ntails: the Student-t slopes of free nu (GGX: nu = 2, Beckmann: nu -> infinity) fit nu = %.4g +- %.2g "
+            "(%.1f standard errors from GGX's%s; BIC %.1f against GGX's %.1f)%s\n",
+            tl->nu, tl->nu_std_error, (tl->nu - 2.0) / tl->nu_std_error,
+            tl->nu < 2.0 ? ": heavier tails" : ": lighter tails, a flatter peak", tl->bic, r->mr[GGX_FIT_ELLIPSOID].bic,
+            tl->subsample ? "; on the fit's subsample of 2^20" : "");
+    else fprintf(f, "\ntails: not fitted (%s)\n", r->cells ? "texels fitted as cells" : "Sigma at its floor");
     fprintf(f, "\ngoodness of fit (%s): ", MODEL_NAMES[r->model]);
     if (r->info->gof_dof > 0)
         fprintf(f, "chi-square %.1f on %d x %d equal-probability cells, %d degrees of freedom, p = %.3g\n",
@@ -230,6 +240,8 @@ static void report_csv(FILE *f, const fit_report *r)
     for (int k = 0; k < GGX_FIT_MODELS; k++)
         fprintf(f, "log_likelihood_%s,%.10g,\nbic_%s,%.10g,\n", MODEL_NAMES[k], r->mr[k].log_likelihood, MODEL_NAMES[k],
                 r->mr[k].bic);
+    fprintf(f, "nu,%.10g,%.10g\nlog_likelihood_tails,%.10g,\nbic_tails,%.10g,\n", r->info->tails.nu,
+            r->info->tails.nu_std_error, r->info->tails.log_likelihood, r->info->tails.bic);
     fprintf(f,
             "best_model_index,%d,\ngof_chi2,%.10g,\ngof_dof,%d,\ngof_pvalue,%.10g,\nused,%zu,\nignored,%zu,\n"
             "effective_n,%.10g,\niterations,%d,\nconverged,%d,\nclamped,%d,\n",
@@ -258,7 +270,10 @@ static void report_json(FILE *f, const fit_report *r)
     for (int k = 0; k < GGX_FIT_MODELS; k++)
         fprintf(f, "%s\"%s\": {\"parameters\": %d, \"log_likelihood\": %s, \"bic\": %s}", k ? ", " : "", MODEL_NAMES[k],
                 r->mr[k].parameters, J(r->mr[k].log_likelihood), J(r->mr[k].bic));
-    fprintf(f, "},\n  \"best\": \"%s\",\n", MODEL_NAMES[r->info->best]);
+    fprintf(f, "},\n  \"tails\": {\"nu\": %s, \"nu_std_error\": %s, \"log_likelihood\": %s, \"bic\": %s},\n",
+            J(r->info->tails.nu), J(r->info->tails.nu_std_error), J(r->info->tails.log_likelihood),
+            J(r->info->tails.bic));
+    fprintf(f, "  \"best\": \"%s\",\n", MODEL_NAMES[r->info->best]);
     fprintf(f, r->qnote[0] ? "  \"quantisation_note\": \"%s\",\n" : "%s", r->qnote);
     if (r->info->gof_dof > 0)
         fprintf(f, "  \"gof\": {\"chi2\": %s, \"dof\": %d, \"pvalue\": %s},\n", J(r->info->gof_chi2), r->info->gof_dof,
