@@ -42,7 +42,7 @@ static ggx_status tails_pass(const fit_data *d, const double t[2], const double 
  * gradient, steps of 1e-4 of each parameter's scale; its negative's inverse in cov, the Newton decrement in *dec.
  * Returns 0 when -H is not positive definite (cov then NaN). */
 static ggx_status tails_information(const fit_data *d, const double th[TAILS_P], double cov[TAILS_P][TAILS_P],
-                                   double *dec, int *passes)
+                                    double *dec, int *passes)
 {
     double a[FIT_ESTEP_SUMS], ll, g0[TAILS_P], nh[FIT_MAX_P][FIT_MAX_P], inv[FIT_MAX_P][FIT_MAX_P];
     ggx_status st = tails_pass(d, th, th + 2, th[5], a, &ll, g0);

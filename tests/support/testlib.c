@@ -89,3 +89,29 @@ void check_impl(int ok, const char *expr, const char *file, int line, const char
     vfail(file, line, what, fmt, ap);
     va_end(ap);
 }
+
+double rng_gauss(rng *r)
+{
+    double u = rng_uniform(r), v = rng_uniform(r);
+    return sqrt(-2.0 * log(1.0 - u)) * cos(2.0 * GGX_PI * v);
+}
+
+double rng_gamma(rng *r, double a)
+{
+    if (a < 1.0) return rng_gamma(r, a + 1.0) * pow(1.0 - rng_uniform(r), 1.0 / a);
+    double d = a - 1.0 / 3.0, c = 1.0 / sqrt(9.0 * d);
+    for (;;) {
+        double x = rng_gauss(r), v = 1.0 + c * x;
+        if (v <= 0.0) continue;
+        v = v * v * v;
+        if (log(1.0 - rng_uniform(r)) < 0.5 * x * x + d - d * v + d * log(v)) return d * v;
+    }
+}
+
+ggx_vec3 student_t_normal(rng *r, const double t[2], const double sg[3], double nu)
+{
+    double l00 = sqrt(sg[0]), l10 = sg[1] / l00, l11 = sqrt(sg[2] - l10 * l10);
+    double k = sqrt(nu / (4.0 * rng_gamma(r, 0.5 * nu))), g0 = rng_gauss(r) * k, g1 = rng_gauss(r) * k;
+    double x = t[0] + l00 * g0, y = t[1] + l10 * g0 + l11 * g1, n = 1.0 / sqrt(1.0 + x * x + y * y);
+    return (ggx_vec3){-x * n, -y * n, n};
+}

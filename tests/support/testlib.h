@@ -24,6 +24,14 @@ shape_params random_shape(rng *r, double max_skew);
 void make_shape(ggx_shape *s, shape_params p); /* fails the test if setup fails */
 /* Random direction above the horizon; with probability 1/4 a grazing one (cos theta in [1e-6, 1e-2]). */
 ggx_vec3 random_view(rng *r);
+/* A standard normal variate (Box-Muller) and a Gamma(a, 1) variate (Marsaglia and Tsang; a < 1 by a Gamma(a + 1)
+ * times u^(1 / a)), independent of the library. */
+double rng_gauss(rng *r);
+double rng_gamma(rng *r, double a);
+/* The normal of a slope drawn from the bivariate Student t of nu degrees of freedom and scale Sigma / 2 about t
+ * (GGX's P22 at nu = 2; ggx_fit_tails), as a normal over the square root of a chi-square:
+ * x = t + L g sqrt(nu / (2 chi2_nu)), Sigma = L L^T (sg: xx, xy, yy), chi2_nu = 2 Gamma(nu / 2). */
+ggx_vec3 student_t_normal(rng *r, const double t[2], const double sg[3], double nu);
 
 /* kappa(A) = max(ax, ay, 1) / min(ax, ay, 1) of ggx_shape_ellipsoid's A (its singular values are ax, ay and 1), and
  * ggx.h's bound on D rebuilt from (t, Sigma), 1e-12 + 2e-15 kappa^2 relative (ggx_shape_slopes, tests/unit/test_slopes.c):

@@ -1,6 +1,7 @@
 /* The figures' promises: the brightest pixel of every density figure sits on the density's peak (so the image is
  * neither mirrored, shifted nor mis-scaled), side views draw only the visible half, and engstad-vndf-proof's grey region is
- * what it says: its pointwise test, its drawn boundary and its measure agree with sampling.
+ * what it says: its pointwise test, its drawn boundary and its measure agree with sampling; the fit figure's radial
+ * profile agrees with the curve the fit implies.
  * SPDX-License-Identifier: MIT */
 #include <math.h>
 #include <stdio.h>
@@ -8,6 +9,8 @@
 #include <string.h>
 
 #include "figure.h"
+#include "figure_fit.h"
+#include "ggx/ggx_fit.h"
 #include "testlib.h"
 
 #ifndef GGX_PI
@@ -360,12 +363,71 @@ static void slice_values(void **state)
     CHECK(zeros > 0 && zeros < checked, "%d of %d points below the horizon", zeros, checked);
 }
 
+/* ---- the fit's radial profile (figure_fit_profile) ---- */
+
+typedef struct slopes_ctx {
+    const ggx_vec3 *m;
+} slopes_ctx;
+
+static void read_slopes(const void *ctx, size_t at, size_t k, double *x, double *y, double *w)
+{
+    const slopes_ctx *c = ctx;
+    for (size_t i = 0; i < k; i++) {
+        ggx_vec3 m = c->m[at + i];
+        x[i] = -m.x / m.z, y[i] = -m.y / m.z, w[i] = 1.0;
+    }
+}
+
+/* Normals of the Student t of nu = 2 (GGX) and nu = 4, fitted: the measured profile agrees with the curve the fit
+ * implies, GGX's 1 / pi and the Student t's (at each ring's central angle), within 5 Poisson sigma of the ring's
+ * expected count plus 2 % (the ring's curvature and the fitted parameters' error), up to 80 degrees in rings that
+ * expect 100 samples; and for nu = 4 GGX's 1 / pi is rejected by the same rule (the control). */
+static void fit_profile(void **state)
+{
+    (void)state;
+    const double t[2] = {0.05, -0.1}, sg[3] = {0.04, 0.01, 0.09}, nus[2] = {2.0, 4.0};
+    const size_t n = 200000;
+    ggx_vec3 *m = malloc(n * sizeof *m);
+    rng r = {2024};
+    for (int a = 0; a < 2; a++) {
+        for (size_t i = 0; i < n; i++) m[i] = student_t_normal(&r, t, sg, nus[a]);
+        ggx_shape f;
+        ggx_fit_info info;
+        assert_int_equal(ggx_fit_normals(&f, m, NULL, n, NULL, &info), GGX_OK);
+        slopes_ctx c = {m};
+        fit_samples src = {read_slopes, &c, n, 0};
+        double measured[FIGURE_FIT_BINS], tails[90];
+        assert_int_equal(figure_fit_profile(&src, &info, measured, tails), 0);
+        int checked = 0, ggx_off = 0;
+        double worst = 0.0;
+        for (int b = 0; b < FIGURE_FIT_BINS && 2 * b + 2 <= 80; b++) {
+            double lo = 2.0 * b * GGX_PI / 180, hi = (2.0 * b + 2) * GGX_PI / 180;
+            double ring = GGX_PI * (sin(hi) * sin(hi) - sin(lo) * sin(lo)), want = tails[2 * b + 1];
+            double expect = want * ring * (double)n;
+            if (expect < 100) continue;
+            double tol = 5.0 * want / sqrt(expect) + 0.02 * want;
+            CHECK(fabs(measured[b] - want) <= tol, "nu %g, ring %d-%d degrees: measured %g, the fit's t %g (tol %g)",
+                  nus[a], 2 * b, 2 * b + 2, measured[b], want, tol);
+            worst = fmax(worst, fabs(measured[b] - want) / tol);
+            ggx_off += fabs(measured[b] - 1.0 / GGX_PI) > 5.0 / GGX_PI / sqrt(expect) + 0.02 / GGX_PI;
+            checked++;
+        }
+        printf("fit_profile: nu %g (fitted %.3f +- %.3f): %d rings within %.2f of their tolerance; GGX's 1 / pi off "
+               "in %d\n",
+               nus[a], info.tails.nu, info.tails.nu_std_error, checked, worst, ggx_off);
+        CHECK(checked >= 25, "nu %g: %d rings checked", nus[a], checked);
+        if (nus[a] == 2.0) CHECK(ggx_off == 0, "GGX's samples off 1 / pi in %d rings", ggx_off);
+        else CHECK(ggx_off >= 10, "control: nu 4's profile passes as GGX's in all but %d rings", ggx_off);
+    }
+    free(m);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(peak_values),  cmocka_unit_test(peak_pixel),     cmocka_unit_test(side_views),
         cmocka_unit_test(grey_region),  cmocka_unit_test(furnace_curves), cmocka_unit_test(polar_curves),
-        cmocka_unit_test(slice_values),
+        cmocka_unit_test(slice_values), cmocka_unit_test(fit_profile),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

@@ -11,12 +11,6 @@
 
 /* ---- generators ---- */
 
-static double gauss(rng *r)
-{
-    double u = rng_uniform(r), v = rng_uniform(r);
-    return sqrt(-2.0 * log(1.0 - u)) * cos(2.0 * GGX_PI * v);
-}
-
 static ggx_vec3 normal_of_slope(double x, double y)
 {
     double k = 1.0 / sqrt(1.0 + x * x + y * y);
@@ -29,7 +23,7 @@ static ggx_vec3 student_normal(rng *r, const double t[2], const double sg[3])
 {
     double l00 = sqrt(sg[0]), l10 = sg[1] / l00, l11 = sqrt(sg[2] - l10 * l10);
     double e = -log(1.0 - rng_uniform(r)), k = 1.0 / sqrt(2.0 * e);
-    double g0 = gauss(r) * k, g1 = gauss(r) * k;
+    double g0 = rng_gauss(r) * k, g1 = rng_gauss(r) * k;
     return normal_of_slope(t[0] + l00 * g0, t[1] + l10 * g0 + l11 * g1);
 }
 
@@ -140,29 +134,6 @@ static void recovery(void **state)
 
 /* ---- the tails (ggx_fit_tails) ---- */
 
-/* A Gamma(a, 1) variate (Marsaglia and Tsang; a < 1 by a Gamma(a + 1) times u^(1 / a)). */
-static double gamma_variate(rng *r, double a)
-{
-    if (a < 1.0) return gamma_variate(r, a + 1.0) * pow(1.0 - rng_uniform(r), 1.0 / a);
-    double d = a - 1.0 / 3.0, c = 1.0 / sqrt(9.0 * d);
-    for (;;) {
-        double x = gauss(r), v = 1.0 + c * x;
-        if (v <= 0.0) continue;
-        v = v * v * v;
-        if (log(1.0 - rng_uniform(r)) < 0.5 * x * x + d - d * v + d * log(v)) return d * v;
-    }
-}
-
-/* Slopes of the bivariate Student t of nu degrees of freedom and scale Sigma / 2 about t, drawn as a normal over the
- * square root of a chi-square: x = t + L g sqrt(nu / (2 chi2_nu)), Sigma = L L^T, chi2_nu = 2 Gamma(nu / 2). At
- * nu = 2 it is student_normal's law (chi2_2 = 2 E), with an other generator. */
-static ggx_vec3 student_nu_normal(rng *r, const double t[2], const double sg[3], double nu)
-{
-    double l00 = sqrt(sg[0]), l10 = sg[1] / l00, l11 = sqrt(sg[2] - l10 * l10);
-    double k = sqrt(nu / (4.0 * gamma_variate(r, 0.5 * nu))), g0 = gauss(r) * k, g1 = gauss(r) * k;
-    return normal_of_slope(t[0] + l00 * g0, t[1] + l10 * g0 + l11 * g1);
-}
-
 /* nu recovered from slopes of the Student t of nu = 1.5, 2, 4 and 10 (heavier and lighter tails than GGX's) about a
  * skewed lobe, with calibrated standard errors: over the fits of each nu, the z-scores (nu^ - nu) / se have a mean
  * within 4 / sqrt(fits) of 0 and a variance within the 99.9 % range of a chi-square of fits - 1 dof over its dof; the
@@ -182,7 +153,7 @@ static void tails(void **state)
         int prefer = 0;
         for (int k = 0; k < fits; k++) {
             ggx_vec3 *m = malloc(n * sizeof *m);
-            for (size_t i = 0; i < n; i++) m[i] = student_nu_normal(&r, t, sg, nus[a]);
+            for (size_t i = 0; i < n; i++) m[i] = student_t_normal(&r, t, sg, nus[a]);
             ggx_shape f;
             ggx_fit_info info;
             fit_ok(&f, m, NULL, n, NULL, &info);
@@ -249,7 +220,7 @@ static void em_monotone(void **state)
         make_shape(&s, p);
         ggx_vec3 *m = draw(&s, 5000, k % 2, &r);
         if (k == 7)
-            for (int i = 0; i < 5000; i++) m[i] = normal_of_slope(0.2 + 0.3 * gauss(&r), 0.1 * gauss(&r));
+            for (int i = 0; i < 5000; i++) m[i] = normal_of_slope(0.2 + 0.3 * rng_gauss(&r), 0.1 * rng_gauss(&r));
         for (int model = 0; model < 3; model++) {
             trace tr = {{0}, 0};
             ggx_fit_options o = {0};
@@ -414,7 +385,7 @@ static void model_choice(void **state)
     for (int k = 0; k < 5; k++) {
         ggx_vec3 *m = malloc(n * sizeof *m);
         double sx = exp(rng_range(&r, log(0.05), log(0.5))), sy = exp(rng_range(&r, log(0.05), log(0.5)));
-        for (size_t i = 0; i < n; i++) m[i] = normal_of_slope(sx * gauss(&r), sy * gauss(&r));
+        for (size_t i = 0; i < n; i++) m[i] = normal_of_slope(sx * rng_gauss(&r), sy * rng_gauss(&r));
         right[GGX_FIT_BECKMANN] += best_of(m, n) == GGX_FIT_BECKMANN;
         free(m);
         ggx_shape s;
@@ -461,7 +432,7 @@ static void goodness_of_fit(void **state)
         free(m);
     }
     ggx_vec3 *m = malloc(20000 * sizeof *m);
-    for (int i = 0; i < 20000; i++) m[i] = normal_of_slope(0.2 * gauss(&r), 0.3 * gauss(&r));
+    for (int i = 0; i < 20000; i++) m[i] = normal_of_slope(0.2 * rng_gauss(&r), 0.3 * rng_gauss(&r));
     ggx_shape f;
     ggx_fit_info info;
     fit_ok(&f, m, NULL, 20000, NULL, &info);
@@ -720,8 +691,8 @@ static double *walk_surface(rng *r, size_t nx, size_t ny, double dx, double dy, 
 {
     double *F = malloc(nx * sizeof *F), *G = malloc(ny * sizeof *G), *h = malloc(nx * ny * sizeof *h);
     F[0] = G[0] = 0.0;
-    for (size_t i = 1; i < nx; i++) F[i] = F[i - 1] + sx * dx * gauss(r);
-    for (size_t j = 1; j < ny; j++) G[j] = G[j - 1] + sy * dy * gauss(r);
+    for (size_t i = 1; i < nx; i++) F[i] = F[i - 1] + sx * dx * rng_gauss(r);
+    for (size_t j = 1; j < ny; j++) G[j] = G[j - 1] + sy * dy * rng_gauss(r);
     for (size_t j = 0; j < ny; j++)
         for (size_t i = 0; i < nx; i++) h[j * nx + i] = F[i] + G[j] + px * (double)i * dx + py * (double)j * dy + 7.0;
     free(F), free(G);

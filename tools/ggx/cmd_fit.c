@@ -8,7 +8,7 @@
 
 #include "cli.h"
 #include "figure_out.h"
-#include "fit_figure.h"
+#include "figure_fit.h"
 #include "ggx/ggx_fit.h"
 #include "surface.h"
 
@@ -85,7 +85,8 @@ void fit_help(void)
         "command's syntax (--alpha AX,AY --skew TX,TY --rotate TZ, to paste into every other command), the matrix\n"
         "A, t and Sigma with standard errors (observed information; lower bounds for a height field, whose facets\n"
         "are correlated), the comparison of isotropic GGX, anisotropic GGX, the full ellipsoid and Beckmann by BIC,\n"
-        "and a chi-square goodness of fit.\n"
+        "a chi-square goodness of fit, and how far the slopes' tails are from GGX's: the Student t of free nu\n"
+        "(GGX is nu = 2, Beckmann nu -> infinity) fitted with nu's standard error (not for 8-bit normal maps).\n"
         "\n"
         "inputs (the format from the file's first bytes, else its extension):\n"
         "  --heightfield FILE   heights on a regular grid: .x3p (ISO 25178-72), .gsf (Gwyddion), .txt/.asc (a\n"
@@ -107,8 +108,10 @@ void fit_help(void)
         "  --threads N          threads for the fit's passes (results do not depend on N)\n"
         "  --format md|csv|json (default md)\n"
         "  --figure FILE        also draw the measured NDF beside the fitted one (top views, one colour scale) with\n"
-        "                       their difference, and the slopes' histogram with the fitted contours (.png, .svg,\n"
-        "                       .pdf); a height field's facets are read back in blocks, once per block\n");
+        "                       their difference, the slopes' histogram with the fitted contours, and the NDF's\n"
+        "                       radial profile in the fit's standardised slopes (GGX flat at 1 / pi) beside the\n"
+        "                       fitted Student t's, on a log scale (.png, .svg, .pdf); a height field's facets are\n"
+        "                       read back in blocks, once per block\n");
 }
 
 /* The samples of the input, fitted. */
@@ -207,7 +210,13 @@ static void report_md(FILE *f, const fit_report *r)
         fprintf(f, "| %s%s | %d | %.6f | %.1f | %.1f |\n", MODEL_WORDS[k], k == (int)r->info->best ? " **best**" : "",
                 r->mr[k].parameters, r->mr[k].log_likelihood, r->mr[k].bic, r->mr[k].bic - r->best_bic);
     const ggx_fit_tails *tl = &r->info->tails;
-    if (isfinite(tl->nu))
+    if (isfinite(tl->nu) && !isfinite(tl->nu_std_error))
+        fprintf(f,
+                "\ntails: the Student-t slopes of free nu fit nu at the end of its range, %g (%s; BIC %.1f against "
+                "GGX's %.1f)\n",
+                tl->nu, tl->nu > 2.0 ? "slopes as light-tailed as Beckmann's Gaussian" : "tails heavier than any nu",
+                tl->bic, r->mr[GGX_FIT_ELLIPSOID].bic);
+    else if (isfinite(tl->nu))
         fprintf(
             f,
             "\ntails: the Student-t slopes of free nu (GGX: nu = 2, Beckmann: nu -> infinity) fit nu = %.4g +- %.2g "
@@ -369,7 +378,10 @@ int cmd_fit(options *o, const ggx_shape *no_shape)
         fit_samples fs = {read_samples, &fc, nsamp, r.cells};
         char title[300];
         snprintf(title, sizeof title, "ggx fit: %s", path);
-        fit_figure_write(o->figure, figure_fmt, &fs, &fit, &info, MODEL_NAMES[fo.model], title);
+        canvas c;
+        canvas_open_file(&c, o->figure, figure_fmt, FIGURE_FIT_W, FIGURE_FIT_H, 0);
+        if (figure_fit_draw(&c, &fs, &fit, &info, MODEL_NAMES[fo.model], title) != 0) die("out of memory");
+        canvas_close_file(&c);
         out_commit_set();
     }
     surface_free(&s);
