@@ -90,10 +90,10 @@ static void furnace(void **state)
         image im = render(&r, &v);
         double mean, se;
         image_mean(&im, &mean, &se);
-        printf("furnace, %s flakes, rho %4.1f, %-5s: mean %.5f, L %.1f, standard error %.1e, z %+.2f (%d spp, %.2f s)\n",
-               cases[c].phase == RENDER_PHASE_DIFFUSE ? "diffuse " : "specular", v.density,
-               strategy[cases[c].strategy], mean, L, se,
-               se > 0 ? (mean - L) / se : 0.0, spp, seconds() - t0);
+        printf(
+            "furnace, %s flakes, rho %4.1f, %-5s: mean %.5f, L %.1f, standard error %.1e, z %+.2f (%d spp, %.2f s)\n",
+            cases[c].phase == RENDER_PHASE_DIFFUSE ? "diffuse " : "specular", v.density, strategy[cases[c].strategy],
+            mean, L, se, se > 0 ? (mean - L) / se : 0.0, spp, seconds() - t0);
         CHECK(fabs(mean - L) <= 4 * se + 1e-6, "furnace mean %.6f, L %g, se %.2g", mean, L, se);
         image_free(&im);
     }
@@ -211,8 +211,10 @@ static void single_scattering(void **state)
         double sum = 0;
         for (int k = 0; k <= n; k++) {
             double t = c * k / n, p2 = 1 + 2 * t * dp + t * t; /* |p + t d|^2 */
-            sum += (k == 0 || k == n ? 1 : k % 2 ? 4 : 2) * v.density * exp(-v.density * t) *
-                   escape_isotropic(v.density, sqrt(fmax(0.0, fmin(1.0, p2))));
+            sum += (k == 0 || k == n ? 1
+                    : k % 2          ? 4
+                                     : 2) *
+                   v.density * exp(-v.density * t) * escape_isotropic(v.density, sqrt(fmax(0.0, fmin(1.0, p2))));
         }
         double want = exp(-v.density * c) + v.albedo[1] * sum * (c / n) / 3;
         double got = im.rgb[3 * i + 1], sd = sqrt(im.var[3 * i + 1]);
@@ -252,7 +254,7 @@ static void thread_invariance(void **state)
 int main(void)
 {
     const struct CMUnitTest tests[] = {
-        cmocka_unit_test(furnace),       cmocka_unit_test(furnace_controls),  cmocka_unit_test(transmittance),
+        cmocka_unit_test(furnace),           cmocka_unit_test(furnace_controls),  cmocka_unit_test(transmittance),
         cmocka_unit_test(single_scattering), cmocka_unit_test(thread_invariance),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
