@@ -121,7 +121,7 @@ long render_image(const render_spec *r, float *rgb, float *var);
  * The unit sphere filled with a homogeneous SGGX medium (ggx_sggx.h): flakes of density rho whose distribution is the
  * ellipsoid of the spec's shape, S = A^T A (ggx_sggx_from_shape), in world coordinates: the shape's x, y, z are the
  * world's, so an unskewed shape's mean flake normal is the zenith (its flakes lie like a surface facing up) and
- * --rotate turns its x axis from world x towards world y. A ray along d is attenuated by sigma_t(d) = rho sigma(d)
+ * theta_z turns its x axis from world x towards world y. A ray along d is attenuated by sigma_t(d) = rho sigma(d)
  * (ggx_sggx_sigma): constant along the straight ray, so the free-flight distance is drawn exactly, t = -log(1 - u) /
  * sigma_t(d), and the medium's boundary is crossed with probability exp(-sigma_t(d) s), s the chord. At a collision the
  * particle scatters with the single-scattering albedo (per channel; the rest is absorbed) by the specular or the diffuse
