@@ -1,71 +1,23 @@
-/* The renderer of render.h: the camera, the sphere and the plane, the path tracer with light and BSDF sampling
- * combined by the power heuristic, and the tiles shared among threads. SPDX-License-Identifier: MIT */
+/* The renderer of render.h: the sphere and the plane, the path tracer with light and BSDF sampling combined by the
+ * power heuristic, run over the tiles of render_tiles.c. SPDX-License-Identifier: MIT */
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 
-#include "common/parallel.h"
 #include "ggx/ggx_inline.h"
-#include "render.h"
+#include "render_tiles.h"
 #include "surface.h"
 
-#define R_DEG (GGX_PI / 180)
-#define TILE 16
 
+static double uniform_cb(void *st) { return render_uniform(st); }
 
-/* ---- random numbers: a counter-based stream per (seed, pixel, sample) ---- */
-typedef struct stream {
-    uint64_t s;
-} stream;
-
-static uint64_t mix64(uint64_t z)
-{
-    z = (z ^ (z >> 30)) * 0xbf58476d1ce4e5b9ULL;
-    z = (z ^ (z >> 27)) * 0x94d049bb133111ebULL;
-    return z ^ (z >> 31);
-}
-static double next_uniform(stream *r)
-{
-    r->s += 0x9e3779b97f4a7c15ULL;
-    return (double)(mix64(r->s) >> 11) * 0x1.0p-53;
-}
-static double uniform_cb(void *st) { return next_uniform(st); }
-
-/* ---- the camera ---- */
-typedef struct camera {
-    ggx_vec3 pos, fwd, right, up;
-    double tan_half;
-} camera;
-
-/* The sphere is seen from 4 units at 10 degrees elevation from -y; the plane from 3.2 units at 35 degrees elevation,
- * azimuth 60 degrees, so that the default sun (azimuth -120, elevation 35) is mirrored at the image's centre. */
-static camera make_camera(const render_spec *r)
-{
-    double elev = r->scene == RENDER_SPHERE ? 10 * R_DEG : 35 * R_DEG;
-    double az = r->scene == RENDER_SPHERE ? -90 * R_DEG : 60 * R_DEG;
-    double dist = r->scene == RENDER_SPHERE ? 4.0 : 3.2, fov = r->scene == RENDER_SPHERE ? 34 * R_DEG : 50 * R_DEG;
-    camera c;
-    c.pos = ggx_k_v3_d(dist * cos(elev) * cos(az), dist * cos(elev) * sin(az), dist * sin(elev));
-    c.fwd = ggx_k_normalize_d(ggx_k_scale_d(c.pos, -1));
-    c.right = ggx_k_normalize_d(ggx_k_cross_d(c.fwd, ggx_k_v3_d(0, 0, 1)));
-    c.up = ggx_k_cross_d(c.right, c.fwd);
-    c.tan_half = tan(fov / 2);
-    return c;
-}
-
+/* ---- the camera, stated for captions ---- */
 void render_camera_words(const render_spec *r, char *buf, size_t n)
 {
     if (r->scene == RENDER_SPHERE)
         snprintf(buf, n, "camera 4 units from the unit sphere, 10° up, on −y; 34° field of view");
     else snprintf(buf, n, "camera 3.2 units from the origin, 35° up, azimuth 60°; 50° field of view");
-}
-
-static ggx_vec3 camera_dir(const render_spec *r, const camera *c, double x, double y)
-{
-    double aspect = (double)r->width / r->height;
-    double sx = (2 * x / r->width - 1) * c->tan_half * aspect, sy = (1 - 2 * y / r->height) * c->tan_half;
-    return ggx_k_normalize_d(ggx_k_add_d(c->fwd, ggx_k_add_d(ggx_k_scale_d(c->right, sx), ggx_k_scale_d(c->up, sy))));
 }
 
 /* ---- the surfaces ---- */
@@ -137,9 +89,9 @@ static double bsdf_pdf(const render_spec *r, ggx_vec3 v, ggx_vec3 w)
 }
 
 /* A direction w from v: 1 with its pdf and weight f(w -> v) |w.z| / pdf, or 0. */
-static int bsdf_sample(const render_spec *r, ggx_vec3 v, stream *rs, ggx_vec3 *w, double *pdf, double *weight)
+static int bsdf_sample(const render_spec *r, ggx_vec3 v, render_stream *rs, ggx_vec3 *w, double *pdf, double *weight)
 {
-    double u1 = next_uniform(rs), u2 = next_uniform(rs), u3 = next_uniform(rs);
+    double u1 = render_uniform(rs), u2 = render_uniform(rs), u3 = render_uniform(rs);
     ggx_sample x;
     if (is_glass(r))
         x = r->bsdf_energy ? ggx_sample_bsdf_compensated(r->bsdf_energy, v, u1, u2, u3, GGX_RADIANCE)
@@ -166,8 +118,6 @@ static int bsdf_sample(const render_spec *r, ggx_vec3 v, stream *rs, ggx_vec3 *w
     return 1;
 }
 
-static double power_heuristic(double a, double b) { return a * a / (a * a + b * b); }
-
 /* Whether light arriving from world direction d reaches point h unobstructed: the sphere is convex, so from its
  * surface every direction on the outer side leaves it; the plane's lower side has no far side to light it. */
 static int unoccluded(const render_spec *r, const render_hit *h, ggx_vec3 d)
@@ -176,9 +126,9 @@ static int unoccluded(const render_spec *r, const render_hit *h, ggx_vec3 d)
 }
 
 /* The radiance along one camera path; out[3] += it. */
-static void trace(const render_spec *r, const camera *cam, double x, double y, stream *rs, double out[3])
+static void trace(const render_spec *r, const render_camera *cam, double x, double y, render_stream *rs, double out[3])
 {
-    ggx_vec3 d = camera_dir(r, cam, x, y), p;
+    ggx_vec3 d = render_camera_dir(r, cam, x, y), p;
     int env = r->light == RENDER_LIGHT_ENV;
     double Le[3];
     if (!first_hit(r, cam->pos, d, &p)) {
@@ -202,13 +152,13 @@ static void trace(const render_spec *r, const camera *cam, double x, double y, s
                 for (int k = 0; k < 3; k++) out[k] += c;
             }
         } else if (r->strategy != RENDER_BSDF_ONLY) {
-            double pl, u1 = next_uniform(rs), u2 = next_uniform(rs);
+            double pl, u1 = render_uniform(rs), u2 = render_uniform(rs);
             ggx_vec3 wl = render_env_sample(r->env, u1, u2, &pl, Le);
             if (pl > 0 && unoccluded(r, &h, wl)) {
                 ggx_vec3 l = to_local(&h, wl);
                 double f = bsdf_eval(r, l, v);
                 if (f > 0) {
-                    double mis = r->strategy == RENDER_MIS ? power_heuristic(pl, bsdf_pdf(r, v, l)) : 1;
+                    double mis = r->strategy == RENDER_MIS ? render_power_heuristic(pl, bsdf_pdf(r, v, l)) : 1;
                     double c = beta * f * fabs(l.z) * mis / pl;
                     for (int k = 0; k < 3; k++) out[k] += c * Le[k];
                 }
@@ -225,7 +175,7 @@ static void trace(const render_spec *r, const camera *cam, double x, double y, s
             /* it leaves the scene (below the plane: into its inside, which gives nothing) */
             if (!env || r->strategy == RENDER_LIGHT_ONLY || !unoccluded(r, &h, wd)) return;
             double pe = render_env_lookup(r->env, wd, Le);
-            double mis = r->strategy == RENDER_MIS ? power_heuristic(pdf, pe) : 1;
+            double mis = r->strategy == RENDER_MIS ? render_power_heuristic(pdf, pe) : 1;
             for (int k = 0; k < 3; k++) out[k] += beta * mis * Le[k];
             return;
         }
@@ -237,9 +187,9 @@ static void trace(const render_spec *r, const camera *cam, double x, double y, s
 
 int render_primary(const render_spec *r, double x, double y, render_hit *hit)
 {
-    camera cam = make_camera(r);
+    render_camera cam = render_camera_make(r);
     memset(hit, 0, sizeof *hit);
-    ggx_vec3 d = camera_dir(r, &cam, x, y), p;
+    ggx_vec3 d = render_camera_dir(r, &cam, x, y), p;
     hit->dir = d;
     if (!first_hit(r, cam.pos, d, &p)) return 0;
     frame_at(r, p, hit);
@@ -311,76 +261,11 @@ void render_release(render_spec *r)
     r->energy = NULL, r->bsdf_energy = NULL;
 }
 
-/* ---- the image, in tiles over threads ---- */
-typedef struct job {
-    const render_spec *r;
-    camera cam;
-    float *rgb, *var;
-    int tiles_x, tiles;
-    int next;        /* the next tile to take (atomic) */
-    long done;       /* pixels finished (atomic) */
-    long overflowed; /* values beyond the largest float (atomic) */
-} job;
-
-static void render_tile(job *j, int tile)
+/* ---- the image ---- */
+static void trace_sample(const void *ctx, const render_camera *cam, double x, double y, render_stream *rs,
+                         double out[3])
 {
-    const render_spec *r = j->r;
-    int x0 = tile % j->tiles_x * TILE, y0 = tile / j->tiles_x * TILE;
-    long over = 0;
-    for (int y = y0; y < y0 + TILE && y < r->height; y++)
-        for (int x = x0; x < x0 + TILE && x < r->width; x++) {
-            uint64_t pixel = (uint64_t)y * (uint64_t)r->width + (uint64_t)x;
-            double sum[3] = {0, 0, 0}, sq[3] = {0, 0, 0};
-            for (int s = 0; s < r->spp; s++) {
-                stream rs = {mix64(mix64(r->seed ^ 0x6a09e667f3bcc909ULL) + pixel) ^ mix64((uint64_t)s + 1)};
-                double sx = r->jitter ? next_uniform(&rs) : 0.5, sy = r->jitter ? next_uniform(&rs) : 0.5;
-                double L[3] = {0, 0, 0};
-                trace(r, &j->cam, x + sx, y + sy, &rs, L);
-                for (int k = 0; k < 3; k++) sum[k] += L[k], sq[k] += L[k] * L[k];
-            }
-            for (int k = 0; k < 3; k++) {
-                double mean = sum[k] / r->spp;
-                float m = (float)mean;
-                j->rgb[3 * pixel + k] = m;
-                over += !isfinite(m);
-                if (j->var) {
-                    float v = r->spp > 1
-                                  ? (float)(fmax(0.0, sq[k] - r->spp * mean * mean) / ((double)r->spp * (r->spp - 1)))
-                                  : 0.0f;
-                    j->var[3 * pixel + k] = v;
-                    over += !isfinite(v);
-                }
-            }
-        }
-    long px = (long)((x0 + TILE < r->width ? TILE : r->width - x0) * (y0 + TILE < r->height ? TILE : r->height - y0));
-    __atomic_fetch_add(&j->done, px, __ATOMIC_RELAXED);
-    if (over) __atomic_fetch_add(&j->overflowed, over, __ATOMIC_RELAXED);
+    trace(ctx, cam, x, y, rs, out);
 }
 
-/* worker k: tiles taken in turn from the shared counter until none is left; worker 0 (the calling thread) reports
- * progress between its tiles */
-static void worker(void *ctx, int k)
-{
-    job *j = ctx;
-    long total = (long)j->r->width * j->r->height;
-    for (;;) {
-        int t = __atomic_fetch_add(&j->next, 1, __ATOMIC_RELAXED);
-        if (t >= j->tiles) return;
-        render_tile(j, t);
-        if (k == 0 && j->r->progress)
-            j->r->progress(j->r->progress_ctx, __atomic_load_n(&j->done, __ATOMIC_RELAXED), total);
-    }
-}
-
-long render_image(const render_spec *r, float *rgb, float *var)
-{
-    job j;
-    memset(&j, 0, sizeof j);
-    j.r = r, j.cam = make_camera(r), j.rgb = rgb, j.var = var;
-    j.tiles_x = (r->width + TILE - 1) / TILE;
-    j.tiles = j.tiles_x * ((r->height + TILE - 1) / TILE);
-    long total = (long)r->width * r->height;
-    ggx_internal_parallel_for(r->threads > j.tiles ? j.tiles : r->threads, worker, &j);
-    if (r->progress) r->progress(r->progress_ctx, total, total);
-    return j.overflowed;
-}
+long render_image(const render_spec *r, float *rgb, float *var) { return render_tiles(r, trace_sample, r, rgb, var); }

@@ -117,6 +117,45 @@ void render_release(render_spec *r);
  * finite values only. */
 long render_image(const render_spec *r, float *rgb, float *var);
 
+/* ---- a medium of flakes ----
+ * The unit sphere filled with a homogeneous SGGX medium (ggx_sggx.h): flakes of density rho whose distribution is the
+ * ellipsoid of the spec's shape, S = A^T A (ggx_sggx_from_shape), in world coordinates: the shape's x, y, z are the
+ * world's, so an unskewed shape's mean flake normal is the zenith (its flakes lie like a surface facing up) and
+ * theta_z turns its x axis from world x towards world y. A ray along d is attenuated by sigma_t(d) = rho sigma(d)
+ * (ggx_sggx_sigma): constant along the straight ray, so the free-flight distance is drawn exactly, t = -log(1 - u) /
+ * sigma_t(d), and the medium's boundary is crossed with probability exp(-sigma_t(d) s), s the chord. At a collision the
+ * particle scatters with the single-scattering albedo (per channel; the rest is absorbed) by the specular or the diffuse
+ * flakes' phase function f(wi, wo) with wi = -d. The light: the environment (RENDER_LIGHT_ENV), gathered at each
+ * scattering event by its own sample, transmittance exp(-rho sigma(l) s_exit(l)) times f(-d, l), and by the phase
+ * function's sample when its free flight leaves the sphere, combined as r->strategy says (the power heuristic for
+ * RENDER_MIS; phase samples are the BSDF's). Russian roulette after the third event keeps the estimate unbiased (a
+ * path's throughput is never raised above 1 by it). Derivation and the furnace test: docs/design/sggx.md. */
+typedef enum render_phase { RENDER_PHASE_SPECULAR, RENDER_PHASE_DIFFUSE } render_phase;
+/* Mistakes a test switches on to show that its check catches them (negative controls); RENDER_FAULT_NONE otherwise:
+ * the light's sample weighted by 1.1 f instead of f, or its transmittance computed with sigma of the ray's own
+ * direction d instead of sigma(l). */
+typedef enum render_fault { RENDER_FAULT_NONE, RENDER_FAULT_NEE_PHASE, RENDER_FAULT_SIGMA_DIRECTION } render_fault;
+typedef struct render_volume {
+    double density;   /* rho >= 0, flakes per unit volume (their area scaled as sigma states) */
+    double albedo[3]; /* in [0, 1] per channel; 1: no absorption */
+    render_phase phase;
+    int scatter; /* the most scattering events of a path (>= 1; 1: single scattering); default 256 */
+    render_fault fault;
+    ggx_sggx flakes; /* filled by render_volume_prepare from the spec's shape */
+} render_volume;
+
+/* Density 1, albedo 1, specular flakes, at most 256 scattering events, no fault. */
+void render_volume_defaults(render_volume *v);
+/* Checks v and what render_volume_image reads of r (size, spp, threads >= 1; the sphere scene; an environment light)
+ * and builds the flakes of r's shape. Returns 0, or -1 with a one-line reason in err (a shape too ill-conditioned for
+ * SGGX among them). */
+int render_volume_prepare(render_volume *v, const render_spec *r, char *err, size_t errn);
+/* The image of the medium seen by the sphere scene's camera, as render_image makes it (rgb, var, the deterministic
+ * streams per pixel and the return value alike). Of r it reads the environment, strategy, size, spp, seed, jitter,
+ * threads and progress; its material (Fresnel term, sampler, compensation, depth) has no part. The pixel's
+ * expectation is the radiance scattered at most v->scatter times. */
+long render_volume_image(const render_spec *r, const render_volume *v, float *rgb, float *var);
+
 /* The camera ray through image point (x, y) (pixels; (0, 0) the top-left corner) and what it sees first: returns 1
  * when it hits the surface, with the hit point, the tangent frame (t, b, n) and the view (towards the camera) in
  * that frame in *view_local; 0 when it misses (the environment is seen), with the ray's direction in *dir. */

@@ -244,6 +244,42 @@ printf 'PF\n2 2\n-1.0\n' > dim.pfm; printf '\302\026\001\000%.0s' 1 2 3 4 5 6 7 
     [ "$(od -An -tx1 -j 13 dim.pfm.pfm | tr -d ' \n' | tr -d 0)" != "" ] && ok || bad "render dim environment: $(cat dim.err)"
 "$GGX" render --size 64 --spp 1 --light dim.pfm --out dim.png 2> dim.err && grep -q "note: the PNG is black" dim.err &&
     ok || bad "render dim environment to PNG: $(cat dim.err)"
+# --- the medium of flakes: render --volume, eval --sggx, sample --sggx
+"$GGX" render --volume --alpha 0.15,0.5 --skew 20,-10 --density 3 --phase diffuse --albedo 0.9,0.8,0.7 --scatter 4 \
+    --size 64 --spp 2 --out vol.png 2> vol.err && [ "$("$PNG_INFO" vol.png)" = "64 64" ] && [ ! -s vol.err ] && ok ||
+    bad "render --volume png: $(cat vol.err)"
+# no flakes: the furnace's sphere is not there, every value 1
+"$GGX" render --volume --density 0 --light white --size 64 --spp 1 --out v0.pfm &&
+    [ "$(tail -c 49152 v0.pfm | od -An -tf4 -v | tr -s ' ' '\n' | grep -v '^$' | sort -u)" = "1" ] && ok ||
+    bad "render --volume --density 0 in the furnace is not 1 everywhere"
+"$GGX" render --volume --albedo 0.5 --scatter 1 --size 64 --spp 2 --threads 1 --out vt1.pfm &&
+    "$GGX" render --volume --albedo 0.5 --scatter 1 --size 64 --spp 2 --threads 3 --out vt3.pfm && cmp -s vt1.pfm vt3.pfm &&
+    ok || bad "render --volume: another thread count gave another image"
+expect2 "render --density without --volume" "the medium of --volume" "$GGX" render --density 2 --out no.png
+expect2 "render --volume negative density" "not a flake density" "$GGX" render --volume --density -1 --out no.png
+expect2 "render --volume albedo above 1" "not an albedo" "$GGX" render --volume --albedo 1.5 --out no.png
+expect2 "render --volume two albedos" "not an albedo" "$GGX" render --volume --albedo 0.5,0.5 --out no.png
+expect2 "render --volume unknown phase" "unknown phase function" "$GGX" render --volume --phase glossy --out no.png
+expect2 "render --volume --scatter 0" "not a number of scattering events" "$GGX" render --volume --scatter 0 --out no.png
+expect2 "render --volume on the plane" "sphere scene only" "$GGX" render --volume --scene plane --out no.png
+expect2 "render --volume under a point light" "lit by an environment" "$GGX" render --volume --light point:30,0 --out no.png
+expect2 "render --volume with a Fresnel term" "are a surface's" "$GGX" render --volume --fresnel one --out no.png
+"$GGX" eval --sggx --alpha 0.2,0.6 --skew 20,-10 --wi 40,0 --wo 30,180 --wo 70,90 > se.csv &&
+    head -1 se.csv | grep -qx 'wi_x,wi_y,wi_z,wo_x,wo_y,wo_z,h_x,h_y,h_z,sigma_wi,sigma_wo,D,phase_specular,phase_diffuse' &&
+    [ "$(awk -F, 'NR > 1 && NF == 14 && $10 > 0 && $12 > 0 && $13 > 0 && $14 > 0 { n++ } END { print n + 0 }' se.csv)" -eq 2 ] &&
+    ok || bad "eval --sggx CSV: $(cat se.csv)"
+# sigma is |S^(1/2) w|: for S = I (alpha 1) every sigma is 1, D = 1 / pi and the specular phase 1 / (4 pi)
+"$GGX" eval --sggx --alpha 1 --wo 30,180 --format json > se.json &&
+    grep -q '"sigma_wo": 1, "D": 0.3183098861837906' se.json && grep -q '"phase_specular": 0.079577471545947' se.json &&
+    ok || bad "eval --sggx JSON at S = I: $(cat se.json)"
+"$GGX" sample --sggx --phase diffuse --alpha 0.2,0.6 -n 200 > ss.csv && [ "$(wc -l < ss.csv)" -eq 201 ] &&
+    awk -F, 'NR > 1 { r = $1 * $1 + $2 * $2 + $3 * $3; if ((r - 1)^2 > 1e-20 || !($4 > 0) || $5 != 1) e++ } END { exit e > 0 }' ss.csv &&
+    ok || bad "sample --sggx --phase diffuse: unit directions, pdf > 0, weight 1"
+"$GGX" sample --sggx -n 5 --format f32 --out ss.f32 && [ "$(wc -c < ss.f32)" -eq 100 ] && ok || bad "sample --sggx f32"
+expect2 "sample --phase without --sggx" "phase function of --sggx" "$GGX" sample --phase diffuse
+expect2 "sample --sggx unknown phase" "unknown phase function" "$GGX" sample --sggx --phase glossy
+expect2 "sample --sggx with a sampler" "give --phase" "$GGX" sample --sggx --sampler caps
+expect2 "eval --sggx of an ill-conditioned shape" "too ill-conditioned" "$GGX" eval --sggx --alpha 1e-3,1e3
 [ ! -e no.png ] && [ ! -e no.jpg ] && ok || bad "render left a file after an error"
 
 # --- bad input: exit 2, exactly one line on stderr starting with "ggx: ", no output file left behind (expect2,

@@ -132,3 +132,10 @@ ggx_fresnel fresnel_from_options(const options *o)
     if (st != GGX_OK) die("--fresnel '%s': %s", o->fresnel, ggx_status_str(st));
     return f;
 }
+
+int phase_is_diffuse(const options *o)
+{
+    if (o->phase && strcmp(o->phase, "specular") != 0 && strcmp(o->phase, "diffuse") != 0)
+        die("--phase: unknown phase function '%s' (specular, diffuse)", o->phase);
+    return o->phase && strcmp(o->phase, "diffuse") == 0;
+}

@@ -53,6 +53,10 @@ typedef struct options {
     int spp; /* ggx render --spp: whole numbers of OPT_WHOLE are ints */
     int depth, compensate;
     double exposure;
+    /* the medium of flakes */
+    int volume, sggx, scatter; /* scatter: 0 when not given */
+    double density, albedo[3]; /* -1 (density, albedo[0]) when not given */
+    const char *phase;
 } options;
 
 /* Parses argv[first..] into o (defaults first) from the options named in allowed (comma-separated names of the
@@ -81,6 +85,8 @@ ggx_vec3 direction_deg(double theta, double phi);
  * not given); dies with one line otherwise (angles within 360 degrees, E >= 0). */
 void parse_light_point(const char *text, ggx_vec3 *dir, double v[3]);
 ggx_fresnel fresnel_from_options(const options *o);
+/* --phase specular (default) or diffuse: 1 for diffuse flakes; dies on another name. */
+int phase_is_diffuse(const options *o);
 /* The caption's words for the shape of the options (alphas and angles, or the matrix). */
 void shape_caption(const options *o, char *buf, size_t n);
 

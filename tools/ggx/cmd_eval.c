@@ -12,7 +12,9 @@ void eval_help(void)
            "wi = 40,0 and wo = 0,0 40,180 60,180 20,90). Columns: the directions, the half vector h, D(h), G1(wi,h),\n"
            "G1(wo,h), G = G1 G1, the height-correlated G2, Lambda(wi), Lambda(wo), the VNDF pdf of h for wi, the\n"
            "reflection pdf of wo, the BRDF, and with --eta the rough-dielectric BSDF f(wi -> wo) and its pdf.\n"
-           "--fresnel one | dielectric:ETA | conductor:ETA,K | schlick:F0 (default one)\n\n");
+           "--fresnel one | dielectric:ETA | conductor:ETA,K | schlick:F0 (default one)\n"
+           "--sggx: the flakes of S = A^T A instead (ggx_sggx.h): the directions, h, sigma(wi), sigma(wo), D(h) and\n"
+           "the specular and diffuse phase functions f(wi, wo), wi the direction the particle came from\n\n");
 }
 
 int cmd_eval(options *o, const ggx_shape *s)
@@ -29,12 +31,18 @@ int cmd_eval(options *o, const ggx_shape *s)
     static const char *cols[] = {"wi_x",      "wi_y",      "wi_z",     "wo_x",     "wo_y",  "wo_z", "h_x",
                                  "h_y",       "h_z",       "D",        "G1_wi",    "G1_wo", "G",    "G2_hc",
                                  "lambda_wi", "lambda_wo", "pdf_vndf", "pdf_brdf", "brdf",  "bsdf", "pdf_bsdf"};
-    int ncols = o->have_eta ? 21 : 19;
+    static const char *sggx_cols[] = {
+        "wi_x", "wi_y", "wi_z",     "wo_x",     "wo_y", "wo_z",           "h_x",
+        "h_y",  "h_z",  "sigma_wi", "sigma_wo", "D",    "phase_specular", "phase_diffuse"};
+    ggx_sggx fl;
+    if (o->sggx && ggx_sggx_from_shape(&fl, s) != GGX_OK) die("--sggx: no flakes of this shape (too ill-conditioned)");
+    const char **names = o->sggx ? sggx_cols : cols;
+    int ncols = o->sggx ? 14 : o->have_eta ? 21 : 19;
     out_file out;
     out_open(&out, o->out);
     if (json) fprintf(out.f, "[\n");
     else
-        for (int c = 0; c < ncols; c++) fprintf(out.f, "%s%s", cols[c], c + 1 < ncols ? "," : "\n");
+        for (int c = 0; c < ncols; c++) fprintf(out.f, "%s%s", names[c], c + 1 < ncols ? "," : "\n");
     for (int k = 0; k < o->nwo; k++) {
         ggx_vec3 wi = o->wi, wo = o->wo[k], h = ggx_half_reflect(wi, wo);
         double v[21] = {wi.x,
@@ -58,13 +66,17 @@ int cmd_eval(options *o, const ggx_shape *s)
                         ggx_brdf_eval(s, &f, wi, wo),
                         0,
                         0};
-        if (o->have_eta) {
+        if (o->sggx) {
+            double sv[5] = {ggx_sggx_sigma(&fl, wi), ggx_sggx_sigma(&fl, wo), ggx_sggx_ndf(&fl, h),
+                            ggx_sggx_phase_specular(&fl, wi, wo), ggx_sggx_phase_diffuse(&fl, wi, wo)};
+            memcpy(v + 9, sv, sizeof sv);
+        } else if (o->have_eta) {
             v[19] = ggx_bsdf_eval(s, o->eta, wi, wo, GGX_RADIANCE);
             v[20] = ggx_pdf_bsdf(s, o->eta, wo, wi);
         }
         if (json) fprintf(out.f, "  {");
         for (int c = 0; c < ncols; c++) {
-            if (json) fprintf(out.f, "\"%s\": %.17g%s", cols[c], v[c], c + 1 < ncols ? ", " : "");
+            if (json) fprintf(out.f, "\"%s\": %.17g%s", names[c], v[c], c + 1 < ncols ? ", " : "");
             else fprintf(out.f, "%.17g%s", v[c], c + 1 < ncols ? "," : "\n");
         }
         if (json) fprintf(out.f, "}%s\n", k + 1 < o->nwo ? "," : "");

@@ -82,6 +82,8 @@ static void render_help(void)
            "sky|white|FILE|point:THETA,PHI[,E]]\n"
            "                  [--spp N] [--size W[xH]] [--compensate] [--sampler NAME] [--strategy mis|light|bsdf]\n"
            "                  [--depth N] [--exposure EV] [--threads N] [--seed S] [--out FILE]\n"
+           "       ggx render --volume [shape] [--density RHO] [--phase specular|diffuse] [--albedo A|R,G,B]\n"
+           "                  [--scatter N] [--light ...] [--spp N] ...: the unit sphere filled with SGGX flakes\n"
            "       ggx render --normal-map FILE ...: a normal map's filtered chain against its ground truth\n"
            "                  (ggx render --normal-map x --help)\n\n"
            "An image of a unit sphere (default) or an infinite plane made of the material, path traced with the\n"
@@ -103,6 +105,11 @@ static void render_help(void)
            "                   samplers of normals reflect the view); the glass always uses bsdf\n"
            "  --strategy       mis (default): light and BSDF samples by the power heuristic; light, bsdf: one\n"
            "  --depth N        the most surface interactions of a path (default 32)\n"
+           "  --volume         a medium of flakes S = A^T A of the shape, in world coordinates (unskewed: flakes\n"
+           "                   facing the zenith), filling the sphere: --density RHO flakes per unit volume\n"
+           "                   (default 1; extinction RHO sigma(d)), --phase specular (default) or diffuse,\n"
+           "                   --albedo A or R,G,B in [0, 1] (default 1), --scatter N the most scattering events\n"
+           "                   of a path (default 256; 1: single scattering); environment lights only\n"
            "  --exposure EV    PNG only: the image is sRGB of min(1, 2^EV L) per channel (clamped, default 0)\n"
            "  --threads N      default: the processors online; the image is the same for any N and one --seed\n"
            "  --out FILE       .png (8-bit sRGB, and below it a caption when W >= %d), .exr (linear float RGB)\n"
@@ -114,7 +121,7 @@ static void render_help(void)
 
 static const command_spec RENDER_SPEC = {
     SHAPE_OPTS ",fresnel,scene,light,spp,size,compensate,sampler,strategy,depth,exposure,threads,seed,"
-               "out,progress,no-progress",
+               "out,progress,no-progress,volume,density,phase,albedo,scatter",
     render_help, 0};
 
 int cmd_render(int argc, char **argv)
@@ -150,17 +157,28 @@ int cmd_render(int argc, char **argv)
     if (o.sampler) r.sampler = find_sampler(o.sampler);
     if (r.sampler && r.sampler->id >= GGX_SAMPLER_COUNT)
         die("sampler '%s' is not in the library's registry", o.sampler);
+    render_volume vol;
+    render_volume_defaults(&vol);
+    if (!o.volume && (o.density >= 0 || o.albedo[0] >= 0 || o.phase || o.scatter))
+        die("--density, --phase, --albedo and --scatter describe the medium of --volume");
+    if (o.volume && (o.fresnel || o.compensate || o.sampler))
+        die("--volume renders flakes: --fresnel, --compensate and --sampler are a surface's");
+    if (o.density >= 0) vol.density = o.density;
+    if (o.albedo[0] >= 0) memcpy(vol.albedo, o.albedo, sizeof vol.albedo);
+    vol.phase = phase_is_diffuse(&o) ? RENDER_PHASE_DIFFUSE : RENDER_PHASE_SPECULAR;
+    if (o.scatter) vol.scatter = o.scatter;
     render_env env;
     memset(&env, 0, sizeof env);
     char light_words[200], err[400];
     light_from_options(&o, &r, &env, light_words, sizeof light_words);
-    if (render_prepare(&r, err, sizeof err) != 0) die("%s", err);
+    if ((o.volume ? render_volume_prepare(&vol, &r, err, sizeof err) : render_prepare(&r, err, sizeof err)) != 0)
+        die("%s", err);
     int last = -1;
     if (progress_wanted(o.progress)) r.progress = on_progress, r.progress_ctx = &last;
     size_t count = (size_t)r.width * (size_t)r.height * 3;
     float *rgb = malloc(count * sizeof *rgb);
     if (!rgb) die("out of memory for a %d x %d image", r.width, r.height);
-    long over = render_image(&r, rgb, NULL);
+    long over = o.volume ? render_volume_image(&r, &vol, rgb, NULL) : render_image(&r, rgb, NULL);
     if (r.progress) fputc('\n', stderr);
     if (over)
         die("the image does not fit single precision: %ld pixel values exceed the largest float (%g) with this light "
@@ -188,15 +206,23 @@ int cmd_render(int argc, char **argv)
             char l0[480];
             shape_caption(&o, shape, sizeof shape);
             render_material_words(&r, mat, sizeof mat);
+            if (o.volume)
+                snprintf(mat, sizeof mat, "SGGX flakes, ρ %g, %s phase, albedo %g,%g,%g", vol.density,
+                         vol.phase == RENDER_PHASE_DIFFUSE ? "diffuse" : "specular", vol.albedo[0], vol.albedo[1],
+                         vol.albedo[2]);
             render_camera_words(&r, cam, sizeof cam);
-            const char *lines[CAPTION_LINES] = {l0, render_frame_words(r.scene), light_words, cam, line};
+            const char *frame = o.volume ? "flakes of S = AᵀA in world coordinates, filling the unit sphere"
+                                         : render_frame_words(r.scene);
+            const char *lines[CAPTION_LINES] = {l0, frame, light_words, cam, line};
             snprintf(l0, sizeof l0, "%s  ·  %s", shape, mat);
             snprintf(line, sizeof line, "%d spp, sampler %s, %s, depth %d, seed %llu  ·  sRGB of min(1, 2^%g L)", r.spp,
-                     r.compensate && !(r.fresnel.kind == GGX_FRESNEL_DIELECTRIC) ? "brdf-compensated" : r.sampler->name,
+                     o.volume                                                      ? "phase"
+                     : r.compensate && !(r.fresnel.kind == GGX_FRESNEL_DIELECTRIC) ? "brdf-compensated"
+                                                                                   : r.sampler->name,
                      r.strategy == RENDER_MIS          ? "MIS"
                      : r.strategy == RENDER_LIGHT_ONLY ? "light samples only"
                                                        : "BSDF samples only",
-                     r.depth, (unsigned long long)r.seed, o.exposure);
+                     o.volume ? vol.scatter : r.depth, (unsigned long long)r.seed, o.exposure);
             set_rgb(c.cr, c.th->fg);
             double font = CAPTION_FONT * fmin(1.0, r.width / 560.0);
             text_font(c.cr, font, 0);

@@ -14,7 +14,9 @@ void sample_help(void)
            "Draws N samples (default 1000) with columns x,y,z,pdf,weight. For normal samplers the weight is 1;\n"
            "for samplers of directions it is f |w.n| / pdf. Invalid samples are written as 0,0,0,0,0. --format f32\n"
            "writes 5 little-endian float32 per sample (to a file or a pipe, not to a terminal). --view is the\n"
-           "view / known direction (default 40,0). Runs of %d samples or more show a progress bar on a terminal.\n\n",
+           "view / known direction (default 40,0). Runs of %d samples or more show a progress bar on a terminal.\n"
+           "--sggx --phase specular|diffuse: directions wo drawn from the flakes' phase function f(wi, .) of\n"
+           "S = A^T A, wi = --view (ggx_sggx.h), pdf f(wi, wo), weight 1.\n\n",
            SAMPLE_PROGRESS_MIN);
     print_samplers(stdout);
     printf("\n");
@@ -22,6 +24,11 @@ void sample_help(void)
 
 int cmd_sample(options *o, const ggx_shape *s)
 {
+    if (o->sggx && o->sampler) die("--sggx samples the flakes' phase function: give --phase, not --sampler");
+    if (o->phase && !o->sggx) die("--phase is the flakes' phase function of --sggx");
+    int diffuse = phase_is_diffuse(o);
+    ggx_sggx fl;
+    if (o->sggx && ggx_sggx_from_shape(&fl, s) != GGX_OK) die("--sggx: no flakes of this shape (too ill-conditioned)");
     const ggx_sampler_info *smp = o->sampler ? find_sampler(o->sampler) : ggx_sampler_get(GGX_SAMPLER_CAPS);
     require_domain(smp, s);
     if (!o->have_view) parse_direction("40,0", &o->view);
@@ -41,7 +48,14 @@ int cmd_sample(options *o, const ggx_shape *s)
     for (long i = 0; i < n; i++) {
         ggx_vec3 w;
         double pdf, weight;
-        if (!draw_sample(smp, s, o->view, &f, o->eta, &r, &w, &pdf, &weight)) w = t_vec(0, 0, 0), pdf = 0, weight = 0;
+        if (o->sggx) {
+            double u1 = rng_uniform(&r), u2 = rng_uniform(&r);
+            w = diffuse ? ggx_sggx_sample_diffuse(&fl, o->view, u1, u2, rng_uniform(&r), rng_uniform(&r))
+                        : ggx_sggx_sample_specular(&fl, o->view, u1, u2);
+            pdf = diffuse ? ggx_sggx_phase_diffuse(&fl, o->view, w) : ggx_sggx_phase_specular(&fl, o->view, w);
+            weight = 1;
+        } else if (!draw_sample(smp, s, o->view, &f, o->eta, &r, &w, &pdf, &weight))
+            w = t_vec(0, 0, 0), pdf = 0, weight = 0;
         if (f32) {
             float v[5] = {(float)w.x, (float)w.y, (float)w.z, (float)pdf, (float)weight};
             fwrite(v, sizeof v, 1, out.f);

@@ -171,6 +171,22 @@ static double positive_length(const char *a, const char *val)
     return v;
 }
 
+static void set_density(options *o, const char *a, const char *val)
+{
+    parse_list(a, val, &o->density, 1);
+    if (!(o->density >= 0 && o->density <= 1e6)) die("%s: '%s' is not a flake density in [0, 1e6]", a, val);
+}
+
+/* A or R,G,B, each in [0, 1] */
+static void set_albedo(options *o, const char *a, const char *val)
+{
+    int n = parse_list(a, val, o->albedo, -3);
+    if (n == 1) o->albedo[1] = o->albedo[2] = o->albedo[0];
+    for (int k = 0; k < 3; k++)
+        if (n == 2 || !(o->albedo[k] >= 0 && o->albedo[k] <= 1))
+            die("%s: '%s' is not an albedo A or R,G,B in [0, 1]", a, val);
+}
+
 static void set_corr(options *o, const char *a, const char *val) { o->corr = positive_length(a, val); }
 static void set_mix(options *o, const char *a, const char *val) { o->mix = positive_length(a, val); }
 
@@ -250,6 +266,13 @@ static const option_def OPTIONS[] = {
     WHOLE("depth", depth, 1, 1024, "a path depth"),
     SET("exposure", set_exposure),
     FLAG("compensate", compensate, 1),
+    /* the medium of flakes: render --volume, eval and sample --sggx */
+    FLAG("volume", volume, 1),
+    FLAG("sggx", sggx, 1),
+    SET("density", set_density),
+    SET("albedo", set_albedo),
+    TEXT("phase", phase),
+    WHOLE("scatter", scatter, 1, 1000000, "a number of scattering events"),
     /* microsurface */
     TEXT("kind", kind),
     SET("corr", set_corr),
@@ -289,6 +312,7 @@ static void option_defaults(options *o)
     o->progress = -1;
     o->spp = 64;
     o->depth = 32;
+    o->density = o->albedo[0] = -1; /* not given */
 }
 
 void parse_options(int argc, char **argv, int first, options *o, const char *allowed)
