@@ -24,11 +24,11 @@ static double rnd(uint64_t *s)
 }
 
 /* Passes over the data of one ggx_fit_* of at most 2^22 samples (EM on all of them): the moments (1), the Gaussian's
- * two, per Student-t model its iterations and at least one information pass, and the goodness of fit's cells (1): a
- * lower bound, so the throughput below is too. */
+ * two, per Student-t model its iterations and at least one information pass, the tails' passes, and the goodness of
+ * fit's cells (1): a lower bound, so the throughput below is too. */
 static int passes(const ggx_fit_info *info)
 {
-    int p = 4;
+    int p = 4 + info->tails.iterations;
     for (int k = 0; k < 3; k++) p += info->models[k].iterations + 1;
     return p;
 }
