@@ -75,7 +75,7 @@ static ggx_status tails_information(const fit_data *d, const double th[TAILS_P],
 /* ECM: each iteration one pass at (t, Sigma, eta) gives the M step of (t, Sigma) at that eta (PX-EM's update, the
  * same for every nu: fit_mstep) and d/deta; a second pass at eta + 1e-3 gives its difference, and eta takes the
  * Newton step of that one-dimensional profile (at most 1 in eta, within its range). */
-ggx_status fit_tails(const fit_data *d, const double t0[2], const double sigma0[3], ggx_fit_tails *out)
+static ggx_status tails_run(const fit_data *d, const double t0[2], const double sigma0[3], ggx_fit_tails *out)
 {
     memset(out, 0, sizeof *out);
     out->nu = out->nu_std_error = out->log_likelihood = out->bic = NAN;
@@ -102,7 +102,7 @@ ggx_status fit_tails(const fit_data *d, const double t0[2], const double sigma0[
     if ((st = tails_information(d, th, cov, &dec, &passes)) != GGX_OK) return st;
     if ((st = tails_pass(d, t, s, eta, a, &ll, NULL)) != GGX_OK) return st;
     passes++;
-    const double nu = 2.0 * exp(eta);
+    const double nu = fmin(fmax(2.0 * exp(eta), 0.1), 1e4); /* the range exactly, whatever exp rounds to */
     int at_end = eta <= ETA_MIN + 1e-9 || eta >= ETA_MAX - 1e-9;
     out->nu = nu;
     out->nu_std_error = at_end ? NAN : nu * sqrt(cov[5][5]); /* d nu = nu d eta */
@@ -112,5 +112,15 @@ ggx_status fit_tails(const fit_data *d, const double t0[2], const double sigma0[
     memcpy(out->sigma, s, sizeof out->sigma);
     out->iterations = passes;
     out->converged = dec <= 1e-2 || at_end;
+    return GGX_OK;
+}
+
+/* A step that leaves Sigma singular (or any failure but memory) leaves the tails unfitted, never the fit. */
+ggx_status fit_tails(const fit_data *d, const double t0[2], const double sigma0[3], ggx_fit_tails *out)
+{
+    ggx_status st = tails_run(d, t0, sigma0, out);
+    if (st == GGX_OK || st == GGX_ERR_MEMORY) return st;
+    memset(out, 0, sizeof *out);
+    out->nu = out->nu_std_error = out->log_likelihood = out->bic = NAN;
     return GGX_OK;
 }

@@ -181,7 +181,16 @@ static void tails(void **state)
         CHECK(worst_t <= 5.0, "nu %g: t and Sigma %g standard errors off", nus[a], worst_t);
         if (nus[a] != 2.0) CHECK(prefer == fits, "nu %g: BIC prefers GGX in %d fits", nus[a], fits - prefer);
     }
-    /* no tails where they are not fitted: cells of a normal map */
+    /* no tails where they are not fitted: a fit held at the floor (all normals equal), cells of a normal map; five
+     * normals still give a fit (nu at its range's end or finite) */
+    ggx_vec3 same[10], few[5] = {{0, 0, 1}, {0.1, 0, 0.99}, {0, 0.1, 0.99}, {-0.1, 0.05, 0.99}, {0.02, -0.1, 0.99}};
+    for (int i = 0; i < 10; i++) same[i] = t_vec(0.1, 0.2, 0.97);
+    ggx_shape g;
+    ggx_fit_info gi;
+    CHECK(ggx_fit_normals(&g, same, NULL, 10, NULL, &gi) == GGX_OK && gi.clamped && isnan(gi.tails.nu),
+          "equal normals: clamped %d, nu %g", gi.clamped, gi.tails.nu);
+    CHECK(ggx_fit_normals(&g, few, NULL, 5, NULL, &gi) == GGX_OK && gi.tails.nu >= 0.1 && gi.tails.nu <= 1e4,
+          "five normals: nu %g", gi.tails.nu);
     double uv[2 * 400];
     for (int i = 0; i < 400; i++) uv[2 * i] = 0.4 + 0.2 * rng_uniform(&r), uv[2 * i + 1] = 0.4 + 0.2 * rng_uniform(&r);
     ggx_shape f;
