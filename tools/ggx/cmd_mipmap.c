@@ -204,6 +204,8 @@ int cmd_mipmap(options *o, const ggx_shape *no_shape)
     } else {
         st = ggx_texel_lobes(lobes, w, s.m, count, o->alpha[0], o->alpha[1], 0.0, &rejected);
     }
+    if (st != GGX_OK || rejected == count) /* the buffers freed first: a leak checker sees none on this way out */
+        free(lobes), free(w), free(next), free(wn), surface_free(&s);
     if (st != GGX_OK) die("--alpha: %s", ggx_status_str(st));
     if (rejected == count)
         die("%s: every texel is rejected (its normal NaN, zero or not above the tangent plane%s): no chain to filter",
