@@ -187,13 +187,16 @@ done
 # the tails of a real scan: the Alicona rubber's slopes are lighter-tailed than GGX's (the flatter peak that made GGX's
 # goodness of fit p = 0), many standard errors from nu = 2, in Markdown and JSON; the figure (1100 x 1580: with the
 # profile); a synthetic pyramid's nu at the range's end, in Markdown and CSV
-"$GGX" fit --heightfield "$ROOT/tests/data/x3p/KautschukInfiniteFocus.x3p" --figure k.png > k.md &&
-    nu=$(sed -n 's/^tails: .* fit nu = \([0-9.]*\) +- \([0-9.e-]*\) .*lighter tails.*/\1 \2/p' k.md) && set -- $nu &&
-    [ $# -eq 2 ] && awk -v n="$1" -v e="$2" 'BEGIN { exit !(n > 2 + 20 * e && n < 10) }' &&
-    [ "$(od -An -tu1 -j16 -N8 k.png | tr -s " ")" = " 0 0 4 76 0 0 6 44" ] && ok ||
-    bad "Kautschuk tails line / figure: $(grep tails k.md)"
-"$GGX" fit --heightfield "$ROOT/tests/data/x3p/KautschukInfiniteFocus.x3p" --format json > k.json &&
-    grep -q '"tails": {"nu": 3\.[0-9]*, "nu_std_error": 0\.0' k.json && ok || bad "Kautschuk JSON tails"
+# (two fits of 2 million facets: under valgrind the public files' loop above runs the same code on this scan)
+if [ -z "${GGX_WRAP:-}" ]; then
+    "$GGX" fit --heightfield "$ROOT/tests/data/x3p/KautschukInfiniteFocus.x3p" --figure k.png > k.md &&
+        nu=$(sed -n 's/^tails: .* fit nu = \([0-9.]*\) +- \([0-9.e-]*\) .*lighter tails.*/\1 \2/p' k.md) && set -- $nu &&
+        [ $# -eq 2 ] && awk -v n="$1" -v e="$2" 'BEGIN { exit !(n > 2 + 20 * e && n < 10) }' &&
+        [ "$(od -An -tu1 -j16 -N8 k.png | tr -s " ")" = " 0 0 4 76 0 0 6 44" ] && ok ||
+        bad "Kautschuk tails line / figure: $(grep tails k.md)"
+    "$GGX" fit --heightfield "$ROOT/tests/data/x3p/KautschukInfiniteFocus.x3p" --format json > k.json &&
+        grep -q '"tails": {"nu": 3\.[0-9]*, "nu_std_error": 0\.0' k.json && ok || bad "Kautschuk JSON tails"
+fi
 "$GGX" fit --heightfield "$ROOT/tests/data/x3p/pyramid.x3p" > p.md && grep -q "^tails: .* at the end of its range" p.md &&
     "$GGX" fit --heightfield "$ROOT/tests/data/x3p/pyramid.x3p" --format csv > p.csv && grep -q "^nu,10000,nan$" p.csv &&
     ok ||
