@@ -162,8 +162,9 @@ ggx_status fit_newton(const fit_data *d, const fit_data *sub, ggx_fit_model mode
 enum { FIT_SUBSAMPLE_MIN = 1 << 22, FIT_SUBSAMPLE_N = 1 << 20 };
 
 /* The Student-t family of free nu (ggx_fit_tails) on d's samples, from the ellipsoid's fit (t0, sigma0) at nu = 2;
- * censored sources are not fitted (nu NaN: their cells' shares are of the nu = 2 density). */
-ggx_status fit_tails(const fit_data *d, const double t0[2], const double sigma0[3], ggx_fit_tails *out);
+ * not fitted (nu NaN) for censored sources (their cells' shares are of the nu = 2 density) or a start held at the
+ * floor (held). */
+ggx_status fit_tails(const fit_data *d, const double t0[2], const double sigma0[3], int held, ggx_fit_tails *out);
 
 /* Validates opt (NULL: defaults) into d's settings; GGX_ERR_RANGE for a bad option. */
 ggx_status fit_settings(const ggx_fit_options *opt, fit_data *d, ggx_fit_model *model);

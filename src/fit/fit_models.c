@@ -235,12 +235,8 @@ ggx_status fit_run(const fit_source *src, const ggx_fit_options *opt, ggx_shape 
                                        {fr[k].t[0], fr[k].t[1]}, {fr[k].sigma[0], fr[k].sigma[1], fr[k].sigma[2]}};
     }
     /* the tails from the ellipsoid's fit, on the samples its EM ran on */
-    if (fr[GGX_FIT_ELLIPSOID].clamped) {
-        memset(&info->tails, 0, sizeof info->tails);
-        info->tails.nu = info->tails.nu_std_error = info->tails.log_likelihood = info->tails.bic = NAN;
-    } else if ((st = fit_tails(two_stage ? &ds : &d, fr[0].t, fr[0].sigma, &info->tails)) != GGX_OK) {
-        return st;
-    }
+    const fit_result *fe = &fr[GGX_FIT_ELLIPSOID];
+    if ((st = fit_tails(two_stage ? &ds : &d, fe->t, fe->sigma, fe->clamped, &info->tails)) != GGX_OK) return st;
     info->tails.subsample = two_stage && !src->censored;
     info->best = GGX_FIT_ELLIPSOID;
     for (int k = 0; k < GGX_FIT_MODELS; k++) {

@@ -75,10 +75,16 @@ static ggx_status tails_information(const fit_data *d, const double th[TAILS_P],
 /* ECM: each iteration one pass at (t, Sigma, eta) gives the M step of (t, Sigma) at that eta (PX-EM's update, the
  * same for every nu: fit_mstep) and d/deta; a second pass at eta + 1e-3 gives its difference, and eta takes the
  * Newton step of that one-dimensional profile (at most 1 in eta, within its range). */
-static ggx_status tails_run(const fit_data *d, const double t0[2], const double sigma0[3], ggx_fit_tails *out)
+/* The tails not fitted: nu, its error, the likelihood and BIC NaN. */
+static void unfitted(ggx_fit_tails *out)
 {
     memset(out, 0, sizeof *out);
     out->nu = out->nu_std_error = out->log_likelihood = out->bic = NAN;
+}
+
+static ggx_status tails_run(const fit_data *d, const double t0[2], const double sigma0[3], ggx_fit_tails *out)
+{
+    unfitted(out);
     if (d->src->censored) return GGX_OK;
     double t[2] = {t0[0], t0[1]}, s[3] = {sigma0[0], sigma0[1], sigma0[2]}, eta = 0.0, ll = 0.0;
     int passes = 0, it;
@@ -115,12 +121,12 @@ static ggx_status tails_run(const fit_data *d, const double t0[2], const double 
     return GGX_OK;
 }
 
-/* A step that leaves Sigma singular (or any failure but memory) leaves the tails unfitted, never the fit. */
-ggx_status fit_tails(const fit_data *d, const double t0[2], const double sigma0[3], ggx_fit_tails *out)
+/* A start held at the floor, or a step that leaves Sigma singular (any failure but memory), leaves the tails unfitted,
+ * never the fit. */
+ggx_status fit_tails(const fit_data *d, const double t0[2], const double sigma0[3], int held, ggx_fit_tails *out)
 {
-    ggx_status st = tails_run(d, t0, sigma0, out);
+    ggx_status st = held ? GGX_ERR_SINGULAR : tails_run(d, t0, sigma0, out);
     if (st == GGX_OK || st == GGX_ERR_MEMORY) return st;
-    memset(out, 0, sizeof *out);
-    out->nu = out->nu_std_error = out->log_likelihood = out->bic = NAN;
+    unfitted(out);
     return GGX_OK;
 }
