@@ -450,7 +450,11 @@ done
 mkdir -p allnone/skewed-ndf-top.png
 one_line "demo with a figure path taken" "it is a folder" 2 "$GGX" demo --out allnone -n 20000
 [ "$(find allnone -type f | wc -l)" -eq 0 ] && ok || bad "demo left figures: $(find allnone -type f)"
-"$GGX" demo --out sized --size 256 -n 20000 > /dev/null && [ "$("$PNG_INFO" sized/ndf-top.png)" = "256 220" ] && ok || bad "demo --size 256: $("$PNG_INFO" sized/ndf-top.png)"
+# (the whole demo again, at another size: outside valgrind, which runs the first demo's code)
+if [ -z "${GGX_WRAP:-}" ]; then
+    "$GGX" demo --out sized --size 256 -n 20000 > /dev/null && [ "$("$PNG_INFO" sized/ndf-top.png)" = "256 220" ] && ok ||
+        bad "demo --size 256: $("$PNG_INFO" sized/ndf-top.png)"
+fi
 # plot: --out - streams the figure; a long path is written as given (no truncation)
 "$GGX" plot --out - > stdout.png && [ "$("$PNG_INFO" stdout.png)" = "640 550" ] && ok || bad "plot --out -"
 long=$(printf 'd%.0s' $(seq 1 120)); deep="$long/$long/$long/$long/$long"
