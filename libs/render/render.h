@@ -164,6 +164,18 @@ typedef struct render_hit {
 } render_hit;
 int render_primary(const render_spec *r, double x, double y, render_hit *hit);
 
+/* ---- a material given as a function ----
+ * f(wl -> v) per channel (F included) at local directions: wl towards the light, v towards the camera, both above
+ * the surface; written to f[3]. Called from many threads at once with the same ctx. */
+typedef void (*render_brdf_fn)(const void *ctx, ggx_vec3 wl, ggx_vec3 v, double f[3]);
+/* The scene of r lit by its distant light alone (r->light_dir, r->light_irradiance; the environment is not read), in
+ * the material f: each pixel the mean over its spp samples of f(l, v) cos(theta_l) E where the camera ray meets the
+ * surface, 0 where it misses or where the light or the view is below the surface's tangent plane. Nothing shadows
+ * the light (the sphere is convex and the plane open). The same camera, pixel points and thread invariance as
+ * render_image, whose image of a reflector with depth 1 under a distant light it equals for f = ggx_brdf_eval of
+ * r's shape and Fresnel term; r's shape, Fresnel term and sampler are not read. Returns as render_image. */
+long render_direct(const render_spec *r, render_brdf_fn f, const void *ctx, float *rgb);
+
 /* The camera, stated for captions: where it is and what it looks at. */
 void render_camera_words(const render_spec *r, char *buf, size_t n);
 

@@ -292,6 +292,47 @@ static void distant_light(void **state)
     }
 }
 
+/* render_direct with the model as the caller's function: the path tracer's image at depth 1 under a distant light
+ * (the same pixel points: jittered, 3 samples each), to float rounding; each channel the function's own. */
+typedef struct direct_model {
+    const render_spec *r;
+    double scale[3];
+} direct_model;
+static void direct_model_f(const void *ctx, ggx_vec3 wl, ggx_vec3 v, double f[3])
+{
+    const direct_model *m = ctx;
+    double x = ggx_brdf_eval(&m->r->shape, &m->r->fresnel, wl, v);
+    for (int k = 0; k < 3; k++) f[k] = m->scale[k] * x;
+}
+static void direct_light_function(void **state)
+{
+    (void)state;
+    render_spec r;
+    render_spec_defaults(&r);
+    ggx_shape_ellipsoid(&r.shape, 0.15, 0.3, 10 * DEG, -5 * DEG, 25 * DEG);
+    ggx_fresnel_conductor(&r.fresnel, 0.25, 3.1);
+    r.light = RENDER_LIGHT_DIRECTIONAL;
+    r.light_dir = t_dir(40 * DEG, -110 * DEG), r.light_irradiance = 3;
+    r.width = 36, r.height = 28, r.spp = 3, r.depth = 1, r.threads = 2;
+    prepare(&r);
+    image im = render(&r);
+    direct_model m = {&r, {1, 0.5, 2}};
+    float *d = malloc((size_t)r.width * (size_t)r.height * 3 * sizeof *d);
+    CHECK(d, "memory");
+    CHECK(render_direct(&r, direct_model_f, &m, d) == 0, "values beyond float");
+    int lit = 0;
+    for (int i = 0; i < r.width * r.height; i++) {
+        double want = im.rgb[3 * i];
+        lit += want > 0;
+        for (int k = 0; k < 3; k++)
+            CHECK(fabs(d[3 * i + k] - m.scale[k] * want) <= 1e-6 * m.scale[k] * want + 1e-30,
+                  "pixel %d channel %d: %.9g, want %.9g", i, k, d[3 * i + k], m.scale[k] * want);
+    }
+    CHECK(lit > r.width * r.height / 4, "only %d pixels lit", lit);
+    free(d);
+    image_free(&im);
+}
+
 /* The same image, bit for bit, for 1, 2 and 5 threads, on a size that is no multiple of the tiles. */
 static void thread_invariance(void **state)
 {
@@ -481,15 +522,11 @@ static void radiance_files(void **state)
 int main(int argc, char **argv)
 {
     const struct CMUnitTest tests[] = {
-        cmocka_unit_test(environment),
-        cmocka_unit_test(radiance_files),
-        cmocka_unit_test(overflowing_light),
-        cmocka_unit_test(distant_light),
-        cmocka_unit_test(thread_invariance),
-        cmocka_unit_test(furnace_compensated),
-        cmocka_unit_test(furnace_albedo_every_sampler),
-        cmocka_unit_test(furnace_glass),
-        cmocka_unit_test(strategies_agree),
+        cmocka_unit_test(environment),           cmocka_unit_test(radiance_files),
+        cmocka_unit_test(overflowing_light),     cmocka_unit_test(distant_light),
+        cmocka_unit_test(direct_light_function), cmocka_unit_test(thread_invariance),
+        cmocka_unit_test(furnace_compensated),   cmocka_unit_test(furnace_albedo_every_sampler),
+        cmocka_unit_test(furnace_glass),         cmocka_unit_test(strategies_agree),
     };
     int rc = cmocka_run_group_tests(tests, NULL, NULL);
     return rc | chi2_budget_end("render", argc, argv);
