@@ -37,8 +37,10 @@ int brdf_table_init(brdf_table *t, int n_theta, const double *theta, int n_phi, 
     memset(t, 0, sizeof *t);
     if (n_theta < 1 || n_theta > BRDF_TABLE_MAX_THETA || n_phi < 1 || n_phi > 360 || res < 4 || res > 4096 ||
         (channels != 1 && channels != 3)) {
-        snprintf(err, errn, "BRDF table: 1 to %d polar angles, 1 to 360 azimuths, 4 to 4096 cells a side, 1 or 3 "
-                            "channels", BRDF_TABLE_MAX_THETA);
+        snprintf(err, errn,
+                 "BRDF table: 1 to %d polar angles, 1 to 360 azimuths, 4 to 4096 cells a side, 1 or 3 "
+                 "channels",
+                 BRDF_TABLE_MAX_THETA);
         return -1;
     }
     for (int i = 0; i < n_theta; i++)
@@ -148,4 +150,47 @@ void brdf_table_eval(const brdf_table *t, ggx_vec3 wi, ggx_vec3 wo, double f[3])
             for (int ch = 0; ch < t->channels; ch++) f[ch] += w * lobe_at(t, brdf_table_lobe(t, k, ch), x, y);
         }
     if (t->channels == 1) f[1] = f[2] = f[0];
+}
+
+void brdf_table_fill(brdf_table *t, brdf_table_fn f, const void *ctx, int ss)
+{
+    double h = 2.0 / t->res;
+    for (int k = 0; k < brdf_table_count(t); k++) {
+        ggx_vec3 wi = brdf_table_incidence(t, k);
+        for (int c = 0; c < t->res * t->res; c++) {
+            double sum[3] = {0, 0, 0}, x0 = -1 + (c % t->res) * h, y0 = -1 + (c / t->res) * h;
+            int n = 0;
+            for (int a = 0; a < ss && t->area[c] > 0; a++)
+                for (int b = 0; b < ss; b++) {
+                    double x = x0 + (a + 0.5) * h / ss, y = y0 + (b + 0.5) * h / ss, r2 = x * x + y * y,
+                           v[3] = {0, 0, 0};
+                    if (!(r2 < 1)) continue;
+                    ggx_vec3 wo = {x, y, sqrt(1 - r2)};
+                    f(ctx, wi, wo, v);
+                    for (int ch = 0; ch < t->channels; ch++) sum[ch] += v[ch];
+                    n++;
+                }
+            for (int ch = 0; ch < t->channels; ch++) brdf_table_lobe(t, k, ch)[c] = n ? (float)(sum[ch] / n) : 0.0f;
+        }
+    }
+}
+
+double brdf_table_albedo(const brdf_table *t, int k, int ch)
+{
+    const float *f = brdf_table_lobe(t, k, ch);
+    double s = 0;
+    for (int c = 0; c < t->res * t->res; c++) s += f[c] * t->area[c];
+    return s;
+}
+
+double brdf_table_l2(const brdf_table *a, int ca, const brdf_table *b, int cb, int k)
+{
+    if (a->res != b->res || brdf_table_count(a) != brdf_table_count(b)) return NAN;
+    const float *fa = brdf_table_lobe(a, k, ca), *fb = brdf_table_lobe(b, k, cb);
+    double d = 0, n = 0;
+    for (int c = 0; c < a->res * a->res; c++) {
+        double e = (double)fa[c] - fb[c];
+        d += e * e * a->area[c], n += (double)fb[c] * fb[c] * a->area[c];
+    }
+    return n > 0 ? sqrt(d / n) : NAN;
 }

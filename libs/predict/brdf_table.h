@@ -41,4 +41,16 @@ ggx_vec3 brdf_table_cell_dir(const brdf_table *t, int cell);
  * geometric lobes), where blending at a fixed wo would split it in two. */
 void brdf_table_eval(const brdf_table *t, ggx_vec3 wi, ggx_vec3 wo, double f[3]);
 
+/* Fills every incidence's cells with f's mean over ss x ss points of the cell's part inside the disk (each point at
+ * the centre of its sub-square; those outside the disk left out), f(ctx, wi, wo, out) writing the table's channels.
+ * ss in [1, 16]. */
+typedef void (*brdf_table_fn)(const void *ctx, ggx_vec3 wi, ggx_vec3 wo, double f[3]);
+void brdf_table_fill(brdf_table *t, brdf_table_fn f, const void *ctx, int ss);
+/* Incidence k's directional albedo in channel ch: the sum over the cells of f times their projected solid angle. */
+double brdf_table_albedo(const brdf_table *t, int k, int ch);
+/* The relative L2 distance over the outgoing directions of incidence k between a's channel ca and b's channel cb
+ * (tables of one grid): ||a - b|| / ||b||, the norms weighted by the cells' projected solid angles; NaN where b is 0
+ * everywhere or the grids differ. */
+double brdf_table_l2(const brdf_table *a, int ca, const brdf_table *b, int cb, int k);
+
 #endif
