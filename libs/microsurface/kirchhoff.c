@@ -309,8 +309,8 @@ int ms_kirchhoff_setup(const ms_kirchhoff_spec *s, ms_kirchhoff *k, char *err, s
     if (!isfinite(hmax) || !isfinite(ss) || !(2.0 * wave_k * hmax <= 1e12)) {
         free(h), free(valid);
         return fail(err, errn,
-                    "kirchhoff: heights up to %g against wavelength %g: phases beyond 1e12 rad (an absurd scale)",
-                    hmax, s->wavelength);
+                    "kirchhoff: heights up to %g against wavelength %g: phases beyond 1e12 rad (an absurd scale)", hmax,
+                    s->wavelength);
     }
     k->sigma_h = sqrt(ss / (double)nvalid);
     k->missing = (double)(n - nvalid) / (double)n;
@@ -355,8 +355,8 @@ int ms_kirchhoff_setup(const ms_kirchhoff_spec *s, ms_kirchhoff *k, char *err, s
             cum += need[U];
             if (cum >= 0.999) break;
         }
-        while (U > 1 && fast_size((nx - 1) * (size_t)U + 1) * fast_size((ny - 1) * (size_t)U + 1) * (size_t)levels >
-                            max_points)
+        while (U > 1 &&
+               fast_size((nx - 1) * (size_t)U + 1) * fast_size((ny - 1) * (size_t)U + 1) * (size_t)levels > max_points)
             U--;
     }
     k->aliased = 0.0;

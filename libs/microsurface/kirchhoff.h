@@ -45,20 +45,20 @@ typedef struct ms_kirchhoff_spec {
 
 typedef struct ms_kirchhoff {
     double wi[3], wavelength;
-    double dx;                /* the spacing of the grid the FFT used: spec dx / upsample */
-    size_t nx, ny;            /* that grid's points */
-    size_t fft_nx, fft_ny;    /* the FFT's size (the grid zero-padded to a product of 2, 3, 5) */
+    double dx;             /* the spacing of the grid the FFT used: spec dx / upsample */
+    size_t nx, ny;         /* that grid's points */
+    size_t fft_nx, fft_ny; /* the FFT's size (the grid zero-padded to a product of 2, 3, 5) */
     int upsample, levels, threads;
-    double coherent;          /* the specular (coherent) share: |sum W^2 e^(-2 i k wi.z h)|^2 / (sum W^2)^2, the
+    double coherent;      /* the specular (coherent) share: |sum W^2 e^(-2 i k wi.z h)|^2 / (sum W^2)^2, the
                                * power in the spike's shape; 1 for a plane, exp(-(2 k wi.z sigma_h)^2) in
                                * expectation for Gaussian heights */
-    double aliased;           /* the windowed share of the points whose phase step to a neighbour exceeds pi at
+    double aliased;       /* the windowed share of the points whose phase step to a neighbour exceeds pi at
                                * wi.z + (the highest level's wo.z): light the grid cannot place */
-    double missing;           /* the share of the points that were missing (filled) */
-    double sigma_h;           /* the RMS height after levelling, over the valid points */
-    double *level_woz;        /* the levels' wo.z (levels of them) */
-    float *power;             /* per level, fft_ny x fft_nx: |FFT|^2 / (fft_nx fft_ny sum W^2), which sums to 1 */
-    double *hp, *wx, *wy;     /* the prepared heights (nx * ny) and the window's factors along x and y */
+    double missing;       /* the share of the points that were missing (filled) */
+    double sigma_h;       /* the RMS height after levelling, over the valid points */
+    double *level_woz;    /* the levels' wo.z (levels of them) */
+    float *power;         /* per level, fft_ny x fft_nx: |FFT|^2 / (fft_nx fft_ny sum W^2), which sums to 1 */
+    double *hp, *wx, *wy; /* the prepared heights (nx * ny) and the window's factors along x and y */
 } ms_kirchhoff;
 
 /* Validates spec and computes the levels' FFTs into k (ms_kirchhoff_free releases it). Returns 0, or -1 with a
