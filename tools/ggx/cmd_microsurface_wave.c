@@ -112,8 +112,8 @@ int microsurface_wave(int argc, char **argv)
                 "{\n  \"heightfield\": \"%s\",\n  \"points\": [%zu, %zu],\n  \"spacing_um\": %.9g,\n  \"view\": [%.9g, "
                 "%.9g],\n  \"sigma_h_um\": %.9g,\n  \"missing_share\": %.9g,\n  \"upsample\": %d,\n  \"fft\": [%zu, "
                 "%zu],\n  \"aliased_share\": %.9g,\n  \"geometric_total\": %.9g,\n  \"wavelengths_um\": [",
-                o.heightfield, (k.nx - 1) / (size_t)k.upsample + 1, (k.ny - 1) / (size_t)k.upsample + 1, dx, theta, phi, k.sigma_h,
-                k.missing, k.upsample, k.fft_nx, k.fft_ny, k.aliased, gtot);
+                o.heightfield, (k.nx - 1) / (size_t)k.upsample + 1, (k.ny - 1) / (size_t)k.upsample + 1, dx, theta, phi,
+                k.sigma_h, k.missing, k.upsample, k.fft_nx, k.fft_ny, k.aliased, gtot);
         for (int c = 0; c < nc; c++) fprintf(F, "%s%.9g", c ? ", " : "", lams[c]);
         fprintf(F, "],\n  \"total\": [");
         for (int c = 0; c < nc; c++) fprintf(F, "%s%.9g", c ? ", " : "", total[c]);
@@ -139,8 +139,9 @@ int microsurface_wave(int argc, char **argv)
         for (int c = 0; c < nc; c++) fprintf(F, "| %.4g | %.6f | %.6g |\n", lams[c], total[c], coherent[c]);
         fprintf(F, "\ngeometric optics of the same slopes: total share %.6f\n\n", gtot);
         fprintf(F, "| ring | sector | sin^2 theta_o | phi_o (deg) |");
-        for (int c = 0; c < nc; c++) fprintf(F, " share%s%s | BRDF%s%s |", nc > 1 ? " " : "", nc > 1 ? cname[c] : "",
-                                             nc > 1 ? " " : "", nc > 1 ? cname[c] : "");
+        for (int c = 0; c < nc; c++)
+            fprintf(F, " share%s%s | BRDF%s%s |", nc > 1 ? " " : "", nc > 1 ? cname[c] : "", nc > 1 ? " " : "",
+                    nc > 1 ? cname[c] : "");
         fprintf(F, " geometric share |\n|---|---|---|---|");
         for (int c = 0; c < nc; c++) fprintf(F, "---|---|");
         fprintf(F, "---|\n");
