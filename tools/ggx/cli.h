@@ -43,11 +43,13 @@ typedef struct options {
     int level; /* ggx render --normal-map: the chain's level shown; -1 when not given */
     /* ggx microsurface */
     const char *kind;
-    double corr, mix; /* 0 when not given */
-    int period;       /* 0 when not given */
-    int bounces;      /* ggx microsurface measure: the most reflections of a traced ray; 0 when not given */
-    int risers;       /* ggx microsurface: a sawtooth's period; 0 when not given */
-    int tilted;       /* ggx microsurface measure --tilted */
+    double corr, mix;  /* 0 when not given */
+    int period;        /* 0 when not given */
+    int bounces;       /* ggx microsurface measure: the most reflections of a traced ray; 0 when not given */
+    int risers;        /* ggx microsurface: a sawtooth's period; 0 when not given */
+    int tilted;        /* ggx microsurface measure --tilted */
+    double wavelength; /* ggx microsurface wave --wavelength (micrometres); 0 when not given */
+    int rgb;           /* ggx microsurface wave --rgb */
     /* ggx render */
     const char *scene, *light, *strategy;
     int spp; /* ggx render --spp: whole numbers of OPT_WHOLE are ints */

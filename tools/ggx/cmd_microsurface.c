@@ -464,7 +464,8 @@ static int measure(int argc, char **argv)
 int cmd_microsurface(int argc, char **argv)
 {
     if (argc < 3 || strcmp(argv[2], "--help") == 0 || strcmp(argv[2], "-h") == 0) {
-        printf("usage: ggx microsurface generate|measure|figure [options]   (ggx microsurface generate --help, ...)\n\n"
+        printf("usage: ggx microsurface generate|measure|figure|wave [options]   (ggx microsurface generate --help, "
+               "...)\n\n"
                "Microsurfaces with a chosen NDF, to check the model against geometry: generate writes a periodic\n"
                "height field (Beckmann or GGX facets, skewed ones, V-grooves) as OpenEXR or x3p, which\n"
                "ggx fit reads; measure traces one and reports its masking, visible normals and BRDF against the\n"
@@ -475,6 +476,7 @@ int cmd_microsurface(int argc, char **argv)
     if (strcmp(argv[2], "generate") == 0) return generate(argc, argv);
     if (strcmp(argv[2], "measure") == 0) return measure(argc, argv);
     if (strcmp(argv[2], "figure") == 0) return microsurface_figure(argc, argv);
-    die("microsurface: unknown subcommand '%s' (generate, measure, figure)", argv[2]);
+    if (strcmp(argv[2], "wave") == 0) return microsurface_wave(argc, argv);
+    die("microsurface: unknown subcommand '%s' (generate, measure, figure, wave)", argv[2]);
     return 2;
 }

@@ -22,5 +22,7 @@ ggx_status microsurface_model(const options *o, const double *h, size_t n, const
                               int *given);
 /* ggx microsurface figure. */
 int microsurface_figure(int argc, char **argv);
+/* ggx microsurface wave (cmd_microsurface_wave.c). */
+int microsurface_wave(int argc, char **argv);
 
 #endif

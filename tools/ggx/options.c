@@ -171,6 +171,8 @@ static double positive_length(const char *a, const char *val)
     return v;
 }
 
+static void set_wavelength(options *o, const char *a, const char *val) { o->wavelength = positive_length(a, val); }
+
 static void set_density(options *o, const char *a, const char *val)
 {
     parse_list(a, val, &o->density, 1);
@@ -281,6 +283,8 @@ static const option_def OPTIONS[] = {
     WHOLE("risers", risers, 2, 8192, "a sawtooth's period"),
     WHOLE("bounces", bounces, 1, 10000, "a number of bounces"),
     FLAG("tilted", tilted, 1),
+    SET("wavelength", set_wavelength),
+    FLAG("rgb", rgb, 1),
 };
 
 static const option_def *option_named(const char *name)
