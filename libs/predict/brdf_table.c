@@ -152,27 +152,29 @@ void brdf_table_eval(const brdf_table *t, ggx_vec3 wi, ggx_vec3 wo, double f[3])
     if (t->channels == 1) f[1] = f[2] = f[0];
 }
 
-void brdf_table_fill(brdf_table *t, brdf_table_fn f, const void *ctx, int ss)
+void brdf_table_fill_incidence(brdf_table *t, int k, brdf_table_fn f, const void *ctx, int ss)
 {
     double h = 2.0 / t->res;
-    for (int k = 0; k < brdf_table_count(t); k++) {
-        ggx_vec3 wi = brdf_table_incidence(t, k);
-        for (int c = 0; c < t->res * t->res; c++) {
-            double sum[3] = {0, 0, 0}, x0 = -1 + (c % t->res) * h, y0 = -1 + (c / t->res) * h;
-            int n = 0;
-            for (int a = 0; a < ss && t->area[c] > 0; a++)
-                for (int b = 0; b < ss; b++) {
-                    double x = x0 + (a + 0.5) * h / ss, y = y0 + (b + 0.5) * h / ss, r2 = x * x + y * y,
-                           v[3] = {0, 0, 0};
-                    if (!(r2 < 1)) continue;
-                    ggx_vec3 wo = {x, y, sqrt(1 - r2)};
-                    f(ctx, wi, wo, v);
-                    for (int ch = 0; ch < t->channels; ch++) sum[ch] += v[ch];
-                    n++;
-                }
-            for (int ch = 0; ch < t->channels; ch++) brdf_table_lobe(t, k, ch)[c] = n ? (float)(sum[ch] / n) : 0.0f;
-        }
+    ggx_vec3 wi = brdf_table_incidence(t, k);
+    for (int c = 0; c < t->res * t->res; c++) {
+        double sum[3] = {0, 0, 0}, x0 = -1 + (c % t->res) * h, y0 = -1 + (c / t->res) * h;
+        int n = 0;
+        for (int a = 0; a < ss && t->area[c] > 0; a++)
+            for (int b = 0; b < ss; b++) {
+                double x = x0 + (a + 0.5) * h / ss, y = y0 + (b + 0.5) * h / ss, r2 = x * x + y * y, v[3] = {0, 0, 0};
+                if (!(r2 < 1)) continue;
+                ggx_vec3 wo = {x, y, sqrt(1 - r2)};
+                f(ctx, wi, wo, v);
+                for (int ch = 0; ch < t->channels; ch++) sum[ch] += v[ch];
+                n++;
+            }
+        for (int ch = 0; ch < t->channels; ch++) brdf_table_lobe(t, k, ch)[c] = n ? (float)(sum[ch] / n) : 0.0f;
     }
+}
+
+void brdf_table_fill(brdf_table *t, brdf_table_fn f, const void *ctx, int ss)
+{
+    for (int k = 0; k < brdf_table_count(t); k++) brdf_table_fill_incidence(t, k, f, ctx, ss);
 }
 
 double brdf_table_albedo(const brdf_table *t, int k, int ch)

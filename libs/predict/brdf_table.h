@@ -46,6 +46,8 @@ void brdf_table_eval(const brdf_table *t, ggx_vec3 wi, ggx_vec3 wo, double f[3])
  * ss in [1, 16]. */
 typedef void (*brdf_table_fn)(const void *ctx, ggx_vec3 wi, ggx_vec3 wo, double f[3]);
 void brdf_table_fill(brdf_table *t, brdf_table_fn f, const void *ctx, int ss);
+/* The same for incidence k alone. */
+void brdf_table_fill_incidence(brdf_table *t, int k, brdf_table_fn f, const void *ctx, int ss);
 /* Incidence k's directional albedo in channel ch: the sum over the cells of f times their projected solid angle. */
 double brdf_table_albedo(const brdf_table *t, int k, int ch);
 /* The relative L2 distance over the outgoing directions of incidence k between a's channel ca and b's channel cb
