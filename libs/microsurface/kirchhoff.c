@@ -249,20 +249,11 @@ int ms_kirchhoff_setup(const ms_kirchhoff_spec *s, ms_kirchhoff *k, char *err, s
         free(h), free(valid);
         return fail(err, errn, "kirchhoff: no memory for %zu heights", n);
     }
-    double m[3][4] = {{0}};
-    for (size_t y = 0; y < ny; y++)
-        for (size_t x = 0; x < nx; x++) {
-            size_t i = y * nx + x;
-            valid[i] = isfinite(s->h[i]) ? 1 : 0;
-            h[i] = s->h[i];
-            if (!valid[i]) continue;
-            nvalid++;
-            double r[3] = {(double)x - 0.5 * (double)(nx - 1), (double)y - 0.5 * (double)(ny - 1), 1.0};
-            for (int a = 0; a < 3; a++) {
-                for (int b = 0; b < 3; b++) m[a][b] += r[a] * r[b];
-                m[a][3] += r[a] * h[i];
-            }
-        }
+    for (size_t i = 0; i < n; i++) {
+        valid[i] = isfinite(s->h[i]) ? 1 : 0;
+        h[i] = s->h[i];
+        nvalid += valid[i];
+    }
     if (nvalid == 0) {
         free(h), free(valid);
         return fail(err, errn, "kirchhoff: all %zu points are missing", n);
@@ -282,27 +273,12 @@ int ms_kirchhoff_setup(const ms_kirchhoff_spec *s, ms_kirchhoff *k, char *err, s
         free(h), free(valid);
         return fail(err, errn, "kirchhoff: %zu valid points: fewer than 2 x 2", nvalid);
     }
-    /* the least-squares plane (Gaussian elimination of the 3 x 3 normal equations; the mean alone with keep_tilt) */
-    double plane[3] = {0.0, 0.0, m[2][3] / m[2][2]};
-    if (!s->keep_tilt) {
-        for (int c = 0; c < 3; c++)
-            for (int r = c + 1; r < 3; r++) {
-                double f = m[r][c] / m[c][c];
-                for (int q = c; q < 4; q++) m[r][q] -= f * m[c][q];
-            }
-        for (int r = 2; r >= 0; r--) {
-            double v = m[r][3];
-            for (int q = r + 1; q < 3; q++) v -= m[r][q] * plane[q];
-            plane[r] = v / m[r][r];
-        }
-    }
+    ms_level(h, nx, ny, s->keep_tilt);
     double ss = 0.0, hmax = 0.0;
     for (size_t y = 0; y < ny; y++)
         for (size_t x = 0; x < nx; x++) {
             size_t i = y * nx + x;
             if (!valid[i]) continue;
-            h[i] -= plane[0] * ((double)x - 0.5 * (double)(nx - 1)) + plane[1] * ((double)y - 0.5 * (double)(ny - 1)) +
-                    plane[2];
             ss += h[i] * h[i], hmax = fmax(hmax, fabs(h[i]));
         }
     double wave_k = 2.0 * PI / s->wavelength;

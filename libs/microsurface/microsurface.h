@@ -196,4 +196,10 @@ size_t ms_facet_normals(const double *h, size_t n, const size_t risers[2], ggx_v
 /* The bin of a unit normal m (m.z > 0). */
 int ms_bin(const double m[3], int rings, int sectors);
 
+/* ---- levelling (level.c) ----
+ * Removes from h (nx x ny, x fastest; non-finite values are missing points, left as they are) the least-squares plane
+ * of its finite points, in place (keep_tilt: their mean only; where the finite points lie on one line, their mean
+ * only). Returns how many points are finite (0: nothing changed). */
+size_t ms_level(double *h, size_t nx, size_t ny, int keep_tilt);
+
 #endif

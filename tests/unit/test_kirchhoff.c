@@ -281,11 +281,42 @@ static void bad_input(void **state)
     }
 }
 
+/* ms_level: a tilted plane with missing points levels to 0 (the missing ones left NaN), a surface on it keeps its
+ * own heights less their own plane; points on one line keep their tilt (only the mean goes); keep_tilt removes the
+ * mean alone. */
+static void levelling(void **state)
+{
+    (void)state;
+    enum { NX = 7, NY = 5 };
+    double h[NX * NY], g[NX * NY];
+    for (int y = 0; y < NY; y++)
+        for (int x = 0; x < NX; x++) h[y * NX + x] = 3.0 + 0.25 * x - 0.5 * y, g[y * NX + x] = h[y * NX + x];
+    h[3] = h[17] = NAN;
+    CHECK(ms_level(h, NX, NY, 0) == NX * NY - 2, "finite count");
+    for (int i = 0; i < NX * NY; i++)
+        CHECK(i == 3 || i == 17 ? isnan(h[i]) : fabs(h[i]) < 1e-12, "point %d: %g after levelling", i, h[i]);
+    double mean = 0;
+    for (int i = 0; i < NX * NY; i++) mean += g[i] / (NX * NY);
+    CHECK(ms_level(g, NX, NY, 1) == NX * NY, "finite count");
+    for (int y = 0; y < NY; y++)
+        for (int x = 0; x < NX; x++)
+            CHECK(fabs(g[y * NX + x] - (3.0 + 0.25 * x - 0.5 * y - mean)) < 1e-12,
+                  "keep_tilt removed more than the mean");
+    double line[NX * NY];
+    for (int i = 0; i < NX * NY; i++) line[i] = NAN;
+    for (int x = 0; x < NX; x++) line[2 * NX + x] = x;
+    CHECK(ms_level(line, NX, NY, 0) == NX, "finite count on a line");
+    for (int x = 0; x < NX; x++) CHECK(fabs(line[2 * NX + x] - (x - 3.0)) < 1e-12, "a line's tilt removed");
+    double none[4] = {NAN, NAN, NAN, NAN};
+    CHECK(ms_level(none, 2, 2, 0) == 0 && isnan(none[0]), "no finite point");
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(flat_mirror),     cmocka_unit_test(reciprocity),       cmocka_unit_test(debye_waller),
         cmocka_unit_test(geometric_limit), cmocka_unit_test(fft_against_exact), cmocka_unit_test(bad_input),
+        cmocka_unit_test(levelling),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }
