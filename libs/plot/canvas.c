@@ -1,6 +1,7 @@
 /* Drawing surfaces for the figures (canvas.h): PNG, SVG and PDF through a caller's writer, the themes, text, the
  * colour map and the colour bar. SPDX-License-Identifier: MIT */
 #include <math.h>
+#include <stdint.h>
 #include <stdio.h>
 #include <string.h>
 
@@ -239,4 +240,27 @@ void paint_image(cairo_t *cr, cairo_surface_t *img, double x, double y, double s
     cairo_paint(cr);
     cairo_restore(cr);
     cairo_surface_destroy(img);
+}
+
+static unsigned char srgb8(double v)
+{
+    v = isfinite(v) ? fmin(fmax(v, 0.0), 1.0) : 0.0;
+    v = v <= 0.0031308 ? 12.92 * v : 1.055 * pow(v, 1 / 2.4) - 0.055;
+    return (unsigned char)lrint(255 * v);
+}
+
+void paint_linear_rgb(cairo_t *cr, double x, double y, double scale, const float *rgb, int w, int h, double exposure)
+{
+    cairo_surface_t *img = cairo_image_surface_create(CAIRO_FORMAT_RGB24, w, h);
+    unsigned char *data = cairo_image_surface_get_data(img);
+    int stride = cairo_image_surface_get_stride(img);
+    double k = exp2(exposure);
+    for (int j = 0; j < h; j++) {
+        uint32_t *row = (uint32_t *)(data + (size_t)j * (size_t)stride);
+        for (int i = 0; i < w; i++) {
+            const float *c = rgb + 3 * ((size_t)j * (size_t)w + (size_t)i);
+            row[i] = (uint32_t)srgb8(k * c[0]) << 16 | (uint32_t)srgb8(k * c[1]) << 8 | srgb8(k * c[2]);
+        }
+    }
+    paint_image(cr, img, x, y, scale);
 }

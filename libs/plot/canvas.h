@@ -65,5 +65,8 @@ void arrow(cairo_t *cr, double x0, double y0, double x1, double y1, double head)
 /* Paints img (marked dirty here) with its top left at (x, y), each of its pixels scale canvas units wide, without
  * smoothing (a cell stays a cell), and destroys it. */
 void paint_image(cairo_t *cr, cairo_surface_t *img, double x, double y, double scale);
+/* Paints a linear RGB image (w x h floats times 3, the top row first) at (x, y), each pixel scale units wide, as 8-bit
+ * sRGB of min(1, 2^exposure L) per channel (NaN and negative values black). */
+void paint_linear_rgb(cairo_t *cr, double x, double y, double scale, const float *rgb, int w, int h, double exposure);
 
 #endif

@@ -1,6 +1,5 @@
 /* The sheet of a prediction (figure_predict.h). SPDX-License-Identifier: MIT */
 #include <math.h>
-#include <stdint.h>
 #include <stdio.h>
 #include <string.h>
 
@@ -31,37 +30,14 @@ static void draw_slice(cairo_t *cr, const theme *th, double x, double y, double 
     for (int i = 0; i < FIGURE_PREDICT_POINTS; i += 2)
         if (d->traced[s][i] > 0) sr[ns].x[sr[ns].n] = i - 89, sr[ns].y[sr[ns].n++] = d->traced[s][i];
     ns++;
-    plot_axes ax = {"theta_o in the plane of incidence (degrees; negative: the light's side)", "BRDF (F = 1)", 1, 1, 1,
-                    90.0};
+    plot_axes ax = {
+        "theta_o in the plane of incidence (degrees; negative: the light's side)", "BRDF (F = 1)", 1, 1, 1, 90.0};
     plot_draw(cr, th, x, y + 18, w, h - 18, 13, sr, ns, &ax);
     char line[128];
     snprintf(line, sizeof line, "incidence theta_i %.0f, phi_i %.0f degrees", d->slice_theta[s], d->slice_phi);
     set_rgb(cr, th->fg);
     text_font(cr, 14, 1);
     text_at(cr, x + 60, y + 6, 0.0, 0.5, line);
-}
-
-/* sRGB's encoding of a linear value in [0, 1] */
-static double srgb(double v)
-{
-    v = fmin(fmax(v, 0.0), 1.0);
-    return v <= 0.0031308 ? 12.92 * v : 1.055 * pow(v, 1 / 2.4) - 0.055;
-}
-
-static void draw_sphere(cairo_t *cr, const float *rgb, int size, double exposure, double x, double y, double side)
-{
-    cairo_surface_t *img = cairo_image_surface_create(CAIRO_FORMAT_RGB24, size, size);
-    unsigned char *px = cairo_image_surface_get_data(img);
-    int stride = cairo_image_surface_get_stride(img);
-    cairo_surface_flush(img);
-    for (int j = 0; j < size; j++)
-        for (int i = 0; i < size; i++) {
-            const float *p = rgb + 3 * ((size_t)j * size + i);
-            uint32_t r = (uint32_t)lround(255 * srgb(exposure * p[0])), g = (uint32_t)lround(255 * srgb(exposure * p[1])),
-                     b = (uint32_t)lround(255 * srgb(exposure * p[2]));
-            *(uint32_t *)(px + (size_t)j * stride + 4 * (size_t)i) = (r << 16) | (g << 8) | b;
-        }
-    paint_image(cr, img, x, y, side / size);
 }
 
 static void draw_table(cairo_t *cr, const theme *th, double x, double y, const figure_predict_data *d)
@@ -73,7 +49,7 @@ static void draw_table(cairo_t *cr, const theme *th, double x, double y, const f
     for (int k = 0; k < 7; k++) text_at(cr, x + col[k], y, 0.0, 0.5, head[k]);
     text_font(cr, 13, 0);
     for (int r = 0; r < d->rows; r++) {
-        double v[7] = {d->row_theta[r],       d->albedo_traced[r],   d->albedo_wave[r],  d->albedo_model[r],
+        double v[7] = {d->row_theta[r],       d->albedo_traced[r], d->albedo_wave[r],   d->albedo_model[r],
                        d->l2_model_traced[r], d->l2_model_wave[r], d->l2_traced_wave[r]};
         for (int k = 0; k < 7; k++) {
             char cell[32];
@@ -111,7 +87,7 @@ void figure_predict_draw(canvas *c, const figure_predict_data *d)
     for (int k = 0; k < FIGURE_PREDICT_SPHERES; k++) {
         if (!d->sphere[k]) continue;
         double x = 30 + k * (side + 30);
-        draw_sphere(cr, d->sphere[k], d->size, d->exposure, x, Y2 + 20, side);
+        paint_linear_rgb(cr, x, Y2 + 20, side / d->size, d->sphere[k], d->size, d->size, d->exposure);
         set_rgb(cr, th->fg);
         text_font(cr, 14, 0);
         text_at(cr, x + side / 2, Y2 + 20 + side + 16, 0.5, 0.5, d->sphere_label[k]);

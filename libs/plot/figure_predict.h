@@ -17,9 +17,9 @@ enum {
 };
 
 typedef struct figure_predict_data {
-    char title[256];     /* the first line: the file */
-    char lines[4][256];  /* the lines under it: the scan, the fit, the tails, the predictions' settings ("" none) */
-    int slices;          /* 1 to FIGURE_PREDICT_SLICES */
+    char title[256];    /* the first line: the file */
+    char lines[4][256]; /* the lines under it: the scan, the fit, the tails, the predictions' settings ("" none) */
+    int slices;         /* 1 to FIGURE_PREDICT_SLICES */
     double slice_theta[FIGURE_PREDICT_SLICES]; /* each slice's incidence: polar angle, degrees */
     double slice_phi;                          /* their azimuth (degrees): the plane of the slices */
     /* the BRDF (F = 1) in the plane of incidence at theta_o = -89 + i degrees (negative: towards the light's side),
@@ -34,8 +34,8 @@ typedef struct figure_predict_data {
     double albedo_traced[FIGURE_PREDICT_ROWS], albedo_wave[FIGURE_PREDICT_ROWS], albedo_model[FIGURE_PREDICT_ROWS];
     double l2_model_traced[FIGURE_PREDICT_ROWS], l2_model_wave[FIGURE_PREDICT_ROWS],
         l2_traced_wave[FIGURE_PREDICT_ROWS];
-    /* the lit spheres: size x size linear RGB each (NULL: not drawn), their captions, and the exposure (the factor
-     * before the sRGB curve) */
+    /* the lit spheres: size x size linear RGB each (NULL: not drawn), their captions, and the exposure in stops
+     * (paint_linear_rgb's) */
     int size;
     const float *sphere[FIGURE_PREDICT_SPHERES];
     char sphere_label[FIGURE_PREDICT_SPHERES][96];

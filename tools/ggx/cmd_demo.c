@@ -98,7 +98,7 @@ static double draw_spheres(cairo_t *cr, const theme *th, double x, double y, dou
     text_font(cr, font, 0);
     for (int k = 0; k < NSPHERES; k++) {
         double cx = x + k * (cell + gap);
-        render_paint(cr, cx, y, sc, img[k], px, px, 0);
+        paint_linear_rgb(cr, cx, y, sc, img[k], px, px, 0);
         text_at(cr, cx + 0.5 * cell, y + cell + 1.4 * font, 0.5, 0.5, SPHERES[k].label);
     }
     return cell + 2.4 * font;

@@ -200,7 +200,7 @@ int cmd_render(int argc, char **argv)
         int band = caption ? (int)ceil(CAPTION_LINES * 1.45 * CAPTION_FONT + 8) : 0;
         canvas c;
         canvas_open_file(&c, path, FMT_PNG, r.width, r.height + band, 0);
-        render_paint(c.cr, 0, 0, 1, rgb, r.width, r.height, o.exposure);
+        paint_linear_rgb(c.cr, 0, 0, 1, rgb, r.width, r.height, o.exposure);
         if (caption) {
             char shape[200], mat[200], cam[200], line[400];
             char l0[480];

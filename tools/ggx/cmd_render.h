@@ -7,9 +7,6 @@
 #include "figure_out.h"
 #include "render.h"
 
-/* Paints a linear RGB image (w x h, the top row first) at (x, y), each pixel scale units wide, as 8-bit sRGB of
- * min(1, 2^exposure L) per channel. */
-void render_paint(cairo_t *cr, double x, double y, double scale, const float *rgb, int w, int h, double exposure);
 /* The caption's words for the material (and its compensation) and the scene's tangent frame. */
 void render_material_words(const render_spec *r, char *buf, size_t n);
 const char *render_frame_words(render_scene scene);

@@ -20,7 +20,7 @@ static void paint_grey(cairo_t *cr, double x, double y, double scale, const floa
     cairo_save(cr);
     cairo_rectangle(cr, x, y, clip_w, clip_h);
     cairo_clip(cr);
-    render_paint(cr, x, y, scale, rgb, (int)w, (int)h, 0.0);
+    paint_linear_rgb(cr, x, y, scale, rgb, (int)w, (int)h, 0.0);
     cairo_restore(cr);
     free(rgb);
 }
