@@ -39,8 +39,8 @@ size_t ms_level(double *h, size_t nx, size_t ny, int keep_tilt)
         for (size_t x = 0; x < nx; x++) {
             double *z = &h[y * nx + x];
             if (isfinite(*z))
-                *z -= plane[0] * ((double)x - 0.5 * (double)(nx - 1)) + plane[1] * ((double)y - 0.5 * (double)(ny - 1)) +
-                      plane[2];
+                *z -= plane[0] * ((double)x - 0.5 * (double)(nx - 1)) +
+                      plane[1] * ((double)y - 0.5 * (double)(ny - 1)) + plane[2];
         }
     return count;
 }
