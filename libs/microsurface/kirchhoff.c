@@ -405,17 +405,34 @@ int ms_kirchhoff_setup(const ms_kirchhoff_spec *s, ms_kirchhoff *k, char *err, s
 #endif
 }
 
+int ms_kirchhoff_built(void)
+{
+#ifdef GGX_HAVE_KISSFFT
+    return 1;
+#else
+    return 0;
+#endif
+}
+
 typedef struct bin_job {
     const ms_kirchhoff *k;
-    int rings, sectors, threads, geometric;
+    const ms_binning *b;
+    int threads, geometric;
     double *part; /* CHUNKS x bins */
 } bin_job;
+
+/* the bin of wo, or -1 (the caller's binning may count a direction in none) */
+static int bin_of(const ms_binning *b, const double wo[3])
+{
+    int i = b->bin(b->ctx, wo);
+    return i >= 0 && i < b->bins ? i : -1;
+}
 
 static void bin_pass(void *ctx, int t)
 {
     bin_job *j = ctx;
     const ms_kirchhoff *k = j->k;
-    size_t bins = (size_t)j->rings * (size_t)j->sectors;
+    size_t bins = (size_t)j->b->bins;
     for (int c = t; c < CHUNKS; c += j->threads) {
         double *part = j->part + (size_t)c * bins, n[3], wo[3];
         if (j->geometric) { /* the points' own slopes, weighted by W^2 */
@@ -430,7 +447,8 @@ static void bin_pass(void *ctx, int t)
                     double w = k->wx[x] * k->wx[x] * k->wy[y] * k->wy[y], l = sqrt(1.0 + sx * sx + sy * sy);
                     n[0] = -sx / l, n[1] = -sy / l, n[2] = 1.0 / l;
                     double f = facet_share(k->wi, n, wo);
-                    if (f > 0.0 && w > 0.0) part[ms_bin(wo, j->rings, j->sectors)] += w * f;
+                    int b = f > 0.0 && w > 0.0 ? bin_of(j->b, wo) : -1;
+                    if (b >= 0) part[b] += w * f;
                 }
             continue;
         }
@@ -448,19 +466,19 @@ static void bin_pass(void *ctx, int t)
                     double il = 1.0 / sqrt(1.0 + px * px + py * py);
                     n[0] = px * il, n[1] = py * il, n[2] = il;
                     double f = facet_share(k->wi, n, wo);
-                    if (f > 0.0 && (k->levels == 1 || level_of(k, wo[2]) == l))
-                        part[ms_bin(wo, j->rings, j->sectors)] += p * f;
+                    int b = f > 0.0 && (k->levels == 1 || level_of(k, wo[2]) == l) ? bin_of(j->b, wo) : -1;
+                    if (b >= 0) part[b] += p * f;
                 }
             }
         }
     }
 }
 
-static double bin_run(const ms_kirchhoff *k, int rings, int sectors, double *share, int geometric)
+static double bin_run(const ms_kirchhoff *k, const ms_binning *bn, double *share, int geometric)
 {
-    if (rings < 1 || sectors < 1 || !k->power) return NAN;
-    size_t bins = (size_t)rings * (size_t)sectors;
-    bin_job j = {k, rings, sectors, k->threads, geometric, calloc(CHUNKS * bins, sizeof(double))};
+    if (bn->bins < 1 || !k->power) return NAN;
+    size_t bins = (size_t)bn->bins;
+    bin_job j = {k, bn, k->threads, geometric, calloc(CHUNKS * bins, sizeof(double))};
     if (!j.part) return NAN;
     ggx_internal_parallel_for(j.threads, bin_pass, &j);
     double tot = 0.0, wsum = 1.0;
@@ -479,14 +497,35 @@ static double bin_run(const ms_kirchhoff *k, int rings, int sectors, double *sha
     return tot;
 }
 
+/* the tracer's bins: rings of equal sin^2 theta times sectors (ms_bin) */
+typedef struct ring_bins {
+    int rings, sectors;
+} ring_bins;
+static int ring_bin(const void *ctx, const double wo[3])
+{
+    const ring_bins *r = ctx;
+    return ms_bin(wo, r->rings, r->sectors);
+}
+
 double ms_kirchhoff_bin(const ms_kirchhoff *k, int rings, int sectors, double *share)
 {
-    return bin_run(k, rings, sectors, share, 0);
+    if (rings < 1 || sectors < 1) return NAN;
+    ring_bins r = {rings, sectors};
+    ms_binning b = {rings * sectors, ring_bin, &r};
+    return bin_run(k, &b, share, 0);
+}
+
+double ms_kirchhoff_binned(const ms_kirchhoff *k, const ms_binning *b, double *share)
+{
+    return bin_run(k, b, share, 0);
 }
 
 double ms_kirchhoff_geometric(const ms_kirchhoff *k, int rings, int sectors, double *share)
 {
-    return bin_run(k, rings, sectors, share, 1);
+    if (rings < 1 || sectors < 1) return NAN;
+    ring_bins r = {rings, sectors};
+    ms_binning b = {rings * sectors, ring_bin, &r};
+    return bin_run(k, &b, share, 1);
 }
 
 double ms_kirchhoff_brdf(const ms_kirchhoff *k, const double wo[3])

@@ -5,6 +5,8 @@
 
 #include <stddef.h>
 
+#include "microsurface.h"
+
 /* The BRDF of a patch of heights h(x, y) lit by a plane wave of wavelength lambda from the unit direction wi (local
  * frame, z up, pointing away from the surface), scalar field, perfect reflector (F = 1), single scattering, no
  * shadowing or masking, Kirchhoff's tangent plane, far field:
@@ -67,6 +69,8 @@ typedef struct ms_kirchhoff {
  * or taper out of range, a grid beyond max_points at upsample 1 (too large for memory), no memory. */
 int ms_kirchhoff_setup(const ms_kirchhoff_spec *spec, ms_kirchhoff *k, char *err, size_t errn);
 void ms_kirchhoff_free(ms_kirchhoff *k);
+/* 1 where the build has KISS FFT (ms_kirchhoff_setup works), else 0 (it refuses every spec, saying so). */
+int ms_kirchhoff_built(void);
 
 /* The BRDF binned as the tracer's ms_brdf (ms_bin: rings of equal sin^2(theta_o) times sectors of equal azimuth, of
  * equal projected solid angle pi / bins): share[b] (rings * sectors of them) receives the share of the incident
@@ -75,6 +79,10 @@ void ms_kirchhoff_free(ms_kirchhoff *k);
  * faces away from wi or whose wo is below the plane carry none). Returns the total share (about 1 - the share
  * lost below the plane by the steepest slopes), or NaN for rings or sectors below 1. */
 double ms_kirchhoff_bin(const ms_kirchhoff *k, int rings, int sectors, double *share);
+
+/* ms_kirchhoff_bin into the caller's bins (microsurface.h's ms_binning; a direction it gives -1 is counted in none):
+ * share[b] for b < bins. Returns the total of the shares binned, or NaN for no bins. */
+double ms_kirchhoff_binned(const ms_kirchhoff *k, const ms_binning *b, double *share);
 
 /* The same binning for geometric optics on the same prepared heights and window: each point's slope (central
  * differences) carries W^2 / sum W^2 times (wi.n) / (n.z wi.z) into the bin of wi reflected about its normal: the

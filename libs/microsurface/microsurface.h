@@ -196,6 +196,15 @@ size_t ms_facet_normals(const double *h, size_t n, const size_t risers[2], ggx_v
 /* The bin of a unit normal m (m.z > 0). */
 int ms_bin(const double m[3], int rings, int sectors);
 
+/* ---- a caller's binning of outgoing directions ----
+ * bin(ctx, wo) gives the bin of a unit direction wo above the plane, in [0, bins), or -1 to count it in none. The
+ * measures that take one (ms_patch_brdf_binned, ms_kirchhoff_binned) fill bins shares. */
+typedef struct ms_binning {
+    int bins;
+    int (*bin)(const void *ctx, const double wo[3]);
+    const void *ctx;
+} ms_binning;
+
 /* ---- levelling (level.c) ----
  * Removes from h (nx x ny, x fastest; non-finite values are missing points, left as they are) the least-squares plane
  * of its finite points, in place (keep_tilt: their mean only; where the finite points lie on one line, their mean
