@@ -465,7 +465,8 @@ int ms_measure_g1(const ms_tracer *t, const double *h, size_t n, const double v[
 }
 
 /* the facets of the present cells of a patch whose centres lie in w, as facets_towards: area per bin and g1 over
- * the count of all the cells there; 0, or -1 with err where no present cell lies in w */
+ * the count of all the cells there, the footprint that of their mean slope; 0, or -1 with err where no present
+ * cell lies in w */
 static int patch_facets(const ms_tracer *t, const double w[4], const double v[3], ms_g1 *r, char *err, size_t errn)
 {
     size_t nx, ny, cells = 0, present = 0;
@@ -488,7 +489,8 @@ static int patch_facets(const ms_tracer *t, const double w[4], const double v[3]
     }
     for (int b = 0; b < r->rings * r->sectors; b++) r->area[b] /= (double)cells;
     facet_moments(&f, r->slope_mean, r->slope_cov);
-    r->g1 = (double)present * v[2] / f.total;
+    /* a patch keeps the tilt it was measured with: its mean slope's footprint, as a tilted tile's */
+    r->g1 = (double)present * footprint(r->slope_mean, v) / f.total;
     return 0;
 }
 
@@ -541,7 +543,7 @@ int ms_patch_g1(const ms_tracer *t, const double v[3], const double w[4], long r
                     .bins = rings * sectors,
                     .rings = rings,
                     .sectors = sectors};
-    return g1_trace(&proto, threads, v[2], r, err, errn);
+    return g1_trace(&proto, threads, footprint(r->slope_mean, v), r, err, errn);
 }
 
 typedef struct brdf_job {

@@ -100,9 +100,9 @@ int ms_patch_present(const ms_tracer *t, size_t x, size_t y);
  * crosses the whole band (down to the lowest height) over the patch: the patch [0, nx - 1] x [0, ny - 1] less
  * (z_top - zmin) tan(theta_v) on the side the rays travel towards (none upstream: a ray from above never meets the
  * surface behind its start). No ray along -v from the window leaves the patch before it hits or passes below every
- * height. reflect 1 (the BRDF's window): also less (z_top - zmin) max(tan(theta_v), 1) on every side, so that rays
- * reflected up at the view's angle (or 45 degrees) from inside reach the band's top over the patch; more grazing
- * ones may leave (MS_LEFT, counted). Returns 0, or -1 with err where the window is empty or under a cell wide (the
+ * height. reflect 1 (the BRDF's window): twice that margin downstream (the specular path down and back up) and
+ * (z_top - zmin) max(tan(theta_v), 1) on every side, so that rays reflected up at the view's angle (or 45 degrees)
+ * reach the band's top over the patch; more grazing ones may leave (MS_LEFT, counted). Returns 0, or -1 with err where the window is empty or under a cell wide (the
  * view too grazing for the patch's band). */
 int ms_patch_window(const ms_tracer *t, const double v[3], int reflect, double w[4], char *err, size_t errn);
 /* The height rays start from over a patch: the present heights' top plus the tracer's single-precision pad. */
@@ -167,8 +167,9 @@ int ms_measure_g1(const ms_tracer *t, const double *h, size_t n, const double v[
  * will do; risers must be NULL). ms_patch_g1 takes the window w (NULL: ms_patch_window's, reflect 0; any other rectangle inside
  * the patch, for the edge treatment's own tests): g x g rays (g = ceil(sqrt(rays))) on a jittered grid over w at
  * ms_patch_top. The facets are those of the present cells whose centres lie in w: area per bin over the count of
- * all the cells (present or absent) whose centres lie in w, g1 their present count times v.z over their projected
- * area (exact for the surface they sample); visible per bin v.z times the bin's share of the rays, so a ray that
+ * all the cells (present or absent) whose centres lie in w, g1 their present count times f over their projected
+ * area (exact for the surface they sample; f = v.z - slope_mean . (v.x, v.y), the footprint of their mean slope,
+ * which a scan keeps where it was not levelled); visible per bin f times the bin's share of the rays, so a ray that
  * left (left) or fell through a hole (holes) lowers the visible share (g1_off_risers, the traced G1), never silently.
  * Each row draws its own stream (not the tile's), the result the same for any number of threads. Returns 0 or -1
  * with err (a view along the plane, a window outside the patch or empty). */

@@ -373,10 +373,11 @@ int ms_patch_window(const ms_tracer *t, const double v[3], int reflect, double w
     }
     /* the rays go along -v: from z_top down to the lowest height they move (z_top - zmin) v_xy / v.z backwards */
     double fall = t->rmax - t->rmin, mx = fall * v[0] / v[2], my = fall * v[1] / v[2];
-    double X = (double)(t->nx - 1), Y = (double)(t->ny - 1);
-    w[0] = mx > 0.0 ? mx : 0.0, w[2] = mx < 0.0 ? X + mx : X;
-    w[1] = my > 0.0 ? my : 0.0, w[3] = my < 0.0 ? Y + my : Y;
-    if (reflect) { /* reflected rays rising at up to theta_v, or 45 degrees, stay over the patch to the band's top */
+    double X = (double)(t->nx - 1), Y = (double)(t->ny - 1), k = reflect ? 2.0 : 1.0;
+    /* the BRDF's: twice that downstream (down to the lowest height, and back up to the top at the mirror angle) */
+    w[0] = mx > 0.0 ? k * mx : 0.0, w[2] = mx < 0.0 ? X + k * mx : X;
+    w[1] = my > 0.0 ? k * my : 0.0, w[3] = my < 0.0 ? Y + k * my : Y;
+    if (reflect) { /* and rays reflected up at theta_v (or 45 degrees) on every side */
         double m = fall * fmax(sqrt(v[0] * v[0] + v[1] * v[1]) / v[2], 1.0);
         w[0] = fmax(w[0], m), w[1] = fmax(w[1], m), w[2] = fmin(w[2], X - m), w[3] = fmin(w[3], Y - m);
     }

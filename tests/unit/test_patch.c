@@ -102,8 +102,10 @@ static void crop_matches_tile(void **state)
         double v[3], auto_w[4];
         view(thetas[i], 30.0, v);
         CHECK(ms_patch_window(tp, v, 0, auto_w, err, sizeof err) == 0, "%s", err);
-        CHECK(auto_w[0] <= w[0] && auto_w[1] <= w[1], "the tile's window lacks the margin at %g degrees: the "
-              "automatic window starts at %g, %g", thetas[i], auto_w[0], auto_w[1]);
+        CHECK(auto_w[0] <= w[0] && auto_w[1] <= w[1],
+              "the tile's window lacks the margin at %g degrees: the "
+              "automatic window starts at %g, %g",
+              thetas[i], auto_w[0], auto_w[1]);
         ms_g1 a, b;
         CHECK(ms_measure_g1(tt, h, n, v, g1_rays(), 4, 8, NULL, 2, &a, err, sizeof err) == 0, "%s", err);
         CHECK(ms_patch_g1(tp, v, w, g1_rays(), 4, 8, 2, &b, err, sizeof err) == 0, "%s", err);
@@ -114,8 +116,8 @@ static void crop_matches_tile(void **state)
         for (int k = 0; k < 32; k++) {
             CHECK_CLOSE(b.area[k], a.area[k], 1e-9, 1e-15, "bin %d's area at %g degrees", k, thetas[i]);
             double z = z_binomial(a.visible[k] / v[2], a.rays, b.visible[k] / v[2], b.rays);
-            CHECK(z <= 4.0, "bin %d at %g degrees: visible %.6g (tile) against %.6g (patch), %.2f sigma", k,
-                  thetas[i], a.visible[k], b.visible[k], z);
+            CHECK(z <= 4.0, "bin %d at %g degrees: visible %.6g (tile) against %.6g (patch), %.2f sigma", k, thetas[i],
+                  a.visible[k], b.visible[k], z);
             zmax = fmax(zmax, z);
         }
         ms_brdf ba, bb;
@@ -127,8 +129,10 @@ static void crop_matches_tile(void **state)
         for (int k = 0; k < 128; k++) {
             double z1 = z_binomial(ba.single[k], ba.rays, bb.single[k], bb.rays);
             double z2 = z_binomial(ba.all[k], ba.rays, bb.all[k], bb.rays);
-            CHECK(z1 <= 4.5 && z2 <= 4.5, "BRDF bin %d at %g degrees: single %.6g against %.6g (%.2f sigma), all %.6g "
-                  "against %.6g (%.2f sigma)", k, thetas[i], ba.single[k], bb.single[k], z1, ba.all[k], bb.all[k], z2);
+            CHECK(z1 <= 4.5 && z2 <= 4.5,
+                  "BRDF bin %d at %g degrees: single %.6g against %.6g (%.2f sigma), all %.6g "
+                  "against %.6g (%.2f sigma)",
+                  k, thetas[i], ba.single[k], bb.single[k], z1, ba.all[k], bb.all[k], z2);
             zb = fmax(zb, fmax(z1, z2));
         }
         printf("crop at %g degrees: g1 %.6f, the largest bin difference %.2f sigma (G1), %.2f sigma (BRDF); BRDF rays "
@@ -168,16 +172,20 @@ static void no_margin_rejected(void **state)
     CHECK_CLOSE(b.g1, a.g1, 1e-9, 0, "the facets' g1");
     double q = (double)b.left / (double)b.rays, se = sqrt(q * (1.0 - q) / (double)b.rays);
     double bias = 1.0 - b.g1_off_risers / a.g1_off_risers;
-    CHECK(q > 10.0 * se && bias > 10.0 * se, "no margin at 80 degrees: %ld of %ld rays left (%.4f, standard error "
-          "%.2g), the traced G1 %.6f against the tile's %.6f", b.left, b.rays, q, se, b.g1_off_risers, a.g1_off_risers);
+    CHECK(q > 10.0 * se && bias > 10.0 * se,
+          "no margin at 80 degrees: %ld of %ld rays left (%.4f, standard error "
+          "%.2g), the traced G1 %.6f against the tile's %.6f",
+          b.left, b.rays, q, se, b.g1_off_risers, a.g1_off_risers);
     double zmax = 0.0;
     long kept = b.rays - b.left;
     for (int k = 0; k < 32; k++) {
         double kept_share = b.visible[k] / v[2] * (double)b.rays / (double)kept;
         zmax = fmax(zmax, z_binomial(a.visible[k] / v[2], a.rays, kept_share, kept));
     }
-    CHECK(zmax > 4.0, "the left rays dropped: the bins within %.2f sigma of the tile's, which the crop's test would "
-          "accept", zmax);
+    CHECK(zmax > 4.0,
+          "the left rays dropped: the bins within %.2f sigma of the tile's, which the crop's test would "
+          "accept",
+          zmax);
     printf("no margin at 80 degrees: %.4f of the rays left (standard error %.2g), traced G1 %.6f against %.6f (%.1f %% "
            "low); dropped, the largest bin difference %.1f sigma\n",
            q, se, b.g1_off_risers, a.g1_off_risers, 100.0 * bias, zmax);
@@ -249,8 +257,10 @@ static void hole(void **state)
     CHECK(ms_patch_g1(tp, v0, w, g1_rays(), 4, 8, 1, &r2, err, sizeof err) == 0, "%s", err);
     double want = (double)window_absent / (double)(n * n), se = sqrt(want * (1.0 - want) / (double)r1.rays);
     double got = (double)r1.holes / (double)r1.rays;
-    CHECK(fabs(got - want) <= 4.0 * se && r1.left == 0, "holes %.5f of the rays, the window's absent share %.5f "
-          "(standard error %.2g); %ld left", got, want, se, r1.left);
+    CHECK(fabs(got - want) <= 4.0 * se && r1.left == 0,
+          "holes %.5f of the rays, the window's absent share %.5f "
+          "(standard error %.2g); %ld left",
+          got, want, se, r1.left);
     CHECK(r1.holes == r2.holes && memcmp(r1.visible, r2.visible, 32 * sizeof *r1.visible) == 0, "threads changed it");
     ms_brdf b;
     double v60[3];
@@ -261,9 +271,10 @@ static void hole(void **state)
     CHECK(b.lost > 0 && fabs(binned + (double)(b.lost + b.left + b.capped) - (double)b.rays) < 0.5,
           "BRDF with a hole: %ld lost, %ld left, %ld capped, %.0f binned of %ld", b.lost, b.left, b.capped, binned,
           b.rays);
-    printf("hole: %zu missing points, %zu absent cells; at normal incidence %.5f of the rays fell through (the window's "
-           "absent share %.5f); BRDF at 60 degrees: %ld of %ld rays lost\n",
-           missing, absent, got, want, b.lost, b.rays);
+    printf(
+        "hole: %zu missing points, %zu absent cells; at normal incidence %.5f of the rays fell through (the window's "
+        "absent share %.5f); BRDF at 60 degrees: %ld of %ld rays lost\n",
+        missing, absent, got, want, b.lost, b.rays);
     ms_g1_free(&r1), ms_g1_free(&r2), ms_brdf_free(&b);
     ms_tracer_free(tp);
     free(p), free(h);
