@@ -280,14 +280,21 @@ static void report_json(FILE *f, const measured *m)
             m->r.riser_area, jnum(b6, m->g_riser));
     fprintf(f, "  \"vndf_chi2\": {\"rays\": %ld, \"stat\": %s, \"dof\": %d, \"pvalue\": %s, \"invalid\": %ld},\n",
             m->vrays, jnum(b1, m->cr.stat), m->cr.dof, jnum(b2, m->cr.pvalue), m->cr.invalid);
-    if (m->brdf)
+    if (m->brdf) {
         fprintf(f,
                 "  \"brdf\": {\"rays\": %ld, \"lost\": %ld, \"capped\": %ld, \"albedo_single\": %.8g, "
                 "\"albedo_model\": %s, \"albedo_model_height_correlated\": %s, \"albedo_all\": %.8g, "
-                "\"l2_single\": %s, \"l2_single_height_correlated\": %s, \"l2_all\": %s},\n",
+                "\"l2_single\": %s, \"l2_single_height_correlated\": %s, \"l2_all\": %s,\n",
                 m->br.rays, m->br.lost, m->br.capped, m->e_single, jnum(b3, m->e_model), jnum(b1, m->e_hc), m->e_all,
                 jnum(b4, m->l2_single), jnum(b6, m->l2_hc), jnum(b5, m->l2_all));
-    else fprintf(f, "  \"brdf\": null,\n");
+        /* the shares per outgoing bin (ring-major, BR x BS), for comparing runs */
+        for (int k = 0; k < 2; k++) {
+            const double *x = k ? m->br.all : m->br.single;
+            fprintf(f, "    \"%s\": [", k ? "all" : "single");
+            for (int b = 0; b < BR * BS; b++) fprintf(f, "%s%.8g", b ? ", " : "", x[b]);
+            fprintf(f, "]%s\n", k ? "}," : ",");
+        }
+    } else fprintf(f, "  \"brdf\": null,\n");
     if (m->pt.on)
         fprintf(f,
                 "  \"patch\": {\"why\": \"%s\", \"nx\": %zu, \"ny\": %zu, \"downsample\": %d, \"edge\": "
