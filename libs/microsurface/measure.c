@@ -464,30 +464,88 @@ int ms_measure_g1(const ms_tracer *t, const double *h, size_t n, const double v[
     return g1_trace(&proto, threads, footprint(tilt, v), r, err, errn);
 }
 
-/* the facets of the present cells of a patch whose centres lie in w, as facets_towards: area per bin and g1 over
- * the count of all the cells there, the footprint that of their mean slope; 0, or -1 with err where no present
- * cell lies in w */
-static int patch_facets(const ms_tracer *t, const double w[4], const double v[3], ms_g1 *r, char *err, size_t errn)
+/* a band of a patch's rows for patch_facets: its sums, cells and bins */
+typedef struct facet_band {
+    const ms_tracer *t;
+    const double *h, *v;
+    size_t nx, x0, x1, y0, y1, cells, present;
+    int rings, sectors;
+    facet_sums f;
+    double *area;
+} facet_band;
+
+/* the bands k, k + stride, ... of a band array (one thread's share) */
+typedef struct band_share {
+    facet_band *bands;
+    int count, stride;
+} band_share;
+
+static void band_rows(void *p, int k)
 {
-    size_t nx, ny, cells = 0, present = 0;
+    const band_share *sh = p;
+    for (int i = k; i < sh->count; i += sh->stride) {
+        facet_band *b = &sh->bands[i];
+        for (size_t y = b->y0; y < b->y1; y++)
+            for (size_t x = b->x0; x < b->x1; x++) {
+                b->cells++;
+                if (!ms_patch_present(b->t, x, y)) continue;
+                b->present++;
+                double sl[2][2];
+                patch_slopes(b->h, b->nx, x, y, sl);
+                for (int q = 0; q < 2; q++) facet_add(&b->f, sl[q], b->v, b->rings, b->sectors, b->area, 1.0);
+            }
+    }
+}
+
+/* the facets of the present cells of a patch whose centres lie in w, as facets_towards: area per bin and g1 over
+ * the count of all the cells there, the footprint that of their mean slope; in at most 64 bands of rows on threads
+ * threads, summed in the bands' order (the same for any threads); 0, or -1 with err where no present cell lies in w
+ * or there is no memory */
+static int patch_facets(const ms_tracer *t, const double w[4], const double v[3], int threads, ms_g1 *r, char *err,
+                        size_t errn)
+{
+    size_t nx, ny, cells = 0, present = 0, bins = (size_t)r->rings * (size_t)r->sectors;
     const double *h;
     ms_tracer_patch(t, &nx, &ny, &h, NULL, NULL);
-    facet_sums f = {0};
     size_t x0 = (size_t)fmax(ceil(w[0] - 0.5), 0.0), y0 = (size_t)fmax(ceil(w[1] - 0.5), 0.0);
-    for (size_t y = y0; y + 1 < ny && (double)y + 0.5 <= w[3]; y++)
-        for (size_t x = x0; x + 1 < nx && (double)x + 0.5 <= w[2]; x++) {
-            cells++;
-            if (!ms_patch_present(t, x, y)) continue;
-            present++;
-            double sl[2][2];
-            patch_slopes(h, nx, x, y, sl);
-            for (int k = 0; k < 2; k++) facet_add(&f, sl[k], v, r->rings, r->sectors, r->area, 1.0);
-        }
+    size_t x1 = (size_t)fmin(floor(w[2] - 0.5) + 1.0, (double)(nx - 1));
+    size_t y1 = (size_t)fmin(floor(w[3] - 0.5) + 1.0, (double)(ny - 1)), rows = y1 > y0 ? y1 - y0 : 0;
+    size_t per = rows / 64 + 1, count = (rows + per - 1) / per;
+    facet_band *bands = calloc(count ? count : 1, sizeof *bands);
+    double *area = calloc((count ? count : 1) * bins, sizeof *area);
+    if (!bands || !area) {
+        free(bands), free(area);
+        snprintf(err, errn, "masking: out of memory");
+        return -1;
+    }
+    for (size_t i = 0; i < count; i++)
+        bands[i] = (facet_band){.t = t,
+                                .h = h,
+                                .v = v,
+                                .nx = nx,
+                                .x0 = x0,
+                                .x1 = x1,
+                                .y0 = y0 + i * per,
+                                .y1 = y0 + (i + 1) * per < y1 ? y0 + (i + 1) * per : y1,
+                                .rings = r->rings,
+                                .sectors = r->sectors,
+                                .area = area + i * bins};
+    band_share sh = {bands, (int)count, threads < (int)count ? threads : (int)count};
+    ggx_internal_parallel_for(sh.stride, band_rows, &sh);
+    facet_sums f = {0};
+    for (size_t i = 0; i < count; i++) {
+        const facet_sums *g = &bands[i].f;
+        cells += bands[i].cells, present += bands[i].present;
+        f.total += g->total, f.cnt += g->cnt, f.mx += g->mx, f.my += g->my;
+        f.sxx += g->sxx, f.sxy += g->sxy, f.syy += g->syy;
+        for (size_t b = 0; b < bins; b++) r->area[b] += bands[i].area[b];
+    }
+    free(bands), free(area);
     if (!present) {
         snprintf(err, errn, "masking: no present cell of the patch has its centre in the window");
         return -1;
     }
-    for (int b = 0; b < r->rings * r->sectors; b++) r->area[b] /= (double)cells;
+    for (size_t b = 0; b < bins; b++) r->area[b] /= (double)cells;
     facet_moments(&f, r->slope_mean, r->slope_cov);
     /* a patch keeps the tilt it was measured with: its mean slope's footprint, as a tilted tile's */
     r->g1 = (double)present * footprint(r->slope_mean, v) / f.total;
@@ -528,7 +586,7 @@ int ms_patch_g1(const ms_tracer *t, const double v[3], const double w[4], long r
     else if (ms_patch_window(t, v, 0, r->window, err, errn) != 0) return -1;
     if (window_ok(t, r->window, "masking", err, errn) != 0) return -1;
     if (g1_alloc(r, rings, sectors, err, errn) != 0) return -1;
-    if (patch_facets(t, r->window, v, r, err, errn) != 0) {
+    if (patch_facets(t, r->window, v, threads, r, err, errn) != 0) {
         ms_g1_free(r);
         return -1;
     }
@@ -555,50 +613,65 @@ typedef struct brdf_job {
     long g, row0, row1;
     int rings, sectors, max_bounces;
     long *single, *all, lost, capped, left;
+    int failed; /* no memory for a row */
 } brdf_job;
+
+/* one ray from o along d, whose first trace gave k and *hit: reflected until it escapes (at most max_bounces times),
+ * then tallied */
+static void brdf_follow(brdf_job *j, double o[3], double d[3], int k, ms_hit *hit)
+{
+    int bounces = 0;
+    while (k == 1 && bounces < j->max_bounces) {
+        double dm = d[0] * hit->m[0] + d[1] * hit->m[1] + d[2] * hit->m[2];
+        /* reflect; the next ray from just above the facet (the hit carries single precision) */
+        for (int q = 0; q < 3; q++) d[q] -= 2.0 * dm * hit->m[q], o[q] = hit->p[q] + 1e-3 * hit->m[q];
+        bounces++;
+        k = ms_trace(j->t, o, d, hit);
+    }
+    if (k == MS_LEFT) j->left++;
+    else if (k < 0) j->lost++;
+    else if (k == 1) j->capped++;
+    else if (bounces > 0) { /* (none is 0: every ray from above hits) */ int b = ms_bin(d, j->rings, j->sectors);
+        j->all[b]++;
+        if (bounces == 1) j->single[b]++;
+    }
+}
 
 static void brdf_rows(void *p)
 {
     brdf_job *j = p;
+    size_t g = (size_t)j->g;
+    double *o = malloc(6 * g * sizeof *o), *d = o ? o + 3 * g : NULL;
+    ms_hit *hits = malloc(g * sizeof *hits);
+    int *res = malloc(g * sizeof *res);
+    if (!o || !hits || !res) {
+        free(o), free(hits), free(res);
+        j->failed = 1;
+        return;
+    }
     for (long r = j->row0; r < j->row1; r++) {
         uint64_t s = row_seed(j->rg.salt, r);
-        for (long c = 0; c < j->g; c++) {
-            double u = next_uniform(&s), w = next_uniform(&s), d[3];
-            double o[3] = {j->rg.x0 + ((double)c + u) * j->rg.sx, j->rg.y0 + ((double)r + w) * j->rg.sy, j->rg.z};
+        for (size_t c = 0; c < g; c++) {
+            double u = next_uniform(&s), w = next_uniform(&s), *oc = o + 3 * c, *dc = d + 3 * c;
+            oc[0] = j->rg.x0 + ((double)c + u) * j->rg.sx, oc[1] = j->rg.y0 + ((double)r + w) * j->rg.sy;
+            oc[2] = j->rg.z;
             if (j->wi) {
-                d[0] = -j->wi[0], d[1] = -j->wi[1], d[2] = -j->wi[2];
+                dc[0] = -j->wi[0], dc[1] = -j->wi[1], dc[2] = -j->wi[2];
             } else {
                 double a = next_uniform(&s), b = next_uniform(&s);
                 double q = ((double)(j->in_bin / j->sectors) + a) / j->rings;
                 double ph = 2.0 * PI * ((double)(j->in_bin % j->sectors) + b) / j->sectors;
-                d[0] = -sqrt(q) * cos(ph), d[1] = -sqrt(q) * sin(ph), d[2] = -sqrt(1.0 - q);
+                dc[0] = -sqrt(q) * cos(ph), dc[1] = -sqrt(q) * sin(ph), dc[2] = -sqrt(1.0 - q);
             }
-            int bounces = 0, k;
-            ms_hit hit;
-            while ((k = ms_trace(j->t, o, d, &hit)) == 1 && bounces < j->max_bounces) {
-                double dm = d[0] * hit.m[0] + d[1] * hit.m[1] + d[2] * hit.m[2];
-                /* reflect; the next ray from just above the facet (the hit carries single precision) */
-                for (int q = 0; q < 3; q++) d[q] -= 2.0 * dm * hit.m[q], o[q] = hit.p[q] + 1e-3 * hit.m[q];
-                bounces++;
-            }
-            if (k == MS_LEFT) {
-                j->left++;
-                continue;
-            }
-            if (k < 0) {
-                j->lost++;
-                continue;
-            }
-            if (k == 1) {
-                j->capped++;
-                continue;
-            }
-            if (bounces == 0) continue; /* cannot happen: every ray from above hits */
-            int b = ms_bin(d, j->rings, j->sectors);
-            j->all[b]++;
-            if (bounces == 1) j->single[b]++;
+        }
+        /* one light: the row's first segments as one stream of coherent rays (the same hits as one at a time) */
+        if (j->wi) ms_trace_coherent(j->t, g, o, d, hits, res);
+        for (size_t c = 0; c < g; c++) {
+            int k = j->wi ? res[c] : ms_trace(j->t, o + 3 * c, d + 3 * c, &hits[c]);
+            brdf_follow(j, o + 3 * c, d + 3 * c, k, &hits[c]);
         }
     }
+    free(o), free(hits), free(res);
 }
 
 void ms_brdf_free(ms_brdf *r)
@@ -633,24 +706,28 @@ static int brdf_run(const ms_tracer *t, size_t n, const double *wi, int in_bin, 
     r->all = r->single + bins;
     for (int k = 0; k < threads; k++) {
         long *c = counts + 2 * (size_t)bins * (size_t)k;
-        jobs[k] = (brdf_job){t,
-                             n,
-                             wi,
-                             in_bin,
-                             grid_of(t, n, win, g, 0xD1B54A32D192ED03ull),
-                             g,
-                             g * k / threads,
-                             g * (k + 1) / threads,
-                             rings,
-                             sectors,
-                             max_bounces,
-                             c,
-                             c + bins,
-                             0,
-                             0,
-                             0};
+        jobs[k] = (brdf_job){.t = t,
+                             .n = n,
+                             .wi = wi,
+                             .in_bin = in_bin,
+                             .rg = grid_of(t, n, win, g, 0xD1B54A32D192ED03ull),
+                             .g = g,
+                             .row0 = g * k / threads,
+                             .row1 = g * (k + 1) / threads,
+                             .rings = rings,
+                             .sectors = sectors,
+                             .max_bounces = max_bounces,
+                             .single = c,
+                             .all = c + bins};
     }
     run_jobs(brdf_rows, jobs, sizeof *jobs, threads);
+    int failed = 0;
+    for (int k = 0; k < threads; k++) failed |= jobs[k].failed;
+    if (failed) {
+        free(counts), free(jobs), ms_brdf_free(r);
+        snprintf(err, errn, "BRDF: out of memory");
+        return -1;
+    }
     /* the threads' counts summed as integers first: the same sums in any order */
     for (int k = 0; k < threads; k++) {
         r->lost += jobs[k].lost, r->capped += jobs[k].capped, r->left += jobs[k].left;
