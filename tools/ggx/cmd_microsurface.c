@@ -205,7 +205,8 @@ static const char *jnum(char buf[32], double x)
 
 static void measure_help(void)
 {
-    printf("usage: ggx microsurface measure --heightfield FILE [--spacing D] [--z-scale Z] [--tilted | --risers P]\n"
+    printf("usage: ggx microsurface measure --heightfield FILE [--spacing D] [--z-scale Z] [--downsample K]\n"
+           "                                [--tilted | --risers P]\n"
            "                                [--alpha A[,AY] [--skew TX,TY] [--rotate TZ] | --matrix M]\n"
            "                                --view THETA,PHI [-n RAYS] [--bounces K] [--threads N] [--seed S]\n"
            "                                [--format md|json] [--out FILE]\n\n"
@@ -215,8 +216,7 @@ static void measure_help(void)
            "over the facets'), Smith's G1 for Beckmann slopes of the facets' covariance and for GGX of the\n"
            "ellipsoid fitted to the facets (ggx_fit_heightfield), and per normal bin (4 rings of equal\n"
            "sin^2(theta_m) times 8 azimuth sectors) the traced G1(v, m), the visible share of the bin's\n"
-           "projected area, against G1(v): Smith's masking makes them equal. A tile whose edges do not wrap\n"
-           "(differences across them 3 times the inner ones in RMS) is refused. Then the visible normals: the\n"
+           "projected area, against G1(v): Smith's masking makes them equal. Then the visible normals: the\n"
            "first facets hit by up to 200,000 rays from random origins (--seed S), chi-square against\n"
            "ggx_pdf_vndf of the fitted shape (eq 33) on 16 x 16 cells of its sphere space. Then the BRDF with\n"
            "F = 1 and the light at the view: RAYS rays reflected from facet to facet until they escape (at most\n"
@@ -226,6 +226,12 @@ static void measure_help(void)
            "ggx_albedo_height_correlated), all bounces against\n"
            "ggx_brdf_compensated_eval of the fitted scale without its skew (the white furnace: albedo 1).\n"
            "The model's shape is the fit, or the shape given (--alpha, --skew, --rotate or --matrix).\n\n"
+           "Measured scans: a surface that is not square, has missing points, or whose edges do not wrap\n"
+           "(differences across them 3 times the inner ones in RMS) is traced as a finite patch, levelled: rays\n"
+           "start over an inner window (the patch less the heights' band times tan(theta) where the rays go;\n"
+           "for the BRDF more, on every side), cells with a missing corner are absent and the rays through them\n"
+           "counted as fallen through holes, rays that leave the patch's side counted as left; the report says\n"
+           "so. Spacings must be equal (to 1e-3); --downsample K averages K x K blocks first (default: none).\n\n"
            "Skewed surfaces (generate --skew): --tilted traces the tile as an infinite tilted patch, each copy\n"
            "raised by the tile's mean slope (its inner differences' mean) times N; --risers P as the sawtooth of\n"
            "generate --risers P, whose risers (the cells of the columns and rows P - 1 mod P along an axis where\n"

@@ -19,7 +19,8 @@ static ggx_vec3 plane_view(double a, double phi)
 
 static void microsurface_figure_help(void)
 {
-    printf("usage: ggx microsurface figure --heightfield FILE [--spacing D] [--z-scale Z] [--tilted | --risers P]\n"
+    printf("usage: ggx microsurface figure --heightfield FILE [--spacing D] [--z-scale Z] [--downsample K]\n"
+           "                               [--tilted | --risers P]\n"
            "                               [--alpha A[,AY] [--skew TX,TY] [--rotate TZ] | --matrix M] [--from PHI]\n"
            "                               [-n RAYS] [--threads N] [--size WxH] [--theme light|dark] --out "
            "FILE.png|svg|pdf\n\n"
@@ -30,7 +31,9 @@ static void microsurface_figure_help(void)
            "(ggx_g1), eq 32 without its min (ggx_g1_smith), vertical facets (Walter's remedy with Smith's\n"
            "masking), the tilted base (ggx_g1_tilted) and the sawtooth's (ggx_g1_risers); for an unskewed one\n"
            "Smith's GGX and Smith's Beckmann of the facets' covariance. --tilted and --risers P as for\n"
-           "ggx microsurface measure; views below a tilted patch's plane have no mark.\n");
+           "ggx microsurface measure; views below a tilted patch's plane have no mark. A measured scan (not\n"
+           "square, missing points, edges that do not wrap) is traced as a patch, as by measure (--downsample K\n"
+           "as there); its views too grazing for its heights' band have no mark.\n");
 }
 
 static const command_spec MICROSURFACE_FIGURE_SPEC = {"heightfield,spacing,z-scale,downsample,tilted,risers," SHAPE_OPTS
