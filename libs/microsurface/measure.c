@@ -363,8 +363,8 @@ static int g1_args(const double v[3], long rays, int rings, int sectors, int thr
     return 0;
 }
 
-/* traces proto's rays (g x g, rows split among threads) into r: visible (foot, the footprint's projected area
- * per unit area, times each bin's share of the rays), rays, missed, left, holes, g1_off_risers (against r->area), riser_visible;
+/* traces proto's rays (g x g, rows split among threads) into r: visible (foot, the footprint's projected area per unit
+ * area, times each bin's share of the rays), rays, missed, left, holes, g1_off_risers (against r->area), riser_visible;
  * 0, or -1 with err (no memory: r freed) */
 static int g1_trace(const g1_job *proto, int threads, double foot, ms_g1 *r, char *err, size_t errn)
 {
