@@ -69,15 +69,29 @@ static void run_jobs(void (*fn)(void *), void *jobs, size_t size, int count)
     ggx_internal_parallel_for(count, run_job, &a);
 }
 
+/* the slopes of the two triangles of a cell of corners h00, h10, h01, h11: the lower-left (h10 - h00, h01 - h00),
+ * the upper-right (h11 - h01, h11 - h10) */
+static void corner_slopes(double h00, double h10, double h01, double h11, double s[2][2])
+{
+    s[0][0] = h10 - h00, s[0][1] = h01 - h00;
+    s[1][0] = h11 - h01, s[1][1] = h11 - h10;
+}
+
 /* the slopes of the two triangles of cell (x, y), the heights across the tile's sides raised by the tilt times n
  * (tilt may be NULL: none) */
 static void cell_slopes(const double *h, size_t n, const double *tilt, size_t x, size_t y, double s[2][2])
 {
     size_t x1 = (x + 1) % n, y1 = (y + 1) % n;
     double ex = tilt && x1 == 0 ? tilt[0] * (double)n : 0.0, ey = tilt && y1 == 0 ? tilt[1] * (double)n : 0.0;
-    double h00 = h[y * n + x], h10 = h[y * n + x1] + ex, h01 = h[y1 * n + x] + ey, h11 = h[y1 * n + x1] + ex + ey;
-    s[0][0] = h10 - h00, s[0][1] = h01 - h00;
-    s[1][0] = h11 - h01, s[1][1] = h11 - h10;
+    corner_slopes(h[y * n + x], h[y * n + x1] + ex, h[y1 * n + x] + ey, h[y1 * n + x1] + ex + ey, s);
+}
+
+/* the slopes of the two triangles of cell (x, y) of a patch of nx heights a row (no wrap: x + 1 < nx, and the row
+ * above exists) */
+static void patch_slopes(const double *h, size_t nx, size_t x, size_t y, double s[2][2])
+{
+    const double *p = h + y * nx + x;
+    corner_slopes(p[0], p[1], p[nx], p[nx + 1], s);
 }
 
 static void normal_of(const double s[2], double m[3])
@@ -179,39 +193,53 @@ size_t ms_facet_normals(const double *h, size_t n, const size_t risers[2], ggx_v
     return k;
 }
 
+/* the running sums of facets' projected areas towards v and slope moments */
+typedef struct facet_sums {
+    double total, cnt, mx, my, sxx, sxy, syy;
+} facet_sums;
+
+/* one facet of slope s (projected area 1/2) into the sums, its front-facing projected area towards v into
+ * area[bin] times scale (area may be NULL); returns that area (0 where it faces away) */
+static double facet_add(facet_sums *f, const double s[2], const double v[3], int rings, int sectors, double *area,
+                        double scale)
+{
+    double a = fmax(0.5 * (v[2] - s[0] * v[0] - s[1] * v[1]), 0.0), m[3];
+    f->total += a, f->cnt += 1.0, f->mx += s[0], f->my += s[1];
+    f->sxx += s[0] * s[0], f->sxy += s[0] * s[1], f->syy += s[1] * s[1];
+    if (a > 0.0 && area) {
+        normal_of(s, m);
+        area[ms_bin(m, rings, sectors)] += a * scale;
+    }
+    return a;
+}
+
+/* the slopes' mean and covariance of the sums (either may be NULL) */
+static void facet_moments(const facet_sums *f, double mean[2], double cov[3])
+{
+    double mx = f->mx / f->cnt, my = f->my / f->cnt;
+    if (mean) mean[0] = mx, mean[1] = my;
+    if (cov) cov[0] = f->sxx / f->cnt - mx * mx, cov[1] = f->sxy / f->cnt - mx * my, cov[2] = f->syy / f->cnt - my * my;
+}
+
 /* the facets off the risers: their projected area towards v per bin (area may be NULL) and their slopes' mean and
  * covariance (mean, cov may be NULL); the risers' projected area towards v (riser may be NULL); G1 of all facets */
 static void facets_towards(const double *h, size_t n, const double *tilt, const size_t risers[2], const double v[3],
                            int rings, int sectors, double *area, double mean[2], double cov[3], double *riser,
                            double *g1)
 {
-    double total = 0.0, mx = 0.0, my = 0.0, sxx = 0.0, sxy = 0.0, syy = 0.0, rs = 0.0, cnt = 0.0;
+    facet_sums off = {0}, on = {0};
     double tile = (double)n * (double)n;
     for (size_t y = 0; y < n; y++)
         for (size_t x = 0; x < n; x++) {
             double sl[2][2];
             int vertical = ms_riser_cell(risers, n, y * n + x);
             cell_slopes(h, n, tilt, x, y, sl);
-            for (int k = 0; k < 2; k++) {
-                double a = 0.5 * (v[2] - sl[k][0] * v[0] - sl[k][1] * v[1]), m[3];
-                if (a > 0.0) total += a;
-                if (vertical) {
-                    if (a > 0.0) rs += a / tile;
-                    continue;
-                }
-                cnt += 1.0, mx += sl[k][0], my += sl[k][1];
-                sxx += sl[k][0] * sl[k][0], sxy += sl[k][0] * sl[k][1], syy += sl[k][1] * sl[k][1];
-                if (a > 0.0 && area) {
-                    normal_of(sl[k], m);
-                    area[ms_bin(m, rings, sectors)] += a / tile;
-                }
-            }
+            for (int k = 0; k < 2; k++)
+                facet_add(vertical ? &on : &off, sl[k], v, rings, sectors, vertical ? NULL : area, 1.0 / tile);
         }
-    mx /= cnt, my /= cnt;
-    if (mean) mean[0] = mx, mean[1] = my;
-    if (cov) cov[0] = sxx / cnt - mx * mx, cov[1] = sxy / cnt - mx * my, cov[2] = syy / cnt - my * my;
-    if (riser) *riser = rs;
-    *g1 = tile * footprint(tilt, v) / total;
+    facet_moments(&off, mean, cov);
+    if (riser) *riser = on.total / tile;
+    *g1 = tile * footprint(tilt, v) / (off.total + on.total);
 }
 
 double ms_facets_g1(const double *h, size_t n, const double tilt[2], const double v[3])
@@ -240,23 +268,42 @@ static int work_refused(const ms_tracer *t, size_t n, const double v[3], long ra
     return 1;
 }
 
+/* where a ray loop's rays start: a tile's jittered grid over [0, n)^2 at zmax + 1, or a patch's over its window at
+ * ms_patch_top (its own streams: a patch's rays are independent of a tile's) */
+typedef struct ray_grid {
+    double x0, y0, sx, sy, z;
+    uint64_t salt;
+    int patch;
+} ray_grid;
+
+static ray_grid grid_of(const ms_tracer *t, size_t n, const double *win, long g, uint64_t salt)
+{
+    double zmin, zmax;
+    ms_tracer_bounds(t, &zmin, &zmax);
+    ray_grid rg = {0.0, 0.0, (double)n / (double)g, (double)n / (double)g, zmax + 1.0, salt, 0};
+    if (win)
+        rg = (ray_grid){win[0], win[1], (win[2] - win[0]) / (double)g, (win[3] - win[1]) / (double)g, ms_patch_top(t),
+                        ~salt,  1};
+    return rg;
+}
+
 typedef struct g1_job {
     const ms_tracer *t;
     const double *h;
-    size_t n;
+    size_t n; /* the tile's size, or a patch's nx (its cells' stride) */
     const double *v, *tilt;
     const size_t *risers;
+    ray_grid rg;
     long g, row0, row1;
     int bins, rings, sectors;
-    long *hits, missed, riser_hits;
+    long *hits, missed, riser_hits, left, holes;
     int failed; /* no memory for a row */
 } g1_job;
 
 static void g1_rows(void *p)
 {
     g1_job *j = p;
-    double zmin, zmax, d[3] = {-j->v[0], -j->v[1], -j->v[2]}, step = (double)j->n / (double)j->g;
-    ms_tracer_bounds(j->t, &zmin, &zmax);
+    double d[3] = {-j->v[0], -j->v[1], -j->v[2]};
     uint64_t s;
     size_t g = (size_t)j->g;
     double *o = malloc(3 * g * sizeof *o);
@@ -269,15 +316,18 @@ static void g1_rows(void *p)
     }
     for (long r = j->row0; r < j->row1; r++) {
         /* a row of the jittered grid, traced as one stream of coherent rays */
-        s = row_seed(0x9E3779B97F4A7C15ull, r);
+        s = row_seed(j->rg.salt, r);
         for (size_t c = 0; c < g; c++) {
             double u = next_uniform(&s), w = next_uniform(&s);
-            o[3 * c] = ((double)c + u) * step, o[3 * c + 1] = ((double)r + w) * step, o[3 * c + 2] = zmax + 1.0;
+            o[3 * c] = j->rg.x0 + ((double)c + u) * j->rg.sx, o[3 * c + 1] = j->rg.y0 + ((double)r + w) * j->rg.sy;
+            o[3 * c + 2] = j->rg.z;
         }
         ms_trace_coherent(j->t, g, o, d, hits, res);
         for (size_t c = 0; c < g; c++) {
             if (res[c] != 1) {
                 j->missed++;
+                if (res[c] == MS_LEFT) j->left++;
+                else if (j->rg.patch) j->holes++;
                 continue;
             }
             ms_hit *hit = &hits[c];
@@ -287,7 +337,8 @@ static void g1_rows(void *p)
                 continue;
             }
             double fx = hit->p[0] - (double)cx, fy = hit->p[1] - (double)cy, sl[2][2], m[3];
-            cell_slopes(j->h, j->n, j->tilt, cx, cy, sl);
+            if (j->rg.patch) patch_slopes(j->h, j->n, cx, cy, sl);
+            else cell_slopes(j->h, j->n, j->tilt, cx, cy, sl);
             normal_of(sl[fx + fy < 1.0 ? 0 : 1], m);
             j->hits[ms_bin(m, j->rings, j->sectors)]++;
         }
@@ -301,74 +352,48 @@ void ms_g1_free(ms_g1 *r)
     r->area = r->visible = NULL;
 }
 
-int ms_measure_g1(const ms_tracer *t, const double *h, size_t n, const double v[3], long rays, int rings, int sectors,
-                  const size_t risers[2], int threads, ms_g1 *r, char *err, size_t errn)
+/* the checks both kinds of G1 share; 0 or -1 with err */
+static int g1_args(const double v[3], long rays, int rings, int sectors, int threads, char *err, size_t errn)
 {
-    memset(r, 0, sizeof *r);
-    double tilt[2];
-    ms_tracer_tilt(t, tilt);
-    if (risers) r->risers[0] = risers[0], r->risers[1] = risers[1];
-    if (!ms_view_clear(tilt, v)) {
-        snprintf(err, errn,
-                 "masking: the view must be at least 0.06 degrees above the %splane (rays that graze it "
-                 "cross tiles without end)",
-                 tilt[0] != 0.0 || tilt[1] != 0.0 ? "tilted " : "");
-        return -1;
-    }
     if (!(v[2] > 0.0) || rays < 1 || rings < 1 || sectors < 1 || rings * sectors > 1 << 16 || threads < 1 ||
         threads > 256) {
         snprintf(err, errn, "masking: a view above the plane, rays, bins and threads are required");
         return -1;
     }
-    if (work_refused(t, n, v, rays, 1.0, "masking", err, errn)) return -1;
-    int bins = rings * sectors;
-    r->rings = rings, r->sectors = sectors;
-    r->area = calloc(2 * (size_t)bins, sizeof *r->area);
+    return 0;
+}
+
+/* traces proto's rays (g x g, rows split among threads) into r: visible (foot, the footprint's projected area per unit
+ * area, times each bin's share of the rays), rays, missed, left, holes, g1_off_risers (against r->area), riser_visible;
+ * 0, or -1 with err (no memory: r freed) */
+static int g1_trace(const g1_job *proto, int threads, double foot, ms_g1 *r, char *err, size_t errn)
+{
+    int bins = proto->bins;
+    long g = proto->g;
+    if (threads > g) threads = (int)g;
     long *hits = calloc((size_t)bins * (size_t)threads, sizeof *hits);
     g1_job *jobs = calloc((size_t)threads, sizeof *jobs);
-    if (!r->area || !hits || !jobs) {
-        free(hits), free(jobs), ms_g1_free(r);
-        snprintf(err, errn, "masking: out of memory");
-        return -1;
+    int failed = !hits || !jobs;
+    for (int k = 0; !failed && k < threads; k++) {
+        jobs[k] = *proto;
+        jobs[k].row0 = g * k / threads, jobs[k].row1 = g * (k + 1) / threads;
+        jobs[k].hits = hits + (size_t)k * (size_t)bins;
     }
-    r->visible = r->area + bins;
-    facets_towards(h, n, tilt, r->risers, v, rings, sectors, r->area, r->slope_mean, r->slope_cov, &r->riser_area,
-                   &r->g1);
-    long g = (long)ceil(sqrt((double)rays));
-    if (threads > g) threads = (int)g;
-    for (int k = 0; k < threads; k++)
-        jobs[k] = (g1_job){t,
-                           h,
-                           n,
-                           v,
-                           tilt,
-                           r->risers,
-                           g,
-                           g * k / threads,
-                           g * (k + 1) / threads,
-                           bins,
-                           rings,
-                           sectors,
-                           hits + (size_t)k * (size_t)bins,
-                           0,
-                           0,
-                           0};
-    run_jobs(g1_rows, jobs, sizeof *jobs, threads);
-    int failed = 0;
-    for (int k = 0; k < threads; k++) failed |= jobs[k].failed;
+    if (!failed) run_jobs(g1_rows, jobs, sizeof *jobs, threads);
+    for (int k = 0; !failed && k < threads; k++) failed |= jobs[k].failed;
     if (failed) {
         free(hits), free(jobs), ms_g1_free(r);
         snprintf(err, errn, "masking: out of memory");
         return -1;
     }
     r->rays = g * g;
-    /* each ray's projected area, per unit tile area: the rays from above the tile see the footprint of one tile
-     * (of a tilted patch too: its surface repeats, tile after tile, under parallel rays) */
-    double per = footprint(tilt, v) / (double)r->rays, seen = 0.0, front = 0.0;
+    /* each ray's projected area, per unit area of the tile (or window) it starts over */
+    double per = foot / (double)r->rays, seen = 0.0, front = 0.0;
     long riser_hits = 0;
     /* the threads' counts summed as integers first: the same sums in any order */
     for (int k = 0; k < threads; k++) {
         r->missed += jobs[k].missed, riser_hits += jobs[k].riser_hits;
+        r->left += jobs[k].left, r->holes += jobs[k].holes;
         if (k > 0)
             for (int b = 0; b < bins; b++) hits[b] += hits[(size_t)k * (size_t)bins + (size_t)b];
     }
@@ -380,56 +405,273 @@ int ms_measure_g1(const ms_tracer *t, const double *h, size_t n, const double v[
     return 0;
 }
 
+/* r's bins (area, visible), zeroed; 0 or -1 with err */
+static int g1_alloc(ms_g1 *r, int rings, int sectors, char *err, size_t errn)
+{
+    int bins = rings * sectors;
+    r->rings = rings, r->sectors = sectors;
+    r->area = calloc(2 * (size_t)bins, sizeof *r->area);
+    if (!r->area) {
+        snprintf(err, errn, "masking: out of memory");
+        return -1;
+    }
+    r->visible = r->area + bins;
+    return 0;
+}
+
+int ms_measure_g1(const ms_tracer *t, const double *h, size_t n, const double v[3], long rays, int rings, int sectors,
+                  const size_t risers[2], int threads, ms_g1 *r, char *err, size_t errn)
+{
+    if (ms_tracer_patch(t, NULL, NULL, NULL, NULL, NULL)) {
+        memset(r, 0, sizeof *r);
+        if (risers && (risers[0] || risers[1])) {
+            snprintf(err, errn, "masking: a patch has no risers");
+            return -1;
+        }
+        return ms_patch_g1(t, v, NULL, rays, rings, sectors, threads, r, err, errn);
+    }
+    memset(r, 0, sizeof *r);
+    double tilt[2];
+    ms_tracer_tilt(t, tilt);
+    if (risers) r->risers[0] = risers[0], r->risers[1] = risers[1];
+    if (!ms_view_clear(tilt, v)) {
+        snprintf(err, errn,
+                 "masking: the view must be at least 0.06 degrees above the %splane (rays that graze it "
+                 "cross tiles without end)",
+                 tilt[0] != 0.0 || tilt[1] != 0.0 ? "tilted " : "");
+        return -1;
+    }
+    if (g1_args(v, rays, rings, sectors, threads, err, errn) != 0) return -1;
+    if (work_refused(t, n, v, rays, 1.0, "masking", err, errn)) return -1;
+    if (g1_alloc(r, rings, sectors, err, errn) != 0) return -1;
+    r->window[2] = r->window[3] = (double)n;
+    facets_towards(h, n, tilt, r->risers, v, rings, sectors, r->area, r->slope_mean, r->slope_cov, &r->riser_area,
+                   &r->g1);
+    long g = (long)ceil(sqrt((double)rays));
+    /* the rays from above the tile see the footprint of one tile (of a tilted patch too: its surface repeats, tile
+     * after tile, under parallel rays) */
+    g1_job proto = {.t = t,
+                    .h = h,
+                    .n = n,
+                    .v = v,
+                    .tilt = tilt,
+                    .risers = r->risers,
+                    .g = g,
+                    .rg = grid_of(t, n, NULL, g, 0x9E3779B97F4A7C15ull),
+                    .bins = rings * sectors,
+                    .rings = rings,
+                    .sectors = sectors};
+    return g1_trace(&proto, threads, footprint(tilt, v), r, err, errn);
+}
+
+/* a band of a patch's rows for patch_facets: its sums, cells and bins */
+typedef struct facet_band {
+    const ms_tracer *t;
+    const double *h, *v;
+    size_t nx, x0, x1, y0, y1, cells, present;
+    int rings, sectors;
+    facet_sums f;
+    double *area;
+} facet_band;
+
+/* the bands k, k + stride, ... of a band array (one thread's share) */
+typedef struct band_share {
+    facet_band *bands;
+    int count, stride;
+} band_share;
+
+static void band_rows(void *p, int k)
+{
+    const band_share *sh = p;
+    for (int i = k; i < sh->count; i += sh->stride) {
+        facet_band *b = &sh->bands[i];
+        for (size_t y = b->y0; y < b->y1; y++)
+            for (size_t x = b->x0; x < b->x1; x++) {
+                b->cells++;
+                if (!ms_patch_present(b->t, x, y)) continue;
+                b->present++;
+                double sl[2][2];
+                patch_slopes(b->h, b->nx, x, y, sl);
+                for (int q = 0; q < 2; q++) facet_add(&b->f, sl[q], b->v, b->rings, b->sectors, b->area, 1.0);
+            }
+    }
+}
+
+/* the facets of the present cells of a patch whose centres lie in w, as facets_towards: area per bin and g1 over
+ * the count of all the cells there, the footprint that of their mean slope; in at most 64 bands of rows on threads
+ * threads, summed in the bands' order (the same for any threads); 0, or -1 with err where no present cell lies in w
+ * or there is no memory */
+static int patch_facets(const ms_tracer *t, const double w[4], const double v[3], int threads, ms_g1 *r, char *err,
+                        size_t errn)
+{
+    size_t nx, ny, cells = 0, present = 0, bins = (size_t)r->rings * (size_t)r->sectors;
+    const double *h;
+    ms_tracer_patch(t, &nx, &ny, &h, NULL, NULL);
+    size_t x0 = (size_t)fmax(ceil(w[0] - 0.5), 0.0), y0 = (size_t)fmax(ceil(w[1] - 0.5), 0.0);
+    size_t x1 = (size_t)fmin(floor(w[2] - 0.5) + 1.0, (double)(nx - 1));
+    size_t y1 = (size_t)fmin(floor(w[3] - 0.5) + 1.0, (double)(ny - 1)), rows = y1 > y0 ? y1 - y0 : 0;
+    size_t per = rows / 64 + 1, count = (rows + per - 1) / per;
+    facet_band *bands = calloc(count ? count : 1, sizeof *bands);
+    double *area = calloc((count ? count : 1) * bins, sizeof *area);
+    if (!bands || !area) {
+        free(bands), free(area);
+        snprintf(err, errn, "masking: out of memory");
+        return -1;
+    }
+    for (size_t i = 0; i < count; i++)
+        bands[i] = (facet_band){.t = t,
+                                .h = h,
+                                .v = v,
+                                .nx = nx,
+                                .x0 = x0,
+                                .x1 = x1,
+                                .y0 = y0 + i * per,
+                                .y1 = y0 + (i + 1) * per < y1 ? y0 + (i + 1) * per : y1,
+                                .rings = r->rings,
+                                .sectors = r->sectors,
+                                .area = area + i * bins};
+    band_share sh = {bands, (int)count, threads < (int)count ? threads : (int)count};
+    ggx_internal_parallel_for(sh.stride, band_rows, &sh);
+    facet_sums f = {0};
+    for (size_t i = 0; i < count; i++) {
+        const facet_sums *g = &bands[i].f;
+        cells += bands[i].cells, present += bands[i].present;
+        f.total += g->total, f.cnt += g->cnt, f.mx += g->mx, f.my += g->my;
+        f.sxx += g->sxx, f.sxy += g->sxy, f.syy += g->syy;
+        for (size_t b = 0; b < bins; b++) r->area[b] += bands[i].area[b];
+    }
+    free(bands), free(area);
+    if (!present) {
+        snprintf(err, errn, "masking: no present cell of the patch has its centre in the window");
+        return -1;
+    }
+    for (size_t b = 0; b < bins; b++) r->area[b] /= (double)cells;
+    facet_moments(&f, r->slope_mean, r->slope_cov);
+    /* a patch keeps the tilt it was measured with: its mean slope's footprint, as a tilted tile's */
+    r->g1 = (double)present * footprint(r->slope_mean, v) / f.total;
+    return 0;
+}
+
+/* 0 where w is a rectangle of at least one cell inside the patch, else -1 with err */
+static int window_ok(const ms_tracer *t, const double w[4], const char *what, char *err, size_t errn)
+{
+    size_t nx, ny;
+    ms_tracer_patch(t, &nx, &ny, NULL, NULL, NULL);
+    if (w[0] >= 0.0 && w[1] >= 0.0 && w[2] <= (double)(nx - 1) && w[3] <= (double)(ny - 1) && w[2] - w[0] >= 1.0 &&
+        w[3] - w[1] >= 1.0)
+        return 0;
+    snprintf(err, errn,
+             "%s: the window [%g, %g] x [%g, %g] is not a rectangle of a cell or more inside the %zu x %zu "
+             "patch",
+             what, w[0], w[2], w[1], w[3], nx, ny);
+    return -1;
+}
+
+int ms_patch_g1(const ms_tracer *t, const double v[3], const double w[4], long rays, int rings, int sectors,
+                int threads, ms_g1 *r, char *err, size_t errn)
+{
+    memset(r, 0, sizeof *r);
+    size_t nx;
+    const double *h;
+    if (!ms_tracer_patch(t, &nx, NULL, &h, NULL, NULL)) {
+        snprintf(err, errn, "masking: ms_patch_g1 takes a patch (ms_patch_new)");
+        return -1;
+    }
+    if (g1_args(v, rays, rings, sectors, threads, err, errn) != 0) return -1;
+    if (!ms_view_clear(NULL, v)) {
+        snprintf(err, errn, "masking: the view must be at least 0.06 degrees above the plane");
+        return -1;
+    }
+    if (w) memcpy(r->window, w, sizeof r->window);
+    else if (ms_patch_window(t, v, 0, r->window, err, errn) != 0) return -1;
+    if (window_ok(t, r->window, "masking", err, errn) != 0) return -1;
+    if (g1_alloc(r, rings, sectors, err, errn) != 0) return -1;
+    if (patch_facets(t, r->window, v, threads, r, err, errn) != 0) {
+        ms_g1_free(r);
+        return -1;
+    }
+    long g = (long)ceil(sqrt((double)rays));
+    g1_job proto = {.t = t,
+                    .h = h,
+                    .n = nx,
+                    .v = v,
+                    .risers = r->risers,
+                    .g = g,
+                    .rg = grid_of(t, nx, r->window, g, 0x9E3779B97F4A7C15ull),
+                    .bins = rings * sectors,
+                    .rings = rings,
+                    .sectors = sectors};
+    return g1_trace(&proto, threads, footprint(r->slope_mean, v), r, err, errn);
+}
+
 typedef struct brdf_job {
     const ms_tracer *t;
     size_t n;
     const double *wi; /* NULL: each ray's wi uniform in projected solid angle over the bin in_bin */
     int in_bin;
+    ray_grid rg;
     long g, row0, row1;
     int rings, sectors, max_bounces;
-    long *single, *all, lost, capped;
+    long *single, *all, lost, capped, left;
+    int failed; /* no memory for a row */
 } brdf_job;
+
+/* one ray from o along d, whose first trace gave k and *hit: reflected until it escapes (at most max_bounces times),
+ * then tallied */
+static void brdf_follow(brdf_job *j, double o[3], double d[3], int k, ms_hit *hit)
+{
+    int bounces = 0;
+    while (k == 1 && bounces < j->max_bounces) {
+        double dm = d[0] * hit->m[0] + d[1] * hit->m[1] + d[2] * hit->m[2];
+        /* reflect; the next ray from just above the facet (the hit carries single precision) */
+        for (int q = 0; q < 3; q++) d[q] -= 2.0 * dm * hit->m[q], o[q] = hit->p[q] + 1e-3 * hit->m[q];
+        bounces++;
+        k = ms_trace(j->t, o, d, hit);
+    }
+    if (k == MS_LEFT) j->left++;
+    else if (k < 0) j->lost++;
+    else if (k == 1) j->capped++;
+    else if (bounces > 0) { /* (none is 0: every ray from above hits) */ int b = ms_bin(d, j->rings, j->sectors);
+        j->all[b]++;
+        if (bounces == 1) j->single[b]++;
+    }
+}
 
 static void brdf_rows(void *p)
 {
     brdf_job *j = p;
-    double zmin, zmax, step = (double)j->n / (double)j->g;
-    ms_tracer_bounds(j->t, &zmin, &zmax);
+    size_t g = (size_t)j->g;
+    double *o = malloc(6 * g * sizeof *o), *d = o ? o + 3 * g : NULL;
+    ms_hit *hits = malloc(g * sizeof *hits);
+    int *res = malloc(g * sizeof *res);
+    if (!o || !hits || !res) {
+        free(o), free(hits), free(res);
+        j->failed = 1;
+        return;
+    }
     for (long r = j->row0; r < j->row1; r++) {
-        uint64_t s = row_seed(0xD1B54A32D192ED03ull, r);
-        for (long c = 0; c < j->g; c++) {
-            double u = next_uniform(&s), w = next_uniform(&s);
-            double o[3] = {((double)c + u) * step, ((double)r + w) * step, zmax + 1.0}, d[3];
+        uint64_t s = row_seed(j->rg.salt, r);
+        for (size_t c = 0; c < g; c++) {
+            double u = next_uniform(&s), w = next_uniform(&s), *oc = o + 3 * c, *dc = d + 3 * c;
+            oc[0] = j->rg.x0 + ((double)c + u) * j->rg.sx, oc[1] = j->rg.y0 + ((double)r + w) * j->rg.sy;
+            oc[2] = j->rg.z;
             if (j->wi) {
-                d[0] = -j->wi[0], d[1] = -j->wi[1], d[2] = -j->wi[2];
+                dc[0] = -j->wi[0], dc[1] = -j->wi[1], dc[2] = -j->wi[2];
             } else {
                 double a = next_uniform(&s), b = next_uniform(&s);
                 double q = ((double)(j->in_bin / j->sectors) + a) / j->rings;
                 double ph = 2.0 * PI * ((double)(j->in_bin % j->sectors) + b) / j->sectors;
-                d[0] = -sqrt(q) * cos(ph), d[1] = -sqrt(q) * sin(ph), d[2] = -sqrt(1.0 - q);
+                dc[0] = -sqrt(q) * cos(ph), dc[1] = -sqrt(q) * sin(ph), dc[2] = -sqrt(1.0 - q);
             }
-            int bounces = 0, k;
-            ms_hit hit;
-            while ((k = ms_trace(j->t, o, d, &hit)) == 1 && bounces < j->max_bounces) {
-                double dm = d[0] * hit.m[0] + d[1] * hit.m[1] + d[2] * hit.m[2];
-                /* reflect; the next ray from just above the facet (the hit carries single precision) */
-                for (int q = 0; q < 3; q++) d[q] -= 2.0 * dm * hit.m[q], o[q] = hit.p[q] + 1e-3 * hit.m[q];
-                bounces++;
-            }
-            if (k < 0) {
-                j->lost++;
-                continue;
-            }
-            if (k == 1) {
-                j->capped++;
-                continue;
-            }
-            if (bounces == 0) continue; /* cannot happen: every ray from above hits */
-            int b = ms_bin(d, j->rings, j->sectors);
-            j->all[b]++;
-            if (bounces == 1) j->single[b]++;
+        }
+        /* one light: the row's first segments as one stream of coherent rays (the same hits as one at a time) */
+        if (j->wi) ms_trace_coherent(j->t, g, o, d, hits, res);
+        for (size_t c = 0; c < g; c++) {
+            int k = j->wi ? res[c] : ms_trace(j->t, o + 3 * c, d + 3 * c, &hits[c]);
+            brdf_follow(j, o + 3 * c, d + 3 * c, k, &hits[c]);
         }
     }
+    free(o), free(hits), free(res);
 }
 
 void ms_brdf_free(ms_brdf *r)
@@ -438,17 +680,17 @@ void ms_brdf_free(ms_brdf *r)
     r->single = r->all = NULL;
 }
 
-static int brdf_run(const ms_tracer *t, size_t n, const double *wi, int in_bin, long rays, int rings, int sectors,
-                    int max_bounces, int threads, ms_brdf *r, char *err, size_t errn)
+/* the BRDF of rays from wi (NULL: from bin in_bin) over the tile, or over a patch's window win */
+static int brdf_run(const ms_tracer *t, size_t n, const double *wi, int in_bin, const double *win, long rays, int rings,
+                    int sectors, int max_bounces, int threads, ms_brdf *r, char *err, size_t errn)
 {
-    memset(r, 0, sizeof *r);
     int bad_wi = wi ? !(wi[2] > 0.0) : in_bin < 0 || in_bin >= rings * sectors;
     if (bad_wi || rays < 1 || rings < 1 || sectors < 1 || rings * sectors > 1 << 16 || threads < 1 || threads > 256 ||
         max_bounces < 1) {
         snprintf(err, errn, "BRDF: a light above the plane, rays, bins, bounces and threads are required");
         return -1;
     }
-    if (wi && work_refused(t, n, wi, rays, 2.0, "BRDF", err, errn)) return -1;
+    if (!win && wi && work_refused(t, n, wi, rays, 2.0, "BRDF", err, errn)) return -1;
     int bins = rings * sectors;
     long g = (long)ceil(sqrt((double)rays));
     if (threads > g) threads = (int)g;
@@ -464,14 +706,31 @@ static int brdf_run(const ms_tracer *t, size_t n, const double *wi, int in_bin, 
     r->all = r->single + bins;
     for (int k = 0; k < threads; k++) {
         long *c = counts + 2 * (size_t)bins * (size_t)k;
-        jobs[k] = (brdf_job){
-            t,           n, wi,       in_bin, g, g * k / threads, g * (k + 1) / threads, rings, sectors,
-            max_bounces, c, c + bins, 0,      0};
+        jobs[k] = (brdf_job){.t = t,
+                             .n = n,
+                             .wi = wi,
+                             .in_bin = in_bin,
+                             .rg = grid_of(t, n, win, g, 0xD1B54A32D192ED03ull),
+                             .g = g,
+                             .row0 = g * k / threads,
+                             .row1 = g * (k + 1) / threads,
+                             .rings = rings,
+                             .sectors = sectors,
+                             .max_bounces = max_bounces,
+                             .single = c,
+                             .all = c + bins};
     }
     run_jobs(brdf_rows, jobs, sizeof *jobs, threads);
+    int failed = 0;
+    for (int k = 0; k < threads; k++) failed |= jobs[k].failed;
+    if (failed) {
+        free(counts), free(jobs), ms_brdf_free(r);
+        snprintf(err, errn, "BRDF: out of memory");
+        return -1;
+    }
     /* the threads' counts summed as integers first: the same sums in any order */
     for (int k = 0; k < threads; k++) {
-        r->lost += jobs[k].lost, r->capped += jobs[k].capped;
+        r->lost += jobs[k].lost, r->capped += jobs[k].capped, r->left += jobs[k].left;
         if (k > 0)
             for (int b = 0; b < bins; b++) jobs[0].single[b] += jobs[k].single[b], jobs[0].all[b] += jobs[k].all[b];
     }
@@ -486,11 +745,42 @@ static int brdf_run(const ms_tracer *t, size_t n, const double *wi, int in_bin, 
 int ms_measure_brdf(const ms_tracer *t, size_t n, const double wi[3], long rays, int rings, int sectors,
                     int max_bounces, int threads, ms_brdf *r, char *err, size_t errn)
 {
-    return brdf_run(t, n, wi, -1, rays, rings, sectors, max_bounces, threads, r, err, errn);
+    if (ms_tracer_patch(t, NULL, NULL, NULL, NULL, NULL))
+        return ms_patch_brdf(t, wi, NULL, rays, rings, sectors, max_bounces, threads, r, err, errn);
+    memset(r, 0, sizeof *r);
+    r->window[2] = r->window[3] = (double)n;
+    return brdf_run(t, n, wi, -1, NULL, rays, rings, sectors, max_bounces, threads, r, err, errn);
+}
+
+int ms_patch_brdf(const ms_tracer *t, const double wi[3], const double w[4], long rays, int rings, int sectors,
+                  int max_bounces, int threads, ms_brdf *r, char *err, size_t errn)
+{
+    memset(r, 0, sizeof *r);
+    size_t nx;
+    if (!ms_tracer_patch(t, &nx, NULL, NULL, NULL, NULL)) {
+        snprintf(err, errn, "BRDF: ms_patch_brdf takes a patch (ms_patch_new)");
+        return -1;
+    }
+    if (!(wi[2] > 0.0) || !ms_view_clear(NULL, wi)) {
+        snprintf(err, errn, "BRDF: the light must be at least 0.06 degrees above the plane");
+        return -1;
+    }
+    if (w) memcpy(r->window, w, sizeof r->window);
+    else if (ms_patch_window(t, wi, 1, r->window, err, errn) != 0) return -1;
+    if (window_ok(t, r->window, "BRDF", err, errn) != 0) return -1;
+    double win[4];
+    memcpy(win, r->window, sizeof win);
+    return brdf_run(t, nx, wi, -1, win, rays, rings, sectors, max_bounces, threads, r, err, errn);
 }
 
 int ms_measure_brdf_from_bin(const ms_tracer *t, size_t n, int bin, long rays, int rings, int sectors, int max_bounces,
                              int threads, ms_brdf *r, char *err, size_t errn)
 {
-    return brdf_run(t, n, NULL, bin, rays, rings, sectors, max_bounces, threads, r, err, errn);
+    memset(r, 0, sizeof *r);
+    if (ms_tracer_patch(t, NULL, NULL, NULL, NULL, NULL)) {
+        snprintf(err, errn, "BRDF: the light from a bin takes a tile (a patch's window depends on each ray's light)");
+        return -1;
+    }
+    r->window[2] = r->window[3] = (double)n;
+    return brdf_run(t, n, NULL, bin, NULL, rays, rings, sectors, max_bounces, threads, r, err, errn);
 }

@@ -69,9 +69,9 @@ int ms_vgroove(size_t n, size_t p, double s, double *h, char *err, size_t errn);
  * vectors of the tangent frame (z up); a ray goes from its origin along d. */
 typedef struct ms_tracer ms_tracer;
 typedef struct ms_hit {
-    double p[3]; /* the hit point, x and y within the tile [0, n) */
+    double p[3]; /* the hit point, x and y within the tile [0, n) (a patch: within [0, nx - 1] x [0, ny - 1]) */
     double m[3]; /* the facet's unit normal, m.z > 0 */
-    size_t cell; /* the cell hit: y n + x */
+    size_t cell; /* the cell hit: y n + x (a patch: y nx + x) */
 } ms_hit;
 
 /* The tracer of h (n x n, kept by copy in single precision); NULL with err where Embree is not built or fails.
@@ -79,7 +79,36 @@ typedef struct ms_hit {
  * along x and tilt[1] n along y (h(x + n, y) = h(x, y) + tilt[0] n), finite, at most 100 in size. */
 ms_tracer *ms_tracer_new(const double *h, size_t n, const double tilt[2], char *err, size_t errn);
 void ms_tracer_free(ms_tracer *t);
-/* The heights' range over the tile's column, for rays that start above the surface there. */
+/* A measured patch: h (nx x ny heights, x fastest, h[y nx + x], in grid spacings; NaN marks a missing point) as
+ * Embree grid geometry, finite: no wrap, rays that leave its side are not continued. Cell (x, y), x < nx - 1,
+ * y < ny - 1, is present where its four corners are, else absent: hits in it are discarded (an intersection filter)
+ * so rays pass through missing regions. nx, ny from 3 to 16384; at least one present cell; the present heights
+ * within 1e6 of 0 (single precision carries them to about 0.06 there; take the mean off first). NULL with err.
+ * The tracer keeps its own copy of h (doubles, for the facets' slopes) and works with the functions below; a patch
+ * has no tilt, ms_tracer_crossings is 1 for it, its hits' cells are y nx + x. */
+ms_tracer *ms_patch_new(const double *h, size_t nx, size_t ny, char *err, size_t errn);
+/* 1 for a patch, with its size, its heights (the tracer's copy) and its missing points and absent cells (any
+ * pointer may be NULL); 0 for a periodic tile. */
+int ms_tracer_patch(const ms_tracer *t, size_t *nx, size_t *ny, const double **h, size_t *missing, size_t *absent);
+/* 1 where cell (x, y) of a patch is present (all its corners are), 0 where it is absent or outside. */
+int ms_patch_present(const ms_tracer *t, size_t x, size_t y);
+/* ms_trace's results beyond 1, 0 and -1 for a patch: -1 (below the band) is a ray that fell through a missing region
+ * (a hole); MS_LEFT a ray that left the patch through its side within the heights' band, or passed beside it. */
+#define MS_LEFT (-2)
+/* The edge treatment of a patch (docs/design/microsurface.md, "Measured patches"): rays along -v start at the band's
+ * top z_top = zmax + pad (ms_patch_top) over the window w = [w[0], w[2]] x [w[1], w[3]], the points whose ray crosses
+ * the whole band (down to the lowest height) over the patch: the patch [0, nx - 1] x [0, ny - 1] less (z_top - zmin)
+ * tan(theta_v) on the side the rays travel towards (none upstream: a ray from above never meets the surface behind its
+ * start). No ray along -v from the window leaves the patch before it hits or passes below every height. reflect 1 (the
+ * BRDF's window): twice that margin downstream (the specular path down and back up) and (z_top - zmin)
+ * max(tan(theta_v), 1) on every side, so that rays reflected up at the view's angle (or 45 degrees) reach the band's
+ * top over the patch; more grazing ones may leave (MS_LEFT, counted). Returns 0, or -1 with err where the window is
+ * empty or under a cell wide (the view too grazing for the patch's band). */
+int ms_patch_window(const ms_tracer *t, const double v[3], int reflect, double w[4], char *err, size_t errn);
+/* The height rays start from over a patch: the present heights' top plus the tracer's single-precision pad. */
+double ms_patch_top(const ms_tracer *t);
+/* The heights' range over the tile's column, for rays that start above the surface there (a patch: over its present
+ * heights). */
 void ms_tracer_bounds(const ms_tracer *t, double *zmin, double *zmax);
 /* The tilt it was made with (0, 0 for none). */
 void ms_tracer_tilt(const ms_tracer *t, double tilt[2]);
@@ -90,11 +119,12 @@ double ms_tracer_crossings(const ms_tracer *t, const double d[3]);
 /* The most tile crossings ms_measure_g1 and ms_measure_brdf take on (rays times ms_tracer_crossings, for the BRDF
  * twice that: in and out): seconds of tracing; more is refused with the estimate. */
 #define MS_MAX_CROSSINGS 67108864.0
-/* The first hit of the ray (o, d) on the tiled surface beyond a distance of 1e-4 (so that a ray leaving a hit point
- * does not hit its own facet): 1 and *hit (its height that of the tile's copy at x, y in [0, n)), or 0 where the
- * ray escapes (it is above the surface's top going up from the mean plane, or along it), or -1 where it leaves
- * below the surface's bottom (which a tracer that works never does). The tracer may be used from any number of
- * threads at once. */
+/* The first hit of the ray (o, d) on the tiled surface (or the patch) beyond a distance of 1e-4 (so that a ray leaving
+ * a hit point does not hit its own facet): 1 and *hit (its height that of the tile's copy at x, y in [0, n)), or 0
+ * where the ray escapes (it is above the surface's top going up from the mean plane, or along it), or -1 where it
+ * leaves below the surface's bottom (which a tracer that works never does; on a patch, through a missing region), or on
+ * a patch MS_LEFT where it leaves the patch's side within the band. The tracer may be used from any number of threads
+ * at once. */
 int ms_trace(const ms_tracer *t, const double o[3], const double d[3], ms_hit *hit);
 /* ms_trace of count rays of one direction d from the origins o[3 i .. 3 i + 2], into hits[i] and result[i]: the
  * same hits, their first segments traced in streams of 64 (Embree's coherent rays), which is faster where
@@ -118,6 +148,9 @@ typedef struct ms_g1 {
     double slope_mean[2]; /* the slopes' mean of the facets off the risers (the tilted patch's or ramp's tilt) */
     double slope_cov[3];  /* and their covariance (the mean removed), for Beckmann's Smith form */
     long rays, missed;    /* rays traced from above on a jittered grid, and those that hit nothing (0 if it works) */
+    long left, holes;     /* a patch's misses: rays that left its side within the band, and those that fell through a
+                           * missing region (missed = left + holes; 0 for a tile) */
+    double window[4];     /* where the rays started (at the band's top): x0, y0, x1, y1; a tile: 0, 0, n, n */
     int rings, sectors;
     double *area;    /* per bin: the facets' projected area towards v (front-facing), per unit tile area */
     double *visible; /* per bin: the area of it that the rays see first, per unit tile area */
@@ -131,6 +164,18 @@ typedef struct ms_g1 {
  * with err: the view not clear of the plane (ms_view_clear), more work than MS_MAX_CROSSINGS. */
 int ms_measure_g1(const ms_tracer *t, const double *h, size_t n, const double v[3], long rays, int rings, int sectors,
                   const size_t risers[2], int threads, ms_g1 *r, char *err, size_t errn);
+/* On a patch (ms_patch_new) ms_measure_g1 is ms_patch_g1 with the window of ms_patch_window (h, n ignored: NULL, 0 will
+ * do; risers must be NULL). ms_patch_g1 takes the window w (NULL: ms_patch_window's, reflect 0; any other rectangle
+ * inside the patch, for the edge treatment's own tests): g x g rays (g = ceil(sqrt(rays))) on a jittered grid over w at
+ * ms_patch_top. The facets are those of the present cells whose centres lie in w: area per bin over the count of all
+ * the cells (present or absent) whose centres lie in w, g1 their present count times f over their projected area (exact
+ * for the surface they sample; f = v.z - slope_mean . (v.x, v.y), the footprint of their mean slope, which a scan keeps
+ * where it was not levelled); visible per bin f times the bin's share of the rays, so a ray that left (left) or fell
+ * through a hole (holes) lowers the visible share (g1_off_risers, the traced G1), never silently. Each row draws its
+ * own stream (not the tile's), the result the same for any number of threads. Returns 0 or -1 with err (a view along
+ * the plane, a window outside the patch or empty). */
+int ms_patch_g1(const ms_tracer *t, const double v[3], const double w[4], long rays, int rings, int sectors,
+                int threads, ms_g1 *r, char *err, size_t errn);
 /* The risers of a sawtooth of period P (P divides n, 2 <= P <= n / 2; ms_ramp's): along x, the columns x = P - 1
  * mod P where the median of their differences (which a steep pit does not move) steps from the other columns' by
  * more than 1 (a step steeper than 45 degrees), and likewise the rows along y. risers[0] and risers[1] receive P
@@ -145,12 +190,22 @@ void ms_g1_free(ms_g1 *r);
  * than MS_MAX_CROSSINGS is refused. */
 typedef struct ms_brdf {
     int rings, sectors;
-    long rays, lost, capped; /* lost: left below the surface (none if the tracer works); capped: still bouncing */
+    long rays, lost, capped; /* lost: left below the surface (none if the tracer works; on a patch, fell through a
+                              * missing region); capped: still bouncing */
+    long left;               /* a patch's rays that left its side within the heights' band (0 for a tile): not in
+                              * any bin, so the albedo falls short of 1 by left / rays */
+    double window[4];        /* where the rays started, as ms_g1's */
     double *single;          /* per bin: the share of the rays that leave into it after one reflection */
     double *all;             /* and after any number */
 } ms_brdf;
 int ms_measure_brdf(const ms_tracer *t, size_t n, const double wi[3], long rays, int rings, int sectors,
                     int max_bounces, int threads, ms_brdf *r, char *err, size_t errn);
+/* On a patch ms_measure_brdf is ms_patch_brdf with ms_patch_window's window (reflect 1; n ignored). ms_patch_brdf: g x
+ * g rays on a jittered grid over w (NULL: ms_patch_window(t, wi, 1)) at ms_patch_top along -wi, reflected as on a tile;
+ * a ray that leaves the patch's side within the band is counted in left, one that falls through a hole in lost, neither
+ * binned. ms_measure_brdf_from_bin refuses a patch (the window depends on each ray's wi). */
+int ms_patch_brdf(const ms_tracer *t, const double wi[3], const double w[4], long rays, int rings, int sectors,
+                  int max_bounces, int threads, ms_brdf *r, char *err, size_t errn);
 /* ms_measure_brdf with each ray's wi drawn uniformly in projected solid angle over the outgoing bin `bin`: share
  * b of the result is then (1 / pi) times the double integral of f over bin x bin b in projected solid angles, times
  * the bins' count; by reciprocity the same as share bin from bin b (the traced BRDF's reciprocity test). */

@@ -172,17 +172,22 @@ typedef struct vndf_ctx {
     const ms_tracer *t;
     const size_t *risers;
     size_t size;
-    double d[3], n, zmax;
+    double d[3], w[4], z; /* origins uniform over [w0, w2] x [w1, w3] at height z: the tile, or a patch's window */
+    int patch;
 } vndf_ctx;
 
 static int vndf_draw(void *p, rng *r, ggx_vec3 *w)
 {
     vndf_ctx *c = p;
     ms_hit hit;
-    for (int tries = 0;; tries++) { /* the first facet hit off a sawtooth's risers (the facets of D) */
-        double o[3] = {rng_uniform(r) * c->n, rng_uniform(r) * c->n, c->zmax + 1.0};
-        if (ms_trace(c->t, o, c->d, &hit) != 1 || tries == 1000) return 0;
-        if (!ms_riser_cell(c->risers, c->size, hit.cell)) break;
+    /* the first facet hit off a sawtooth's risers (the facets of D); on a patch, of the rays that hit (not through a
+     * hole, not out of its side) */
+    for (int tries = 0;; tries++) {
+        double o[3] = {c->w[0] + rng_uniform(r) * (c->w[2] - c->w[0]), c->w[1] + rng_uniform(r) * (c->w[3] - c->w[1]),
+                       c->z};
+        int k = ms_trace(c->t, o, c->d, &hit);
+        if (tries == 1000 || (k != 1 && !c->patch)) return 0;
+        if (k == 1 && !ms_riser_cell(c->risers, c->size, hit.cell)) break;
     }
     *w = (ggx_vec3){hit.m[0], hit.m[1], hit.m[2]};
     return 1;
@@ -200,7 +205,8 @@ static const char *jnum(char buf[32], double x)
 
 static void measure_help(void)
 {
-    printf("usage: ggx microsurface measure --heightfield FILE [--spacing D] [--z-scale Z] [--tilted | --risers P]\n"
+    printf("usage: ggx microsurface measure --heightfield FILE [--spacing D] [--z-scale Z] [--downsample K]\n"
+           "                                [--tilted | --risers P]\n"
            "                                [--alpha A[,AY] [--skew TX,TY] [--rotate TZ] | --matrix M]\n"
            "                                --view THETA,PHI [-n RAYS] [--bounces K] [--threads N] [--seed S]\n"
            "                                [--format md|json] [--out FILE]\n\n"
@@ -210,8 +216,7 @@ static void measure_help(void)
            "over the facets'), Smith's G1 for Beckmann slopes of the facets' covariance and for GGX of the\n"
            "ellipsoid fitted to the facets (ggx_fit_heightfield), and per normal bin (4 rings of equal\n"
            "sin^2(theta_m) times 8 azimuth sectors) the traced G1(v, m), the visible share of the bin's\n"
-           "projected area, against G1(v): Smith's masking makes them equal. A tile whose edges do not wrap\n"
-           "(differences across them 3 times the inner ones in RMS) is refused. Then the visible normals: the\n"
+           "projected area, against G1(v): Smith's masking makes them equal. Then the visible normals: the\n"
            "first facets hit by up to 200,000 rays from random origins (--seed S), chi-square against\n"
            "ggx_pdf_vndf of the fitted shape (eq 33) on 16 x 16 cells of its sphere space. Then the BRDF with\n"
            "F = 1 and the light at the view: RAYS rays reflected from facet to facet until they escape (at most\n"
@@ -221,6 +226,12 @@ static void measure_help(void)
            "ggx_albedo_height_correlated), all bounces against\n"
            "ggx_brdf_compensated_eval of the fitted scale without its skew (the white furnace: albedo 1).\n"
            "The model's shape is the fit, or the shape given (--alpha, --skew, --rotate or --matrix).\n\n"
+           "Measured scans: a surface that is not square, has missing points, or whose edges do not wrap\n"
+           "(differences across them 3 times the inner ones in RMS) is traced as a finite patch, levelled: rays\n"
+           "start over an inner window (the patch less the heights' band times tan(theta) where the rays go;\n"
+           "for the BRDF more, on every side), cells with a missing corner are absent and the rays through them\n"
+           "counted as fallen through holes, rays that leave the patch's side counted as left; the report says\n"
+           "so. Spacings must be equal (to 1e-3); --downsample K averages K x K blocks first (default: none).\n\n"
            "Skewed surfaces (generate --skew): --tilted traces the tile as an infinite tilted patch, each copy\n"
            "raised by the tile's mean slope (its inner differences' mean) times N; --risers P as the sawtooth of\n"
            "generate --risers P, whose risers (the cells of the columns and rows P - 1 mod P along an axis where\n"
@@ -231,13 +242,16 @@ static void measure_help(void)
            "tilted patch's BRDF is not measured (its directions are the tilted plane's).\n");
 }
 
-static const command_spec MEASURE_SPEC = {
-    "heightfield,spacing,z-scale,tilted,risers," SHAPE_OPTS ",view,n,bounces,threads,seed,format,out", measure_help, 0};
+static const command_spec MEASURE_SPEC = {"heightfield,spacing,z-scale,downsample,tilted,risers," SHAPE_OPTS
+                                          ",view,n,bounces,threads,seed,format,out",
+                                          measure_help, 0};
 
 /* What ggx microsurface measure found, for its report. */
 typedef struct measured {
     const options *o;
     size_t n;
+    microsurface_patch pt;
+    char no_brdf[400]; /* why the BRDF was not measured */
     double v[3], theta, phi, tilt[2], ts[2];
     ms_g1 r;
     ms_brdf br;
@@ -272,21 +286,51 @@ static void report_json(FILE *f, const measured *m)
             m->r.riser_area, jnum(b6, m->g_riser));
     fprintf(f, "  \"vndf_chi2\": {\"rays\": %ld, \"stat\": %s, \"dof\": %d, \"pvalue\": %s, \"invalid\": %ld},\n",
             m->vrays, jnum(b1, m->cr.stat), m->cr.dof, jnum(b2, m->cr.pvalue), m->cr.invalid);
-    if (m->brdf)
+    if (m->brdf) {
         fprintf(f,
                 "  \"brdf\": {\"rays\": %ld, \"lost\": %ld, \"capped\": %ld, \"albedo_single\": %.8g, "
                 "\"albedo_model\": %s, \"albedo_model_height_correlated\": %s, \"albedo_all\": %.8g, "
-                "\"l2_single\": %s, \"l2_single_height_correlated\": %s, \"l2_all\": %s},\n",
+                "\"l2_single\": %s, \"l2_single_height_correlated\": %s, \"l2_all\": %s,\n",
                 m->br.rays, m->br.lost, m->br.capped, m->e_single, jnum(b3, m->e_model), jnum(b1, m->e_hc), m->e_all,
                 jnum(b4, m->l2_single), jnum(b6, m->l2_hc), jnum(b5, m->l2_all));
-    else fprintf(f, "  \"brdf\": null,\n");
+        /* the shares per outgoing bin (ring-major, BR x BS), for comparing runs */
+        for (int k = 0; k < 2; k++) {
+            const double *x = k ? m->br.all : m->br.single;
+            fprintf(f, "    \"%s\": [", k ? "all" : "single");
+            for (int b = 0; b < BR * BS; b++) fprintf(f, "%s%.8g", b ? ", " : "", x[b]);
+            fprintf(f, "]%s\n", k ? "}," : ",");
+        }
+    } else fprintf(f, "  \"brdf\": null,\n");
+    if (m->pt.on)
+        fprintf(f,
+                "  \"patch\": {\"why\": \"%s\", \"nx\": %zu, \"ny\": %zu, \"downsample\": %d, \"edge\": "
+                "\"window\", \"window\": [%.6g, %.6g, %.6g, %.6g], \"left\": %ld, \"holes\": %ld, "
+                "\"brdf_left\": %ld, \"missing_points\": %zu, \"absent_cells\": %zu, \"levelled\": [%.6g, %.6g]},\n",
+                m->pt.why, m->pt.nx, m->pt.ny, m->pt.downsample, m->r.window[0], m->r.window[1], m->r.window[2],
+                m->r.window[3], m->r.left, m->r.holes, m->br.left, m->pt.missing, m->pt.absent, m->pt.plane[0],
+                m->pt.plane[1]);
+    else fprintf(f, "  \"patch\": null,\n");
     fprintf(f, "  \"bins\": [");
+}
+
+/* a patch's lines of the report: why it is one, its edge treatment and what its rays met */
+static void report_patch_md(FILE *f, const measured *m)
+{
+    fprintf(f,
+            "traced as a patch (%s), %zu x %zu heights%s, levelled (the plane of slopes %.4g, %.4g taken off): no "
+            "wrap; rays start over the window [%.5g, %.5g] x [%.5g, "
+            "%.5g] (the patch less the band's fall times tan(theta) downstream), %ld left its side and %ld fell "
+            "through missing regions (%zu missing points, %zu absent cells)\n\n",
+            m->pt.why, m->pt.nx, m->pt.ny, m->pt.downsample > 1 ? " after --downsample" : "", m->pt.plane[0],
+            m->pt.plane[1], m->r.window[0], m->r.window[2], m->r.window[1], m->r.window[3], m->r.left, m->r.holes,
+            m->pt.missing, m->pt.absent);
 }
 
 static void report_md(FILE *f, const measured *m)
 {
     fprintf(f, "# ggx microsurface measure: %s, %zu x %zu, view theta %.4g, phi %.4g degrees\n\n", m->o->heightfield,
-            m->n, m->n, m->theta, m->phi);
+            m->pt.on ? m->pt.nx : m->n, m->pt.on ? m->pt.ny : m->n, m->theta, m->phi);
+    if (m->pt.on) report_patch_md(f, m);
     fprintf(f, "%ld rays, %ld missed; the facets' slope covariance %.6g, %.6g, %.6g\n\n", m->r.rays, m->r.missed,
             m->r.slope_cov[0], m->r.slope_cov[1], m->r.slope_cov[2]);
     fprintf(f,
@@ -318,7 +362,7 @@ static void report_md(FILE *f, const measured *m)
                 "degrees of freedom (%.3g per degree), p = %.3g\n\n",
                 m->vrays, m->given ? "given" : "fitted", m->cr.stat, m->cr.dof, m->cr.stat / m->cr.dof, m->cr.pvalue);
     else fprintf(f, "visible normals of %ld rays: too few for a chi-square against ggx_pdf_vndf\n\n", m->vrays);
-    if (!m->brdf) fprintf(f, "the BRDF is not measured on a tilted patch\n\n");
+    if (!m->brdf) fprintf(f, "the BRDF is not measured: %s\n\n", m->no_brdf);
     else
         fprintf(f,
                 "the BRDF with F = 1 from the light at the view, %ld rays (%ld lost, %ld still bouncing "
@@ -408,26 +452,38 @@ static int measure(int argc, char **argv)
     m.o = &o;
     double *h;
     size_t risers[2];
-    ms_tracer *t = microsurface_open(&o, &h, &m.n, m.tilt, risers);
+    ms_tracer *t = microsurface_open(&o, &h, &m.n, m.tilt, risers, &m.pt);
     char err[400];
     m.v[0] = o.view.x, m.v[1] = o.view.y, m.v[2] = o.view.z;
     long rays = o.n > 0 ? o.n : 1000000;
     int threads = o.threads > 0 ? o.threads : 1;
     if (ms_measure_g1(t, h, m.n, m.v, rays, 4, 8, risers, threads, &m.r, err, sizeof err) != 0) die("%s", err);
     ggx_shape fit;
-    ggx_status st = microsurface_model(&o, h, m.n, risers, &fit, &m.given);
+    ggx_status st = microsurface_model(&o, h, &m.pt, m.n, risers, &fit, &m.given);
     m.g_ggx = st == GGX_OK ? ggx_g1_smith(&fit, o.view) : NAN, m.g_b = ms_beckmann_g1(m.r.slope_cov, m.v);
     /* the visible normals against eq 33 for the fitted shape, 16 x 16 cells of its sphere space */
     m.vrays = rays < 200000 ? rays : 200000;
     if (st == GGX_OK) {
         double zmin, zmax;
         ms_tracer_bounds(t, &zmin, &zmax);
-        vndf_ctx c = {{&fit, o.view, vndf_pdf}, t, risers, m.n, {-m.v[0], -m.v[1], -m.v[2]}, (double)m.n, zmax};
+        vndf_ctx c = {{&fit, o.view, vndf_pdf},
+                      t,
+                      risers,
+                      m.n,
+                      {-m.v[0], -m.v[1], -m.v[2]},
+                      {0.0, 0.0, (double)m.n, (double)m.n},
+                      zmax + 1.0,
+                      m.pt.on};
+        if (m.pt.on) memcpy(c.w, m.r.window, sizeof c.w), c.z = ms_patch_top(t);
         chi2_problem p = {"traced visible normals", 1, vndf_draw, normal_keys_key, normal_keys_density, &c};
         m.cr = chi2_run_quiet(&p, m.vrays, 16, 16, o.seed, 0.01);
     }
     m.bounces = o.bounces > 0 ? o.bounces : 100, m.brdf = !o.tilted;
     m.e_model = m.e_hc = m.l2_single = m.l2_all = m.l2_hc = NAN;
+    snprintf(m.no_brdf, sizeof m.no_brdf, "a tilted patch's directions are the tilted plane's");
+    double bw[4];
+    /* a patch too small for the BRDF's margins at this view: G1 is reported, the BRDF not */
+    if (m.pt.on && ms_patch_window(t, m.v, 1, bw, m.no_brdf, sizeof m.no_brdf) != 0) m.brdf = 0;
     if (m.brdf) {
         if (ms_measure_brdf(t, m.n, m.v, rays, BR, BS, m.bounces, threads, &m.br, err, sizeof err) != 0) die("%s", err);
         brdf_against_model(&m, st == GGX_OK ? &fit : NULL);

@@ -19,7 +19,8 @@ static ggx_vec3 plane_view(double a, double phi)
 
 static void microsurface_figure_help(void)
 {
-    printf("usage: ggx microsurface figure --heightfield FILE [--spacing D] [--z-scale Z] [--tilted | --risers P]\n"
+    printf("usage: ggx microsurface figure --heightfield FILE [--spacing D] [--z-scale Z] [--downsample K]\n"
+           "                               [--tilted | --risers P]\n"
            "                               [--alpha A[,AY] [--skew TX,TY] [--rotate TZ] | --matrix M] [--from PHI]\n"
            "                               [-n RAYS] [--threads N] [--size WxH] [--theme light|dark] --out "
            "FILE.png|svg|pdf\n\n"
@@ -30,10 +31,12 @@ static void microsurface_figure_help(void)
            "(ggx_g1), eq 32 without its min (ggx_g1_smith), vertical facets (Walter's remedy with Smith's\n"
            "masking), the tilted base (ggx_g1_tilted) and the sawtooth's (ggx_g1_risers); for an unskewed one\n"
            "Smith's GGX and Smith's Beckmann of the facets' covariance. --tilted and --risers P as for\n"
-           "ggx microsurface measure; views below a tilted patch's plane have no mark.\n");
+           "ggx microsurface measure; views below a tilted patch's plane have no mark. A measured scan (not\n"
+           "square, missing points, edges that do not wrap) is traced as a patch, as by measure (--downsample K\n"
+           "as there); its views too grazing for its heights' band have no mark.\n");
 }
 
-static const command_spec MICROSURFACE_FIGURE_SPEC = {"heightfield,spacing,z-scale,tilted,risers," SHAPE_OPTS
+static const command_spec MICROSURFACE_FIGURE_SPEC = {"heightfield,spacing,z-scale,downsample,tilted,risers," SHAPE_OPTS
                                                       ",from,n,threads,size,theme,out",
                                                       microsurface_figure_help, 0};
 
@@ -46,14 +49,15 @@ int microsurface_figure(int argc, char **argv)
     canvas_format fmt = figure_format_of("--out", o.out, FMT_PNG);
     size_t n, risers[2];
     double tilt[2], *h;
-    ms_tracer *t = microsurface_open(&o, &h, &n, tilt, risers);
+    microsurface_patch pt;
+    ms_tracer *t = microsurface_open(&o, &h, &n, tilt, risers, &pt);
     char err[400];
     long rays = o.n > 0 ? o.n : 100000;
     int threads = o.threads > 0 ? o.threads : 1;
     /* the model's shape: fitted to the facets off the risers, or given */
     ggx_shape fit;
     int given;
-    if (microsurface_model(&o, h, n, risers, &fit, &given) != GGX_OK)
+    if (microsurface_model(&o, h, &pt, n, risers, &fit, &given) != GGX_OK)
         die("%s: no shape fits its facets", o.heightfield);
     double ts[2], ss[3];
     ggx_shape_slopes(&fit, ts, ss);
@@ -73,6 +77,8 @@ int microsurface_figure(int argc, char **argv)
         ggx_vec3 v = plane_view(a, phi);
         double vv[3] = {v.x, v.y, v.z};
         if (!ms_view_clear(o.tilted ? tilt : NULL, vv)) continue; /* below (or along) the tilted plane */
+        double w[4];
+        if (pt.on && ms_patch_window(t, vv, 0, w, err, sizeof err) != 0) continue; /* too grazing for the patch */
         ms_g1 r;
         if (ms_measure_g1(t, h, n, vv, rays, 1, 1, risers, threads, &r, err, sizeof err) != 0) die("%s", err);
         m->x[m->n] = a, m->y[m->n++] = r.g1_off_risers;
@@ -111,9 +117,10 @@ int microsurface_figure(int argc, char **argv)
     double back = phi + 180.0 > 180.0 ? phi - 180.0 : phi + 180.0;
     snprintf(l1, sizeof l1, "Masking traced on a microsurface against the model's forms");
     snprintf(l2, sizeof l2, "%s, %zu × %zu%s; the %s GGX shape's slopes: t = (%.3g, %.3g), Σ = (%.3g, %.3g, %.3g)",
-             o.heightfield, n, n,
+             o.heightfield, pt.on ? pt.nx : n, pt.on ? pt.ny : n,
              o.tilted   ? ", a tilted patch"
              : o.risers ? ", a sawtooth"
+             : pt.on    ? ", a measured patch (no wrap)"
                         : "",
              given ? "given" : "fitted", ts[0] + 0.0, ts[1] + 0.0, ss[0], ss[1], ss[2]);
     snprintf(l3, sizeof l3, "views in the plane of azimuth %.4g° (right) and %.4g° (left)", phi + 0.0, back + 0.0);

@@ -10,42 +10,71 @@
 #include "ggx/ggx_fit.h"
 #include "surface.h"
 
-/* The height field of --heightfield in grid units (heights over the spacing, which must be equal along x and y),
- * checked to repeat as --tilted and --risers say, and the tilt (0, 0 unless --tilted). */
-double *microsurface_heights(const options *o, size_t *n_out, double tilt[2])
+/* --downsample K: K x K blocks averaged (NaN where any point of a block is missing; trailing rows and columns that
+ * fill no block dropped), as ggx fit --downsample takes them; returns the coarse grid, h freed */
+static double *downsampled(double *h, size_t *nx, size_t *ny, size_t k, const char *name)
 {
-    surface_read_options ro = {SURFACE_HEIGHTS, 0};
-    surface s;
-    char err[512];
-    if (surface_read(o->heightfield, &ro, &s, err, sizeof err) != 0) die("%s", err);
-    if (s.nx != s.ny) die("%s: %zu x %zu heights: the tracer takes a square periodic tile", o->heightfield, s.nx, s.ny);
-    double dx = o->have_spacing ? o->spacing[0] : s.dx, dy = o->have_spacing ? o->spacing[1] : s.dy;
-    double zs = o->have_z_scale ? o->z_scale : s.z_scale > 0 ? s.z_scale : (s.dx > 0 ? 0 : 1);
-    if (!(dx > 0 && dy > 0)) die("%s: the file gives no grid spacing: give --spacing DX", o->heightfield);
-    if (!(zs > 0)) die("%s: the file gives no height unit: give --z-scale Z", o->heightfield);
-    if (fabs(dx - dy) > 1e-9 * dx) die("%s: spacing %g x %g: the tracer takes equal spacings", o->heightfield, dx, dy);
-    if (!(zs / dx >= DBL_MIN && zs / dx <= DBL_MAX))
-        die("%s: the height unit %g over the grid spacing %g is %g, beyond the range of a double (%g to %g): give "
-            "--spacing and --z-scale in nearer units",
-            o->heightfield, zs, dx, zs / dx, DBL_MIN, DBL_MAX);
-    size_t n = s.nx, count = n * n, P = (size_t)o->risers;
-    double *h = s.h;
-    s.h = NULL;
-    surface_free(&s);
-    if (P && (P > n / 2 || n % P != 0)) {
+    size_t cx = *nx / k, cy = *ny / k;
+    if (cx < 3 || cy < 3) {
         free(h);
-        die("--risers %zu: a period that divides the size %zu and is at most half of it", P, n);
+        die("--downsample %zu leaves fewer than 3 x 3 heights of %s's %zu x %zu", k, name, *nx, *ny);
     }
-    for (size_t i = 0; i < count; i++) {
-        if (!isfinite(h[i])) {
-            free(h); /* (die exits: nothing left to the leak checkers) */
-            die("%s: height %zu is not finite", o->heightfield, i);
+    double *c = malloc(cx * cy * sizeof *c);
+    if (!c) {
+        free(h);
+        die("out of memory for %zu x %zu heights", cx, cy);
+    }
+    for (size_t j = 0; j < cy; j++)
+        for (size_t i = 0; i < cx; i++) {
+            double sum = 0.0;
+            for (size_t b = 0; b < k; b++)
+                for (size_t a = 0; a < k; a++) sum += h[(j * k + b) * *nx + i * k + a];
+            c[j * cx + i] = sum / (double)(k * k);
         }
-        h[i] *= zs / dx;
+    free(h);
+    *nx = cx, *ny = cy;
+    return c;
+}
+
+/* takes the least-squares plane of the present heights off h (NaN stays NaN), as surface metrology levels a scan
+ * (ggx fit's default): the stage's tilt is no slope of the surface; plane: its slopes along x and y */
+static void level(double *h, size_t nx, size_t ny, double plane[2])
+{
+    /* about the centre, x and y are uncorrelated over a full grid; over one with missing points, solve the 3 x 3 */
+    double cx = 0.5 * (double)(nx - 1), cy = 0.5 * (double)(ny - 1), s[9] = {0}, r[3] = {0};
+    for (size_t y = 0; y < ny; y++)
+        for (size_t x = 0; x < nx; x++) {
+            double z = h[y * nx + x], u[3] = {1.0, (double)x - cx, (double)y - cy};
+            if (isnan(z)) continue;
+            for (int i = 0; i < 3; i++) {
+                r[i] += u[i] * z;
+                for (int j = 0; j < 3; j++) s[3 * i + j] += u[i] * u[j];
+            }
+        }
+    /* Cramer's rule */
+    double det = s[0] * (s[4] * s[8] - s[5] * s[7]) - s[1] * (s[3] * s[8] - s[5] * s[6]) +
+                 s[2] * (s[3] * s[7] - s[4] * s[6]),
+           c[3];
+    for (int k = 0; k < 3; k++) {
+        double m[9];
+        memcpy(m, s, sizeof m);
+        for (int i = 0; i < 3; i++) m[3 * i + k] = r[i];
+        c[k] = (m[0] * (m[4] * m[8] - m[5] * m[7]) - m[1] * (m[3] * m[8] - m[5] * m[6]) +
+                m[2] * (m[3] * m[7] - m[4] * m[6])) /
+               det;
     }
-    /* the edges wrap: along each axis the differences across the tile's edge (raised by the tilt times n for a
-     * tilted patch) are like the inner ones of the same phase (a sawtooth's risers: the rows P - 1 mod P; else all),
-     * their deviations from those ones' mean within 3 times those ones' RMS deviation */
+    if (!(fabs(det) > 0.0)) c[0] = r[0] / s[0], c[1] = c[2] = 0.0; /* present points on a line: the mean only */
+    for (size_t y = 0; y < ny; y++)
+        for (size_t x = 0; x < nx; x++) h[y * nx + x] -= c[0] + c[1] * ((double)x - cx) + c[2] * ((double)y - cy);
+    plane[0] = c[1], plane[1] = c[2];
+}
+
+/* 0 where the square tile h (n x n) wraps along both axes: the differences across its edges (raised by the tilt
+ * times n for --tilted) like the inner ones of the same phase (a sawtooth's risers: the rows P - 1 mod P; else all),
+ * their deviations from those ones' mean within 3 times those ones' RMS deviation; else the axis (1 x, 2 y) and the
+ * ratio. tilt receives the tile's mean slope (--tilted; else 0). */
+static int tile_wraps(const double *h, size_t n, size_t P, int tilted, double tilt[2], double *ratio)
+{
     for (int ax = 0; ax < 2; ax++) {
         double sum = 0.0, ref = 0.0, ref2 = 0.0, cnt = 0.0, rcnt = 0.0;
         for (size_t y = 0; y < n; y++)
@@ -54,31 +83,111 @@ double *microsurface_heights(const options *o, size_t *n_out, double tilt[2])
                 sum += d, cnt += 1.0;
                 if (!P || x % P == P - 1) ref += d, ref2 += d * d, rcnt += 1.0;
             }
-        tilt[ax] = o->tilted ? sum / cnt : 0.0;
+        tilt[ax] = tilted ? sum / cnt : 0.0;
         double mean = ref / rcnt, var = fmax(ref2 / rcnt - mean * mean, 0.0), wrap = 0.0;
         for (size_t y = 0; y < n; y++) {
             double d = (ax == 0 ? h[y * n] - h[y * n + n - 1] : h[y] - h[(n - 1) * n + y]) + tilt[ax] * (double)n;
             wrap += (d - mean) * (d - mean) / (double)n;
         }
         if (wrap > 9.0 * var + 1e-300) {
-            double ratio = sqrt(wrap / var);
-            free(h);
-            die("%s: not periodic along %c (the differences across its edges are %.3g times the inner ones' RMS "
-                "deviation): the tracer tiles the surface%s",
-                o->heightfield, ax == 0 ? 'x' : 'y', ratio,
-                o->tilted || P ? "" : " (a tilted patch: --tilted; a sawtooth: --risers P)");
+            *ratio = sqrt(wrap / var);
+            return ax + 1;
         }
     }
-    *n_out = n;
+    return 0;
+}
+
+/* The height field of --heightfield in grid units (heights over the spacing, equal along x and y to 1e-3), box
+ * averaged by --downsample K: a square periodic tile (checked to repeat as --tilted and --risers say), or else a
+ * patch (pt->on: not square, missing points, or edges that do not wrap), levelled (its least-squares plane taken
+ * off). */
+double *microsurface_heights(const options *o, size_t *n_out, double tilt[2], microsurface_patch *pt)
+{
+    surface_read_options ro = {SURFACE_HEIGHTS, 0};
+    surface s;
+    char err[512];
+    memset(pt, 0, sizeof *pt);
+    tilt[0] = tilt[1] = 0.0;
+    if (surface_read(o->heightfield, &ro, &s, err, sizeof err) != 0) die("%s", err);
+    double dx = o->have_spacing ? o->spacing[0] : s.dx, dy = o->have_spacing ? o->spacing[1] : s.dy;
+    double zs = o->have_z_scale ? o->z_scale : s.z_scale > 0 ? s.z_scale : (s.dx > 0 ? 0 : 1);
+    size_t nx = s.nx, ny = s.ny, k = o->downsample > 1 ? (size_t)o->downsample : 1;
+    if (nx < 3 || ny < 3) {
+        surface_free(&s);
+        die("%s: %zu x %zu heights: the tracer takes at least 3 x 3", o->heightfield, nx, ny);
+    }
+    if (!(dx > 0 && dy > 0)) die("%s: the file gives no grid spacing: give --spacing DX", o->heightfield);
+    if (!(zs > 0)) die("%s: the file gives no height unit: give --z-scale Z", o->heightfield);
+    /* a square grid: spacings equal to 1e-3 (an instrument's calibration differs by less; y's slopes then carry dy / dx
+     * - 1 of error, far below the rays' noise), traced at dx */
+    if (fabs(dx - dy) > 1e-3 * dx)
+        die("%s: spacing %g x %g: the tracer takes equal spacings (to 1e-3)", o->heightfield, dx, dy);
+    if (!(zs / dx >= DBL_MIN && zs / dx <= DBL_MAX))
+        die("%s: the height unit %g over the grid spacing %g is %g, beyond the range of a double (%g to %g): give "
+            "--spacing and --z-scale in nearer units",
+            o->heightfield, zs, dx, zs / dx, DBL_MIN, DBL_MAX);
+    double *h = s.h;
+    s.h = NULL;
+    surface_free(&s);
+    if (k > 1) h = downsampled(h, &nx, &ny, k, o->heightfield);
+    double scale = zs / (dx * (double)k), sum = 0.0, big = 0.0;
+    for (size_t i = 0; i < nx * ny; i++) {
+        if (!isfinite(h[i])) { /* missing (NaN) or no height: a patch's missing point */
+            h[i] = NAN, pt->missing++;
+            continue;
+        }
+        h[i] *= scale, sum += h[i];
+    }
+    if (pt->missing == nx * ny) {
+        free(h); /* (die exits: nothing left to the leak checkers) */
+        die("%s: all %zu x %zu heights are missing", o->heightfield, nx, ny);
+    }
+    double mean = sum / (double)(nx * ny - pt->missing);
+    size_t P = (size_t)o->risers;
+    if (P && nx == ny && (P > nx / 2 || nx % P != 0)) {
+        free(h);
+        die("--risers %zu: a period that divides the size %zu and is at most half of it", P, nx);
+    }
+    int axis = 0;
+    double ratio = 0.0;
+    if (nx != ny) snprintf(pt->why, sizeof pt->why, "not square");
+    else if (pt->missing) snprintf(pt->why, sizeof pt->why, "%zu missing points", pt->missing);
+    else if ((axis = tile_wraps(h, nx, P, o->tilted, tilt, &ratio)) != 0)
+        snprintf(pt->why, sizeof pt->why,
+                 "not periodic along %c (the differences across its edges %.3g times the inner ones' RMS deviation; "
+                 "a tilted patch: --tilted; a sawtooth: --risers P)",
+                 axis == 1 ? 'x' : 'y', ratio);
+    /* single precision: a patch's heights (levelled below) to 0.06 within 1e6 of their mean, a tile's (whose tall
+     * spikes the work limit weighs) within its range */
+    double limit = pt->why[0] ? 1e6 : 1e30;
+    for (size_t i = 0; i < nx * ny; i++)
+        if (!isnan(h[i])) big = fmax(big, fabs(h[i] - mean));
+    if (!(big <= limit)) {
+        free(h);
+        die("%s: heights %.3g grid spacings from their mean, beyond the tracer's single precision (at most %g; "
+            "check --z-scale)",
+            o->heightfield, big, limit);
+    }
+    if (pt->why[0]) {
+        if (o->tilted || P) {
+            free(h);
+            die("%s: %s: --tilted and --risers take a periodic tile (without them it is traced as a patch)",
+                o->heightfield, pt->why);
+        }
+        pt->on = 1, pt->nx = nx, pt->ny = ny, pt->downsample = (int)k;
+        level(h, nx, ny, pt->plane);
+    }
+    *n_out = nx;
     return h;
 }
 
 /* The fitted shape of the facets off the risers (ms_facet_normals), or of all the facets as given (not levelled:
- * the tracer traces them as they are). */
-ggx_status microsurface_fit(const double *h, size_t n, const size_t risers[2], ggx_shape *fit)
+ * the tracer traces them as they are); a patch's cells with a missing corner are left out (ggx_fit_heightfield). */
+ggx_status microsurface_fit(const double *h, size_t nx, size_t ny, const size_t risers[2], ggx_shape *fit)
 {
     ggx_heightfield_options ho = {1, 0};
-    if (!risers[0] && !risers[1]) return ggx_fit_heightfield(fit, h, n, n, 1.0, 1.0, &ho, NULL, NULL);
+    if (!risers[0] && !risers[1]) return ggx_fit_heightfield(fit, h, nx, ny, 1.0, 1.0, &ho, NULL, NULL);
+    size_t n = nx;
     ggx_vec3 *m = malloc(4 * (n - 1) * (n - 1) * sizeof *m);
     if (!m) die("out of memory for the facets of %zu x %zu heights", n, n);
     ggx_status st = ggx_fit_normals(fit, m, NULL, ms_facet_normals(h, n, risers, m), NULL, NULL);
@@ -86,28 +195,32 @@ ggx_status microsurface_fit(const double *h, size_t n, const size_t risers[2], g
     return st;
 }
 
-ms_tracer *microsurface_open(const options *o, double **h, size_t *n, double tilt[2], size_t risers[2])
+ms_tracer *microsurface_open(const options *o, double **h, size_t *n, double tilt[2], size_t risers[2],
+                             microsurface_patch *pt)
 {
     if (o->tilted && o->risers) die("--tilted and --risers: a surface is one or the other");
-    *h = microsurface_heights(o, n, tilt);
+    *h = microsurface_heights(o, n, tilt, pt);
     char err[400];
-    if (ms_find_risers(*h, *n, (size_t)o->risers, risers, err, sizeof err) != 0) {
+    risers[0] = risers[1] = 0;
+    if (!pt->on && ms_find_risers(*h, *n, (size_t)o->risers, risers, err, sizeof err) != 0) {
         free(*h); /* (die exits: nothing left to the leak checkers) */
         die("%s", err);
     }
-    ms_tracer *t = ms_tracer_new(*h, *n, o->tilted ? tilt : NULL, err, sizeof err);
+    ms_tracer *t = pt->on ? ms_patch_new(*h, pt->nx, pt->ny, err, sizeof err)
+                          : ms_tracer_new(*h, *n, o->tilted ? tilt : NULL, err, sizeof err);
     if (!t) {
         free(*h); /* (die exits: nothing left to the leak checkers) */
-        die("%s", err);
+        die("%s: %s", o->heightfield, err);
     }
+    if (pt->on) ms_tracer_patch(t, NULL, NULL, NULL, NULL, &pt->absent);
     return t;
 }
 
-ggx_status microsurface_model(const options *o, const double *h, size_t n, const size_t risers[2], ggx_shape *s,
-                              int *given)
+ggx_status microsurface_model(const options *o, const double *h, const microsurface_patch *pt, size_t n,
+                              const size_t risers[2], ggx_shape *s, int *given)
 {
     *given = o->have_alpha || o->have_skew || o->have_rotate || o->have_matrix;
-    if (!*given) return microsurface_fit(h, n, risers, s);
+    if (!*given) return pt->on ? microsurface_fit(h, pt->nx, pt->ny, risers, s) : microsurface_fit(h, n, n, risers, s);
     shape_from_options(o, s);
     return GGX_OK;
 }
