@@ -239,6 +239,7 @@ int ms_kirchhoff_setup(const ms_kirchhoff_spec *s, ms_kirchhoff *k, char *err, s
     if (levels < 1 || levels > 64) return fail(err, errn, "kirchhoff: %d levels: 1 to 64", s->levels);
     if (U < 0 || U > 16) return fail(err, errn, "kirchhoff: upsample %d: 1 to 16 (0: chosen)", U);
     if (!(s->taper >= 0.0 && s->taper <= 1.0)) return fail(err, errn, "kirchhoff: taper %g: in (0, 1]", s->taper);
+    if (!(s->alias >= 0.0 && s->alias < 1.0)) return fail(err, errn, "kirchhoff: alias %g: in [0, 1)", s->alias);
     size_t max_points = s->max_points ? s->max_points : (size_t)1 << 23;
     int threads = s->threads > 0 ? (s->threads > 64 ? 64 : s->threads) : 1;
     /* the heights: the valid points, levelled, their scale against the wavenumber */
@@ -273,7 +274,7 @@ int ms_kirchhoff_setup(const ms_kirchhoff_spec *s, ms_kirchhoff *k, char *err, s
         free(h), free(valid);
         return fail(err, errn, "kirchhoff: %zu valid points: fewer than 2 x 2", nvalid);
     }
-    ms_level(h, nx, ny, s->keep_tilt);
+    ms_level(h, nx, ny, s->keep_tilt, NULL);
     double ss = 0.0, hmax = 0.0;
     for (size_t y = 0; y < ny; y++)
         for (size_t x = 0; x < nx; x++) {
@@ -327,14 +328,27 @@ int ms_kirchhoff_setup(const ms_kirchhoff_spec *s, ms_kirchhoff *k, char *err, s
     }
     if (U == 0) {
         double cum = 0.0;
+        double keep = 1.0 - (s->alias > 0.0 ? s->alias : 1e-3);
         for (U = 1; U < 16; U++) {
             cum += need[U];
-            if (cum >= 0.999) break;
+            if (cum >= keep) break;
         }
-        while (U > 1 &&
-               fast_size((nx - 1) * (size_t)U + 1) * fast_size((ny - 1) * (size_t)U + 1) * (size_t)levels > max_points)
-            U--;
     }
+    /* crop: the largest centred window (at least 16 x 16 points) whose upsampled grid fits, shrunk 2 % a step */
+    size_t cx = nx, cy = ny;
+    while (s->crop && cx >= 16 && cy >= 16 &&
+           fast_size((cx - 1) * (size_t)U + 1) * fast_size((cy - 1) * (size_t)U + 1) * (size_t)levels > max_points)
+        cx = (size_t)(0.98 * (double)cx), cy = (size_t)(0.98 * (double)cy);
+    if (cx >= 16 && cy >= 16 && (cx < nx || cy < ny)) {
+        size_t x0 = (nx - cx) / 2, y0 = (ny - cy) / 2;
+        for (size_t y = 0; y < cy; y++) memmove(h + y * cx, h + (y0 + y) * nx + x0, cx * sizeof *h);
+        k->crop[0] = x0, k->crop[1] = y0, nx = cx, ny = cy;
+    }
+    /* else (or a window under 16 x 16): the chosen upsampling lowered until it fits */
+    while (s->upsample == 0 && U > 1 &&
+           fast_size((nx - 1) * (size_t)U + 1) * fast_size((ny - 1) * (size_t)U + 1) * (size_t)levels > max_points)
+        U--;
+    k->crop[2] = nx, k->crop[3] = ny;
     k->aliased = 0.0;
     for (int u = U + 1; u < 18; u++) k->aliased += need[u];
     k->upsample = U, k->dx = s->dx / U;
@@ -497,21 +511,11 @@ static double bin_run(const ms_kirchhoff *k, const ms_binning *bn, double *share
     return tot;
 }
 
-/* the tracer's bins: rings of equal sin^2 theta times sectors (ms_bin) */
-typedef struct ring_bins {
-    int rings, sectors;
-} ring_bins;
-static int ring_bin(const void *ctx, const double wo[3])
-{
-    const ring_bins *r = ctx;
-    return ms_bin(wo, r->rings, r->sectors);
-}
-
 double ms_kirchhoff_bin(const ms_kirchhoff *k, int rings, int sectors, double *share)
 {
     if (rings < 1 || sectors < 1) return NAN;
-    ring_bins r = {rings, sectors};
-    ms_binning b = {rings * sectors, ring_bin, &r};
+    ms_ring_bins r;
+    ms_binning b = ms_ring_binning(&r, rings, sectors);
     return bin_run(k, &b, share, 0);
 }
 
@@ -523,8 +527,8 @@ double ms_kirchhoff_binned(const ms_kirchhoff *k, const ms_binning *b, double *s
 double ms_kirchhoff_geometric(const ms_kirchhoff *k, int rings, int sectors, double *share)
 {
     if (rings < 1 || sectors < 1) return NAN;
-    ring_bins r = {rings, sectors};
-    ms_binning b = {rings * sectors, ring_bin, &r};
+    ms_ring_bins r;
+    ms_binning b = ms_ring_binning(&r, rings, sectors);
     return bin_run(k, &b, share, 1);
 }
 

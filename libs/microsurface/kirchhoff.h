@@ -33,9 +33,9 @@ typedef struct ms_kirchhoff_spec {
     double wi[3];      /* unit (normalised here), wi.z >= 1e-3 */
     int levels;        /* 1 to 64 levels of wo.z with their own FFT; 0: 1 (the specular wo.z) */
     int upsample;      /* 1 to 16: the heights interpolated bilinearly onto a grid U times finer before the FFT;
-                        * 0: the least U (within max_points) that keeps 99.9 % of the windowed points' phase step
-                        * between neighbours below pi at wi.z + 1 (the grid's Nyquist limit; beyond it a slope's
-                        * light folds back: `aliased`) */
+                        * 0: the least U (within max_points, or on crop's window) that keeps 1 - alias of the
+                        * windowed points' phase step between neighbours below pi at wi.z + 1 (the grid's Nyquist
+                        * limit; beyond it a slope's light folds back: `aliased`) */
     double taper;      /* the Tukey window's cosine taper as a share of each side, (0, 1]; 0: 1 (Hann). A smaller
                         * taper keeps more of the patch at full weight (finer angular resolution, lambda over the
                         * flat width) and diffracts more from the steeper edges */
@@ -43,6 +43,12 @@ typedef struct ms_kirchhoff_spec {
                         * tilt); 1: heights as given */
     size_t max_points; /* the most FFT points times levels (memory: 12 bytes each and 8 per height); 0: 2^23 */
     int threads;       /* 1 or more; 0: 1. The result is the same for any count */
+    double alias;      /* with upsample 0: the windowed share of the points whose phase step may pass pi on the
+                        * chosen grid, [0, 1); 0: 1e-3 */
+    int crop;          /* where the upsampling (given or chosen) does not fit max_points, 1 computes it on the largest
+                        * centred window of the patch that fits (at least 16 x 16 points; the levelling and the
+                        * missing points' filling are the whole patch's); 0 lowers a chosen upsampling instead (a
+                        * given one is refused) */
 } ms_kirchhoff_spec;
 
 typedef struct ms_kirchhoff {
@@ -58,6 +64,7 @@ typedef struct ms_kirchhoff {
                                * wi.z + (the highest level's wo.z): light the grid cannot place */
     double missing;       /* the share of the points that were missing (filled) */
     double sigma_h;       /* the RMS height after levelling, over the valid points */
+    size_t crop[4];       /* the window of the given grid computed: first x, first y, points along x and y */
     double *level_woz;    /* the levels' wo.z (levels of them) */
     float *power;         /* per level, fft_ny x fft_nx: |FFT|^2 / (fft_nx fft_ny sum W^2), which sums to 1 */
     double *hp, *wx, *wy; /* the prepared heights (nx * ny) and the window's factors along x and y */

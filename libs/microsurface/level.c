@@ -4,7 +4,7 @@
 
 #include "microsurface.h"
 
-size_t ms_level(double *h, size_t nx, size_t ny, int keep_tilt)
+size_t ms_level(double *h, size_t nx, size_t ny, int keep_tilt, double plane_out[3])
 {
     /* the normal equations of z = a (x - cx) + b (y - cy) + c over the finite points, coordinates about the centre */
     double m[3][4] = {{0}};
@@ -20,6 +20,7 @@ size_t ms_level(double *h, size_t nx, size_t ny, int keep_tilt)
                 m[a][3] += r[a] * z;
             }
         }
+    if (plane_out) plane_out[0] = plane_out[1] = plane_out[2] = 0.0;
     if (count == 0) return 0;
     double plane[3] = {0.0, 0.0, m[2][3] / m[2][2]};
     /* Gaussian elimination; a plane needs points off one line (else the mean alone) */
@@ -42,5 +43,6 @@ size_t ms_level(double *h, size_t nx, size_t ny, int keep_tilt)
                 *z -= plane[0] * ((double)x - 0.5 * (double)(nx - 1)) +
                       plane[1] * ((double)y - 0.5 * (double)(ny - 1)) + plane[2];
         }
+    if (plane_out) plane_out[0] = plane[0], plane_out[1] = plane[1], plane_out[2] = plane[2];
     return count;
 }

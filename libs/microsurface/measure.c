@@ -32,6 +32,18 @@ int ms_bin(const double m[3], int rings, int sectors)
 }
 
 /* the next uniform in [0, 1) of a ray loop's xorshift stream */
+int ms_ring_bin(const void *ctx, const double wo[3])
+{
+    const ms_ring_bins *r = ctx;
+    return ms_bin(wo, r->rings, r->sectors);
+}
+
+ms_binning ms_ring_binning(ms_ring_bins *rb, int rings, int sectors)
+{
+    rb->rings = rings, rb->sectors = sectors;
+    return (ms_binning){rings * sectors, ms_ring_bin, rb};
+}
+
 static double next_uniform(uint64_t *s)
 {
     *s ^= *s << 13, *s ^= *s >> 7, *s ^= *s << 17;
@@ -611,7 +623,8 @@ typedef struct brdf_job {
     int in_bin;
     ray_grid rg;
     long g, row0, row1;
-    int rings, sectors, max_bounces;
+    int rings, sectors, max_bounces; /* rings, sectors: in_bin's binning */
+    const ms_binning *out;           /* the outgoing directions' */
     long *single, *all, lost, capped, left;
     int failed; /* no memory for a row */
 } brdf_job;
@@ -631,9 +644,11 @@ static void brdf_follow(brdf_job *j, double o[3], double d[3], int k, ms_hit *hi
     if (k == MS_LEFT) j->left++;
     else if (k < 0) j->lost++;
     else if (k == 1) j->capped++;
-    else if (bounces > 0) { /* (none is 0: every ray from above hits) */ int b = ms_bin(d, j->rings, j->sectors);
-        j->all[b]++;
-        if (bounces == 1) j->single[b]++;
+    else if (bounces > 0) { /* (none is 0: every ray from above hits) */ int b = j->out->bin(j->out->ctx, d);
+        if (b >= 0 && b < j->out->bins) {
+            j->all[b]++;
+            if (bounces == 1) j->single[b]++;
+        }
     }
 }
 
@@ -681,20 +696,21 @@ void ms_brdf_free(ms_brdf *r)
 }
 
 /* the BRDF of rays from wi (NULL: from bin in_bin) over the tile, or over a patch's window win */
-static int brdf_run(const ms_tracer *t, size_t n, const double *wi, int in_bin, const double *win, long rays, int rings,
-                    int sectors, int max_bounces, int threads, ms_brdf *r, char *err, size_t errn)
+static int brdf_run(const ms_tracer *t, size_t n, const double *wi, int in_bin, const double *win, long rays,
+                    const ms_binning *out, int rings, int sectors, int max_bounces, int threads, ms_brdf *r, char *err,
+                    size_t errn)
 {
     int bad_wi = wi ? !(wi[2] > 0.0) : in_bin < 0 || in_bin >= rings * sectors;
-    if (bad_wi || rays < 1 || rings < 1 || sectors < 1 || rings * sectors > 1 << 16 || threads < 1 || threads > 256 ||
-        max_bounces < 1) {
+    if (bad_wi || rays < 1 || out->bins < 1 || out->bins > 1 << 24 || threads < 1 || threads > 256 || max_bounces < 1) {
         snprintf(err, errn, "BRDF: a light above the plane, rays, bins, bounces and threads are required");
         return -1;
     }
     if (!win && wi && work_refused(t, n, wi, rays, 2.0, "BRDF", err, errn)) return -1;
-    int bins = rings * sectors;
+    int bins = out->bins;
     long g = (long)ceil(sqrt((double)rays));
     if (threads > g) threads = (int)g;
     r->rings = rings, r->sectors = sectors, r->rays = g * g;
+    if (out->bin != ms_ring_bin) r->rings = bins, r->sectors = 1;
     r->single = calloc(2 * (size_t)bins, sizeof *r->single);
     long *counts = calloc(2 * (size_t)bins * (size_t)threads, sizeof *counts);
     brdf_job *jobs = calloc((size_t)threads, sizeof *jobs);
@@ -717,6 +733,7 @@ static int brdf_run(const ms_tracer *t, size_t n, const double *wi, int in_bin, 
                              .rings = rings,
                              .sectors = sectors,
                              .max_bounces = max_bounces,
+                             .out = out,
                              .single = c,
                              .all = c + bins};
     }
@@ -749,11 +766,13 @@ int ms_measure_brdf(const ms_tracer *t, size_t n, const double wi[3], long rays,
         return ms_patch_brdf(t, wi, NULL, rays, rings, sectors, max_bounces, threads, r, err, errn);
     memset(r, 0, sizeof *r);
     r->window[2] = r->window[3] = (double)n;
-    return brdf_run(t, n, wi, -1, NULL, rays, rings, sectors, max_bounces, threads, r, err, errn);
+    ms_ring_bins rb;
+    ms_binning out = ms_ring_binning(&rb, rings, sectors);
+    return brdf_run(t, n, wi, -1, NULL, rays, &out, rings, sectors, max_bounces, threads, r, err, errn);
 }
 
-int ms_patch_brdf(const ms_tracer *t, const double wi[3], const double w[4], long rays, int rings, int sectors,
-                  int max_bounces, int threads, ms_brdf *r, char *err, size_t errn)
+int ms_patch_brdf_binned(const ms_tracer *t, const double wi[3], const double w[4], long rays, const ms_binning *out,
+                         int max_bounces, int threads, ms_brdf *r, char *err, size_t errn)
 {
     memset(r, 0, sizeof *r);
     size_t nx;
@@ -770,7 +789,22 @@ int ms_patch_brdf(const ms_tracer *t, const double wi[3], const double w[4], lon
     if (window_ok(t, r->window, "BRDF", err, errn) != 0) return -1;
     double win[4];
     memcpy(win, r->window, sizeof win);
-    return brdf_run(t, nx, wi, -1, win, rays, rings, sectors, max_bounces, threads, r, err, errn);
+    return brdf_run(t, nx, wi, -1, win, rays, out, 1, 1, max_bounces, threads, r, err, errn);
+}
+
+int ms_patch_brdf(const ms_tracer *t, const double wi[3], const double w[4], long rays, int rings, int sectors,
+                  int max_bounces, int threads, ms_brdf *r, char *err, size_t errn)
+{
+    if (rings < 1 || sectors < 1) {
+        memset(r, 0, sizeof *r);
+        snprintf(err, errn, "BRDF: a light above the plane, rays, bins, bounces and threads are required");
+        return -1;
+    }
+    ms_ring_bins rb;
+    ms_binning out = ms_ring_binning(&rb, rings, sectors);
+    int st = ms_patch_brdf_binned(t, wi, w, rays, &out, max_bounces, threads, r, err, errn);
+    r->rings = rings, r->sectors = sectors;
+    return st;
 }
 
 int ms_measure_brdf_from_bin(const ms_tracer *t, size_t n, int bin, long rays, int rings, int sectors, int max_bounces,
@@ -782,5 +816,11 @@ int ms_measure_brdf_from_bin(const ms_tracer *t, size_t n, int bin, long rays, i
         return -1;
     }
     r->window[2] = r->window[3] = (double)n;
-    return brdf_run(t, n, NULL, bin, NULL, rays, rings, sectors, max_bounces, threads, r, err, errn);
+    if (rings < 1 || sectors < 1) {
+        snprintf(err, errn, "BRDF: a light above the plane, rays, bins, bounces and threads are required");
+        return -1;
+    }
+    ms_ring_bins rb;
+    ms_binning out = ms_ring_binning(&rb, rings, sectors);
+    return brdf_run(t, n, NULL, bin, NULL, rays, &out, rings, sectors, max_bounces, threads, r, err, errn);
 }

@@ -260,10 +260,23 @@ typedef struct ms_binning {
     const void *ctx;
 } ms_binning;
 
+/* The tracer's bins (ms_bin: rings of equal sin^2 theta times sectors of equal azimuth) as a binning: rb holds its
+ * counts and must outlive it. */
+typedef struct ms_ring_bins {
+    int rings, sectors;
+} ms_ring_bins;
+int ms_ring_bin(const void *ctx, const double wo[3]);
+ms_binning ms_ring_binning(ms_ring_bins *rb, int rings, int sectors);
+/* ms_patch_brdf into the caller's bins: r->single and r->all have out->bins shares (r->rings = out->bins,
+ * r->sectors = 1); a ray whose final direction out gives -1 is counted in no bin. */
+int ms_patch_brdf_binned(const ms_tracer *t, const double wi[3], const double w[4], long rays, const ms_binning *out,
+                         int max_bounces, int threads, ms_brdf *r, char *err, size_t errn);
+
 /* ---- levelling (level.c) ----
  * Removes from h (nx x ny, x fastest; non-finite values are missing points, left as they are) the least-squares plane
  * of its finite points, in place (keep_tilt: their mean only; where the finite points lie on one line, their mean
- * only). Returns how many points are finite (0: nothing changed). */
-size_t ms_level(double *h, size_t nx, size_t ny, int keep_tilt);
+ * only). plane (may be NULL) receives the plane taken off: its slopes along x and y per grid step and its height at the
+ * grid's centre ((nx - 1) / 2, (ny - 1) / 2). Returns how many points are finite (0: nothing changed). */
+size_t ms_level(double *h, size_t nx, size_t ny, int keep_tilt, double plane[3]);
 
 #endif

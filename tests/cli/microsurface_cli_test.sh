@@ -279,9 +279,9 @@ if "$GGX" fit --heightfield nan.pfm --spacing 1 --z-scale 1 2>&1 | grep -q "ggx:
 fi
 printf "0 1\n2 3\n" > two.txt
 printf "0 1 2\n2 3 1\n1 0 2\n" > three.txt
-one_line "a 2 x 2 scan" "2 x 2 heights: the tracer takes at least 3 x 3" 2 "$GGX" microsurface measure \
+one_line "a 2 x 2 scan" "2 x 2 heights: at least 3 x 3 are needed" 2 "$GGX" microsurface measure \
     --heightfield two.txt --spacing 1 --z-scale 1 --view 30,0
-one_line "unequal spacings" "the tracer takes equal spacings" 2 "$GGX" microsurface measure --heightfield three.txt \
+one_line "unequal spacings" "equal spacings are needed" 2 "$GGX" microsurface measure --heightfield three.txt \
     --spacing 1,2 --z-scale 1 --view 30,0
 one_line "no subcommand" "give a subcommand" 2 "$GGX" microsurface
 one_line "bad subcommand" "unknown subcommand 'trace'" 2 "$GGX" microsurface trace

@@ -19,7 +19,7 @@ static const double PI_ = 3.14159265358979323846;
 static int fft_built(void)
 {
     double h[4] = {0, 0, 0, 0};
-    ms_kirchhoff_spec s = {h, 2, 2, 1.0, 0.5, {0, 0, 1}, 0, 1, 0, 0, 0, 1};
+    ms_kirchhoff_spec s = {h, 2, 2, 1.0, 0.5, {0, 0, 1}, 0, 1, 0, 0, 0, 1, 0, 0};
     ms_kirchhoff k;
     char err[256];
     if (ms_kirchhoff_setup(&s, &k, err, sizeof err) == 0) {
@@ -61,7 +61,7 @@ static void flat_mirror(void **state)
     enum { N = 256, R = 8, S = 16 };
     double *h = calloc(N * N, sizeof *h), share[R * S];
     double th = asin(sqrt(2.5 / R)), ph = PI_ + PI_ / S;
-    ms_kirchhoff_spec s = {h, N, N, 0.25, 0.5, {sin(th) * cos(ph), sin(th) * sin(ph), cos(th)}, 0, 1, 0, 0, 0, 2};
+    ms_kirchhoff_spec s = {h, N, N, 0.25, 0.5, {sin(th) * cos(ph), sin(th) * sin(ph), cos(th)}, 0, 1, 0, 0, 0, 2, 0, 0};
     ms_kirchhoff k;
     char err[256];
     CHECK(ms_kirchhoff_setup(&s, &k, err, sizeof err) == 0, "%s", err);
@@ -98,7 +98,7 @@ static void reciprocity(void **state)
         ggx_vec3 a = random_view(&r), b = random_view(&r);
         if (a.z < 0.05 || b.z < 0.05) continue;
         double va[3] = {a.x, a.y, a.z}, vb[3] = {b.x, b.y, b.z};
-        ms_kirchhoff_spec s = {h, N, N, 1.0, 5.0, {a.x, a.y, a.z}, 0, 1, 0, 0, 0, 1};
+        ms_kirchhoff_spec s = {h, N, N, 1.0, 5.0, {a.x, a.y, a.z}, 0, 1, 0, 0, 0, 1, 0, 0};
         ms_kirchhoff ka, kb;
         char err[256];
         CHECK(ms_kirchhoff_setup(&s, &ka, err, sizeof err) == 0, "%s", err);
@@ -138,7 +138,7 @@ static void debye_waller(void **state)
     double *h = gauss_field(N, 0.3, 8, 3), *flat = calloc(N * N, sizeof *flat);
     const double lams[3] = {200.0, 60.0, 30.0}, th = 0.5;
     for (int i = 0; i < 3; i++) {
-        ms_kirchhoff_spec s = {h, N, N, 1.0, lams[i], {sin(th), 0.0, cos(th)}, 0, 1, 0, 0, 0, 2};
+        ms_kirchhoff_spec s = {h, N, N, 1.0, lams[i], {sin(th), 0.0, cos(th)}, 0, 1, 0, 0, 0, 2, 0, 0};
         ms_kirchhoff k, kf;
         char err[256];
         CHECK(ms_kirchhoff_setup(&s, &k, err, sizeof err) == 0, "%s", err);
@@ -176,7 +176,7 @@ static void geometric_limit(void **state)
     const double lams[6] = {20.0, 6.0, 2.0, 1.0, 0.8, 0.6};
     int cases = full ? 6 : 5;
     for (int i = 0; i < cases; i++) {
-        ms_kirchhoff_spec s = {h, n, n, 1.0, lams[i], {sin(0.5), 0.0, cos(0.5)}, 0, 0, 0, 0, 0, 2};
+        ms_kirchhoff_spec s = {h, n, n, 1.0, lams[i], {sin(0.5), 0.0, cos(0.5)}, 0, 0, 0, 0, 0, 2, 0, 0};
         ms_kirchhoff k;
         char err[256];
         CHECK(ms_kirchhoff_setup(&s, &k, err, sizeof err) == 0, "%s", err);
@@ -207,7 +207,7 @@ static void fft_against_exact(void **state)
     double *h = gauss_field(N, 0.3, 4, 3), share[R * S], ex[R * S] = {0};
     /* upsampled 3 times: the sampled field's images, lambda / dx apart in (wi + wo)_xy, then stay 4 beyond the
      * hemisphere's reach of 2 (at upsample 1 the sum meets the first image and counts 1.37) */
-    ms_kirchhoff_spec s = {h, N, N, 1.0, 2.0, {sin(0.6), 0.0, cos(0.6)}, 0, 3, 0, 0, 0, 1};
+    ms_kirchhoff_spec s = {h, N, N, 1.0, 2.0, {sin(0.6), 0.0, cos(0.6)}, 0, 3, 0, 0, 0, 1, 0, 0};
     ms_kirchhoff k;
     char err[256];
     CHECK(ms_kirchhoff_setup(&s, &k, err, sizeof err) == 0, "%s", err);
@@ -247,22 +247,22 @@ static void bad_input(void **state)
         ms_kirchhoff_spec s;
         const char *why;
     } cases[] = {
-        {{nanh, 4, 4, 1.0, 0.5, {0, 0, 1}, 0, 1, 0, 0, 0, 1}, "missing"},
-        {{few, 4, 4, 1.0, 0.5, {0, 0, 1}, 0, 1, 0, 0, 0, 1}, "fewer than 2 x 2"},
-        {{h, 4, 4, 1.0, 0.0, {0, 0, 1}, 0, 1, 0, 0, 0, 1}, "wavelength"},
-        {{h, 4, 4, 1.0, NAN, {0, 0, 1}, 0, 1, 0, 0, 0, 1}, "wavelength"},
-        {{h, 4, 4, 1.0, -1.0, {0, 0, 1}, 0, 1, 0, 0, 0, 1}, "wavelength"},
-        {{h, 4, 4, INFINITY, 0.5, {0, 0, 1}, 0, 1, 0, 0, 0, 1}, "spacing"},
-        {{h, 4, 4, 0.0, 0.5, {0, 0, 1}, 0, 1, 0, 0, 0, 1}, "spacing"},
-        {{huge, 4, 4, 1.0, 0.5, {0, 0, 1}, 0, 1, 0, 0, 0, 1}, "absurd"},
-        {{h, 4, 4, 1.0, 1e-14, {0, 0, 1}, 0, 1, 0, 0, 0, 1}, "absurd"},
-        {{h, 4, 4, 1.0, 0.5, {1, 0, 0}, 0, 1, 0, 0, 0, 1}, "above the plane"},
-        {{h, 4, 4, 1.0, 0.5, {0, 0, 1}, 65, 1, 0, 0, 0, 1}, "levels"},
-        {{h, 4, 4, 1.0, 0.5, {0, 0, 1}, 0, 17, 0, 0, 0, 1}, "upsample"},
-        {{h, 4, 4, 1.0, 0.5, {0, 0, 1}, 0, 1, 1.5, 0, 0, 1}, "taper"},
-        {{h, 4, 1, 1.0, 0.5, {0, 0, 1}, 0, 1, 0, 0, 0, 1}, "2 x 2"},
-        {{h, (size_t)1 << 15, (size_t)1 << 15, 1.0, 0.5, {0, 0, 1}, 0, 1, 0, 0, 0, 1}, "memory"},
-        {{h, 4, 4, 1.0, 0.5, {0, 0, 1}, 0, 1, 0, 0, 10, 1}, "memory"},
+        {{nanh, 4, 4, 1.0, 0.5, {0, 0, 1}, 0, 1, 0, 0, 0, 1, 0, 0}, "missing"},
+        {{few, 4, 4, 1.0, 0.5, {0, 0, 1}, 0, 1, 0, 0, 0, 1, 0, 0}, "fewer than 2 x 2"},
+        {{h, 4, 4, 1.0, 0.0, {0, 0, 1}, 0, 1, 0, 0, 0, 1, 0, 0}, "wavelength"},
+        {{h, 4, 4, 1.0, NAN, {0, 0, 1}, 0, 1, 0, 0, 0, 1, 0, 0}, "wavelength"},
+        {{h, 4, 4, 1.0, -1.0, {0, 0, 1}, 0, 1, 0, 0, 0, 1, 0, 0}, "wavelength"},
+        {{h, 4, 4, INFINITY, 0.5, {0, 0, 1}, 0, 1, 0, 0, 0, 1, 0, 0}, "spacing"},
+        {{h, 4, 4, 0.0, 0.5, {0, 0, 1}, 0, 1, 0, 0, 0, 1, 0, 0}, "spacing"},
+        {{huge, 4, 4, 1.0, 0.5, {0, 0, 1}, 0, 1, 0, 0, 0, 1, 0, 0}, "absurd"},
+        {{h, 4, 4, 1.0, 1e-14, {0, 0, 1}, 0, 1, 0, 0, 0, 1, 0, 0}, "absurd"},
+        {{h, 4, 4, 1.0, 0.5, {1, 0, 0}, 0, 1, 0, 0, 0, 1, 0, 0}, "above the plane"},
+        {{h, 4, 4, 1.0, 0.5, {0, 0, 1}, 65, 1, 0, 0, 0, 1, 0, 0}, "levels"},
+        {{h, 4, 4, 1.0, 0.5, {0, 0, 1}, 0, 17, 0, 0, 0, 1, 0, 0}, "upsample"},
+        {{h, 4, 4, 1.0, 0.5, {0, 0, 1}, 0, 1, 1.5, 0, 0, 1, 0, 0}, "taper"},
+        {{h, 4, 1, 1.0, 0.5, {0, 0, 1}, 0, 1, 0, 0, 0, 1, 0, 0}, "2 x 2"},
+        {{h, (size_t)1 << 15, (size_t)1 << 15, 1.0, 0.5, {0, 0, 1}, 0, 1, 0, 0, 0, 1, 0, 0}, "memory"},
+        {{h, 4, 4, 1.0, 0.5, {0, 0, 1}, 0, 1, 0, 0, 10, 1, 0, 0}, "memory"},
     };
     for (size_t i = 0; i < sizeof cases / sizeof *cases; i++) {
         ms_kirchhoff k;
@@ -274,7 +274,7 @@ static void bad_input(void **state)
     double share[4];
     ms_kirchhoff k;
     char err[256];
-    ms_kirchhoff_spec ok = {h, 4, 4, 1.0, 0.5, {0, 0, 1}, 0, 1, 0, 0, 0, 1};
+    ms_kirchhoff_spec ok = {h, 4, 4, 1.0, 0.5, {0, 0, 1}, 0, 1, 0, 0, 0, 1, 0, 0};
     if (ms_kirchhoff_setup(&ok, &k, err, sizeof err) == 0) {
         CHECK(isnan(ms_kirchhoff_bin(&k, 0, 4, share)), "0 rings accepted");
         ms_kirchhoff_free(&k);
@@ -292,12 +292,15 @@ static void levelling(void **state)
     for (int y = 0; y < NY; y++)
         for (int x = 0; x < NX; x++) h[y * NX + x] = 3.0 + 0.25 * x - 0.5 * y, g[y * NX + x] = h[y * NX + x];
     h[3] = h[17] = NAN;
-    CHECK(ms_level(h, NX, NY, 0) == NX * NY - 2, "finite count");
+    double pl[3];
+    CHECK(ms_level(h, NX, NY, 0, pl) == NX * NY - 2, "finite count");
+    CHECK(fabs(pl[0] - 0.25) < 1e-12 && fabs(pl[1] + 0.5) < 1e-12 && fabs(pl[2] - (3.0 + 0.25 * 3 - 0.5 * 2)) < 1e-12,
+          "plane %g %g %g", pl[0], pl[1], pl[2]);
     for (int i = 0; i < NX * NY; i++)
         CHECK(i == 3 || i == 17 ? isnan(h[i]) : fabs(h[i]) < 1e-12, "point %d: %g after levelling", i, h[i]);
     double mean = 0;
     for (int i = 0; i < NX * NY; i++) mean += g[i] / (NX * NY);
-    CHECK(ms_level(g, NX, NY, 1) == NX * NY, "finite count");
+    CHECK(ms_level(g, NX, NY, 1, NULL) == NX * NY, "finite count");
     for (int y = 0; y < NY; y++)
         for (int x = 0; x < NX; x++)
             CHECK(fabs(g[y * NX + x] - (3.0 + 0.25 * x - 0.5 * y - mean)) < 1e-12,
@@ -305,10 +308,10 @@ static void levelling(void **state)
     double line[NX * NY];
     for (int i = 0; i < NX * NY; i++) line[i] = NAN;
     for (int x = 0; x < NX; x++) line[2 * NX + x] = x;
-    CHECK(ms_level(line, NX, NY, 0) == NX, "finite count on a line");
+    CHECK(ms_level(line, NX, NY, 0, NULL) == NX, "finite count on a line");
     for (int x = 0; x < NX; x++) CHECK(fabs(line[2 * NX + x] - (x - 3.0)) < 1e-12, "a line's tilt removed");
     double none[4] = {NAN, NAN, NAN, NAN};
-    CHECK(ms_level(none, 2, 2, 0) == 0 && isnan(none[0]), "no finite point");
+    CHECK(ms_level(none, 2, 2, 0, NULL) == 0 && isnan(none[0]), "no finite point");
 }
 
 int main(void)

@@ -42,6 +42,16 @@ int parse_list(const char *opt, const char *text, double *out, int count)
     return n;
 }
 
+const char *json_number(double v)
+{
+    static char bufs[32][32];
+    static int next;
+    char *buf = bufs[next++ % 32];
+    if (isfinite(v)) snprintf(buf, 32, "%.10g", v);
+    else snprintf(buf, 32, "null");
+    return buf;
+}
+
 ggx_vec3 direction_deg(double theta, double phi)
 {
     double t = theta * DEG, p = phi * DEG;

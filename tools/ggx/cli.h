@@ -55,6 +55,7 @@ typedef struct options {
     int spp; /* ggx render --spp: whole numbers of OPT_WHOLE are ints */
     int depth, compensate;
     double exposure;
+    int have_exposure;
     /* the medium of flakes */
     int volume, sggx, scatter; /* scatter: 0 when not given */
     double density, albedo[3]; /* -1 (density, albedo[0]) when not given */
@@ -81,6 +82,9 @@ int parse_list(const char *opt, const char *text, double *out, int count);
 void shape_from_options(const options *o, ggx_shape *s);
 /* Parses "theta,phi" (degrees) or "x,y,z" (normalised) into a direction: the one syntax of every direction. */
 int parse_direction(const char *text, ggx_vec3 *v);
+/* A number for JSON, which has no NaN or infinity: "%.10g", or null for them. The text lives in one of 32 buffers
+ * used in turn, enough for every number of one fprintf (not thread-safe). */
+const char *json_number(double v);
 /* The unit direction of polar angle theta and azimuth phi, in degrees. */
 ggx_vec3 direction_deg(double theta, double phi);
 /* --light point:THETA,PHI[,E], the one syntax of a distant light: its direction and v = {theta, phi, E} (E = 1 when
@@ -126,6 +130,7 @@ int cmd_check(options *o, const ggx_shape *s);
 int cmd_audit(options *o, const ggx_shape *s);
 int cmd_fit(options *o, const ggx_shape *s);
 int cmd_mipmap(options *o, const ggx_shape *s);
+int cmd_predict(options *o, const ggx_shape *s);
 void demo_help(void);
 void eval_help(void);
 void albedo_help(void);
@@ -135,6 +140,7 @@ void check_help(void);
 void audit_help(void);
 void fit_help(void);
 void mipmap_help(void);
+void predict_help(void);
 int cmd_render(int argc, char **argv);
 int cmd_microsurface(int argc, char **argv);
 /* --roughness-map of the options as alpha per texel (malloc'd, nx * ny): a grey PNG's levels / (2^bits - 1) or a

@@ -54,18 +54,6 @@ static const char *const MODEL_WORDS[GGX_FIT_MODELS] = {
     "isotropic GGX (t = 0, Sigma = a^2 I)", "Beckmann (Gaussian slopes, mean and covariance)"};
 static const char *const PARAM_NAMES[5] = {"t_x", "t_y", "sigma_xx", "sigma_xy", "sigma_yy"};
 
-/* A number for JSON, which has no NaN or infinity: null for them. The text lives in one of 32 buffers used in turn,
- * enough for every number of one fprintf. */
-static const char *json_number(double v)
-{
-    static char bufs[32][32];
-    static int next;
-    char *buf = bufs[next++ % 32];
-    if (isfinite(v)) snprintf(buf, 32, "%.10g", v);
-    else snprintf(buf, 32, "null");
-    return buf;
-}
-
 static int show_progress(void *ctx, int it, double ll)
 {
     (void)ll;

@@ -18,6 +18,12 @@ typedef struct microsurface_patch {
     char why[200];                  /* why it is no tile: not square, missing points, not periodic along x or y */
 } microsurface_patch;
 
+/* The heights of --heightfield in micrometres (NaN for a missing point) on a grid of spacing *dx micrometres, equal
+ * along x and y to 1e-3, box-averaged by --downsample K: a file's own spacing and height unit are metres; --spacing D
+ * and --z-scale Z are micrometres (a file without its own height unit: heights in the spacing's unit). *missing: the
+ * missing points. Dies with one line on bad input (no spacing or height unit, under 3 x 3, every point missing,
+ * unequal spacings, a height unit over the spacing beyond a double's range). */
+double *microsurface_heights_um(const options *o, size_t *nx, size_t *ny, double *dx, size_t *missing);
 /* The height field of --heightfield in grid units (equal spacings to 1e-3; --downsample K box-averages it), a square
  * periodic tile checked to repeat as --tilted and --risers say, or else a patch (*pt), levelled; dies with
  * one line on bad input (no spacing or height unit, under 3 x 3, every point missing, heights beyond 1e6 spacings).

@@ -9,7 +9,6 @@
 #include "cmd_microsurface.h"
 #include "kirchhoff.h"
 #include "output.h"
-#include "surface.h"
 
 static const double PI = 3.14159265358979323846;
 enum { RINGS = 8, SECTORS = 16, BINS = RINGS * SECTORS };
@@ -45,28 +44,13 @@ int microsurface_wave(int argc, char **argv)
     int json = strcmp(fmt, "json") == 0, csv = strcmp(fmt, "csv") == 0;
     if (!json && !csv && strcmp(fmt, "md") != 0) die("--format: '%s' is not md, csv or json", fmt);
     if (!(o.view.z >= 1e-3)) die("--view: theta must be below 89.94 degrees (the light must reach the surface)");
-    /* the heights in micrometres */
-    surface_read_options ro = {SURFACE_HEIGHTS, 0};
-    surface s;
+    size_t nx, ny, missing;
+    double dx;
+    double *h = microsurface_heights_um(&o, &nx, &ny, &dx, &missing);
     char err[512];
-    if (surface_read(o.heightfield, &ro, &s, err, sizeof err) != 0) die("%s", err);
-    double dx, dy, zs; /* micrometres per spacing and per height unit */
-    if (o.have_spacing) dx = o.spacing[0], dy = o.spacing[1], zs = o.have_z_scale ? o.z_scale : 1.0;
-    else if (s.dx > 0 && s.dy > 0) dx = s.dx * 1e6, dy = s.dy * 1e6, zs = (s.z_scale > 0 ? s.z_scale : 1.0) * 1e6;
-    else {
-        surface_free(&s);
-        die("%s: the file gives no grid spacing: give --spacing D (micrometres)", o.heightfield);
-    }
-    if (o.have_z_scale) zs = o.z_scale;
-    if (fabs(dx - dy) > 1e-3 * dx) {
-        surface_free(&s);
-        die("%s: spacing %g x %g um: the wave BRDF takes equal spacings (within 0.1 %%)", o.heightfield, dx, dy);
-    }
-    size_t n = s.nx * s.ny;
-    for (size_t i = 0; i < n; i++) s.h[i] *= zs; /* NaN stays NaN: a missing point */
-    ms_kirchhoff_spec sp = {.h = s.h,
-                            .nx = s.nx,
-                            .ny = s.ny,
+    ms_kirchhoff_spec sp = {.h = h,
+                            .nx = nx,
+                            .ny = ny,
                             .dx = dx,
                             .wavelength = o.wavelength > 0 ? o.wavelength : 0.532,
                             .wi = {o.view.x, o.view.y, o.view.z},
@@ -77,26 +61,26 @@ int microsurface_wave(int argc, char **argv)
     int nc = o.rgb ? 3 : 1;
     const double *lams = o.rgb ? ms_kirchhoff_rgb_um : &sp.wavelength;
     if (ms_kirchhoff_setup(&sp, &k, err, sizeof err) != 0) {
-        surface_free(&s);
+        free(h);
         die("%s: %s", o.heightfield, err);
     }
     double gtot = ms_kirchhoff_geometric(&k, RINGS, SECTORS, geo);
     if (o.rgb) {
         ms_kirchhoff_free(&k);
         if (ms_kirchhoff_rgb(&sp, 1.0, RINGS, SECTORS, share, total, coherent, err, sizeof err) != 0) {
-            surface_free(&s);
+            free(h);
             die("%s: %s", o.heightfield, err);
         }
         sp.wavelength = ms_kirchhoff_rgb_um[2]; /* the grid's report: the shortest wavelength's, the finest */
         if (ms_kirchhoff_setup(&sp, &k, err, sizeof err) != 0) {
-            surface_free(&s);
+            free(h);
             die("%s: %s", o.heightfield, err);
         }
     } else {
         total[0] = ms_kirchhoff_bin(&k, RINGS, SECTORS, share);
         coherent[0] = k.coherent;
     }
-    surface_free(&s);
+    free(h);
     if (k.aliased > 0.01)
         fprintf(stderr,
                 "ggx: warning: %.1f %% of the windowed points step by more than pi of phase even on the grid "

@@ -36,39 +36,6 @@ static double *downsampled(double *h, size_t *nx, size_t *ny, size_t k, const ch
     return c;
 }
 
-/* takes the least-squares plane of the present heights off h (NaN stays NaN), as surface metrology levels a scan
- * (ggx fit's default): the stage's tilt is no slope of the surface; plane: its slopes along x and y */
-static void level(double *h, size_t nx, size_t ny, double plane[2])
-{
-    /* about the centre, x and y are uncorrelated over a full grid; over one with missing points, solve the 3 x 3 */
-    double cx = 0.5 * (double)(nx - 1), cy = 0.5 * (double)(ny - 1), s[9] = {0}, r[3] = {0};
-    for (size_t y = 0; y < ny; y++)
-        for (size_t x = 0; x < nx; x++) {
-            double z = h[y * nx + x], u[3] = {1.0, (double)x - cx, (double)y - cy};
-            if (isnan(z)) continue;
-            for (int i = 0; i < 3; i++) {
-                r[i] += u[i] * z;
-                for (int j = 0; j < 3; j++) s[3 * i + j] += u[i] * u[j];
-            }
-        }
-    /* Cramer's rule */
-    double det = s[0] * (s[4] * s[8] - s[5] * s[7]) - s[1] * (s[3] * s[8] - s[5] * s[6]) +
-                 s[2] * (s[3] * s[7] - s[4] * s[6]),
-           c[3];
-    for (int k = 0; k < 3; k++) {
-        double m[9];
-        memcpy(m, s, sizeof m);
-        for (int i = 0; i < 3; i++) m[3 * i + k] = r[i];
-        c[k] = (m[0] * (m[4] * m[8] - m[5] * m[7]) - m[1] * (m[3] * m[8] - m[5] * m[6]) +
-                m[2] * (m[3] * m[7] - m[4] * m[6])) /
-               det;
-    }
-    if (!(fabs(det) > 0.0)) c[0] = r[0] / s[0], c[1] = c[2] = 0.0; /* present points on a line: the mean only */
-    for (size_t y = 0; y < ny; y++)
-        for (size_t x = 0; x < nx; x++) h[y * nx + x] -= c[0] + c[1] * ((double)x - cx) + c[2] * ((double)y - cy);
-    plane[0] = c[1], plane[1] = c[2];
-}
-
 /* 0 where the square tile h (n x n) wraps along both axes: the differences across its edges (raised by the tilt
  * times n for --tilted) like the inner ones of the same phase (a sawtooth's risers: the rows P - 1 mod P; else all),
  * their deviations from those ones' mean within 3 times those ones' RMS deviation; else the axis (1 x, 2 y) and the
@@ -97,31 +64,26 @@ static int tile_wraps(const double *h, size_t n, size_t P, int tilted, double ti
     return 0;
 }
 
-/* The height field of --heightfield in grid units (heights over the spacing, equal along x and y to 1e-3), box
- * averaged by --downsample K: a square periodic tile (checked to repeat as --tilted and --risers say), or else a
- * patch (pt->on: not square, missing points, or edges that do not wrap), levelled (its least-squares plane taken
- * off). */
-double *microsurface_heights(const options *o, size_t *n_out, double tilt[2], microsurface_patch *pt)
+double *microsurface_heights_um(const options *o, size_t *nx_out, size_t *ny_out, double *dx_out, size_t *missing)
 {
     surface_read_options ro = {SURFACE_HEIGHTS, 0};
     surface s;
     char err[512];
-    memset(pt, 0, sizeof *pt);
-    tilt[0] = tilt[1] = 0.0;
     if (surface_read(o->heightfield, &ro, &s, err, sizeof err) != 0) die("%s", err);
-    double dx = o->have_spacing ? o->spacing[0] : s.dx, dy = o->have_spacing ? o->spacing[1] : s.dy;
-    double zs = o->have_z_scale ? o->z_scale : s.z_scale > 0 ? s.z_scale : (s.dx > 0 ? 0 : 1);
+    /* a file's own lengths are metres; --spacing and --z-scale are micrometres */
+    double dx = o->have_spacing ? o->spacing[0] : s.dx * 1e6, dy = o->have_spacing ? o->spacing[1] : s.dy * 1e6;
+    double zs = o->have_z_scale ? o->z_scale : s.z_scale > 0 ? s.z_scale * 1e6 : (s.dx > 0 ? 0 : 1);
     size_t nx = s.nx, ny = s.ny, k = o->downsample > 1 ? (size_t)o->downsample : 1;
     if (nx < 3 || ny < 3) {
         surface_free(&s);
-        die("%s: %zu x %zu heights: the tracer takes at least 3 x 3", o->heightfield, nx, ny);
+        die("%s: %zu x %zu heights: at least 3 x 3 are needed", o->heightfield, nx, ny);
     }
-    if (!(dx > 0 && dy > 0)) die("%s: the file gives no grid spacing: give --spacing DX", o->heightfield);
-    if (!(zs > 0)) die("%s: the file gives no height unit: give --z-scale Z", o->heightfield);
+    if (!(dx > 0 && dy > 0)) die("%s: the file gives no grid spacing: give --spacing D (micrometres)", o->heightfield);
+    if (!(zs > 0)) die("%s: the file gives no height unit: give --z-scale Z (micrometres)", o->heightfield);
     /* a square grid: spacings equal to 1e-3 (an instrument's calibration differs by less; y's slopes then carry dy / dx
-     * - 1 of error, far below the rays' noise), traced at dx */
+     * - 1 of error, far below the rays' noise), taken at dx */
     if (fabs(dx - dy) > 1e-3 * dx)
-        die("%s: spacing %g x %g: the tracer takes equal spacings (to 1e-3)", o->heightfield, dx, dy);
+        die("%s: spacing %g x %g um: equal spacings are needed (to 1e-3)", o->heightfield, dx, dy);
     if (!(zs / dx >= DBL_MIN && zs / dx <= DBL_MAX))
         die("%s: the height unit %g over the grid spacing %g is %g, beyond the range of a double (%g to %g): give "
             "--spacing and --z-scale in nearer units",
@@ -130,18 +92,34 @@ double *microsurface_heights(const options *o, size_t *n_out, double tilt[2], mi
     s.h = NULL;
     surface_free(&s);
     if (k > 1) h = downsampled(h, &nx, &ny, k, o->heightfield);
-    double scale = zs / (dx * (double)k), sum = 0.0, big = 0.0;
+    *missing = 0;
     for (size_t i = 0; i < nx * ny; i++) {
-        if (!isfinite(h[i])) { /* missing (NaN) or no height: a patch's missing point */
-            h[i] = NAN, pt->missing++;
+        if (!isfinite(h[i])) { /* missing (NaN) or no height */
+            h[i] = NAN, ++*missing;
             continue;
         }
-        h[i] *= scale, sum += h[i];
+        h[i] *= zs;
     }
-    if (pt->missing == nx * ny) {
+    if (*missing == nx * ny) {
         free(h); /* (die exits: nothing left to the leak checkers) */
         die("%s: all %zu x %zu heights are missing", o->heightfield, nx, ny);
     }
+    *nx_out = nx, *ny_out = ny, *dx_out = dx * (double)k;
+    return h;
+}
+
+/* The height field of --heightfield in grid units (microsurface_heights_um over its spacing): a square periodic tile
+ * (checked to repeat as --tilted and --risers say), or else a patch (pt->on: not square, missing points, or edges
+ * that do not wrap), levelled (its least-squares plane taken off). */
+double *microsurface_heights(const options *o, size_t *n_out, double tilt[2], microsurface_patch *pt)
+{
+    memset(pt, 0, sizeof *pt);
+    tilt[0] = tilt[1] = 0.0;
+    size_t nx, ny, k = o->downsample > 1 ? (size_t)o->downsample : 1;
+    double dx, sum = 0.0, big = 0.0;
+    double *h = microsurface_heights_um(o, &nx, &ny, &dx, &pt->missing);
+    for (size_t i = 0; i < nx * ny; i++)
+        if (!isnan(h[i])) h[i] /= dx, sum += h[i];
     double mean = sum / (double)(nx * ny - pt->missing);
     size_t P = (size_t)o->risers;
     if (P && nx == ny && (P > nx / 2 || nx % P != 0)) {
@@ -175,7 +153,9 @@ double *microsurface_heights(const options *o, size_t *n_out, double tilt[2], mi
                 o->heightfield, pt->why);
         }
         pt->on = 1, pt->nx = nx, pt->ny = ny, pt->downsample = (int)k;
-        level(h, nx, ny, pt->plane);
+        double plane[3];
+        ms_level(h, nx, ny, 0, plane);
+        pt->plane[0] = plane[0], pt->plane[1] = plane[1];
     }
     *n_out = nx;
     return h;

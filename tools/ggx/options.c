@@ -161,6 +161,7 @@ static void set_exposure(options *o, const char *a, const char *val)
 {
     parse_list(a, val, &o->exposure, 1);
     if (!(fabs(o->exposure) <= 30)) die("%s: '%s' is not an exposure in stops within [-30, 30]", a, val);
+    o->have_exposure = 1;
 }
 
 static double positive_length(const char *a, const char *val)
