@@ -710,7 +710,6 @@ static int brdf_run(const ms_tracer *t, size_t n, const double *wi, int in_bin, 
     long g = (long)ceil(sqrt((double)rays));
     if (threads > g) threads = (int)g;
     r->rings = rings, r->sectors = sectors, r->rays = g * g;
-    if (out->bin != ms_ring_bin) r->rings = bins, r->sectors = 1;
     r->single = calloc(2 * (size_t)bins, sizeof *r->single);
     long *counts = calloc(2 * (size_t)bins * (size_t)threads, sizeof *counts);
     brdf_job *jobs = calloc((size_t)threads, sizeof *jobs);
@@ -789,7 +788,9 @@ int ms_patch_brdf_binned(const ms_tracer *t, const double wi[3], const double w[
     if (window_ok(t, r->window, "BRDF", err, errn) != 0) return -1;
     double win[4];
     memcpy(win, r->window, sizeof win);
-    return brdf_run(t, nx, wi, -1, win, rays, out, 1, 1, max_bounces, threads, r, err, errn);
+    int st = brdf_run(t, nx, wi, -1, win, rays, out, 1, 1, max_bounces, threads, r, err, errn);
+    r->rings = out->bins, r->sectors = 1;
+    return st;
 }
 
 int ms_patch_brdf(const ms_tracer *t, const double wi[3], const double w[4], long rays, int rings, int sectors,

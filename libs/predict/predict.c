@@ -28,8 +28,7 @@ static int trace_incidence(const predict_spec *s, ms_tracer *tr, int k, predict_
     double wi[3] = {w.x, w.y, w.z};
     ms_binning b = {r->traced.res * r->traced.res, table_bin, &r->traced};
     ms_brdf br;
-    if (ms_patch_brdf_binned(tr, wi, NULL, s->rays, &b, s->bounces, s->threads, &br, err, errn) != 0)
-        return -1;
+    if (ms_patch_brdf_binned(tr, wi, NULL, s->rays, &b, s->bounces, s->threads, &br, err, errn) != 0) return -1;
     float *single = brdf_table_lobe(&r->traced, k, 0), *all = brdf_table_lobe(&r->all, k, 0);
     for (int c = 0; c < b.bins; c++) {
         double a = r->traced.area[c];

@@ -22,10 +22,10 @@ typedef struct predict_spec {
     int res;   /* the tables' cells a side over the projected outgoing directions */
     long rays; /* traced rays per incidence */
     int bounces;
-    int wave;             /* 1: the wave optics too, at ms_kirchhoff_rgb_um */
-    size_t wave_points;   /* the most FFT points of one wave-optics setup (ms_kirchhoff_spec's max_points, on the
+    int wave;           /* 1: the wave optics too, at ms_kirchhoff_rgb_um */
+    size_t wave_points; /* the most FFT points of one wave-optics setup (ms_kirchhoff_spec's max_points, on the
                            * largest centred window that fits the upsampling chosen: its crop); 0: 2^22 */
-    int threads;          /* >= 1; the results do not depend on it */
+    int threads;        /* >= 1; the results do not depend on it */
     /* Called from the calling thread after each incidence's trace and wave optics (may be NULL). */
     void (*progress)(void *ctx, long done, long total);
     void *progress_ctx;
