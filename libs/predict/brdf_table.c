@@ -51,14 +51,16 @@ int brdf_table_init(brdf_table *t, int n_theta, const double *theta, int n_phi, 
     size_t cells = (size_t)res * (size_t)res;
     t->f = calloc((size_t)n_theta * (size_t)n_phi * (size_t)channels * cells, sizeof *t->f);
     t->area = malloc(cells * sizeof *t->area);
-    if (!t->f || !t->area) {
-        free(t->f), free(t->area);
-        t->f = NULL, t->area = NULL;
+    t->known = malloc((size_t)n_theta * (size_t)n_phi);
+    if (!t->f || !t->area || !t->known) {
+        free(t->f), free(t->area), free(t->known);
+        t->f = NULL, t->area = NULL, t->known = NULL;
         snprintf(err, errn, "BRDF table: out of memory for %d x %d incidences of %d^2 cells", n_theta, n_phi, res);
         return -1;
     }
     t->n_theta = n_theta, t->n_phi = n_phi, t->res = res, t->channels = channels;
     memcpy(t->theta, theta, (size_t)n_theta * sizeof *theta);
+    memset(t->known, 1, (size_t)n_theta * (size_t)n_phi);
     for (int j = 0; j < res; j++)
         for (int i = 0; i < res; i++) t->area[(size_t)j * res + i] = cell_area(res, i, j);
     return 0;
@@ -66,7 +68,7 @@ int brdf_table_init(brdf_table *t, int n_theta, const double *theta, int n_phi, 
 
 void brdf_table_free(brdf_table *t)
 {
-    free(t->f), free(t->area);
+    free(t->f), free(t->area), free(t->known);
     memset(t, 0, sizeof *t);
 }
 
@@ -140,15 +142,28 @@ void brdf_table_eval(const brdf_table *t, ggx_vec3 wi, ggx_vec3 wo, double f[3])
     double wc = p - floor(p);
     const int rows[2] = {r0, r1}, cols[2] = {c0, c1};
     const double wrow[2] = {1 - wr, wr}, wcol[2] = {1 - wc, wc};
+    double wsum = 0;
     for (int a = 0; a < 2; a++)
-        for (int b = 0; b < 2; b++) {
-            double w = wrow[a] * wcol[b];
-            if (w == 0) continue;
-            int k = rows[a] * t->n_phi + cols[b];
+        for (int b = 0; b < 2; b++) wsum += t->known[rows[a] * t->n_phi + cols[b]] ? wrow[a] * wcol[b] : 0;
+    int near = -1;
+    if (!(wsum > 0)) { /* none of the four known: the nearest known incidence alone */
+        double best = -2;
+        for (int k = 0; k < brdf_table_count(t); k++) {
             ggx_vec3 wk = brdf_table_incidence(t, k);
-            double x = wo.x + wi.x - wk.x, y = wo.y + wi.y - wk.y;
-            for (int ch = 0; ch < t->channels; ch++) f[ch] += w * lobe_at(t, brdf_table_lobe(t, k, ch), x, y);
+            double c = wk.x * wi.x + wk.y * wi.y + wk.z * wi.z;
+            if (t->known[k] && c > best) best = c, near = k;
         }
+        if (near < 0) return;
+    }
+    for (int q = 0; q < 4; q++) {
+        int k = near >= 0 ? near : rows[q / 2] * t->n_phi + cols[q % 2];
+        double w = near >= 0 ? 1 : wrow[q / 2] * wcol[q % 2] / wsum;
+        if (w == 0 || !t->known[k]) continue;
+        ggx_vec3 wk = brdf_table_incidence(t, k);
+        double x = wo.x + wi.x - wk.x, y = wo.y + wi.y - wk.y;
+        for (int ch = 0; ch < t->channels; ch++) f[ch] += w * lobe_at(t, brdf_table_lobe(t, k, ch), x, y);
+        if (near >= 0) break;
+    }
     if (t->channels == 1) f[1] = f[2] = f[0];
 }
 
@@ -179,6 +194,7 @@ void brdf_table_fill(brdf_table *t, brdf_table_fn f, const void *ctx, int ss)
 
 double brdf_table_albedo(const brdf_table *t, int k, int ch)
 {
+    if (!t->known[k]) return NAN;
     const float *f = brdf_table_lobe(t, k, ch);
     double s = 0;
     for (int c = 0; c < t->res * t->res; c++) s += f[c] * t->area[c];
@@ -187,7 +203,7 @@ double brdf_table_albedo(const brdf_table *t, int k, int ch)
 
 double brdf_table_l2(const brdf_table *a, int ca, const brdf_table *b, int cb, int k)
 {
-    if (a->res != b->res || brdf_table_count(a) != brdf_table_count(b)) return NAN;
+    if (a->res != b->res || brdf_table_count(a) != brdf_table_count(b) || !a->known[k] || !b->known[k]) return NAN;
     const float *fa = brdf_table_lobe(a, k, ca), *fb = brdf_table_lobe(b, k, cb);
     double d = 0, n = 0;
     for (int c = 0; c < a->res * a->res; c++) {

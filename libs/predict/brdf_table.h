@@ -17,6 +17,7 @@ typedef struct brdf_table {
     double theta[BRDF_TABLE_MAX_THETA]; /* the incidences' polar angles (radians, increasing, in [0, pi / 2)) */
     float *f;                           /* n_theta n_phi incidences x channels x res^2 cells, row y of wo_xy first */
     double *area;                       /* res^2: each cell's projected solid angle inside the disk (0 outside) */
+    unsigned char *known;               /* per incidence: 1 (the start) where its values are known, 0 where not */
 } brdf_table;
 
 /* Incidence k = it n_phi + ip has polar angle theta[it] and azimuth 2 pi ip / n_phi. n_theta in [1, 32], n_phi in
@@ -36,7 +37,8 @@ int brdf_table_cell(const brdf_table *t, const double wo[3]);
 ggx_vec3 brdf_table_cell_dir(const brdf_table *t, int cell);
 /* f(wi, wo) per channel (the rest of f[3] copies channel 0 when channels is 1), 0 where either is below the surface.
  * Between the incidences: bilinear in (theta_i, phi_i) over the four nearest (the first or last row beyond the
- * grid's polar angles), each lobe read at wo_xy + wi_xy - wi_k,xy, bilinearly between cell centres: a lobe moves with
+ * grid's polar angles; the weights of those not known given to the known ones; where none of the four is known, the
+ * nearest known incidence alone; 0 where none is known), each lobe read at wo_xy + wi_xy - wi_k,xy, bilinearly between cell centres: a lobe moves with
  * its incidence as the specular direction does (exact for the Kirchhoff form's shift, within the interpolation for
  * geometric lobes), where blending at a fixed wo would split it in two. */
 void brdf_table_eval(const brdf_table *t, ggx_vec3 wi, ggx_vec3 wo, double f[3]);
@@ -48,11 +50,12 @@ typedef void (*brdf_table_fn)(const void *ctx, ggx_vec3 wi, ggx_vec3 wo, double 
 void brdf_table_fill(brdf_table *t, brdf_table_fn f, const void *ctx, int ss);
 /* The same for incidence k alone. */
 void brdf_table_fill_incidence(brdf_table *t, int k, brdf_table_fn f, const void *ctx, int ss);
-/* Incidence k's directional albedo in channel ch: the sum over the cells of f times their projected solid angle. */
+/* Incidence k's directional albedo in channel ch: the sum over the cells of f times their projected solid angle (NaN
+ * where it is not known). */
 double brdf_table_albedo(const brdf_table *t, int k, int ch);
 /* The relative L2 distance over the outgoing directions of incidence k between a's channel ca and b's channel cb
  * (tables of one grid): ||a - b|| / ||b||, the norms weighted by the cells' projected solid angles; NaN where b is 0
- * everywhere or the grids differ. */
+ * everywhere, the grids differ or either incidence is not known. */
 double brdf_table_l2(const brdf_table *a, int ca, const brdf_table *b, int cb, int k);
 
 #endif

@@ -25,7 +25,13 @@ static int table_bin(const void *ctx, const double wo[3]) { return brdf_table_ce
 static int trace_incidence(const predict_spec *s, ms_tracer *tr, int k, predict_result *r, char *err, size_t errn)
 {
     ggx_vec3 w = brdf_table_incidence(&r->traced, k);
-    double wi[3] = {w.x, w.y, w.z};
+    double wi[3] = {w.x, w.y, w.z}, win[4];
+    char why[300];
+    if (ms_patch_window(tr, wi, 1, win, why, sizeof why) != 0) { /* too grazing for the patch's band: not known */
+        r->traced.known[k] = r->all.known[k] = 0;
+        r->untraced++;
+        return 0;
+    }
     ms_binning b = {r->traced.res * r->traced.res, table_bin, &r->traced};
     ms_brdf br;
     if (ms_patch_brdf_binned(tr, wi, NULL, s->rays, &b, s->bounces, s->threads, &br, err, errn) != 0) return -1;
@@ -130,6 +136,7 @@ int predict_run(const predict_spec *s, predict_result *r, char *err, size_t errn
             size_t cells = (size_t)s->res * (size_t)s->res;
             memcpy(brdf_table_lobe(&r->traced, k, 0), brdf_table_lobe(&r->traced, 0, 0), cells * sizeof(float));
             memcpy(brdf_table_lobe(&r->all, k, 0), brdf_table_lobe(&r->all, 0, 0), cells * sizeof(float));
+            r->traced.known[k] = r->traced.known[0], r->all.known[k] = r->all.known[0];
             if (s->wave)
                 for (int c = 0; c < 3; c++)
                     memcpy(brdf_table_lobe(&r->wave, k, c), brdf_table_lobe(&r->wave, 0, c), cells * sizeof(float));
@@ -144,16 +151,26 @@ int predict_run(const predict_spec *s, predict_result *r, char *err, size_t errn
     return fail ? -1 : 0;
 }
 
-double predict_row_albedo(const brdf_table *t, int it, int ch)
+/* the mean of the finite values (NaN where there are none) */
+static double mean_finite(const double *v, int n)
 {
     double s = 0;
-    for (int j = 0; j < t->n_phi; j++) s += brdf_table_albedo(t, it * t->n_phi + j, ch);
-    return s / t->n_phi;
+    int k = 0;
+    for (int i = 0; i < n; i++)
+        if (isfinite(v[i])) s += v[i], k++;
+    return k ? s / k : NAN;
+}
+
+double predict_row_albedo(const brdf_table *t, int it, int ch)
+{
+    double v[360];
+    for (int j = 0; j < t->n_phi; j++) v[j] = brdf_table_albedo(t, it * t->n_phi + j, ch);
+    return mean_finite(v, t->n_phi);
 }
 
 double predict_row_l2(const brdf_table *a, int ca, const brdf_table *b, int cb, int it)
 {
-    double s = 0;
-    for (int j = 0; j < a->n_phi; j++) s += brdf_table_l2(a, ca, b, cb, it * a->n_phi + j);
-    return s / a->n_phi;
+    double v[360];
+    for (int j = 0; j < a->n_phi; j++) v[j] = brdf_table_l2(a, ca, b, cb, it * a->n_phi + j);
+    return mean_finite(v, a->n_phi);
 }

@@ -39,6 +39,8 @@ typedef struct predict_result {
     long rays, left, lost, capped; /* summed over the incidences: traced, left the patch's side, fell through a
                                     * missing region, still bouncing after spec->bounces */
     double window[4];              /* the normal incidence's window of ray origins, in grid spacings */
+    int untraced;                  /* incidences too grazing for the patch (ms_patch_window finds no window for
+                                    * the band of its heights): not known in traced and all */
     double missing;                /* the share of missing points */
     double sigma_h;                /* the RMS height after levelling, micrometres */
     double aliased;                /* the wave optics' largest aliased share over its setups */
@@ -52,8 +54,8 @@ typedef struct predict_result {
 int predict_run(const predict_spec *spec, predict_result *r, char *err, size_t errn);
 void predict_free(predict_result *r);
 
-/* The rows of a sheet: for polar angle row it, channel ch, the mean over its azimuths of a table's albedo, or of
- * the relative L2 of a (channel ca) against b (channel cb). */
+/* The rows of a sheet: for polar angle row it, channel ch, the mean over its known azimuths of a table's albedo, or
+ * of the relative L2 of a (channel ca) against b (channel cb); NaN where none is known. */
 double predict_row_albedo(const brdf_table *t, int it, int ch);
 double predict_row_l2(const brdf_table *a, int ca, const brdf_table *b, int cb, int it);
 

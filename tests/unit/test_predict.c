@@ -117,6 +117,19 @@ static void interpolation(void **state)
                 CHECK(g[1] == g[0] && g[2] == g[0], "one channel copied");
             }
         }
+        if (i == 0) {
+            /* an incidence not known: its albedo and distances NaN; read at its own direction (where it is the only
+             * one of its four) from the nearest known one, never 0 */
+            int k = 2 * 12 + 5;
+            t.known[k] = 0;
+            ggx_vec3 wi = brdf_table_incidence(&t, k);
+            double g[3], mirror[3] = {-wi.x, -wi.y, wi.z};
+            ggx_vec3 wo = brdf_table_cell_dir(&t, brdf_table_cell(&t, mirror));
+            brdf_table_eval(&t, wi, wo, g);
+            CHECK(isnan(brdf_table_albedo(&t, k, 0)) && isnan(brdf_table_l2(&t, 0, &t, 0, k)), "unknown values");
+            CHECK(g[0] > 0, "an unknown incidence read as %g", g[0]);
+            t.known[k] = 1;
+        }
         double e = table_error(&t, &shapes[i], 1), e0 = table_error(&t, &shapes[i], 0);
         printf("shape %d: shifted lobes' mean relative error %.4f, the nearest incidence at a fixed wo %.4f\n", i, e,
                e0);

@@ -48,6 +48,7 @@ typedef struct options {
     int bounces;       /* ggx microsurface measure: the most reflections of a traced ray; 0 when not given */
     int risers;        /* ggx microsurface: a sawtooth's period; 0 when not given */
     int tilted;        /* ggx microsurface measure --tilted */
+    int no_wave;       /* ggx predict --no-wave */
     double wavelength; /* ggx microsurface wave --wavelength (micrometres); 0 when not given */
     int rgb;           /* ggx microsurface wave --rgb */
     /* ggx render */

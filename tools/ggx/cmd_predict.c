@@ -18,7 +18,7 @@
 void predict_help(void)
 {
     printf("usage: ggx predict --heightfield FILE [--spacing D] [--z-scale Z] [-n RAYS] [--bounces K]\n"
-           "                   [--size PX] [--exposure STOPS] [--threads N] [--out DIR]\n\n"
+           "                   [--no-wave] [--size PX] [--exposure STOPS] [--threads N] [--out DIR]\n\n"
            "What a measured surface's heights predict for its appearance, beside the GGX ellipsoid fitted to\n"
            "them (ggx fit): the BRDF with F = 1 traced over the heights as a patch (geometric optics, every\n"
            "bounce followed; ggx microsurface measure) and by scalar wave optics (the Kirchhoff BRDF at 630,\n"
@@ -36,7 +36,8 @@ void predict_help(void)
            "  --bounces K          the most reflections of a traced ray (default 100)\n"
            "  --size PX            the spheres' size in pixels (default 256)\n"
            "  --exposure STOPS     the spheres' exposure (default: the fitted model's sphere at 1 in its\n"
-           "                       99.5th percentile)\n");
+           "                       99.5th percentile)\n"
+           "  --no-wave            no wave optics (its share of the time: most of it)\n");
 }
 
 /* the incidences: polar angles (degrees) times azimuths; the sheet's slices at the first four */
@@ -123,16 +124,27 @@ static void fill_sheet(prediction *p)
              r->sigma_h, 100 * r->missing);
     double ax, ay, tx, ty, tz;
     ggx_shape_ellipsoid_params(&p->fit, &ax, &ay, &tx, &ty, &tz);
-    snprintf(d->lines[1], sizeof d->lines[1], "fitted ellipsoid: --alpha %.4g,%.4g --skew %.4g,%.4g --rotate %.4g", ax,
-             ay, tx / DEG + 0.0, ty / DEG + 0.0, tz / DEG + 0.0);
+    char tails[96] = "";
     if (isfinite(p->info.tails.nu))
-        snprintf(d->lines[2], sizeof d->lines[2], "slope tails: Student t of nu = %.3g +- %.2g (GGX: 2)",
-                 p->info.tails.nu, p->info.tails.nu_std_error);
-    snprintf(d->lines[3], sizeof d->lines[3],
-             "traced: %ld rays (%.2g %% left the patch, %.2g %% through holes); wave: %s", r->rays,
-             100.0 * (double)r->left / (double)(r->rays ? r->rays : 1),
-             100.0 * (double)r->lost / (double)(r->rays ? r->rays : 1),
-             p->spec.wave ? "630, 532, 465 nm" : "not computed (KISS FFT not built)");
+        snprintf(tails, sizeof tails, "; slope tails: Student t of nu %.3g +- %.2g (GGX: 2)", p->info.tails.nu,
+                 p->info.tails.nu_std_error);
+    snprintf(d->lines[1], sizeof d->lines[1], "fitted: --alpha %.4g,%.4g --skew %.4g,%.4g --rotate %.4g%s", ax, ay,
+             tx / DEG + 0.0, ty / DEG + 0.0, tz / DEG + 0.0, tails);
+    char untraced[96] = "";
+    if (r->untraced)
+        snprintf(untraced, sizeof untraced, "; %d incidences too grazing for the patch's band of heights", r->untraced);
+    snprintf(d->lines[2], sizeof d->lines[2],
+             "traced: %ld rays, every bounce followed (%.2g %% left the patch's side, %.2g %% fell through holes)%s",
+             r->rays, 100.0 * (double)r->left / (double)(r->rays ? r->rays : 1),
+             100.0 * (double)r->lost / (double)(r->rays ? r->rays : 1), untraced);
+    if (p->spec.wave)
+        snprintf(d->lines[3], sizeof d->lines[3],
+                 "wave optics: 630, 532, 465 nm on %zu x %zu heights (%.0f x %.0f um) upsampled %d x, %.1f %% aliased",
+                 r->wave_window[2], r->wave_window[3], (double)r->wave_window[2] * p->dx,
+                 (double)r->wave_window[3] * p->dx, r->upsample, 100 * r->aliased);
+    else
+        snprintf(d->lines[3], sizeof d->lines[3], "wave optics: not computed (%s)",
+                 p->o->no_wave ? "--no-wave" : "KISS FFT not built");
     d->slices = FIGURE_PREDICT_SLICES, d->slice_phi = 0;
     for (int c = 0; c < 3; c++) d->wavelength[c] = p->spec.wave ? ms_kirchhoff_rgb_um[c] : 0;
     ggx_fresnel one;
@@ -178,8 +190,8 @@ static void write_table(FILE *f, const prediction *p, int csv)
             if (k % N_PHI) continue;
             const figure_predict_data *d = &p->sheet;
             fprintf(f, "| %.0f | %.4f (%.4f) | %.4f | %.4f | %.4f | %.4f | %.4f |\n", THETAS[it], d->albedo_traced[it],
-                    predict_row_albedo(&r->all, it, 0), d->albedo_wave[it], d->albedo_model[it],
-                    d->l2_model_traced[it], d->l2_model_wave[it], d->l2_traced_wave[it]);
+                    predict_row_albedo(&r->all, it, 0), d->albedo_wave[it], d->albedo_model[it], d->l2_model_traced[it],
+                    d->l2_model_wave[it], d->l2_traced_wave[it]);
             continue;
         }
         double w[3] = {NAN, NAN, NAN}, lw = NAN, ltw = NAN;
@@ -208,9 +220,9 @@ static void write_json(FILE *f, const prediction *p)
             p->info.sigma[2], json_number(p->info.tails.nu), json_number(p->info.tails.nu_std_error));
     fprintf(f,
             "  \"traced\": {\"rays\": %ld, \"left\": %ld, \"lost\": %ld, \"capped\": %ld, \"bounces\": %d, "
-            "\"window\": [%.9g, %.9g, %.9g, %.9g]},\n",
+            "\"window\": [%.9g, %.9g, %.9g, %.9g], \"untraced_incidences\": %d},\n",
             r->rays, r->left, r->lost, r->capped, p->spec.bounces, r->window[0], r->window[1], r->window[2],
-            r->window[3]);
+            r->window[3], r->untraced);
     if (p->spec.wave)
         fprintf(f, "  \"wave\": {\"wavelengths_um\": [%.6g, %.6g, %.6g], \"aliased_share\": %.9g, \"upsample\": %d},\n",
                 ms_kirchhoff_rgb_um[0], ms_kirchhoff_rgb_um[1], ms_kirchhoff_rgb_um[2], r->aliased, r->upsample);
@@ -223,13 +235,14 @@ static void write_json(FILE *f, const prediction *p)
             lw = brdf_table_l2(&r->model, 0, &r->wave, 1, k), ltw = brdf_table_l2(&r->traced, 0, &r->wave, 1, k);
         }
         fprintf(f,
-                "%s\n    {\"theta_i\": %.6g, \"phi_i\": %.6g, \"albedo_traced\": %.9g, \"albedo_traced_all\": %.9g, "
-                "\"albedo_wave\": [%s, %s, %s], \"albedo_model\": %.9g, \"l2_model_traced\": %.9g, "
+                "%s\n    {\"theta_i\": %.6g, \"phi_i\": %.6g, \"albedo_traced\": %s, \"albedo_traced_all\": %s, "
+                "\"albedo_wave\": [%s, %s, %s], \"albedo_model\": %s, \"l2_model_traced\": %s, "
                 "\"l2_model_wave\": %s, \"l2_traced_wave\": %s}",
-                k ? "," : "", THETAS[k / N_PHI], 360.0 * (k % N_PHI) / N_PHI, brdf_table_albedo(&r->traced, k, 0),
-                brdf_table_albedo(&r->all, k, 0), json_number(w[0]), json_number(w[1]), json_number(w[2]),
-                brdf_table_albedo(&r->model, k, 0), brdf_table_l2(&r->model, 0, &r->traced, 0, k), json_number(lw),
-                json_number(ltw));
+                k ? "," : "", THETAS[k / N_PHI], 360.0 * (k % N_PHI) / N_PHI,
+                json_number(brdf_table_albedo(&r->traced, k, 0)), json_number(brdf_table_albedo(&r->all, k, 0)),
+                json_number(w[0]), json_number(w[1]), json_number(w[2]),
+                json_number(brdf_table_albedo(&r->model, k, 0)),
+                json_number(brdf_table_l2(&r->model, 0, &r->traced, 0, k)), json_number(lw), json_number(ltw));
     }
     fprintf(f, "\n  ]\n}\n");
 }
@@ -295,7 +308,7 @@ int cmd_predict(options *o, const ggx_shape *s)
     for (int i = 0; i < N_THETA; i++) sp->theta[i] = THETAS[i] * DEG;
     sp->rays = o->n > 0 ? o->n : 1000000, sp->bounces = o->bounces > 0 ? o->bounces : 100;
     sp->threads = o->threads > 0 ? o->threads : 2;
-    sp->wave = ms_kirchhoff_built();
+    sp->wave = !o->no_wave && ms_kirchhoff_built();
     int bar = progress_wanted(o->progress);
     sp->progress = show, sp->progress_ctx = &bar;
     char err[512];

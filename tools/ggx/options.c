@@ -284,6 +284,7 @@ static const option_def OPTIONS[] = {
     WHOLE("risers", risers, 2, 8192, "a sawtooth's period"),
     WHOLE("bounces", bounces, 1, 10000, "a number of bounces"),
     FLAG("tilted", tilted, 1),
+    FLAG("no-wave", no_wave, 1),
     SET("wavelength", set_wavelength),
     FLAG("rgb", rgb, 1),
 };
