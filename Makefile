@@ -61,6 +61,8 @@ bench: build
 	@$(BUILD)/ggx_bench_fit
 	@$(BUILD)/ggx_bench_filter
 	@$(BUILD)/ggx_bench_microsurface
+	@if [ -x $(BUILD)/ggx_bench_kirchhoff ]; then $(BUILD)/ggx_bench_kirchhoff; fi
+	@$(BUILD)/ggx_bench_predict
 	@if [ -x $(BUILD)/ggx ]; then for m in bumps checker scratches sawtooth; do \
 	  $(BUILD)/ggx render --normal-map tests/data/normal_maps/$$m.png --alpha 0.1 --out $(BUILD)/normal-map-$$m.png; \
 	  echo; done; fi
@@ -137,6 +139,9 @@ valgrind: deps-dev build
 	@cd $(BUILD)/tests && \
 	  GGX_WRAP="valgrind -q --error-exitcode=99 --leak-check=full --errors-for-leak-kinds=definite,indirect --suppressions=$(CURDIR)/tests/support/valgrind.supp" \
 	  sh ../../tests/cli/microsurface_cli_test.sh $(CURDIR)/$(BUILD)/ggx
+	@cd $(BUILD)/tests && \
+	  GGX_WRAP="valgrind -q --error-exitcode=99 --leak-check=full --errors-for-leak-kinds=definite,indirect --suppressions=$(CURDIR)/tests/support/valgrind.supp" \
+	  sh ../../tests/cli/predict_cli_test.sh $(CURDIR)/$(BUILD)/ggx
 
 # The C style: .clang-format (120 columns). make format rewrites the sources, make format-check (in CI) fails on
 # any that differ.
