@@ -118,8 +118,10 @@ else
     bad "8-bit map: $(cat m8.err)"
 fi
 
-# the README's fitting commands, run as written (the ```sh block of "Fitting a measured surface")
-sed -n '/^## Fitting a measured surface/,/^## /p' "$ROOT/README.md" | sed -n '/^```sh/,/^```/p' | grep '^ggx ' > cmds.txt
+# the README's fitting commands, run as written (the first ```sh block of "Fitting a measured surface"; its ggx
+# predict line is predict_cli_test.sh's)
+sed -n '/^## Fitting a measured surface/,/^## /p' "$ROOT/README.md" | awk '/^```sh/ { on = 1; next } /^```/ { if (on) exit } on' |
+    grep '^ggx ' > cmds.txt
 [ "$(wc -l < cmds.txt)" -ge 3 ] && ok || bad "README fit commands not found"
 while IFS= read -r line; do
     cmd=$(printf '%s\n' "$line" | sed 's/  *#.*//; s/^ggx /"$GGX" /')
