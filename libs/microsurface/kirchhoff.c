@@ -32,6 +32,18 @@ static int fail(char *err, size_t errn, const char *fmt, ...)
     return -1;
 }
 
+/* fail() for the functions that return a pointer */
+static double *fail_null(char *err, size_t errn, const char *fmt, ...)
+{
+    if (err && errn) {
+        va_list ap;
+        va_start(ap, fmt);
+        vsnprintf(err, errn, fmt, ap);
+        va_end(ap);
+    }
+    return NULL;
+}
+
 /* The share a facet of unit normal n carries from wi into its mirror direction (written to wo): its projected area
  * towards wi over its projected area on the plane, over wi.z; 0 where n faces away from wi or wo is below the
  * plane. The one weight of both the wave binning (n from the FFT cell's slope) and the geometric one. */
@@ -219,6 +231,67 @@ void ms_kirchhoff_free(ms_kirchhoff *k)
     k->level_woz = NULL, k->power = NULL, k->hp = k->wx = k->wy = NULL;
 }
 
+/* The heights of s: the valid points levelled (unless keep_tilt), checked against the wavenumber, the missing ones
+ * filled; into k their RMS and the missing share. NULL with err on bad heights or no memory. */
+static double *prepared_heights(const ms_kirchhoff_spec *s, ms_kirchhoff *k, char *err, size_t errn)
+{
+    size_t nx = s->nx, ny = s->ny;
+    size_t n = nx * ny, nvalid = 0;
+    double *h = malloc(n * sizeof *h);
+    unsigned char *valid = malloc(n);
+    if (!h || !valid) {
+        free(h), free(valid);
+        return fail_null(err, errn, "kirchhoff: no memory for %zu heights", n);
+    }
+    for (size_t i = 0; i < n; i++) {
+        valid[i] = isfinite(s->h[i]) ? 1 : 0;
+        h[i] = s->h[i];
+        nvalid += valid[i];
+    }
+    if (nvalid == 0) {
+        free(h), free(valid);
+        return fail_null(err, errn, "kirchhoff: all %zu points are missing", n);
+    }
+    size_t rows = 0, cols = 0; /* a 2 x 2 block of valid points must exist somewhere: rows and columns with two */
+    for (size_t y = 0; y < ny; y++) {
+        size_t c = 0;
+        for (size_t x = 0; x < nx; x++) c += valid[y * nx + x];
+        rows += c >= 2;
+    }
+    for (size_t x = 0; x < nx; x++) {
+        size_t c = 0;
+        for (size_t y = 0; y < ny; y++) c += valid[y * nx + x];
+        cols += c >= 2;
+    }
+    if (nvalid < 4 || rows < 2 || cols < 2) {
+        free(h), free(valid);
+        return fail_null(err, errn, "kirchhoff: %zu valid points: fewer than 2 x 2", nvalid);
+    }
+    ms_level(h, nx, ny, s->keep_tilt, NULL);
+    double ss = 0.0, hmax = 0.0;
+    for (size_t y = 0; y < ny; y++)
+        for (size_t x = 0; x < nx; x++) {
+            size_t i = y * nx + x;
+            if (!valid[i]) continue;
+            ss += h[i] * h[i], hmax = fmax(hmax, fabs(h[i]));
+        }
+    double wave_k = 2.0 * PI / s->wavelength;
+    if (!isfinite(hmax) || !isfinite(ss) || !(2.0 * wave_k * hmax <= 1e12)) {
+        free(h), free(valid);
+        return fail_null(err, errn,
+                         "kirchhoff: heights up to %g against wavelength %g: phases beyond 1e12 rad (an absurd scale)",
+                         hmax, s->wavelength);
+    }
+    k->sigma_h = sqrt(ss / (double)nvalid);
+    k->missing = (double)(n - nvalid) / (double)n;
+    if (nvalid < n && fill_missing(h, valid, nx, ny) != 0) {
+        free(h), free(valid);
+        return fail_null(err, errn, "kirchhoff: no memory to fill the missing points");
+    }
+    free(valid);
+    return h;
+}
+
 int ms_kirchhoff_setup(const ms_kirchhoff_spec *s, ms_kirchhoff *k, char *err, size_t errn)
 {
     memset(k, 0, sizeof *k);
@@ -242,60 +315,8 @@ int ms_kirchhoff_setup(const ms_kirchhoff_spec *s, ms_kirchhoff *k, char *err, s
     if (!(s->alias >= 0.0 && s->alias < 1.0)) return fail(err, errn, "kirchhoff: alias %g: in [0, 1)", s->alias);
     size_t max_points = s->max_points ? s->max_points : (size_t)1 << 23;
     int threads = s->threads > 0 ? (s->threads > 64 ? 64 : s->threads) : 1;
-    /* the heights: the valid points, levelled, their scale against the wavenumber */
-    size_t n = nx * ny, nvalid = 0;
-    double *h = malloc(n * sizeof *h);
-    unsigned char *valid = malloc(n);
-    if (!h || !valid) {
-        free(h), free(valid);
-        return fail(err, errn, "kirchhoff: no memory for %zu heights", n);
-    }
-    for (size_t i = 0; i < n; i++) {
-        valid[i] = isfinite(s->h[i]) ? 1 : 0;
-        h[i] = s->h[i];
-        nvalid += valid[i];
-    }
-    if (nvalid == 0) {
-        free(h), free(valid);
-        return fail(err, errn, "kirchhoff: all %zu points are missing", n);
-    }
-    size_t rows = 0, cols = 0; /* a 2 x 2 block of valid points must exist somewhere: rows and columns with two */
-    for (size_t y = 0; y < ny; y++) {
-        size_t c = 0;
-        for (size_t x = 0; x < nx; x++) c += valid[y * nx + x];
-        rows += c >= 2;
-    }
-    for (size_t x = 0; x < nx; x++) {
-        size_t c = 0;
-        for (size_t y = 0; y < ny; y++) c += valid[y * nx + x];
-        cols += c >= 2;
-    }
-    if (nvalid < 4 || rows < 2 || cols < 2) {
-        free(h), free(valid);
-        return fail(err, errn, "kirchhoff: %zu valid points: fewer than 2 x 2", nvalid);
-    }
-    ms_level(h, nx, ny, s->keep_tilt, NULL);
-    double ss = 0.0, hmax = 0.0;
-    for (size_t y = 0; y < ny; y++)
-        for (size_t x = 0; x < nx; x++) {
-            size_t i = y * nx + x;
-            if (!valid[i]) continue;
-            ss += h[i] * h[i], hmax = fmax(hmax, fabs(h[i]));
-        }
-    double wave_k = 2.0 * PI / s->wavelength;
-    if (!isfinite(hmax) || !isfinite(ss) || !(2.0 * wave_k * hmax <= 1e12)) {
-        free(h), free(valid);
-        return fail(err, errn,
-                    "kirchhoff: heights up to %g against wavelength %g: phases beyond 1e12 rad (an absurd scale)", hmax,
-                    s->wavelength);
-    }
-    k->sigma_h = sqrt(ss / (double)nvalid);
-    k->missing = (double)(n - nvalid) / (double)n;
-    if (nvalid < n && fill_missing(h, valid, nx, ny) != 0) {
-        free(h), free(valid);
-        return fail(err, errn, "kirchhoff: no memory to fill the missing points");
-    }
-    free(valid);
+    double *h = prepared_heights(s, k, err, errn), wave_k = 2.0 * PI / s->wavelength;
+    if (!h) return -1;
     /* the levels of wo.z: 1: the specular one; L: (l + 1/2) / L with the nearest to wi.z moved onto it */
     for (int j = 0; j < 3; j++) k->wi[j] = s->wi[j] / wl;
     k->wavelength = s->wavelength, k->levels = levels, k->threads = threads;
@@ -321,7 +342,7 @@ int ms_kirchhoff_setup(const ms_kirchhoff_spec *s, ms_kirchhoff *k, char *err, s
     for (size_t y = 0; y < ny; y++) wy0[y] = tukey(y, ny, taper);
     phase_needs(h, nx, ny, wx0, wy0, kv_max, need);
     free(wx0), free(wy0);
-    if (fast_size(nx) * fast_size(ny) * (size_t)levels > max_points) {
+    if (!s->crop && fast_size(nx) * fast_size(ny) * (size_t)levels > max_points) {
         free(h), ms_kirchhoff_free(k);
         return fail(err, errn, "kirchhoff: %zu x %zu points at %d levels: beyond %zu FFT points (too large for memory)",
                     nx, ny, levels, max_points);

@@ -314,12 +314,43 @@ static void levelling(void **state)
     CHECK(ms_level(none, 2, 2, 0, NULL) == 0 && isnan(none[0]), "no finite point");
 }
 
+/* The grid's choice on a 200 x 150 patch whose steepest steps need upsampling: alias 0.1 asks for no more than the
+ * default's 1e-3 (a smaller or equal U); within a point budget, crop keeps the chosen U on the largest centred
+ * window that fits (reported in crop), where without crop U is lowered on the whole patch. */
+static void grid_choice(void **state)
+{
+    (void)state;
+    enum { NX = 200, NY = 150 };
+    static double h[NX * NY];
+    for (int y = 0; y < NY; y++)
+        for (int x = 0; x < NX; x++) h[y * NX + x] = 0.8 * sin(0.37 * x) * cos(0.29 * y) + 0.3 * sin(0.11 * x * y / NX);
+    ms_kirchhoff_spec sp = {.h = h, .nx = NX, .ny = NY, .dx = 1.0, .wavelength = 0.5, .wi = {0, 0, 1}, .threads = 2};
+    ms_kirchhoff a, b, c, d;
+    char err[300];
+    CHECK(ms_kirchhoff_setup(&sp, &a, err, sizeof err) == 0, "%s", err);
+    sp.alias = 0.1;
+    CHECK(ms_kirchhoff_setup(&sp, &b, err, sizeof err) == 0, "%s", err);
+    CHECK(b.upsample <= a.upsample && a.upsample >= 3 && b.aliased <= 0.1 + 1e-12 && a.aliased <= 1e-3 + 1e-12,
+          "alias: U %d (%.4f aliased) against %d (%.4f)", b.upsample, b.aliased, a.upsample, a.aliased);
+    CHECK(a.crop[0] == 0 && a.crop[1] == 0 && a.crop[2] == NX && a.crop[3] == NY, "no crop needed, one made");
+    sp.alias = 0, sp.max_points = (size_t)1 << 16, sp.crop = 1;
+    CHECK(ms_kirchhoff_setup(&sp, &c, err, sizeof err) == 0, "%s", err);
+    CHECK(c.upsample == a.upsample && c.crop[2] < NX && c.crop[3] < NY && c.fft_nx * c.fft_ny <= sp.max_points &&
+              c.crop[0] == (NX - c.crop[2]) / 2 && c.nx == (c.crop[2] - 1) * (size_t)c.upsample + 1,
+          "crop: U %d, window %zu x %zu at %zu, %zu", c.upsample, c.crop[2], c.crop[3], c.crop[0], c.crop[1]);
+    sp.crop = 0;
+    CHECK(ms_kirchhoff_setup(&sp, &d, err, sizeof err) == 0, "%s", err);
+    CHECK(d.upsample < a.upsample && d.crop[2] == NX && d.fft_nx * d.fft_ny <= sp.max_points, "no crop: U %d",
+          d.upsample);
+    ms_kirchhoff_free(&a), ms_kirchhoff_free(&b), ms_kirchhoff_free(&c), ms_kirchhoff_free(&d);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(flat_mirror),     cmocka_unit_test(reciprocity),       cmocka_unit_test(debye_waller),
         cmocka_unit_test(geometric_limit), cmocka_unit_test(fft_against_exact), cmocka_unit_test(bad_input),
-        cmocka_unit_test(levelling),
+        cmocka_unit_test(levelling),       cmocka_unit_test(grid_choice),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }
