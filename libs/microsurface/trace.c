@@ -38,6 +38,23 @@ static const char *embree_error_words(enum RTCError e)
     }
 }
 
+/* The grid geometry g committed into t's scene and the scene built: t, or NULL (t freed) with Embree's error. */
+static ms_tracer *committed(ms_tracer *t, RTCGeometry g, const char *what, size_t nx, size_t ny, char *err, size_t errn)
+{
+    rtcCommitGeometry(g);
+    rtcAttachGeometry(t->scene, g);
+    rtcReleaseGeometry(g);
+    rtcCommitScene(t->scene);
+    enum RTCError e = rtcGetDeviceError(t->device);
+    if (e != RTC_ERROR_NONE) {
+        snprintf(err, errn, "%s: Embree could not build the surface of %zu x %zu heights (%s)", what, nx, ny,
+                 embree_error_words(e));
+        ms_tracer_free(t);
+        return NULL;
+    }
+    return t;
+}
+
 ms_tracer *ms_tracer_new(const double *h, size_t n, const double tilt[2], char *err, size_t errn)
 {
     if (tilt && !(isfinite(tilt[0]) && isfinite(tilt[1]) && fabs(tilt[0]) <= 100.0 && fabs(tilt[1]) <= 100.0)) {
@@ -98,18 +115,7 @@ ms_tracer *ms_tracer_new(const double *h, size_t n, const double tilt[2], char *
     t->rmin -= pad, t->rmax += pad;
     grid->startVertexID = 0, grid->stride = (unsigned)side;
     grid->width = (unsigned short)side, grid->height = (unsigned short)side;
-    rtcCommitGeometry(g);
-    rtcAttachGeometry(t->scene, g);
-    rtcReleaseGeometry(g);
-    rtcCommitScene(t->scene);
-    enum RTCError e = rtcGetDeviceError(t->device);
-    if (e != RTC_ERROR_NONE) {
-        snprintf(err, errn, "tracer: Embree could not build the surface of %zu x %zu heights (%s)", n, n,
-                 embree_error_words(e));
-        ms_tracer_free(t);
-        return NULL;
-    }
-    return t;
+    return committed(t, g, "tracer", n, n, err, errn);
 }
 
 void ms_tracer_free(ms_tracer *t)
@@ -332,18 +338,7 @@ ms_tracer *ms_patch_new(const double *h, size_t nx, size_t ny, char *err, size_t
         rtcSetGeometryUserData(g, t);
         rtcSetGeometryIntersectFilterFunction(g, patch_filter);
     }
-    rtcCommitGeometry(g);
-    rtcAttachGeometry(t->scene, g);
-    rtcReleaseGeometry(g);
-    rtcCommitScene(t->scene);
-    enum RTCError e = rtcGetDeviceError(t->device);
-    if (e != RTC_ERROR_NONE) {
-        snprintf(err, errn, "patch: Embree could not build the surface of %zu x %zu heights (%s)", nx, ny,
-                 embree_error_words(e));
-        ms_tracer_free(t);
-        return NULL;
-    }
-    return t;
+    return committed(t, g, "patch", nx, ny, err, errn);
 }
 
 int ms_tracer_patch(const ms_tracer *t, size_t *nx, size_t *ny, const double **h, size_t *missing, size_t *absent)
