@@ -50,8 +50,9 @@ static void one(const char *name, const double *h, size_t nx, size_t ny, double 
             return;
         }
         tt[wave] = now() - a;
-        if (wave) printf("%-34s %8.2f %10.2f %10.2f %10.2f %12.1f\n", name, t1 - t0, tt[0], tt[1] - tt[0],
-                         t1 - t0 + tt[1], (double)r.rays / tt[0] * 1e-6);
+        if (wave)
+            printf("%-34s %8.2f %10.2f %10.2f %10.2f %12.1f\n", name, t1 - t0, tt[0], tt[1] - tt[0], t1 - t0 + tt[1],
+                   (double)r.rays / tt[0] * 1e-6);
         predict_free(&r);
     }
 }
