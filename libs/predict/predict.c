@@ -35,10 +35,15 @@ static int trace_incidence(const predict_spec *s, ms_tracer *tr, int k, predict_
     ms_binning b = {r->traced.res * r->traced.res, table_bin, &r->traced};
     ms_brdf br;
     if (ms_patch_brdf_binned(tr, wi, NULL, s->rays, &b, s->bounces, s->threads, &br, err, errn) != 0) return -1;
+    /* the shares of the rays whose way is known: those that fell through a missing region or left the patch's side
+     * would have met surface the scan does not hold */
     float *single = brdf_table_lobe(&r->traced, k, 0), *all = brdf_table_lobe(&r->all, k, 0);
+    long known = br.rays - br.lost - br.left;
+    double scale = known > 0 ? (double)br.rays / (double)known : 0.0;
     for (int c = 0; c < b.bins; c++) {
         double a = r->traced.area[c];
-        single[c] = a > 0 ? (float)(br.single[c] / a) : 0.0f, all[c] = a > 0 ? (float)(br.all[c] / a) : 0.0f;
+        single[c] = a > 0 ? (float)(scale * br.single[c] / a) : 0.0f;
+        all[c] = a > 0 ? (float)(scale * br.all[c] / a) : 0.0f;
     }
     r->rays += br.rays, r->left += br.left, r->lost += br.lost, r->capped += br.capped;
     if (k == 0) memcpy(r->window, br.window, sizeof r->window);

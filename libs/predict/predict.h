@@ -32,7 +32,8 @@ typedef struct predict_spec {
 } predict_spec;
 
 typedef struct predict_result {
-    brdf_table traced; /* single scattering, traced (one channel) */
+    brdf_table traced; /* single scattering, traced (one channel): each cell's share of the rays whose way is known
+                        * (not fallen through a missing region, not left the patch's side) */
     brdf_table all;    /* every bounce, traced (one channel) */
     brdf_table wave;   /* wave optics, red, green, blue (three channels; no incidences where spec->wave is 0) */
     brdf_table model;  /* the model: its cell means (one channel) */

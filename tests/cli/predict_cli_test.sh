@@ -43,7 +43,7 @@ assert d["traced"]["lost"] == 0 and d["traced"]["left"] < 0.01 * d["traced"]["ra
 inc = d["incidences"]
 assert len(inc) == 20 and [i["theta_i"] for i in inc[::4]] == [0, 20, 40, 60, 75], inc
 for i in inc:
-    assert 0.96 < i["albedo_traced"] <= 1 and 0.98 < i["albedo_traced_all"] <= 1, i
+    assert 0.96 < i["albedo_traced"] <= 1 and abs(i["albedo_traced_all"] - 1) < 1e-4, i
     assert 0.1 < i["l2_model_traced"] < 0.3, i
     if d["wave"] is not None:
         assert all(0.97 < a <= 1 + 1e-3 for a in i["albedo_wave"]), i

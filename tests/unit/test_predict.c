@@ -303,6 +303,10 @@ static void rough(void **state)
     predict_result r;
     const double th[2] = {0, 40 * DEG};
     CHECK(run(h, N, N, 0.5, &fit, th, 6, &r, err, sizeof err) == 0, "%s", err);
+    /* the white furnace of the trace: every bounce of the rays whose way is known leaves (F = 1, none capped) */
+    for (int k = 0; k < brdf_table_count(&r.all); k++)
+        CHECK(r.capped == 0 && fabs(brdf_table_albedo(&r.all, k, 0) - 1) < 1e-5, "incidence %d: every bounce %.7f", k,
+              brdf_table_albedo(&r.all, k, 0));
     for (int it = 0; it < 2; it++) {
         double lm = predict_row_l2(&r.model, 0, &r.traced, 0, it), e = predict_row_albedo(&r.traced, it, 0);
         printf("rough field, theta_i %.0f: traced albedo %.4f, model %.4f; L2 model/traced %.3f", th[it] / DEG, e,
