@@ -1,4 +1,4 @@
-/* Benchmark of a prediction (libs/predict/predict.h) at ggx predict's defaults (5 x 4 incidences, 128^2 cells,
+/* Benchmark of a prediction (libs/predict/predict.h) at ggx predict's defaults (5 x 4 incidences, 127^2 cells,
  * 1,000,000 traced rays per incidence, the wave optics at three wavelengths on at most 2^22 FFT points): seconds of
  * the fit, the trace and the wave optics on the public rubber scan (860 x 634) and on a 1197 x 940 window of a
  * generated Gaussian field (alpha 0.2, correlation length 16, spacing 1 um: no public scan of that size is at hand),
@@ -36,7 +36,7 @@ static void one(const char *name, const double *h, size_t nx, size_t ny, double 
     double t1 = now();
     predict_spec sp = {0};
     const double th[5] = {0, 20, 40, 60, 75};
-    sp.h = h, sp.nx = nx, sp.ny = ny, sp.dx = dx, sp.model = &fit, sp.n_theta = 5, sp.n_phi = 4, sp.res = 128;
+    sp.h = h, sp.nx = nx, sp.ny = ny, sp.dx = dx, sp.model = &fit, sp.n_theta = 5, sp.n_phi = 4, sp.res = 127;
     for (int i = 0; i < 5; i++) sp.theta[i] = th[i] * 3.14159265358979323846 / 180;
     sp.rays = 1000000, sp.bounces = 100, sp.threads = 2;
     predict_result r;

@@ -2,6 +2,7 @@
 #include "predict.h"
 
 #include <math.h>
+#include <stdint.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -9,12 +10,38 @@
 #include "kirchhoff.h"
 #include "microsurface.h"
 
-/* The model's BRDF with F = 1. */
-static void model_f(const void *ctx, ggx_vec3 wi, ggx_vec3 wo, double f[3])
+/* Incidence k of the model (F = 1): each cell's share of ggx_sample_brdf's weights on a jittered 512 x 512 grid of
+ * (u1, u2), over the cell's projected solid angle: the cell's mean of f exactly in expectation, however narrow the
+ * lobe (a quadrature on points of the cell misses a lobe narrower than it). */
+static int model_incidence(const ggx_shape *m, int k, brdf_table *t, char *err, size_t errn)
 {
+    enum { G = 512 };
     ggx_fresnel one;
     ggx_fresnel_one(&one);
-    f[0] = ggx_brdf_eval(ctx, &one, wi, wo);
+    ggx_vec3 wi = brdf_table_incidence(t, k);
+    float *lobe = brdf_table_lobe(t, k, 0);
+    int cells = t->res * t->res;
+    double *sum = calloc((size_t)cells, sizeof *sum);
+    if (!sum) {
+        snprintf(err, errn, "predict: out of memory");
+        return -1;
+    }
+    uint64_t z = 0x9E3779B97F4A7C15ull * (uint64_t)(k + 1);
+    for (int i = 0; i < G; i++)
+        for (int j = 0; j < G; j++) {
+            /* splitmix64 for the jitter */
+            uint64_t a = (z += 0x9E3779B97F4A7C15ull);
+            a = (a ^ (a >> 30)) * 0xBF58476D1CE4E5B9ull, a = (a ^ (a >> 27)) * 0x94D049BB133111EBull, a ^= a >> 31;
+            double u1 = (i + (double)(a >> 40) * 0x1.0p-24) / G, u2 = (j + (double)(a & 0xFFFFFF) * 0x1.0p-24) / G;
+            ggx_sample smp = ggx_sample_brdf(m, &one, wi, u1, u2);
+            if (!(smp.pdf > 0) || !(smp.weight > 0)) continue;
+            double wo[3] = {smp.w.x, smp.w.y, smp.w.z};
+            int c = brdf_table_cell(t, wo);
+            if (c >= 0) sum[c] += smp.weight;
+        }
+    for (int c = 0; c < cells; c++) lobe[c] = t->area[c] > 0 ? (float)(sum[c] / ((double)G * G * t->area[c])) : 0.0f;
+    free(sum);
+    return 0;
 }
 
 /* The traced rays' outgoing directions into the tables' cells. */
@@ -132,7 +159,6 @@ int predict_run(const predict_spec *s, predict_result *r, char *err, size_t errn
         predict_free(r);
         return -1;
     }
-    brdf_table_fill(&r->model, model_f, s->model, 2);
     int count = brdf_table_count(&r->traced);
     /* normal incidence is one incidence at every azimuth: computed once, copied */
     for (int k = 0; k < count && !fail; k++) {
@@ -141,13 +167,24 @@ int predict_run(const predict_spec *s, predict_result *r, char *err, size_t errn
             size_t cells = (size_t)s->res * (size_t)s->res;
             memcpy(brdf_table_lobe(&r->traced, k, 0), brdf_table_lobe(&r->traced, 0, 0), cells * sizeof(float));
             memcpy(brdf_table_lobe(&r->all, k, 0), brdf_table_lobe(&r->all, 0, 0), cells * sizeof(float));
+            memcpy(brdf_table_lobe(&r->model, k, 0), brdf_table_lobe(&r->model, 0, 0), cells * sizeof(float));
             r->traced.known[k] = r->traced.known[0], r->all.known[k] = r->all.known[0];
+            r->model.known[k] = r->model.known[0];
+            if (s->wave) r->wave.known[k] = r->wave.known[0];
             if (s->wave)
                 for (int c = 0; c < 3; c++)
                     memcpy(brdf_table_lobe(&r->wave, k, c), brdf_table_lobe(&r->wave, 0, c), cells * sizeof(float));
             continue;
         }
-        fail = trace_incidence(s, tr, k, r, err, errn) || (s->wave && wave_incidence(s, h, k, r, err, errn));
+        fail = trace_incidence(s, tr, k, r, err, errn);
+        /* where the trace is not known, neither is the rest: every row is a mean over the same incidences */
+        if (!fail && !r->traced.known[k]) {
+            r->model.known[k] = 0;
+            if (s->wave) r->wave.known[k] = 0;
+            continue;
+        }
+        fail = fail || model_incidence(s->model, k, &r->model, err, errn) ||
+               (s->wave && wave_incidence(s, h, k, r, err, errn));
         if (s->progress) s->progress(s->progress_ctx, k + 1, count);
     }
     ms_tracer_free(tr);

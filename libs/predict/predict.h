@@ -36,7 +36,8 @@ typedef struct predict_result {
                         * (not fallen through a missing region, not left the patch's side) */
     brdf_table all;    /* every bounce, traced (one channel) */
     brdf_table wave;   /* wave optics, red, green, blue (three channels; no incidences where spec->wave is 0) */
-    brdf_table model;  /* the model: its cell means (one channel) */
+    brdf_table model;  /* the model (one channel): each cell's share of ggx_sample_brdf's weights on a jittered 512^2
+                        * grid, the cell's mean of f in expectation however narrow the lobe */
     long rays, left, lost, capped; /* summed over the incidences: traced, left the patch's side, fell through a
                                     * missing region, still bouncing after spec->bounces */
     double window[4];              /* the normal incidence's window of ray origins, in grid spacings */
@@ -50,7 +51,8 @@ typedef struct predict_result {
 } predict_result;
 
 /* Traces and (with spec->wave) computes the wave optics of each incidence into r (predict_free releases it; on
- * failure nothing is left to free). The heights are levelled first (ms_level). Returns 0, or -1 with a one-line
+ * failure nothing is left to free). The heights are levelled first (ms_level). An incidence the patch cannot trace
+ * (ms_patch_window finds no window) is unknown in every table. Returns 0, or -1 with a one-line
  * reason in err (the tracer's or the wave optics' refusal, a bad grid, no memory). */
 int predict_run(const predict_spec *spec, predict_result *r, char *err, size_t errn);
 void predict_free(predict_result *r);

@@ -19,8 +19,9 @@ typedef struct microsurface_patch {
 } microsurface_patch;
 
 /* The heights of --heightfield in micrometres (NaN for a missing point) on a grid of spacing *dx micrometres, equal
- * along x and y to 1e-3, box-averaged by --downsample K: a file's own spacing and height unit are metres; --spacing D
- * and --z-scale Z are micrometres (a file without its own height unit: heights in the spacing's unit). *missing: the
+ * along x and y to 1e-3, box-averaged by --downsample K: a file's own spacing is metres (its heights times its
+ * z_scale in the spacing's unit); --spacing D is micrometres, the heights (times the file's z_scale) then in D's unit;
+ * --z-scale Z, micrometres per height unit. *missing: the
  * missing points. Dies with one line on bad input (no spacing or height unit, under 3 x 3, every point missing,
  * unequal spacings, a height unit over the spacing beyond a double's range). */
 double *microsurface_heights_um(const options *o, size_t *nx, size_t *ny, double *dx, size_t *missing);

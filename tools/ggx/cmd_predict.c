@@ -23,15 +23,16 @@ void predict_help(void)
            "them (ggx fit): the BRDF with F = 1 traced over the heights as a patch (geometric optics, every\n"
            "bounce followed; ggx microsurface measure) and by scalar wave optics (the Kirchhoff BRDF at 630,\n"
            "532 and 465 nm; ggx microsurface wave), at the incidences theta_i 0, 20, 40, 60 and 75 degrees\n"
-           "times 4 azimuths, each tabulated over 128 x 128 cells of the outgoing directions' projection.\n"
+           "times 4 azimuths, each tabulated over 127 x 127 cells of the outgoing directions' projection.\n"
            "Writes into DIR (default predict/): sheet.pdf and sheet.png (the fit, the BRDF in the plane of\n"
            "incidence at theta_i 0, 20, 40 and 60 degrees traced, wave and fitted, the albedos and the relative\n"
            "L2 of the fitted model against each prediction per incidence, and spheres under one distant light\n"
            "in the fitted model, the traced BRDF and the wave BRDF), spheres.png (the three spheres), predict.csv\n"
            "(one row per incidence) and predict.json (all of it). Prints the table of the sheet.\n\n"
            "  --heightfield FILE   a measured height field (x3p, gsf, OpenEXR, 16-bit PNG, PFM, text; see ggx fit);\n"
-           "                       a file's own spacing is read as metres; --spacing D in micrometres, heights\n"
-           "                       times --z-scale Z in micrometres; equal spacings along x and y\n"
+           "                       a file's own spacing is read as metres; --spacing D in micrometres (the\n"
+           "                       heights then in D's unit), --z-scale Z micrometres per height unit; equal\n"
+           "                       spacings along x and y\n"
            "  -n RAYS              traced rays per incidence (default 1,000,000)\n"
            "  --bounces K          the most reflections of a traced ray (default 100)\n"
            "  --size PX            the spheres' size in pixels (default 256)\n"
@@ -42,7 +43,7 @@ void predict_help(void)
 
 /* the incidences: polar angles (degrees) times azimuths; the sheet's slices at the first four */
 static const double THETAS[] = {0, 20, 40, 60, 75};
-enum { N_THETA = sizeof THETAS / sizeof THETAS[0], N_PHI = 4, RES = 128 };
+enum { N_THETA = sizeof THETAS / sizeof THETAS[0], N_PHI = 4, RES = 127 }; /* odd: the normal is a cell's centre */
 
 static void show(void *ctx, long done, long total)
 {
@@ -125,7 +126,7 @@ static void fill_sheet(prediction *p)
     double ax, ay, tx, ty, tz;
     ggx_shape_ellipsoid_params(&p->fit, &ax, &ay, &tx, &ty, &tz);
     char tails[96] = "";
-    if (isfinite(p->info.tails.nu))
+    if (isfinite(p->info.tails.nu) && isfinite(p->info.tails.nu_std_error))
         snprintf(tails, sizeof tails, "; slope tails: Student t of nu %.3g +- %.2g (GGX: 2)", p->info.tails.nu,
                  p->info.tails.nu_std_error);
     snprintf(d->lines[1], sizeof d->lines[1], "fitted: --alpha %.4g,%.4g --skew %.4g,%.4g --rotate %.4g%s", ax, ay,
@@ -249,8 +250,7 @@ static void write_json(FILE *f, const prediction *p)
 
 static void write_outputs(prediction *p, const char *dir)
 {
-    ensure_dir(dir);
-    out_begin_set(); /* every file or none */
+    out_begin_set(); /* every file or none, the table on standard output included */
     char *path = alloc_printf("%s/sheet.pdf", dir);
     for (int fmt = 0; fmt < 2; fmt++) {
         canvas c;
@@ -280,6 +280,8 @@ static void write_outputs(prediction *p, const char *dir)
     write_json(f.f, p);
     out_close(&f);
     free(path);
+    write_table(stdout, p, 0);
+    out_flush_stdout();
     out_commit_set();
     out_keep_dirs();
 }
@@ -288,6 +290,9 @@ int cmd_predict(options *o, const ggx_shape *s)
 {
     (void)s;
     if (!o->heightfield) die("--heightfield FILE is required");
+    if (o->size_h) die("--size: one number, the spheres' side in pixels");
+    const char *dir = o->out ? o->out : "predict";
+    ensure_dir(dir); /* before the work: a folder that cannot be made fails at once (and one made goes on failure) */
     prediction *p = calloc(1, sizeof *p);
     if (!p) die("out of memory");
     p->o = o;
@@ -321,9 +326,12 @@ int cmd_predict(options *o, const ggx_shape *s)
     p->size = o->size > 0 ? o->size : 256;
     render_spheres(p);
     fill_sheet(p);
-    write_outputs(p, o->out ? o->out : "predict");
-    write_table(stdout, p, 0);
-    out_flush_stdout();
+    if (p->spec.wave && p->res.aliased > 0.2)
+        fprintf(stderr,
+                "ggx: warning: the wave optics misplaces %.0f %% of the light at some incidence (the scan's spacing "
+                "against the wavelength: docs/design/predict.md)\n",
+                100 * p->res.aliased);
+    write_outputs(p, dir);
     predict_free(&p->res);
     for (int k = 0; k < 3; k++) free(p->sphere[k]);
     free(p);

@@ -70,9 +70,11 @@ double *microsurface_heights_um(const options *o, size_t *nx_out, size_t *ny_out
     surface s;
     char err[512];
     if (surface_read(o->heightfield, &ro, &s, err, sizeof err) != 0) die("%s", err);
-    /* a file's own lengths are metres; --spacing and --z-scale are micrometres */
-    double dx = o->have_spacing ? o->spacing[0] : s.dx * 1e6, dy = o->have_spacing ? o->spacing[1] : s.dy * 1e6;
-    double zs = o->have_z_scale ? o->z_scale : s.z_scale > 0 ? s.z_scale * 1e6 : (s.dx > 0 ? 0 : 1);
+    /* a file's own spacing is metres, and its z_scale brings heights into the unit of that spacing; --spacing D is
+     * micrometres, the heights (times the file's z_scale) then taken in the unit of D; --z-scale Z, micrometres */
+    double um = o->have_spacing ? 1.0 : 1e6;
+    double dx = o->have_spacing ? o->spacing[0] : s.dx * um, dy = o->have_spacing ? o->spacing[1] : s.dy * um;
+    double zs = o->have_z_scale ? o->z_scale : s.z_scale > 0 ? s.z_scale * um : (s.dx > 0 ? 0 : 1);
     size_t nx = s.nx, ny = s.ny, k = o->downsample > 1 ? (size_t)o->downsample : 1;
     if (nx < 3 || ny < 3) {
         surface_free(&s);
