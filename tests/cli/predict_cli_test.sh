@@ -77,20 +77,24 @@ if "$GGX" microsurface generate --kind beckmann --alpha 0.3 --corr 4 --size 64 -
 elif ! grep -q "not built" err.txt; then
     bad "generate: $(cat err.txt)"
 fi
-# a mirror (zeros): the fit's alpha 1e-4 lobe lies in one cell, which the model's table holds as the trace does
-"$PY" -c "
-for y in range(40): print(' '.join(['0'] * 48))" > flat.txt
-"$GGX" predict --heightfield flat.txt --spacing 1 -n 2000 --no-wave --size 64 --out flat > /dev/null 2> err.txt &&
+# (outside the wrapper: each run samples the model's 17 lobes, 4.5 million samples, a minute under valgrind)
+if [ -z "${GGX_WRAP:-}" ]; then
+    # a mirror (zeros): the fit's alpha 1e-4 lobe lies in one cell, which the model's table holds as the trace does
     "$PY" -c "
+for y in range(40): print(' '.join(['0'] * 48))" > flat.txt
+    "$GGX" predict --heightfield flat.txt --spacing 1 -n 2000 --no-wave --size 64 --out flat > /dev/null 2> err.txt &&
+        "$PY" -c "
 import json; d = json.load(open('flat/predict.json'))
 for i in d['incidences']:
     assert abs(i['albedo_traced'] - 1) < 1e-6 and i['albedo_model'] > 0.99 and i['l2_model_traced'] < 0.05, i" && ok ||
-    bad "flat: $(cat err.txt) $(head -c 900 flat/predict.json)"
-# an OpenEXR whose spacing has no unit: --spacing D (micrometres) alone takes its heights in D's unit, as ggx fit does
-if "$GGX" microsurface generate --kind beckmann --alpha 0.3 --corr 4 --size 64 --out g.exr > /dev/null 2> err.txt; then
-    "$GGX" predict --heightfield g.exr --spacing 2 -n 2000 --no-wave --size 64 --out e1 > /dev/null 2> err.txt &&
-        "$GGX" predict --heightfield g.exr --spacing 2 --z-scale 1 -n 2000 --no-wave --size 64 --out e2 > /dev/null &&
-        cmp -s e1/predict.csv e2/predict.csv && ok || bad "OpenEXR with --spacing alone: $(cat err.txt)"
+        bad "flat: $(cat err.txt) $(head -c 900 flat/predict.json)"
+    # an OpenEXR whose spacing has no unit: --spacing D (micrometres) alone takes its heights in D's unit, as ggx fit
+    if "$GGX" microsurface generate --kind beckmann --alpha 0.3 --corr 4 --size 64 --out g.exr > /dev/null 2> err.txt
+    then
+        "$GGX" predict --heightfield g.exr --spacing 2 -n 2000 --no-wave --size 64 --out e1 > /dev/null 2> err.txt &&
+            "$GGX" predict --heightfield g.exr --spacing 2 --z-scale 1 -n 2000 --no-wave --size 64 --out e2 > /dev/null &&
+            cmp -s e1/predict.csv e2/predict.csv && ok || bad "OpenEXR with --spacing alone: $(cat err.txt)"
+    fi
 fi
 # bad input: one line, status 2, no folder left
 "$PY" -c "print('0 1\n2 3')" > two.txt
@@ -106,10 +110,12 @@ for y in range(8): print(' '.join(str((x * y) % 5) for x in range(8)))" > eight.
 one_line "absurd z scale" "" 2 "$GGX" predict --heightfield eight.txt --spacing 1 --z-scale 1e300 --out bad3
 one_line "unwritable folder" "" 2 "$GGX" predict --heightfield eight.txt --spacing 1 -n 100 --no-wave --out /proc/ggx-predict
 one_line "two sizes" "one number" 2 "$GGX" predict --heightfield eight.txt --spacing 1 --size 100x200 --out bad4
-# standard output that cannot be written: the files go with it (all or none)
-"$GGX" predict --heightfield eight.txt --spacing 1 -n 100 --no-wave --size 64 --out bad5 > /dev/full 2> err.txt
-rc=$?
-[ $rc -eq 2 ] && [ "$(wc -l < err.txt)" -eq 1 ] && ok || bad "stdout full: rc $rc, $(cat err.txt)"
+# standard output that cannot be written: the files go with it (all or none; a whole run: outside the wrapper)
+if [ -z "${GGX_WRAP:-}" ]; then
+    "$GGX" predict --heightfield eight.txt --spacing 1 -n 100 --no-wave --size 64 --out bad5 > /dev/full 2> err.txt
+    rc=$?
+    [ $rc -eq 2 ] && [ "$(wc -l < err.txt)" -eq 1 ] && ok || bad "stdout full: rc $rc, $(cat err.txt)"
+fi
 [ ! -e bad1 ] && [ ! -e bad2 ] && [ ! -e bad3 ] && [ ! -e bad4 ] && [ ! -e bad5 ] && ok ||
     bad "a refused run left a folder: $(ls -d bad* 2>/dev/null)"
 echo "predict CLI: $pass passed, $fail failed"
