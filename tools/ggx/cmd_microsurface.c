@@ -195,14 +195,6 @@ static int vndf_draw(void *p, rng *r, ggx_vec3 *w)
 
 static double vndf_pdf(const ggx_shape *s, ggx_vec3 v, ggx_vec3 m) { return ggx_pdf_vndf(s, v, m); }
 
-/* a JSON number, or null for NaN and infinities (JSON has neither) */
-static const char *jnum(char buf[32], double x)
-{
-    if (isfinite(x)) snprintf(buf, 32, "%.10g", x);
-    else snprintf(buf, 32, "null");
-    return buf;
-}
-
 static void measure_help(void)
 {
     printf("usage: ggx microsurface measure --heightfield FILE [--spacing D] [--z-scale Z] [--downsample K]\n"
@@ -268,31 +260,30 @@ static void report_json(FILE *f, const measured *m)
 {
     fprintf(f, "{\n  \"input\": \"%s\", \"size\": %zu, \"view_deg\": [%.6g, %.6g], \"rays\": %ld, \"missed\": %ld,\n",
             m->o->heightfield, m->n, m->theta, m->phi, m->r.rays, m->r.missed);
-    char b1[32], b2[32], b3[32], b4[32], b5[32];
     fprintf(f,
             "  \"slope_cov\": [%.10g, %.10g, %.10g],\n  \"g1\": {\"facets\": %.10g, \"smith_beckmann\": %s, "
             "\"smith_ggx_fit\": %s},\n",
-            m->r.slope_cov[0], m->r.slope_cov[1], m->r.slope_cov[2], m->r.g1, jnum(b1, m->g_b), jnum(b2, m->g_ggx));
+            m->r.slope_cov[0], m->r.slope_cov[1], m->r.slope_cov[2], m->r.g1, json_number(m->g_b),
+            json_number(m->g_ggx));
     fprintf(f,
             "  \"tilt\": [%.10g, %.10g], \"risers\": [%zu, %zu], \"slope_mean\": [%.10g, %.10g], "
             "\"t\": [%s, %s],\n",
             m->tilt[0], m->tilt[1], m->r.risers[0], m->r.risers[1], m->r.slope_mean[0], m->r.slope_mean[1],
-            jnum(b1, m->ts[0]), jnum(b2, m->ts[1]));
-    char b6[32];
+            json_number(m->ts[0]), json_number(m->ts[1]));
     fprintf(f,
             "  \"skewed_g1\": {\"traced\": %.10g, \"eq6\": %s, \"smith\": %s, \"vertical_facets\": %s, "
             "\"tilted_base\": %s, \"sawtooth\": %s, \"risers_area\": %.10g, \"risers_visible\": %s},\n",
-            m->g1v, jnum(b1, m->g_eq6), jnum(b2, m->g_ggx), jnum(b3, m->g_vf), jnum(b4, m->g_tb), jnum(b5, m->g_saw),
-            m->r.riser_area, jnum(b6, m->g_riser));
+            m->g1v, json_number(m->g_eq6), json_number(m->g_ggx), json_number(m->g_vf), json_number(m->g_tb),
+            json_number(m->g_saw), m->r.riser_area, json_number(m->g_riser));
     fprintf(f, "  \"vndf_chi2\": {\"rays\": %ld, \"stat\": %s, \"dof\": %d, \"pvalue\": %s, \"invalid\": %ld},\n",
-            m->vrays, jnum(b1, m->cr.stat), m->cr.dof, jnum(b2, m->cr.pvalue), m->cr.invalid);
+            m->vrays, json_number(m->cr.stat), m->cr.dof, json_number(m->cr.pvalue), m->cr.invalid);
     if (m->brdf) {
         fprintf(f,
                 "  \"brdf\": {\"rays\": %ld, \"lost\": %ld, \"capped\": %ld, \"albedo_single\": %.8g, "
                 "\"albedo_model\": %s, \"albedo_model_height_correlated\": %s, \"albedo_all\": %.8g, "
                 "\"l2_single\": %s, \"l2_single_height_correlated\": %s, \"l2_all\": %s,\n",
-                m->br.rays, m->br.lost, m->br.capped, m->e_single, jnum(b3, m->e_model), jnum(b1, m->e_hc), m->e_all,
-                jnum(b4, m->l2_single), jnum(b6, m->l2_hc), jnum(b5, m->l2_all));
+                m->br.rays, m->br.lost, m->br.capped, m->e_single, json_number(m->e_model), json_number(m->e_hc),
+                m->e_all, json_number(m->l2_single), json_number(m->l2_hc), json_number(m->l2_all));
         /* the shares per outgoing bin (ring-major, BR x BS), for comparing runs */
         for (int k = 0; k < 2; k++) {
             const double *x = k ? m->br.all : m->br.single;
