@@ -216,3 +216,20 @@ double predict_row_l2(const brdf_table *a, int ca, const brdf_table *b, int cb, 
     for (int j = 0; j < a->n_phi; j++) v[j] = brdf_table_l2(a, ca, b, cb, it * a->n_phi + j);
     return mean_finite(v, a->n_phi);
 }
+
+predict_incidence predict_incidence_of(const predict_result *r, int k)
+{
+    predict_incidence q = {brdf_table_albedo(&r->traced, k, 0),
+                           brdf_table_albedo(&r->all, k, 0),
+                           {NAN, NAN, NAN},
+                           brdf_table_albedo(&r->model, k, 0),
+                           brdf_table_l2(&r->model, 0, &r->traced, 0, k),
+                           NAN,
+                           NAN};
+    if (r->wave.f) {
+        for (int c = 0; c < 3; c++) q.albedo_wave[c] = brdf_table_albedo(&r->wave, k, c);
+        q.l2_model_wave = brdf_table_l2(&r->model, 0, &r->wave, 1, k);
+        q.l2_traced_wave = brdf_table_l2(&r->traced, 0, &r->wave, 1, k);
+    }
+    return q;
+}

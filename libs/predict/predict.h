@@ -57,6 +57,15 @@ typedef struct predict_result {
 int predict_run(const predict_spec *spec, predict_result *r, char *err, size_t errn);
 void predict_free(predict_result *r);
 
+/* One incidence's figures: the albedos (traced single scattering and every bounce, wave optics red, green, blue, the
+ * model) and the relative L2 distances of the model from the trace and from the green wave, and of the trace from
+ * the green wave (brdf_table_l2: ||a - b|| / ||b||, b the second); NaN where not known (no wave optics: its five). */
+typedef struct predict_incidence {
+    double albedo_traced, albedo_all, albedo_wave[3], albedo_model;
+    double l2_model_traced, l2_model_wave, l2_traced_wave;
+} predict_incidence;
+predict_incidence predict_incidence_of(const predict_result *r, int k);
+
 /* The rows of a sheet: for polar angle row it, channel ch, the mean over its known azimuths of a table's albedo, or
  * of the relative L2 of a (channel ca) against b (channel cb); NaN where none is known. */
 double predict_row_albedo(const brdf_table *t, int it, int ch);

@@ -195,14 +195,10 @@ static void write_table(FILE *f, const prediction *p, int csv)
                     d->l2_model_wave[it], d->l2_traced_wave[it]);
             continue;
         }
-        double w[3] = {NAN, NAN, NAN}, lw = NAN, ltw = NAN;
-        if (p->spec.wave) {
-            for (int c = 0; c < 3; c++) w[c] = brdf_table_albedo(&r->wave, k, c);
-            lw = brdf_table_l2(&r->model, 0, &r->wave, 1, k), ltw = brdf_table_l2(&r->traced, 0, &r->wave, 1, k);
-        }
+        predict_incidence q = predict_incidence_of(r, k);
         fprintf(f, "%.6g,%.6g,%.8g,%.8g,%.8g,%.8g,%.8g,%.8g,%.8g,%.8g,%.8g\n", THETAS[it], 360.0 * (k % N_PHI) / N_PHI,
-                brdf_table_albedo(&r->traced, k, 0), brdf_table_albedo(&r->all, k, 0), w[0], w[1], w[2],
-                brdf_table_albedo(&r->model, k, 0), brdf_table_l2(&r->model, 0, &r->traced, 0, k), lw, ltw);
+                q.albedo_traced, q.albedo_all, q.albedo_wave[0], q.albedo_wave[1], q.albedo_wave[2], q.albedo_model,
+                q.l2_model_traced, q.l2_model_wave, q.l2_traced_wave);
     }
 }
 
@@ -230,20 +226,15 @@ static void write_json(FILE *f, const prediction *p)
     else fprintf(f, "  \"wave\": null,\n");
     fprintf(f, "  \"incidences\": [");
     for (int k = 0; k < brdf_table_count(&r->traced); k++) {
-        double w[3] = {NAN, NAN, NAN}, lw = NAN, ltw = NAN;
-        if (p->spec.wave) {
-            for (int c = 0; c < 3; c++) w[c] = brdf_table_albedo(&r->wave, k, c);
-            lw = brdf_table_l2(&r->model, 0, &r->wave, 1, k), ltw = brdf_table_l2(&r->traced, 0, &r->wave, 1, k);
-        }
+        predict_incidence q = predict_incidence_of(r, k);
         fprintf(f,
                 "%s\n    {\"theta_i\": %.6g, \"phi_i\": %.6g, \"albedo_traced\": %s, \"albedo_traced_all\": %s, "
                 "\"albedo_wave\": [%s, %s, %s], \"albedo_model\": %s, \"l2_model_traced\": %s, "
                 "\"l2_model_wave\": %s, \"l2_traced_wave\": %s}",
-                k ? "," : "", THETAS[k / N_PHI], 360.0 * (k % N_PHI) / N_PHI,
-                json_number(brdf_table_albedo(&r->traced, k, 0)), json_number(brdf_table_albedo(&r->all, k, 0)),
-                json_number(w[0]), json_number(w[1]), json_number(w[2]),
-                json_number(brdf_table_albedo(&r->model, k, 0)),
-                json_number(brdf_table_l2(&r->model, 0, &r->traced, 0, k)), json_number(lw), json_number(ltw));
+                k ? "," : "", THETAS[k / N_PHI], 360.0 * (k % N_PHI) / N_PHI, json_number(q.albedo_traced),
+                json_number(q.albedo_all), json_number(q.albedo_wave[0]), json_number(q.albedo_wave[1]),
+                json_number(q.albedo_wave[2]), json_number(q.albedo_model), json_number(q.l2_model_traced),
+                json_number(q.l2_model_wave), json_number(q.l2_traced_wave));
     }
     fprintf(f, "\n  ]\n}\n");
 }
