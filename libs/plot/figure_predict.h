@@ -4,6 +4,8 @@
 #define GGX_PLOT_FIGURE_PREDICT_H
 
 #include "canvas.h"
+#include "ggx/ggx_fit.h"
+#include "predict.h"
 
 /* The canvas's size, in canvas units; the slices (incidences), their points (theta_o from -89 to 89 degrees, one a
  * degree), the table's rows and the spheres. */
@@ -42,6 +44,19 @@ typedef struct figure_predict_data {
     char light_words[160];
     double exposure;
 } figure_predict_data;
+
+/* The sheet's text, slices (the first four polar angles of s, at azimuth 0) and rows (s's polar angles) from the
+ * prediction r of s and the model fit with its fit's info (tails), for the file name; no_wave says why there is no
+ * wave optics where s->wave is 0. The spheres are figure_predict_spheres'. */
+void figure_predict_fill(figure_predict_data *d, const predict_spec *s, const predict_result *r, const ggx_shape *fit,
+                         const ggx_fit_info *info, const char *name, const char *no_wave);
+/* The three spheres (size x size pixels each, 4 jittered samples a pixel; sphere[k] malloc'd, the caller frees them,
+ * NULL for the wave optics where s->wave is 0) under one distant light (theta 55, phi -130 degrees, irradiance 1;
+ * render_direct, ggx render's sphere camera): the model exactly, r's every-bounce trace and r's wave optics by
+ * brdf_table_eval; into d, with their captions and the exposure (stops; NULL: the model's sphere at 1 in its 99.5th
+ * percentile). Returns 0, or -1 when out of memory. */
+int figure_predict_spheres(figure_predict_data *d, const predict_spec *s, const predict_result *r, const ggx_shape *fit,
+                           int size, const double *exposure, float *sphere[3]);
 
 /* Draws the sheet onto c, a canvas of FIGURE_PREDICT_W x FIGURE_PREDICT_H: the lines of text, the slices on a log
  * scale, the table and the spheres. */

@@ -13,7 +13,6 @@
 #include "ggx/ggx_fit.h"
 #include "kirchhoff.h"
 #include "predict.h"
-#include "render.h"
 
 void predict_help(void)
 {
@@ -50,15 +49,6 @@ static void show(void *ctx, long done, long total)
     if (*(int *)ctx) progress_show("predict", done, total);
 }
 
-/* The spheres' materials: the model's BRDF and a table's. */
-static void sphere_model(const void *ctx, ggx_vec3 wl, ggx_vec3 v, double f[3])
-{
-    ggx_fresnel one;
-    ggx_fresnel_one(&one);
-    f[0] = f[1] = f[2] = ggx_brdf_eval(ctx, &one, wl, v);
-}
-static void sphere_table(const void *ctx, ggx_vec3 wl, ggx_vec3 v, double f[3]) { brdf_table_eval(ctx, wl, v, f); }
-
 typedef struct prediction {
     const options *o;
     size_t nx, ny;
@@ -71,110 +61,6 @@ typedef struct prediction {
     float *sphere[3];
     int size;
 } prediction;
-
-static void render_spheres(prediction *p)
-{
-    render_spec r;
-    render_spec_defaults(&r);
-    r.light = RENDER_LIGHT_DIRECTIONAL;
-    r.light_dir = direction_deg(55, -130), r.light_irradiance = 1;
-    r.width = r.height = p->size, r.spp = 4, r.threads = p->spec.threads;
-    size_t n = (size_t)p->size * (size_t)p->size * 3;
-    const void *ctx[3] = {&p->fit, &p->res.all, &p->res.wave};
-    render_brdf_fn fn[3] = {sphere_model, sphere_table, sphere_table};
-    for (int k = 0; k < 3; k++) {
-        if (k == 2 && !p->spec.wave) continue;
-        p->sphere[k] = malloc(n * sizeof(float));
-        if (!p->sphere[k]) die("out of memory for the spheres");
-        render_direct(&r, fn[k], ctx[k], p->sphere[k]);
-    }
-    /* the exposure: the model's sphere at 1 in its 99.5th percentile (by a histogram of 4096 steps of its max) */
-    double e = p->o->exposure, top = 0;
-    int automatic = !p->o->have_exposure;
-    if (automatic) {
-        for (size_t i = 0; i < n; i++) top = fmax(top, p->sphere[0][i]);
-        long hist[4096] = {0}, lit = 0;
-        for (size_t i = 0; i < n; i += 3) {
-            double v = fmax(p->sphere[0][i], fmax(p->sphere[0][i + 1], p->sphere[0][i + 2]));
-            if (v > 0) hist[v >= top ? 4095 : (int)(v / top * 4096)]++, lit++;
-        }
-        long c = 0;
-        int b = 4095;
-        while (b > 0 && (c += hist[b]) < lit / 200) b--;
-        double p995 = top > 0 ? (b + 1) * top / 4096 : 1;
-        e = -log2(p995);
-    }
-    p->sheet.exposure = e, p->sheet.size = p->size;
-    snprintf(p->sheet.light_words, sizeof p->sheet.light_words,
-             "spheres under one distant light (theta 55, phi -130 degrees), F = 1, exposure %+.2f stops", e);
-    static const char *label[3] = {"the fitted model", "traced, every bounce", "wave optics (R, G, B)"};
-    for (int k = 0; k < 3; k++) {
-        p->sheet.sphere[k] = p->sphere[k];
-        snprintf(p->sheet.sphere_label[k], sizeof p->sheet.sphere_label[k], "%s", label[k]);
-    }
-}
-
-/* The sheet's slices, table and lines of text. */
-static void fill_sheet(prediction *p)
-{
-    figure_predict_data *d = &p->sheet;
-    const predict_result *r = &p->res;
-    snprintf(d->title, sizeof d->title, "ggx predict: %s", p->o->heightfield);
-    snprintf(d->lines[0], sizeof d->lines[0],
-             "%zu x %zu heights, spacing %.4g um, RMS height %.4g um (levelled), %.2f %% missing", p->nx, p->ny, p->dx,
-             r->sigma_h, 100 * r->missing);
-    double ax, ay, tx, ty, tz;
-    ggx_shape_ellipsoid_params(&p->fit, &ax, &ay, &tx, &ty, &tz);
-    char tails[96] = "";
-    if (isfinite(p->info.tails.nu) && isfinite(p->info.tails.nu_std_error))
-        snprintf(tails, sizeof tails, "; slope tails: Student t of nu %.3g +- %.2g (GGX: 2)", p->info.tails.nu,
-                 p->info.tails.nu_std_error);
-    snprintf(d->lines[1], sizeof d->lines[1], "fitted: --alpha %.4g,%.4g --skew %.4g,%.4g --rotate %.4g%s", ax, ay,
-             tx / DEG + 0.0, ty / DEG + 0.0, tz / DEG + 0.0, tails);
-    char untraced[96] = "";
-    if (r->untraced)
-        snprintf(untraced, sizeof untraced, "; %d incidences too grazing for the patch's band of heights", r->untraced);
-    snprintf(d->lines[2], sizeof d->lines[2],
-             "traced: %ld rays, every bounce followed (%.2g %% left the patch's side, %.2g %% fell through holes)%s",
-             r->rays, 100.0 * (double)r->left / (double)(r->rays ? r->rays : 1),
-             100.0 * (double)r->lost / (double)(r->rays ? r->rays : 1), untraced);
-    if (p->spec.wave)
-        snprintf(d->lines[3], sizeof d->lines[3],
-                 "wave optics: 630, 532, 465 nm on %zu x %zu heights (%.0f x %.0f um) upsampled %d x, %.1f %% aliased",
-                 r->wave_window[2], r->wave_window[3], (double)r->wave_window[2] * p->dx,
-                 (double)r->wave_window[3] * p->dx, r->upsample, 100 * r->aliased);
-    else
-        snprintf(d->lines[3], sizeof d->lines[3], "wave optics: not computed (%s)",
-                 p->o->no_wave ? "--no-wave" : "KISS FFT not built");
-    d->slices = FIGURE_PREDICT_SLICES, d->slice_phi = 0;
-    for (int c = 0; c < 3; c++) d->wavelength[c] = p->spec.wave ? ms_kirchhoff_rgb_um[c] : 0;
-    ggx_fresnel one;
-    ggx_fresnel_one(&one);
-    for (int s = 0; s < d->slices; s++) {
-        d->slice_theta[s] = THETAS[s];
-        ggx_vec3 wi = direction_deg(THETAS[s], 0);
-        for (int i = 0; i < FIGURE_PREDICT_POINTS; i++) {
-            double t = i - 89.0; /* negative: towards the light (phi 0), positive: the mirror's side (phi 180) */
-            ggx_vec3 wo = direction_deg(fabs(t), t < 0 ? 0 : 180);
-            double f[3];
-            brdf_table_eval(&r->traced, wi, wo, f);
-            d->traced[s][i] = f[0];
-            d->model[s][i] = ggx_brdf_eval(&p->fit, &one, wi, wo);
-            if (p->spec.wave) brdf_table_eval(&r->wave, wi, wo, f);
-            for (int c = 0; c < 3; c++) d->wave[s][c][i] = p->spec.wave ? f[c] : NAN;
-        }
-    }
-    d->rows = N_THETA;
-    for (int it = 0; it < N_THETA; it++) {
-        d->row_theta[it] = THETAS[it];
-        d->albedo_traced[it] = predict_row_albedo(&r->traced, it, 0);
-        d->albedo_model[it] = predict_row_albedo(&r->model, it, 0);
-        d->l2_model_traced[it] = predict_row_l2(&r->model, 0, &r->traced, 0, it);
-        d->albedo_wave[it] = p->spec.wave ? predict_row_albedo(&r->wave, it, 1) : NAN;
-        d->l2_model_wave[it] = p->spec.wave ? predict_row_l2(&r->model, 0, &r->wave, 1, it) : NAN;
-        d->l2_traced_wave[it] = p->spec.wave ? predict_row_l2(&r->traced, 0, &r->wave, 1, it) : NAN;
-    }
-}
 
 static void write_table(FILE *f, const prediction *p, int csv)
 {
@@ -315,8 +201,11 @@ int cmd_predict(options *o, const ggx_shape *s)
     if (bar) progress_end("predict", brdf_table_count(&p->res.traced));
     free(h);
     p->size = o->size > 0 ? o->size : 256;
-    render_spheres(p);
-    fill_sheet(p);
+    if (figure_predict_spheres(&p->sheet, &p->spec, &p->res, &p->fit, p->size, o->have_exposure ? &o->exposure : NULL,
+                               p->sphere) != 0)
+        die("out of memory for the spheres");
+    figure_predict_fill(&p->sheet, &p->spec, &p->res, &p->fit, &p->info, o->heightfield,
+                        o->no_wave ? "--no-wave" : "KISS FFT not built");
     if (p->spec.wave && p->res.aliased > 0.2)
         fprintf(stderr,
                 "ggx: warning: the wave optics misplaces %.0f %% of the light at some incidence (the scan's spacing "
