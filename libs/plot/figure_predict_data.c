@@ -50,7 +50,8 @@ void figure_predict_fill(figure_predict_data *d, const predict_spec *s, const pr
         d->slice_theta[k] = s->theta[k] / DEG;
         ggx_vec3 wi = polar(s->theta[k], 0);
         for (int i = 0; i < FIGURE_PREDICT_POINTS; i++) {
-            double t = (i - 89.0) * DEG; /* negative: towards the light (phi 0), positive: the mirror's side (phi 180) */
+            double t = (i - 89.0) *
+                       DEG; /* negative: towards the light (phi 0), positive: the mirror's side (phi 180) */
             ggx_vec3 wo = polar(fabs(t), t < 0 ? 0 : GGX_PI);
             double f[3];
             brdf_table_eval(&r->traced, wi, wo, f);
@@ -98,8 +99,8 @@ static double exposure_of(const float *rgb, size_t pixels)
     return -log2(top > 0 ? (b + 1) * top / 4096 : 1);
 }
 
-int figure_predict_spheres(figure_predict_data *d, const predict_spec *s, const predict_result *r,
-                           const ggx_shape *fit, int size, const double *exposure, float *sphere[3])
+int figure_predict_spheres(figure_predict_data *d, const predict_spec *s, const predict_result *r, const ggx_shape *fit,
+                           int size, const double *exposure, float *sphere[3])
 {
     render_spec rs;
     render_spec_defaults(&rs);

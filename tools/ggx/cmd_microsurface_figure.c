@@ -113,17 +113,19 @@ int microsurface_figure(int argc, char **argv)
     canvas_open_file(&c, o.out, fmt, W, H, o.dark);
     cairo_t *cr = c.cr;
     double F = figure_font(W, H);
-    char l1[200], l2[400], l3[200];
+    char l1[200], l2[400], l3[300];
     double back = phi + 180.0 > 180.0 ? phi - 180.0 : phi + 180.0;
     snprintf(l1, sizeof l1, "Masking traced on a microsurface against the model's forms");
-    snprintf(l2, sizeof l2, "%s, %zu × %zu%s; the %s GGX shape's slopes: t = (%.3g, %.3g), Σ = (%.3g, %.3g, %.3g)",
-             o.heightfield, pt.on ? pt.nx : n, pt.on ? pt.ny : n,
+    /* the surface and the views on one line, the shape on the next: a scan's path is long */
+    snprintf(l2, sizeof l2, "%s, %zu × %zu%s; views at azimuth %.4g° (right) and %.4g° (left)", o.heightfield,
+             pt.on ? pt.nx : n, pt.on ? pt.ny : n,
              o.tilted   ? ", a tilted patch"
              : o.risers ? ", a sawtooth"
-             : pt.on    ? ", a measured patch (no wrap)"
+             : pt.on    ? ", a measured patch"
                         : "",
+             phi + 0.0, back + 0.0);
+    snprintf(l3, sizeof l3, "the %s GGX shape's slopes: t = (%.3g, %.3g), Σ = (%.3g, %.3g, %.3g)",
              given ? "given" : "fitted", ts[0] + 0.0, ts[1] + 0.0, ss[0], ss[1], ss[2]);
-    snprintf(l3, sizeof l3, "views in the plane of azimuth %.4g° (right) and %.4g° (left)", phi + 0.0, back + 0.0);
     set_rgb(cr, c.th->fg);
     text_font(cr, 1.0 * F, 1);
     text_at(cr, 0.4 * F, 0.5 * F, 0, 0, l1);
